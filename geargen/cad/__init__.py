@@ -1,0 +1,1 @@
+"""The only package that imports CadQuery/OCP: solids, assemblies, STEP/STL export."""

@@ -1,0 +1,1 @@
+"""Design files: loading TOML, keys with units, validated input dataclasses (stdlib + numpy only)."""

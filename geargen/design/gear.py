@@ -1,0 +1,278 @@
+"""The gear as designed: :class:`GearSpec` (validated on construction) and its design-file table.
+
+Internal units: mm and rad. A spec always holds the *normal* system (normal module, normal
+pressure angle, normal profile shift coefficient); a design written in the transverse system
+is converted once, in :func:`gear_from_table`. For a spur gear normal and transverse coincide.
+
+Design-file table (``[gear]`` or an entry of ``[gears.*]``)::
+
+    teeth = 21
+    diametral_pitch_per_in = 32        # or module_mm = 0.8
+    pitch_system = "normal"            # helical only: is the pitch/pressure angle normal or transverse
+    pressure_angle_deg = 20
+    helix_angle_deg = 20               # 0 for spur
+    hand = "right"
+    face_width_in = 0.5
+    profile_shift = 0.0                # x, in the pitch system given
+    thinning_circumferential_in = 0.0  # tooth thinning: transverse arc at the reference circle
+    # or thinning_normal_in            #   ... or normal tooth thickness at the reference cylinder
+    bore_diameter_mm = 10
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any, Mapping
+
+from geargen.design.schema import Field, read_table
+from geargen.errors import DesignError
+from geargen.units import MM_PER_IN, module_from_diametral_pitch
+
+DEG = math.pi / 180.0
+
+HANDS = ("right", "left")
+
+
+@dataclass(frozen=True)
+class Hub:
+    """Bore, keyway and hub of a gear blank (mm). Zero means "none"."""
+
+    bore_diameter: float = 0.0
+    keyway_width: float = 0.0
+    keyway_depth: float = 0.0  # radial depth of the keyway beyond the bore
+    hub_diameter: float = 0.0
+    hub_length: float = 0.0  # hub protrudes this far beyond one face
+
+    def __post_init__(self):
+        for name in ("bore_diameter", "keyway_width", "keyway_depth", "hub_diameter", "hub_length"):
+            v = getattr(self, name)
+            if not math.isfinite(v) or v < 0:
+                raise DesignError(name, f"{v} is out of range", ">= 0 mm")
+        if (self.keyway_width > 0) != (self.keyway_depth > 0):
+            raise DesignError("keyway_width", "keyway needs both width and depth", "both > 0 or both 0")
+        if self.keyway_width > 0 and self.bore_diameter == 0:
+            raise DesignError("keyway_width", "a keyway needs a bore", "bore_diameter > 0")
+        if self.keyway_width >= self.bore_diameter > 0:
+            raise DesignError("keyway_width", f"{self.keyway_width} mm is not narrower than the bore",
+                              f"< {self.bore_diameter} mm")
+        if (self.hub_diameter > 0) != (self.hub_length > 0):
+            raise DesignError("hub_diameter", "a hub needs both diameter and length", "both > 0 or both 0")
+        if 0 < self.hub_diameter <= self.bore_diameter + 2 * self.keyway_depth:
+            raise DesignError("hub_diameter", f"{self.hub_diameter} mm leaves no wall around the bore",
+                              f"> {self.bore_diameter + 2 * self.keyway_depth} mm")
+
+
+@dataclass(frozen=True)
+class GearSpec:
+    """An external involute gear (spur when ``helix_angle`` is 0), normal system, mm and rad.
+
+    ``thinning`` is the tooth-thickness reduction for backlash, as a transverse arc length at
+    the reference circle (circumferential); :attr:`thinning_normal` gives the normal one.
+    ``rack_tip_radius_coefficient`` is the generating rack's tip radius over the normal module;
+    it shapes the trochoidal root.
+    """
+
+    teeth: int
+    module: float
+    pressure_angle: float
+    face_width: float
+    helix_angle: float = 0.0
+    hand: str = "right"
+    profile_shift: float = 0.0
+    addendum_coefficient: float = 1.0
+    dedendum_coefficient: float = 1.25
+    rack_tip_radius_coefficient: float = 0.38
+    thinning: float = 0.0
+    hub: Hub = field(default_factory=Hub)
+    name: str = "gear"
+    length_unit: str = "mm"  # the unit the design was written in; reports and exports use it
+
+    def __post_init__(self):
+        _check("teeth", self.teeth, 4, 2000, "")
+        if not isinstance(self.teeth, int):
+            raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
+        _check("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
+        _check("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
+        _check("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
+        _check("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
+        if self.hand not in HANDS:
+            raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
+        _check("profile_shift", self.profile_shift, -1.5, 1.5, "")
+        _check("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
+        _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
+        rho_max = self.max_rack_tip_radius_coefficient
+        _check("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
+        _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
+        if self.length_unit not in ("mm", "in"):
+            raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
+        if self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98:
+            raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
+                              f"< {2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth:.4g} mm")
+
+    # --- closed-form basics; the full involute geometry lives in geargen.core ---
+    @property
+    def is_helical(self) -> bool:
+        return self.helix_angle > 0.0
+
+    @property
+    def transverse_module(self) -> float:
+        return self.module / math.cos(self.helix_angle)
+
+    @property
+    def transverse_pressure_angle(self) -> float:
+        return math.atan(math.tan(self.pressure_angle) / math.cos(self.helix_angle))
+
+    @property
+    def transverse_pitch(self) -> float:
+        """Circular pitch on the reference circle, transverse section (mm)."""
+        return math.pi * self.transverse_module
+
+    @property
+    def reference_radius(self) -> float:
+        return self.teeth * self.transverse_module / 2.0
+
+    @property
+    def base_radius(self) -> float:
+        return self.reference_radius * math.cos(self.transverse_pressure_angle)
+
+    @property
+    def base_helix_angle(self) -> float:
+        return math.asin(math.sin(self.helix_angle) * math.cos(self.pressure_angle))
+
+    @property
+    def signed_helix_angle(self) -> float:
+        """Helix angle with the hand as sign: right positive, left negative."""
+        return self.helix_angle if self.hand == "right" else -self.helix_angle
+
+    @property
+    def lead(self) -> float:
+        """Axial advance of one helix turn at the reference cylinder (inf for spur)."""
+        if not self.is_helical:
+            return math.inf
+        return 2 * math.pi * self.reference_radius / math.tan(self.helix_angle)
+
+    @property
+    def tip_radius(self) -> float:
+        return self.reference_radius + self.module * (self.addendum_coefficient + self.profile_shift)
+
+    @property
+    def root_radius_standard(self) -> float:
+        """Root radius cut by the rack: r - m_n (h_f* - x)."""
+        return self.reference_radius - self.module * (self.dedendum_coefficient - self.profile_shift)
+
+    @property
+    def max_rack_tip_radius_coefficient(self) -> float:
+        """Largest rack tip radius (over m_n) that fits the rack's clearance and tooth space."""
+        c = self.dedendum_coefficient - self.addendum_coefficient  # tip clearance coefficient
+        a = self.pressure_angle
+        by_clearance = c / (1 - math.sin(a)) if c > 0 else 0.0
+        # the rack tooth tip half-width at its tip line: pi/4 - h_f* tan(a), fillet must fit in it
+        half_tip = math.pi / 4 - self.dedendum_coefficient * math.tan(a)
+        by_width = half_tip * math.cos(a) / (1 - math.sin(a)) if half_tip > 0 else 0.0
+        return max(0.0, min(by_clearance, by_width))
+
+    @property
+    def thinning_normal(self) -> float:
+        """Tooth thinning as normal thickness at the reference cylinder (mm)."""
+        return self.thinning * math.cos(self.helix_angle)
+
+
+def _check(name: str, value, lo: float, hi: float, unit: str, exclusive_lo: bool = False) -> None:
+    ok = isinstance(value, (int, float)) and math.isfinite(value) and (value > lo if exclusive_lo else value >= lo) and value <= hi
+    if not ok:
+        left = "(" if exclusive_lo else "["
+        raise DesignError(name, f"{value!r} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())
+
+
+GEAR_FIELDS: list[Field] = [
+    Field("name", "string", required=False, default=None),
+    Field("teeth", "integer", minimum=4, maximum=2000),
+    Field("module", "length", required=False, units=("mm",), minimum=0.01, maximum=200.0),
+    Field("diametral_pitch_per_in", "number", required=False, minimum=0.1, maximum=2540.0),
+    Field("pitch_system", "string", required=False, default="normal", choices=("normal", "transverse")),
+    Field("pressure_angle", "angle", units=("deg", "rad"), minimum=10 * DEG, maximum=35 * DEG),
+    Field("helix_angle", "angle", required=False, default=0.0, units=("deg", "rad"), minimum=0.0, maximum=45 * DEG),
+    Field("hand", "string", required=False, default="right", choices=HANDS),
+    Field("face_width", "length", minimum=0.0, exclusive_minimum=True, maximum=5000.0),
+    Field("profile_shift", "number", required=False, default=0.0, minimum=-1.5, maximum=1.5),
+    Field("addendum_coefficient", "number", required=False, default=1.0, minimum=0.3, maximum=1.5),
+    Field("dedendum_coefficient", "number", required=False, default=1.25, minimum=0.5, maximum=2.0),
+    Field("rack_tip_radius_coefficient", "number", required=False, default=None, minimum=0.0, maximum=1.0),
+    Field("thinning_circumferential", "length", required=False, default=None, minimum=0.0),
+    Field("thinning_normal", "length", required=False, default=None, minimum=0.0),
+    Field("bore_diameter", "length", required=False, default=0.0, minimum=0.0),
+    Field("keyway_width", "length", required=False, default=0.0, minimum=0.0),
+    Field("keyway_depth", "length", required=False, default=0.0, minimum=0.0),
+    Field("hub_diameter", "length", required=False, default=0.0, minimum=0.0),
+    Field("hub_length", "length", required=False, default=0.0, minimum=0.0),
+]
+
+
+def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | None = None,
+                    length_unit: str | None = None) -> GearSpec:
+    """Build a :class:`GearSpec` from a design table, converting the transverse system if used.
+
+    ``length_unit`` is the design's unit for reports; by default inches for a diametral-pitch
+    design and mm for a module design.
+    """
+    v = read_table(data, GEAR_FIELDS, where)
+    p = f"{where}."
+    if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
+        raise DesignError(p + "module_mm", "give exactly one of module_mm and diametral_pitch_per_in",
+                          "module_mm in (0.01, 200] or diametral_pitch_per_in in [0.1, 2540]")
+    if v["module"] is not None:
+        module = v["module"]
+        unit = "mm"
+    else:
+        module = module_from_diametral_pitch(v["diametral_pitch_per_in"])
+        unit = "in"
+    beta = v["helix_angle"]
+    alpha = v["pressure_angle"]
+    shift = v["profile_shift"]
+    if v["pitch_system"] == "transverse" and beta > 0:
+        module_n = module * math.cos(beta)
+        alpha_n = math.atan(math.tan(alpha) * math.cos(beta))
+        shift_n = shift * module / module_n  # same shift in mm: x_t m_t = x_n m_n
+    else:
+        module_n, alpha_n, shift_n = module, alpha, shift
+    if v["thinning_circumferential"] is not None and v["thinning_normal"] is not None:
+        raise DesignError(p + "thinning_normal", "give at most one tooth-thinning kind",
+                          "thinning_circumferential_* or thinning_normal_*")
+    if v["thinning_normal"] is not None:
+        thinning = v["thinning_normal"] / math.cos(beta)
+    else:
+        thinning = v["thinning_circumferential"] or 0.0
+    hub = _with_field_prefix(p, lambda: Hub(v["bore_diameter"], v["keyway_width"], v["keyway_depth"],
+                                            v["hub_diameter"], v["hub_length"]), v["_units"])
+    kwargs = dict(teeth=v["teeth"], module=module_n, pressure_angle=alpha_n, face_width=v["face_width"],
+                  helix_angle=beta, hand=v["hand"], profile_shift=shift_n,
+                  addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
+                  thinning=thinning, hub=hub, name=v["name"] or name or "gear",
+                  length_unit=length_unit or unit)
+    if v["rack_tip_radius_coefficient"] is not None:
+        kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
+    else:
+        # default: the largest full-radius fillet the rack allows, capped at ISO 53 profile A's 0.38
+        probe = GearSpec(**{**kwargs, "rack_tip_radius_coefficient": 0.0, "hub": Hub()})
+        kwargs["rack_tip_radius_coefficient"] = min(0.38, probe.max_rack_tip_radius_coefficient)
+    return _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
+
+
+def _with_field_prefix(prefix: str, make, units: Mapping[str, str]):
+    """Run ``make``; re-raise a DesignError with the design-file key path (name plus unit suffix)."""
+    try:
+        return make()
+    except DesignError as exc:
+        key = exc.field
+        if key in units:
+            key = f"{key}_{units[key]}"
+        raise DesignError(prefix + key, exc.problem, exc.allowed) from None
+
+
+def with_changes(spec: GearSpec, **changes) -> GearSpec:
+    """A copy of ``spec`` with fields replaced (validated again)."""
+    return replace(spec, **changes)
+
+
+__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "gear_from_table", "with_changes", "MM_PER_IN"]

@@ -1,0 +1,1 @@
+"""Measured data: fitting the declared model, diagnosing residuals, adding effects (numpy/scipy)."""

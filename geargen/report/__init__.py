@@ -1,0 +1,1 @@
+"""Reports: tables, plots (matplotlib, Agg), JSON, Markdown/HTML."""
