@@ -82,7 +82,7 @@ class GearSpec:
     profile_shift: float = 0.0
     addendum_coefficient: float = 1.0
     dedendum_coefficient: float = 1.25
-    rack_tip_radius_coefficient: float = 0.38
+    rack_tip_radius_coefficient: float | None = None  # None: min(0.38, largest that fits)
     thinning: float = 0.0
     hub: Hub = field(default_factory=Hub)
     name: str = "gear"
@@ -102,6 +102,9 @@ class GearSpec:
         _check("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
         _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
         rho_max = self.max_rack_tip_radius_coefficient
+        if self.rack_tip_radius_coefficient is None:
+            # ISO 53 profile A's 0.38, or the full-radius fillet when 0.38 does not fit the rack
+            object.__setattr__(self, "rack_tip_radius_coefficient", min(0.38, rho_max))
         _check("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
         _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
         if self.length_unit not in ("mm", "in"):
@@ -250,12 +253,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear",
                   length_unit=length_unit or unit)
-    if v["rack_tip_radius_coefficient"] is not None:
-        kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
-    else:
-        # default: the largest full-radius fillet the rack allows, capped at ISO 53 profile A's 0.38
-        probe = GearSpec(**{**kwargs, "rack_tip_radius_coefficient": 0.0, "hub": Hub()})
-        kwargs["rack_tip_radius_coefficient"] = min(0.38, probe.max_rack_tip_radius_coefficient)
+    kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     return _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
 
 
