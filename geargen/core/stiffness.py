@@ -1,0 +1,882 @@
+"""Path, drive and loop stiffness of a two-path anti-backlash drive; preload and its variation.
+
+Hale & Slocum's four facts (modelling section): stiffnesses in parallel add; compliances in
+series add; a stiffness reflected through a ratio ``R`` grows by ``R^2``; a linear stiffness at a
+lever arm ``r`` is a torsional stiffness ``k r^2``. Eq. 1 gives the tooth-mesh stiffness
+``k = E w / 11`` (linear, along the line of action). Every path is reduced to one place and kind:
+torsion at the output unless asked otherwise. :class:`geargen.core.drive.TwoPathDrive` then gives
+Eqs. 2-6 and the piecewise torque-deflection law.
+
+Internal units: mm, N, rad; torque N·mm, linear stiffness N/mm, torsional stiffness N·mm/rad,
+moduli MPa. ``ratio`` of a shaft is its speed over the output's (the input shaft of the robot
+joint turns 16 times per output turn), so a torsional stiffness ``k`` on it is ``k R^2`` at the
+output, a torque ``T`` there is ``T R`` at the output and a rotation ``theta`` is ``theta / R``.
+
+Preload motion (radial or axial, Fig. 9): a carriage displacement ``x`` along the preload
+direction turns the two paths ``+lambda x`` and ``-lambda x`` (output rotation), with the lever
+``lambda = cos(gamma) / (R2 r_b2)`` for radial motion (``gamma`` the angle between the motion and
+each mesh-1 line of action, ``r_b2`` the base radius of the cluster's large gear, ``R2`` the
+cluster-to-output ratio) and ``lambda = tan(beta) / (R2 r_2)`` for axial motion of a helical
+input. The preload spring ``k3`` of the drive model (lever 1 on each path, ``F1 - F2 = k3 (s - w)``)
+is then ``k_carriage / lambda^2``; the carriage force is ``F_e = 2 lambda P`` for a loop preload
+``P``; a carriage travel ``dx`` (the synthesis error budget ``dx1``) is a loop error
+``delta_L = 2 lambda dx`` of output rotation, and changes the preload by ``k_L delta_L`` (Eq. 6).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from geargen.core.drive import TwoPathDrive
+from geargen.core.flexures import (BeamPinion, BladeDesign, BladeFlexure, CompressionSpring, HelicalEngagement,
+                                   beam_pinion, blade_flexure, compression_spring, design_blade_flexure,
+                                   helical_engagement, round_section_second_moment)
+from geargen.design.stiffness import ComponentSpec, StiffnessDesign, StiffnessSpec, stiffness_design
+from geargen.errors import DesignError
+
+#: Eq. 1's divisor: k_mesh = E w / 11 (Shigley, bending + shear + contact of a typical mesh)
+MESH_DIVISOR = 11.0
+
+
+# ----------------------------------------------------------------------------------------------
+# Component stiffnesses and their combination
+
+def mesh_stiffness(elastic_modulus, face_width):
+    """Tooth-mesh stiffness along the line of action, N/mm: ``k = E w / 11`` (Eq. 1).
+
+    ``elastic_modulus`` in MPa, ``face_width`` (engaged face, mm). Arrays broadcast.
+    """
+    return np.asarray(elastic_modulus, dtype=float) * np.asarray(face_width, dtype=float) / MESH_DIVISOR
+
+
+def shaft_torsional_stiffness(shear_modulus: float, diameter: float, length: float, bore: float = 0.0) -> float:
+    """Torsional stiffness of a round (hollow) shaft, N·mm/rad: ``G J / L``, ``J = pi (d^4 - di^4)/32``."""
+    j = math.pi * (diameter ** 4 - bore ** 4) / 32.0
+    return shear_modulus * j / length
+
+
+def shaft_bending_stiffness(elastic_modulus: float, diameter: float, span: float | None, load_position: float,
+                            support: str = "simple", bore: float = 0.0) -> float:
+    """Lateral stiffness at the gear of a round shaft in bending, N/mm.
+
+    ``support``: "simple" (two bearings), ``3 EI L / (a^2 b^2)``; "fixed" (both ends built in),
+    ``3 EI L^3 / (a^3 b^3)``; "cantilever" (overhang ``a = load_position``, ``span`` unused),
+    ``3 EI / a^3``. ``a`` is the gear's distance from one support, ``b = L - a``.
+    """
+    ei = elastic_modulus * round_section_second_moment(diameter, bore)
+    a = load_position
+    if support == "cantilever":
+        return 3.0 * ei / a ** 3
+    if span is None or not 0 < a < span:
+        raise DesignError("load_position", f"{a!r} mm is not between the supports", "(0, span)")
+    b = span - a
+    if support == "simple":
+        return 3.0 * ei * span / (a * a * b * b)
+    if support == "fixed":
+        return 3.0 * ei * span ** 3 / (a ** 3 * b ** 3)
+    raise DesignError("support", f"{support!r} is not a valid choice", "'simple', 'fixed', 'cantilever'")
+
+
+def series(*stiffnesses):
+    """Stiffnesses in series: ``1 / sum(1/k)``. ``inf`` (rigid) adds nothing; arrays broadcast."""
+    with np.errstate(divide="ignore"):
+        compliance = sum(1.0 / np.asarray(k, dtype=float) for k in stiffnesses)
+        out = 1.0 / np.asarray(compliance, dtype=float)
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def parallel(*stiffnesses):
+    """Stiffnesses in parallel: ``sum(k)``."""
+    out = sum(np.asarray(k, dtype=float) for k in stiffnesses)
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def reflect(stiffness, ratio):
+    """A torsional stiffness on a shaft turning ``ratio`` times the reference shaft, seen at the
+    reference: ``k R^2``. (Going the other way, pass ``1/R``.)"""
+    return np.asarray(stiffness, dtype=float) * np.asarray(ratio, dtype=float) ** 2
+
+
+def torsional_from_linear(stiffness, radius):
+    """A linear stiffness acting at lever arm ``radius`` as a torsional stiffness: ``k r^2``."""
+    return np.asarray(stiffness, dtype=float) * np.asarray(radius, dtype=float) ** 2
+
+
+def linear_from_torsional(stiffness, radius):
+    """The inverse of :func:`torsional_from_linear`: ``k / r^2``."""
+    return np.asarray(stiffness, dtype=float) / np.asarray(radius, dtype=float) ** 2
+
+
+# ----------------------------------------------------------------------------------------------
+# The dual-pinion train and its components
+
+@dataclass(frozen=True)
+class DualPinionTrain:
+    """Input gear between two identical clusters (large gear meshes the input, small gear the output).
+
+    ``gears`` maps role ("input", "cluster_large", "cluster_small", "output") to the design's
+    gear spec; ``names`` maps role to the gear's name in the design.
+    """
+
+    gears: Mapping[str, Any]
+    names: Mapping[str, str]
+
+    @property
+    def ratio_mesh1(self) -> float:
+        """R1 = z_cluster_large / z_input."""
+        return self.gears["cluster_large"].teeth / self.gears["input"].teeth
+
+    @property
+    def ratio_mesh2(self) -> float:
+        """R2 = z_output / z_cluster_small."""
+        return self.gears["output"].teeth / self.gears["cluster_small"].teeth
+
+    @property
+    def ratio(self) -> float:
+        """Input speed over output speed, R1 R2."""
+        return self.ratio_mesh1 * self.ratio_mesh2
+
+    def shaft_ratio(self, shaft: str) -> float:
+        """Speed of ``shaft`` ("input", "cluster", "output") over the output's."""
+        return {"output": 1.0, "cluster": self.ratio_mesh2, "input": self.ratio}[shaft]
+
+    def shaft_of_gear(self, name: str) -> str | None:
+        role = next((r for r, n in self.names.items() if n == name), None)
+        return None if role is None else {"input": "input", "cluster_large": "cluster",
+                                          "cluster_small": "cluster", "output": "output"}[role]
+
+    @property
+    def mesh1_face_width(self) -> float:
+        return min(self.gears["input"].face_width, self.gears["cluster_large"].face_width)
+
+    @property
+    def mesh2_face_width(self) -> float:
+        return min(self.gears["cluster_small"].face_width, self.gears["output"].face_width)
+
+
+def train_from_design(design, spec: StiffnessSpec) -> DualPinionTrain:
+    """The dual-pinion train of ``design`` with the gear roles named in ``[stiffness]``."""
+    gears, names = {}, {}
+    for role, name in spec.roles.items():
+        if name not in design.gears:
+            raise DesignError(f"stiffness.{role}_gear", f"no gear named {name!r} in the design",
+                              ", ".join(design.gears) or "a [gears.NAME] table")
+        gears[role] = design.gears[name]
+        names[role] = name
+    return DualPinionTrain(gears=gears, names=names)
+
+
+@dataclass(frozen=True)
+class ComponentStiffness:
+    """One component reduced to torsion at the output.
+
+    ``local`` is its stiffness where it acts, in ``local_unit`` ("N/mm" along a line at
+    ``radius``, or "N·mm/rad" on its shaft); ``ratio`` is its shaft's speed over the output's.
+    """
+
+    name: str
+    kind: str
+    scope: str
+    local: float
+    local_unit: str
+    ratio: float
+    radius: float | None
+    at_output: float
+    detail: str = ""
+
+
+def _component_location(spec: ComponentSpec, train: DualPinionTrain | None, gear: str | None,
+                        where: str) -> float:
+    if spec.ratio is not None:
+        return spec.ratio
+    if train is None:
+        raise DesignError(f"{where}.ratio", "missing (a custom train needs each component's ratio)",
+                          "ratio = speed of its shaft / speed of the output")
+    if spec.shaft is not None:
+        return train.shaft_ratio(spec.shaft)
+    shaft = train.shaft_of_gear(gear) if gear else None
+    if shaft is None:
+        raise DesignError(f"{where}.shaft", f"gear {gear!r} is not one of the train's four gears; say where it sits",
+                          "shaft = 'input' | 'cluster' | 'output' or ratio")
+    return train.shaft_ratio(shaft)
+
+
+def _gear_base_radius(design, name: str, where: str) -> float:
+    if name not in design.gears:
+        raise DesignError(where, f"no gear named {name!r} in the design", ", ".join(design.gears))
+    return design.gears[name].base_radius
+
+
+def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
+                        train: DualPinionTrain | None) -> ComponentStiffness:
+    """Reduce one design component to torsion at the output."""
+    where = f"stiffness.components.{spec.name}"
+    e = spec.elastic_modulus or stiffness.elastic_modulus
+    g = spec.shear_modulus or stiffness.shear_modulus
+    radius = None
+    if spec.kind == "torsion":
+        local, unit, detail = spec.stiffness, "N·mm/rad", "given torsional stiffness"
+        ratio = _component_location(spec, train, None, where)
+    elif spec.kind == "shaft_torsion":
+        local = shaft_torsional_stiffness(g, spec.diameter, spec.length, spec.bore_diameter)
+        unit, detail = "N·mm/rad", f"shaft d={spec.diameter:.4g} mm, L={spec.length:.4g} mm, G J / L"
+        ratio = _component_location(spec, train, None, where)
+    elif spec.kind in ("linear", "shaft_bending"):
+        radius = (_gear_base_radius(design, spec.gear, f"{where}.gear") if spec.gear is not None else spec.radius)
+        if spec.kind == "linear":
+            local, detail = spec.stiffness, "given linear stiffness"
+        else:
+            local = shaft_bending_stiffness(e, spec.diameter, spec.span, spec.load_position, spec.support,
+                                            spec.bore_diameter)
+            detail = f"{spec.support} shaft d={spec.diameter:.4g} mm in bending"
+        unit = "N/mm"
+        ratio = _component_location(spec, train, spec.gear, where)
+    elif spec.kind == "mesh":
+        a, b = spec.gears
+        for gname in (a, b):
+            if gname not in design.gears:
+                raise DesignError(f"{where}.gears", f"no gear named {gname!r} in the design", ", ".join(design.gears))
+        w = spec.face_width or min(design.gears[a].face_width, design.gears[b].face_width)
+        local = float(mesh_stiffness(e, w))
+        unit, detail = "N/mm", f"Eq. 1: E w / 11, w={w:.4g} mm"
+        radius = design.gears[b].base_radius
+        ratio = _component_location(spec, train, b, where)
+    else:  # pragma: no cover - the spec validates kinds
+        raise DesignError(f"{where}.kind", f"unknown kind {spec.kind!r}")
+    local *= spec.count
+    if spec.count > 1:
+        detail += f", {spec.count} in parallel"
+    torsional = local if radius is None else float(torsional_from_linear(local, radius))
+    return ComponentStiffness(name=spec.name, kind=spec.kind, scope=spec.scope, local=float(local), local_unit=unit,
+                              ratio=float(ratio), radius=radius, at_output=float(reflect(torsional, ratio)),
+                              detail=detail)
+
+
+def train_mesh_components(train: DualPinionTrain, elastic_modulus: float) -> list[ComponentStiffness]:
+    """The two meshes of each path of a dual-pinion train (Eq. 1), reduced to the output."""
+    n = train.names
+    out = []
+    for label, (a, b), w, shaft in (("mesh 1", ("input", "cluster_large"), train.mesh1_face_width, "cluster"),
+                                    ("mesh 2", ("cluster_small", "output"), train.mesh2_face_width, "output")):
+        k = float(mesh_stiffness(elastic_modulus, w))
+        rb = train.gears[b].base_radius
+        ratio = train.shaft_ratio(shaft)
+        out.append(ComponentStiffness(
+            name=f"{label} ({n[a]}-{n[b]})", kind="mesh", scope="each_path", local=k, local_unit="N/mm",
+            ratio=ratio, radius=rb, at_output=float(reflect(torsional_from_linear(k, rb), ratio)),
+            detail=f"Eq. 1: E w / 11, w={w:.4g} mm, at base radius {rb:.4g} mm of {n[b]}"))
+    return out
+
+
+@dataclass(frozen=True)
+class PathStiffness:
+    """A path (or the common part) as components in series, torsion at the output (N·mm/rad)."""
+
+    name: str
+    components: tuple[ComponentStiffness, ...]
+
+    @property
+    def stiffness(self) -> float:
+        """Series sum of the components at the output; ``inf`` when there are none."""
+        if not self.components:
+            return math.inf
+        return series(*(c.at_output for c in self.components))
+
+    def compliance_shares(self) -> dict[str, float]:
+        """Each component's share of the path's compliance (sums to 1)."""
+        total = sum(1.0 / c.at_output for c in self.components)
+        return {c.name: (1.0 / c.at_output) / total for c in self.components}
+
+
+def split_paths(components: Sequence[ComponentStiffness]) -> tuple[PathStiffness, PathStiffness, PathStiffness]:
+    """Path 1, path 2 and the common part (in series with the whole drive) from scoped components."""
+    p1 = tuple(c for c in components if c.scope in ("each_path", "path1"))
+    p2 = tuple(c for c in components if c.scope in ("each_path", "path2"))
+    common = tuple(c for c in components if c.scope == "common")
+    return PathStiffness("path 1", p1), PathStiffness("path 2", p2), PathStiffness("common", common)
+
+
+# ----------------------------------------------------------------------------------------------
+# Preload
+
+def preload_lever(train: DualPinionTrain, method: str = "radial", line_of_action_angle: float = 0.0) -> float:
+    """Output rotation of each path per unit preload motion of the input gear, rad/mm.
+
+    radial: ``cos(gamma) / (R2 r_b2)``; axial: ``tan(beta) / (R2 r_2)`` (helical input, ``beta``
+    its helix angle; ``r_2`` the reference radius of the cluster's large gear).
+    """
+    large = train.gears["cluster_large"]
+    if method == "radial":
+        return math.cos(line_of_action_angle) / (train.ratio_mesh2 * large.base_radius)
+    if method == "axial":
+        beta = train.gears["input"].helix_angle
+        if beta <= 0:
+            raise DesignError("drive.preload", "axial preload needs a helical input gear", "helix_angle_deg > 0")
+        return math.tan(beta) / (train.ratio_mesh2 * large.reference_radius)
+    raise DesignError("drive.preload", f"no preload lever for the {method!r} method",
+                      "'radial' or 'axial'; otherwise give preload_spring_stiffness_Nm_per_rad at the output")
+
+
+def preload_spring_at_output(linear_stiffness, lever: float):
+    """A linear preload-spring stiffness at the carriage as ``k3`` of the drive model: ``k / lambda^2``."""
+    return np.asarray(linear_stiffness, dtype=float) / lever ** 2
+
+
+def loop_error_from_carriage_travel(travel, lever: float):
+    """Loop error (output rotation, rad) of a carriage travel (mm): ``2 lambda travel``."""
+    return 2.0 * lever * np.asarray(travel, dtype=float)
+
+
+def carriage_force(preload, lever: float):
+    """Preload force on the carriage (N) for a loop preload (N·mm at the output): ``2 lambda P``."""
+    return 2.0 * lever * np.asarray(preload, dtype=float)
+
+
+def required_preload(max_torque: float, drive_type: str) -> float:
+    """The paper's recommendation: type 2 at least half the maximum load, type 1 the maximum load."""
+    if drive_type == "type2":
+        return 0.5 * max_torque
+    if drive_type == "type1":
+        return float(max_torque)
+    raise DesignError("drive.type", f"{drive_type!r} is not a valid choice", "'type1', 'type2'")
+
+
+def preload_to_carry(max_torque: float, drive_type: str, k1: float, k2: float, k3: float = math.inf) -> float:
+    """The smallest loop preload at which neither path unloads for drive torques up to ``max_torque``.
+
+    From the two-path model: path 2 unloads at ``T = k_D P / g2`` and path 1 at ``-k_D P / g1``
+    (``g`` the rates of path force with drive displacement), so ``P = T max(g1, g2) / k_D``. It
+    equals half the load for equal type 2 paths and ``T k1/(k1 + k2)`` for type 1 with stiff path 1
+    -- a little below the paper's rule, which the paper calls some degree of conservatism.
+    """
+    unit = TwoPathDrive(drive_type, k1, k2, 1.0, k3)
+    g1, g2 = unit.path_force_rates
+    return max_torque * max(g1, g2) / unit.drive_stiffness
+
+
+@dataclass(frozen=True)
+class LoopError:
+    """A peak-to-peak loop error: ``rotation`` (rad at the output), from ``carriage_travel`` (mm) if so given."""
+
+    label: str
+    rotation: float
+    carriage_travel: float | None = None
+    source: str = "design"
+
+
+@dataclass(frozen=True)
+class PreloadVariation:
+    """Preload band caused by a loop error (N·mm at the output, rad)."""
+
+    label: str
+    loop_error: float
+    loop_stiffness: float
+    preload: float
+    carriage_travel: float | None = None
+    source: str = "design"
+
+    @property
+    def range(self) -> float:
+        """Peak-to-peak preload change ``k_L delta_L`` (Eq. 3/6)."""
+        return self.loop_stiffness * self.loop_error
+
+    @property
+    def low(self) -> float:
+        return self.preload - self.range / 2.0
+
+    @property
+    def high(self) -> float:
+        return self.preload + self.range / 2.0
+
+    @property
+    def relative(self) -> float:
+        """Peak-to-peak change over the nominal preload (inf at zero preload)."""
+        return self.range / self.preload if self.preload > 0 else math.inf
+
+    @property
+    def unloads(self) -> bool:
+        """True when the low end of the band loses the preload entirely."""
+        return self.low <= 0.0
+
+
+def preload_variation(drive: TwoPathDrive, loop_error, label: str = "loop error",
+                      carriage_travel: float | None = None, source: str = "design") -> PreloadVariation:
+    """Preload band of ``drive`` for a peak-to-peak loop error (rad at the drive's reference)."""
+    return PreloadVariation(label=label, loop_error=float(loop_error), loop_stiffness=drive.loop_stiffness,
+                            preload=drive.preload, carriage_travel=carriage_travel, source=source)
+
+
+@dataclass(frozen=True)
+class PreloadSpring:
+    """The preload spring of a type 2 drive: parts in parallel at the carriage, and ``k3`` at the output.
+
+    ``linear_parts`` are (name, N/mm along the preload motion); ``torsional_parts`` are
+    (name, N·mm/rad at the output); ``lever`` is rad per mm (None without a carriage).
+    """
+
+    lever: float | None
+    linear_parts: tuple[tuple[str, float], ...]
+    torsional_parts: tuple[tuple[str, float], ...]
+
+    @property
+    def linear_stiffness(self) -> float:
+        """Carriage stiffness along the preload motion, N/mm (all parts, torsional ones referred)."""
+        total = sum(k for _, k in self.linear_parts)
+        if self.lever is not None:
+            total += sum(k for _, k in self.torsional_parts) * self.lever ** 2
+        return total
+
+    @property
+    def stiffness(self) -> float:
+        """k3 at the output, N·mm/rad."""
+        total = sum(k for _, k in self.torsional_parts)
+        if self.linear_parts:
+            total += float(preload_spring_at_output(sum(k for _, k in self.linear_parts), self.lever))
+        return total
+
+
+# ----------------------------------------------------------------------------------------------
+# The whole summary of a design
+
+LOCATION_NAMES = {"output": "output torsion", "cluster": "cluster-shaft torsion", "input": "input torsion"}
+
+
+@dataclass(frozen=True)
+class StiffnessSummary:
+    """Everything the stiffness step knows about a design; output-referred internal units.
+
+    ``drive`` is referred to the output (N·mm, rad); :meth:`drive_at` refers it elsewhere.
+    ``location`` is where the design asks results to be shown (``location_ratio`` its speed over
+    the output's).
+    """
+
+    name: str
+    drive_type: str
+    preload_method: str | None
+    location: str
+    location_ratio: float
+    shaft_ratios: Mapping[str, float]
+    length_unit: str
+    components: tuple[ComponentStiffness, ...]
+    path1: PathStiffness
+    path2: PathStiffness
+    common: PathStiffness
+    preload_spring: PreloadSpring | None
+    drive: TwoPathDrive
+    max_output_torque: float
+    preload_source: str
+    required_preload: float
+    preload_to_carry: float
+    carriage_force: float | None
+    lever: float | None
+    variations: tuple[PreloadVariation, ...]
+    headline_budget: str | None
+    path_backlash: float | None
+    flexure: BladeFlexure | None = None
+    flexure_design: BladeDesign | None = None
+    flexure_design_gauge: BladeDesign | None = None
+    spring: CompressionSpring | None = None
+    spring_count: int = 0
+    spring_installed_length_for_preload: float | None = None
+    beam: BeamPinion | None = None
+    engagement: HelicalEngagement | None = None
+    warnings: tuple[str, ...] = field(default_factory=tuple)
+
+    # --- drive quantities ---
+    @property
+    def drive_stiffness(self) -> float:
+        """Eq. 2/5 at the output (both paths loaded), N·mm/rad."""
+        return self.drive.drive_stiffness
+
+    @property
+    def drive_stiffness_with_common(self) -> float:
+        """Drive stiffness in series with the common components, N·mm/rad at the output."""
+        return series(self.drive.drive_stiffness, self.common.stiffness)
+
+    @property
+    def loop_stiffness(self) -> float:
+        return self.drive.loop_stiffness
+
+    @property
+    def preload_ok(self) -> bool:
+        """The set preload meets the paper's recommendation."""
+        return self.drive.preload >= self.required_preload * (1 - 1e-12)
+
+    @property
+    def headline(self) -> PreloadVariation | None:
+        for v in self.variations:
+            if v.label == self.headline_budget:
+                return v
+        return self.variations[0] if self.variations else None
+
+    def drive_at(self, location: str | None = None) -> TwoPathDrive:
+        """The drive referred to ``location`` ("output", "cluster", "input"; default the design's)."""
+        ratio = self.location_ratio if location is None else self._ratio_of(location)
+        d = self.drive
+        k3 = d.k3 if d.k3 == math.inf else d.k3 / ratio ** 2
+        return TwoPathDrive(d.drive_type, d.k1 / ratio ** 2, d.k2 / ratio ** 2, d.preload / ratio, k3)
+
+    def _ratio_of(self, location: str) -> float:
+        if location not in self.shaft_ratios:
+            raise DesignError("location", f"{location!r} is not available for this design",
+                              ", ".join(map(repr, self.shaft_ratios)))
+        return self.shaft_ratios[location]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary; units in the key names (SI-style: N·m, N/mm, rad, µm)."""
+        d = self.drive
+        nm = 1e-3  # N·mm -> N·m
+        out: dict[str, Any] = {
+            "name": self.name,
+            "drive_type": self.drive_type,
+            "preload_method": self.preload_method,
+            "reference": "output torsion",
+            "report_location": self.location,
+            "report_location_ratio": self.location_ratio,
+            "paths": [
+                {"name": p.name, "stiffness_Nm_per_rad": p.stiffness * nm,
+                 "components": [{"name": c.name, "kind": c.kind, "scope": c.scope, "local": c.local,
+                                 "local_unit": c.local_unit, "ratio": c.ratio,
+                                 "radius_mm": c.radius, "at_output_Nm_per_rad": c.at_output * nm,
+                                 "compliance_share": p.compliance_shares()[c.name], "detail": c.detail}
+                                for c in p.components]}
+                for p in (self.path1, self.path2)],
+            "common": {"stiffness_Nm_per_rad": None if self.common.stiffness == math.inf else self.common.stiffness * nm,
+                       "components": [{"name": c.name, "at_output_Nm_per_rad": c.at_output * nm, "detail": c.detail}
+                                      for c in self.common.components]},
+            "k1_Nm_per_rad": d.k1 * nm,
+            "k2_Nm_per_rad": d.k2 * nm,
+            "k3_Nm_per_rad": None if d.k3 == math.inf else d.k3 * nm,
+            "preload_Nm": d.preload * nm,
+            "drive": {
+                "stiffness_Nm_per_rad": d.drive_stiffness * nm,
+                "stiffness_with_common_Nm_per_rad": self.drive_stiffness_with_common * nm,
+                "unloading_torques_Nm": [t * nm for t in d.unloading_torques],
+                "unloading_rotations_urad": [r * 1e6 for r in d.unloading_rotations],
+                "stiffness_beyond_Nm_per_rad": [d.stiffness_beyond(-1) * nm, d.stiffness_beyond(+1) * nm],
+            },
+            "loop": {"stiffness_Nm_per_rad": d.loop_stiffness * nm, "kD_over_kL": d.stiffness_ratio},
+            "preload": {
+                "max_output_torque_Nm": self.max_output_torque * nm,
+                "preload_Nm": d.preload * nm,
+                "source": self.preload_source,
+                "required_paper_rule_Nm": self.required_preload * nm,
+                "required_model_Nm": self.preload_to_carry * nm,
+                "meets_recommendation": self.preload_ok,
+                "carriage_force_N": self.carriage_force,
+                "lever_rad_per_mm": self.lever,
+                "path_backlash_urad": None if self.path_backlash is None else self.path_backlash * 1e6,
+            },
+            "preload_variation": [
+                {"label": v.label, "source": v.source,
+                 "carriage_travel_mm": v.carriage_travel, "loop_error_urad": v.loop_error * 1e6,
+                 "range_Nm": v.range * nm, "low_Nm": v.low * nm, "high_Nm": v.high * nm,
+                 "relative": v.relative,
+                 "carriage_force_range_N": None if self.lever is None else float(carriage_force(v.range, self.lever))}
+                for v in self.variations],
+            "headline_budget": self.headline_budget,
+            "warnings": list(self.warnings),
+        }
+        if self.preload_spring is not None:
+            ps = self.preload_spring
+            out["preload_spring"] = {"linear_parts_N_per_mm": dict(ps.linear_parts),
+                                     "torsional_parts_Nm_per_rad": {n: k * nm for n, k in ps.torsional_parts},
+                                     "carriage_stiffness_N_per_mm": ps.linear_stiffness,
+                                     "k3_Nm_per_rad": ps.stiffness * nm}
+        if self.flexure is not None:
+            f = self.flexure
+            out["flexures"] = {"count": f.count, "stiffness_along_N_per_mm": f.stiffness_along,
+                               "stiffness_lateral_N_per_mm": f.stiffness_lateral,
+                               "stiffness_axial_N_per_mm": f.stiffness_axial, "travel_mm": f.travel,
+                               "stress_at_travel_MPa": f.stress_at_travel, "allowable_MPa": f.allowable_stress,
+                               "travel_limit_mm": f.travel_limit, "parasitic_shortening_mm": f.parasitic_shortening}
+            for key, b in (("design_helper_shortest", self.flexure_design),
+                           ("design_helper_at_gauge", self.flexure_design_gauge)):
+                if b is not None:
+                    out["flexures"][key] = {"thickness_mm": b.thickness, "length_mm": b.length,
+                                            "stiffness_N_per_mm": b.stiffness,
+                                            "stress_at_travel_MPa": b.stress_at_travel, "success": b.success,
+                                            "message": b.message}
+        if self.spring is not None:
+            s = self.spring
+            out["springs"] = {"count": self.spring_count, "rate_N_per_mm": s.rate, "index": s.index,
+                              "wahl_factor": s.wahl_factor, "solid_height_mm": s.solid_height,
+                              "installed_force_N": s.installed_force, "installed_stress_MPa": s.installed_stress,
+                              "solid_stress_MPa": s.solid_stress, "allowable_MPa": s.allowable_shear_stress,
+                              "installed_length_for_preload_mm": self.spring_installed_length_for_preload}
+        if self.beam is not None:
+            b = self.beam
+            out["beam_pinion"] = {"span_mm": b.span, "mesh_position_mm": b.mesh_position,
+                                  "zero_slope_position_mm": b.zero_slope_position, "stiffness_N_per_mm": b.stiffness,
+                                  "force_N": b.force, "deflection_mm": b.deflection, "slope_at_mesh_rad": b.slope_at_mesh,
+                                  "face_misalignment_mm": b.face_misalignment, "max_stress_MPa": b.max_stress}
+        if self.engagement is not None:
+            g = self.engagement
+            out["engagement"] = {"lead_mm": g.lead, "relative_rotation_rad": g.relative_rotation,
+                                 "backlash_mm": g.backlash, "preload_windup_mm": g.preload_windup,
+                                 "leader_stops_mm": [g.leader_retracted_stop, g.leader_engaged_stop],
+                                 "trailer_stops_mm": [g.trailer_retracted_stop, g.trailer_engaged_stop]}
+        return out
+
+
+def _design_loop_errors(sd: StiffnessDesign, lever: float | None) -> list[LoopError]:
+    p = sd.preload
+    if p.loop_error_rotation is not None:
+        return [LoopError("design", p.loop_error_rotation, None, "design")]
+    if p.loop_error_carriage_travel is not None:
+        if lever is None:
+            raise DesignError("preload.loop_error_carriage_travel", "this drive has no preload carriage",
+                              "loop_error_rotation_* at the output")
+        return [LoopError("design", float(loop_error_from_carriage_travel(p.loop_error_carriage_travel, lever)),
+                          p.loop_error_carriage_travel, "design")]
+    return []
+
+
+def loop_errors_from_travels(travels: Mapping[str, float], lever: float, source: str = "synthesis") -> list[LoopError]:
+    """Loop errors from carriage travels (mm) such as the synthesis budget ``{"sum": .., "rss": .., "mean": ..}``."""
+    return [LoopError(label, float(loop_error_from_carriage_travel(t, lever)), float(t), source)
+            for label, t in travels.items()]
+
+
+def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = None,
+                      travel_source: str = "synthesis") -> StiffnessSummary:
+    """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
+
+    ``carriage_travels`` (mm, peak-to-peak; e.g. the synthesis error budget by label) replace
+    the loop error of the ``[preload]`` section when given.
+    """
+    sd = stiffness_design(design)
+    if sd.preload is None:
+        raise DesignError("preload", "missing", "a [preload] section with max_output_torque_*")
+    if design.drive_type is None:
+        raise DesignError("drive.type", "missing", "'type1', 'type2'")
+    spec, pre = sd.stiffness, sd.preload
+    drive_type = design.drive_type
+    warnings: list[str] = []
+
+    train = train_from_design(design, spec) if spec.train == "dual_pinion" else None
+    comps: list[ComponentStiffness] = []
+    if train is not None:
+        comps += train_mesh_components(train, spec.elastic_modulus)
+    comps += [component_stiffness(c, design, spec, train) for c in spec.components]
+    path1, path2, common = split_paths(comps)
+    for p in (path1, path2):
+        if not p.components:
+            raise DesignError("stiffness.components", f"{p.name} has no components", "components with scope each_path")
+    k1, k2 = path1.stiffness, path2.stiffness
+
+    method = design.preload_method
+    lever = None
+    if train is not None and method in ("radial", "axial"):
+        lever = preload_lever(train, method, pre.line_of_action_angle)
+
+    # --- the preload spring (type 2) ---
+    linear_parts: list[tuple[str, float]] = []
+    torsional_parts: list[tuple[str, float]] = []
+    flex = flex_design = flex_gauge = spring = None
+    if sd.flexures is not None:
+        f = sd.flexures
+        flex = blade_flexure(f.count, f.thickness, f.length, f.width, f.elastic_modulus, f.allowable_stress,
+                             f.travel, f.poisson_ratio)
+        linear_parts.append(("flexures", flex.stiffness_along))
+        if f.target_stiffness is not None:
+            flex_design = design_blade_flexure(f.target_stiffness, f.travel, f.width, f.elastic_modulus,
+                                               f.allowable_stress, f.count)
+            flex_gauge = design_blade_flexure(f.target_stiffness, f.travel, f.width, f.elastic_modulus,
+                                              f.allowable_stress, f.count, thickness=f.thickness)
+    if sd.springs is not None:
+        s = sd.springs
+        spring = compression_spring(s.wire_diameter, s.mean_coil_diameter, s.active_coils, s.free_length,
+                                    s.shear_modulus, s.allowable_shear_stress, s.end_type, s.installed_length)
+        linear_parts.append(("springs", s.count * spring.rate))
+    beam_spec = sd.beam_pinion
+    beam_stiffness = None
+    if beam_spec is not None:
+        pin = _beam_gear(design, beam_spec.gear)
+        diameter = beam_spec.diameter or 2.0 * pin.root_radius_standard
+        probe = beam_pinion(diameter, beam_spec.elastic_modulus, 0.0, span=beam_spec.span,
+                            mesh_position=beam_spec.mesh_position, target_stiffness=beam_spec.target_stiffness)
+        beam_stiffness = probe.stiffness
+        linear_parts.append(("beam pinion", beam_stiffness))
+    if pre.preload_spring_linear is not None:
+        linear_parts.append(("preload spring", pre.preload_spring_linear))
+    if pre.preload_spring_torsional is not None:
+        torsional_parts.append(("preload spring", pre.preload_spring_torsional))
+
+    preload_spring = None
+    k3 = math.inf
+    if drive_type == "type2":
+        if not linear_parts and not torsional_parts:
+            raise DesignError("preload.preload_spring_stiffness", "a type2 drive needs a preload spring",
+                              "[springs], [flexures], [beam_pinion] or preload_spring_stiffness_*")
+        if linear_parts and lever is None:
+            raise DesignError("drive.preload", f"a linear preload spring needs radial or axial preload motion "
+                              f"in a dual-pinion train (got {method!r})",
+                              "preload = 'radial' | 'axial', or preload_spring_stiffness_Nm_per_rad at the output")
+        preload_spring = PreloadSpring(lever, tuple(linear_parts), tuple(torsional_parts))
+        k3 = preload_spring.stiffness
+        if k3 > min(k1, k2) / 3.0:
+            warnings.append(f"preload spring k3 = {k3 * 1e-3:.4g} N·m/rad is not several times softer than a path "
+                            f"({min(k1, k2) * 1e-3:.4g} N·m/rad): the loop stiffness, and so the preload variation, "
+                            "is set by the paths")
+    elif linear_parts or torsional_parts:
+        raise DesignError("drive.type", "a type1 drive has no preload spring, but the design gives one "
+                          f"({', '.join(n for n, _ in linear_parts + torsional_parts)})",
+                          "type = 'type2', or remove the preload-spring sections")
+
+    # --- the preload ---
+    rule = required_preload(pre.max_output_torque, drive_type)
+    fixed_forces = 0.0
+    if flex is not None and sd.flexures.neutral_offset != 0.0:
+        fixed_forces += flex.stiffness_along * sd.flexures.neutral_offset
+    springs_set = sd.springs is not None and sd.springs.installed_length is not None
+    if springs_set:
+        fixed_forces += sd.springs.count * spring.installed_force
+    if pre.preload is not None:
+        if springs_set:
+            raise DesignError("preload.preload", "the preload is set twice: by preload_* and by the springs' "
+                              "installed length", "one of preload_* and springs.installed_length_*")
+        preload, source = pre.preload, "design"
+    elif springs_set:
+        if lever is None:
+            raise DesignError("springs.installed_length", "no preload carriage to turn a spring force into preload",
+                              "radial or axial preload in a dual-pinion train")
+        preload, source = fixed_forces / (2.0 * lever), "springs (installed length)"
+    else:
+        preload, source = rule, "paper rule (no preload given)"
+    if preload < 0:
+        raise DesignError("flexures.neutral_offset", "the carriage forces pull the gears out of mesh (negative preload)",
+                          "a larger spring force or a positive neutral offset")
+    drive = TwoPathDrive(drive_type, k1, k2, preload, k3)
+    to_carry = preload_to_carry(pre.max_output_torque, drive_type, k1, k2, k3)
+    fe = None if lever is None else float(carriage_force(preload, lever))
+    if preload < rule * (1 - 1e-12):
+        warnings.append(f"preload {preload * 1e-3:.4g} N·m is below the paper's recommendation "
+                        f"{rule * 1e-3:.4g} N·m ({'half ' if drive_type == 'type2' else ''}the maximum load)")
+    t_lo, t_hi = drive.unloading_torques
+    if min(-t_lo, t_hi) < pre.max_output_torque * (1 - 1e-12):
+        warnings.append(f"a path unloads at {min(-t_lo, t_hi) * 1e-3:.4g} N·m, below the maximum load "
+                        f"{pre.max_output_torque * 1e-3:.4g} N·m")
+
+    # spring length for this preload when the springs do not set it
+    installed_for_preload = None
+    if spring is not None and fe is not None and not springs_set:
+        per_spring = (fe - fixed_forces) / sd.springs.count
+        installed_for_preload = sd.springs.free_length - per_spring / spring.rate
+    if spring is not None:
+        if spring.installed_length is not None and spring.installed_length <= spring.solid_height:
+            warnings.append("springs: installed length is at or below the solid height")
+        if spring.installed_stress > spring.allowable_shear_stress:
+            warnings.append(f"springs: installed stress {spring.installed_stress:.4g} MPa exceeds the allowable "
+                            f"{spring.allowable_shear_stress:.4g} MPa")
+        if not spring.solid_safe:
+            warnings.append(f"springs: closed solid the stress would be {spring.solid_stress:.4g} MPa "
+                            f"(allowable {spring.allowable_shear_stress:.4g} MPa); keep them off solid")
+
+    # --- loop errors and the preload band ---
+    if carriage_travels:
+        if lever is None:
+            raise DesignError("drive.preload", "carriage travels need a preload carriage", "radial or axial preload")
+        errors = loop_errors_from_travels(carriage_travels, lever, travel_source)
+        headline = pre.loop_error_budget if pre.loop_error_budget in carriage_travels else next(iter(carriage_travels))
+    else:
+        errors = _design_loop_errors(sd, lever)
+        headline = "design" if errors else None
+    variations = tuple(preload_variation(drive, e.rotation, e.label, e.carriage_travel, e.source) for e in errors)
+    for v in variations:
+        if v.unloads:
+            warnings.append(f"loop error ({v.label}) unloads the preload: band {v.low * 1e-3:.4g} to {v.high * 1e-3:.4g} N·m")
+        elif v.low < rule * (1 - 1e-12) and v.label == headline:
+            warnings.append(f"loop error ({v.label}) takes the preload down to {v.low * 1e-3:.4g} N·m, below the "
+                            f"recommended {rule * 1e-3:.4g} N·m")
+
+    # --- flexure travel and stress ---
+    if flex is not None:
+        needed = abs(sd.flexures.neutral_offset) + max((v.carriage_travel or 0.0) for v in variations) / 2.0 \
+            if variations else abs(sd.flexures.neutral_offset)
+        if needed > flex.travel * (1 + 1e-12):
+            warnings.append(f"flexures: the loop error needs {needed:.4g} mm of travel from neutral, more than the "
+                            f"{flex.travel:.4g} mm designed")
+        if not flex.stress_ok:
+            warnings.append(f"flexures: stress {flex.stress_at_travel:.4g} MPa at {flex.travel:.4g} mm exceeds the "
+                            f"allowable {flex.allowable_stress:.4g} MPa")
+
+    # --- beam pinion at the preload force ---
+    beam = None
+    if beam_spec is not None:
+        pin = _beam_gear(design, beam_spec.gear)
+        diameter = beam_spec.diameter or 2.0 * pin.root_radius_standard
+        force = (fe - fixed_forces) if fe is not None else 0.0
+        beam = beam_pinion(diameter, beam_spec.elastic_modulus, force, span=probe.span,
+                           mesh_position=probe.mesh_position, face_width=pin.face_width,
+                           allowable_stress=beam_spec.allowable_stress)
+        if beam.stress_ok is False:
+            warnings.append(f"beam pinion: stress {beam.max_stress:.4g} MPa exceeds the allowable {beam.allowable_stress:.4g} MPa")
+        if abs(beam.zero_slope_offset) > 1e-9 * beam.span:
+            warnings.append(f"beam pinion: the mesh is {beam.zero_slope_offset:+.4g} mm from the zero-slope point "
+                            "(put the bearings symmetric about the mesh)")
+
+    # --- helical engagement ---
+    engagement = None
+    if sd.engagement is not None:
+        eg = sd.engagement
+        gear = _beam_gear(design, eg.gear, "engagement.gear")
+        windup = eg.preload_windup
+        if windup is None:
+            ratio = None
+            if train is not None:
+                shaft = train.shaft_of_gear(eg.gear)
+                ratio = None if shaft is None else train.shaft_ratio(shaft)
+            if ratio is None:
+                raise DesignError("engagement.preload_windup", "missing (the gear is not in the train)",
+                                  "preload_windup_* circumferential at its reference circle")
+            # the loop deflection at the preload, as relative rotation of the pinions, at the reference circle
+            windup = preload / drive.loop_stiffness * ratio * gear.reference_radius
+        engagement = helical_engagement(gear.helix_angle, gear.reference_radius, eg.backlash, windup,
+                                        eg.engagement_length or gear.face_width, eg.clearance)
+
+    location = spec.reduce_to
+    ratios = {"output": 1.0} if train is None else {s: train.shaft_ratio(s) for s in ("output", "cluster", "input")}
+    return StiffnessSummary(
+        name=design.name, drive_type=drive_type, preload_method=method, location=location,
+        location_ratio=ratios[location], shaft_ratios=ratios, length_unit=design.length_unit, components=tuple(comps), path1=path1,
+        path2=path2, common=common, preload_spring=preload_spring, drive=drive,
+        max_output_torque=pre.max_output_torque, preload_source=source, required_preload=rule,
+        preload_to_carry=to_carry, carriage_force=fe, lever=lever, variations=variations, headline_budget=headline,
+        path_backlash=pre.path_backlash, flexure=flex, flexure_design=flex_design,
+        flexure_design_gauge=flex_gauge, spring=spring,
+        spring_count=0 if sd.springs is None else sd.springs.count,
+        spring_installed_length_for_preload=installed_for_preload, beam=beam, engagement=engagement,
+        warnings=tuple(warnings))
+
+
+def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):
+    if name not in design.gears:
+        raise DesignError(where, f"no gear named {name!r} in the design", ", ".join(design.gears))
+    return design.gears[name]
+
+
+def drive_from_design(design, location: str = "output") -> TwoPathDrive:
+    """The two-path drive model of ``design``: ``k1``, ``k2``, ``k3`` and the loop preload.
+
+    Referred to the output by default: torques in N·mm, rotations in rad, stiffnesses in
+    N·mm/rad (divide by 1e3 for the N·m of the measurement contract). Components with scope
+    "common" are in series with the drive and not part of this model; see
+    :attr:`StiffnessSummary.common`.
+    """
+    summary = stiffness_summary(design)
+    return summary.drive if location == "output" else summary.drive_at(location)
+
+
+__all__ = [
+    "MESH_DIVISOR", "mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness", "series", "parallel",
+    "reflect", "torsional_from_linear", "linear_from_torsional", "DualPinionTrain", "train_from_design",
+    "ComponentStiffness", "component_stiffness", "train_mesh_components", "PathStiffness", "split_paths",
+    "preload_lever", "preload_spring_at_output", "loop_error_from_carriage_travel", "carriage_force",
+    "required_preload", "preload_to_carry", "LoopError", "PreloadVariation", "preload_variation", "PreloadSpring",
+    "StiffnessSummary", "loop_errors_from_travels", "stiffness_summary", "drive_from_design",
+]

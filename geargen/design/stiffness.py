@@ -1,0 +1,714 @@
+"""Design-file sections of the stiffness and preload step, read into frozen dataclasses.
+
+Sections: ``[stiffness]`` (with ``[stiffness.components.NAME]`` tables), ``[preload]``,
+``[flexures]``, ``[springs]``, ``[beam_pinion]``, ``[engagement]``. Lengths and angles use the
+suffixes of :mod:`geargen.units`; forces, torques, stiffnesses and stresses use the suffixes of
+the tables below (:data:`QUANTITY_SUFFIXES`). Every value comes back in internal units:
+
+========================  =================  ==========================================
+quantity                  internal unit      accepted suffixes
+========================  =================  ==========================================
+force                     N                  ``_N`` ``_kN`` ``_lbf``
+torque                    N·mm               ``_Nmm`` ``_Nm`` ``_in_lbf`` ``_ft_lbf``
+linear stiffness          N/mm               ``_N_per_mm`` ``_N_per_um`` ``_N_per_m``
+                                             ``_kN_per_mm`` ``_lbf_per_in``
+torsional stiffness       N·mm/rad           ``_Nmm_per_rad`` ``_Nm_per_rad`` ``_kNm_per_rad``
+                                             ``_Nm_per_deg`` ``_Nm_per_arcmin`` ``_in_lbf_per_rad``
+stress, elastic modulus   MPa (N/mm²)        ``_MPa`` ``_GPa`` ``_Pa`` ``_kPa`` ``_psi`` ``_ksi`` ``_Mpsi``
+========================  =================  ==========================================
+
+Example (the robot joint, abridged)::
+
+    [stiffness]
+    elastic_modulus_GPa = 207          # gear and shaft material (Eq. 1: k_mesh = E w / 11)
+    shear_modulus_GPa = 79.3
+    reduce_to = "output"               # where path stiffnesses are shown: "output", "cluster", "input"
+    train = "dual_pinion"              # the two meshes of each path come from the gears; "custom": list
+                                       # every component (meshes too, kind = "mesh") with its ratio
+    # gear roles of the dual-pinion train (defaults shown)
+    input_gear = "input"
+    cluster_large_gear = "cluster_large"
+    cluster_small_gear = "cluster_small"
+    output_gear = "output"
+
+    [stiffness.components.cluster_shaft]
+    kind = "shaft_torsion"             # "torsion", "linear", "shaft_torsion", "shaft_bending"
+    shaft = "cluster"                  # "input", "cluster", "output"
+    diameter_in = 0.25
+    length_in = 0.30
+    scope = "each_path"                # "each_path", "path1", "path2", "common"
+
+    [preload]
+    max_output_torque_Nm = 5.0         # largest drive torque at the output, either direction
+    loop_error_carriage_travel_in = 0.0095
+
+The meshes of the dual-pinion train (Eq. 1) are not listed: they come from the gears.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from geargen.design.schema import Field, check_range, read_table
+from geargen.errors import DesignError
+
+LBF = 4.4482216152605  # N per pound-force
+IN = 25.4  # mm per inch
+PSI = LBF / IN ** 2  # MPa per psi
+
+#: factor turning a value in the suffix's unit into the internal unit, per quantity family
+QUANTITY_SUFFIXES: dict[str, dict[str, float]] = {
+    "force": {"N": 1.0, "kN": 1e3, "lbf": LBF},
+    "torque": {"Nmm": 1.0, "Nm": 1e3, "in_lbf": LBF * IN, "ft_lbf": LBF * 12 * IN},
+    "linear_stiffness": {"N_per_mm": 1.0, "N_per_um": 1e3, "N_per_m": 1e-3, "kN_per_mm": 1e3,
+                         "lbf_per_in": LBF / IN},
+    "torsional_stiffness": {"Nmm_per_rad": 1.0, "Nm_per_rad": 1e3, "kNm_per_rad": 1e6,
+                            "Nm_per_deg": 1e3 * 180.0 / math.pi, "Nm_per_arcmin": 1e3 * 10800.0 / math.pi,
+                            "in_lbf_per_rad": LBF * IN},
+    "stress": {"MPa": 1.0, "GPa": 1e3, "Pa": 1e-6, "kPa": 1e-3, "psi": PSI, "ksi": PSI * 1e3, "Mpsi": PSI * 1e6},
+}
+
+#: the internal unit of each family, for messages and reports
+INTERNAL_UNITS = {"force": "N", "torque": "N·mm", "linear_stiffness": "N/mm",
+                  "torsional_stiffness": "N·mm/rad", "stress": "MPa"}
+
+
+def convert_quantity(value: float, family: str, suffix: str) -> float:
+    """A value written with ``suffix`` (e.g. ``"Nm_per_rad"``) in internal units."""
+    return float(value) * QUANTITY_SUFFIXES[family][suffix]
+
+
+@dataclass(frozen=True)
+class Quantity:
+    """A design key whose unit suffix is a force, torque, stiffness or stress unit.
+
+    ``families`` lists the quantity families accepted under this name (a stiffness may be
+    linear or torsional; the suffix decides). Bounds are in internal units.
+    """
+
+    name: str
+    families: tuple[str, ...]
+    required: bool = False
+    minimum: float | None = None
+    exclusive_minimum: bool = True
+    maximum: float | None = None
+
+    def keys(self) -> dict[str, tuple[str, str]]:
+        """Accepted spellings -> (family, suffix)."""
+        return {f"{self.name}_{s}": (fam, s) for fam in self.families for s in QUANTITY_SUFFIXES[fam]}
+
+
+def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list[Quantity], where: str,
+                  tables: tuple[str, ...] = ()) -> dict[str, Any]:
+    """``read_table`` extended with :class:`Quantity` keys; ``tables`` are sub-tables read elsewhere.
+
+    Quantities come back as ``{name: (value_internal, family)}`` or ``None`` when absent.
+    """
+    if not isinstance(data, Mapping):
+        raise DesignError(where, "expected a table")
+    prefix = f"{where}."
+    qkeys: dict[str, tuple[Quantity, str, str]] = {}
+    for q in quantities:
+        for key, (fam, suf) in q.keys().items():
+            qkeys[key] = (q, fam, suf)
+    field_keys = {k for f in fields for k in f.keys()}
+    for key in data:
+        if key not in qkeys and key not in field_keys and key not in tables:
+            allowed = sorted(field_keys | set(tables)) + [f"{q.name}_<unit>" for q in quantities]
+            raise DesignError(prefix + key, "unknown key", ", ".join(allowed))
+    out = read_table({k: v for k, v in data.items() if k in field_keys}, fields, where)
+    for q in quantities:
+        present = [k for k in data if k in qkeys and qkeys[k][0] is q]
+        if len(present) > 1:
+            raise DesignError(prefix + present[1], f"given twice, also as {present[0]}", "one spelling")
+        if not present:
+            if q.required:
+                fams = " or ".join(q.families)
+                raise DesignError(prefix + q.name, "missing",
+                                  f"{q.name}_<unit> with a {fams} unit, e.g. {next(iter(q.keys()))}")
+            out[q.name] = None
+            continue
+        key = present[0]
+        raw = data[key]
+        if isinstance(raw, bool) or not isinstance(raw, (int, float)):
+            raise DesignError(prefix + key, f"expected a number, got {raw!r}")
+        _, fam, suf = qkeys[key]
+        scale = QUANTITY_SUFFIXES[fam][suf]
+        value = float(raw) * scale
+        bounds = Field(q.name, "number", minimum=q.minimum, maximum=q.maximum,
+                       exclusive_minimum=q.exclusive_minimum)
+        check_range(bounds, value, prefix + key, scale, suf)
+        out[q.name] = (value, fam)
+    return out
+
+
+def _value(entry) -> float | None:
+    return None if entry is None else entry[0]
+
+
+def _positive(name: str, value, allow_none: bool = False) -> None:
+    if value is None and allow_none:
+        return
+    if value is None or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+        raise DesignError(name, f"{value!r} is out of range", "> 0 and finite")
+
+
+# ----------------------------------------------------------------------------------------------
+# [stiffness]
+
+SHAFTS = ("input", "cluster", "output")
+LOCATIONS = SHAFTS
+TRAINS = ("dual_pinion", "custom")
+SCOPES = ("each_path", "path1", "path2", "common")
+COMPONENT_KINDS = ("torsion", "linear", "shaft_torsion", "shaft_bending", "mesh")
+SUPPORTS = ("simple", "fixed", "cantilever")
+
+#: keys each component kind uses besides kind, scope, count, shaft and ratio; anything else is an error
+_KIND_KEYS = {
+    "torsion": {"stiffness"},
+    "linear": {"gear", "radius", "stiffness"},
+    "shaft_torsion": {"diameter", "bore_diameter", "length", "shear_modulus"},
+    "shaft_bending": {"gear", "radius", "diameter", "bore_diameter", "span", "load_position", "support",
+                      "elastic_modulus"},
+    "mesh": {"gears", "face_width", "elastic_modulus"},
+}
+
+
+@dataclass(frozen=True)
+class ComponentSpec:
+    """One stiffness component of a path, internal units (mm, N, rad).
+
+    Where it sits: ``shaft`` (a shaft of the dual-pinion train: "input", "cluster", "output") or
+    ``ratio`` (the speed of its shaft over the output's, for any train); a ``gear`` implies its
+    shaft in a dual-pinion train. Kinds:
+
+      * ``torsion``: a torsional stiffness value (key, coupling, bearing tilt), N·mm/rad;
+      * ``linear``: a linear stiffness (bearing, support), N/mm, acting along the line of action
+        at the base radius of ``gear`` (or at ``radius``);
+      * ``shaft_torsion``: a round shaft of ``diameter`` (optional ``bore_diameter``) and ``length``;
+      * ``shaft_bending``: the shaft carrying ``gear`` bends under its mesh force: a round beam of
+        ``diameter`` over ``span`` with the gear at ``load_position`` from one support
+        (``support`` "simple", "fixed" both ends, or "cantilever" of overhang ``load_position``);
+      * ``mesh``: a tooth mesh of the two ``gears`` (Eq. 1, ``E w / 11`` along the line of action,
+        ``w`` the smaller face width unless ``face_width`` is given), acting at the second gear.
+
+    ``count`` identical components act in parallel. ``scope`` puts it in each path, in one
+    path only (type 1 compliant path), or in series with the whole drive (``common``).
+    """
+
+    name: str
+    kind: str
+    scope: str = "each_path"
+    count: int = 1
+    shaft: str | None = None
+    ratio: float | None = None
+    gear: str | None = None
+    gears: tuple[str, str] | None = None
+    face_width: float | None = None
+    radius: float | None = None
+    stiffness: float | None = None
+    diameter: float | None = None
+    bore_diameter: float = 0.0
+    length: float | None = None
+    span: float | None = None
+    load_position: float | None = None
+    support: str = "simple"
+    elastic_modulus: float | None = None
+    shear_modulus: float | None = None
+
+    def __post_init__(self):
+        where = f"stiffness.components.{self.name}"
+        if self.kind not in COMPONENT_KINDS:
+            raise DesignError(f"{where}.kind", f"{self.kind!r} is not a valid choice", ", ".join(map(repr, COMPONENT_KINDS)))
+        if self.scope not in SCOPES:
+            raise DesignError(f"{where}.scope", f"{self.scope!r} is not a valid choice", ", ".join(map(repr, SCOPES)))
+        if self.shaft is not None and self.shaft not in SHAFTS:
+            raise DesignError(f"{where}.shaft", f"{self.shaft!r} is not a valid choice", ", ".join(map(repr, SHAFTS)))
+        if self.support not in SUPPORTS:
+            raise DesignError(f"{where}.support", f"{self.support!r} is not a valid choice", ", ".join(map(repr, SUPPORTS)))
+        if not isinstance(self.count, int) or self.count < 1:
+            raise DesignError(f"{where}.count", f"{self.count!r} is out of range", "a whole number >= 1")
+        if self.shaft is not None and self.ratio is not None:
+            raise DesignError(f"{where}.ratio", "give shaft or ratio, not both", "one of shaft, ratio")
+        _positive(f"{where}.ratio", self.ratio, allow_none=True)
+        located = self.shaft is not None or self.ratio is not None
+        if self.kind in ("torsion", "shaft_torsion") and not located:
+            raise DesignError(f"{where}.shaft", "missing", "shaft = " + " | ".join(map(repr, SHAFTS)) + " or ratio")
+        if self.kind in ("torsion", "linear"):
+            _positive(f"{where}.stiffness", self.stiffness)
+        if self.kind in ("linear", "shaft_bending"):
+            if (self.gear is None) == (self.radius is None):
+                raise DesignError(f"{where}.gear", "give exactly one of gear and radius_*",
+                                  "gear = NAME (its base radius) or radius_* with shaft or ratio")
+            if self.radius is not None and not located:
+                raise DesignError(f"{where}.shaft", "missing (a radius needs its shaft)",
+                                  "shaft = " + " | ".join(map(repr, SHAFTS)) + " or ratio")
+        if self.kind == "mesh":
+            if (self.gears is None or len(self.gears) != 2 or not all(isinstance(g, str) for g in self.gears)):
+                raise DesignError(f"{where}.gears", f"{self.gears!r} is not a pair of gear names", "[\"PINION\", \"GEAR\"]")
+            _positive(f"{where}.face_width", self.face_width, allow_none=True)
+        if self.kind == "shaft_torsion":
+            _positive(f"{where}.diameter", self.diameter)
+            _positive(f"{where}.length", self.length)
+        if self.kind == "shaft_bending":
+            _positive(f"{where}.diameter", self.diameter)
+            _positive(f"{where}.load_position", self.load_position)
+            if self.support == "cantilever":
+                if self.span is not None:
+                    raise DesignError(f"{where}.span", "a cantilever has no span", "load_position_* is the overhang")
+            else:
+                _positive(f"{where}.span", self.span)
+                if not self.load_position < self.span:
+                    raise DesignError(f"{where}.load_position", "must lie between the supports", "< span")
+        if self.diameter is not None and not self.bore_diameter < self.diameter:
+            raise DesignError(f"{where}.bore_diameter", "must be smaller than the diameter", "< diameter")
+
+
+@dataclass(frozen=True)
+class StiffnessSpec:
+    """``[stiffness]``: materials, gear roles of the dual-pinion train, where to reduce, components."""
+
+    elastic_modulus: float = 207e3  # MPa, steel
+    shear_modulus: float = 79.3e3  # MPa
+    reduce_to: str = "output"
+    train: str = "dual_pinion"
+    input_gear: str = "input"
+    cluster_large_gear: str = "cluster_large"
+    cluster_small_gear: str = "cluster_small"
+    output_gear: str = "output"
+    components: tuple[ComponentSpec, ...] = ()
+
+    def __post_init__(self):
+        _positive("stiffness.elastic_modulus", self.elastic_modulus)
+        _positive("stiffness.shear_modulus", self.shear_modulus)
+        if self.reduce_to not in LOCATIONS:
+            raise DesignError("stiffness.reduce_to", f"{self.reduce_to!r} is not a valid choice", ", ".join(map(repr, LOCATIONS)))
+        if self.train not in TRAINS:
+            raise DesignError("stiffness.train", f"{self.train!r} is not a valid choice", ", ".join(map(repr, TRAINS)))
+        if self.train == "custom" and self.reduce_to != "output":
+            raise DesignError("stiffness.reduce_to", "a custom train is reduced to the output", "'output'")
+        if self.train == "custom":
+            for c in self.components:
+                if c.shaft is not None:
+                    raise DesignError(f"stiffness.components.{c.name}.shaft", "a custom train has no named shafts",
+                                      "ratio = speed of the shaft / speed of the output")
+
+    @property
+    def roles(self) -> dict[str, str]:
+        """Gear role -> gear name in the design."""
+        return {"input": self.input_gear, "cluster_large": self.cluster_large_gear,
+                "cluster_small": self.cluster_small_gear, "output": self.output_gear}
+
+
+_STIFFNESS_FIELDS = [
+    Field("reduce_to", "string", required=False, default="output", choices=LOCATIONS),
+    Field("train", "string", required=False, default="dual_pinion", choices=TRAINS),
+    Field("input_gear", "string", required=False, default="input"),
+    Field("cluster_large_gear", "string", required=False, default="cluster_large"),
+    Field("cluster_small_gear", "string", required=False, default="cluster_small"),
+    Field("output_gear", "string", required=False, default="output"),
+]
+_MODULI = [Quantity("elastic_modulus", ("stress",)), Quantity("shear_modulus", ("stress",))]
+
+_COMPONENT_FIELDS = [
+    Field("kind", "string", choices=COMPONENT_KINDS),
+    Field("scope", "string", required=False, default="each_path", choices=SCOPES),
+    Field("count", "integer", required=False, default=1, minimum=1, maximum=1000),
+    Field("shaft", "string", required=False, default=None, choices=SHAFTS),
+    Field("ratio", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("gear", "string", required=False, default=None),
+    Field("gears", "list", required=False, default=None),
+    Field("face_width", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("radius", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("bore_diameter", "length", required=False, default=0.0, minimum=0.0),
+    Field("length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("load_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("support", "string", required=False, default="simple", choices=SUPPORTS),
+]
+_COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0),
+                         Quantity("elastic_modulus", ("stress",), minimum=0.0),
+                         Quantity("shear_modulus", ("stress",), minimum=0.0)]
+
+
+def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
+    where = f"stiffness.components.{name}"
+    v = _read_section(data, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES, where)
+    kind = v["kind"]
+    used = _KIND_KEYS[kind] | {"kind", "scope", "count", "shaft", "ratio"}
+    given = {f.name for f in _COMPONENT_FIELDS if any(k in data for k in f.keys())}
+    given |= {q.name for q in _COMPONENT_QUANTITIES if v[q.name] is not None}
+    extra = sorted(given - used)
+    if extra:
+        raise DesignError(f"{where}.{extra[0]}", f"not used by kind {kind!r}", ", ".join(sorted(used)))
+    stiffness = v["stiffness"]
+    if stiffness is not None:
+        want = "torsional_stiffness" if kind == "torsion" else "linear_stiffness"
+        if stiffness[1] != want:
+            raise DesignError(f"{where}.stiffness", f"kind {kind!r} needs a {want.replace('_', ' ')}",
+                              ", ".join(f"stiffness_{s}" for s in QUANTITY_SUFFIXES[want]))
+    gears = tuple(v["gears"]) if v["gears"] is not None else None
+    return ComponentSpec(name=name, kind=kind, scope=v["scope"], count=v["count"], shaft=v["shaft"], ratio=v["ratio"],
+                         gear=v["gear"], gears=gears, face_width=v["face_width"], radius=v["radius"], stiffness=_value(stiffness), diameter=v["diameter"],
+                         bore_diameter=v["bore_diameter"], length=v["length"], span=v["span"],
+                         load_position=v["load_position"], support=v["support"],
+                         elastic_modulus=_value(v["elastic_modulus"]), shear_modulus=_value(v["shear_modulus"]))
+
+
+def stiffness_spec_from_table(data: Mapping[str, Any]) -> StiffnessSpec:
+    v = _read_section(data, _STIFFNESS_FIELDS, _MODULI, "stiffness", tables=("components",))
+    comps = data.get("components", {})
+    if not isinstance(comps, Mapping):
+        raise DesignError("stiffness.components", "expected tables [stiffness.components.NAME]")
+    components = []
+    for cname, table in comps.items():
+        if not isinstance(table, Mapping):
+            raise DesignError(f"stiffness.components.{cname}", "expected a table")
+        components.append(component_from_table(cname, table))
+    kwargs = {k: v[k] for k in ("reduce_to", "train", "input_gear", "cluster_large_gear", "cluster_small_gear", "output_gear")}
+    for q in ("elastic_modulus", "shear_modulus"):
+        if v[q] is not None:
+            kwargs[q] = v[q][0]
+    return StiffnessSpec(components=tuple(components), **kwargs)
+
+
+# ----------------------------------------------------------------------------------------------
+# [preload]
+
+LOOP_BUDGETS = ("mean", "sum", "rss")
+
+
+@dataclass(frozen=True)
+class PreloadSpec:
+    """``[preload]``: the load spectrum, the preload setting, loop errors (internal units).
+
+    ``max_output_torque`` (N·mm) is the largest drive torque at the output in either direction.
+    ``preload`` (N·mm, optional) is the loop preload: the output torque each path carries at zero
+    drive torque; without it the springs' installed force sets it, else the paper's rule.
+    ``line_of_action_angle`` (rad) is the angle between the preload motion and each mesh-1 line
+    of action (0: the optimal configuration of Fig. 9). ``loop_error_carriage_travel`` (mm,
+    peak-to-peak travel of the preload carriage) or ``loop_error_rotation`` (rad, peak-to-peak
+    loop error as output rotation) is used when the synthesis error budget is not available.
+    ``preload_spring_stiffness`` adds a preload-spring stiffness not described by
+    [springs]/[flexures]/[beam_pinion]: linear at the carriage (N/mm) or torsional at the output
+    (N·mm/rad). ``path_backlash`` (rad at the output) is drawn in the preload diagram.
+    """
+
+    max_output_torque: float
+    preload: float | None = None
+    line_of_action_angle: float = 0.0
+    loop_error_carriage_travel: float | None = None
+    loop_error_rotation: float | None = None
+    loop_error_budget: str = "mean"
+    preload_spring_linear: float | None = None
+    preload_spring_torsional: float | None = None
+    path_backlash: float | None = None
+
+    def __post_init__(self):
+        _positive("preload.max_output_torque", self.max_output_torque)
+        if self.preload is not None and not (math.isfinite(self.preload) and self.preload >= 0):
+            raise DesignError("preload.preload", f"{self.preload!r} is out of range", ">= 0")
+        if not abs(self.line_of_action_angle) < math.radians(60):
+            raise DesignError("preload.line_of_action_angle", f"{self.line_of_action_angle!r} rad is out of range",
+                              "(-60, 60) deg")
+        if self.loop_error_budget not in LOOP_BUDGETS:
+            raise DesignError("preload.loop_error_budget", f"{self.loop_error_budget!r} is not a valid choice",
+                              ", ".join(map(repr, LOOP_BUDGETS)))
+        if self.loop_error_carriage_travel is not None and self.loop_error_rotation is not None:
+            raise DesignError("preload.loop_error_rotation", "give at most one loop error",
+                              "loop_error_carriage_travel_* or loop_error_rotation_*")
+
+
+_PRELOAD_FIELDS = [
+    Field("line_of_action_angle", "angle", required=False, default=0.0, units=("deg", "rad")),
+    Field("loop_error_carriage_travel", "length", required=False, default=None, minimum=0.0),
+    Field("loop_error_rotation", "angle", required=False, default=None, minimum=0.0),
+    Field("loop_error_budget", "string", required=False, default="mean", choices=LOOP_BUDGETS),
+    Field("path_backlash", "angle", required=False, default=None, minimum=0.0),
+]
+_PRELOAD_QUANTITIES = [
+    Quantity("max_output_torque", ("torque",), required=True, minimum=0.0),
+    Quantity("preload", ("torque",), minimum=0.0, exclusive_minimum=False),
+    Quantity("preload_spring_stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0),
+]
+
+
+def preload_spec_from_table(data: Mapping[str, Any]) -> PreloadSpec:
+    v = _read_section(data, _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, "preload")
+    spring = v["preload_spring_stiffness"]
+    return PreloadSpec(max_output_torque=v["max_output_torque"][0], preload=_value(v["preload"]),
+                       line_of_action_angle=v["line_of_action_angle"],
+                       loop_error_carriage_travel=v["loop_error_carriage_travel"],
+                       loop_error_rotation=v["loop_error_rotation"], loop_error_budget=v["loop_error_budget"],
+                       preload_spring_linear=spring[0] if spring and spring[1] == "linear_stiffness" else None,
+                       preload_spring_torsional=spring[0] if spring and spring[1] == "torsional_stiffness" else None,
+                       path_backlash=v["path_backlash"])
+
+
+# ----------------------------------------------------------------------------------------------
+# [flexures]
+
+@dataclass(frozen=True)
+class FlexureSpec:
+    """``[flexures]``: ``count`` identical parallel blades guiding the preload carriage (mm, MPa).
+
+    Each blade is clamped at both ends (fixed-guided), ``length`` free between the clamps,
+    ``thickness`` in the direction of motion, ``width`` across it. ``travel`` is the largest
+    deflection from the blades' unstressed position the design must allow (stress check).
+    ``neutral_offset`` is the distance from the carriage's operating position to the blades'
+    unstressed position, measured in the preload direction: the blades then push the carriage
+    with ``k * neutral_offset`` (adds to the springs' preload force). ``target_stiffness``
+    (optional, N/mm, all blades) asks the design helper for a thickness and length.
+    """
+
+    thickness: float
+    length: float
+    width: float
+    allowable_stress: float
+    travel: float
+    count: int = 3
+    elastic_modulus: float = 207e3
+    poisson_ratio: float = 0.29
+    neutral_offset: float = 0.0
+    target_stiffness: float | None = None
+
+    def __post_init__(self):
+        for name in ("thickness", "length", "width", "allowable_stress", "travel", "elastic_modulus"):
+            _positive(f"flexures.{name}", getattr(self, name))
+        if not isinstance(self.count, int) or self.count < 1:
+            raise DesignError("flexures.count", f"{self.count!r} is out of range", ">= 1")
+        if not 0 <= self.poisson_ratio < 0.5:
+            raise DesignError("flexures.poisson_ratio", f"{self.poisson_ratio!r} is out of range", "[0, 0.5)")
+        if not self.thickness < self.width:
+            raise DesignError("flexures.thickness", "a blade is thinner than it is wide", "< width")
+        if not math.isfinite(self.neutral_offset):
+            raise DesignError("flexures.neutral_offset", "must be finite")
+        _positive("flexures.target_stiffness", self.target_stiffness, allow_none=True)
+
+
+_FLEXURE_FIELDS = [
+    Field("count", "integer", required=False, default=3, minimum=1, maximum=100),
+    Field("thickness", "length", minimum=0.0, exclusive_minimum=True),
+    Field("length", "length", minimum=0.0, exclusive_minimum=True),
+    Field("width", "length", minimum=0.0, exclusive_minimum=True),
+    Field("travel", "length", minimum=0.0, exclusive_minimum=True),
+    Field("neutral_offset", "length", required=False, default=0.0),
+    Field("poisson_ratio", "number", required=False, default=0.29, minimum=0.0, maximum=0.5, exclusive_maximum=True),
+]
+_FLEXURE_QUANTITIES = [Quantity("elastic_modulus", ("stress",), minimum=0.0),
+                       Quantity("allowable_stress", ("stress",), required=True, minimum=0.0),
+                       Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0)]
+
+
+def flexure_spec_from_table(data: Mapping[str, Any]) -> FlexureSpec:
+    v = _read_section(data, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, "flexures")
+    kwargs = dict(count=v["count"], thickness=v["thickness"], length=v["length"], width=v["width"],
+                  travel=v["travel"], neutral_offset=v["neutral_offset"], poisson_ratio=v["poisson_ratio"],
+                  allowable_stress=v["allowable_stress"][0], target_stiffness=_value(v["target_stiffness"]))
+    if v["elastic_modulus"] is not None:
+        kwargs["elastic_modulus"] = v["elastic_modulus"][0]
+    return FlexureSpec(**kwargs)
+
+
+# ----------------------------------------------------------------------------------------------
+# [springs]
+
+END_TYPES = ("plain", "plain_ground", "squared", "squared_ground")
+
+
+@dataclass(frozen=True)
+class SpringSpec:
+    """``[springs]``: ``count`` identical helical compression springs pushing the carriage (mm, MPa).
+
+    ``installed_length`` (optional) is the spring length at the carriage's operating position;
+    with it the springs set the preload force.
+    """
+
+    wire_diameter: float
+    mean_coil_diameter: float
+    active_coils: float
+    free_length: float
+    allowable_shear_stress: float
+    count: int = 2
+    end_type: str = "squared_ground"
+    installed_length: float | None = None
+    shear_modulus: float = 79.3e3
+
+    def __post_init__(self):
+        for name in ("wire_diameter", "mean_coil_diameter", "active_coils", "free_length",
+                     "allowable_shear_stress", "shear_modulus"):
+            _positive(f"springs.{name}", getattr(self, name))
+        if not isinstance(self.count, int) or self.count < 1:
+            raise DesignError("springs.count", f"{self.count!r} is out of range", ">= 1")
+        if self.end_type not in END_TYPES:
+            raise DesignError("springs.end_type", f"{self.end_type!r} is not a valid choice", ", ".join(map(repr, END_TYPES)))
+        if not self.mean_coil_diameter > 2 * self.wire_diameter:
+            raise DesignError("springs.mean_coil_diameter", "spring index D/d must exceed 2", "> 2 * wire_diameter")
+        if self.installed_length is not None and not 0 < self.installed_length <= self.free_length:
+            raise DesignError("springs.installed_length", f"{self.installed_length!r} mm is out of range",
+                              f"(0, free_length = {self.free_length:.6g} mm]")
+
+
+_SPRING_FIELDS = [
+    Field("count", "integer", required=False, default=2, minimum=1, maximum=100),
+    Field("wire_diameter", "length", minimum=0.0, exclusive_minimum=True),
+    Field("mean_coil_diameter", "length", minimum=0.0, exclusive_minimum=True),
+    Field("active_coils", "number", minimum=0.5, maximum=500.0),
+    Field("end_type", "string", required=False, default="squared_ground", choices=END_TYPES),
+    Field("free_length", "length", minimum=0.0, exclusive_minimum=True),
+    Field("installed_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+]
+_SPRING_QUANTITIES = [Quantity("shear_modulus", ("stress",), minimum=0.0),
+                      Quantity("allowable_shear_stress", ("stress",), required=True, minimum=0.0)]
+
+
+def spring_spec_from_table(data: Mapping[str, Any]) -> SpringSpec:
+    v = _read_section(data, _SPRING_FIELDS, _SPRING_QUANTITIES, "springs")
+    kwargs = dict(count=v["count"], wire_diameter=v["wire_diameter"], mean_coil_diameter=v["mean_coil_diameter"],
+                  active_coils=v["active_coils"], end_type=v["end_type"], free_length=v["free_length"],
+                  installed_length=v["installed_length"], allowable_shear_stress=v["allowable_shear_stress"][0])
+    if v["shear_modulus"] is not None:
+        kwargs["shear_modulus"] = v["shear_modulus"][0]
+    return SpringSpec(**kwargs)
+
+
+# ----------------------------------------------------------------------------------------------
+# [beam_pinion]
+
+@dataclass(frozen=True)
+class BeamPinionSpec:
+    """``[beam_pinion]``: a long pinion, simply supported, whose bending is the preload spring.
+
+    ``gear`` names the pinion; the beam section is ``diameter`` (default: the pinion's root
+    diameter). ``span`` is the bearing span and ``mesh_position`` the distance from one bearing
+    to the middle of the mesh (default: mid-span, where the slope is zero). Without ``span``,
+    ``target_stiffness`` (N/mm at the mesh) sets the span.
+    """
+
+    gear: str
+    span: float | None = None
+    mesh_position: float | None = None
+    target_stiffness: float | None = None
+    diameter: float | None = None
+    elastic_modulus: float = 207e3
+    allowable_stress: float | None = None
+
+    def __post_init__(self):
+        if self.span is None and self.target_stiffness is None:
+            raise DesignError("beam_pinion.span", "missing", "span_* or target_stiffness_*")
+        if self.span is not None and self.target_stiffness is not None:
+            raise DesignError("beam_pinion.target_stiffness", "give span or target stiffness, not both",
+                              "one of span_*, target_stiffness_*")
+        _positive("beam_pinion.span", self.span, allow_none=True)
+        _positive("beam_pinion.target_stiffness", self.target_stiffness, allow_none=True)
+        _positive("beam_pinion.diameter", self.diameter, allow_none=True)
+        _positive("beam_pinion.elastic_modulus", self.elastic_modulus)
+        _positive("beam_pinion.allowable_stress", self.allowable_stress, allow_none=True)
+        if self.mesh_position is not None:
+            _positive("beam_pinion.mesh_position", self.mesh_position)
+            if self.span is not None and not self.mesh_position < self.span:
+                raise DesignError("beam_pinion.mesh_position", "must lie between the bearings", "< span")
+
+
+_BEAM_FIELDS = [
+    Field("gear", "string"),
+    Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("mesh_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+]
+_BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0),
+                    Quantity("elastic_modulus", ("stress",), minimum=0.0),
+                    Quantity("allowable_stress", ("stress",), minimum=0.0)]
+
+
+def beam_pinion_spec_from_table(data: Mapping[str, Any]) -> BeamPinionSpec:
+    v = _read_section(data, _BEAM_FIELDS, _BEAM_QUANTITIES, "beam_pinion")
+    kwargs = dict(gear=v["gear"], span=v["span"], mesh_position=v["mesh_position"], diameter=v["diameter"],
+                  target_stiffness=_value(v["target_stiffness"]), allowable_stress=_value(v["allowable_stress"]))
+    if v["elastic_modulus"] is not None:
+        kwargs["elastic_modulus"] = v["elastic_modulus"][0]
+    return BeamPinionSpec(**kwargs)
+
+
+# ----------------------------------------------------------------------------------------------
+# [engagement]
+
+@dataclass(frozen=True)
+class EngagementSpec:
+    """``[engagement]``: helical dual pinions sliding axially into mesh (mm).
+
+    ``gear`` is the helical gear at whose mesh the pinions slide (helix angle, pitch radius).
+    ``backlash`` is the circumferential clearance at its reference circle that the sliding
+    pinions need while entering. ``preload_windup`` is the circumferential loop deflection at that
+    circle when preloaded (default: from the drive model). ``engagement_length`` is the axial
+    overlap when engaged (default: the gear's face width); ``clearance`` the axial gap when
+    retracted.
+    """
+
+    gear: str
+    backlash: float
+    preload_windup: float | None = None
+    engagement_length: float | None = None
+    clearance: float = 0.0
+
+    def __post_init__(self):
+        if not (math.isfinite(self.backlash) and self.backlash >= 0):
+            raise DesignError("engagement.backlash", f"{self.backlash!r} is out of range", ">= 0")
+        if self.preload_windup is not None and not (math.isfinite(self.preload_windup) and self.preload_windup >= 0):
+            raise DesignError("engagement.preload_windup", f"{self.preload_windup!r} is out of range", ">= 0")
+        _positive("engagement.engagement_length", self.engagement_length, allow_none=True)
+        if not (math.isfinite(self.clearance) and self.clearance >= 0):
+            raise DesignError("engagement.clearance", f"{self.clearance!r} is out of range", ">= 0")
+
+
+_ENGAGEMENT_FIELDS = [
+    Field("gear", "string"),
+    Field("backlash", "length", minimum=0.0),
+    Field("preload_windup", "length", required=False, default=None, minimum=0.0),
+    Field("engagement_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("clearance", "length", required=False, default=0.0, minimum=0.0),
+]
+
+
+def engagement_spec_from_table(data: Mapping[str, Any]) -> EngagementSpec:
+    v = read_table(data, _ENGAGEMENT_FIELDS, "engagement")
+    return EngagementSpec(gear=v["gear"], backlash=v["backlash"], preload_windup=v["preload_windup"],
+                          engagement_length=v["engagement_length"], clearance=v["clearance"])
+
+
+# ----------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class StiffnessDesign:
+    """All sections of the stiffness step of one design, validated (internal units)."""
+
+    stiffness: StiffnessSpec
+    preload: PreloadSpec | None = None
+    flexures: FlexureSpec | None = None
+    springs: SpringSpec | None = None
+    beam_pinion: BeamPinionSpec | None = None
+    engagement: EngagementSpec | None = None
+
+
+def stiffness_design(design) -> StiffnessDesign:
+    """Read the stiffness-step sections of a loaded :class:`~geargen.design.assembly.Design`."""
+    def opt(name, reader):
+        table = design.section(name)
+        return reader(table) if table else None
+
+    return StiffnessDesign(stiffness=stiffness_spec_from_table(design.section("stiffness")),
+                           preload=opt("preload", preload_spec_from_table),
+                           flexures=opt("flexures", flexure_spec_from_table),
+                           springs=opt("springs", spring_spec_from_table),
+                           beam_pinion=opt("beam_pinion", beam_pinion_spec_from_table),
+                           engagement=opt("engagement", engagement_spec_from_table))
+
+
+__all__ = ["QUANTITY_SUFFIXES", "INTERNAL_UNITS", "convert_quantity", "Quantity", "ComponentSpec", "StiffnessSpec",
+           "PreloadSpec", "FlexureSpec", "SpringSpec", "BeamPinionSpec", "EngagementSpec", "StiffnessDesign",
+           "stiffness_design", "component_from_table", "stiffness_spec_from_table", "preload_spec_from_table",
+           "flexure_spec_from_table", "spring_spec_from_table", "beam_pinion_spec_from_table",
+           "engagement_spec_from_table", "SHAFTS", "SCOPES", "COMPONENT_KINDS", "END_TYPES"]
