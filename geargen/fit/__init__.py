@@ -1,1 +1,16 @@
-"""Measured data: fitting the declared model, diagnosing residuals, adding effects (numpy/scipy)."""
+"""Measured data: fitting the declared model, diagnosing residuals, adding effects (numpy/scipy).
+
+Public API (``geargen fit`` is :func:`geargen.commands.fit.fit_files` on top of these):
+
+- :func:`geargen.fit.measurement.read_measurement` ``(csv_path) -> Measurement``: NAME.csv and its
+  sidecar NAME.toml, validated (contracts/measurements.md); :func:`write_measurement` the reverse.
+- :func:`geargen.fit.selection.diagnose` ``(measurement, rule=SelectionRule()) -> Diagnosis``: noise
+  estimate, nominal and declared fits, effects added one at a time, residual tests;
+  ``Diagnosis.to_json()`` is the contract's report.
+- :mod:`geargen.fit.orders` shaft and mesh orders; :mod:`geargen.fit.periodogram` the least-squares
+  order spectrum; :mod:`geargen.fit.noise` the model-free noise level; :mod:`geargen.fit.effects`
+  the effect library; :mod:`geargen.fit.model` the declared models and joint least squares.
+- :mod:`geargen.fit.simulate` the bench simulator (truth model -> Measurement) used by tests and bench.
+- :func:`geargen.fit.reporting.report_input` turns a Diagnosis into the report layer's input
+  (:mod:`geargen.report.fit` writes the Markdown and plots).
+"""

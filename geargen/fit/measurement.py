@@ -1,0 +1,480 @@
+"""A bench measurement: ``NAME.csv`` and its sidecar ``NAME.toml`` (contracts/measurements.md).
+
+Reading validates everything and names the offending column, line or key. Channels come back
+in the contract's units: carriage position in um, torque in Nm, angles in rad (the output angle
+and rotation columns are converted from their suffix unit; ``_deg``/``_urad`` are the contract
+spellings, other angle and length suffixes of :mod:`geargen.units` are accepted too).
+
+Rows with an empty or non-numeric-NaN value in a required column are dropped (a probe
+drop-out) with a note; a missing temperature value is interpolated in time, with a note.
+Unknown extra columns are ignored, with a note.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from geargen.design.schema import load_toml
+from geargen.errors import DesignError
+from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
+
+KINDS = ("preload_trace", "torque_deflection")
+DRIVE_TYPES = ("type1", "type2")
+DECLARED_NAMES = ("eccentricity", "tooth_to_tooth")
+UNITS = {"preload_trace": "um", "torque_deflection": "Nm"}
+
+#: channel -> (column stem, {suffix: factor to the channel's unit}); the first suffix is the contract's
+_UM_PER = {u: f * 1000.0 for u, f in LENGTH_SUFFIXES.items()}
+_URAD_ANGLES = {"urad": 1e-6, **{u: f for u, f in ANGLE_SUFFIXES.items() if u != "urad"}}
+CHANNELS: dict[str, tuple[str, dict[str, float]]] = {
+    "time": ("time", {"s": 1.0, "ms": 1e-3, "min": 60.0, "h": 3600.0}),
+    "temperature": ("temperature", {"C": 1.0}),
+    "angle": ("output_angle", {"deg": ANGLE_SUFFIXES["deg"], **{u: f for u, f in ANGLE_SUFFIXES.items() if u != "deg"}}),
+    "carriage": ("carriage_x", {"um": 1.0, **{u: f for u, f in _UM_PER.items() if u != "um"}}),
+    "torque": ("output_torque", {"Nm": 1.0, "Nmm": 1e-3, "kNm": 1e3}),
+    "rotation": ("output_rotation", _URAD_ANGLES),
+}
+REQUIRED = {"preload_trace": ("time", "angle", "carriage"), "torque_deflection": ("time", "torque", "rotation")}
+OPTIONAL = ("temperature",)
+
+MODEL_KEYS = {
+    "preload_trace": ("drive", "teeth", "declared"),
+    "torque_deflection": ("drive", "k1_Nm_per_rad", "k2_Nm_per_rad", "k3_Nm_per_rad", "preload_Nm"),
+}
+TOP_KEYS = ("kind", "description", "model", "assembly")
+MIN_SAMPLES = 50
+
+
+class MeasurementError(DesignError):
+    """A measurement file or sidecar is missing, malformed or inconsistent.
+
+    ``field`` names the file and the column, line or key (``run3.csv: column carriage_x_um``).
+    """
+
+
+# ----------------------------------------------------------------------------- model specs
+
+@dataclass(frozen=True)
+class PreloadModelSpec:
+    """Declared model of a preload trace: teeth (input, cluster large, cluster small, output)
+    and which error terms it declares."""
+
+    teeth: tuple[int, int, int, int]
+    declared: tuple[str, ...] = DECLARED_NAMES
+    drive_type: str | None = None
+
+    def __post_init__(self):
+        if len(self.teeth) != 4 or not all(isinstance(z, int) and not isinstance(z, bool) and z >= 4 for z in self.teeth):
+            raise MeasurementError("model.teeth", f"{list(self.teeth)!r} is not valid",
+                                   "4 whole numbers >= 4: [input, cluster large, cluster small, output]")
+        for d in self.declared:
+            if d not in DECLARED_NAMES:
+                raise MeasurementError("model.declared", f"{d!r} is not a declared-model term", ", ".join(map(repr, DECLARED_NAMES)))
+        if self.drive_type is not None and self.drive_type not in DRIVE_TYPES:
+            raise MeasurementError("model.drive", f"{self.drive_type!r} is not a valid choice", "'type1', 'type2'")
+
+
+@dataclass(frozen=True)
+class TorqueModelSpec:
+    """Declared two-path law of a torque-deflection test, output-referred, in Nm/rad and Nm.
+    Values may be None (no nominal values): the fit then starts from the data."""
+
+    drive_type: str
+    k1_Nm_per_rad: float | None = None
+    k2_Nm_per_rad: float | None = None
+    k3_Nm_per_rad: float | None = None
+    preload_Nm: float | None = None
+
+    def __post_init__(self):
+        if self.drive_type not in DRIVE_TYPES:
+            raise MeasurementError("model.drive", f"{self.drive_type!r} is not a valid choice", "'type1', 'type2'")
+        for name in ("k1_Nm_per_rad", "k2_Nm_per_rad", "k3_Nm_per_rad"):
+            v = getattr(self, name)
+            if v is not None and not (math.isfinite(v) and v > 0):
+                raise MeasurementError(f"model.{name}", f"{v!r} is out of range", "> 0 and finite")
+        if self.preload_Nm is not None and not (math.isfinite(self.preload_Nm) and self.preload_Nm >= 0):
+            raise MeasurementError("model.preload_Nm", f"{self.preload_Nm!r} is out of range", ">= 0 and finite")
+        if self.drive_type == "type1" and self.k3_Nm_per_rad is not None:
+            raise MeasurementError("model.k3_Nm_per_rad", "a type1 drive has no preload spring", "omit k3 for type1")
+
+    @property
+    def has_nominal(self) -> bool:
+        """True when every value of the law is given."""
+        need = ["k1_Nm_per_rad", "k2_Nm_per_rad", "preload_Nm"] + (["k3_Nm_per_rad"] if self.drive_type == "type2" else [])
+        return all(getattr(self, n) is not None for n in need)
+
+
+# ----------------------------------------------------------------------------- measurement
+
+@dataclass(frozen=True, eq=False)
+class Measurement:
+    """One validated measurement. Arrays are (n,) float in record (time) order.
+
+    preload_trace: ``angle_rad`` (output angle), ``carriage_um``.
+    torque_deflection: ``torque_Nm`` (output torque), ``rotation_rad`` (output rotation).
+    ``temperature_C`` is None when the file has no temperature column.
+    """
+
+    kind: str
+    name: str
+    time_s: np.ndarray
+    model: PreloadModelSpec | TorqueModelSpec
+    angle_rad: np.ndarray | None = None
+    carriage_um: np.ndarray | None = None
+    torque_Nm: np.ndarray | None = None
+    rotation_rad: np.ndarray | None = None
+    temperature_C: np.ndarray | None = None
+    description: str = ""
+    notes: tuple[str, ...] = ()
+    source: Path | None = None
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise MeasurementError("kind", f"{self.kind!r} is not a valid choice", ", ".join(map(repr, KINDS)))
+        want = ("angle_rad", "carriage_um") if self.kind == "preload_trace" else ("torque_Nm", "rotation_rad")
+        spec_type = PreloadModelSpec if self.kind == "preload_trace" else TorqueModelSpec
+        if not isinstance(self.model, spec_type):
+            raise MeasurementError("model", f"a {self.kind} needs a {spec_type.__name__}")
+        n = np.asarray(self.time_s).size
+        if n < MIN_SAMPLES:
+            raise MeasurementError("samples", f"{n} samples are too few to fit", f">= {MIN_SAMPLES}")
+        for name in ("time_s",) + want + (("temperature_C",) if self.temperature_C is not None else ()):
+            arr = getattr(self, name)
+            if arr is None or np.asarray(arr).shape != (n,):
+                raise MeasurementError(name, f"needs {n} values like time_s")
+            if not np.all(np.isfinite(arr)):
+                raise MeasurementError(name, "holds values that are not finite")
+        if self.kind == "preload_trace" and np.ptp(self.angle_rad) < math.pi:
+            raise MeasurementError("output_angle_deg", f"the output turns only {np.degrees(np.ptp(self.angle_rad)):.3g} deg",
+                                   "a preload trace over one or more revolutions (at least half of one)")
+        if self.kind == "torque_deflection" and not np.ptp(self.torque_Nm) > 0:
+            raise MeasurementError("output_torque_Nm", "the torque never changes", "a torque cycled 0 -> +T -> -T -> 0")
+        if np.any(np.diff(self.time_s) <= 0):
+            i = int(np.flatnonzero(np.diff(self.time_s) <= 0)[0])
+            raise MeasurementError("time_s", f"not increasing at sample {i + 1} ({self.time_s[i + 1]} after {self.time_s[i]})",
+                                   "rows in time order, strictly increasing time")
+
+    @property
+    def samples(self) -> int:
+        return int(np.asarray(self.time_s).size)
+
+    @property
+    def units(self) -> str:
+        """Unit of the residual: um of carriage position or Nm of torque."""
+        return UNITS[self.kind]
+
+    @property
+    def signal(self) -> np.ndarray:
+        """The measured quantity the residual is taken of (carriage um or torque Nm)."""
+        return self.carriage_um if self.kind == "preload_trace" else self.torque_Nm
+
+
+# ----------------------------------------------------------------------------- CSV
+
+def _column_map(header: list[str], kind: str, where: str) -> tuple[dict[str, tuple[int, float, str]], list[str]]:
+    """channel -> (column index, factor, column name); and the ignored columns."""
+    wanted = REQUIRED[kind] + OPTIONAL
+    found: dict[str, tuple[int, float, str]] = {}
+    used = set()
+    for ch in wanted:
+        stem, suffixes = CHANNELS[ch]
+        hits = [(i, suffixes[h[len(stem) + 1:]], h) for i, h in enumerate(header)
+                if h.startswith(stem + "_") and h[len(stem) + 1:] in suffixes]
+        if len(hits) > 1:
+            raise MeasurementError(f"{where}: column {hits[1][2]}", f"given twice, also as {hits[0][2]}", "one column per quantity")
+        if hits:
+            found[ch] = hits[0]
+            used.add(hits[0][0])
+        elif ch in REQUIRED[kind]:
+            allowed = ", ".join(f"{stem}_{u}" for u in suffixes)
+            raise MeasurementError(f"{where}: column {stem}_{next(iter(suffixes))}",
+                                   f"missing (a {kind} needs {', '.join(CHANNELS[c][0] + '_' + next(iter(CHANNELS[c][1])) for c in REQUIRED[kind])})",
+                                   allowed)
+    ignored = [h for i, h in enumerate(header) if i not in used]
+    return found, ignored
+
+
+def _parse_rows(lines: list[str], first_line: int, ncols: int, header: list[str], where: str) -> np.ndarray:
+    """Slow, careful parse that names the line and column of a bad value; empty cells are NaN."""
+    rows = []
+    for lineno, line in enumerate(lines, start=first_line):
+        if not line.strip() or line.lstrip().startswith("#"):
+            continue
+        cells = line.split(",")
+        if len(cells) != ncols:
+            raise MeasurementError(f"{where}: line {lineno}", f"has {len(cells)} values", f"{ncols}, one per header column")
+        row = []
+        for cell, name in zip(cells, header):
+            cell = cell.strip()
+            if cell == "":
+                row.append(math.nan)
+                continue
+            try:
+                row.append(float(cell))
+            except ValueError:
+                raise MeasurementError(f"{where}: line {lineno}, column {name}", f"{cell!r} is not a number") from None
+        rows.append(row)
+    return np.array(rows, dtype=float).reshape(-1, ncols)
+
+
+def read_csv(path: Path) -> tuple[list[str], np.ndarray]:
+    """Header names and the (rows, columns) float table of a measurement CSV (NaN where empty)."""
+    where = path.name
+    try:
+        text = path.read_text(encoding="utf-8-sig")
+    except FileNotFoundError:
+        raise MeasurementError(str(path), "no such measurement file") from None
+    lines = text.splitlines()
+    start = 0
+    while start < len(lines) and (not lines[start].strip() or lines[start].lstrip().startswith("#")):
+        start += 1
+    if start == len(lines):
+        raise MeasurementError(where, "is empty", "a header row of column names, then numbers")
+    header = [h.strip().strip('"').strip("'").strip() for h in lines[start].split(",")]
+    if any(not h for h in header):
+        raise MeasurementError(f"{where}: line {start + 1}", "header has an empty column name")
+    dup = [h for h in header if header.count(h) > 1]
+    if dup:
+        raise MeasurementError(f"{where}: column {dup[0]}", "appears twice in the header")
+    body = lines[start + 1:]
+    try:
+        table = np.loadtxt(io.StringIO("\n".join(body)), delimiter=",", ndmin=2, dtype=float, comments="#")
+        if table.size == 0:
+            table = table.reshape(0, len(header))
+        if table.shape[1] != len(header):
+            raise ValueError
+    except ValueError:
+        table = _parse_rows(body, start + 2, len(header), header, where)
+    return header, table
+
+
+# ----------------------------------------------------------------------------- sidecar
+
+def _number(table: dict, key: str, where: str) -> float | None:
+    if key not in table:
+        return None
+    v = table[key]
+    if isinstance(v, bool) or not isinstance(v, (int, float)):
+        raise MeasurementError(f"{where}.{key}", f"expected a number, got {v!r}")
+    return float(v)
+
+
+def _model_from_assembly(kind: str, design_path: Path, where: str, notes: list[str]):
+    from geargen.design.assembly import load_design
+
+    design = load_design(design_path)
+    if kind == "preload_trace":
+        teeth = tuple(design.gear(g).teeth for g in ("input", "cluster_large", "cluster_small", "output"))
+        notes.append(f"teeth {list(teeth)} and drive {design.drive_type} from the assembly {design_path.name}")
+        return {"teeth": list(teeth), "drive": design.drive_type}
+    try:
+        from geargen.core.stiffness import drive_from_design  # written alongside; optional here
+    except ImportError as exc:
+        raise MeasurementError(f"{where}.assembly",
+                               "the drive law cannot be derived from a design file in this installation "
+                               f"(geargen.core.stiffness.drive_from_design is not available: {exc})",
+                               "a [model] table with drive, k1_Nm_per_rad, k2_Nm_per_rad, k3_Nm_per_rad, preload_Nm") from None
+    drive = drive_from_design(design)
+    try:
+        # TwoPathDrive in geargen's internal units: N*mm/rad and N*mm
+        values = {"drive": drive.drive_type, "k1_Nm_per_rad": drive.k1 * 1e-3, "k2_Nm_per_rad": drive.k2 * 1e-3,
+                  "preload_Nm": drive.preload * 1e-3}
+        if drive.drive_type == "type2":
+            values["k3_Nm_per_rad"] = drive.k3 * 1e-3
+    except AttributeError as exc:
+        raise MeasurementError(f"{where}.assembly", f"drive_from_design returned {type(drive).__name__}, not a TwoPathDrive ({exc})") from None
+    notes.append(f"drive law from the assembly {design_path.name}: " + ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}" for k, v in values.items()))
+    return values
+
+
+def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSpec | TorqueModelSpec]:
+    """(kind, description, model spec) from a sidecar TOML; errors name the key."""
+    where = path.name
+    if not path.exists():
+        raise MeasurementError(str(path), "missing: every NAME.csv needs its sidecar NAME.toml beside it")
+    try:
+        data = load_toml(path)
+    except DesignError as exc:
+        raise MeasurementError(where, exc.problem) from None
+    unknown = [k for k in data if k not in TOP_KEYS]
+    if unknown:
+        raise MeasurementError(f"{where}: {unknown[0]}", "unknown key", ", ".join(TOP_KEYS))
+    kind = data.get("kind")
+    if kind is None:
+        raise MeasurementError(f"{where}: kind", "missing", ", ".join(map(repr, KINDS)))
+    if kind not in KINDS:
+        raise MeasurementError(f"{where}: kind", f"{kind!r} is not a valid choice", ", ".join(map(repr, KINDS)))
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        raise MeasurementError(f"{where}: description", "expected a string")
+    model = data.get("model")
+    assembly = data.get("assembly")
+    if model is None and assembly is None:
+        raise MeasurementError(f"{where}: model", "missing", "a [model] table, or assembly = \"design.toml\"")
+    table: dict[str, Any] = {}
+    if assembly is not None:
+        if not isinstance(assembly, str) or not assembly:
+            raise MeasurementError(f"{where}: assembly", f"expected a path, got {assembly!r}")
+        try:
+            table.update(_model_from_assembly(kind, (path.parent / assembly).resolve(), f"{where}: ", notes))
+        except MeasurementError:
+            raise
+        except DesignError as exc:
+            raise MeasurementError(f"{where}: assembly ({assembly}): {exc.field}", exc.problem, exc.allowed) from None
+    if model is not None:
+        if not isinstance(model, dict):
+            raise MeasurementError(f"{where}: model", "expected a table")
+        mw = f"{where}: model"
+        other = {k for kk, keys in MODEL_KEYS.items() if kk != kind for k in keys} - set(MODEL_KEYS[kind])
+        for key in model:
+            if key in MODEL_KEYS[kind]:
+                continue
+            if key in other:
+                notes.append(f"sidecar key model.{key} ignored: it belongs to the other measurement kind")
+                continue
+            raise MeasurementError(f"{mw}.{key}", "unknown key", ", ".join(MODEL_KEYS[kind]))
+        overridden = [k for k in model if k in table and k in MODEL_KEYS[kind]]
+        if overridden:
+            notes.append("sidecar [model] overrides the assembly for " + ", ".join(overridden))
+        table.update({k: v for k, v in model.items() if k in MODEL_KEYS[kind]})
+    mw = f"{where}: model"
+    drive = table.get("drive")
+    if drive is not None and drive not in DRIVE_TYPES:
+        raise MeasurementError(f"{mw}.drive", f"{drive!r} is not a valid choice", "'type1', 'type2'")
+    if kind == "preload_trace":
+        teeth = table.get("teeth")
+        if teeth is None:
+            raise MeasurementError(f"{mw}.teeth", "missing", "[input, cluster large, cluster small, output] tooth counts")
+        if not isinstance(teeth, list) or len(teeth) != 4 or not all(isinstance(z, int) and not isinstance(z, bool) and z >= 4 for z in teeth):
+            raise MeasurementError(f"{mw}.teeth", f"{teeth!r} is not valid", "4 whole numbers >= 4: [input, cluster large, cluster small, output]")
+        declared = table.get("declared")
+        if declared is None:
+            declared = list(DECLARED_NAMES)
+            notes.append("model.declared not given: the declared model holds eccentricity and tooth_to_tooth")
+        if not isinstance(declared, list) or not all(isinstance(d, str) for d in declared):
+            raise MeasurementError(f"{mw}.declared", f"expected a list of names, got {declared!r}", ", ".join(map(repr, DECLARED_NAMES)))
+        for d in declared:
+            if d not in DECLARED_NAMES:
+                raise MeasurementError(f"{mw}.declared", f"{d!r} is not a declared-model term", ", ".join(map(repr, DECLARED_NAMES)))
+        return kind, description, PreloadModelSpec(teeth=tuple(teeth), declared=tuple(dict.fromkeys(declared)), drive_type=drive)
+    if drive is None:
+        raise MeasurementError(f"{mw}.drive", "missing", "'type1', 'type2'")
+    values = {k: _number(table, k, mw) for k in MODEL_KEYS[kind][1:]}
+    if drive == "type1" and values["k3_Nm_per_rad"] is not None:
+        raise MeasurementError(f"{mw}.k3_Nm_per_rad", "a type1 drive has no preload spring", "omit k3_Nm_per_rad for type1")
+    try:
+        spec = TorqueModelSpec(drive_type=drive, **values)
+    except MeasurementError as exc:
+        raise MeasurementError(f"{where}: {exc.field}", exc.problem, exc.allowed) from None
+    missing = [k for k in ("k1_Nm_per_rad", "k2_Nm_per_rad", "preload_Nm") + (("k3_Nm_per_rad",) if drive == "type2" else ())
+               if values[k] is None]
+    if missing:
+        notes.append("no nominal values for " + ", ".join(missing) + ": the nominal stage is null and the fit starts from the data")
+    return kind, description, spec
+
+
+# ----------------------------------------------------------------------------- reading
+
+def read_measurement(csv_path: str | Path) -> Measurement:
+    """Read and validate ``NAME.csv`` and its sidecar ``NAME.toml``."""
+    csv_path = Path(csv_path)
+    if csv_path.suffix.lower() == ".toml":
+        csv_path = csv_path.with_suffix(".csv")
+    notes: list[str] = []
+    kind, description, model = read_sidecar(csv_path.with_suffix(".toml"), notes)
+    header, table = read_csv(csv_path)
+    cols, ignored = _column_map(header, kind, csv_path.name)
+    if ignored:
+        notes.append("unknown columns ignored: " + ", ".join(ignored))
+    for ch, (_, _, name) in cols.items():
+        stem, suffixes = CHANNELS[ch]
+        if name != f"{stem}_{next(iter(suffixes))}":
+            notes.append(f"column {name} converted from its unit")
+    data = {ch: table[:, i] * factor for ch, (i, factor, _) in cols.items()}
+    required = REQUIRED[kind]
+    bad_rows = np.zeros(table.shape[0], bool)
+    for ch in required:
+        v = data[ch]
+        if np.any(np.isinf(v)):
+            row = int(np.flatnonzero(np.isinf(v))[0])
+            raise MeasurementError(f"{csv_path.name}: column {cols[ch][2]}", f"value {v[row]} in data row {row + 1} is not finite")
+        bad_rows |= np.isnan(v)
+    if bad_rows.any():
+        notes.append(f"{int(bad_rows.sum())} rows with a missing value in a required column dropped (probe drop-outs)")
+    keep = ~bad_rows
+    data = {ch: v[keep] for ch, v in data.items()}
+    t = data["time"]
+    if t.size >= 2 and np.any(np.diff(t) <= 0):
+        i = int(np.flatnonzero(np.diff(t) <= 0)[0])
+        raise MeasurementError(f"{csv_path.name}: column {cols['time'][2]}",
+                               f"not increasing at data row {np.flatnonzero(keep)[i + 1] + 1} ({t[i + 1]} after {t[i]})",
+                               "rows in time order, strictly increasing time")
+    temperature = data.get("temperature")
+    if temperature is not None:
+        good = np.isfinite(temperature)
+        if not good.any():
+            notes.append("temperature column is empty: ignored")
+            temperature = None
+        elif not good.all():
+            notes.append(f"{int((~good).sum())} missing temperature values interpolated in time")
+            temperature = np.interp(t, t[good], temperature[good])
+    if t.size < MIN_SAMPLES:
+        raise MeasurementError(csv_path.name, f"{t.size} usable samples are too few to fit", f">= {MIN_SAMPLES}")
+    common = dict(kind=kind, name=csv_path.stem, time_s=t, model=model, temperature_C=temperature,
+                  description=description, notes=tuple(notes), source=csv_path.resolve())
+    if kind == "preload_trace":
+        return Measurement(angle_rad=data["angle"], carriage_um=data["carriage"], **common)
+    return Measurement(torque_Nm=data["torque"], rotation_rad=data["rotation"], **common)
+
+
+# ----------------------------------------------------------------------------- writing
+
+def write_measurement(meas: Measurement, directory: str | Path, name: str | None = None,
+                      extra_columns: dict[str, np.ndarray] | None = None) -> Path:
+    """Write ``NAME.csv`` and ``NAME.toml`` in the contract's spellings; returns the CSV path.
+
+    ``extra_columns`` adds columns the reader must ignore (to exercise that path).
+    """
+    directory = Path(directory)
+    directory.mkdir(parents=True, exist_ok=True)
+    name = name or meas.name
+    if meas.kind == "preload_trace":
+        cols = {"time_s": meas.time_s, "output_angle_deg": np.degrees(meas.angle_rad), "carriage_x_um": meas.carriage_um}
+        fmt = ["%.6f", "%.7f", "%.5f"]
+    else:
+        cols = {"time_s": meas.time_s, "output_torque_Nm": meas.torque_Nm, "output_rotation_urad": meas.rotation_rad * 1e6}
+        fmt = ["%.6f", "%.6f", "%.5f"]
+    if meas.temperature_C is not None:
+        cols["temperature_C"] = meas.temperature_C
+        fmt.append("%.5f")
+    for k, v in (extra_columns or {}).items():
+        cols[k] = v
+        fmt.append("%.6g")
+    csv_path = directory / f"{name}.csv"
+    np.savetxt(csv_path, np.column_stack(list(cols.values())), delimiter=",", fmt=fmt,
+               header=",".join(cols), comments="")
+    m = meas.model
+    lines = [f'kind = "{meas.kind}"', f"description = {_toml_string(meas.description)}", "", "[model]"]
+    if isinstance(m, PreloadModelSpec):
+        if m.drive_type:
+            lines.append(f'drive = "{m.drive_type}"')
+        lines.append(f"teeth = [{', '.join(str(z) for z in m.teeth)}]")
+        lines.append("declared = [" + ", ".join(f'"{d}"' for d in m.declared) + "]")
+    else:
+        lines.append(f'drive = "{m.drive_type}"')
+        for key in MODEL_KEYS["torque_deflection"][1:]:
+            v = getattr(m, key)
+            if v is not None:
+                lines.append(f"{key} = {v!r}")
+    (directory / f"{name}.toml").write_text("\n".join(lines) + "\n")
+    return csv_path
+
+
+def _toml_string(s: str) -> str:
+    return '"' + s.replace("\\", "\\\\").replace('"', '\\"').replace("\n", " ") + '"'

@@ -1,0 +1,820 @@
+"""Declared models and their extension by library effects, fitted jointly by least squares.
+
+``preload_trace`` (residual in um of carriage position, against output angle theta in rad)::
+
+    x = c0 + sum_declared [a_q cos(q theta) + b_q sin(q theta)]          declared
+          + sum_harmonics [...]  + c_d (v - mean v)                         effects, linear
+    measured = play_h[x]   when hysteresis is added (friction on the carriage)
+
+All linear coefficients are solved together; harmonic orders are refined by variable
+projection; the hysteresis half-width is fitted with the linear coefficients by Gauss-Newton on
+the play operator's local linear structure (``play = x[source] + side*h``).
+
+``torque_deflection`` (residual in Nm of torque, against output rotation)::
+
+    T = law(phi) + stiffening(phi) + drift + (T_s - play_h[T_s])
+    phi = dead_zone(rotation - theta0, w)
+
+``law`` is :class:`geargen.core.drive.TwoPathDrive` (Eqs. 2-6) built from the fitted k1, k2, k3,
+preload; the contract's Nm/rad and Nm are turned into the law's N*mm/rad and N*mm in
+:func:`law_torque_Nm` and nowhere else. T_s is the measured torque smoothed along time (the
+applied torque without its noise), the input of the friction play. All parameters are fitted
+together with :func:`scipy.optimize.least_squares`; weak priors (one unit of noise per factor
+e of a stiffness) keep the law's parameters the data cannot see (a path that never unloads)
+at their declared values instead of letting them wander.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from geargen.core.drive import TwoPathDrive
+from geargen.fit import effects as fx
+from geargen.fit.measurement import Measurement, PreloadModelSpec, TorqueModelSpec
+from geargen.fit.noise import NoiseEstimate
+from geargen.fit.orders import TrainOrder, attribute_order, declared_orders, train_orders
+from geargen.fit.periodogram import ls_periodogram, peaks
+
+NM_PER_NMM = 1e-3
+#: stiffening exponents are fitted in (EXPONENT_MIN, EXPONENT_MIN + EXPONENT_SPAN): Hertzian contact
+#: laws lie there (line contact ~1.1, point contact 1.5); below ~1.1 a power law cannot be told
+#: from the declared law's straight lines over a finite load range
+EXPONENT_MIN = 1.1
+EXPONENT_SPAN = 2.9
+
+
+@dataclass(frozen=True)
+class Term:
+    """One library effect in a model: ``effect`` name; ``variable`` for drift ("temperature" or
+    "time"); ``order`` for a harmonic (per output revolution)."""
+
+    effect: str
+    variable: str = ""
+    order: float = 0.0
+
+    @property
+    def label(self) -> str:
+        if self.effect == "harmonic":
+            return f"harmonic at order {self.order:.4f}"
+        if self.effect == "drift":
+            return f"drift with {self.variable}"
+        return self.effect
+
+
+@dataclass(frozen=True, eq=False)
+class ModelFit:
+    """A fitted model. ``prediction``/``residual`` (n,) over all samples; ``rss`` over the fitted
+    samples (the mask); ``n_params`` counts the declared and effect parameters;
+    ``contributions`` (one (n,) array per term) is what each effect adds to the prediction;
+    ``values`` (one dict per term) its parameters in the contract's names; ``state`` internal
+    parameters for warm starts."""
+
+    terms: tuple[Term, ...]
+    prediction: np.ndarray
+    residual: np.ndarray
+    rss: float
+    n_fitted: int
+    n_params: int
+    contributions: tuple[np.ndarray, ...]
+    values: tuple[dict, ...]
+    declared_values: dict
+    state: dict = field(default_factory=dict)
+    success: bool = True
+    message: str = ""
+
+    @property
+    def rms(self) -> float:
+        return float(np.sqrt(np.mean(self.residual ** 2)))
+
+
+@dataclass(frozen=True)
+class Candidate:
+    """An effect to try next, with the evidence that suggested it and a start for its parameters."""
+
+    term: Term
+    evidence: str
+    start: dict = field(default_factory=dict)
+    statistic: float = 0.0
+
+
+def solve_linear(X: np.ndarray, y: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
+    """Least-squares coefficients (p,) of y (n,) on the columns of X (n, p), over ``mask`` rows.
+
+    Normal equations with the columns scaled to unit norm (fast for n >> p, and accurate here:
+    the columns are sinusoids, centred drifts and play structure, far from collinear); falls
+    back to an SVD solution when they are ill-conditioned.
+    """
+    if mask is not None and not mask.all():
+        X, y = X[mask], y[mask]
+    G = X.T @ X
+    b = X.T @ y
+    norms = np.sqrt(np.diag(G))
+    norms = np.where(norms > 0, norms, 1.0)
+    Gs = G / np.outer(norms, norms)
+    try:
+        if np.linalg.cond(Gs) < 1e10:
+            return np.linalg.solve(Gs, b / norms) / norms
+    except np.linalg.LinAlgError:
+        pass
+    return np.linalg.lstsq(X, y, rcond=None)[0]
+
+
+def _mask_or_all(mask, n):
+    return np.ones(n, bool) if mask is None else np.asarray(mask, bool)
+
+
+def _drift_variable(meas: Measurement, variable: str) -> np.ndarray:
+    return meas.temperature_C if variable == "temperature" else meas.time_s
+
+
+def drift_terms(meas: Measurement) -> list[Term]:
+    """Drift with temperature when the file has a temperature column, and always with time."""
+    out = [Term("drift", "time")]
+    if meas.temperature_C is not None and np.ptp(meas.temperature_C) > 0:
+        out.insert(0, Term("drift", "temperature"))
+    return out
+
+
+def _drift_value(variable: str, rate: float) -> dict:
+    return {"per_kelvin": rate} if variable == "temperature" else {"per_second": rate}
+
+
+# ======================================================================== preload trace
+
+class PreloadModel:
+    """Declared sinusoids at the train's shaft and mesh orders, plus library effects."""
+
+    kind = "preload_trace"
+
+    def __init__(self, meas: Measurement, noise: NoiseEstimate):
+        spec: PreloadModelSpec = meas.model
+        self.meas = meas
+        self.noise = noise
+        self.theta = meas.angle_rad
+        self.x = meas.carriage_um
+        self.n = meas.samples
+        self.train: tuple[TrainOrder, ...] = train_orders(spec.teeth)
+        self.declared: tuple[TrainOrder, ...] = declared_orders(spec.teeth, spec.declared)
+        revs = float(np.ptp(self.theta)) / (2 * math.pi)
+        self.revolutions = max(revs, 1e-9)
+        self.resolution = 1.0 / self.revolutions
+        top = max([t.order for t in self.train])
+        per_rev = self.n / max(self.revolutions, 1e-9)
+        self.order_min = 0.9 * self.resolution
+        self.order_max = max(min(2.2 * top, 0.25 * per_rev), 4 * self.order_min)
+        self._base = None
+        self._cache: dict = {}
+        self._columns_cache: dict = {}
+
+    # ---------------------------------------------------------------- stages
+    def nominal(self) -> np.ndarray:
+        """Ideal gears: the carriage stays at its mean position."""
+        return self.x - self.x.mean()
+
+    def _base_columns(self) -> np.ndarray:
+        """Offset and declared sinusoids, (n, 1 + 2 x declared orders); computed once."""
+        if self._base is None:
+            cols = [np.ones(self.n)]
+            for t in self.declared:
+                cols.extend(fx.harmonic_basis(self.theta, t.order).T)
+            self._base = np.column_stack(cols)
+        return self._base
+
+    def _term_columns(self, term: Term) -> np.ndarray:
+        key = (term.effect, term.variable, term.order)
+        if key not in self._cache:
+            if len(self._cache) > 64:
+                self._cache.clear()
+            if term.effect == "harmonic":
+                c = fx.harmonic_basis(self.theta, term.order)
+            elif term.effect == "drift":
+                v = _drift_variable(self.meas, term.variable)
+                c = (v - v.mean())[:, None]
+            else:
+                c = np.zeros((self.n, 0))
+            self._cache[key] = c
+        return self._cache[key]
+
+    def _columns(self, terms: tuple[Term, ...]):
+        key = tuple((t.effect, t.variable, t.order) for t in terms)
+        hit = self._columns_cache.get(key)
+        if hit is None:
+            hit = self._build_columns(terms)
+            if len(self._columns_cache) >= 6:
+                self._columns_cache.pop(next(iter(self._columns_cache)))
+            self._columns_cache[key] = hit
+        return hit
+
+    def _build_columns(self, terms: tuple[Term, ...]):
+        base = self._base_columns()
+        blocks = [base]
+        slices = []
+        width = base.shape[1]
+        for term in terms:
+            c = self._term_columns(term)
+            blocks.append(c)
+            slices.append(slice(width, width + c.shape[1]))
+            width += c.shape[1]
+        return (np.hstack(blocks) if len(blocks) > 1 else base), slices
+
+    def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
+        terms = tuple(terms)
+        mask = _mask_or_all(mask, self.n)
+        X, slices = self._columns(terms)
+        hyst = [i for i, t in enumerate(terms) if t.effect == "hysteresis"]
+        coef = solve_linear(X, self.x, mask)
+        h = 0.0
+        message = "linear least squares"
+        success = True
+        if hyst:
+            h0 = None
+            if extra and "half_width" in extra:
+                h0 = extra["half_width"]
+            elif start is not None and "half_width" in start.state:
+                h0 = start.state["half_width"]
+            coef, h, success, message = self._fit_play(X, coef, mask, h0)
+        m = X @ coef
+        pred = fx.play_operator(m, h) if hyst else m
+        resid = self.x - pred
+        contributions, values = [], []
+        for i, term in enumerate(terms):
+            if term.effect == "hysteresis":
+                contributions.append(pred - m)
+                values.append({"half_width": h})
+                continue
+            c = X[:, slices[i]] @ coef[slices[i]]
+            contributions.append(c)
+            if term.effect == "harmonic":
+                a, b = coef[slices[i]]
+                amp, ph = fx.harmonic_parameters(a, b)
+                values.append({"order": term.order, "amplitude": amp, "phase_deg": ph})
+            else:
+                values.append(_drift_value(term.variable, float(coef[slices[i]][0])))
+        declared_values = {"offset": float(coef[0])}
+        for j, t in enumerate(self.declared):
+            amp, ph = fx.harmonic_parameters(coef[1 + 2 * j], coef[2 + 2 * j])
+            declared_values[t.name] = {"order": t.order, "amplitude": amp, "phase_deg": ph}
+        n_params = X.shape[1] + sum(1 for t in terms if t.effect == "harmonic") + len(hyst)
+        return ModelFit(terms=terms, prediction=pred, residual=resid, rss=float(np.sum(resid[mask] ** 2)),
+                        n_fitted=int(mask.sum()), n_params=n_params, contributions=tuple(contributions),
+                        values=tuple(values), declared_values=declared_values,
+                        state={"coef": coef, "half_width": h, "equilibrium": m, "X": X, "slices": slices, "mask": mask},
+                        success=success, message=message)
+
+    def _fit_play(self, X, coef, mask, h0):
+        """Gauss-Newton on (linear coefficients, h) using the play's local structure."""
+        x = self.x
+        if h0 is None:  # the side the play takes as h grows from 0 gives h's first estimate
+            m = X @ coef
+            _, _, side = fx.play_structure(m, 0.0)
+            A = np.column_stack([X, side])
+            sol = solve_linear(A, x, mask)
+            coef, h0 = sol[:-1], max(float(sol[-1]), 0.0)
+            if h0 == 0.0:
+                h0 = 0.1 * self.noise.rms
+        h = float(h0)
+
+        def rss_of(c, hh):
+            r = x - fx.play_operator(X @ c, hh)
+            return float(np.sum(r[mask] ** 2))
+
+        rss = rss_of(coef, h)
+        converged = False
+        for _ in range(60):
+            m = X @ coef
+            _, src, side = fx.play_structure(m, h)
+            A = np.column_stack([X[src], side])
+            sol = solve_linear(A, x, mask)
+            d_coef, d_h = sol[:-1] - coef, float(sol[-1]) - h
+            step = 1.0
+            while step > 1e-3:
+                c_new, h_new = coef + step * d_coef, max(h + step * d_h, 0.0)
+                r_new = rss_of(c_new, h_new)
+                if r_new <= rss * (1 + 1e-12):
+                    break
+                step *= 0.5
+            else:
+                converged = True
+                break
+            improvement = rss - r_new
+            coef, h, rss = c_new, h_new, r_new
+            if improvement <= 1e-10 * max(rss, 1e-300):
+                converged = True
+                break
+        return coef, h, True, "Gauss-Newton on the play structure" + ("" if converged else " (iteration limit)")
+
+    def contribution_noise(self, fit: ModelFit, index: int) -> float:
+        """Mean square by which noise alone moves term ``index``'s contribution in this fit:
+        ``trace(C Cov C^T) / n`` with ``Cov = sigma^2 (J^T J)^-1`` over the fitted samples, J the
+        prediction's Jacobian w.r.t. (coefficients[, h]) and C the contribution's, both from the
+        model's (locally) linear structure (the play: ``y = m[source] + side * h``)."""
+        X, coef, h, mask = fit.state["X"], fit.state["coef"], fit.state["half_width"], fit.state["mask"]
+        hyst = any(t.effect == "hysteresis" for t in fit.terms)
+        if not hyst:
+            sl = fit.state["slices"][index]
+            Xm = X if mask.all() else X[mask]
+            return _contribution_noise(Xm, X[:, sl], self.noise.rms, np.arange(X.shape[1])[sl])
+        _, src, side = fx.play_structure(X @ coef, h)
+        J = np.column_stack([X[src], side])
+        if fit.terms[index].effect == "hysteresis":
+            C = np.column_stack([X[src] - X, side])
+            cols = None
+        else:
+            sl = fit.state["slices"][index]
+            C, cols = X[:, sl], np.arange(X.shape[1])[sl]
+        return _contribution_noise(J if mask.all() else J[mask], C, self.noise.rms, cols)
+
+    # ---------------------------------------------------------------- effects
+    def periodogram(self, residual: np.ndarray):
+        return ls_periodogram(self.theta, residual - residual.mean(), self.order_min, self.order_max)
+
+    def model_orders(self, terms) -> list[float]:
+        return [t.order for t in self.declared] + [t.order for t in terms if t.effect == "harmonic"]
+
+    def refine_order(self, fit: ModelFit, order: float, half_width: float) -> tuple[float, float]:
+        """Order near ``order`` where a new sinusoid, fitted jointly with the current model's
+        linear part (projection on the complement of its columns), removes most."""
+        from scipy.optimize import minimize_scalar
+
+        X, _ = self._columns(tuple(t for t in fit.terms if t.effect != "hysteresis"))
+        norms = np.sqrt(np.einsum("ij,ij->j", X, X))
+        Xs = X / np.where(norms > 0, norms, 1.0)
+        G_inv = np.linalg.pinv(Xs.T @ Xs)
+        r = fit.residual
+
+        def drop(q):
+            B = fx.harmonic_basis(self.theta, q)
+            XtB = Xs.T @ B
+            g = B.T @ r
+            M = B.T @ B - XtB.T @ G_inv @ XtB
+            try:
+                return float(g @ np.linalg.solve(M, g))
+            except np.linalg.LinAlgError:
+                return 0.0
+
+        res = minimize_scalar(lambda q: -drop(q), bounds=(order - half_width, order + half_width), method="bounded",
+                              options={"xatol": 1e-7 * max(1.0, order)})
+        return float(res.x), drop(float(res.x))
+
+    def candidates(self, fit: ModelFit, count: int = 3) -> list[Candidate]:
+        out: list[Candidate] = []
+        r = fit.residual
+        sigma2 = max(self.noise.rms, 1e-300) ** 2
+        taken = self.model_orders(fit.terms)
+        pg = self.periodogram(r)
+        step = float(pg.orders[1] - pg.orders[0]) if pg.orders.size > 1 else 0.0
+        for i in peaks(pg, count, exclude=taken, exclusion=0.5 * self.resolution):
+            # peak order by parabolic interpolation on the grid (step resolution/5); the order is
+            # refined exactly, jointly with the model, once the candidate is the one being judged
+            q = float(pg.orders[i])
+            if 0 < i < pg.orders.size - 1:
+                a, b, c = pg.reduction[i - 1], pg.reduction[i], pg.reduction[i + 1]
+                den = a - 2 * b + c
+                if den < 0:
+                    q += 0.5 * step * (a - c) / den
+            drop = float(pg.reduction[i])
+            if any(abs(q - o) <= 0.5 * self.resolution for o in taken):
+                continue
+            where = attribute_order(q, self.train)
+            src = f"{where[1]} x {where[0].name} (order {where[0].order:.4f})" if where else "no shaft or mesh"
+            out.append(Candidate(Term("harmonic", order=q),
+                                 f"peak of the residual order spectrum at order {q:.4f} ({src}), amplitude "
+                                 f"{pg.amplitude[i]:.3g} {self.meas.units}, power {drop / sigma2:.1f} x noise variance",
+                                 statistic=drop / sigma2))
+        present = {(t.effect, t.variable) for t in fit.terms}
+        for term in drift_terms(self.meas):
+            if ("drift", term.variable) in present:
+                continue
+            v = _drift_variable(self.meas, term.variable)
+            corr = _correlation(v, r)
+            unit = "K" if term.variable == "temperature" else "s"
+            out.append(Candidate(term, f"residual correlates with {term.variable} (r = {corr:+.3f}) over a range of "
+                                       f"{np.ptp(v):.3g} {unit}", statistic=corr))
+        if ("hysteresis", "") not in present:
+            m = fit.state["equilibrium"]
+            direction = np.sign(np.diff(m, prepend=m[0]))
+            up, down = r[direction > 0], r[direction < 0]
+            if up.size > 10 and down.size > 10:
+                gap = float(down.mean() - up.mean())
+                out.append(Candidate(Term("hysteresis"),
+                                     f"residual while the model carriage moves down minus while it moves up: {gap:+.3g} "
+                                     f"{self.meas.units} (friction lag gives +2h)", statistic=gap))
+        return out
+
+    def degenerate(self, fit: ModelFit, index: int) -> str | None:
+        """Why term ``index`` is no real effect although it fits, or None (none apply here)."""
+        return None
+
+    def quick_gain(self, fit: ModelFit, term: Term) -> float | None:
+        """Drop in the sum of squares a candidate gives to first order, or None when there is no
+        cheap estimate. Hysteresis: the play at h -> 0+ adds ``h * side`` (side = -sign of the
+        model carriage's motion), a linear column, projected off the current model's columns."""
+        if term.effect != "hysteresis":
+            return None
+        m = fit.state["equilibrium"]
+        side = -np.sign(np.diff(m, prepend=m[0]))
+        X = fit.state["X"]
+        norms = np.sqrt(np.einsum("ij,ij->j", X, X))
+        Xs = X / np.where(norms > 0, norms, 1.0)
+        xs = Xs.T @ side
+        ss = float(side @ side - xs @ np.linalg.pinv(Xs.T @ Xs) @ xs)
+        g = float(side @ fit.residual)
+        return g * g / ss if ss > 0 else 0.0
+
+    def polish(self, fit: ModelFit) -> ModelFit:
+        """Refine every added harmonic's order with all others fitted jointly (variable projection)."""
+        idx = [i for i, t in enumerate(fit.terms) if t.effect == "harmonic"]
+        if not idx:
+            return fit
+        terms = list(fit.terms)
+        for _ in range(1 if len(idx) == 1 else 2):
+            for i in idx:
+                others = tuple(t for j, t in enumerate(terms) if j != i)
+                base = self.fit(others, start=fit)
+                q, _ = self.refine_order(base, terms[i].order, 0.2 * self.resolution)
+                terms[i] = Term("harmonic", order=q)
+        return self.fit(tuple(terms), start=fit)
+
+    def entry(self, fit: ModelFit, i: int) -> dict:
+        """JSON entry (contract names) of the i-th term of a fit."""
+        term, v = fit.terms[i], fit.values[i]
+        if term.effect == "harmonic":
+            where = attribute_order(v["order"], self.train)
+            e = {"effect": "harmonic", "order": v["order"], "amplitude": v["amplitude"], "phase_deg": v["phase_deg"],
+                 "shaft": where[0].name if where else None, "multiple": where[1] if where else None}
+            if where:
+                e["attribution"] = f"{where[1]} x {where[0].description} (order {where[0].order:.6g})"
+            e["phase_convention"] = "amplitude * cos(order * output_angle - phase)"
+            return e
+        if term.effect == "drift":
+            return {"effect": "drift", **v, "variable": "temperature_C" if term.variable == "temperature" else "time_s"}
+        return {"effect": "hysteresis", "half_width": v["half_width"],
+                "law": "play operator on the model carriage position (friction on the preload carriage)"}
+
+
+# ======================================================================== torque deflection
+
+def law_torque_Nm(drive_type: str, k1_Nm_per_rad: float, k2_Nm_per_rad: float, k3_Nm_per_rad: float | None,
+                  preload_Nm: float, rotation_rad: np.ndarray) -> np.ndarray:
+    """Drive torque (Nm) of the two-path law at output rotation(s) (rad): TwoPathDrive, converted once.
+
+    TwoPathDrive works in N*mm and rad: stiffness Nm/rad x 1e3 = N*mm/rad, preload Nm x 1e3 = N*mm,
+    torque N*mm x 1e-3 = Nm.
+    """
+    kw = {} if drive_type == "type1" else {"k3": k3_Nm_per_rad / NM_PER_NMM}
+    drive = TwoPathDrive(drive_type, k1=k1_Nm_per_rad / NM_PER_NMM, k2=k2_Nm_per_rad / NM_PER_NMM,
+                         preload=preload_Nm / NM_PER_NMM, **kw)
+    return drive.torque(rotation_rad) * NM_PER_NMM
+
+
+class TorqueModel:
+    """The two-path law of the declared drive, plus library effects, fitted by least_squares."""
+
+    kind = "torque_deflection"
+    SMOOTH_HALF_WINDOW = 8
+
+    def __init__(self, meas: Measurement, noise: NoiseEstimate):
+        self.meas = meas
+        self.noise = noise
+        self.spec: TorqueModelSpec = meas.model
+        self.T = meas.torque_Nm
+        self.rot_urad = meas.rotation_rad * 1e6
+        self.t = meas.time_s
+        self.n = meas.samples
+        self.type2 = self.spec.drive_type == "type2"
+        self.T_smooth = fx.driving_signal(self.t, self.T, noise.channels.get("torque", noise.rms), self.SMOOTH_HALF_WINDOW)
+        self.declared_start = self._declared_start()
+
+    # ---------------------------------------------------------------- declared law
+    def _declared_start(self) -> dict:
+        s = self.spec
+        if s.has_nominal:
+            d = {"k1": s.k1_Nm_per_rad, "k2": s.k2_Nm_per_rad, "preload": s.preload_Nm, "theta0_urad": 0.0}
+            if self.type2:
+                d["k3"] = s.k3_Nm_per_rad
+            return d
+        # from the data: central slope gives k1 + k2, outer slopes the single-path stiffness
+        T, rot = self.T, self.rot_urad * 1e-6
+        tmax = np.max(np.abs(T))
+        inner = np.abs(T) < 0.25 * tmax
+        outer = np.abs(T) > 0.8 * tmax
+        kd = _slope(rot[inner], T[inner]) if inner.sum() > 5 else tmax / max(np.ptp(rot), 1e-12)
+        kb = _slope(np.abs(rot[outer]), np.abs(T[outer])) if outer.sum() > 5 else 0.5 * kd
+        k1 = s.k1_Nm_per_rad or 0.5 * kd
+        k2 = s.k2_Nm_per_rad or 0.5 * kd
+        d = {"k1": k1, "k2": k2, "preload": s.preload_Nm if s.preload_Nm is not None else 0.3 * tmax, "theta0_urad": 0.0}
+        if self.type2:
+            if s.k3_Nm_per_rad is not None:
+                d["k3"] = s.k3_Nm_per_rad
+            else:
+                d["k3"] = 1.0 / (1.0 / kb - 1.0 / k1) if 0 < kb < 0.95 * k1 else 10.0 * k1
+        return d
+
+    def _law(self, d: dict, phi_rad: np.ndarray) -> np.ndarray:
+        return law_torque_Nm(self.spec.drive_type, d["k1"], d["k2"], d.get("k3"), d["preload"], phi_rad)
+
+    def nominal(self) -> np.ndarray | None:
+        """Residual of the law with the declared values and the probe zero as read; None without values."""
+        if not self.spec.has_nominal:
+            return None
+        d = self._declared_start()
+        return self.T - self._law(d, self.rot_urad * 1e-6)
+
+    # ---------------------------------------------------------------- parameter layout
+    def _layout(self, terms):
+        names = ["ln_k1", "ln_k2"] + (["ln_k3"] if self.type2 else []) + ["preload", "theta0_urad"]
+        for i, term in enumerate(terms):
+            if term.effect == "drift":
+                names.append(f"{i}:rate")
+            elif term.effect == "hysteresis":
+                names.append(f"{i}:half_width")
+            elif term.effect == "stiffening":
+                names += [f"{i}:amplitude", f"{i}:exponent"]
+            elif term.effect == "dead_band":
+                names.append(f"{i}:width_urad")
+        return names
+
+    def _drift_ref(self, variable: str) -> tuple[np.ndarray, float]:
+        v = _drift_variable(self.meas, variable)
+        ref = float(v[0]) if variable == "time" else float(np.mean(v[: min(10, v.size)]))
+        return v, ref
+
+    def _evaluate(self, names, p, terms):
+        """(prediction, contributions per term, declared dict, effect values per term)."""
+        val = self._transform(names, p)
+        d = {"k1": math.exp(val["ln_k1"]), "k2": math.exp(val["ln_k2"]), "preload": val["preload"],
+             "theta0_urad": val["theta0_urad"]}
+        if self.type2:
+            d["k3"] = math.exp(val["ln_k3"])
+        phi_urad = self.rot_urad - d["theta0_urad"]
+        idx = {t.effect: i for i, t in enumerate(terms)}
+        if "dead_band" in idx:
+            phi_urad_s = fx.dead_zone(phi_urad, val[f"{idx['dead_band']}:width_urad"])
+        else:
+            phi_urad_s = phi_urad
+        phi = phi_urad_s * 1e-6
+        base = self._law(d, phi)
+        pred = base.copy()
+        contributions, values = [None] * len(terms), [None] * len(terms)
+        for i, term in enumerate(terms):
+            if term.effect == "drift":
+                v, ref = self._drift_ref(term.variable)
+                c = fx.drift(v, val[f"{i}:rate"], ref)
+                values[i] = _drift_value(term.variable, val[f"{i}:rate"])
+            elif term.effect == "hysteresis":
+                h = val[f"{i}:half_width"]
+                c = self.T_smooth - fx.play_operator(self.T_smooth, h)
+                values[i] = {"half_width": h}
+            elif term.effect == "stiffening":
+                amp, ex = val[f"{i}:amplitude"], val[f"{i}:exponent"]
+                c = fx.stiffening(phi, amp, ex)
+                values[i] = {"exponent": ex, "amplitude": amp}
+            elif term.effect == "dead_band":
+                w = val[f"{i}:width_urad"]
+                c = base - self._law(d, phi_urad * 1e-6)
+                values[i] = {"width_urad": w}
+            else:
+                raise ValueError(f"{term.effect} does not apply to a torque_deflection")
+            contributions[i] = c
+            if term.effect != "dead_band":
+                pred = pred + c
+        return pred, contributions, d, values
+
+    # Parameters that must not be negative are fitted through |p|, the exponent through
+    # EXPONENT_MIN + EXPONENT_SPAN / (1 + exp(-p)), so that the unbounded Levenberg-Marquardt
+    # solver can be used: it is fast and robust here.
+    @staticmethod
+    def _is_magnitude(name: str) -> bool:
+        return (name == "preload" or name.endswith(":half_width") or name.endswith(":width_urad")
+                or name.endswith(":amplitude"))  # stiffening stiffens: a negative amplitude would soften
+
+    def _transform(self, names, p) -> dict:
+        val = {}
+        for nm, v in zip(names, p):
+            if self._is_magnitude(nm):
+                v = abs(v)
+            elif nm.endswith(":exponent"):
+                v = EXPONENT_MIN + EXPONENT_SPAN / (1.0 + math.exp(-min(max(v, -50.0), 50.0)))
+            val[nm] = float(v)
+        return val
+
+    def _untransform(self, name: str, value: float) -> float:
+        if name.endswith(":exponent"):
+            f = min(max((value - EXPONENT_MIN) / EXPONENT_SPAN, 1e-6), 1 - 1e-6)
+            return math.log(f / (1.0 - f))
+        return value
+
+    def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
+        terms = tuple(terms)
+        mask = _mask_or_all(mask, self.n)
+        names = self._layout(terms)
+        centre = dict(self.declared_start) if start is None else dict(start.declared_values)
+        p0 = {"ln_k1": math.log(centre["k1"]), "ln_k2": math.log(centre["k2"]), "preload": centre["preload"],
+              "theta0_urad": centre["theta0_urad"]}
+        if self.type2:
+            p0["ln_k3"] = math.log(centre["k3"])
+        prior_centre = dict(p0)
+        if start is not None:  # effect parameters from the previous fit
+            old = self._layout(start.terms)
+            for nm, v in zip(old, start.state["p"]):
+                if ":" in nm:
+                    i = int(nm.split(":")[0])
+                    key = nm.split(":")[1]
+                    if i < len(start.terms) and start.terms[i] in terms:
+                        p0[f"{terms.index(start.terms[i])}:{key}"] = v
+        for i, term in enumerate(terms):
+            for key, default in self._effect_defaults(term).items():
+                p0.setdefault(f"{i}:{key}", default)
+        for k, v in (extra or {}).items():  # start values for the last term (the candidate)
+            p0[f"{len(terms) - 1}:{k}"] = v
+        x0 = np.array([self._untransform(nm, p0[nm]) for nm in names], dtype=float)
+        sigma = max(self.noise.rms, 1e-12)
+        prior_names = [nm for nm in ("ln_k1", "ln_k2", "ln_k3") if nm in names]
+        pscale = max(prior_centre["preload"], 1.0)
+        T = self.T
+
+        def fun(p):
+            pred, *_ = self._evaluate(names, p, terms)
+            r = (T - pred)[mask]
+            val = self._transform(names, p)
+            prior = [sigma * (val[nm] - prior_centre[nm]) for nm in prior_names]
+            prior.append(sigma * (val["preload"] - prior_centre["preload"]) / pscale)
+            return np.concatenate([r, prior])
+
+        res = least_squares(fun, x0, x_scale="jac", method="lm", max_nfev=60 * (len(names) + 1))
+        pred, contributions, d, values = self._evaluate(names, res.x, terms)
+        resid = T - pred
+        n_params = len(names)
+        val = self._transform(names, res.x)
+        return ModelFit(terms=terms, prediction=pred, residual=resid, rss=float(np.sum(resid[mask] ** 2)),
+                        n_fitted=int(mask.sum()), n_params=n_params, contributions=tuple(contributions),
+                        values=tuple(values), declared_values=d, state={"p": [val[nm] for nm in names], "names": names,
+                                                                       "x": res.x, "jac": res.jac, "mask": mask},
+                        success=bool(res.success), message=str(res.message))
+
+    def contribution_noise(self, fit: ModelFit, index: int) -> float:
+        """Mean square by which noise alone moves term ``index``'s contribution in this fit
+        (linearised: the solver's Jacobian, and the contribution's by finite differences)."""
+        names, x, terms = fit.state["names"], np.asarray(fit.state["x"], float), fit.terms
+        base = self._evaluate(names, x, terms)[1][index]
+        C = np.empty((self.n, x.size))
+        for j in range(x.size):
+            step = 1e-6 * max(1.0, abs(x[j]))
+            xp = x.copy()
+            xp[j] += step
+            C[:, j] = (self._evaluate(names, xp, terms)[1][index] - base) / step
+        return _contribution_noise(fit.state["jac"], C, self.noise.rms)
+
+    def _effect_defaults(self, term: Term) -> dict:
+        if term.effect == "drift":
+            return {"rate": 0.0}
+        if term.effect == "hysteresis":
+            return {"half_width": 0.5 * self.noise.rms}
+        if term.effect == "stiffening":
+            return {"amplitude": 0.0, "exponent": 1.5}
+        if term.effect == "dead_band":
+            return {"width_urad": 1.0}
+        return {}
+
+    # ---------------------------------------------------------------- effects
+    def _phi_urad(self, fit: ModelFit) -> np.ndarray:
+        return self.rot_urad - fit.declared_values["theta0_urad"]
+
+    def candidates(self, fit: ModelFit) -> list[Candidate]:
+        r = fit.residual
+        present = {(t.effect, t.variable) for t in fit.terms}
+        out: list[Candidate] = []
+        for term in drift_terms(self.meas):
+            if ("drift", term.variable) in present:
+                continue
+            v, ref = self._drift_ref(term.variable)
+            rate = _slope(v - ref, r)
+            out.append(Candidate(term, f"residual correlates with {term.variable} (r = {_correlation(v, r):+.3f})",
+                                 start={"rate": rate}, statistic=_correlation(v, r)))
+        if ("hysteresis", "") not in present:
+            dT = np.diff(self.T_smooth, prepend=self.T_smooth[0])
+            up, down = r[dT > 0], r[dT < 0]
+            if up.size > 10 and down.size > 10:
+                gap = float(up.mean() - down.mean())
+                out.append(Candidate(Term("hysteresis"),
+                                     f"residual while torque rises minus while it falls: {gap:+.3g} Nm (friction gives +2h)",
+                                     start={"half_width": max(0.5 * gap, 0.1 * self.noise.rms)}, statistic=gap))
+        phi = self._phi_urad(fit) * 1e-6
+        if ("stiffening", "") not in present:
+            best = None
+            for ex in (1.25, 1.5, 2.0, 2.5, 3.0, 3.5):
+                b = fx.stiffening(phi, 1.0, ex)
+                amp = max(float(b @ r / max(b @ b, 1e-300)), 0.0)
+                drop = amp * (b @ r)
+                if best is None or drop > best[2]:
+                    best = (amp, ex, drop)
+            curv = _side_curvature(phi, r)
+            out.append(Candidate(Term("stiffening"),
+                                 f"residual bends with load: quadratic coefficient {curv[0]:+.3g} (phi > 0) and {curv[1]:+.3g} "
+                                 f"(phi < 0) Nm/mrad^2; best power law exponent {best[1]}",
+                                 start={"amplitude": max(best[0], 1e-3), "exponent": best[1]}, statistic=best[2]))
+        if ("dead_band", "") not in present:
+            scale = max(np.ptp(self.rot_urad), 1.0)
+            best = (0.0, fit.rss)
+            d = fit.declared_values
+            other = fit.prediction - self._law(d, phi)
+            for w in scale * np.geomspace(1e-3, 0.3, 24):
+                pred = other + self._law(d, fx.dead_zone(self._phi_urad(fit), w) * 1e-6)
+                rss = float(np.sum((self.T - pred) ** 2))
+                if rss < best[1]:
+                    best = (w, rss)
+            near = np.abs(self.T) < 0.05 * np.max(np.abs(self.T))
+            spread = float(np.ptp(self._phi_urad(fit)[near])) if near.sum() > 2 else 0.0
+            out.append(Candidate(Term("dead_band"),
+                                 f"rotation spreads over {spread:.3g} urad while |torque| < 5 % of its peak; "
+                                 f"a flat zone of {best[0]:.3g} urad fits best",
+                                 start={"width_urad": max(best[0], 1e-3)}, statistic=best[0]))
+        return out
+
+    def polish(self, fit: ModelFit) -> ModelFit:
+        return fit
+
+    def degenerate(self, fit: ModelFit, index: int) -> str | None:
+        """Why term ``index`` is no real effect although it fits (a parameter at its bound), or None."""
+        term, v = fit.terms[index], fit.values[index]
+        if term.effect == "stiffening":
+            if v["exponent"] < EXPONENT_MIN + 0.01 * EXPONENT_SPAN:
+                return (f"exponent {v['exponent']:.3f} at the lower bound {EXPONENT_MIN:g}: the term is then "
+                        "nearly a linear stiffness, which the declared law already has")
+            if v["exponent"] > EXPONENT_MIN + 0.99 * EXPONENT_SPAN:
+                return (f"exponent {v['exponent']:.3f} at the upper bound {EXPONENT_MIN + EXPONENT_SPAN:g}: "
+                        "outside the Hertzian range")
+        return None
+
+    def quick_gain(self, fit: ModelFit, term: Term) -> float | None:
+        return None
+
+    def entry(self, fit: ModelFit, i: int) -> dict:
+        term, v = fit.terms[i], fit.values[i]
+        if term.effect == "drift":
+            return {"effect": "drift", **v, "variable": "temperature_C" if term.variable == "temperature" else "time_s"}
+        if term.effect == "hysteresis":
+            return {"effect": "hysteresis", "half_width": v["half_width"],
+                    "law": "play operator on the applied torque (Coulomb friction, Nm)"}
+        if term.effect == "stiffening":
+            return {"effect": "stiffening", "exponent": v["exponent"], "amplitude": v["amplitude"],
+                    "reference_rotation_urad": fx.STIFFENING_REFERENCE_RAD * 1e6,
+                    "law": "amplitude * sign(phi) * |phi / reference_rotation| ** exponent (Nm)"}
+        return {"effect": "dead_band", "width_urad": v["width_urad"]}
+
+
+# ======================================================================== helpers
+
+def _contribution_noise(J: np.ndarray, C: np.ndarray, sigma: float, columns=None) -> float:
+    """trace(C Cov C^T) / n with Cov = sigma^2 (J^T J)^-1: J (m, p); C (n, p), or (n, k) holding
+    only the given ``columns`` of it (the rest zero).
+
+    Infinite when J^T J is singular (a parameter the fitted samples cannot determine: a dead
+    band seen from one side only is the probe zero): noise then moves the effect without bound.
+    """
+    G = J.T @ J
+    norms = np.sqrt(np.diag(G))
+    if np.any(norms == 0):
+        return math.inf
+    Gs = G / np.outer(norms, norms)
+    if np.linalg.cond(Gs) > 1e12:
+        return math.inf
+    cov = np.linalg.inv(Gs) / np.outer(norms, norms) * sigma ** 2
+    if columns is not None:
+        cov = cov[np.ix_(columns, columns)]
+    return float(np.sum(cov * (C.T @ C)) / C.shape[0])
+
+
+def _slope(x: np.ndarray, y: np.ndarray) -> float:
+    x = x - x.mean()
+    den = float(x @ x)
+    return float(x @ (y - y.mean()) / den) if den > 0 else 0.0
+
+
+def _correlation(x: np.ndarray, y: np.ndarray) -> float:
+    x = x - x.mean()
+    y = y - y.mean()
+    den = math.sqrt(float(x @ x) * float(y @ y))
+    return float(x @ y / den) if den > 0 else 0.0
+
+
+def _side_curvature(phi_rad: np.ndarray, r: np.ndarray) -> tuple[float, float]:
+    """Quadratic coefficient of the residual against rotation (mrad) on each side of zero."""
+    out = []
+    for side in (phi_rad > 0, phi_rad < 0):
+        if side.sum() < 10:
+            out.append(0.0)
+            continue
+        p = phi_rad[side] * 1e3
+        coef = np.polyfit(p, r[side], 2)
+        out.append(float(coef[0]))
+    return out[0], out[1]
+
+
+def make_model(meas: Measurement, noise: NoiseEstimate):
+    """The model class for a measurement's kind."""
+    return PreloadModel(meas, noise) if meas.kind == "preload_trace" else TorqueModel(meas, noise)

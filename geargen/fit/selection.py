@@ -1,0 +1,333 @@
+"""Model selection: which library effects the data justify, and is what is left noise?
+
+The rule (thresholds are fields of :class:`SelectionRule`):
+
+1. **Significance, by the Bayesian information criterion.** A candidate effect with k free
+   parameters, fitted jointly with everything already in the model, is significant when
+   ``dBIC = n ln(RSS_before / RSS_after) - k ln n >= 10`` (n samples; "very strong" evidence on
+   the Kass-Raftery scale). A harmonic's order counts as a parameter (k = 3) because it is
+   searched for. Candidates are tried strongest first (largest dBIC).
+2. **Held-out consistency.** The significant candidate is fitted again, with the whole model, on
+   the first half of the record alone and on the second half alone. A library effect is a
+   stationary physical law, so each half-record fit must reproduce the full-record effect:
+   ``rms(e_half - e_full) / rms(e_full) <= max(0.5, 3 d_noise)`` for both halves, where
+   d_noise is the disagreement noise alone would cause (from the fits' parameter covariance:
+   a half-record fit of a weak or collinear effect is allowed to scatter as much as noise makes
+   it). If not, the effect is not a stationary library effect, and the next candidate is tried.
+   When the halves in time cannot determine the effect (noise alone would move a half-record
+   fit by more than 50 % of it, e.g. a dead band seen in one load cycle, whose halves hold one
+   load direction each), the record is split instead into alternate sixteenths; an effect that
+   neither split can determine is not added (nor counted against the residual).
+3. One effect is added per round; rounds stop when no candidate passes 1 and 2.
+4. **Residual against noise.** The extended model's residual r is compared with the noise
+   level sigma estimated from the data alone (:mod:`geargen.fit.noise`). ``unexplained`` is set
+   when any of these fails:
+
+   - level: ``rms(r) / sigma <= 1.15``;
+   - structure: block sums of 32 consecutive residuals, each divided by its noise-predicted
+     spread, have mean square ``<= 1 + 4 sqrt(2 / blocks) + 0.1`` (white noise gives 1);
+   - leftovers: no candidate in the last round was significant but inconsistent between the
+     halves (structure that no library effect explains).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from geargen.fit.effects import PARAMETER_COUNT
+from geargen.fit.measurement import Measurement
+from geargen.fit.model import ModelFit, make_model
+from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual
+
+
+@dataclass(frozen=True)
+class SelectionRule:
+    """Thresholds of the selection rule (see the module docstring)."""
+
+    bic_threshold: float = 10.0
+    held_out_limit: float = 0.5
+    noise_factor: float = 3.0
+    level_limit: float = 1.15
+    block: int = 32
+    structure_z: float = 4.0
+    structure_margin: float = 0.1
+    max_effects: int = 6
+
+    def text(self) -> str:
+        return (f"An effect is added when dBIC = n ln(RSS_before/RSS_after) - k ln n >= {self.bic_threshold:g} "
+                f"(k its free parameters, a harmonic's order included), strongest first, one per round, and only if "
+                f"fits to the first and to the second half of the record alone each reproduce the full-record effect "
+                f"within {self.held_out_limit:.0%} rms, or within {self.noise_factor:g} x the disagreement noise alone "
+                f"would cause if that is larger (alternate sixteenths of the record instead of halves when a half cannot "
+                f"determine the effect). The final residual is noise when its rms is at most "
+                f"{self.level_limit:g} x the model-free noise level, its {self.block}-sample block sums are white "
+                f"(mean square <= 1 + {self.structure_z:g} sqrt(2/blocks) + {self.structure_margin:g}), and no significant "
+                f"candidate was left over that the halves disagree on; otherwise `unexplained` is true.")
+
+
+@dataclass(frozen=True)
+class CandidateResult:
+    """One candidate of one round: what suggested it, its dBIC and what became of it."""
+
+    round: int
+    label: str
+    evidence: str
+    delta_bic: float
+    outcome: str
+    held_out: tuple[float, float] | None = None
+    inconsistent: bool = False
+
+
+@dataclass(frozen=True, eq=False)
+class AddedEffect:
+    """An effect the selection added: its JSON entry and the numbers behind it."""
+
+    entry: dict
+    delta_bic: float
+    held_out: tuple[float, float]
+    rms_before: float
+    rms_after: float
+
+
+@dataclass(frozen=True)
+class ResidualTest:
+    name: str
+    statistic: float
+    limit: float
+    passed: bool
+    text: str
+
+
+@dataclass(frozen=True, eq=False)
+class Diagnosis:
+    """Everything ``geargen fit`` found. ``to_json()`` gives the contract's report."""
+
+    measurement: Measurement
+    noise: NoiseEstimate
+    model: object
+    nominal_residual: np.ndarray | None
+    declared: ModelFit
+    extended: ModelFit
+    added: tuple[AddedEffect, ...]
+    candidates: tuple[CandidateResult, ...]
+    tests: tuple[ResidualTest, ...]
+    unexplained: bool
+    rule: SelectionRule = field(default_factory=SelectionRule)
+
+    def stage(self, residual: np.ndarray | None) -> dict | None:
+        if residual is None:
+            return None
+        return {"rms": _round(float(np.sqrt(np.mean(residual ** 2)))), "max_abs": _round(float(np.max(np.abs(residual))))}
+
+    def to_json(self) -> dict:
+        """The report of contracts/measurements.md (plus extra keys inside effect entries)."""
+        return {
+            "kind": self.measurement.kind,
+            "samples": self.measurement.samples,
+            "units": self.measurement.units,
+            "noise_rms": _round(self.noise.rms),
+            "stages": {
+                "nominal": self.stage(self.nominal_residual),
+                "declared": self.stage(self.declared.residual),
+                "extended": self.stage(self.extended.residual),
+            },
+            "effects_added": [_round_entry(a.entry) for a in self.added],
+            "unexplained": bool(self.unexplained),
+        }
+
+
+def _round(v, digits: int = 6):
+    if v is None or isinstance(v, (bool, int, str)):
+        return v
+    if not math.isfinite(v) or v == 0:
+        return float(v)
+    return float(f"{v:.{digits}g}")
+
+
+def _round_entry(e: dict) -> dict:
+    return {k: (_round(v) if isinstance(v, float) else v) for k, v in e.items()}
+
+
+def estimate_noise(meas: Measurement) -> NoiseEstimate:
+    """Model-free noise of the residual, in residual units."""
+    if meas.kind == "preload_trace":
+        return noise_of_signal(meas.time_s, meas.carriage_um)
+    return noise_of_torque_residual(meas.time_s, meas.torque_Nm, meas.rotation_rad * 1e6)
+
+
+def bic_gain(rss_before: float, rss_after: float, n: int, k: int) -> float:
+    """dBIC of adding k parameters that take the sum of squares from rss_before to rss_after."""
+    if rss_after <= 0:
+        return math.inf
+    return n * math.log(rss_before / rss_after) - k * math.log(n)
+
+
+def _rms(v: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(v ** 2)))
+
+
+SPLITS = {
+    "time": "the first and the second half of the record",
+    "interleaved": "alternate sixteenths of the record",
+}
+
+
+def split_masks(n: int, split: str) -> tuple[np.ndarray, np.ndarray]:
+    """Two complementary sample masks: halves in time, or alternate sixteenths interleaved."""
+    i = np.arange(n)
+    first = i < n // 2 if split == "time" else (i * 16 // n) % 2 == 0
+    return first, ~first
+
+
+def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: SelectionRule,
+             split: str = "time") -> tuple[float, float, float]:
+    """(disagreement of part A, of part B, disagreement noise alone would cause) of term ``index``.
+
+    Each part is fitted alone (the whole model). Disagreement: rms of (part effect - full-record
+    effect) / rms of the full-record effect, both evaluated over the whole record. The noise-alone
+    value is the larger over the parts of ``sqrt(E_part - E_full) / rms(e_full)``, E the mean
+    square by which noise moves the effect in a fit (from the fit's parameter covariance; for
+    nested fits Var(part - full) = Var(part) - Var(full)).
+    """
+    n = fit.residual.size
+    e = fit.contributions[index]
+    e = e - e.mean()
+    size = _rms(e)
+    if size == 0:
+        return math.inf, math.inf, math.inf
+    e_full = model.contribution_noise(fit, index)
+    out, expected = [], []
+    for mask in split_masks(n, split):
+        try:
+            part = model.fit(fit.terms, mask=mask, start=fit)
+        except Exception:  # a part that cannot determine the effect counts as disagreement
+            out.append(math.inf)
+            expected.append(math.inf)
+            continue
+        ep = part.contributions[index]
+        out.append(_rms((ep - ep.mean()) - e) / size)
+        e_part = model.contribution_noise(part, index)
+        expected.append(math.inf if not math.isfinite(e_part - e_full) else math.sqrt(max(e_part - e_full, 0.0)) / size)
+    return out[0], out[1], max(expected)
+
+
+def residual_tests(fit: ModelFit, noise: NoiseEstimate, leftovers: list[CandidateResult], rule: SelectionRule,
+                   units: str) -> list[ResidualTest]:
+    r = fit.residual
+    var = noise.variance
+    tests = []
+    level = _rms(r) / max(noise.rms, 1e-300)
+    tests.append(ResidualTest("level", level, rule.level_limit, level <= rule.level_limit,
+                              f"residual rms {_rms(r):.4g} {units} is {level:.3f} x the model-free noise level {noise.rms:.4g} {units}"))
+    b = rule.block
+    nb = r.size // b
+    if nb >= 4:
+        rs = r[: nb * b].reshape(nb, b).sum(axis=1)
+        vs = var[: nb * b].reshape(nb, b).sum(axis=1)
+        s = float(np.mean(rs ** 2 / np.maximum(vs, 1e-300)))
+        limit = 1.0 + rule.structure_z * math.sqrt(2.0 / nb) + rule.structure_margin
+        tests.append(ResidualTest("structure", s, limit, s <= limit,
+                                  f"mean square of {nb} normalised {b}-sample block sums is {s:.3f} (white noise: 1)"))
+    bad = [c for c in leftovers if c.inconsistent]
+    tests.append(ResidualTest("leftovers", float(len(bad)), 0.0, not bad,
+                              "no significant structure left that the library explains inconsistently" if not bad else
+                              "significant but not a library effect: " + "; ".join(
+                                  f"{c.label} (dBIC {c.delta_bic:.0f}, " + (f"half-record disagreement {max(c.held_out):.1%})"
+                                                                           if c.held_out else "degenerate)") for c in bad)))
+    return tests
+
+
+def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
+    """Fit the declared model, add the effects the data justify, and test what is left."""
+    rule = rule or SelectionRule()
+    noise = estimate_noise(meas)
+    model = make_model(meas, noise)
+    nominal = model.nominal()
+    declared = model.fit(())
+    current = declared
+    n = meas.samples
+    added: list[AddedEffect] = []
+    log: list[CandidateResult] = []
+    last_round: list[CandidateResult] = []
+    for rnd in range(1, rule.max_effects + 2):
+        evaluated = []
+        this_round: list[CandidateResult] = []
+        for cand in model.candidates(current):
+            k = PARAMETER_COUNT[cand.term.effect]
+            quick = model.quick_gain(current, cand.term)
+            if quick is not None:  # a cheap first-order estimate screens out hopeless candidates
+                approx = bic_gain(current.rss, max(current.rss - quick, 1e-300), n, k)
+                if approx < 0.5 * rule.bic_threshold:
+                    this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, approx,
+                                                      f"not significant (first-order dBIC {approx:.1f} < "
+                                                      f"{0.5 * rule.bic_threshold:g}: not fitted further)"))
+                    continue
+            terms = current.terms + (cand.term,)
+            f = model.fit(terms, start=current, extra=cand.start)
+            dbic = bic_gain(current.rss, f.rss, n, k)
+            evaluated.append((dbic, cand, f))
+        evaluated.sort(key=lambda e: -e[0])
+        chosen = None
+        for dbic, cand, f in evaluated:
+            if chosen is not None:
+                this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, "weaker than the effect added"))
+                continue
+            if dbic < rule.bic_threshold or rnd > rule.max_effects:
+                why = f"not significant (dBIC {dbic:.1f} < {rule.bic_threshold:g})" if dbic < rule.bic_threshold else \
+                    f"not tried: {rule.max_effects} effects is the limit"
+                this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, why))
+                continue
+            f = model.polish(f)  # harmonic orders refined jointly before the effect is judged
+            dbic = max(dbic, bic_gain(current.rss, f.rss, n, PARAMETER_COUNT[cand.term.effect]))
+            reason = model.degenerate(f, len(f.terms) - 1)
+            if reason:
+                this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, f"rejected: {reason}",
+                                                  None, True))
+                continue
+            split = "time"
+            da, db, dn = held_out(model, f, len(f.terms) - 1, noise, rule, split)
+            if dn > rule.held_out_limit:  # a half in time cannot see it (one load cycle): interleave
+                split = "interleaved"
+                da, db, dn = held_out(model, f, len(f.terms) - 1, noise, rule, split)
+            limit = max(rule.held_out_limit, rule.noise_factor * dn)
+            if dn > rule.held_out_limit:
+                this_round.append(CandidateResult(
+                    rnd, cand.term.label, cand.evidence, dbic,
+                    f"not added: cannot be confirmed on part of the record (noise alone would move a fit to "
+                    f"{SPLITS[split]} by {dn:.0%} of the effect)", (da, db)))
+            elif max(da, db) <= limit:
+                chosen = (dbic, cand, f, (da, db), dn, split)
+                this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, "added", (da, db)))
+            else:
+                this_round.append(CandidateResult(
+                    rnd, cand.term.label, cand.evidence, dbic,
+                    f"rejected: fits to {SPLITS[split]} alone disagree with the full-record effect by {da:.1%} / "
+                    f"{db:.1%} (limit {limit:.1%}: the larger of {rule.held_out_limit:.0%} and {rule.noise_factor:g} x "
+                    f"the {dn:.1%} noise alone would cause)", (da, db), True))
+        log.extend(this_round)
+        last_round = this_round
+        if chosen is None:
+            break
+        dbic, cand, f, ho, dn, split = chosen
+        rms_before = current.rms
+        current = f
+        entry = model.entry(current, len(current.terms) - 1)
+        entry["evidence"] = (f"{cand.evidence}. Fitted jointly with the model: dBIC = {dbic:.1f} (>= {rule.bic_threshold:g}); "
+                             f"fits to {SPLITS[split]} alone reproduce it within {ho[0]:.1%} and {ho[1]:.1%} "
+                             f"(noise alone: {dn:.1%}); residual rms "
+                             f"{rms_before:#.4g} -> {current.rms:#.4g} {meas.units}")
+        entry["delta_bic"] = dbic
+        added.append(AddedEffect(entry, dbic, ho, rms_before, current.rms))
+    final = current  # every accepted fit was polished (harmonic orders refined jointly) when judged
+    for i, a in enumerate(added):  # report the parameters of the final joint fit
+        fresh = model.entry(final, i)
+        fresh.update({k: v for k, v in a.entry.items() if k in ("evidence", "delta_bic")})
+        added[i] = AddedEffect(fresh, a.delta_bic, a.held_out, a.rms_before, a.rms_after)
+    tests = residual_tests(final, noise, last_round, rule, meas.units)
+    unexplained = not all(t.passed for t in tests)
+    return Diagnosis(measurement=meas, noise=noise, model=model, nominal_residual=nominal, declared=declared,
+                     extended=final, added=tuple(added), candidates=tuple(log), tests=tuple(tests),
+                     unexplained=unexplained, rule=rule)

@@ -1,0 +1,357 @@
+"""The project's own bench simulator: measurements made from a truth model.
+
+Used by the tests and the bench. A truth model holds what the sidecar declares (the train's
+shaft and mesh sinusoids, or the two-path law) and may hold what it does not: any library
+effect, or an effect outside the library (a chirp, a step, a noise burst, a vibration). The
+record is realistic: sample intervals vary (``jitter``), the probe drops out in blocks (rows
+missing), the reading is quantised to the probe's resolution, noise is white and Gaussian,
+the temperature creeps up non-linearly in time (so drift with temperature and with time can be
+told apart) and is read with its own noise.
+
+Every simulation returns the :class:`~geargen.fit.measurement.Measurement`, the noise level
+actually injected, expressed in residual units (``true_noise_rms``), and the effects the fit
+should find (``expected``) in the contract's parameter names. Randomness comes only from the
+``numpy.random.Generator`` passed in.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from geargen.core.drive import TwoPathDrive
+from geargen.fit import effects as fx
+from geargen.fit.measurement import Measurement, PreloadModelSpec, TorqueModelSpec
+from geargen.fit.orders import train_orders
+
+
+@dataclass(frozen=True, eq=False)
+class Simulated:
+    """A simulated record: ``measurement``; ``true_noise_rms`` (residual units); ``clean`` (n,)
+    the noise-free signal; ``expected`` the undeclared library effects in it (JSON names);
+    ``outside`` names any effect outside the library that was put in."""
+
+    measurement: Measurement
+    true_noise_rms: float
+    clean: np.ndarray
+    expected: tuple[dict, ...]
+    outside: tuple[str, ...] = ()
+
+
+# ----------------------------------------------------------------------------- sampling
+
+@dataclass(frozen=True)
+class Sampling:
+    """How the record is sampled: ``samples`` kept after drop-outs; sample intervals vary by
+    +-``jitter`` (relative); ``dropouts`` blocks removing ``dropout_fraction`` of the samples."""
+
+    samples: int = 16384
+    duration_s: float = 900.0
+    jitter: float = 0.5
+    dropouts: int = 3
+    dropout_fraction: float = 0.04
+    temperature: bool = True
+    temperature_rise_K: float = 2.0
+    temperature_noise_K: float = 0.003
+
+
+def sample_times(s: Sampling, rng: np.random.Generator) -> np.ndarray:
+    """Uneven sample times with drop-out blocks removed: (s.samples,) s, increasing."""
+    total = int(round(s.samples / (1.0 - s.dropout_fraction))) if s.dropouts else s.samples
+    dt = 1.0 + s.jitter * rng.uniform(-1.0, 1.0, total)
+    t = np.cumsum(dt)
+    t = (t - t[0]) / (t[-1] - t[0]) * s.duration_s
+    keep = np.ones(total, bool)
+    lost = total - s.samples
+    if s.dropouts and lost > 0:
+        sizes = rng.multinomial(lost, np.ones(s.dropouts) / s.dropouts)
+        segment = total // s.dropouts
+        for k, size in enumerate(sizes):
+            lo = k * segment + int(0.1 * segment)
+            start = lo + int(rng.integers(0, max(1, int(0.8 * segment) - size)))
+            keep[start:start + size] = False
+        extra = int(keep.sum()) - s.samples
+        if extra > 0:
+            keep[np.flatnonzero(keep)[-extra:]] = False
+    return t[keep]
+
+
+def temperature_history(t: np.ndarray, s: Sampling) -> np.ndarray:
+    """True temperature, C: warm-up towards +rise plus a slow air-conditioning swing (not linear in t)."""
+    d = s.duration_s
+    return 20.0 + s.temperature_rise_K * (1.0 - np.exp(-t / (0.35 * d))) + 0.15 * s.temperature_rise_K * np.sin(2 * np.pi * t / (0.45 * d))
+
+
+def _read_temperature(true_temp, s: Sampling, rng):
+    return np.round((true_temp + s.temperature_noise_K * rng.normal(size=true_temp.size)) / 0.001) * 0.001
+
+
+# ----------------------------------------------------------------------------- preload trace
+
+@dataclass(frozen=True)
+class PreloadTruth:
+    """Truth of a preload trace. Amplitudes in um; phases random unless given.
+
+    ``eccentricity_um``: (output, cluster, input) once-per-revolution amplitudes;
+    ``tooth_to_tooth_um``: (mesh1, mesh2). ``declared`` is what the sidecar will declare.
+    Undeclared library effects: ``harmonics`` ((order, amplitude, phase_deg), ...),
+    ``drift_per_kelvin``, ``drift_per_second``, ``hysteresis_half_width``.
+    Outside the library: ``chirp`` (amplitude, order at start, order at end; sweeps with time),
+    ``step`` (height, fraction of the record), ``burst`` (noise factor, start fraction, length fraction).
+    """
+
+    teeth: tuple[int, int, int, int] = (16, 48, 21, 112)
+    declared: tuple[str, ...] = ("eccentricity", "tooth_to_tooth")
+    eccentricity_um: tuple[float, float, float] = (20.0, 8.0, 4.0)
+    tooth_to_tooth_um: tuple[float, float] = (1.0, 1.5)
+    offset_um: float = 50.0
+    harmonics: tuple[tuple[float, float, float], ...] = ()
+    drift_per_kelvin: float = 0.0
+    drift_per_second: float = 0.0
+    hysteresis_half_width: float = 0.0
+    chirp: tuple[float, float, float] | None = None
+    step: tuple[float, float] | None = None
+    burst: tuple[float, float, float] | None = None
+
+
+@dataclass(frozen=True)
+class PreloadSettings:
+    """The test: ``revolutions`` turned forward (and back again when ``return_trip``), probe
+    ``noise_um`` (Gaussian) and ``resolution_um`` (quantisation)."""
+
+    sampling: Sampling = field(default_factory=Sampling)
+    revolutions: float = 1.5
+    return_trip: bool = True
+    noise_um: float = 0.5
+    resolution_um: float = 0.01
+    speed_ripple: float = 0.08
+
+
+def output_angle_history(t: np.ndarray, duration: float, revolutions: float, return_trip: bool,
+                         ripple: float) -> np.ndarray:
+    """Output angle (rad) over time: smooth start, stop and reversal, a slight speed ripple."""
+    grid = np.linspace(0.0, duration, 200001)
+    legs = 2 if return_trip else 1
+    leg = duration / legs
+    tau = np.mod(grid, leg) / leg
+    ramp = np.clip(np.minimum(tau, 1 - tau) / 0.03, 0, 1)
+    ramp = 0.5 - 0.5 * np.cos(np.pi * ramp)
+    direction = np.where(grid < leg, 1.0, -1.0) if return_trip else np.ones_like(grid)
+    speed = direction * ramp * (1.0 + ripple * np.sin(2 * np.pi * 3.1 * grid / duration))
+    angle = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * np.diff(grid))])
+    forward = angle[np.searchsorted(grid, leg) if return_trip else -1]
+    angle *= 2 * np.pi * revolutions / forward
+    return np.interp(t, grid, angle)
+
+
+def simulate_preload_trace(truth: PreloadTruth, rng: np.random.Generator,
+                           settings: PreloadSettings | None = None, name: str = "preload_sim") -> Simulated:
+    """A preload trace from a truth model (see :class:`PreloadTruth`)."""
+    st = settings or PreloadSettings()
+    sm = st.sampling
+    t = sample_times(sm, rng)
+    n = t.size
+    theta = output_angle_history(t, sm.duration_s, st.revolutions, st.return_trip, st.speed_ripple)
+    temp_true = temperature_history(t, sm)
+    orders = {o.name: o.order for o in train_orders(truth.teeth)}
+    amps = dict(zip(("output", "cluster", "input"), truth.eccentricity_um)) | dict(zip(("mesh1", "mesh2"), truth.tooth_to_tooth_um))
+    x = np.full(n, truth.offset_um)
+    for name_, amp in amps.items():
+        x += fx.harmonic(theta, orders[name_], amp, float(rng.uniform(0, 360)))
+    expected = []
+    declared_names = {nm for d in truth.declared for nm in {"eccentricity": ("output", "cluster", "input"),
+                                                              "tooth_to_tooth": ("mesh1", "mesh2")}[d]}
+    for name_, amp in amps.items():
+        if name_ not in declared_names and amp > 0:
+            expected.append({"effect": "harmonic", "order": orders[name_], "amplitude": amp})
+    for order, amp, phase in truth.harmonics:
+        x += fx.harmonic(theta, order, amp, phase)
+        expected.append({"effect": "harmonic", "order": order, "amplitude": amp, "phase_deg": phase})
+    if truth.drift_per_kelvin:
+        x += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true.mean()))
+        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
+    if truth.drift_per_second:
+        x += fx.drift(t, truth.drift_per_second, float(t.mean()))
+        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+    outside = []
+    if truth.chirp:
+        amp, q0, q1 = truth.chirp
+        mean_rate = 2 * np.pi * st.revolutions * (2 if st.return_trip else 1) / sm.duration_s  # rad/s of output
+        f0, f1 = q0 * mean_rate / (2 * np.pi), q1 * mean_rate / (2 * np.pi)
+        phase = 2 * np.pi * (f0 * t + 0.5 * (f1 - f0) * t * t / sm.duration_s)
+        x += amp * np.sin(phase)
+        outside.append("chirp")
+    if truth.step:
+        height, frac = truth.step
+        x += height * (t > frac * sm.duration_s)
+        outside.append("step")
+    if truth.hysteresis_half_width:
+        x = fx.play_operator(x, truth.hysteresis_half_width)
+        expected.append({"effect": "hysteresis", "half_width": truth.hysteresis_half_width})
+    noise = st.noise_um * rng.normal(size=n)
+    if truth.burst:
+        factor, start, length = truth.burst
+        inside = (t >= start * sm.duration_s) & (t < (start + length) * sm.duration_s)
+        noise[inside] *= factor
+        outside.append("burst")
+    measured = x + noise
+    if st.resolution_um > 0:
+        measured = np.round(measured / st.resolution_um) * st.resolution_um
+    temperature = _read_temperature(temp_true, sm, rng) if sm.temperature else None
+    meas = Measurement(kind="preload_trace", name=name, time_s=t, angle_rad=theta, carriage_um=measured,
+                       temperature_C=temperature, model=PreloadModelSpec(teeth=truth.teeth, declared=truth.declared, drive_type="type2"),
+                       description="simulated preload trace (geargen.fit.simulate)")
+    return Simulated(meas, float(np.sqrt(np.mean((measured - x) ** 2))), x, tuple(expected), tuple(outside))
+
+
+# ----------------------------------------------------------------------------- torque deflection
+
+@dataclass(frozen=True)
+class TorqueTruth:
+    """Truth of a torque-deflection test, output-referred, Nm/rad and Nm.
+
+    The sidecar declares ``declared_factors`` x the true (k1, k2, k3, preload): a design estimate
+    that is a little off. Undeclared library effects: ``drift_per_kelvin``, ``drift_per_second``
+    (Nm per K or s: the torque reading's zero creeping), ``hysteresis_half_width`` (Nm of Coulomb
+    friction), ``stiffening`` (amplitude Nm at 1 mrad, exponent), ``dead_band_urad``.
+    Outside the library: ``step`` (Nm, fraction of the record: the torque cell slips),
+    ``vibration`` (amplitude Nm, period s), ``burst`` (noise factor, start fraction, length fraction).
+    """
+
+    drive_type: str = "type2"
+    k1: float = 4.0e5
+    k2: float = 4.0e5
+    k3: float | None = 4.0e4
+    preload: float = 25.0
+    theta0_urad: float = 0.4
+    declared_factors: tuple[float, float, float, float] = (1.08, 0.95, 1.1, 0.9)
+    declare_values: bool = True
+    drift_per_kelvin: float = 0.0
+    drift_per_second: float = 0.0
+    hysteresis_half_width: float = 0.0
+    stiffening: tuple[float, float] | None = None
+    dead_band_urad: float = 0.0
+    step: tuple[float, float] | None = None
+    vibration: tuple[float, float] | None = None
+    burst: tuple[float, float, float] | None = None
+
+    def drive(self) -> TwoPathDrive:
+        """The true law in geargen's internal units (N*mm/rad, N*mm)."""
+        kw = {"k3": self.k3 * 1e3} if self.drive_type == "type2" else {}
+        return TwoPathDrive(self.drive_type, k1=self.k1 * 1e3, k2=self.k2 * 1e3, preload=self.preload * 1e3, **kw)
+
+    def declared_spec(self) -> TorqueModelSpec:
+        if not self.declare_values:
+            return TorqueModelSpec(self.drive_type)
+        f1, f2, f3, fp = self.declared_factors
+        return TorqueModelSpec(self.drive_type, k1_Nm_per_rad=self.k1 * f1, k2_Nm_per_rad=self.k2 * f2,
+                               k3_Nm_per_rad=self.k3 * f3 if self.drive_type == "type2" else None,
+                               preload_Nm=self.preload * fp)
+
+
+@dataclass(frozen=True)
+class TorqueSettings:
+    """The test: ``cycles`` of 0 -> +T -> -T -> 0 with T = ``max_torque_Nm``; torque-cell noise
+    ``torque_noise_Nm``; rotation probe noise ``rotation_noise_urad`` and ``rotation_resolution_urad``."""
+
+    sampling: Sampling = field(default_factory=lambda: Sampling(samples=6000, duration_s=600.0))
+    cycles: int = 2
+    max_torque_Nm: float = 80.0
+    torque_noise_Nm: float = 0.1
+    torque_resolution_Nm: float = 0.001
+    rotation_noise_urad: float = 0.05
+    rotation_resolution_urad: float = 0.01
+
+
+def torque_program(t: np.ndarray, duration: float, cycles: int, peak: float) -> np.ndarray:
+    """Applied torque: ``cycles`` x (0 -> +peak -> -peak -> 0) at a constant rate."""
+    knots = [0.0]
+    for _ in range(cycles):
+        knots += [peak, -peak, 0.0]
+    knots = np.array(knots)
+    dist = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(knots)))])
+    return np.interp(t / duration * dist[-1], dist, knots)
+
+
+def _solve_rotation(truth: TorqueTruth, spring_torque: np.ndarray) -> np.ndarray:
+    """Rotation (rad) where law + stiffening carries the spring torque (Nm); bisection, monotonic law."""
+    drive = truth.drive()
+    linear = drive.rotation(spring_torque * 1e3)
+    if not truth.stiffening:
+        return linear
+    amp, ex = truth.stiffening
+    lo = np.minimum(0.0, linear)
+    hi = np.maximum(0.0, linear)
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        f = drive.torque(mid) * 1e-3 + fx.stiffening(mid, amp, ex) - spring_torque
+        lo = np.where(f < 0, mid, lo)
+        hi = np.where(f >= 0, mid, hi)
+    return 0.5 * (lo + hi)
+
+
+def simulate_torque_deflection(truth: TorqueTruth, rng: np.random.Generator,
+                               settings: TorqueSettings | None = None, name: str = "torque_sim") -> Simulated:
+    """A torque-deflection record from a truth model (see :class:`TorqueTruth`)."""
+    st = settings or TorqueSettings()
+    sm = st.sampling
+    t = sample_times(sm, rng)
+    n = t.size
+    applied = torque_program(t, sm.duration_s, st.cycles, st.max_torque_Nm)
+    spring = fx.play_operator(applied, truth.hysteresis_half_width) if truth.hysteresis_half_width else applied
+    phi = _solve_rotation(truth, spring)
+    rotation_urad = truth.theta0_urad + fx.dead_zone_inverse(phi * 1e6, truth.dead_band_urad)
+    temp_true = temperature_history(t, sm)
+    reading = applied.copy()
+    expected = []
+    if truth.drift_per_kelvin:
+        reading += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true[0]))
+        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
+    if truth.drift_per_second:
+        reading += fx.drift(t, truth.drift_per_second, float(t[0]))
+        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+    if truth.hysteresis_half_width:
+        expected.append({"effect": "hysteresis", "half_width": truth.hysteresis_half_width})
+    if truth.stiffening:
+        expected.append({"effect": "stiffening", "amplitude": truth.stiffening[0], "exponent": truth.stiffening[1]})
+    if truth.dead_band_urad:
+        expected.append({"effect": "dead_band", "width_urad": truth.dead_band_urad})
+    outside = []
+    if truth.step:
+        height, frac = truth.step
+        reading += height * (t > frac * sm.duration_s)
+        outside.append("step")
+    if truth.vibration:
+        amp, period = truth.vibration
+        reading += amp * np.sin(2 * np.pi * t / period)
+        outside.append("vibration")
+    e_t = st.torque_noise_Nm * rng.normal(size=n)
+    if truth.burst:
+        factor, start, length = truth.burst
+        inside = (t >= start * sm.duration_s) & (t < (start + length) * sm.duration_s)
+        e_t[inside] *= factor
+        outside.append("burst")
+    torque = reading + e_t
+    if st.torque_resolution_Nm > 0:
+        torque = np.round(torque / st.torque_resolution_Nm) * st.torque_resolution_Nm
+    rot = rotation_urad + st.rotation_noise_urad * rng.normal(size=n)
+    if st.rotation_resolution_urad > 0:
+        rot = np.round(rot / st.rotation_resolution_urad) * st.rotation_resolution_urad
+    # injected noise in residual units: torque error minus local stiffness x rotation error
+    drive = truth.drive()
+    d = 1e-8
+
+    def total(p):
+        out = drive.torque(p) * 1e-3
+        if truth.stiffening:
+            out = out + fx.stiffening(p, *truth.stiffening)
+        return out
+
+    k = (total(phi + d) - total(phi - d)) / (2 * d)
+    noise_residual = (torque - reading) - k * (rot - rotation_urad) * 1e-6
+    temperature = _read_temperature(temp_true, sm, rng) if sm.temperature else None
+    meas = Measurement(kind="torque_deflection", name=name, time_s=t, torque_Nm=torque, rotation_rad=rot * 1e-6,
+                       temperature_C=temperature, model=truth.declared_spec(),
+                       description="simulated torque-deflection test (geargen.fit.simulate)")
+    return Simulated(meas, float(np.sqrt(np.mean(noise_residual ** 2))), reading, tuple(expected), tuple(outside))

@@ -1,0 +1,63 @@
+"""``geargen fit NAME.csv --json REPORT.json --report DIR`` end to end, through the files."""
+
+import json
+
+import numpy as np
+
+from geargen.cli import main
+from geargen.fit.measurement import write_measurement
+from geargen.fit.simulate import PreloadTruth, TorqueTruth, simulate_preload_trace, simulate_torque_deflection
+
+CONTRACT_KEYS = ["kind", "samples", "units", "noise_rms", "stages", "effects_added", "unexplained"]
+EFFECT_KEYS = {"harmonic": {"order", "amplitude", "phase_deg", "shaft", "multiple"},
+               "drift": {"per_kelvin"}, "hysteresis": {"half_width"}, "stiffening": {"exponent"},
+               "dead_band": {"width_urad"}}
+
+
+def _check(j, kind, units):
+    assert list(j) == CONTRACT_KEYS
+    assert j["kind"] == kind and j["units"] == units
+    assert isinstance(j["samples"], int) and j["noise_rms"] > 0
+    for name in ("declared", "extended"):
+        assert set(j["stages"][name]) == {"rms", "max_abs"}
+    assert isinstance(j["unexplained"], bool)
+    for e in j["effects_added"]:
+        assert EFFECT_KEYS[e["effect"]] <= set(e) and e["evidence"]
+
+
+def test_cli_preload_trace(tmp_path, capsys):
+    sim = simulate_preload_trace(PreloadTruth(harmonics=((2.0, 3.0, 40.0),), drift_per_kelvin=1.0),
+                                 np.random.default_rng(1))
+    csv = write_measurement(sim.measurement, tmp_path, "bench_run",
+                            extra_columns={"probe_volts": np.zeros(sim.measurement.samples)})
+    out = tmp_path / "out" / "report.json"
+    assert main(["fit", str(csv), "--json", str(out), "--report", str(tmp_path / "rep")]) == 0
+    j = json.loads(out.read_text())
+    _check(j, "preload_trace", "um")
+    assert j["stages"]["nominal"]["rms"] > j["stages"]["declared"]["rms"] > j["stages"]["extended"]["rms"]
+    assert sorted(e["effect"] for e in j["effects_added"]) == ["drift", "harmonic"]
+    assert j["unexplained"] is False
+    md = (tmp_path / "rep" / "report.md").read_text()
+    assert "probe_volts" in md                      # the ignored column is noted
+    for png in ("fit_data.png", "fit_residuals.png", "fit_spectrum.png", "fit_dependence.png"):
+        assert (tmp_path / "rep" / png).stat().st_size > 1000
+        assert png in md
+    assert "unexplained: no" in capsys.readouterr().out
+
+
+def test_cli_torque_deflection_default_paths(tmp_path):
+    sim = simulate_torque_deflection(TorqueTruth(dead_band_urad=15.0), np.random.default_rng(2))
+    csv = write_measurement(sim.measurement, tmp_path, "stiff")
+    assert main(["fit", str(csv), "--no-plots"]) == 0
+    j = json.loads((tmp_path / "stiff.fit.json").read_text())
+    _check(j, "torque_deflection", "Nm")
+    assert [e["effect"] for e in j["effects_added"]] == ["dead_band"]
+    assert (tmp_path / "stiff_fit" / "report.md").exists()
+
+
+def test_cli_error_names_the_column(tmp_path, capsys):
+    (tmp_path / "bad.csv").write_text("time_s,output_angle_deg\n" + "\n".join(f"{i},{i}" for i in range(60)))
+    (tmp_path / "bad.toml").write_text('kind = "preload_trace"\n[model]\nteeth = [16, 48, 21, 112]\n')
+    assert main(["fit", str(tmp_path / "bad.csv"), "--json", str(tmp_path / "r.json")]) == 2
+    assert "carriage_x_um" in capsys.readouterr().err
+    assert not (tmp_path / "r.json").exists()
