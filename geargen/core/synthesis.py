@@ -51,7 +51,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.optimize import brentq
 
 from geargen.core.involute import involute, tooth_thickness_at_radius
 from geargen.design.gear import GearSpec
@@ -328,6 +327,8 @@ def synthesize_centres(inputs: SynthesisInputs, increments: int | None = None) -
             f"N = {i / 2:g} whole teeth (i = {i}, rule {inputs.rounding!r}, from {i_nom / 2:.6g}) needs A1 outside "
             f"({math.degrees(lo):.4g}, 0) deg, where N can only range over ({reach[0]:.4g}, {reach[1]:.4g}); "
             "choose another start angle, rounding rule or centre distances"), **base)
+    from scipy.optimize import brentq  # lazily: importing scipy.optimize costs ~0.5 s
+
     a1, info = brentq(lambda a: theta(a) - i * step, lo, 0.0, xtol=1e-15, rtol=4 * np.finfo(float).eps,
                       maxiter=200, full_output=True, disp=False)
     residual = theta(a1) - i * step

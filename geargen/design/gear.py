@@ -109,7 +109,9 @@ class GearSpec:
         _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
-        if self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98:
+        # a root at or below the axis is the profile's "negative_root" error, not a bore problem
+        if (self.hub.bore_diameter > 0 and self.root_radius_standard > 0
+                and self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98):
             raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
                               f"< {2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth:.4g} mm")
 

@@ -1,0 +1,196 @@
+"""``geargen gear``: build one gear and write STEP, STL and a JSON of its derived quantities.
+
+From a design file (a ``[gear]`` table, or ``--gear NAME`` of an assembly file's ``[gears.NAME]``)
+or from options::
+
+    geargen gear --teeth 112 --diametral-pitch 32 --pressure-angle 20 --face-width 0.25 --bore 0.3937
+    geargen gear --teeth 21 --module 0.79375 --helix-angle 20 --hand left --face-width 12.7 --out out/
+
+Writes ``DIR/NAME.step`` (in the design's length unit), ``DIR/NAME.stl`` (mm, chordal tolerance
+``--stl-tolerance`` mm), ``DIR/NAME.json`` (radii, thicknesses, tip land, undercut, span and
+over-pins/balls, in the design's length unit; angles in degrees) and ``DIR/manifest.json``.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+import warnings
+from pathlib import Path
+
+from geargen.design.gear import GearSpec, gear_from_table
+from geargen.errors import DesignError, GeargenError
+from geargen.units import from_mm, to_mm
+
+
+def add_arguments(p) -> None:
+    p.add_argument("design", nargs="?", help="design file (TOML) with a [gear] table, or an assembly file with --gear")
+    p.add_argument("--gear", metavar="NAME", help="build [gears.NAME] of an assembly design file")
+    g = p.add_argument_group("gear options (instead of a design file)")
+    g.add_argument("--teeth", type=int, help="number of teeth")
+    pitch = g.add_mutually_exclusive_group()
+    pitch.add_argument("--module", type=float, metavar="MM", help="module in mm (metric design: lengths in mm)")
+    pitch.add_argument("--diametral-pitch", type=float, metavar="PER_IN",
+                       help="diametral pitch, teeth per inch (inch design: lengths in inches)")
+    g.add_argument("--pitch-system", choices=("normal", "transverse"), default="normal",
+                   help="helical gears: module/pitch and pressure angle given in the normal (default) or transverse section")
+    g.add_argument("--pressure-angle", type=float, default=20.0, metavar="DEG", help="pressure angle, degrees (default 20)")
+    g.add_argument("--helix-angle", type=float, default=0.0, metavar="DEG", help="helix angle, degrees (default 0: spur)")
+    g.add_argument("--hand", choices=("right", "left"), default="right", help="helix hand (default right)")
+    g.add_argument("--profile-shift", type=float, default=0.0, metavar="X", help="profile shift coefficient x (default 0)")
+    g.add_argument("--face-width", type=float, metavar="LEN",
+                   help="face width in the unit of the pitch system: mm with --module, inches with --diametral-pitch")
+    g.add_argument("--face-width-mm", type=float, metavar="MM", help="face width in mm")
+    g.add_argument("--face-width-in", type=float, metavar="IN", help="face width in inches")
+    g.add_argument("--bore", type=float, metavar="LEN", help="bore diameter in the unit of the pitch system (default: none)")
+    g.add_argument("--bore-mm", type=float, metavar="MM", help="bore diameter in mm")
+    g.add_argument("--bore-in", type=float, metavar="IN", help="bore diameter in inches")
+    g.add_argument("--thinning", type=float, metavar="LEN", default=0.0,
+                   help="tooth thinning for backlash: circumferential (transverse arc at the reference circle), "
+                        "in the unit of the pitch system (default 0)")
+    g.add_argument("--name", default=None, help="part name (default: the design's, or gear_<teeth>)")
+    p.add_argument("--out", metavar="DIR", default=None, help="output folder (default: exports/<name>)")
+    p.add_argument("--stl-tolerance", type=float, default=1e-3, metavar="MM",
+                   help="STL chordal tolerance in mm (default 0.001 = 1 um)")
+    p.add_argument("--no-stl", action="store_true", help="skip the STL")
+    p.add_argument("--measure", action="store_true",
+                   help="also section the solid and report the measured flank deviation, span and over-pins size")
+
+
+def spec_from_args(args) -> GearSpec:
+    """The GearSpec the command line describes (through the design-file validation)."""
+    if args.design:
+        from geargen.design.schema import load_toml
+        data = load_toml(args.design)
+        if args.gear:
+            from geargen.design.assembly import load_design
+            return load_design(args.design).gear(args.gear)
+        if "gear" not in data:
+            raise DesignError(str(args.design), "no [gear] table (use --gear NAME for an assembly file)")
+        unknown = [k for k in data if k != "gear"]
+        if unknown:
+            raise DesignError(unknown[0], "unknown key or section in a gear design file", "[gear]")
+        return gear_from_table(data["gear"], where="gear", name=args.name or Path(args.design).stem)
+    if args.teeth is None or (args.module is None and args.diametral_pitch is None):
+        raise DesignError("--teeth", "give a design file, or --teeth and --module or --diametral-pitch")
+    unit = "mm" if args.module is not None else "in"
+    table = {"teeth": args.teeth, "pitch_system": args.pitch_system,
+             "pressure_angle_deg": args.pressure_angle, "helix_angle_deg": args.helix_angle, "hand": args.hand,
+             "profile_shift": args.profile_shift}
+    if args.module is not None:
+        table["module_mm"] = args.module
+    else:
+        table["diametral_pitch_per_in"] = args.diametral_pitch
+    for key, plain, mm, inch in (("face_width", args.face_width, args.face_width_mm, args.face_width_in),
+                                 ("bore_diameter", args.bore, args.bore_mm, args.bore_in)):
+        given = [(u, v) for u, v in ((unit, plain), ("mm", mm), ("in", inch)) if v is not None]
+        if len(given) > 1:
+            raise DesignError(f"--{key.replace('_', '-')}", "given more than once", "one of LEN, -mm, -in")
+        if given:
+            table[f"{key}_{given[0][0]}"] = given[0][1]
+    if "face_width_mm" not in table and "face_width_in" not in table:
+        raise DesignError("--face-width", "missing", "--face-width, --face-width-mm or --face-width-in")
+    if args.thinning:
+        table[f"thinning_circumferential_{unit}"] = args.thinning
+    name = args.name or f"gear_{args.teeth}"
+    return gear_from_table(table, where="options", name=name, length_unit=unit)
+
+
+def derived_quantities(spec: GearSpec, profile) -> dict:
+    """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit."""
+    from geargen.core import geometry
+    from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness
+
+    u = spec.length_unit
+
+    def L(v):
+        return None if v is None else float(from_mm(v, u))
+
+    out = {
+        "name": spec.name, "length_unit": u, "teeth": spec.teeth,
+        "normal_module_mm": spec.module, "transverse_module_mm": spec.transverse_module,
+        "normal_pressure_angle_deg": math.degrees(spec.pressure_angle),
+        "transverse_pressure_angle_deg": math.degrees(spec.transverse_pressure_angle),
+        "helix_angle_deg": math.degrees(spec.helix_angle), "hand": spec.hand if spec.is_helical else None,
+        "base_helix_angle_deg": math.degrees(spec.base_helix_angle),
+        "lead": L(spec.lead) if spec.is_helical else None,
+        "profile_shift_normal": spec.profile_shift,
+        "face_width": L(spec.face_width), "bore_diameter": L(spec.hub.bore_diameter),
+        "reference_radius": L(profile.reference_radius), "base_radius": L(profile.base_radius),
+        "tip_radius": L(profile.tip_radius), "root_radius": L(profile.root_radius),
+        "reference_tooth_thickness_transverse": L(reference_tooth_thickness(spec)),
+        "thinning_circumferential": L(spec.thinning),
+        "tip_land_transverse": L(profile.tip_land), "pointed_tip_radius": L(pointed_tip_radius(spec)),
+        "undercut": profile.undercut, "involute_start_radius": L(profile.involute_start_radius),
+        "warnings": list(profile.warnings),
+    }
+    try:
+        uc = geometry.undercut(spec)
+        out["minimum_teeth_without_undercut"] = uc.minimum_teeth
+        out["minimum_profile_shift_without_undercut"] = uc.minimum_profile_shift
+    except GeargenError as exc:
+        out["warnings"].append(str(exc))
+    try:
+        span = geometry.span_measurement(spec)
+        out["span"] = {"teeth_spanned": span.teeth_spanned, "span_normal": L(span.span),
+                       "span_transverse": L(span.transverse_span), "contact_radius": L(span.contact_radius)}
+    except GeargenError as exc:
+        out["span"] = None
+        out["warnings"].append(f"span: {exc}")
+    try:
+        pins = geometry.over_pins_measurement(spec)
+        out["over_pins"] = {"kind": pins.kind, "diameter": L(pins.pin_diameter), "dimension": L(pins.dimension),
+                            "centre_radius": L(pins.centre_radius), "contact_radius": L(pins.contact_radius)}
+    except GeargenError as exc:
+        out["over_pins"] = None
+        out["warnings"].append(f"over pins: {exc}")
+    return out
+
+
+def run(args) -> int:
+    spec = spec_from_args(args)
+    from geargen.cad.export import export_step, export_stl, update_manifest, write_json
+    from geargen.cad.gear_solid import build_gear
+    from geargen.profile.tooth import UndercutWarning
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", UndercutWarning)
+        t0 = time.perf_counter()
+        solid = build_gear(spec, check=True)
+        t_build = time.perf_counter() - t0
+    for w in caught:
+        print(f"geargen gear: warning: {w.message}", file=sys.stderr)
+    out = Path(args.out) if args.out else Path("exports") / spec.name
+    records = [export_step(solid, out / f"{spec.name}.step", spec.length_unit)]
+    if not args.no_stl:
+        records.append(export_stl(solid, out / f"{spec.name}.stl", args.stl_tolerance))
+    data = derived_quantities(spec, solid.profile)
+    data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
+    data["files"] = [r.path.name for r in records]
+    if args.measure:
+        data["measured"] = _measure(solid, data)
+    write_json(out / f"{spec.name}.json", data)
+    update_manifest(out, records, extra={"length_unit": spec.length_unit})
+    for r in records:
+        print(r.path)
+    print(out / f"{spec.name}.json")
+    return 0
+
+
+def _measure(solid, data) -> dict:
+    """Flank deviation (um) at three heights, span and over-pins on the mid-face section."""
+    from geargen.cad.measure import flank_deviation, over_balls_on_section, section, span_on_section
+
+    spec, profile = solid.spec, solid.profile
+    u = spec.length_unit
+    heights = [0.05 * spec.face_width, 0.5 * spec.face_width, 0.95 * spec.face_width]
+    out = {"flank_deviation_max_um": max(flank_deviation(solid.shape, profile, z).max_abs for z in heights) * 1e3}
+    cut = section(solid.shape, heights[1], 128)
+    if data.get("span"):
+        k = data["span"]["teeth_spanned"]
+        out["span_normal"] = float(from_mm(span_on_section(solid.shape, profile, k, heights[1], cut=cut).normal, u))
+    if data.get("over_pins"):
+        d = to_mm(data["over_pins"]["diameter"], u)
+        out["over_pins_dimension"] = float(from_mm(over_balls_on_section(solid.shape, profile, d, heights[1], cut=cut).size, u))
+    return out

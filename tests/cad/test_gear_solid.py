@@ -1,0 +1,144 @@
+"""Gear solids: one valid closed solid, volume against the exact outline, flanks on the involute."""
+
+import math
+
+import numpy as np
+import pytest
+
+from geargen.cad.gear_solid import build_cluster, build_gear, check_solid, solid_volume
+from geargen.cad.measure import flank_deviation, section
+from geargen.design.cluster import ClusterSpec
+from geargen.design.gear import Hub
+from geargen.profile import section_rotation
+
+pytestmark = pytest.mark.slow
+
+
+def bore_area(hub: Hub) -> float:
+    """Area of the bore with its keyway (keyway: flat floor at bore radius + depth, centred on +x)."""
+    if hub.bore_diameter <= 0:
+        return 0.0
+    r = hub.bore_diameter / 2
+    area = math.pi * r * r
+    if hub.keyway_width > 0:
+        w2 = hub.keyway_width / 2
+        xk = math.sqrt(r * r - w2 * w2)
+        a = math.asin(w2 / r)
+        segment = r * r * a - xk * w2  # the circle's part beyond the chord x = xk
+        area += hub.keyway_width * (r + hub.keyway_depth - xk) - segment
+    return area
+
+
+def expected_volume(spec, profile) -> float:
+    """Outline area (Green's theorem on the exact segments; checked against a converged polygon in
+    tests/profile) times face width, minus the bore, plus the hub. A helical gear has the same
+    volume as its spur twin (every transverse section is the same outline, turned)."""
+    hub = spec.hub
+    vol = (profile.area() - bore_area(hub)) * spec.face_width
+    if hub.hub_length > 0:
+        vol += (math.pi * hub.hub_diameter ** 2 / 4 - bore_area(hub)) * hub.hub_length
+    return vol
+
+
+def test_spur_bench_gear(spur112):
+    spec, profile = spur112.spec, spur112.profile
+    assert check_solid(spur112.shape) is None
+    # 1e-6 is the issue's bound; the spline tolerance (0.8 nm here) keeps the error near 1e-9
+    assert solid_volume(spur112.shape) == pytest.approx(expected_volume(spec, profile), rel=1e-6)
+    for z in (0.1, 0.5 * spec.face_width, spec.face_width - 0.1):
+        dev = flank_deviation(spur112.shape, profile, z)
+        assert dev.flanks == 2 * spec.teeth
+        assert dev.max_abs <= 1e-5  # 0.01 um: the bench target (the issue's test bound is 0.1 um)
+
+
+def test_helical_bench_gear(helical21):
+    spec, profile = helical21.spec, helical21.profile
+    assert check_solid(helical21.shape) is None
+    assert solid_volume(helical21.shape) == pytest.approx(expected_volume(spec, profile), rel=1e-6)
+    for z in np.linspace(0.02, 0.98, 5) * spec.face_width:  # along 29 deg of twist
+        dev = flank_deviation(helical21.shape, profile, z)
+        assert dev.flanks == 2 * spec.teeth
+        assert dev.max_abs <= 2e-5  # 0.02 um: the bench target
+
+
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_helix_hand_turns_the_teeth_the_documented_way(hand, make_spec):
+    spec = make_spec(15, module=1.0, helix=25, face=8.0, hand=hand)
+    g = build_gear(spec)
+    z = 7.5
+    cut = section(g.shape, z)
+    rad = np.hypot(cut.points[:, 0], cut.points[:, 1])
+    tip = cut.points[np.abs(rad - g.profile.tip_radius) < 1e-6]
+    ang = np.arctan2(tip[:, 1], tip[:, 0])
+    expected = section_rotation(spec, z)  # + for right hand, - for left
+    nearest = ang[np.argmin(np.abs(np.angle(np.exp(1j * (ang - expected)))))]
+    assert abs(np.angle(np.exp(1j * (nearest - expected)))) <= g.profile.tip_half_angle + 1e-9
+    assert (expected > 0) == (hand == "right")
+    assert flank_deviation(g.shape, g.profile, z, cut=cut).max_abs < 1e-4
+
+
+VARIANTS = {
+    "keyway": dict(teeth=24, hub=Hub(bore_diameter=5.0, keyway_width=2.0, keyway_depth=1.0)),
+    "hub": dict(teeth=24, hub=Hub(bore_diameter=5.0, hub_diameter=12.0, hub_length=4.0)),
+    "hub and keyway, helical left": dict(teeth=24, helix=15, hand="left",
+                                         hub=Hub(bore_diameter=5.0, keyway_width=2.0, keyway_depth=1.0,
+                                                 hub_diameter=12.0, hub_length=4.0)),
+    "helical with bore": dict(teeth=19, helix=30, hub=Hub(bore_diameter=4.0)),
+    "undercut 7 teeth": dict(teeth=7),
+    "undercut helical 6 teeth": dict(teeth=6, helix=10, profile_shift=0.2),
+    "big shift": dict(teeth=13, profile_shift=0.8, addendum_coefficient=0.8),
+    "sharp rack": dict(teeth=40, rack_tip_radius_coefficient=0.0, hub=Hub(bore_diameter=20.0)),
+    "coarse module 14.5 deg": dict(teeth=30, module=8.0, pressure_angle=14.5 * math.pi / 180, face=40.0),
+}
+
+
+@pytest.mark.parametrize("name", VARIANTS)
+def test_variants_are_valid_solids_of_the_right_volume(name, quiet_undercut, make_spec):
+    kw = dict(module=1.0, face=6.0)
+    kw.update(VARIANTS[name])
+    spec = make_spec(**kw)
+    g = build_gear(spec, check=True)
+    assert solid_volume(g.shape) == pytest.approx(expected_volume(spec, g.profile), rel=1e-6)
+    z = 0.5 * spec.face_width
+    assert flank_deviation(g.shape, g.profile, z).max_abs < 1e-4  # 0.1 um
+
+
+@pytest.mark.parametrize("gap", [0.0, 1.5])
+def test_cluster_gear(gap, make_spec):
+    large = make_spec(48, face=4.7625, hub=Hub(bore_diameter=6.35, hub_diameter=10.0, hub_length=3.0))
+    small = make_spec(21, face=7.9375, hub=Hub(bore_diameter=6.35))
+    phase = 0.05
+    cluster = ClusterSpec(large, small, axial_gap=gap, relative_phase=phase, name="cluster")
+    g = build_cluster(cluster, check=True)
+    from geargen.profile import tooth_profile
+    p_small = tooth_profile(small)
+    spacer = 0.0
+    if gap:
+        spacer = (math.pi * cluster.spacer_diameter_resolved ** 2 / 4 - bore_area(large.hub)) * gap
+    expected = expected_volume(large, g.profile) + expected_volume(small, p_small) + spacer
+    assert solid_volume(g.shape) == pytest.approx(expected, rel=1e-6)
+    # the small gear's tooth 0 sits at the relative phase in its lowest section
+    z = cluster.small_gear_z + 0.01
+    cut = section(g.shape, z)
+    rad = np.hypot(cut.points[:, 0], cut.points[:, 1])
+    tip = cut.points[np.abs(rad - p_small.tip_radius) < 1e-6]
+    ang = np.arctan2(tip[:, 1], tip[:, 0])
+    assert np.min(np.abs(ang - phase)) <= p_small.tip_half_angle + 1e-9
+    # and its flanks are where the phase puts them
+    from geargen.cad.measure import involute_deviation
+    sel = (rad > p_small.involute_start_radius + 1e-4) & (rad < p_small.tip_radius - 1e-4)
+    xy = cut.points[sel]
+    c, s = math.cos(-phase), math.sin(-phase)
+    unturned = xy @ np.array([[c, s], [-s, c]])
+    assert np.max(np.abs(involute_deviation(p_small, 0.0, unturned))) < 1e-4
+
+
+@pytest.mark.parametrize("teeth", [16, 48, 21])
+def test_the_papers_gears(teeth, make_spec, quiet_undercut):
+    """The robot joint's gears (Hale & Slocum, Appendix): 32 DP, 20 deg; 112 is the bench gear.
+    The standard rack (tip radius 0.38 m) undercuts below 17.1 teeth: the 16-tooth input pinion."""
+    spec = make_spec(teeth, face=6.35, hub=Hub(bore_diameter=4.7625), length_unit="in")
+    g = build_gear(spec, check=True)
+    assert g.profile.undercut == (teeth < 17)
+    assert solid_volume(g.shape) == pytest.approx(expected_volume(spec, g.profile), rel=1e-6)
+    assert flank_deviation(g.shape, g.profile, 3.0).max_abs < 1e-5

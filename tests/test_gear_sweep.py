@@ -1,0 +1,204 @@
+"""Seeded stability sweep: random gear parameters, each built in a worker process with a timeout.
+
+Every gear either becomes one valid closed solid of the right volume whose flanks lie on the
+involute, or is refused with a clear DesignError / GeometryError (parameters that cannot make a
+gear). Everything else is a tagged failure: ``invalid`` (BRepCheck), ``not_one_solid``,
+``wrong_volume``, ``flank``, ``timeout``, ``crash:<exception type>``.
+
+More by hand: ``GEARGEN_SWEEP_COUNT=2000 GEARGEN_SWEEP_SEED=7 pytest tests/test_gear_sweep.py -s``
+(``GEARGEN_SWEEP_TIMEOUT`` seconds per build, default 60; ``GEARGEN_SWEEP_WORKERS``, default 2;
+``GEARGEN_SWEEP_MAX_TEETH``, default 40).
+"""
+
+from __future__ import annotations
+
+import math
+import multiprocessing as mp
+import os
+import time
+import traceback
+from collections import Counter
+from multiprocessing.connection import wait
+
+import numpy as np
+import pytest
+
+COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "200"))
+SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261121"))
+TIMEOUT = float(os.environ.get("GEARGEN_SWEEP_TIMEOUT", "60"))
+WORKERS = int(os.environ.get("GEARGEN_SWEEP_WORKERS", "2"))
+#: tooth counts are drawn log-uniformly from [4, MAX_TEETH] (big gears cost time, not coverage:
+#: the bench gears' tests build a 112-tooth one)
+MAX_TEETH = int(os.environ.get("GEARGEN_SWEEP_MAX_TEETH", "40"))
+
+#: refusals that are the right answer for impossible parameters
+EXPECTED_GEOMETRY_KINDS = {"pointed_tooth", "negative_root", "pointed_rack", "no_involute", "severed_tooth",
+                           "fillet_loop"}
+
+
+def random_parameters(rng: np.random.Generator) -> dict:
+    """One random gear: GearSpec fields plus relative bore/keyway/hub sizes (plain numbers)."""
+    helical = rng.random() < 0.6
+    return {
+        "teeth": int(round(math.exp(rng.uniform(math.log(4), math.log(MAX_TEETH))))),
+        "module": float(math.exp(rng.uniform(math.log(0.05), math.log(20.0)))),
+        "pressure_angle_deg": float(rng.uniform(14.5, 30.0)),
+        "helix_angle_deg": float(rng.uniform(5.0, 40.0)) if helical else 0.0,
+        "hand": str(rng.choice(["right", "left"])),
+        "profile_shift": float(rng.uniform(-0.6, 1.0)),
+        "addendum_coefficient": float(rng.uniform(0.8, 1.2)),
+        "dedendum_coefficient": float(rng.uniform(1.0, 1.6)),
+        "rack_tip_fraction": None if rng.random() < 0.5 else float(rng.uniform(0.0, 1.0)),
+        "thinning_modules": float(rng.uniform(0.0, 0.05)) if rng.random() < 0.3 else 0.0,
+        "face_modules": float(rng.uniform(1.0, 8.0)),
+        "bore_fraction": float(rng.uniform(0.1, 0.9)) if rng.random() < 0.7 else 0.0,
+        "keyway": bool(rng.random() < 0.2),
+        "hub": bool(rng.random() < 0.15),
+    }
+
+
+def make_spec(p: dict):
+    """The GearSpec of a parameter set (raises DesignError for values it refuses)."""
+    from geargen.design.gear import GearSpec, Hub
+    m = p["module"]
+    base = dict(teeth=p["teeth"], module=m, pressure_angle=math.radians(p["pressure_angle_deg"]),
+                face_width=p["face_modules"] * m, helix_angle=math.radians(p["helix_angle_deg"]), hand=p["hand"],
+                profile_shift=p["profile_shift"], addendum_coefficient=p["addendum_coefficient"],
+                dedendum_coefficient=p["dedendum_coefficient"])
+    plain = GearSpec(**base)
+    if p["rack_tip_fraction"] is not None:
+        base["rack_tip_radius_coefficient"] = p["rack_tip_fraction"] * plain.max_rack_tip_radius_coefficient
+    base["thinning"] = p["thinning_modules"] * m
+    root_d = 2 * plain.root_radius_standard
+    bore = p["bore_fraction"] * root_d * 0.9
+    hub = Hub()
+    if bore > 0:
+        kw, kd = (0.25 * bore, 0.1 * bore) if p["keyway"] else (0.0, 0.0)
+        hd, hl = ((bore + 2 * kd + root_d) / 2, 2 * m) if p["hub"] else (0.0, 0.0)
+        hub = Hub(bore_diameter=bore, keyway_width=kw, keyway_depth=kd, hub_diameter=hd, hub_length=hl)
+    return GearSpec(**base, hub=hub)
+
+
+def _bore_area(hub) -> float:
+    if hub.bore_diameter <= 0:
+        return 0.0
+    r = hub.bore_diameter / 2
+    area = math.pi * r * r
+    if hub.keyway_width > 0:
+        w2 = hub.keyway_width / 2
+        xk = math.sqrt(r * r - w2 * w2)
+        area += hub.keyway_width * (r + hub.keyway_depth - xk) - (r * r * math.asin(w2 / r) - xk * w2)
+    return area
+
+
+def check_one(p: dict) -> tuple[str, str]:
+    """Build and check one gear; returns (tag, detail). Runs in a worker process."""
+    import warnings
+
+    from geargen.errors import DesignError, GeometryError
+    from geargen.profile import UndercutWarning
+    try:
+        warnings.simplefilter("ignore", UndercutWarning)
+        spec = make_spec(p)
+        from geargen.cad.gear_solid import build_gear, check_solid, solid_volume
+        from geargen.cad.measure import flank_deviation
+        g = build_gear(spec)
+    except DesignError as exc:
+        return "design_error", exc.field.split(".")[-1]
+    except GeometryError as exc:
+        return f"geometry_error:{exc.kind}", str(exc)[:120]
+    except Exception as exc:  # noqa: BLE001 - every other exception is a failure to tag
+        return f"crash:{type(exc).__name__}", traceback.format_exc(limit=3)[-300:]
+    try:
+        problem = check_solid(g.shape)
+        if problem:
+            return ("not_one_solid" if "solids" in problem else "invalid"), problem
+        hub = spec.hub
+        expected = (g.profile.area() - _bore_area(hub)) * spec.face_width
+        expected += (math.pi * hub.hub_diameter ** 2 / 4 - _bore_area(hub)) * hub.hub_length
+        vol = solid_volume(g.shape, eps=1e-7)  # quick; usually well below the 1e-6 checked ...
+        if abs(vol / expected - 1) > 1e-6:
+            vol = solid_volume(g.shape, eps=1e-9)  # ... and where not, integrate properly
+        if abs(vol / expected - 1) > 1e-6:
+            return "wrong_volume", f"{vol!r} vs {expected!r} ({vol / expected - 1:.2e})"
+        dev = flank_deviation(g.shape, g.profile, 0.5 * spec.face_width, samples_per_face=32)
+        if not dev.points or dev.max_abs > 1e-4:
+            return "flank", f"{dev}"
+    except Exception as exc:  # noqa: BLE001
+        return f"crash:{type(exc).__name__}", traceback.format_exc(limit=3)[-300:]
+    return "ok", ""
+
+
+def _worker(conn):
+    while True:
+        task = conn.recv()
+        if task is None:
+            return
+        conn.send(check_one(task))
+
+
+def run_sweep(params: list[dict], timeout: float = TIMEOUT, workers: int = WORKERS) -> list[tuple[str, str, float]]:
+    """(tag, detail, seconds) per parameter set; each build in a worker, killed after ``timeout``."""
+    ctx = mp.get_context("spawn")  # the parent may hold kernel threads: do not fork it
+    results: list = [None] * len(params)
+    todo = list(range(len(params)))[::-1]
+    slots = []
+
+    def start():
+        parent, child = ctx.Pipe()
+        proc = ctx.Process(target=_worker, args=(child,), daemon=True)
+        proc.start()
+        return {"proc": proc, "conn": parent, "task": None, "t0": 0.0}
+
+    def give(slot):
+        if todo:
+            i = todo.pop()
+            slot["task"], slot["t0"] = i, time.perf_counter()
+            slot["conn"].send(params[i])
+        else:
+            slot["task"] = None
+
+    for _ in range(min(workers, len(params))):
+        slots.append(start())
+        give(slots[-1])
+    while any(s["task"] is not None for s in slots):
+        busy = [s for s in slots if s["task"] is not None]
+        ready = wait([s["conn"] for s in busy], timeout=0.5)
+        now = time.perf_counter()
+        for s in busy:
+            if s["conn"] in ready:
+                try:
+                    tag, detail = s["conn"].recv()
+                except EOFError:  # the worker died (segfault in the kernel)
+                    tag, detail = "crash:worker_died", f"exit code {s['proc'].exitcode}"
+                    s.update(start())
+                results[s["task"]] = (tag, detail, now - s["t0"])
+                give(s)
+            elif now - s["t0"] > timeout:
+                s["proc"].kill()
+                results[s["task"]] = ("timeout", f"> {timeout} s", now - s["t0"])
+                s.update(start())
+                give(s)
+    for s in slots:
+        if s["proc"].is_alive():
+            s["conn"].send(None)
+            s["proc"].join(5)
+    return results
+
+
+@pytest.mark.slow
+def test_random_gears_build_or_are_refused_clearly():
+    rng = np.random.default_rng(SEED)
+    params = [random_parameters(rng) for _ in range(COUNT)]
+    results = run_sweep(params)
+    tags = Counter(r[0] for r in results)
+    slowest = int(np.argmax([r[2] for r in results]))
+    print(f"\nsweep of {COUNT} gears (seed {SEED}): {dict(tags)}; "
+          f"total {sum(r[2] for r in results):.1f} s of builds; slowest {results[slowest][2]:.2f} s: {params[slowest]}")
+    failures = [(p, r) for p, r in zip(params, results)
+                if not (r[0] in ("ok", "design_error")
+                        or (r[0].startswith("geometry_error:") and r[0].split(":")[1] in EXPECTED_GEOMETRY_KINDS))]
+    for p, r in failures[:10]:
+        print(r[0], r[1], p)
+    assert not failures, f"{len(failures)} tagged failures: {Counter(r[0] for _, r in failures)}"
+    assert tags["ok"] >= 0.5 * COUNT  # the sweep mostly builds gears, not refusals
