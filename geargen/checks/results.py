@@ -1,0 +1,356 @@
+"""What a geometric mesh check returns: failure kinds, the sweep of one mesh, the check of a design.
+
+Conventions (every check, both paths):
+
+- internal units mm and rad; ``to_dict(unit)`` converts lengths to the design's unit at the edge;
+- gear 1 of a mesh is the one that is turned (the "moving" gear), gear 2 is held;
+- ``mesh_position`` is gear 1's rotation (rad, counter-clockwise) from the reference phase;
+  gear 2 turns with it at the nominal ratio;
+- backlash is always named by its kind, and positive means clearance:
+
+  * ``angular_backlash``: free rotation of gear 1 (rad) with gear 2 held between its flanks'
+    contacts with the mate's flanks (``conjugate_play_ccw + conjugate_play_cw``); a tip or
+    fillet that stops the gear earlier is interference, reported separately;
+  * ``circumferential_backlash``: that rotation as arc length on gear 1's operating pitch circle
+    (radius ``a z1 / (z1 + z2)`` at the actual centre distance ``a``), transverse section, mm;
+  * ``normal_backlash``: the shortest distance between the non-working flanks, normal to the
+    teeth: gear 1's base radius times the angular backlash times ``cos(beta_b)`` (exact for
+    involute flanks, whose normals are tangent to the base circle), mm;
+
+- ``min_clearance`` is the tip clearance: the smallest distance from a root arc of either gear
+  (the deepest point of the gap where the fillets meet without one) to the mate's tip lands
+  (arcs and their corners), negative where a tip reaches below the mate's root circle. With a
+  tip land centred over a root it is the classical ``a - r_a - r_f``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from geargen.units import LENGTH_SUFFIXES
+
+#: failure kind -> what it means. A failure names one of these.
+FAILURE_KINDS: dict[str, str] = {
+    "tip_to_root_interference": "a tip of one gear reaches into the mate's root (below its root outline): "
+                                "the crowded-centre risk",
+    "involute_interference": "a tip works on the mate's non-involute flank (fillet or undercut, below "
+                             "where the mate's involute starts): non-conjugate contact",
+    "flank_interference": "the involute flanks overlap on both sides: the tooth does not fit the mate's "
+                          "space at this centre distance (negative backlash)",
+    "no_backlash": "a mesh meant to run with backlash has none (flanks touch on both sides)",
+    "undercut": "the involute is undercut where the mate's tip works (the active profile reaches into the "
+                "undercut), or the profile could not be cut without it",
+    "pointed_tooth": "the tip land is below the minimum (or the flanks meet below the tip circle)",
+    "low_contact_ratio": "contact ratio below the minimum (1.1 by default)",
+    "backlash_lost": "across the tolerances of the error budget the minimum backlash of a mesh meant to "
+                     "run with backlash reaches zero",
+    "preload_contact_lost": "a preloaded mesh cannot stay in contact across the tolerances (the preload "
+                            "carriage would bottom or run out of travel)",
+    "paths_disagree": "the exact 2-D check and the section check of the exported solid disagree beyond "
+                      "the stated tolerance",
+}
+
+#: kinds that are interference (teeth overlapping), in the order they are reported
+INTERFERENCE_KINDS = ("tip_to_root_interference", "involute_interference", "flank_interference")
+
+#: per-position interference code used in sweep arrays: index into ``("",) + INTERFERENCE_KINDS``
+INTERFERENCE_CODES = ("",) + INTERFERENCE_KINDS
+
+
+@dataclass(frozen=True)
+class Failure:
+    """One failed check. ``value`` is the offending quantity in internal units (mm, rad or a
+    plain number, named by ``quantity``); ``limit`` the bound it broke."""
+
+    kind: str
+    mesh: str
+    message: str
+    quantity: str = ""
+    value: float | None = None
+    limit: float | None = None
+    mesh_position: float | None = None  # rad of gear 1, where it is worst
+
+    def __post_init__(self):
+        if self.kind not in FAILURE_KINDS:
+            raise ValueError(f"unknown failure kind {self.kind!r}; allowed: {', '.join(FAILURE_KINDS)}")
+
+    def to_dict(self, unit: str = "mm") -> dict[str, Any]:
+        scale = 1.0 / LENGTH_SUFFIXES[unit]
+        is_length = self.quantity.endswith("_length") or self.quantity in LENGTH_QUANTITIES
+        conv = (lambda v: None if v is None else v * scale) if is_length else (lambda v: v)
+        return {"kind": self.kind, "mesh": self.mesh, "message": self.message, "quantity": self.quantity,
+                "value": _num(conv(self.value)), "limit": _num(conv(self.limit)),
+                "unit": unit if is_length else ("rad" if self.quantity.endswith("_rad") else ""),
+                "mesh_position_deg": None if self.mesh_position is None else math.degrees(self.mesh_position)}
+
+
+#: quantities (names used in Failure.quantity) that are lengths
+LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
+                     "tip_land", "path_difference")
+
+
+def _num(v):
+    if v is None:
+        return None
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+@dataclass
+class MeshSweep:
+    """A mesh checked at ``n`` mesh positions (arrays ``(n,)``; see the module docstring).
+
+    ``play_ccw``/``play_cw`` (rad): free rotation of gear 1 counter-clockwise / clockwise from
+    its phase until first contact with gear 2 (negative: overlap to be backed out);
+    ``conjugate_play_ccw``/``_cw``: the same counting only involute-on-involute contact (and the
+    tip corners on the mate's involute), so ``conjugate - play > 0`` measures a non-conjugate
+    feature (fillet, root, undercut edge) limiting the motion before the flanks meet.
+    ``centre_distance`` (mm) is the actual distance of the tooth centres at each position.
+    ``interference_depth`` (mm): for a non-conjugate feature, how far gear 1 must turn back from
+    its running position (flank contact) until the feature clears, as a length along its line
+    of action (base radius x angle); for overlapping flanks the overlap along the line of
+    action; for a tip past the mate's root, the radial depth under the tip circle.
+    ``interference_area`` (mm^2): overlap area in the transverse section at gear 1's running
+    positions (the worst of: as placed, on either flank, centred). ``interference`` holds codes into
+    :data:`INTERFERENCE_CODES` (0: none).
+    For helical gears the arrays hold the worst of the section planes at each position.
+    """
+
+    mesh_position: np.ndarray
+    centre_distance: np.ndarray
+    play_ccw: np.ndarray
+    play_cw: np.ndarray
+    conjugate_play_ccw: np.ndarray
+    conjugate_play_cw: np.ndarray
+    angular_backlash: np.ndarray
+    circumferential_backlash: np.ndarray
+    normal_backlash: np.ndarray
+    min_clearance: np.ndarray
+    interference_depth: np.ndarray
+    interference_area: np.ndarray
+    interference: np.ndarray
+    planes: np.ndarray = field(default_factory=lambda: np.zeros(1))  # z of the sections checked (mm)
+
+    def __len__(self) -> int:
+        return len(self.mesh_position)
+
+
+@dataclass
+class MeshCheck:
+    """The geometric check of one mesh: its sweep, summary numbers and failures.
+
+    ``path`` is ``"exact_2d"`` (analytic profiles) or ``"sections"`` (sections of exported
+    solids). Backlash summaries are in mm (circumferential on gear 1's operating pitch circle,
+    and normal); ``contact_ratio`` is the measured transverse contact ratio (NaN when not
+    measured) and ``total_contact_ratio`` adds the overlap ratio of helical gears.
+    """
+
+    mesh: str
+    gear1: str
+    gear2: str
+    path: str
+    centre_distance: float
+    sweep: MeshSweep
+    failures: list[Failure] = field(default_factory=list)
+    contact_ratio: float = float("nan")
+    total_contact_ratio: float = float("nan")
+    notes: list[str] = field(default_factory=list)
+    tolerance: float = 0.0  # stated accuracy of the backlash values (mm); path 2: tessellation
+
+    @property
+    def ok(self) -> bool:
+        return not self.failures
+
+    @property
+    def failure_kinds(self) -> list[str]:
+        seen: list[str] = []
+        for f in self.failures:
+            if f.kind not in seen:
+                seen.append(f.kind)
+        return seen
+
+    def _finite(self, a):
+        a = np.asarray(a, dtype=float)
+        return a[np.isfinite(a)]
+
+    @staticmethod
+    def _extreme(a, fn) -> float:
+        a = np.asarray(a, dtype=float)
+        return float(fn(a)) if a.size and not np.all(np.isnan(a)) else float("nan")
+
+    @property
+    def min_backlash(self) -> float:
+        """Smallest circumferential backlash over the sweep (mm)."""
+        return self._extreme(self.sweep.circumferential_backlash, np.nanmin)
+
+    @property
+    def max_backlash(self) -> float:
+        return self._extreme(self.sweep.circumferential_backlash, np.nanmax)
+
+    @property
+    def min_normal_backlash(self) -> float:
+        return self._extreme(self.sweep.normal_backlash, np.nanmin)
+
+    @property
+    def max_normal_backlash(self) -> float:
+        return self._extreme(self.sweep.normal_backlash, np.nanmax)
+
+    @property
+    def min_clearance(self) -> float:
+        c = self._finite(self.sweep.min_clearance)
+        return float(np.min(c)) if c.size else float("nan")
+
+    @property
+    def max_interference_depth(self) -> float:
+        return float(np.max(self.sweep.interference_depth, initial=0.0))
+
+    @property
+    def max_interference_area(self) -> float:
+        return float(np.max(self.sweep.interference_area, initial=0.0))
+
+    def to_dict(self, unit: str = "mm", arrays: bool = False) -> dict[str, Any]:
+        s = 1.0 / LENGTH_SUFFIXES[unit]
+        out: dict[str, Any] = {
+            "mesh": self.mesh, "gear1": self.gear1, "gear2": self.gear2, "path": self.path,
+            "length_unit": unit,
+            "centre_distance": self.centre_distance * s,
+            "positions": len(self.sweep),
+            "section_planes": [float(z) * s for z in np.atleast_1d(self.sweep.planes)],
+            "circumferential_backlash_min": _num(self.min_backlash * s),
+            "circumferential_backlash_max": _num(self.max_backlash * s),
+            "normal_backlash_min": _num(self.min_normal_backlash * s),
+            "normal_backlash_max": _num(self.max_normal_backlash * s),
+            "angular_backlash_min_rad": _num(self._extreme(self.sweep.angular_backlash, np.nanmin)),
+            "angular_backlash_max_rad": _num(self._extreme(self.sweep.angular_backlash, np.nanmax)),
+            "min_clearance": _num(self.min_clearance * s),
+            "interference_depth_max": self.max_interference_depth * s,
+            "interference_area_max": self.max_interference_area * s * s,
+            "contact_ratio": _num(self.contact_ratio),
+            "total_contact_ratio": _num(self.total_contact_ratio),
+            "tolerance": self.tolerance * s,
+            "ok": self.ok,
+            "failures": [f.to_dict(unit) for f in self.failures],
+            "notes": list(self.notes),
+        }
+        if arrays:
+            sw = self.sweep
+            out["sweep"] = {
+                "mesh_position_deg": np.degrees(sw.mesh_position).tolist(),
+                "centre_distance": (sw.centre_distance * s).tolist(),
+                "circumferential_backlash": [_num(v) for v in sw.circumferential_backlash * s],
+                "normal_backlash": [_num(v) for v in sw.normal_backlash * s],
+                "min_clearance": [_num(v) for v in sw.min_clearance * s],
+                "interference_depth": (sw.interference_depth * s).tolist(),
+                "interference": [INTERFERENCE_CODES[int(c)] for c in sw.interference],
+            }
+        return out
+
+
+@dataclass
+class ToleranceResult:
+    """Minimum backlash of one mesh across the tolerances of the error budget (mm, circumferential
+    on gear 1's operating pitch circle, and normal).
+
+    ``worst_case_*``: every error at its limit in the worst phase at once (the error budget's
+    "Sum"); ``monte_carlo_*``: the distribution of the per-sample minimum over whole revolutions
+    (``samples`` draws of a seeded :class:`numpy.random.Generator`). ``nominal_min_backlash`` is
+    the error-free minimum. ``meant_for`` is ``"backlash"`` (must stay positive) or
+    ``"preloaded"`` (must stay in contact, see :mod:`geargen.checks.tolerance`).
+    """
+
+    mesh: str
+    meant_for: str
+    nominal_min_backlash: float
+    worst_case_min_backlash: float
+    worst_case_min_normal_backlash: float
+    monte_carlo_min_backlash: np.ndarray  # (samples,) per-sample minimum over the revolutions
+    worst_case_centre_distance_change: float  # mm, radial (negative: closer)
+    failures: list[Failure] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)
+    carriage_travel: float = float("nan")  # mm, worst-case travel of a preload carriage (if any)
+    revolutions: MeshSweep | None = None  # the mesh over its hunting period with the eccentricities aligned
+
+    @property
+    def samples(self) -> int:
+        return int(self.monte_carlo_min_backlash.size)
+
+    @property
+    def monte_carlo_minimum(self) -> float:
+        return float(np.min(self.monte_carlo_min_backlash)) if self.samples else float("nan")
+
+    def monte_carlo_quantile(self, q: float) -> float:
+        return float(np.quantile(self.monte_carlo_min_backlash, q)) if self.samples else float("nan")
+
+    @property
+    def ok(self) -> bool:
+        return not self.failures
+
+    def to_dict(self, unit: str = "mm") -> dict[str, Any]:
+        s = 1.0 / LENGTH_SUFFIXES[unit]
+        return {
+            "mesh": self.mesh, "meant_for": self.meant_for, "length_unit": unit,
+            "nominal_min_backlash": self.nominal_min_backlash * s,
+            "worst_case_min_backlash": self.worst_case_min_backlash * s,
+            "worst_case_min_normal_backlash": self.worst_case_min_normal_backlash * s,
+            "worst_case_centre_distance_change": self.worst_case_centre_distance_change * s,
+            "monte_carlo_samples": self.samples,
+            "monte_carlo_min_backlash": _num(self.monte_carlo_minimum * s),
+            "monte_carlo_min_backlash_p01": _num(self.monte_carlo_quantile(0.01) * s),
+            "monte_carlo_min_backlash_median": _num(self.monte_carlo_quantile(0.5) * s),
+            "carriage_travel": _num(self.carriage_travel * s),
+            "ok": self.ok,
+            "failures": [f.to_dict(unit) for f in self.failures],
+            "notes": list(self.notes),
+        }
+
+
+#: keys of a path-agreement record (geargen.checks.solids.compare_paths) that are lengths
+_AGREEMENT_LENGTHS = ("normal_backlash_difference_max", "normal_backlash_difference_mean", "min_clearance_difference",
+                      "tolerance")
+
+
+@dataclass
+class DesignCheck:
+    """Every mesh of a design checked: per-mesh results, tolerance results, design-level failures."""
+
+    design: str
+    length_unit: str
+    meshes: list[MeshCheck]
+    tolerances: list[ToleranceResult] = field(default_factory=list)
+    agreement: list[dict[str, Any]] = field(default_factory=list)  # path 1 vs path 2 per mesh
+    failures: list[Failure] = field(default_factory=list)  # design-level (not tied to one sweep)
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def all_failures(self) -> list[Failure]:
+        out = list(self.failures)
+        for m in self.meshes:
+            out.extend(m.failures)
+        for t in self.tolerances:
+            out.extend(t.failures)
+        return out
+
+    @property
+    def ok(self) -> bool:
+        return not self.all_failures
+
+    def to_dict(self, arrays: bool = False) -> dict[str, Any]:
+        u = self.length_unit
+        s = 1.0 / LENGTH_SUFFIXES[u]
+        return {
+            "design": self.design, "length_unit": u, "ok": self.ok,
+            "meshes": [m.to_dict(u, arrays=arrays) for m in self.meshes],
+            "tolerances": [t.to_dict(u) for t in self.tolerances],
+            "agreement": [{k: (v * s if k in _AGREEMENT_LENGTHS and v is not None else v) for k, v in a.items()}
+                          for a in self.agreement],
+            "failures": [f.to_dict(u) for f in self.failures],
+            "notes": list(self.notes),
+        }
+
+
+__all__ = ["FAILURE_KINDS", "INTERFERENCE_KINDS", "INTERFERENCE_CODES", "Failure", "MeshSweep", "MeshCheck",
+           "ToleranceResult", "DesignCheck"]

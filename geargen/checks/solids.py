@@ -1,0 +1,470 @@
+"""Path 2: the mesh check on sections of the exported solids (what will be machined).
+
+Each gear's exported solid (an STL read with trimesh, or a STEP file sectioned through
+:mod:`geargen.cad.measure`) is cut by planes z = const along the face; each section is a set
+of straight segments in the part's own frame (axis on z, tooth 0 on +x at z = 0, the section
+already carrying the helical twist of its height). The two gears' sections at the same height
+are placed as the mesh places the gears, and the free rotation of gear 1 against gear 2 is
+found exactly for these polygons: contact between two polygons turning about a centre happens
+where a vertex of one meets an edge of the other, so every vertex of gear 2 is turned back onto
+the circles it crosses gear 1's edges on, and every vertex of gear 1 forward onto gear 2's
+edges (circle-segment intersections, closed form). Nothing here uses the analytic profile: the
+only inputs are the section segments and the placement.
+
+Accuracy: an STL triangle lies within its chordal tolerance ``c`` of the exact surface, and its
+chords cut into the convex involute flanks, so each flank of the section lies up to ``c``
+inside the exact one (plus the spline tolerance ``s`` of the solid itself). The normal
+backlash measured here therefore exceeds the exact one by between ``-2 s`` and ``2 (c + s)``;
+:func:`stated_tolerance` gives that bound, which the agreement test uses.
+
+Conventions as in :mod:`geargen.checks.results` (mm, rad; gear 1 turned, gear 2 held).
+"""
+
+from __future__ import annotations
+
+import math
+import tempfile
+import warnings
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+import numpy as np
+
+from geargen.checks.mesh2d import CheckSettings, MeshSetup, interference_failures, mesh_positions
+from geargen.checks.results import Failure, MeshCheck, MeshSweep
+from geargen.design.gear import GearSpec
+from geargen.profile import UndercutWarning
+
+
+@dataclass
+class GearSections:
+    """Section segments of one gear's solid, in its own frame.
+
+    ``planes`` ``(P,)`` heights (mm); ``segments[k]`` ``(m, 2, 2)`` the section at ``planes[k]``
+    as straight segments (mm). ``deviation`` (mm): how far the segments may lie from the exact
+    surface (chordal tolerance plus the solid's spline tolerance); ``source`` names the file.
+    """
+
+    spec: GearSpec
+    planes: np.ndarray
+    segments: list[np.ndarray]
+    deviation: float
+    source: str = ""
+    notes: list[str] = field(default_factory=list)
+
+
+# ---------------------------------------------------------------------------------- sections
+def sections_from_triangles(spec: GearSpec, triangles: np.ndarray, planes, deviation: float,
+                            source: str = "") -> GearSections:
+    """Sections of a triangle mesh ``(n, 3, 3)`` (mm) at ``planes`` with trimesh (vertices are not
+    merged: the mesh is used exactly as written)."""
+    import trimesh
+
+    tri = np.asarray(triangles, dtype=float)
+    mesh = trimesh.Trimesh(vertices=tri.reshape(-1, 3), faces=np.arange(tri.shape[0] * 3).reshape(-1, 3),
+                           process=False, validate=False)
+    segs = []
+    for z in np.atleast_1d(planes):
+        s = trimesh.intersections.mesh_plane(mesh, plane_normal=[0.0, 0.0, 1.0], plane_origin=[0.0, 0.0, float(z)])
+        s = np.asarray(s, dtype=float)[:, :, :2]
+        keep = np.linalg.norm(s[:, 1] - s[:, 0], axis=1) > 1e-12
+        segs.append(s[keep])
+    return GearSections(spec, np.atleast_1d(np.asarray(planes, dtype=float)), segs, deviation, source)
+
+
+def sections_from_stl(spec: GearSpec, path, planes, chordal_tolerance: float, spline_tolerance: float = 0.0) -> GearSections:
+    """Sections of an STL file (mm, as :func:`geargen.cad.export.export_stl` writes them)."""
+    import trimesh
+
+    mesh = trimesh.load(str(path), file_type="stl", process=False)
+    tri = np.asarray(mesh.triangles, dtype=float)
+    return sections_from_triangles(spec, tri, planes, chordal_tolerance + spline_tolerance, str(path))
+
+
+def sections_from_step(spec: GearSpec, path, planes, samples_per_face: int = 64,
+                       chord_tolerance: float = 5e-5) -> GearSections:
+    """Sections of a STEP file through :func:`geargen.cad.measure.section`: exact points of the
+    section curves, joined by chords that are bisected on the curve until each chord's middle
+    lies within ``chord_tolerance`` (mm) of the curve; the largest remaining deviation is
+    reported as ``deviation``."""
+    from geargen.cad.export import read_step
+
+    shape = read_step(path).shape
+    return sections_from_shape(spec, shape, planes, samples_per_face, str(path), chord_tolerance)
+
+
+def sections_from_shape(spec: GearSpec, shape, planes, samples_per_face: int = 64, source: str = "",
+                        chord_tolerance: float = 5e-5) -> GearSections:
+    """Sections of an OCCT shape (see :func:`sections_from_step`)."""
+    from geargen.cad.measure import section
+
+    segs, worst = [], 0.0
+    for z in np.atleast_1d(planes):
+        cut = section(shape, float(z), samples_per_face)
+        parts = []
+        for e, curve in enumerate(cut.curves):
+            rows = np.nonzero(cut.edge_index == e)[0]
+            if rows.size < 2:
+                continue
+            t = list(cut.params[rows])
+            p = [q for q in cut.points[rows]]
+            k = 0
+            while k < len(t) - 1:  # bisect chords until their middles lie on the curve
+                if p[k] is None or p[k + 1] is None:
+                    k += 1
+                    continue
+                tm = 0.5 * (t[k] + t[k + 1])
+                q = curve.point(tm)
+                if q is None:  # the chord leaves the face: end both sides at the face's boundary
+                    ends = []
+                    for on, off in ((t[k], tm), (t[k + 1], tm)):
+                        for _ in range(40):
+                            mid = 0.5 * (on + off)
+                            if curve.point(mid) is None:
+                                off = mid
+                            else:
+                                on = mid
+                        ends.append(on)
+                    t[k + 1:k + 1] = [ends[0], math.nan, ends[1]]
+                    p[k + 1:k + 1] = [curve.point(ends[0]), None, curve.point(ends[1])]
+                    continue
+                dev = float(np.linalg.norm(q - 0.5 * (p[k] + p[k + 1])))
+                if dev > chord_tolerance and abs(t[k + 1] - t[k]) > 1e-12 * max(1.0, abs(tm)):
+                    t.insert(k + 1, tm)
+                    p.insert(k + 1, q)
+                    continue
+                worst = max(worst, dev)
+                k += 1
+            for k in range(len(p) - 1):
+                if p[k] is not None and p[k + 1] is not None:
+                    parts.append(np.stack([p[k], p[k + 1]]))
+        segs.append(np.array(parts) if parts else np.empty((0, 2, 2)))
+    return GearSections(spec, np.atleast_1d(np.asarray(planes, dtype=float)), segs, worst, source)
+
+
+def export_and_section(spec: GearSpec, planes, folder=None, chordal_tolerance: float = 1e-3) -> GearSections:
+    """Build ``spec`` (:func:`geargen.cad.gear_solid.build_gear`), export it as STL into ``folder``
+    (a temporary one by default), read the file back and section it."""
+    from geargen.cad.export import export_stl
+    from geargen.cad.gear_solid import build_gear
+
+    with warnings.catch_warnings():  # an undercut is reported by the checks themselves
+        warnings.simplefilter("ignore", UndercutWarning)
+        solid = build_gear(spec)
+    with tempfile.TemporaryDirectory() as tmp:
+        where = Path(folder) if folder is not None else Path(tmp)
+        path = where / f"{spec.name}.stl"
+        export_stl(solid, path, chordal_tolerance=chordal_tolerance)
+        return sections_from_stl(spec, path, planes, chordal_tolerance, solid.tolerance)
+
+
+def section_planes(setup: MeshSetup, count: int = 3) -> np.ndarray:
+    """Heights (mm, gear 1's face coordinates) inside the common face: ``count`` planes, kept off
+    the end faces by a tenth of the common face (a section exactly on an end face is degenerate)."""
+    lo = max(0.0, setup.face_offset2)
+    hi = min(setup.gear1.face_width, setup.face_offset2 + setup.gear2.face_width)
+    if count == 1:
+        return np.array([0.5 * (lo + hi)])
+    margin = 0.1 * (hi - lo)
+    return np.linspace(lo + margin, hi - margin, count)
+
+
+def stated_tolerance(sections1: GearSections, sections2: GearSections) -> float:
+    """Bound (mm) on the difference between this path's normal backlash and the exact one."""
+    return 2.0 * max(sections1.deviation, sections2.deviation)
+
+
+# ---------------------------------------------------------------------------------- polygons
+def _place(segs: np.ndarray, centre, angle) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    rot = np.array([[c, -s], [s, c]])
+    return segs @ rot.T + np.asarray(centre, dtype=float)
+
+
+def _near(segs: np.ndarray, centre, radius: float) -> np.ndarray:
+    d = np.min(np.linalg.norm(segs - np.asarray(centre), axis=2), axis=1)
+    return segs[d <= radius]
+
+
+def _circle_hits(points: np.ndarray, segs: np.ndarray):
+    """Where the circles about the origin through ``points`` ``(V, 2)`` cross ``segs`` ``(E, 2, 2)``.
+
+    Returns (vertex index, crossing point (k, 2)) for every crossing. Edges are sorted by their
+    nearest radius, so each vertex only meets the edges whose radial span can hold it.
+    """
+    if points.size == 0 or segs.size == 0:
+        return np.empty(0, dtype=int), np.empty((0, 2))
+    rho = np.hypot(points[:, 0], points[:, 1])
+    a0, a1 = segs[:, 0], segs[:, 1]
+    d = a1 - a0
+    dd = np.einsum("ij,ij->i", d, d)
+    ad = np.einsum("ij,ij->i", a0, d)
+    tn = np.clip(-ad / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    foot = a0 + tn[:, None] * d
+    rmin = np.hypot(foot[:, 0], foot[:, 1])
+    rmax = np.maximum(np.hypot(a0[:, 0], a0[:, 1]), np.hypot(a1[:, 0], a1[:, 1]))
+    order = np.argsort(rmin)
+    rmin_s = rmin[order]
+    span = float(np.max(rmax - rmin)) * (1 + 1e-12) + 1e-15
+    lo = np.searchsorted(rmin_s, rho - span, side="left")
+    hi = np.searchsorted(rmin_s, rho, side="right")
+    count = hi - lo
+    v = np.repeat(np.arange(rho.size), count)
+    e = order[np.repeat(lo, count) + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))]
+    keep = rho[v] <= rmax[e]
+    v, e = v[keep], e[keep]
+    if v.size == 0:
+        return v, np.empty((0, 2))
+    r0 = np.einsum("ij,ij->i", a0[e], a0[e])
+    A, B, C = dd[e], 2 * ad[e], r0 - rho[v] ** 2
+    disc = np.sqrt(np.maximum(B * B - 4 * A * C, 0.0))
+    vi, pts = [], []
+    for sign in (-1.0, 1.0):
+        t = (-B + sign * disc) / (2 * A)
+        ok = (t >= -1e-12) & (t <= 1 + 1e-12)
+        vi.append(v[ok])
+        pts.append(a0[e[ok]] + np.clip(t[ok], 0, 1)[:, None] * d[e[ok]])
+    return np.concatenate(vi), np.concatenate(pts)
+
+
+def _wrap(a):
+    return (a + math.pi) % (2 * math.pi) - math.pi
+
+
+def _inside(points: np.ndarray, segs: np.ndarray, centre) -> np.ndarray:
+    """Whether ``points`` ``(V, 2)`` lie inside the gear whose nearby outline is ``segs``, centred
+    at ``centre``: the parity of the crossings of the ray from the centre outward beyond each
+    point (a tooth outline is radially monotone, so a point in a tooth is left through one flank
+    or the tip land; one in a space never meets the outline further out). Edges are sorted by
+    polar angle, so each point meets only the edges at its own angle."""
+    if points.size == 0 or segs.size == 0:
+        return np.zeros(points.shape[0], dtype=bool)
+    c = np.asarray(centre, dtype=float)
+    q = segs - c
+    ref = math.atan2(float(np.mean(q[..., 1])), float(np.mean(q[..., 0])))  # the outline lies around here
+    ang = _wrap(np.arctan2(q[..., 1], q[..., 0]) - ref)
+    lo, hi = ang.min(axis=1), ang.max(axis=1)
+    order = np.argsort(lo)
+    lo_s = lo[order]
+    span = float(np.max(hi - lo)) + 1e-15
+    u = points - c
+    pa = _wrap(np.arctan2(u[:, 1], u[:, 0]) - ref)
+    first = np.searchsorted(lo_s, pa - span, side="left")
+    last = np.searchsorted(lo_s, pa, side="right")
+    count = last - first
+    v = np.repeat(np.arange(points.shape[0]), count)
+    e = order[np.repeat(first, count) + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))]
+    keep = pa[v] <= hi[e]
+    v, e = v[keep], e[keep]
+    rad = np.hypot(u[:, 0], u[:, 1])
+    un = u[v] / np.where(rad[v] > 0, rad[v], 1.0)[:, None]
+    q0, dq = q[e, 0], q[e, 1] - q[e, 0]
+    den = un[:, 0] * dq[:, 1] - un[:, 1] * dq[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lam = (q0[:, 0] * dq[:, 1] - q0[:, 1] * dq[:, 0]) / den  # distance along the ray
+        t = (q0[:, 0] * un[:, 1] - q0[:, 1] * un[:, 0]) / den  # parameter along the edge
+    hit = (den != 0) & (t >= 0) & (t < 1) & (lam > rad[v])
+    return np.bincount(v[hit], minlength=points.shape[0]) % 2 == 1
+
+
+def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> tuple[float, float]:
+    """Free rotation (rad) of polygon 1 about ``centre1`` against polygon 2 held: (ccw, cw).
+
+    Exact for the polygons: contact happens where a vertex of one meets an edge of the other,
+    so each vertex is turned along its circle about ``centre1`` onto the first edge either way.
+    A vertex already inside the other gear (``centre2`` is that gear's centre for the inside
+    test of polygon 1's vertices) gives a negative value on the side it overlaps: the turn back
+    that frees it, as in the exact check.
+    """
+    c = np.asarray(centre1, dtype=float)
+    c2 = c if centre2 is None else np.asarray(centre2, dtype=float)
+    ccw_c, cw_c = [math.inf], [math.inf]
+    for verts, edges, own, inside_of in ((seg2.reshape(-1, 2), seg1, False, (seg1, c)),
+                                         (seg1.reshape(-1, 2), seg2, True, (seg2, c2))):
+        vi, x = _circle_hits(verts - c, edges - c)
+        if vi.size == 0:
+            continue
+        pv = verts[vi] - c
+        if own:  # a vertex of 1 turning onto an edge of 2
+            d = _wrap(np.arctan2(x[:, 1], x[:, 0]) - np.arctan2(pv[:, 1], pv[:, 0]))
+        else:  # an edge of 1 turning onto a vertex of 2
+            d = _wrap(np.arctan2(pv[:, 1], pv[:, 0]) - np.arctan2(x[:, 1], x[:, 0]))
+        n = verts.shape[0]
+        pos = np.full(n, np.inf)
+        neg = np.full(n, np.inf)
+        np.minimum.at(pos, vi[d >= 0], d[d >= 0])
+        np.minimum.at(neg, vi[d < 0], -d[d < 0])
+        inside = _inside(verts, *inside_of)
+        # outside: first contact either way; inside: freed by the shorter turn, i.e. overlapping
+        # on the other side (turning counter-clockwise frees a vertex that overlaps clockwise)
+        out = ~inside
+        ccw_c.append(np.min(pos[out], initial=math.inf))
+        cw_c.append(np.min(neg[out], initial=math.inf))
+        free_ccw = inside & (pos <= neg)
+        free_cw = inside & (neg < pos)
+        cw_c.append(np.min(-pos[free_ccw], initial=math.inf))
+        ccw_c.append(np.min(-neg[free_cw], initial=math.inf))
+    return float(min(ccw_c)), float(min(cw_c))
+
+
+def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarray, other_centre,
+                    r_tip: float, deviation: float = 0.0) -> float:
+    """Distance from the root-arc vertices of ``own`` to the tip lands of ``other`` (its chords on
+    the tip circle, corners included); negative for a vertex inside ``other`` (parity of a
+    radially outward ray from ``other``'s centre). A vertex counts as on a circle within the
+    outline's ``deviation`` from the exact surface (a section of an STL cuts the triangles'
+    diagonals, inside the surface by up to the chordal tolerance), but at least ``2e-7 r``
+    (float32 rounding of STL coordinates). Fillet points that close to the root circle count as
+    root; the smallest clearance, with a tip centred over a root, is not affected."""
+    v = own.reshape(-1, 2)
+    oc = np.asarray(other_centre, dtype=float)
+    r = np.linalg.norm(v - np.asarray(own_centre), axis=1)
+    v = v[r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)]
+    ends = np.linalg.norm(other - oc, axis=2)
+    land = other[np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)]
+    if v.size == 0 or land.size == 0:
+        return math.inf
+    a0, d = land[:, 0], land[:, 1] - land[:, 0]
+    w = v[:, None, :] - a0[None]
+    t = np.clip(np.einsum("vek,ek->ve", w, d) / np.maximum(np.einsum("ek,ek->e", d, d), 1e-300), 0, 1)
+    dist = np.linalg.norm(w - t[..., None] * d[None], axis=2).min(axis=1)
+    # inside test, only for vertices within the other gear's tip circle
+    u = v - oc
+    rad = np.linalg.norm(u, axis=1)
+    cand = np.nonzero(rad < r_tip)[0]
+    inside = np.zeros(v.shape[0], dtype=bool)
+    if cand.size:
+        un = u[cand] / rad[cand, None]
+        q0 = other[:, 0] - oc
+        dq = other[:, 1] - other[:, 0]
+        cross_d = un[:, None, 0] * dq[None, :, 1] - un[:, None, 1] * dq[None, :, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # solve q0 + s dq = lam un: s = (un x q0) / (dq x un), lam = (q0 x dq) / (un x dq)
+            s = (un[:, None, 0] * q0[None, :, 1] - un[:, None, 1] * q0[None, :, 0]) / -cross_d
+            lam = (q0[None, :, 0] * dq[None, :, 1] - q0[None, :, 1] * dq[None, :, 0]) / cross_d
+        hits = (s >= 0) & (s < 1) & (lam > rad[cand, None])
+        inside[cand] = np.count_nonzero(hits, axis=1) % 2 == 1
+    return float(np.min(np.where(inside, -dist, dist)))
+
+
+def section_phase_error(sections: GearSections) -> np.ndarray:
+    """How far (rad, per plane, in (-p/2, p/2]) the teeth in each section sit from where the gear's
+    twist puts them at that height (tooth 0 centred at ``section_rotation(spec, z)``): the mean
+    polar angle of the tip-land vertices, taken modulo the pitch. Near 0 for sections taken in
+    the gear's own face coordinates (face from z = 0)."""
+    from geargen.profile import section_rotation
+
+    spec = sections.spec
+    z = spec.teeth
+    out = []
+    for plane, segs in zip(sections.planes, sections.segments):
+        v = segs.reshape(-1, 2)
+        r = np.hypot(v[:, 0], v[:, 1])
+        tip = v[r >= spec.tip_radius - max(sections.deviation, 2e-6, 2e-7 * spec.tip_radius)]
+        if tip.size == 0:
+            out.append(math.nan)
+            continue
+        phase = np.angle(np.mean(np.exp(1j * z * np.arctan2(tip[:, 1], tip[:, 0])))) / z
+        out.append(_wrap((phase - section_rotation(spec, float(plane))) * z) / z)
+    return np.asarray(out)
+
+
+def check_mesh_sections(setup: MeshSetup, sections1: GearSections, sections2: GearSections,
+                        settings: CheckSettings = CheckSettings(), positions=None) -> MeshCheck:
+    """Path 2 check of one mesh from the two gears' sections (at the same heights: gear 2's
+    planes are gear 1's minus ``setup.face_offset2``).
+
+    Returns a :class:`MeshCheck` (path ``"sections"``) with play, backlash and tip clearance per
+    mesh position (worst of the planes), and whether the sections overlap (flank interference;
+    depth and area are left to path 1). ``tolerance`` is :func:`stated_tolerance`.
+    """
+    g1, g2 = setup.gear1, setup.gear2
+    if positions is None:
+        positions = mesh_positions(setup, settings.steps_per_tooth, settings.revolutions)
+    positions = np.atleast_1d(np.asarray(positions, dtype=float))
+    from geargen.profile import section_rotation
+
+    st = setup.states(positions)  # gear 1's plane z = 0 ...
+    # ... but each section carries its own gear's twist: place both gears by their rotation at
+    # their own z = 0 (gear 2's z = 0 is face_offset2 above gear 1's)
+    st = replace(st, angle2=st.angle2 - section_rotation(g2, -setup.face_offset2))
+    n, P = positions.size, sections1.planes.size
+    if not np.allclose(sections1.planes - setup.face_offset2, sections2.planes, atol=1e-9):
+        raise ValueError("the two gears' sections must be at the same heights")
+    for sec in (sections1, sections2):
+        err = section_phase_error(sec)
+        bad = np.abs(err) > 0.1 * 2 * math.pi / sec.spec.teeth
+        if np.any(bad):
+            k = int(np.argmax(bad))
+            raise ValueError(f"{sec.spec.name}: the section at z = {sec.planes[k]:.6g} mm shows the teeth "
+                             f"{math.degrees(err[k]):.4g} deg away from where the helix puts them at that height: "
+                             "give the planes in the gear's own face coordinates (its face from z = 0)")
+    reach1 = g1.tip_radius + g1.module
+    reach2 = g2.tip_radius + g2.module
+    dev = max(sections1.deviation, sections2.deviation)
+    tol = stated_tolerance(sections1, sections2)
+    ccw = np.full((P, n), np.inf)
+    cw = np.full((P, n), np.inf)
+    clear = np.full((P, n), np.inf)
+    for k in range(P):
+        a, b = sections1.segments[k], sections2.segments[k]
+        for i in range(n):
+            c1, c2 = st.centre1[i], st.centre2[i]
+            s1 = _near(_place(a, c1, st.angle1[i]), c2, reach2)
+            s2 = _near(_place(b, c2, st.angle2[i]), c1, reach1)
+            ccw[k, i], cw[k, i] = polygon_play(s1, s2, c1, c2)
+            clear[k, i] = min(_root_clearance(s1, c1, g1.root_radius_standard, s2, c2, g2.tip_radius, dev),
+                              _root_clearance(s2, c2, g2.root_radius_standard, s1, c1, g1.tip_radius, dev))
+    play_ccw, play_cw = ccw.min(axis=0), cw.min(axis=0)
+    ang = play_ccw + play_cw
+    a = st.centre_distance
+    rb1 = g1.base_radius
+    normal = ang * rb1 * math.cos(g1.base_helix_angle)
+    min_clear = clear.min(axis=0)
+    # interference the sections can resolve: overlap beyond their tolerance
+    depth = np.maximum(np.maximum(-normal, -min_clear), 0.0)
+    code = np.where(-min_clear > tol, 1, np.where(-normal > tol, 3, 0))
+    depth = np.where(code > 0, depth, 0.0)
+    sw = MeshSweep(mesh_position=positions, centre_distance=a, play_ccw=play_ccw, play_cw=play_cw,
+                   conjugate_play_ccw=play_ccw, conjugate_play_cw=play_cw, angular_backlash=ang,
+                   circumferential_backlash=ang * a * g1.teeth / (g1.teeth + g2.teeth),
+                   normal_backlash=normal, min_clearance=min_clear,
+                   interference_depth=depth, interference_area=np.zeros(n), interference=code,
+                   planes=sections1.planes)
+    fails = interference_failures(setup.name, sw)
+    if settings.require_backlash and not np.any(code == 3) and float(np.min(normal)) <= tol:
+        fails.append(Failure("no_backlash", setup.name,
+                             f"normal backlash {float(np.min(normal)):.3g} mm is within the section tolerance "
+                             f"{tol:.3g} mm of zero", "normal_backlash", float(np.min(normal)), tol))
+    notes = [f"sections: {sections1.source or g1.name}, {sections2.source or g2.name}; "
+             f"{P} planes; outline deviation {max(sections1.deviation, sections2.deviation):.3g} mm"]
+    return MeshCheck(mesh=setup.name, gear1=g1.name, gear2=g2.name, path="sections",
+                     centre_distance=setup.centre_distance, sweep=sw, failures=fails, notes=notes, tolerance=tol)
+
+
+def compare_paths(setup: MeshSetup, sections: MeshCheck) -> dict:
+    """Path 2 against path 1 on the same mesh positions and section planes (mm): the largest
+    difference of the normal backlash and the difference of the smallest tip clearance, against
+    the stated tolerance of path 2."""
+    from geargen.checks.mesh2d import sweep_mesh
+
+    exact = sweep_mesh(setup, sections.sweep.mesh_position, sections.sweep.planes, areas=False)
+    d_j = sections.sweep.normal_backlash - exact.normal_backlash
+    c1 = float(np.min(exact.min_clearance))
+    c2 = float(np.min(sections.sweep.min_clearance))
+    tol = sections.tolerance
+    worst = float(np.max(np.abs(d_j)))
+    clear_ok = not (math.isfinite(c1) and math.isfinite(c2)) or abs(c2 - c1) <= tol + 1e-9
+    return {
+        "mesh": setup.name,
+        "normal_backlash_difference_max": worst,
+        "normal_backlash_difference_mean": float(np.mean(d_j)),
+        "min_clearance_difference": float(c2 - c1) if math.isfinite(c1) and math.isfinite(c2) else None,
+        "tolerance": tol,
+        "agree": bool(worst <= tol + 1e-9 and clear_ok),
+    }
+
+
+__all__ = ["GearSections", "sections_from_triangles", "sections_from_stl", "sections_from_step",
+           "sections_from_shape", "export_and_section", "section_planes", "stated_tolerance", "polygon_play",
+           "section_phase_error", "check_mesh_sections", "compare_paths"]

@@ -1,0 +1,177 @@
+"""The ``[checks]`` section: what the geometric mesh checks sweep, require and compare.
+
+Every key is optional::
+
+    [checks]
+    steps_per_tooth = 24            # mesh positions per tooth of the turned gear
+    revolutions = 1.0               # of the turned gear; default one tooth cycle (whole hunting
+                                    # period of the teeth when errors are swept)
+    section_planes = 5              # transverse planes of a helical pair (path 1)
+    min_contact_ratio = 1.1         # transverse for spur pairs, total for helical
+    min_tip_land_modules = 0.2      # tip land below this many normal modules: pointed_tooth
+    require_backlash = true         # every mesh must keep backlash (false: zero-backlash meshes allowed)
+    tolerances = true               # worst case and Monte Carlo over the [errors.*] budget
+    monte_carlo_samples = 400
+    seed = 0
+    sections = false                # also check sections of the exported solids (path 2)
+    sections_planes = 3
+    stl_chordal_tolerance_mm = 0.001
+    carriage_travel_limit_in = 0.02 # preload carriage: largest travel either way from nominal
+
+    # pairs to check in a design without [synthesis]; centre distance per pair (one number for
+    # one pair, or a list), in any length unit
+    meshes = [["pinion", "wheel"]]
+    centre_distance_mm = 25.5
+
+Gear names in ``meshes`` are ``[gears.NAME]`` tables; the first of a pair is the one turned.
+Error budgets of declared pairs are read from ``[errors.NAME]`` tables (same keys as the
+synthesis error budget: ``bearing_eccentricity_tir_*``, ``pitch_line_eccentricity_tir_*``,
+``tooth_to_tooth_tir_*``); a gear without one has no errors.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+from geargen.design.assembly import Design
+from geargen.design.gear import _with_field_prefix
+from geargen.design.schema import Field, check_range, read_table
+from geargen.design.synthesis import ERROR_FIELDS, ERROR_KINDS, GearErrors
+from geargen.errors import DesignError
+from geargen.units import LENGTH_SUFFIXES
+
+
+@dataclass(frozen=True)
+class DeclaredMesh:
+    """A pair named in ``[checks] meshes``: gear names (first turned) and centre distance (mm)."""
+
+    gear1: str
+    gear2: str
+    centre_distance: float
+
+    @property
+    def name(self) -> str:
+        return f"{self.gear1}-{self.gear2}"
+
+
+@dataclass(frozen=True)
+class ChecksSettings:
+    """The ``[checks]`` section in internal units (mm); see the module docstring."""
+
+    steps_per_tooth: int = 24
+    revolutions: float | None = None
+    section_planes: int = 5
+    min_contact_ratio: float = 1.1
+    min_tip_land_modules: float = 0.2
+    require_backlash: bool = True
+    tolerances: bool = True
+    monte_carlo_samples: int = 400
+    seed: int = 0
+    sections: bool = False
+    sections_planes: int = 3
+    stl_chordal_tolerance: float = 1e-3
+    carriage_travel_limit: float | None = None
+    meshes: tuple[DeclaredMesh, ...] = field(default=())
+
+    def __post_init__(self):
+        for name, lo, hi in (("steps_per_tooth", 2, 10000), ("section_planes", 1, 200), ("sections_planes", 1, 200),
+                             ("monte_carlo_samples", 0, 10_000_000)):
+            v = getattr(self, name)
+            if not (isinstance(v, int) and lo <= v <= hi):
+                raise DesignError(name, f"{v!r} is out of range", f"[{lo}, {hi}]")
+        if self.revolutions is not None and not (math.isfinite(self.revolutions) and self.revolutions > 0):
+            raise DesignError("revolutions", f"{self.revolutions!r} is out of range", "> 0")
+        if not (isinstance(self.seed, int) and self.seed >= 0):
+            raise DesignError("seed", f"{self.seed!r} is out of range", ">= 0")
+        if not (math.isfinite(self.stl_chordal_tolerance) and self.stl_chordal_tolerance > 0):
+            raise DesignError("stl_chordal_tolerance", f"{self.stl_chordal_tolerance!r} is out of range", "> 0 mm")
+
+
+CHECKS_FIELDS: list[Field] = [
+    Field("steps_per_tooth", "integer", required=False, default=24, minimum=2, maximum=10000),
+    Field("revolutions", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("section_planes", "integer", required=False, default=5, minimum=1, maximum=200),
+    Field("min_contact_ratio", "number", required=False, default=1.1, minimum=0.0, maximum=10.0),
+    Field("min_tip_land_modules", "number", required=False, default=0.2, minimum=0.0, maximum=2.0),
+    Field("require_backlash", "bool", required=False, default=True),
+    Field("tolerances", "bool", required=False, default=True),
+    Field("monte_carlo_samples", "integer", required=False, default=400, minimum=0, maximum=10_000_000),
+    Field("seed", "integer", required=False, default=0, minimum=0),
+    Field("sections", "bool", required=False, default=False),
+    Field("sections_planes", "integer", required=False, default=3, minimum=1, maximum=200),
+    Field("stl_chordal_tolerance", "length", required=False, default=1e-3, minimum=0.0, exclusive_minimum=True),
+    Field("carriage_travel_limit", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("meshes", "list", required=False, default=None),
+]
+
+_CENTRE_KEYS = tuple(f"centre_distance_{u}" for u in LENGTH_SUFFIXES)
+
+
+def checks_settings(design: Design) -> ChecksSettings:
+    """Read ``[checks]`` of ``design`` (absent: all defaults)."""
+    raw = dict(design.section("checks"))
+    centre_keys = [k for k in raw if k in _CENTRE_KEYS]
+    centre_raw = {k: raw.pop(k) for k in centre_keys}
+    try:
+        v = read_table(raw, CHECKS_FIELDS, "checks")
+    except DesignError as exc:
+        if exc.field.startswith("checks.") and exc.problem == "unknown key":
+            raise DesignError(exc.field, exc.problem, exc.allowed + ", " + ", ".join(_CENTRE_KEYS)) from None
+        raise
+    meshes = _declared_meshes(design, v["meshes"], centre_raw)
+    kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
+                                "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",
+                                "seed", "sections", "sections_planes", "stl_chordal_tolerance",
+                                "carriage_travel_limit")}
+    return _with_field_prefix("checks.", lambda: ChecksSettings(meshes=meshes, **kwargs), v["_units"])
+
+
+def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) -> tuple[DeclaredMesh, ...]:
+    if meshes is None:
+        if centre_raw:
+            key = next(iter(centre_raw))
+            raise DesignError(f"checks.{key}", "a centre distance needs meshes = [[gear1, gear2], ...]", "checks.meshes")
+        return ()
+    if not meshes or not all(isinstance(m, list) and len(m) == 2 and all(isinstance(g, str) for g in m) for m in meshes):
+        raise DesignError("checks.meshes", f"{meshes!r} is not a list of gear-name pairs",
+                          '[["gear1", "gear2"], ...] naming [gears.*] tables')
+    for m in meshes:
+        for g in m:
+            if g not in design.gears:
+                raise DesignError("checks.meshes", f"{g!r} is not a gear of this design", ", ".join(design.gears))
+        if m[0] == m[1]:
+            raise DesignError("checks.meshes", f"{m[0]!r} cannot mesh with itself", "two different gears")
+    if len(centre_raw) != 1:
+        raise DesignError("checks.centre_distance_mm", "missing" if not centre_raw else "given twice",
+                          "one of " + ", ".join(_CENTRE_KEYS))
+    key, raw = next(iter(centre_raw.items()))
+    scale = LENGTH_SUFFIXES[key[len("centre_distance_"):]]
+    values = raw if isinstance(raw, list) else [raw]
+    if len(values) != len(meshes):
+        raise DesignError(f"checks.{key}", f"{len(values)} centre distances for {len(meshes)} meshes",
+                          "one number per mesh")
+    f = Field("centre_distance", "length", minimum=0.0, exclusive_minimum=True)
+    out = []
+    for k, (m, c) in enumerate(zip(meshes, values)):
+        where = f"checks.{key}" + (f"[{k}]" if isinstance(raw, list) else "")
+        if isinstance(c, bool) or not isinstance(c, (int, float)):
+            raise DesignError(where, f"expected a number, got {c!r}")
+        check_range(f, float(c) * scale, where, scale, key[len("centre_distance_"):])
+        out.append(DeclaredMesh(m[0], m[1], float(c) * scale))
+    return tuple(out)
+
+
+def gear_errors(design: Design, gear: str) -> GearErrors | None:
+    """The ``[errors.GEAR]`` budget of one gear (TIR, mm), or None when the design has none."""
+    raw = design.section("errors").get(gear)
+    if raw is None:
+        return None
+    where = f"errors.{gear}"
+    fields = [Field(f.name, f.kind, required=False, default=0.0, minimum=0.0) for f in ERROR_FIELDS]
+    v = read_table(raw, fields, where)
+    return _with_field_prefix(where + ".", lambda: GearErrors(*(v[k] for k in ERROR_KINDS)), v["_units"])
+
+
+__all__ = ["ChecksSettings", "DeclaredMesh", "CHECKS_FIELDS", "checks_settings", "gear_errors"]
