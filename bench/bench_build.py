@@ -1,0 +1,109 @@
+"""End-to-end build time of each assembly (``geargen build``), mesh checks and exports included.
+
+Run by hand: ``.venv/bin/python bench/bench_build.py [--repeat N] [NAME ...]``. For each
+assembly, each in fresh interpreters, N times (median shown, best in brackets):
+
+- ``build()``: the :func:`geargen.pipeline.build` call alone, every module the build uses
+  (geargen, numpy, scipy, OCP, matplotlib) imported before the clock starts;
+- ``command``: the whole ``geargen build DESIGN --out DIR --quiet`` as a user runs it, wall time
+  from outside, imports included; ``- start`` is the same less the bare interpreter's start
+  (``python -c pass``), which is how the target is stated;
+- the per-step times of the median ``build()`` run. The mesh checks of the gears run in a second
+  process alongside stiffness, other parts, render and export (:class:`geargen.pipeline.Alongside`),
+  so the steps add up to more than the build.
+
+Target for the robot joint: under 10 s on this (2-core) machine, mesh checks included,
+interpreter start excluded (the ``- start`` column).
+"""
+
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+ASSEMBLIES = ["robot_joint", "c_axis", "split_pinion"]
+TARGET_S = {"robot_joint": 10.0}
+
+#: every module a build imports, loaded before the in-process clock starts
+PRELOAD = ["geargen.pipeline", "geargen.cli", "geargen.cad.assembly", "geargen.cad.parts", "geargen.cad.export",
+           "geargen.cad.render", "geargen.cad.gear_solid", "geargen.cad.measure", "geargen.checks.mesh2d",
+           "geargen.checks.solids", "geargen.core.synthesis", "geargen.core.stiffness", "geargen.report.review",
+           "geargen.report.layout", "geargen.report.stiffness", "geargen.report.synthesis", "scipy.optimize",
+           "scipy.spatial", "matplotlib.figure", "matplotlib.backends.backend_agg", "multiprocessing"]
+
+IN_PROCESS = """
+import importlib, sys, time
+for m in sys.argv[3:]:
+    importlib.import_module(m)
+from geargen.pipeline import build
+t0 = time.perf_counter()
+r = build(sys.argv[1], out=sys.argv[2], quiet=True)
+total = time.perf_counter() - t0
+print(f"{total:.3f} " + " ".join(f"{k.replace(' ', '_')}={v:.3f}" for k, v in r.timings.items()))
+"""
+
+
+def _in_process(design: Path, out: Path) -> tuple[float, dict[str, float]]:
+    done = subprocess.run([sys.executable, "-c", IN_PROCESS, str(design), str(out), *PRELOAD], capture_output=True,
+                          text=True, cwd=ROOT)
+    if done.returncode:
+        raise RuntimeError(done.stderr)
+    total, *steps = done.stdout.split()
+    return float(total), {k.replace("_", " "): float(v) for k, v in (s.split("=") for s in steps)}
+
+
+def _command(design: Path, out: Path) -> float:
+    t0 = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "geargen.cli", "build", str(design), "--out", str(out), "--quiet"],
+                          capture_output=True, text=True, cwd=ROOT)
+    wall = time.perf_counter() - t0
+    if done.returncode:
+        raise RuntimeError(done.stderr)
+    return wall
+
+
+def _interpreter_start(repeat: int) -> float:
+    walls = []
+    for _ in range(max(3, repeat)):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-c", "pass"], check=True)
+        walls.append(time.perf_counter() - t0)
+    return min(walls)
+
+
+def main(argv):
+    repeat = 3
+    if argv[:1] == ["--repeat"]:
+        repeat, argv = int(argv[1]), argv[2:]
+    names = argv or ASSEMBLIES
+    start = _interpreter_start(repeat)
+    print(f"interpreter start (python -c pass): {start:.2f} s; {repeat} runs each, median [best]")
+    print(f"{'assembly':13s} {'build()':>14s} {'command':>14s} {'- start':>8s}  target   steps of the median build() run")
+    for name in names:
+        design = ROOT / "assemblies" / f"{name}.toml"
+        runs, walls = [], []
+        try:
+            for _ in range(repeat):
+                with tempfile.TemporaryDirectory() as tmp:
+                    runs.append(_in_process(design, Path(tmp) / name))
+                with tempfile.TemporaryDirectory() as tmp:
+                    walls.append(_command(design, Path(tmp) / name))
+        except RuntimeError as exc:
+            print(f"{name}: FAILED\n{exc}")
+            continue
+        totals = [t for t, _ in runs]
+        median = statistics.median(totals)
+        steps = min(runs, key=lambda r: abs(r[0] - median))[1]
+        wall = statistics.median(walls)
+        target = f"< {TARGET_S[name]:.0f} s" if name in TARGET_S else ""
+        if target:
+            target += " ok" if wall - start < TARGET_S[name] else " OVER"
+        print(f"{name:13s} {median:6.2f} [{min(totals):5.2f}] {wall:6.2f} [{min(walls):5.2f}] {wall - start:8.2f}  "
+              f"{target:8s} " + " ".join(f"{k}={v:.2f}" for k, v in steps.items()))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

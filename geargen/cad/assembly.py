@@ -1,0 +1,996 @@
+"""The assembly model: every part placed, the assembly STEP (tree, names, colours), overlap checks.
+
+A :class:`PlacedPart` is a solid in its own frame plus a 4x4 placement (numpy, mm) into the
+assembly frame of :mod:`geargen.pipeline` (output gear's centre at the origin, +x the symmetry
+line towards the input, +z the gear axes). Per-part STEP/STL files are written in the assembly
+frame, so they overlay into the assembly (each part's placement is in the manifest; its inverse
+brings the part back to its own machining frame).
+
+The non-gear parts of the three case studies are laid out by :func:`robot_joint_parts`,
+:func:`c_axis_parts` and :func:`split_pinion_parts` from the ``[parts]`` section (sizes the paper
+does not give, written in the design file) and the stiffness step's sections (blade flexures,
+springs, beam-spring pinion, shafts). Every contact that is meant to be there (a shaft in its
+bore, a bearing on its shaft, a spring on its seat) is listed in ``intended_contacts``; the
+overlap check fails on any other pair of parts that share volume.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable, Mapping
+
+import numpy as np
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepGProp import BRepGProp
+from OCP.Bnd import Bnd_Box
+from OCP.GProp import GProp_GProps
+from OCP.gp import gp_Trsf
+from OCP.TopLoc import TopLoc_Location
+from OCP.TopoDS import TopoDS_Shape
+
+from geargen.cad import parts as P
+from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
+from geargen.design.cluster import ClusterSpec
+from geargen.design.schema import Field, read_table
+from geargen.errors import BuildError, DesignError
+
+# ---------------------------------------------------------------- colours (r, g, b, alpha)
+
+COLOURS: dict[str, tuple[float, float, float, float]] = {
+    "gear": (0.72, 0.74, 0.78, 1.0),
+    "gear_output": (0.55, 0.60, 0.70, 1.0),
+    "gear_input": (0.85, 0.65, 0.30, 1.0),
+    "gear_cluster": (0.45, 0.62, 0.80, 1.0),
+    "bevel": (0.80, 0.55, 0.25, 1.0),
+    "shaft": (0.35, 0.35, 0.38, 1.0),
+    "bearing": (0.20, 0.45, 0.30, 1.0),
+    "motor": (0.12, 0.12, 0.14, 1.0),
+    "carriage": (0.78, 0.80, 0.84, 1.0),
+    "flexure": (0.25, 0.35, 0.75, 1.0),
+    "spring": (0.90, 0.78, 0.15, 1.0),
+    "reference": (0.70, 0.70, 0.72, 0.25),
+    "stop": (0.80, 0.20, 0.20, 1.0),
+    "friction": (0.85, 0.35, 0.10, 1.0),
+    "housing": (0.62, 0.64, 0.60, 0.35),
+}
+
+
+# ---------------------------------------------------------------- placements
+
+
+def transform(translate=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), angle: float = 0.0) -> np.ndarray:
+    """4x4 placement: a rotation by ``angle`` (rad) about ``axis`` through the origin, then a translation."""
+    a = np.asarray(axis, dtype=float)
+    a = a / np.linalg.norm(a)
+    c, s = math.cos(angle), math.sin(angle)
+    k = np.array([[0, -a[2], a[1]], [a[2], 0, -a[0]], [-a[1], a[0], 0]])
+    r = np.eye(3) * c + s * k + (1 - c) * np.outer(a, a)
+    m = np.eye(4)
+    m[:3, :3] = r
+    m[:3, 3] = translate
+    return m
+
+
+def _trsf(m: np.ndarray) -> gp_Trsf:
+    t = gp_Trsf()
+    t.SetValues(*(float(v) for v in m[0]), *(float(v) for v in m[1]), *(float(v) for v in m[2]))
+    return t
+
+
+def location(m: np.ndarray) -> TopLoc_Location:
+    """The kernel's location of the 4x4 placement ``m`` (mm)."""
+    return TopLoc_Location(_trsf(m))
+
+
+@dataclass
+class PlacedPart:
+    """A part: ``shape`` in its own frame, ``matrix`` (4, 4) into the assembly frame (mm).
+
+    ``group`` is the sub-assembly it belongs to (the STEP tree), ``kind`` a colour key of
+    :data:`COLOURS`, ``role`` what it is for the report ("gear", "reference", ...).
+    """
+
+    name: str
+    shape: TopoDS_Shape
+    matrix: np.ndarray
+    group: str
+    kind: str
+    role: str = "part"
+    description: str = ""
+    solid: Any = None  # the GearSolid of a gear (profile, spec), for the checks
+    _world: TopoDS_Shape | None = field(default=None, repr=False)
+
+    @property
+    def colour(self) -> tuple[float, float, float, float]:
+        return COLOURS.get(self.kind, COLOURS["gear"])
+
+    def world(self) -> TopoDS_Shape:
+        """The part moved into the assembly frame (cached; it shares the geometry of ``shape``)."""
+        if self._world is None:
+            self._world = self.shape.Moved(location(self.matrix))
+        return self._world
+
+
+@dataclass
+class PartSet:
+    """All non-gear parts of an assembly (and, after :func:`all_parts`, the gears too)."""
+
+    parts: list[PlacedPart]
+    intended_contacts: list[tuple[str, str, str]]  # (part, part, why)
+    notes: list[str] = field(default_factory=list)
+    dimensions: dict[str, Any] = field(default_factory=dict)  # key sizes for the report (mm)
+
+    def part(self, name: str) -> PlacedPart:
+        for p in self.parts:
+            if p.name == name:
+                return p
+        raise KeyError(name)
+
+
+# ---------------------------------------------------------------- gears
+
+
+def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
+    """Build every toothed part of ``layout`` (``geargen.pipeline.Layout``); identical specs are
+    built once and placed as often as needed. ``tolerance`` (mm) is the gear builder's spline
+    tolerance (None: its default). Returns parts by name."""
+    import warnings
+    cache: dict[Any, Any] = {}
+    out: dict[str, PlacedPart] = {}
+    for g in layout.gears:
+        key = g.spec
+        if key not in cache:
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                solid = build_cluster(g.spec, tolerance) if isinstance(g.spec, ClusterSpec) \
+                    else build_gear(g.spec, tolerance)
+            for w in caught:  # undercut and the like: reported with the build, not printed
+                text = f"{g.name}: {w.message}"
+                if text not in layout.notes:
+                    layout.notes.append(text)
+            cache[key] = solid
+        solid = cache[key]
+        m = transform((g.centre[0], g.centre[1], g.z), (0, 0, 1), g.rotation)
+        kind = "gear_output" if "output" in g.roles else "gear_input" if "input" in g.roles or \
+            "pinion_stiff" in g.roles else "gear_cluster"
+        desc = _gear_text(g.spec)
+        out[g.name] = PlacedPart(g.name, solid.shape, m, g.group, kind, "gear", desc, solid)
+    return out
+
+
+def _gear_text(spec) -> str:
+    if isinstance(spec, ClusterSpec):
+        return f"cluster {spec.large.teeth}/{spec.small.teeth} T"
+    helix = f", helix {math.degrees(spec.helix_angle):.4g} deg {spec.hand}" if spec.is_helical else ""
+    return f"{spec.teeth} T, m_n {spec.module:.4g} mm{helix}, face {spec.face_width:.4g} mm"
+
+
+# ---------------------------------------------------------------- the [parts] section
+
+def _L(name, **kw):
+    return Field(name, "length", minimum=0.0, exclusive_minimum=True, **kw)
+
+
+_COMMON = [Field("template", "string", choices=("robot_joint", "c_axis", "split_pinion")),
+           Field("bearing_clearance", "length", required=False, default=0.5, minimum=0.0)]
+
+TEMPLATE_FIELDS: dict[str, list[Field]] = {
+    "robot_joint": _COMMON + [
+        Field("bevel_pinion_teeth", "integer", minimum=4, maximum=500),
+        Field("bevel_gear_teeth", "integer", minimum=4, maximum=500),
+        Field("bevel_diametral_pitch_per_in", "number", required=False, default=None, minimum=0.1),
+        Field("bevel_module", "length", required=False, default=None, units=("mm",), minimum=0.0,
+              exclusive_minimum=True),
+        _L("bevel_face_width"), _L("input_shaft_to_bevel"),
+        _L("motor_body_diameter"), _L("motor_body_length"), _L("motor_flange"), _L("motor_flange_thickness"),
+        _L("motor_shaft_diameter"), _L("motor_shaft_length"),
+        _L("cluster_bearing_outer_diameter"), _L("cluster_bearing_width"),
+        _L("input_bearing_outer_diameter"), _L("input_bearing_width"),
+        _L("output_bearing_outer_diameter"), _L("output_bearing_width"),
+        _L("carriage_plate_thickness"), _L("carriage_width"),
+        _L("link_radius"), _L("link_wall"), _L("link_floor"), _L("link_top_clearance"),
+        Field("spring_y_offset", "length", minimum=0.0),
+        Field("spring_model", "string", required=False, default="helix", choices=("helix", "envelope")),
+    ],
+    "c_axis": _COMMON + [
+        _L("spindle_diameter"), _L("spindle_length"),
+        _L("input_shaft_diameter"), _L("input_bearing_outer_diameter"), _L("input_bearing_width"),
+        _L("cluster_shaft_diameter"), _L("cluster_bearing_outer_diameter"), _L("cluster_bearing_width"),
+        _L("cluster_bearing_spacing"),
+        _L("friction_ring_outer_diameter"), _L("friction_ring_width"),
+        _L("stop_collar_outer_diameter"), _L("stop_collar_width"), _L("stop_lug_length"), _L("stop_block_size"),
+        _L("coupling_diameter"), _L("coupling_length"),
+        _L("gearhead_diameter"), _L("gearhead_length"),
+        _L("motor_body_diameter"), _L("motor_body_length"), _L("motor_flange"), _L("motor_flange_thickness"),
+        _L("housing_thickness"), _L("housing_margin"),
+    ],
+    "split_pinion": _COMMON + [
+        _L("hollow_shaft_outer_diameter"), _L("hollow_shaft_length"),
+        _L("bearing_outer_diameter"), _L("bearing_width"),
+        _L("collar_outer_diameter"), _L("collar_width"), _L("collar_slot"),
+        _L("output_shaft_diameter"), _L("output_bearing_outer_diameter"), _L("output_bearing_width"),
+    ],
+}
+
+
+def parts_settings(design) -> dict[str, Any]:
+    """``[parts]`` validated for its template (internal units, mm)."""
+    table = design.section("parts")
+    if not table:
+        raise DesignError("parts", "missing", "a [parts] table with template = 'robot_joint' | 'c_axis' | 'split_pinion'")
+    template = table.get("template")
+    if template not in TEMPLATE_FIELDS:
+        raise DesignError("parts.template", f"{template!r} is not a valid choice",
+                          ", ".join(map(repr, TEMPLATE_FIELDS)))
+    return read_table(table, TEMPLATE_FIELDS[template], "parts")
+
+
+def non_gear_parts(layout, stiffness=None) -> PartSet:
+    """The non-gear parts of ``layout``'s design, placed, with the intended contacts."""
+    s = parts_settings(layout.design)
+    builder = {"robot_joint": robot_joint_parts, "c_axis": c_axis_parts, "split_pinion": split_pinion_parts}
+    return builder[s["template"]](layout, s, stiffness)
+
+
+# ---------------------------------------------------------------- helpers
+
+
+class _Parts:
+    """Collects parts and contacts while a template lays them out."""
+
+    def __init__(self):
+        self.parts: list[PlacedPart] = []
+        self.contacts: list[tuple[str, str, str]] = []
+        self.notes: list[str] = []
+        self.dims: dict[str, Any] = {}
+        self._shapes: dict[tuple, Any] = {}
+
+    def shared(self, builder, *args):
+        """``builder(*args)``, built once per assembly: parts made alike (two bearings of one size,
+        three blades) share one shape, which the assembly STEP writes as one product and the
+        kernel meshes once."""
+        key = (builder, args)
+        if key not in self._shapes:
+            self._shapes[key] = builder(*args)
+        return self._shapes[key]
+
+    def add(self, name, shape, matrix, group, kind, role="part", description=""):
+        self.parts.append(PlacedPart(name, shape, matrix, group, kind, role, description))
+        return name
+
+    def touch(self, a: str, b: str, why: str):
+        self.contacts.append((a, b, why))
+
+    def done(self) -> PartSet:
+        return PartSet(self.parts, self.contacts, self.notes, self.dims)
+
+
+def _at(x=0.0, y=0.0, z=0.0) -> np.ndarray:
+    return transform((x, y, z))
+
+
+def _along_x(x, y, z, towards_minus: bool = False) -> np.ndarray:
+    """Local +z along world +x (or -x), local origin at (x, y, z)."""
+    return transform((x, y, z), (0, 1, 0), -math.pi / 2 if towards_minus else math.pi / 2)
+
+
+def _bore(spec) -> float:
+    s = spec.large if isinstance(spec, ClusterSpec) else spec
+    return s.hub.bore_diameter
+
+
+# ---------------------------------------------------------------- robot joint (Fig. 10)
+
+
+def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
+    """Motor, bevel pair, carriage on three blade flexures, two preload springs, shafts, bearings,
+    and the link as a reference tray, around the gears of the robot joint (Fig. 10).
+
+    Heights: the cluster's large gear from z = 0 (see :mod:`geargen.pipeline`). The carriage (a
+    plate under the input gear, a post and an arm holding the input's upper bearing, a saddle
+    for the motor, an end wall the springs push on) hangs on three vertical blades standing on
+    the link's floor; the motor lies along +x, its bevel pinion driving the bevel gear on the
+    input shaft. Bearings are rings a ``bearing_clearance`` from the gear faces; the lower ones
+    of clusters and output stand on bosses of the link floor (the upper ones sit in the removed
+    cover, as in the paper's figure).
+    """
+    from geargen.design.stiffness import stiffness_design
+    from geargen.core.flexures import spring_total_coils
+
+    design = layout.design
+    sd = stiffness_design(design)
+    if sd.flexures is None or sd.springs is None:
+        raise DesignError("flexures", "the robot joint's carriage needs [flexures] and [springs]", "both sections")
+    fl, sp = sd.flexures, sd.springs
+    if sp.installed_length is None:
+        raise DesignError("springs.installed_length", "missing (the springs' length in the model)", "a length")
+    out = _Parts()
+    g = {p.name: p for p in layout.gears}
+    inp, outg = g["input"], g["output"]
+    # each cluster: one part, or its large and small gear as two parts on one shaft
+    members = {side: [p for p in layout.gears if p.group == f"cluster_{side}"] for side in ("a", "b")}
+    clusters = [members["a"][0], members["b"][0]]
+    gap = s["bearing_clearance"]
+
+    # --- heights of the gear faces
+    z_in0, z_in1 = inp.height
+    z_out0, z_out1 = outg.height
+    z_cl0 = min(p.height[0] for p in members["a"])
+    z_cl1 = max(p.height[1] for p in members["a"])
+    x_in = inp.centre[0]
+
+    # --- cluster shafts and bearings
+    d_cl = _bore(clusters[0].spec)
+    bw, bod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
+    zb_lo = z_cl0 - gap - bw
+    zb_hi = z_cl1 + gap
+    for side, c in zip(("a", "b"), clusters):
+        x, y = c.centre
+        shaft = out.add(f"cluster_shaft_{side}", out.shared(P.shaft, d_cl, zb_hi + bw - zb_lo), _at(x, y, zb_lo), f"cluster_{side}",
+                        "shaft", description=f"d {d_cl:.4g} mm")
+        for member in members[side]:
+            out.touch(shaft, member.name, "cluster gear on its shaft (pressed and bonded)")
+        for where, z in (("lower", zb_lo), ("upper", zb_hi)):
+            b = out.add(f"cluster_bearing_{where}_{side}", out.shared(P.bearing, d_cl, bod, bw), _at(x, y, z), f"cluster_{side}",
+                        "bearing", description=f"{d_cl:.4g} x {bod:.4g} x {bw:.4g} mm")
+            out.touch(b, shaft, "bearing on its shaft")
+
+    # --- output shaft and bearings
+    d_out = _bore(outg.spec)
+    obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
+    zo_lo = z_out0 - gap - obw
+    zo_hi = z_out1 + gap
+    oshaft = out.add("output_shaft", out.shared(P.shaft, d_out, zo_hi + obw - zo_lo), _at(0, 0, zo_lo), "output", "shaft",
+                     description=f"joint shaft d {d_out:.4g} mm")
+    out.touch(oshaft, "output", "shaft in the output gear's bore")
+    for where, z in (("lower", zo_lo), ("upper", zo_hi)):
+        b = out.add(f"output_bearing_{where}", out.shared(P.bearing, d_out, obod, obw), _at(0, 0, z), "output", "bearing",
+                    description=f"{d_out:.4g} x {obod:.4g} x {obw:.4g} mm")
+        out.touch(b, oshaft, "bearing on its shaft")
+
+    # --- bevel pair
+    if (s["bevel_module"] is None) == (s["bevel_diametral_pitch_per_in"] is None):
+        raise DesignError("parts.bevel_module_mm", "give exactly one of bevel_module_mm and bevel_diametral_pitch_per_in")
+    module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
+    bev = P.bevel_pair_geometry(s["bevel_pinion_teeth"], s["bevel_gear_teeth"], module, s["bevel_face_width"])
+    d_in = _bore(inp.spec)
+    z_mid_in = (z_in0 + z_in1) / 2
+    z_heel = z_mid_in + s["input_shaft_to_bevel"]
+    z_apex = z_heel + bev.apex_height("gear")
+    bevel_gear = out.add("bevel_gear", P.bevel_pitch_cone(bev, "gear", bore=d_in), _at(x_in, 0, z_heel), "carriage",
+                         "bevel", description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg")
+    x_pinion_heel = x_in + bev.apex_height("pinion")
+    pinion = out.add("bevel_pinion", P.bevel_pitch_cone(bev, "pinion"), _along_x(x_pinion_heel, 0, z_apex, True),
+                     "carriage", "bevel",
+                     description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg")
+    out.touch(bevel_gear, pinion, "bevel pitch cones roll on each other (pitch-cone model)")
+
+    # --- input shaft and bearings
+    ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
+    zi_lo = z_in0 - gap - ibw
+    zi_hi = z_in1 + gap
+    z_shaft_top = z_heel + bev.axial_height("gear")
+    ishaft = out.add("input_shaft", out.shared(P.shaft, d_in, z_shaft_top - zi_lo), _at(x_in, 0, zi_lo), "carriage", "shaft",
+                     description=f"d {d_in:.4g} mm")
+    out.touch(ishaft, "input", "shaft in the input gear's bore")
+    out.touch(ishaft, bevel_gear, "shaft in the bevel gear's bore")
+    for where, z in (("lower", zi_lo), ("upper", zi_hi)):
+        b = out.add(f"input_bearing_{where}", out.shared(P.bearing, d_in, ibod, ibw), _at(x_in, 0, z), "carriage", "bearing",
+                    description=f"{d_in:.4g} x {ibod:.4g} x {ibw:.4g} mm")
+        out.touch(b, ishaft, "bearing on its shaft")
+
+    # --- motor along +x, its stub ending on the pinion's heel
+    stub = s["motor_shaft_length"]
+    x_flange = x_pinion_heel + stub
+    motor_r = s["motor_body_diameter"] / 2
+    motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
+                                                 s["motor_flange_thickness"], s["motor_shaft_diameter"], stub),
+                    _along_x(x_flange, 0, z_apex), "carriage", "motor", description="servo motor with encoder (envelope)")
+    out.touch(motor, pinion, "motor shaft stub on the bevel pinion")
+    x_motor_end = x_flange + s["motor_flange_thickness"] + s["motor_body_length"]
+
+    # --- the carriage, one solid
+    t = s["carriage_plate_thickness"]
+    half_w = s["carriage_width"] / 2
+    z_plate_top = zi_lo
+    z_plate_bot = z_plate_top - t
+    z_arm_bot = zi_hi + ibw
+    z_arm_top = z_arm_bot + t
+    x_wall0 = x_motor_end + 2 * gap
+    x_wall1 = x_wall0 + t
+    r_in = inp.gears[0].tip_radius
+    post_x0 = x_in + max(r_in, ibod / 2) + gap
+    post_x1 = post_x0 + t
+    arm_half = max(ibod / 2 + gap, d_in)
+    spring_r = (sp.mean_coil_diameter + sp.wire_diameter) / 2
+    wall_half = s["spring_y_offset"] + spring_r + gap
+    z_wall_top = max(z_arm_top, spring_r + gap)
+    saddle_x0 = x_flange + s["motor_flange_thickness"] + gap
+    pieces = [
+        P.box_between((x_in - arm_half - t, -half_w, z_plate_bot), (x_wall0, half_w, z_plate_top)),  # base plate
+        P.box_between((post_x0, -arm_half, z_plate_top), (post_x1, arm_half, z_arm_bot)),  # post
+        P.box_between((x_in - arm_half, -arm_half, z_arm_bot), (post_x1, arm_half, z_arm_top)),  # arm
+        P.box_between((saddle_x0, -half_w * 0.6, z_plate_top), (x_motor_end - gap, half_w * 0.6, z_apex - motor_r)),
+        P.box_between((x_wall0, -wall_half, z_plate_bot), (x_wall1, wall_half, z_wall_top)),  # spring wall
+    ]
+    body = P.fuse(pieces, "carriage")
+    hole = P.translate(P.cylinder(d_in + 2 * gap, z_arm_top - z_arm_bot), (x_in, 0, z_arm_bot))
+    body = P._single(P.cut(body, hole), "carriage")
+    carriage = out.add("carriage", body, np.eye(4), "carriage", "carriage",
+                       description="carries motor, bevel pair and input gear; rides on the blades")
+    for name in ("input_bearing_lower", "input_bearing_upper", ishaft):
+        out.touch(name, carriage, "held by the carriage")
+    out.touch(motor, carriage, "motor on its saddle")
+
+    # --- three blade flexures under the carriage, standing on the link floor
+    z_floor = z_plate_bot - fl.length
+    xs = np.linspace(x_in - arm_half, x_wall0 - 2 * gap, fl.count)
+    for i, x in enumerate(xs, start=1):
+        b = out.add(f"blade_flexure_{i}", out.shared(P.blade_flexure, fl.thickness, fl.length, fl.width), _at(x, 0, z_floor),
+                    "flexures", "flexure", description=f"{fl.thickness:.4g} x {fl.width:.4g} x {fl.length:.4g} mm blade")
+        out.touch(b, carriage, "blade clamped to the carriage")
+        out.touch(b, "link", "blade clamped to the link floor")
+
+    # --- two compression springs between the carriage's wall and the link's end wall
+    coils = spring_total_coils(sp.active_coils, sp.end_type)
+    if s["spring_model"] == "helix":
+        spring_shape = P.compression_spring(sp.wire_diameter, sp.mean_coil_diameter, sp.installed_length, coils)
+    else:
+        spring_shape = P.coil_envelope(sp.wire_diameter, sp.mean_coil_diameter, sp.installed_length)
+    z_spring = (z_plate_bot + z_wall_top) / 2
+    for i, y in enumerate((s["spring_y_offset"], -s["spring_y_offset"]), start=1):
+        sp_name = out.add(f"preload_spring_{i}", spring_shape, _along_x(x_wall1, y, z_spring), "preload", "spring",
+                          description=f"d {sp.wire_diameter:.4g} mm wire, D {sp.mean_coil_diameter:.4g} mm, "
+                                      f"{coils:g} coils at {sp.installed_length:.4g} mm")
+        out.touch(sp_name, carriage, "spring seat on the carriage")
+        out.touch(sp_name, "link", "spring seat on the link's end wall")
+
+    # --- the link: a tray around everything, bosses under the lower bearings and shafts
+    wall, floor = s["link_wall"], s["link_floor"]
+    x_end_inner = x_wall1 + sp.installed_length
+    length = x_end_inner + wall
+    z_top = max(z_apex + motor_r, zo_hi + obw, zb_hi + bw) + s["link_top_clearance"]
+    z_bottom = z_floor - floor
+    bosses = [(0.0, 0.0, obod, zo_lo - z_floor)]
+    bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor) for c in clusters]
+    radius = s["link_radius"]
+    link = P.link_tray(radius, length, z_top - z_bottom, wall, floor, bosses)
+    out.add("link", link, _at(0, 0, z_bottom), "link", "reference", "reference",
+            "robot link envelope (reference body, covers removed)")
+    for name in ("output_bearing_lower", oshaft, "cluster_bearing_lower_a", "cluster_bearing_lower_b",
+                 "cluster_shaft_a", "cluster_shaft_b"):
+        out.touch(name, "link", "stands on a boss of the link floor")
+    out.dims.update(link=dict(radius=radius, length=length, height=z_top - z_bottom, wall=wall, floor=floor,
+                              bosses=bosses, z_bottom=z_bottom),
+                    carriage=dict(x_min=x_in - arm_half - t, x_max=x_wall1, travel=layout.carriage_travel),
+                    bevel=bev, blade_x=list(map(float, xs)), spring_total_coils=coils)
+    out.notes.append(f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}) as pitch-cone frusta; "
+                     f"motor to output ratio {bev.ratio * layout.ratio['train']:.6g}")
+    return out.done()
+
+
+# ---------------------------------------------------------------- C-axis (Fig. 12)
+
+
+def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
+    """Spindle stub, the long beam-spring pinion with its shaft, bearings, coupling, gearhead and
+    motor, and per dual pinion: its shaft, two bearings (in a sliding quill), the frictional
+    preload interface (a locking ring clamping the large gear to the shaft), a stop collar with a
+    lug and the engaged and retracted travel stops; the housing plate as a reference body.
+
+    Heights: the pinions engage the bull gear moving along +z and slide out along -z, away from
+    it (the large gears stay in mesh with the long pinion). The long pinion's bearings are
+    symmetric about its engaged mesh (zero slope there) at the span the beam-spring helper
+    sized (``StiffnessSummary.beam``); the stops come from the engagement helper (lead and
+    strokes, ``StiffnessSummary.engagement``).
+    """
+    from geargen.core.stiffness import stiffness_summary
+
+    design = layout.design
+    summary = stiffness if stiffness is not None else stiffness_summary(design)
+    beam = summary.beam
+    eng = layout.engagement if layout.engagement is not None else summary.engagement
+    if beam is None or eng is None:
+        raise DesignError("beam_pinion", "the C-axis needs [beam_pinion] (the long pinion) and [engagement]",
+                          "both sections")
+    out = _Parts()
+    g = {p.name: p for p in layout.gears}
+    inp, bull = g["input"], g["output"]
+    gap = s["bearing_clearance"]
+    x_in = inp.centre[0]
+
+    # --- spindle stub through the bull gear
+    z_b0, z_b1 = bull.height
+    d_sp = _bore(bull.spec)
+    sp_len = s["spindle_length"]
+    spindle = out.add("spindle", out.shared(P.shaft, d_sp, sp_len), _at(0, 0, (z_b0 + z_b1 - sp_len) / 2), "spindle",
+                      "reference", "reference", f"lathe spindle (reference), d {d_sp:.4g} mm")
+    out.touch(spindle, "output", "bull gear on the spindle")
+
+    # --- the long pinion: bearings at the beam span, symmetric about the engaged mesh
+    shift_a = layout.axial_shift.get("cluster_a", 0.0)
+    zl0, zl1 = g["cluster_large_a"].height
+    z_mesh = (zl0 + zl1) / 2 - shift_a
+    span = beam.span
+    d_ish = s["input_shaft_diameter"]
+    if not math.isclose(d_ish, _bore(inp.spec)):
+        raise DesignError("parts.input_shaft_diameter_mm", "must equal the long pinion's bore", f"{_bore(inp.spec):.6g} mm")
+    ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
+    z_lo_bearing = z_mesh - span / 2 - ibw / 2
+    z_hi_bearing = z_mesh + span / 2 - ibw / 2
+    cl = s["coupling_length"]
+    ish_lo = z_lo_bearing
+    ish_hi = z_hi_bearing + ibw + gap + cl / 2
+    ishaft = out.add("input_shaft", out.shared(P.shaft, d_ish, ish_hi - ish_lo), _at(x_in, 0, ish_lo), "drive", "shaft",
+                     description=f"long pinion's shaft d {d_ish:.4g} mm, bearing span {span:.4g} mm (beam spring)")
+    out.touch(ishaft, "input", "pinion teeth on their shaft")
+    for where, z in (("lower", z_lo_bearing), ("upper", z_hi_bearing)):
+        b = out.add(f"input_bearing_{where}", out.shared(P.bearing, d_ish, ibod, ibw), _at(x_in, 0, z), "drive", "bearing",
+                    description=f"{d_ish:.4g} x {ibod:.4g} x {ibw:.4g} mm, simple support of the beam at "
+                                f"z = {z + ibw / 2:.5g} mm")
+        out.touch(b, ishaft, "bearing on its shaft")
+    # coupling (half on the shaft), gearhead (the exact upstream ratio), motor with the encoder
+    zc = ish_hi - cl / 2
+    coupling = out.add("coupling", P.cylinder(s["coupling_diameter"], cl), _at(x_in, 0, zc), "drive", "shaft",
+                       description="shaft coupling")
+    out.touch(coupling, ishaft, "coupling on the pinion shaft")
+    zg = zc + cl
+    stages = " x ".join(f"{b}:{a}" for a, b in layout.settings.get("upstream_stages", ()))
+    gearhead = out.add("gearhead", P.cylinder(s["gearhead_diameter"], s["gearhead_length"]), _at(x_in, 0, zg), "drive",
+                       "motor", description=f"planetary gearhead {stages}")
+    out.touch(gearhead, coupling, "gearhead output in the coupling")
+    zm = zg + s["gearhead_length"]
+    stub = 1.0
+    motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
+                                                 s["motor_flange_thickness"], d_ish * 0.5, stub),
+                    _at(x_in, 0, zm + stub), "drive", "motor", description="servo motor with the C-axis encoder")
+    out.touch(motor, gearhead, "motor on the gearhead")
+
+    # --- each dual pinion
+    d_cs = s["cluster_shaft_diameter"]
+    cbw, cbod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
+    cw, cod, lug, block = s["stop_collar_width"], s["stop_collar_outer_diameter"], s["stop_lug_length"], s["stop_block_size"]
+    z_floor = math.inf
+    for side in ("a", "b"):
+        small, large = g[f"cluster_small_{side}"], g[f"cluster_large_{side}"]
+        for part in (small, large):
+            if not math.isclose(_bore(part.spec), d_cs):
+                raise DesignError("parts.cluster_shaft_diameter_mm", f"must equal the bore of {part.name}",
+                                  f"{_bore(part.spec):.6g} mm")
+        x, y = small.centre
+        shift = layout.axial_shift.get(f"cluster_{side}", 0.0)
+        zs0, zs1 = small.height
+        zl0, zl1 = large.height
+        ring_w = s["friction_ring_width"]
+        ring = out.add(f"friction_ring_{side}", P.cylinder(s["friction_ring_outer_diameter"], ring_w, d_cs),
+                       _at(x, y, zl1), f"cluster_{side}", "friction",
+                       description="frictional preload interface: locking ring clamping the large gear to the "
+                                   "pinion shaft (released, turned to wind the loop, clamped)")
+        out.touch(ring, large.name, "frictional interface on the large gear")
+        zb_hi = zl0 - gap - cbw
+        zb_lo = zb_hi - s["cluster_bearing_spacing"]
+        z_collar = zb_lo - gap - cw
+        shaft = out.add(f"cluster_shaft_{side}", out.shared(P.shaft, d_cs, zs1 - z_collar), _at(x, y, z_collar), f"cluster_{side}",
+                        "shaft", description=f"dual pinion shaft d {d_cs:.4g} mm (slides with the pinion)")
+        for part in (small.name, large.name, ring):
+            out.touch(shaft, part, "on the pinion shaft")
+        for where, z in (("lower", zb_lo), ("upper", zb_hi)):
+            b = out.add(f"cluster_bearing_{where}_{side}", out.shared(P.bearing, d_cs, cbod, cbw), _at(x, y, z), f"cluster_{side}",
+                        "bearing", description=f"{d_cs:.4g} x {cbod:.4g} x {cbw:.4g} mm in the sliding quill")
+            out.touch(b, shaft, "bearing on its shaft")
+        # stop collar at the shaft's lower end, its lug pointing radially out from the spindle
+        lug_w = min(cw, cod / 2)
+        collar = P.fuse([P.cylinder(cod, cw, d_cs),
+                         P.box_between((cod / 2 - 0.2 * cod, -lug_w / 2, 0), (cod / 2 + lug, lug_w / 2, cw))],
+                        "stop collar")
+        direction = math.atan2(y, x)
+        cname = out.add(f"stop_collar_{side}", collar, transform((x, y, z_collar), (0, 0, 1), direction),
+                        f"cluster_{side}", "stop", description="stop collar with lug")
+        out.touch(cname, shaft, "collar on the shaft")
+        # the fixed stops, placed from the engaged position (shift 0) and the helper's strokes
+        z_collar_engaged = z_collar - shift
+        retract = -(eng.leader_retracted_stop if side == "a" else eng.trailer_retracted_stop)
+        r_lug = math.hypot(x, y) + cod / 2 + lug / 2
+        bx, by = r_lug * math.cos(direction), r_lug * math.sin(direction)
+        cube = P.box_between((-block / 2, -block / 2, 0), (block / 2, block / 2, block))
+        en = out.add(f"travel_stop_engaged_{side}", cube, transform((bx, by, z_collar_engaged + cw), (0, 0, 1), direction),
+                     "housing", "stop", description="engaged travel stop: the pinion fully in mesh")
+        z_re = z_collar_engaged - retract - block
+        re = out.add(f"travel_stop_retracted_{side}", cube, transform((bx, by, z_re), (0, 0, 1), direction),
+                     "housing", "stop",
+                     description=f"retracted travel stop, stroke {retract:.4g} mm"
+                                 + (f" (the trailing pinion: {eng.lead:.4g} mm lead further)" if side == "b" else ""))
+        out.touch(cname, en if shift == 0 else re, "pinion against its travel stop")
+        out.touch(re, "housing", "stop fixed to the housing plate")
+        z_floor = min(z_floor, z_re)
+    # --- the housing plate under the stops (reference body)
+    t = s["housing_thickness"]
+    margin = s["housing_margin"]
+    xs = [g[f"cluster_small_{k}"].centre[0] for k in "ab"] + [x_in]
+    ys = [g[f"cluster_small_{k}"].centre[1] for k in "ab"]
+    lo = (min(xs) - margin, min(ys) - margin, z_floor - t)
+    hi = (max(xs) + margin, max(ys) + margin, z_floor)
+    # the long pinion's shaft passes the plate through a clearance hole
+    holes = [(x_in, 0.0, ibod + 2 * gap)] if z_lo_bearing < lo[2] < ish_hi else []
+    plate = P.plate_with_holes(hi[0] - lo[0], hi[1] - lo[1], t, holes, corner=lo)
+    out.add("housing", plate, np.eye(4), "housing", "housing", "reference",
+            "C-axis housing plate (reference body); the retracted stops stand on it")
+    out.dims.update(beam=beam, engagement=eng, z_mesh=z_mesh, housing=dict(lo=lo, hi=hi))
+    out.notes.append(f"long pinion: bearing span {span:.4g} mm symmetric about the engaged mesh at z = {z_mesh:.4g} mm "
+                     f"(zero slope there), beam stiffness {beam.stiffness:.4g} N/mm; static deflection at the preload "
+                     f"{beam.deflection * 1e3:.3g} um (the model shows the straight beam)")
+    out.notes.append(f"axial engagement: lead {eng.lead:.4g} mm between the pinions, strokes "
+                     f"{-eng.leader_retracted_stop:.4g} / {-eng.trailer_retracted_stop:.4g} mm, relative rotation "
+                     f"{eng.relative_rotation * 1e3:.3g} mrad")
+    return out.done()
+
+
+# ---------------------------------------------------------------- split pinion (Fig. 8)
+
+
+def split_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
+    """The concentric Type 1 drive of Fig. 8: the stiff pinion on a hollow shaft (outer path), the
+    compliant pinion on the inner shaft that runs through it to the clamp collar (the frictional
+    interface where preload is set), a preloaded bearing pair on the hollow shaft, the output
+    shaft and bearings.
+
+    The inner shaft's diameter and free length are the stiffness model's ``inner_shaft``
+    component (``[stiffness.components.inner_shaft]``): the part is built from the same numbers.
+    """
+    from geargen.design.stiffness import stiffness_design
+
+    design = layout.design
+    sd = stiffness_design(design)
+    comp = {c.name: c for c in sd.stiffness.components}
+    if "inner_shaft" not in comp:
+        raise DesignError("stiffness.components.inner_shaft", "missing: the compliant path's shaft",
+                          "a shaft_torsion component named inner_shaft")
+    inner = comp["inner_shaft"]
+    out = _Parts()
+    g = {p.name: p for p in layout.gears}
+    st = layout.settings
+    stiff, compl, outg = g[st["pinion_stiff"]], g[st["pinion_compliant"]], g[st["output"]]
+    x_p = stiff.centre[0]
+    gap = s["bearing_clearance"]
+    d_hollow = s["hollow_shaft_outer_diameter"]
+    if not _bore(stiff.spec) == d_hollow:
+        raise DesignError("parts.hollow_shaft_outer_diameter", "must equal the stiff pinion's bore",
+                          f"{_bore(stiff.spec):.6g} mm")
+    d_inner = inner.diameter
+    if not _bore(compl.spec) == d_inner:
+        raise DesignError(f"gears.{compl.name}.bore_diameter", "must equal the inner shaft's diameter",
+                          f"{d_inner:.6g} mm (stiffness.components.inner_shaft)")
+    zs0, zs1 = stiff.height
+    zc0, zc1 = compl.height
+    # the hollow shaft runs from the stiff pinion down, through the bearings, to the collar
+    h_len = s["hollow_shaft_length"]
+    z_hollow0 = zs1 - h_len
+    bore_hollow = d_inner + 2 * gap
+    hollow = out.add("hollow_shaft", out.shared(P.shaft, d_hollow, h_len, bore_hollow), _at(x_p, 0, z_hollow0), "split_pinion",
+                     "shaft", description=f"outer (stiff) path: hollow shaft {d_hollow:.4g}/{bore_hollow:.4g} mm")
+    out.touch(hollow, stiff.name, "stiff pinion on the hollow shaft")
+    bw, bod = s["bearing_width"], s["bearing_outer_diameter"]
+    for i, z in enumerate((zs0 - gap - bw, zs0 - 2 * gap - 2 * bw), start=1):
+        b = out.add(f"pinion_bearing_{i}", out.shared(P.bearing, d_hollow, bod, bw), _at(x_p, 0, z), "split_pinion", "bearing",
+                    description=f"angular-contact pair (preloaded), {d_hollow:.4g} x {bod:.4g} x {bw:.4g} mm")
+        out.touch(b, hollow, "bearing on the hollow shaft")
+    # the clamp collar at the far end of the hollow shaft grips the inner shaft: frictional interface
+    cw = s["collar_width"]
+    z_collar = z_hollow0 - cw
+    collar = out.add("friction_collar", P.split_collar(d_inner, s["collar_outer_diameter"], cw, s["collar_slot"]),
+                     _at(x_p, 0, z_collar), "split_pinion", "friction",
+                     description="frictional interface: clamp collar joining the inner shaft to the hollow shaft; "
+                                 "set screws wind the inner shaft before clamping")
+    out.touch(collar, hollow, "collar against the hollow shaft's end")
+    # inner shaft: from the collar, through the hollow shaft and the stiff pinion, into the compliant pinion
+    z_in0 = z_collar
+    z_in1 = zc1
+    ishaft = out.add("inner_shaft", out.shared(P.shaft, d_inner, z_in1 - z_in0), _at(x_p, 0, z_in0), "split_pinion", "shaft",
+                     description=f"inner (compliant) path: d {d_inner:.4g} mm, twisting over {inner.length:.4g} mm "
+                                 "(stiffness model)")
+    out.touch(ishaft, collar, "clamped in the collar")
+    out.touch(ishaft, compl.name, "compliant pinion on the inner shaft")
+    twist_len = zc0 - z_hollow0
+    out.dims["inner_shaft"] = dict(diameter=d_inner, free_length_model=inner.length, free_length_geometry=twist_len)
+    if abs(twist_len - inner.length) > 0.05 * inner.length:
+        out.notes.append(f"inner shaft: free length in the model {inner.length:.4g} mm, in the geometry "
+                         f"{twist_len:.4g} mm (collar to compliant pinion)")
+    # output shaft and bearings
+    d_os = _bore(outg.spec)
+    obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
+    zo0, zo1 = outg.height
+    oshaft = out.add("output_shaft", out.shared(P.shaft, d_os, (zo1 + gap + obw) - (zo0 - gap - obw)), _at(0, 0, zo0 - gap - obw),
+                     "output", "shaft", description=f"d {d_os:.4g} mm")
+    out.touch(oshaft, outg.name, "output gear on its shaft")
+    for where, z in (("lower", zo0 - gap - obw), ("upper", zo1 + gap)):
+        b = out.add(f"output_bearing_{where}", out.shared(P.bearing, d_os, obod, obw), _at(0, 0, z), "output", "bearing",
+                    description=f"{d_os:.4g} x {obod:.4g} x {obw:.4g} mm")
+        out.touch(b, oshaft, "bearing on its shaft")
+    return out.done()
+
+
+# ---------------------------------------------------------------- the whole assembly
+
+
+def all_parts(gears: Mapping[str, PlacedPart], others: PartSet) -> list[PlacedPart]:
+    return list(gears.values()) + list(others.parts)
+
+
+def assembly_document(name: str, parts: Iterable[PlacedPart]):
+    """The assembly as an XCAF document: root ``name``, one sub-assembly ``<group>_assembly`` per
+    group, each part an occurrence named as the part, placed by its matrix, coloured (surface
+    colour, alpha kept). Parts sharing one shape and colour share one product (named after the
+    first). Names must be unique in the whole tree. The tree is the one CadQuery's ``Assembly``
+    writes, built here with the kernel directly."""
+    from OCP.Quantity import Quantity_Color, Quantity_ColorRGBA, Quantity_TOC_sRGB
+    from OCP.TCollection import TCollection_ExtendedString
+    from OCP.TDataStd import TDataStd_Name
+    from OCP.TDocStd import TDocStd_Document
+    from OCP.XCAFDoc import XCAFDoc_ColorType, XCAFDoc_DocumentTool
+
+    parts = list(parts)
+    names = [p.name for p in parts]
+    if len(set(names)) != len(names):
+        raise BuildError(f"assembly {name}: part names are not unique")
+    doc = TDocStd_Document(TCollection_ExtendedString("XmlXCAF"))
+    tool = XCAFDoc_DocumentTool.ShapeTool_s(doc.Main())
+    tool.SetAutoNaming_s(False)
+    colours = XCAFDoc_DocumentTool.ColorTool_s(doc.Main())
+
+    def named(label, text):
+        TDataStd_Name.Set_s(label, TCollection_ExtendedString(text))
+        return label
+
+    root = named(tool.NewShape(), name)
+    groups: dict[str, Any] = {}
+    products: list[tuple[TopoDS_Shape, tuple, Any]] = []  # (shape, colour, label)
+    for p in parts:
+        if p.group not in groups:
+            groups[p.group] = named(tool.NewShape(), f"{p.group}_assembly")
+        label = next((lab for shape, colour, lab in products if colour == p.colour and shape.IsSame(p.shape)), None)
+        if label is None:
+            label = named(tool.NewShape(), p.name)
+            tool.SetShape(label, p.shape)
+            r, g, b, a = p.colour
+            colours.SetColor(label, Quantity_ColorRGBA(Quantity_Color(r, g, b, Quantity_TOC_sRGB), a),
+                             XCAFDoc_ColorType.XCAFDoc_ColorSurf)
+            products.append((p.shape, p.colour, label))
+        named(tool.AddComponent(groups[p.group], label, location(p.matrix)), p.name)
+    for grp in groups.values():
+        tool.AddComponent(root, grp, TopLoc_Location())
+    tool.UpdateAssemblies()
+    return doc
+
+
+def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, length_unit: str = "mm") -> Path:
+    """The assembly STEP: tree root/group/part, names and colours, declared in ``length_unit``
+    (geometry in mm, converted by the writer); edges as 3-D curves only, as the part files."""
+    from OCP.IFSelect import IFSelect_RetDone
+    from OCP.Interface import Interface_Static
+    from OCP.STEPCAFControl import STEPCAFControl_Writer
+    from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
+    from OCP.XSControl import XSControl_WorkSession
+    from geargen.cad.export import STEP_UNITS, _quiet_kernel, atomic_path
+
+    doc = assembly_document(name, parts)
+    STEPControl_Controller.Init_s()
+    _quiet_kernel()
+    writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
+    writer.SetColorMode(True)
+    writer.SetLayerMode(True)
+    writer.SetNameMode(True)
+    Interface_Static.SetIVal_s("write.surfacecurve.mode", 0)
+    Interface_Static.SetIVal_s("write.precision.mode", 0)
+    Interface_Static.SetCVal_s("xstep.cascade.unit", "MM")
+    Interface_Static.SetCVal_s("write.step.unit", STEP_UNITS[length_unit])
+    if not writer.Transfer(doc, STEPControl_AsIs):
+        raise BuildError(f"assembly STEP transfer failed: {path}")
+    with atomic_path(Path(path)) as tmp:
+        if writer.Write(str(tmp)) != IFSelect_RetDone:
+            raise BuildError(f"assembly STEP export failed: {path}")
+    return Path(path)
+
+
+def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any]) -> dict[str, Any]:
+    """Write assembly.step and, per part, ``<name>.step`` and ``<name>.stl`` (assembly frame).
+
+    Returns ``{"records": {file: manifest entry}, "parts": {name: placement and files},
+    "tolerances": {...}}``.
+    """
+    from geargen.cad.export import export_step, export_stl
+
+    parts = parts_set if isinstance(parts_set, list) else parts_set.parts
+    unit = layout.design.length_unit
+    folder.mkdir(parents=True, exist_ok=True)
+    records: dict[str, Any] = {}
+    info: dict[str, Any] = {}
+    volumes: list[tuple[Any, float]] = []  # (shape, mm^3) already integrated
+    asm = write_assembly_step(layout.design.name, parts, folder / "assembly.step", unit)
+    records[asm.name] = {"format": "step", "length_unit": unit, "bytes": asm.stat().st_size,
+                         "role": "assembly", "parts": [p.name for p in parts]}
+    chord = settings["stl_chordal_tolerance"]
+    chord_parts = settings.get("stl_chordal_tolerance_parts") or chord
+    ang = settings["stl_angular_tolerance"]
+    for p in parts:
+        rs = export_step((p.name, p.world()), folder / f"{p.name}.step", unit)
+        # every part meshed in its own frame and moved by its placement: gears by the exact mesher on
+        # the GearSolid (20x faster than the kernel), the others by the kernel, whose mesh stays on
+        # the shape, so parts sharing a shape (two bearings alike) are meshed once
+        rl = export_stl(p.solid if p.solid is not None else p.shape, folder / f"{p.name}.stl",
+                        chordal_tolerance=chord if p.role == "gear" else chord_parts, angular_tolerance=ang,
+                        transform=p.matrix)
+        records[rs.path.name] = rs.manifest_entry()
+        records[rl.path.name] = rl.manifest_entry()
+        vol = next((v for shape, v in volumes if shape.IsSame(p.shape)), None)
+        if vol is None:  # parts sharing a shape (the two clusters, bearings alike) share its volume
+            vol = solid_volume(p.shape, 1e-6)
+            volumes.append((p.shape, vol))
+        info[p.name] = {"group": p.group, "kind": p.kind, "role": p.role, "description": p.description,
+                        "colour_rgba": list(p.colour), "placement_matrix_mm": p.matrix.round(12).tolist(),
+                        "files": [rs.path.name, rl.path.name], "volume_mm3": vol}
+    return {"records": records, "parts": info,
+            "tolerances": {"stl_chordal_mm_gears": chord, "stl_chordal_mm_other_parts": chord_parts,
+                           "stl_angular_rad": ang,
+                           "step_frame": "assembly frame (placement_matrix_mm maps the part's own frame into it)"}}
+
+
+# ---------------------------------------------------------------- faces near a mesh
+
+
+def faces_near(shape, points, radius: float) -> TopoDS_Shape:
+    """The faces of ``shape`` that come within ``radius`` (mm) of any of ``points`` ``(k, 2)``
+    (x, y in the shape's own frame, mm), as one compound, for sectioning only where two gears
+    can meet.
+
+    A face is kept when its bounding box, projected on z = 0, is within ``radius`` of a point.
+    The boxes come from the faces' geometry (B-spline poles, analytic bounds), so they hold the
+    whole face: every point of a dropped face is farther than ``radius`` from every point.
+    """
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+
+    pts = np.asarray(points, dtype=float).reshape(-1, 2)
+    kept = []
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        face = exp.Current()
+        exp.Next()
+        box = Bnd_Box()
+        BRepBndLib.Add_s(face, box, False)  # from the geometry, not a (possibly coarse) mesh
+        x0, y0, _, x1, y1, _ = box.Get()
+        dx = np.maximum(np.maximum(x0 - pts[:, 0], pts[:, 0] - x1), 0.0)
+        dy = np.maximum(np.maximum(y0 - pts[:, 1], pts[:, 1] - y1), 0.0)
+        if float(np.min(np.hypot(dx, dy))) <= radius:
+            kept.append(face)
+    return P.compound(kept)
+
+
+# ---------------------------------------------------------------- overlap check
+
+
+@dataclass(frozen=True)
+class Overlap:
+    """Two parts sharing ``volume`` mm^3 (``intended``: listed as meant to touch, with ``why``)."""
+
+    part1: str
+    part2: str
+    volume: float
+    intended: bool
+    why: str = ""
+
+
+@dataclass
+class OverlapReport:
+    """Pairwise intersections: ``pairs_checked`` (bounding boxes touching), the overlaps found,
+    the tolerance (mm^3) below which a shared volume counts as touching, not overlapping."""
+
+    parts: int
+    pairs_checked: int
+    overlaps: list[Overlap]
+    tolerance: float
+    intended: list[tuple[str, str, str]]
+    delegated: list[tuple[str, str, str]] = field(default_factory=list)
+
+    @property
+    def unintended(self) -> list[Overlap]:
+        return [o for o in self.overlaps if not o.intended and o.volume > self.tolerance]
+
+    @property
+    def ok(self) -> bool:
+        return not self.unintended
+
+
+def _bbox(shape) -> Bnd_Box:
+    box = Bnd_Box()
+    BRepBndLib.Add_s(shape, box, True)
+    return box
+
+
+def _volume(shape) -> float:
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    return abs(props.Mass())
+
+
+def intersection_volume(a, b) -> float:
+    """Volume (mm^3) of the boolean common of two shapes (0 if they only touch)."""
+    op = BRepAlgoAPI_Common(a, b)
+    op.SetRunParallel(False)
+    op.Build()
+    if not op.IsDone():
+        raise BuildError("boolean common failed")
+    return _volume(op.Shape())
+
+
+def gear_envelope(part: PlacedPart) -> TopoDS_Shape | None:
+    """The tip cylinders (with hubs and spacer) of a gear part in its own frame: a cheap proxy
+    that contains the gear, or None for a part that is not a gear."""
+    solid = part.solid
+    if solid is None:
+        return None
+    spec = solid.spec
+    pieces = []
+
+    def gear_body(g, z0):
+        pieces.append(P.translate(P.cylinder(2 * g.tip_radius, g.face_width), (0, 0, z0)))
+        if g.hub.hub_length > 0:
+            pieces.append(P.translate(P.cylinder(g.hub.hub_diameter, g.hub.hub_length), (0, 0, z0 - g.hub.hub_length)))
+
+    if isinstance(spec, ClusterSpec):
+        gear_body(spec.large, 0.0)
+        gear_body(spec.small, spec.small_gear_z)
+        if spec.axial_gap > 0:
+            pieces.append(P.translate(P.cylinder(spec.spacer_diameter_resolved, spec.axial_gap),
+                                      (0, 0, spec.large.face_width)))
+    else:
+        gear_body(spec, 0.0)
+    return P.compound(pieces).Moved(location(part.matrix))
+
+
+def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str, str, str]] = (),
+                      tolerance: float = 1e-3, skip_intended: bool = True,
+                      delegated: Iterable[tuple[str, str, str]] = ()) -> OverlapReport:
+    """Check every pair of parts for shared volume (boolean common, after a bounding-box test).
+
+    Pairs listed in ``intended`` (part, part, why) are meant to touch: with ``skip_intended``
+    they are not intersected (their contact is by construction, a shaft in its bore). Pairs in
+    ``delegated`` (meshing gears) are checked elsewhere, by the geometric mesh checker, and
+    skipped here. A gear is first tested through its tip-cylinder envelope; only when that
+    shares volume with the other part are the exact solids intersected. Any other pair sharing
+    more than ``tolerance`` mm^3 is an overlap.
+    """
+    parts = list(parts)
+    wanted = {frozenset((a, b)): why for a, b, why in intended}
+    skip = {frozenset((a, b)) for a, b, _ in delegated}
+    boxes = [_bbox(p.world()) for p in parts]
+    envelopes = [gear_envelope(p) for p in parts]
+    overlaps: list[Overlap] = []
+    checked = 0
+    for i in range(len(parts)):
+        for j in range(i + 1, len(parts)):
+            if boxes[i].IsOut(boxes[j]):
+                continue
+            key = frozenset((parts[i].name, parts[j].name))
+            if key in skip or (key in wanted and skip_intended):
+                continue
+            checked += 1
+            a = envelopes[i] if envelopes[i] is not None else parts[i].world()
+            b = envelopes[j] if envelopes[j] is not None else parts[j].world()
+            if envelopes[i] is not None or envelopes[j] is not None:
+                if intersection_volume(a, b) <= tolerance:
+                    continue
+            v = intersection_volume(parts[i].world(), parts[j].world())
+            if v > tolerance or key in wanted:
+                overlaps.append(Overlap(parts[i].name, parts[j].name, v, key in wanted, wanted.get(key, "")))
+    report = OverlapReport(len(parts), checked, overlaps, tolerance, list(intended))
+    report.delegated = list(delegated)
+    return report
+
+
+__all__ = ["COLOURS", "transform", "location", "PlacedPart", "PartSet", "gear_parts", "parts_settings",
+           "non_gear_parts", "robot_joint_parts", "c_axis_parts", "split_pinion_parts", "all_parts", "assembly_document",
+           "write_assembly_step", "export_parts", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
+           "pairwise_overlaps"]

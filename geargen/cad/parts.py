@@ -1,0 +1,446 @@
+"""Non-gear parts of an assembly model as simple solids (mm, OCCT shapes through OCP).
+
+Every builder works in the part's own frame and says so; :mod:`geargen.cad.assembly` places
+them. Each solid has a closed-form volume (given in its docstring, checked by the tests), so a
+part that comes out wrong is caught. The parts are design-review bodies, not manufacturing
+models: a bearing is a ring of its envelope, a motor its envelope, a bevel gear the frustum of
+its pitch cone.
+
+The builders return ``TopoDS_Shape`` and talk to the kernel (OCP) directly, with the same
+operations CadQuery would use (primitives, booleans, ``ShapeUpgrade_UnifySameDomain`` as its
+``clean``, a pipe shell for the spring): importing CadQuery costs seconds (it pulls in VTK)
+that a build does not need. :func:`volume`, :func:`is_valid`, :func:`bounding_box`,
+:func:`translate` and :func:`compound` are the few shape queries the rest of ``cad`` uses.
+
+Frames, unless a builder says otherwise: the part's axis is +z, its lowest face at z = 0.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from OCP.Bnd import Bnd_Box
+from OCP.BRep import BRep_Builder
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Common, BRepAlgoAPI_Cut, BRepAlgoAPI_Fuse
+from OCP.BRepBndLib import BRepBndLib
+from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire, BRepBuilderAPI_Transform,
+                                BRepBuilderAPI_Transformed)
+from OCP.BRepLib import BRepLib
+from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
+from OCP.BRepCheck import BRepCheck_Analyzer
+from OCP.BRepGProp import BRepGProp
+from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCone, BRepPrimAPI_MakeCylinder
+from OCP.GCE2d import GCE2d_MakeSegment
+from OCP.Geom import Geom_CylindricalSurface
+from OCP.Geom2d import Geom2d_Line
+from OCP.GProp import GProp_GProps
+from OCP.gp import gp_Ax2, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
+from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
+from OCP.TopAbs import TopAbs_SOLID
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
+from OCP.TopTools import TopTools_ListOfShape
+
+from geargen.errors import BuildError, DesignError
+
+
+def _positive(**values) -> None:
+    for name, v in values.items():
+        if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
+            raise DesignError(name, f"{v!r} is out of range", "> 0 mm")
+
+
+# ---------------------------------------------------------------- shape queries and operations
+
+
+def is_valid(shape: TopoDS_Shape) -> bool:
+    """Whether the kernel's checker (``BRepCheck_Analyzer``) finds no defect in ``shape``."""
+    return BRepCheck_Analyzer(shape).IsValid()
+
+
+def volume(shape: TopoDS_Shape) -> float:
+    """Volume (mm^3) by the kernel's volume integration (exact for these analytic solids)."""
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    return props.Mass()
+
+
+def bounding_box(shape: TopoDS_Shape, optimal: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Corners ``(lo (3,), hi (3,))`` (mm) of the axis-aligned box around ``shape``: ``optimal``
+    from the geometry itself (tight), otherwise the kernel's quick box (may be larger)."""
+    box = Bnd_Box()
+    if optimal:
+        BRepBndLib.AddOptimal_s(shape, box)
+    else:
+        BRepBndLib.Add_s(shape, box, True)
+    x0, y0, z0, x1, y1, z1 = box.Get()
+    return np.array([x0, y0, z0]), np.array([x1, y1, z1])
+
+
+def solids(shape: TopoDS_Shape) -> list[TopoDS_Shape]:
+    """The solids in ``shape``."""
+    out = []
+    exp = TopExp_Explorer(shape, TopAbs_SOLID)
+    while exp.More():
+        out.append(TopoDS.Solid_s(exp.Current()))
+        exp.Next()
+    return out
+
+
+def translate(shape: TopoDS_Shape, vector) -> TopoDS_Shape:
+    """A copy of ``shape`` moved by ``vector`` (x, y, z) mm."""
+    t = gp_Trsf()
+    t.SetTranslation(gp_Vec(*(float(v) for v in vector)))
+    return BRepBuilderAPI_Transform(shape, t, True).Shape()
+
+
+def compound(shapes) -> TopoDS_Compound:
+    """One compound of ``shapes`` (no boolean: they are only grouped)."""
+    out = TopoDS_Compound()
+    builder = BRep_Builder()
+    builder.MakeCompound(out)
+    for s in shapes:
+        builder.Add(out, s)
+    return out
+
+
+def _boolean(op, args, tools) -> TopoDS_Shape:
+    a, t = TopTools_ListOfShape(), TopTools_ListOfShape()
+    for s in args:
+        a.Append(s)
+    for s in tools:
+        t.Append(s)
+    op.SetArguments(a)
+    op.SetTools(t)
+    op.SetRunParallel(True)
+    op.Build()
+    if not op.IsDone():
+        raise BuildError(f"boolean operation {type(op).__name__} failed")
+    return op.Shape()
+
+
+def cut(shape: TopoDS_Shape, *tools: TopoDS_Shape) -> TopoDS_Shape:
+    """``shape`` minus ``tools``."""
+    return _boolean(BRepAlgoAPI_Cut(), [shape], tools)
+
+
+def intersect(shape: TopoDS_Shape, *tools: TopoDS_Shape) -> TopoDS_Shape:
+    """The common part of ``shape`` and ``tools``."""
+    return _boolean(BRepAlgoAPI_Common(), [shape], tools)
+
+
+def union(shape: TopoDS_Shape, *tools: TopoDS_Shape) -> TopoDS_Shape:
+    """``shape`` fused with ``tools`` (faces not merged: see :func:`clean`)."""
+    return _boolean(BRepAlgoAPI_Fuse(), [shape], tools)
+
+
+def clean(shape: TopoDS_Shape) -> TopoDS_Shape:
+    """Coplanar (same-domain) faces and edges merged (``ShapeUpgrade_UnifySameDomain``)."""
+    up = ShapeUpgrade_UnifySameDomain(shape, True, True, True)
+    up.AllowInternalEdges(False)
+    up.Build()
+    return up.Shape()
+
+
+def _valid(shape: TopoDS_Shape, what: str) -> TopoDS_Shape:
+    if not is_valid(shape):
+        raise BuildError(f"{what}: the kernel made an invalid solid")
+    return shape
+
+
+def _single(shape: TopoDS_Shape, what: str) -> TopoDS_Shape:
+    found = solids(shape)
+    if len(found) != 1:
+        raise BuildError(f"{what}: expected one solid, got {len(found)}")
+    return _valid(found[0], what)
+
+
+def fuse(shapes: list[TopoDS_Shape], what: str = "fused part") -> TopoDS_Shape:
+    """Fuse touching or overlapping solids into one solid (coplanar faces merged)."""
+    out = shapes[0]
+    if len(shapes) > 1:
+        out = clean(union(out, *shapes[1:]))
+    return _single(out, what)
+
+
+def _cylinder(radius: float, height: float, base=(0.0, 0.0, 0.0)) -> TopoDS_Shape:
+    return BRepPrimAPI_MakeCylinder(gp_Ax2(gp_Pnt(*map(float, base)), gp_Dir(0, 0, 1)), radius, height,
+                                    2 * math.pi).Shape()
+
+
+def _box(size_x: float, size_y: float, size_z: float, corner=(0.0, 0.0, 0.0)) -> TopoDS_Shape:
+    return BRepPrimAPI_MakeBox(gp_Ax2(gp_Pnt(*map(float, corner)), gp_Dir(0, 0, 1)), size_x, size_y, size_z).Shape()
+
+
+# ---------------------------------------------------------------- primitives
+
+
+def cylinder(diameter: float, height: float, bore: float = 0.0) -> TopoDS_Shape:
+    """A (hollow) cylinder on +z, z in [0, height]. Volume ``pi/4 (d^2 - bore^2) h``."""
+    _positive(diameter=diameter, height=height)
+    if not 0 <= bore < diameter:
+        raise DesignError("bore", f"{bore!r} mm is out of range", f"[0, {diameter:.6g}) mm")
+    solid = _cylinder(diameter / 2, height)
+    if bore > 0:
+        solid = cut(solid, _cylinder(bore / 2, height))
+    return _single(solid, "cylinder")
+
+
+def box(size_x: float, size_y: float, size_z: float, corner=(0.0, 0.0, 0.0)) -> TopoDS_Shape:
+    """An axis-aligned box with its lowest corner at ``corner``. Volume ``x y z``."""
+    _positive(size_x=size_x, size_y=size_y, size_z=size_z)
+    return _box(size_x, size_y, size_z, corner)
+
+
+def box_between(lo, hi) -> TopoDS_Shape:
+    """The axis-aligned box from corner ``lo`` to corner ``hi`` (each ``(x, y, z)``, mm)."""
+    return box(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], lo)
+
+
+def frustum(bottom_radius: float, top_radius: float, height: float, bore: float = 0.0) -> TopoDS_Shape:
+    """A cone frustum on +z, radius ``bottom_radius`` at z = 0 and ``top_radius`` at ``height``.
+
+    Volume ``pi h (R^2 + R r + r^2) / 3 - pi/4 bore^2 h``.
+    """
+    _positive(bottom_radius=bottom_radius, top_radius=top_radius, height=height)
+    if not 0 <= bore < 2 * min(bottom_radius, top_radius):
+        raise DesignError("bore", f"{bore!r} mm is out of range", "smaller than both end diameters")
+    solid = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), bottom_radius, top_radius, height,
+                                 2 * math.pi).Shape()
+    if bore > 0:
+        solid = cut(solid, _cylinder(bore / 2, height))
+    return _single(solid, "frustum")
+
+
+# ---------------------------------------------------------------- machine elements
+
+
+def shaft(diameter: float, length: float, bore: float = 0.0) -> TopoDS_Shape:
+    """A round (hollow) shaft on +z, z in [0, length]."""
+    return cylinder(diameter, length, bore)
+
+
+def bearing(bore: float, outer_diameter: float, width: float) -> TopoDS_Shape:
+    """A rolling bearing as its envelope ring: ``bore`` to ``outer_diameter``, z in [0, width]."""
+    if not outer_diameter > bore:
+        raise DesignError("outer_diameter", f"{outer_diameter!r} mm is not larger than the bore", f"> {bore:.6g} mm")
+    return cylinder(outer_diameter, width, bore)
+
+
+@dataclass(frozen=True)
+class BevelPairGeometry:
+    """Pitch cones of a bevel pair with intersecting axes (mm, rad).
+
+    ``pitch_angle_*`` is each gear's pitch-cone half angle (they add up to the shaft angle),
+    ``pitch_radius_*`` the pitch radius at the heel (outer end of the face), ``cone_distance``
+    the slant length from the common apex to the heel. A gear's frustum runs from its heel
+    (radius ``pitch_radius``) a ``face_width`` along the cone towards the apex.
+    """
+
+    pinion_teeth: int
+    gear_teeth: int
+    module: float
+    face_width: float
+    shaft_angle: float
+    pitch_angle_pinion: float
+    pitch_angle_gear: float
+    pitch_radius_pinion: float
+    pitch_radius_gear: float
+    cone_distance: float
+
+    @property
+    def ratio(self) -> float:
+        return self.gear_teeth / self.pinion_teeth
+
+    def apex_height(self, which: str) -> float:
+        """Distance along the axis from a gear's heel plane to the common apex (mm)."""
+        r, g = self._cone(which)
+        return r / math.tan(g)
+
+    def axial_height(self, which: str) -> float:
+        """Axial length of a gear's frustum (mm): face width times cos(pitch angle)."""
+        return self.face_width * math.cos(self._cone(which)[1])
+
+    def toe_radius(self, which: str) -> float:
+        r, g = self._cone(which)
+        return r - self.face_width * math.sin(g)
+
+    def _cone(self, which: str) -> tuple[float, float]:
+        if which == "pinion":
+            return self.pitch_radius_pinion, self.pitch_angle_pinion
+        if which == "gear":
+            return self.pitch_radius_gear, self.pitch_angle_gear
+        raise ValueError("which must be 'pinion' or 'gear'")
+
+
+def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_width: float,
+                        shaft_angle: float = math.pi / 2) -> BevelPairGeometry:
+    """Pitch cones of a bevel pair: ``tan(gamma_p) = sin(S) / (z_g/z_p + cos(S))``, gamma_g = S - gamma_p,
+    heel pitch radii ``z m / 2``, cone distance ``r_p / sin(gamma_p)``."""
+    _positive(module=module, face_width=face_width, shaft_angle=shaft_angle)
+    if pinion_teeth < 4 or gear_teeth < 4:
+        raise DesignError("teeth", f"{pinion_teeth}, {gear_teeth} are too few", ">= 4 each")
+    ratio = gear_teeth / pinion_teeth
+    gp = math.atan2(math.sin(shaft_angle), ratio + math.cos(shaft_angle))
+    gg = shaft_angle - gp
+    rp, rg = pinion_teeth * module / 2, gear_teeth * module / 2
+    cone = rp / math.sin(gp)
+    if not face_width < cone:
+        raise DesignError("face_width", f"{face_width:.6g} mm exceeds the cone distance", f"< {cone:.6g} mm")
+    return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
+
+
+def bevel_pitch_cone(geometry: BevelPairGeometry, which: str, bore: float = 0.0) -> TopoDS_Shape:
+    """The pitch-cone frustum of one gear of a bevel pair: heel at z = 0, apex on +z.
+
+    Radius ``pitch_radius`` at z = 0, ``toe_radius`` at z = ``axial_height``; the pair's common
+    apex is at z = ``apex_height``. Two such frusta placed on their axes touch along the pitch
+    line (the pitch cones roll on each other).
+    """
+    r0 = geometry._cone(which)[0]
+    return frustum(r0, geometry.toe_radius(which), geometry.axial_height(which), bore)
+
+
+def servo_motor(body_diameter: float, body_length: float, flange_width: float, flange_thickness: float,
+                shaft_diameter: float, shaft_length: float) -> TopoDS_Shape:
+    """A servo-motor envelope: square mounting flange z in [0, t], round body z in [t, t + L]
+    (encoder included), output shaft stub z in [-shaft_length, 0].
+
+    Volume ``w^2 t + pi/4 D^2 L + pi/4 d^2 l``.
+    """
+    _positive(body_diameter=body_diameter, body_length=body_length, flange_width=flange_width,
+              flange_thickness=flange_thickness, shaft_diameter=shaft_diameter, shaft_length=shaft_length)
+    if not shaft_diameter < min(body_diameter, flange_width):
+        raise DesignError("shaft_diameter", "the shaft is not thinner than the motor", "< body diameter")
+    flange = box(flange_width, flange_width, flange_thickness, (-flange_width / 2, -flange_width / 2, 0))
+    body = translate(cylinder(body_diameter, body_length), (0, 0, flange_thickness))
+    stub = translate(cylinder(shaft_diameter, shaft_length), (0, 0, -shaft_length))
+    return fuse([flange, body, stub], "servo motor")
+
+
+def blade_flexure(thickness: float, length: float, width: float) -> TopoDS_Shape:
+    """One blade flexure: ``thickness`` along x (the direction it flexes), ``width`` along y,
+    ``length`` (free, between the clamps) along z; centred on x = y = 0, z in [0, length]."""
+    _positive(thickness=thickness, length=length, width=width)
+    return box(thickness, width, length, (-thickness / 2, -width / 2, 0))
+
+
+def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: float, total_coils: float) -> TopoDS_Shape:
+    """A helical compression spring at ``length`` (installed), ends ground flat, z in [0, length].
+
+    The wire (round, ``wire_diameter``) is swept along a right-hand helix of ``total_coils``
+    turns on ``mean_coil_diameter`` from z = d/2 to length - d/2, then cut to the slab
+    [0, length] (the ground ends). Volume of the swept wire before grinding
+    ``pi d^2/4 * n sqrt((pi D)^2 + p^2)``; grinding removes a little of each end coil.
+    """
+    _positive(wire_diameter=wire_diameter, mean_coil_diameter=mean_coil_diameter, length=length,
+              total_coils=total_coils)
+    d, mean = wire_diameter, mean_coil_diameter
+    if not mean > 2 * d:
+        raise DesignError("mean_coil_diameter", "spring index D/d must exceed 2", f"> {2 * d:.6g} mm")
+    rise = length - d
+    pitch = rise / total_coils
+    if not pitch > d:
+        raise DesignError("length", f"{length:.6g} mm closes the coils (pitch {pitch:.4g} <= wire {d:.4g} mm)",
+                          f"> {d * (total_coils + 1):.6g} mm")
+    helix = _helix(pitch, rise, mean / 2)
+    circle = BRepBuilderAPI_MakeWire(
+        BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(mean / 2, 0, 0), gp_Dir(0, 1, 0)), d / 2)).Edge()).Wire()
+    sweep = BRepOffsetAPI_MakePipeShell(helix)
+    sweep.SetMode(True)  # Frenet frame along the helix
+    sweep.SetTransitionMode(BRepBuilderAPI_Transformed)
+    sweep.Add(circle, False, False)
+    sweep.Build()
+    sweep.MakeSolid()
+    wire = translate(sweep.Shape(), (0, 0, d / 2))
+    slab = _cylinder(mean / 2 + d, length)
+    return _single(intersect(wire, slab), "compression spring")
+
+
+def _helix(pitch: float, height: float, radius: float):
+    """A right-hand helix on +z from (radius, 0, 0) as a wire: a line on the cylinder's (u, v)
+    plane, its 3-D curve built by the kernel (as CadQuery's ``Wire.makeHelix``)."""
+    surface = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), radius)
+    line = Geom2d_Line(gp_Pnt2d(0.0, 0.0), gp_Dir2d(2 * math.pi, pitch))
+    turns = height / pitch
+    segment = GCE2d_MakeSegment(line.Value(0.0), line.Value(turns * math.hypot(2 * math.pi, pitch))).Value()
+    wire = BRepBuilderAPI_MakeWire(BRepBuilderAPI_MakeEdge(segment, surface).Edge()).Wire()
+    BRepLib.BuildCurves3d_s(wire, 1e-6, MaxSegment=2000)
+    return wire
+
+
+def coil_envelope(wire_diameter: float, mean_coil_diameter: float, length: float) -> TopoDS_Shape:
+    """A spring as its envelope tube: inner diameter D - d, outer D + d, z in [0, length]."""
+    return cylinder(mean_coil_diameter + wire_diameter, length, mean_coil_diameter - wire_diameter)
+
+
+def plate_with_holes(size_x: float, size_y: float, thickness: float, holes: list[tuple[float, float, float]],
+                     corner=(0.0, 0.0, 0.0)) -> TopoDS_Shape:
+    """An axis-aligned plate (box from ``corner``) with through holes along z.
+
+    ``holes``: ``(x, y, diameter)`` in the same frame as ``corner``. Volume
+    ``x y t - sum pi/4 d_i^2 t`` (holes must lie wholly inside the plate and apart).
+    """
+    solid = box(size_x, size_y, thickness, corner)
+    cutters = [_cylinder(dh / 2, thickness, (xh, yh, corner[2])) for xh, yh, dh in holes]
+    if cutters:
+        solid = cut(solid, *cutters)
+    return _single(solid, "plate")
+
+
+def link_tray(radius: float, length: float, height: float, wall: float, floor: float,
+              bosses: list[tuple[float, float, float, float]] = ()) -> TopoDS_Shape:
+    """The envelope of a robot link as an open-top tray: a round end of ``radius`` about the
+    origin joined to a straight part out to x = ``length`` (width ``2 radius``), walls
+    ``wall`` thick, floor ``floor`` thick, z in [0, height]; ``bosses`` ``(x, y, diameter,
+    height)`` stand on the floor (their height counted from the floor's top).
+
+    Volume ``A(R) h - A(R - wall) (h - floor) + sum pi/4 d^2 h_b`` with
+    ``A(R) = pi R^2 / 2 + 2 R length`` (half disc plus rectangle).
+    """
+    _positive(radius=radius, length=length, height=height, wall=wall, floor=floor)
+    if not (wall < radius and floor < height):
+        raise DesignError("wall", "walls and floor leave no room inside", "wall < radius, floor < height")
+
+    def outline(r: float, z0: float, h: float) -> TopoDS_Shape:
+        disc = _cylinder(r, h, (0, 0, z0))
+        rect = _box(length - (radius - r), 2 * r, h, (0, -r, z0))
+        return clean(union(disc, rect))
+
+    tray = cut(outline(radius, 0.0, height), outline(radius - wall, floor, height - floor))
+    extra = [_cylinder(d / 2, h, (x, y, floor)) for x, y, d, h in bosses]
+    if extra:
+        tray = union(tray, *extra)
+    return _single(clean(tray), "link tray")
+
+
+def link_tray_volume(radius: float, length: float, height: float, wall: float, floor: float,
+                     bosses: list[tuple[float, float, float, float]] = ()) -> float:
+    """The closed-form volume of :func:`link_tray` (mm^3)."""
+    def area(r):
+        return math.pi * r * r / 2 + 2 * r * (length - (radius - r))
+
+    return (area(radius) * height - area(radius - wall) * (height - floor)
+            + sum(math.pi * d * d / 4 * h for _, _, d, h in bosses))
+
+
+def split_collar(bore: float, outer_diameter: float, width: float, slot: float) -> TopoDS_Shape:
+    """A clamp collar (the frictional interface of a split pinion): a ring with one radial slot
+    of width ``slot`` through the wall on +x, z in [0, width].
+
+    Volume ``pi/4 (D^2 - d^2) w - slot ((D - d)/2) w`` (to first order; the slot's ends are
+    flat, the ring's curved).
+    """
+    ring = cylinder(outer_diameter, width, bore)
+    if slot <= 0:
+        return ring
+    cutter = box(outer_diameter, slot, width, (0, -slot / 2, 0))
+    return _single(cut(ring, cutter), "split collar")
+
+
+__all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
+           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "BevelPairGeometry",
+           "bevel_pair_geometry", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
+           "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "split_collar"]

@@ -1,0 +1,155 @@
+"""The 2-D layout drawing of an assembly: gear circles, centres, lines of action, the symmetry
+line and the preload carriage's travel, as PNG (matplotlib, Agg canvas, no pyplot).
+
+Input is plain data (:class:`LayoutGear`, :class:`LayoutMesh`), in mm in the output gear's
+frame (+x the symmetry line towards the input); the drawing is labelled in the design's unit.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from geargen.units import LENGTH_SUFFIXES
+
+
+@dataclass(frozen=True)
+class LayoutGear:
+    """One toothed body seen along the axes: ``centre`` (x, y), radii (mm), its teeth."""
+
+    name: str
+    centre: tuple[float, float]
+    reference_radius: float
+    tip_radius: float
+    root_radius: float
+    base_radius: float
+    teeth: int
+
+
+@dataclass(frozen=True)
+class LayoutMesh:
+    """A mesh: the two gear names, and which line of action carries the working flanks
+    (``side`` +1 or -1: the tangent to the base circles turned counter-clockwise or clockwise
+    from the line of centres; 0: draw both)."""
+
+    name: str
+    gear1: str
+    gear2: str
+    side: int = 0
+    working: str = ""  # "ccw" / "cw": gear 1's flank that carries load; picks ``side`` when 0
+
+
+def line_of_action(c1, rb1: float, c2, rb2: float, side: int) -> np.ndarray:
+    """The transverse line of action of two external gears: the internal tangent of their base
+    circles from gear 1's tangent point to gear 2's, ``(2, 2)`` (mm).
+
+    ``side`` +1 takes the tangent whose direction is the line of centres turned by
+    +(pi/2 - alpha_w), -1 the other; ``cos(alpha_w) = (rb1 + rb2) / a``.
+    """
+    c1, c2 = np.asarray(c1, float), np.asarray(c2, float)
+    d = c2 - c1
+    a = float(np.hypot(*d))
+    beta = math.atan2(d[1], d[0])
+    alpha_w = math.acos(min(1.0, (rb1 + rb2) / a))
+    phi = beta + side * (math.pi / 2 - alpha_w)  # direction from centre 1 to its tangent point
+    u = np.array([math.cos(phi), math.sin(phi)])
+    return np.vstack([c1 + rb1 * u, c2 - rb2 * u])
+
+
+def working_side(c1, rb1: float, c2, rb2: float, flank: str) -> int:
+    """The ``side`` of :func:`line_of_action` on which gear 1's ``flank`` ("ccw": the flank that
+    leads when gear 1 turns counter-clockwise) pushes gear 2: the reaction on gear 1 must then
+    turn it clockwise, i.e. (T1 - c1) x (T2 - T1) > 0."""
+    for side in (1, -1):
+        t1, t2 = line_of_action(c1, rb1, c2, rb2, side)
+        u, t = t1 - np.asarray(c1, float), t2 - t1
+        cross = u[0] * t[1] - u[1] * t[0]
+        if (cross > 0) == (flank == "ccw"):
+            return side
+    return 0
+
+
+def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | Path | None = None,
+                length_unit: str = "mm", title: str = "", carriage: tuple[tuple[float, float], float] | None = None,
+                symmetry_line: bool = True, notes: list[str] = ()) -> bytes:
+    """Draw the layout; returns the PNG bytes (and writes ``path`` if given).
+
+    ``carriage``: ``((x, y), travel)``: the preload carriage's position (the input gear's centre)
+    and its travel either way along the symmetry line (mm), drawn as a double arrow.
+    """
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Circle, FancyArrowPatch
+
+    scale = LENGTH_SUFFIXES[length_unit]
+    fig = Figure(figsize=(9, 7.5), dpi=110)
+    FigureCanvasAgg(fig)
+    ax = fig.add_subplot(1, 1, 1)
+    by = {g.name: g for g in gears}
+    seen = set()
+    labels: dict[tuple, list[str]] = {}
+    for g in gears:
+        x, y = (v / scale for v in g.centre)
+        labels.setdefault((round(x, 9), round(y, 9)), []).append(f"{g.name} {g.teeth} T")
+    for (x, y), text in labels.items():
+        ax.plot([x], [y], "+", color="k", ms=9)
+        ax.annotate("\n".join(text), (x, y), xytext=(4, 4), textcoords="offset points", fontsize=7)
+    for g in gears:
+        x, y = (v / scale for v in g.centre)
+        key = (round(x, 9), round(y, 9), g.reference_radius)
+        if key in seen:
+            continue
+        seen.add(key)
+        ax.add_patch(Circle((x, y), g.tip_radius / scale, fill=False, lw=0.9, color="0.35"))
+        ax.add_patch(Circle((x, y), g.reference_radius / scale, fill=False, lw=0.8, ls="-.", color="tab:blue"))
+        ax.add_patch(Circle((x, y), g.base_radius / scale, fill=False, lw=0.6, ls=":", color="tab:green"))
+        ax.add_patch(Circle((x, y), g.root_radius / scale, fill=False, lw=0.5, color="0.6"))
+    for m in meshes:
+        g1, g2 = by[m.gear1], by[m.gear2]
+        side = m.side or (working_side(g1.centre, g1.base_radius, g2.centre, g2.base_radius, m.working)
+                          if m.working else 0)
+        m = LayoutMesh(m.name, m.gear1, m.gear2, side)
+        for side in ((m.side,) if m.side else (1, -1)):
+            seg = line_of_action(g1.centre, g1.base_radius, g2.centre, g2.base_radius, side) / scale
+            ax.plot(seg[:, 0], seg[:, 1], color="tab:red", lw=1.2 if m.side else 0.8, ls="-" if m.side else "--")
+        ax.plot([g1.centre[0] / scale, g2.centre[0] / scale], [g1.centre[1] / scale, g2.centre[1] / scale],
+                color="0.5", lw=0.5, ls=(0, (2, 3)))
+    xs = [g.centre[0] / scale for g in gears]
+    rs = [g.tip_radius / scale for g in gears]
+    lo_x = min(x - r for x, r in zip(xs, rs))
+    hi_x = max(x + r for x, r in zip(xs, rs))
+    if symmetry_line:
+        ax.axhline(0.0, color="tab:purple", lw=0.8, ls=(0, (8, 3, 2, 3)))
+        ax.annotate("symmetry line", (hi_x, 0), xytext=(-60, 4), textcoords="offset points", fontsize=7,
+                    color="tab:purple")
+    if carriage is not None:
+        (cx, cy), travel = carriage
+        cx, cy, t = cx / scale, cy / scale, travel / scale
+        span = max(t, 0.04 * (hi_x - lo_x))  # drawn at least visibly long; the label gives the number
+        ax.add_patch(FancyArrowPatch((cx - span, cy - 0.12 * (hi_x - lo_x)), (cx + span, cy - 0.12 * (hi_x - lo_x)),
+                                     arrowstyle="<->", mutation_scale=10, color="tab:orange"))
+        ax.annotate(f"carriage travel ±{t:.4g} {length_unit}", (cx, cy - 0.12 * (hi_x - lo_x)),
+                    xytext=(0, -12), textcoords="offset points", ha="center", fontsize=7, color="tab:orange")
+    ax.set_aspect("equal")
+    ax.autoscale_view()
+    ax.set_xlabel(f"x ({length_unit}), output gear centre at the origin")
+    ax.set_ylabel(f"y ({length_unit})")
+    ax.grid(True, lw=0.3, alpha=0.5)
+    legend = ("grey: tip and root circles; blue dash-dot: reference (pitch) circles; green dotted: base circles; "
+              "red: lines of action (solid: working flanks)")
+    ax.set_title((title + "\n" if title else "") + legend, fontsize=7)
+    for i, n in enumerate(notes):
+        fig.text(0.01, 0.01 + 0.025 * i, n, fontsize=7)
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", facecolor="white")
+    data = buf.getvalue()
+    if path is not None:
+        Path(path).write_bytes(data)
+    return data
+
+
+__all__ = ["LayoutGear", "LayoutMesh", "line_of_action", "working_side", "plot_layout"]

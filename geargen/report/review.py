@@ -1,0 +1,256 @@
+"""The design-review report of a build: ``report.md`` and ``report.html`` with the figures embedded.
+
+The report is a list of blocks (heading, paragraph, list, table, preformatted text, image)
+written once and rendered twice, to Markdown and to a self-contained HTML page (images as
+base64 ``data:`` URIs in both). It takes plain data (:class:`Review`), put together by the
+pipeline; this module imports neither the CAD kernel nor the checker. Files are written
+plainly: the build writes into a temporary folder that replaces the export folder at the end.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+
+@dataclass
+class Review:
+    """What the report shows. ``blocks`` are ``(kind, payload)``: ``("h2", text)``,
+    ``("p", text)``, ``("list", [text])``, ``("table", (header, rows))``, ``("pre", text)``,
+    ``("img", (caption, png_bytes))``."""
+
+    title: str
+    status: str  # "PASS" or "FAILING"
+    blocks: list[tuple[str, Any]] = field(default_factory=list)
+
+    def h(self, text: str) -> "Review":
+        self.blocks.append(("h2", text))
+        return self
+
+    def p(self, text: str) -> "Review":
+        self.blocks.append(("p", text))
+        return self
+
+    def items(self, items: list[str]) -> "Review":
+        self.blocks.append(("list", list(items)))
+        return self
+
+    def table(self, header: list[str], rows: list[list[Any]]) -> "Review":
+        self.blocks.append(("table", (list(header), [list(r) for r in rows])))
+        return self
+
+    def pre(self, text: str) -> "Review":
+        self.blocks.append(("pre", text))
+        return self
+
+    def img(self, caption: str, png: bytes | None) -> "Review":
+        if png:
+            self.blocks.append(("img", (caption, png)))
+        return self
+
+
+def _b64(png: bytes) -> str:
+    return "data:image/png;base64," + base64.b64encode(png).decode("ascii")
+
+
+def _cell(v: Any) -> str:
+    if isinstance(v, float):
+        return f"{v:.6g}"
+    return str(v)
+
+
+def to_markdown(review: Review) -> str:
+    out = [f"# {review.title}", "", f"**Status: {review.status}**", ""]
+    for kind, payload in review.blocks:
+        if kind == "h2":
+            out += [f"## {payload}", ""]
+        elif kind == "p":
+            out += [payload, ""]
+        elif kind == "list":
+            out += [f"- {item}" for item in payload] + [""] if payload else ["(none)", ""]
+        elif kind == "table":
+            header, rows = payload
+            out.append("| " + " | ".join(header) + " |")
+            out.append("|" + "|".join("---" for _ in header) + "|")
+            out += ["| " + " | ".join(_cell(c).replace("|", "\\|") for c in r) + " |" for r in rows]
+            out.append("")
+        elif kind == "pre":
+            out += ["```", payload.rstrip("\n"), "```", ""]
+        elif kind == "img":
+            caption, png = payload
+            out += [f"![{caption}]({_b64(png)})", "", f"*{caption}*", ""]
+    return "\n".join(out)
+
+
+_CSS = """body{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}
+table{border-collapse:collapse;margin:0.5em 0 1.2em}td,th{border:1px solid #bbb;padding:3px 7px;font-size:0.9em}
+th{background:#eee}pre{background:#f6f6f6;padding:0.6em;overflow-x:auto;font-size:0.82em}
+img{max-width:100%}.PASS{color:#1a7f37}.FAILING{color:#c62828}figcaption{font-style:italic;font-size:0.9em}"""
+
+
+def to_html(review: Review) -> str:
+    e = html.escape
+    out = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'>", f"<title>{e(review.title)}</title>",
+           f"<style>{_CSS}</style></head><body>", f"<h1>{e(review.title)}</h1>",
+           f"<p><strong class='{e(review.status)}'>Status: {e(review.status)}</strong></p>"]
+    for kind, payload in review.blocks:
+        if kind == "h2":
+            out.append(f"<h2>{e(payload)}</h2>")
+        elif kind == "p":
+            out.append(f"<p>{e(payload)}</p>")
+        elif kind == "list":
+            out.append("<ul>" + "".join(f"<li>{e(i)}</li>" for i in payload) + "</ul>" if payload else "<p>(none)</p>")
+        elif kind == "table":
+            header, rows = payload
+            out.append("<table><tr>" + "".join(f"<th>{e(h)}</th>" for h in header) + "</tr>")
+            out += ["<tr>" + "".join(f"<td>{e(_cell(c))}</td>" for c in r) + "</tr>" for r in rows]
+            out.append("</table>")
+        elif kind == "pre":
+            out.append(f"<pre>{e(payload)}</pre>")
+        elif kind == "img":
+            caption, png = payload
+            out.append(f"<figure><img alt='{e(caption)}' src='{_b64(png)}'><figcaption>{e(caption)}</figcaption></figure>")
+    out.append("</body></html>")
+    return "\n".join(out)
+
+
+def write_review(review: Review, folder: str | Path) -> dict[str, Path]:
+    """Write ``report.md`` and ``report.html`` into ``folder``."""
+    folder = Path(folder)
+    md = folder / "report.md"
+    page = folder / "report.html"
+    md.write_text(to_markdown(review), encoding="utf-8")
+    page.write_text(to_html(review), encoding="utf-8")
+    return {"report_md": md, "report_html": page}
+
+
+def figure_png(fig, dpi: int = 110) -> bytes:
+    """A matplotlib figure (Agg canvas) as PNG bytes."""
+    import io
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=dpi, facecolor="white")
+    return buf.getvalue()
+
+
+__all__ = ["Review", "to_markdown", "to_html", "write_review", "figure_png", "compose", "write_build_review"]
+
+
+# ---------------------------------------------------------------- the review of a build
+
+
+def _len(v_mm: float | None, scale: float, digits: int = 5) -> str:
+    if v_mm is None:
+        return "-"
+    return f"{v_mm / scale:.{digits}g}"
+
+
+def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | None = None) -> Review:
+    """The review of a build result (``geargen.pipeline.BuildResult``, read by attribute)."""
+    import math
+
+    from geargen.units import LENGTH_SUFFIXES
+
+    design = result.design
+    layout = result.layout
+    unit = design.length_unit
+    scale = LENGTH_SUFFIXES[unit]
+    status = "PASS" if result.ok else "FAILING"
+    r = Review(f"{design.name}: design review", status)
+    r.p(design.description or design.name)
+    r.p(f"Design file {design.path.name if design.path else '-'}, sha256 {design.sha256}. Lengths in {unit} "
+        f"unless marked; the model frame has the output gear's centre at the origin, +x along the symmetry line "
+        f"towards the input, +z along the gear axes. Position modelled: {layout.position}.")
+    if not result.ok:
+        r.h("Failures" + (" (written anyway with --force)" if result.forced else ""))
+        r.items(list(result.checks.failures))
+    r.h("Warnings")
+    r.items(result.warnings)
+
+    r.h("Assembly")
+    r.img("Rendered view of the assembly (reference bodies translucent)", render_png)
+    r.img("Layout: gear circles, centres, lines of action, symmetry line, carriage travel", layout_png)
+    if layout.ratio:
+        ok = "exact and allowed" if layout.ratio["ok"] else "NOT one of the required ratios"
+        req = ", ".join(f"{x}:1" for x in layout.ratio["required"]) or "none given"
+        r.p(f"Ratio {layout.ratio['what']}: {layout.ratio['text']} ({ok}; required: {req}).")
+    for n in list(layout.notes) + list(getattr(result.parts, "notes", [])):
+        r.p(n)
+
+    rows = []
+    for g in layout.gears:
+        for spec in g.gears:
+            z0, z1 = g.face_z(spec)
+            helix = f"{math.degrees(spec.helix_angle):.4g} {spec.hand}" if spec.is_helical else "spur"
+            rows.append([g.name, spec.name, spec.teeth, f"{spec.module:.5g}", f"{math.degrees(spec.pressure_angle):.4g}",
+                         helix, _len(spec.face_width, scale), _len(spec.thinning, scale),
+                         f"({_len(g.centre[0], scale, 6)}, {_len(g.centre[1], scale, 6)})",
+                         f"{_len(z0, scale)} to {_len(z1, scale)}", f"{math.degrees(g.rotation_at(spec, z0)):.5g}"])
+    r.h("Gears")
+    r.table(["part", "gear", "teeth", "m_n (mm)", "alpha_n (deg)", "helix (deg)", f"face ({unit})",
+             f"thinning ({unit}, circ.)", f"centre ({unit})", f"z ({unit})", "tooth 0 at its face (deg)"], rows)
+
+    run = layout.synthesis
+    if run is not None:
+        from geargen.report.synthesis import appendix_table
+        r.h("Centre synthesis and error budget (Appendix layout)")
+        r.pre(appendix_table(run))
+
+    r.h("Mesh checks")
+    r.p("Geometric mesh checker: path 1 on the exact 2-D outlines at every mesh position of a tooth cycle; "
+        "path 2 on sections of the built solids where available. Backlash is circumferential at the "
+        "reference pitch circles (gear 1's free rotation with gear 2 held, times its reference radius), "
+        f"in {unit}; positive is clearance.")
+    rows = []
+    for m in result.checks.meshes:
+        if m.get("status") == "disengaged":
+            rows.append([m["mesh"], f"{m['gear1']} / {m['gear2']}", "-", f"{_len(m['design_min'], scale)} to "
+                         f"{_len(m['design_max'], scale)}", "disengaged", "-", "-", "-",
+                         f"axial clearance {_len(m['axial_clearance'], scale)}"])
+            continue
+        p1 = m["path1"]
+        p2 = f"{_len(m['path2_backlash_min'], scale)} to {_len(m['path2_backlash_max'], scale)}" \
+            if "path2_backlash_min" in m else "not run"
+        rows.append([m["mesh"], f"{m['gear1']} / {m['gear2']}", _len(p1.centre_distance, scale, 7),
+                     f"{_len(m['design_min'], scale)} to {_len(m['design_max'], scale)}",
+                     f"{_len(m['backlash_min'], scale)} to {_len(m['backlash_max'], scale)}", p2,
+                     f"{m['contact_ratio']:.4g}", _len(p1.min_clearance, scale),
+                     "ok" if not m["failures"] else "; ".join(m["failures"])])
+    r.table(["mesh", "gear 1 / gear 2", f"centre distance ({unit})", "design backlash", "backlash (path 1)",
+             "backlash (path 2)", "contact ratio", f"min tip clearance ({unit})", "result"], rows)
+
+    ov = result.checks.overlaps
+    if ov is not None:
+        r.h("Part overlaps")
+        r.p(f"{ov.parts} parts; {ov.pairs_checked} pairs whose bounding boxes meet were intersected "
+            f"(tolerance {ov.tolerance:g} mm^3); {len(ov.intended)} intended contacts; "
+            f"{len(ov.delegated)} meshing pairs left to the mesh checker. Unintended overlaps: "
+            f"{len(ov.unintended) or 'none'}.")
+        r.items([f"{o.part1} / {o.part2}: {o.volume:.4g} mm^3" for o in ov.unintended])
+        r.table(["part", "part", "intended contact"], [[a, b, why] for a, b, why in ov.intended])
+
+    s = result.stiffness
+    if s is not None:
+        from geargen.report.stiffness import format_summary, preload_diagram_figure
+        r.h("Stiffness and preload")
+        r.pre(format_summary(s))
+        try:
+            r.img("Preload diagram (Fig. 6)", figure_png(preload_diagram_figure(s)))
+        except Exception as exc:  # the plot is an aid; the numbers are above
+            r.p(f"preload diagram not drawn: {exc}")
+
+    parts = getattr(result.parts, "parts", [])
+    r.h("Parts")
+    r.table(["part", "group", "kind", "description"], [[p.name, p.group, p.kind, p.description] for p in parts])
+    files = result.files.get("records", {}) if result.files else {}
+    r.h("Files")
+    r.p(f"{len(files)} files besides this report; see manifest.json for units, tolerances and versions.")
+    return r
+
+
+def write_build_review(result: Any, folder: str | Path, render_png: bytes | None = None,
+                       layout_png: bytes | None = None) -> dict[str, Path]:
+    """Compose the review of a build and write report.md and report.html into ``folder``."""
+    return write_review(compose(result, render_png, layout_png), folder)

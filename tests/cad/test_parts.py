@@ -1,0 +1,72 @@
+"""Non-gear parts: every solid against its closed-form volume (and the bevel pitch cones' geometry)."""
+
+import math
+
+import pytest
+
+pytestmark = pytest.mark.slow
+
+P = pytest.importorskip("geargen.cad.parts")
+
+# the kernel's volume integration on these analytic solids is exact to ~1e-9 relative; 1e-7 leaves room
+REL = 1e-7
+
+
+def test_cylinder_and_bearing_volumes():
+    assert P.volume(P.cylinder(10, 5)) == pytest.approx(math.pi / 4 * 100 * 5, rel=REL)
+    assert P.volume(P.bearing(8, 22, 7)) == pytest.approx(math.pi / 4 * (22 ** 2 - 8 ** 2) * 7, rel=REL)
+    assert P.volume(P.shaft(16, 78, 9.5)) == pytest.approx(math.pi / 4 * (16 ** 2 - 9.5 ** 2) * 78, rel=REL)
+
+
+def test_frustum_volume():
+    r0, r1, h, bore = 12.0, 7.0, 5.0, 4.0
+    expected = math.pi * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3 - math.pi / 4 * bore ** 2 * h
+    assert P.volume(P.frustum(r0, r1, h, bore)) == pytest.approx(expected, rel=REL)
+
+
+def test_bevel_pitch_cones_meet_at_one_apex():
+    g = P.bevel_pair_geometry(15, 30, 0.79375, 3.81)
+    assert g.pitch_angle_pinion + g.pitch_angle_gear == pytest.approx(math.pi / 2, rel=1e-15)
+    assert math.tan(g.pitch_angle_gear) == pytest.approx(2.0, rel=1e-14)  # ratio 2 at 90 deg shaft angle
+    # both heels lie on the same cone distance from the common apex
+    assert math.hypot(g.pitch_radius_pinion, g.apex_height("pinion")) == pytest.approx(g.cone_distance, rel=1e-14)
+    assert math.hypot(g.pitch_radius_gear, g.apex_height("gear")) == pytest.approx(g.cone_distance, rel=1e-14)
+    cone = P.bevel_pitch_cone(g, "gear", bore=4.7625)
+    r0, r1, h = g.pitch_radius_gear, g.toe_radius("gear"), g.axial_height("gear")
+    expected = math.pi * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3 - math.pi / 4 * 4.7625 ** 2 * h
+    assert P.volume(cone) == pytest.approx(expected, rel=REL)
+
+
+def test_servo_motor_and_blade_volumes():
+    m = P.servo_motor(25.4, 38.1, 25.4, 3.175, 4.7625, 2.54)
+    expected = 25.4 ** 2 * 3.175 + math.pi / 4 * 25.4 ** 2 * 38.1 + math.pi / 4 * 4.7625 ** 2 * 2.54
+    assert P.volume(m) == pytest.approx(expected, rel=REL)
+    assert P.volume(P.blade_flexure(0.254, 25.4, 12.7)) == pytest.approx(0.254 * 25.4 * 12.7, rel=REL)
+
+
+def test_link_tray_volume_matches_formula():
+    args = (50.8, 120.0, 70.0, 3.0, 4.0, [(0.0, 0.0, 38.1, 20.0), (47.0, 23.9, 15.9, 25.0)])
+    assert P.volume(P.link_tray(*args)) == pytest.approx(P.link_tray_volume(*args), rel=REL)
+
+
+def test_plate_with_holes_volume():
+    plate = P.plate_with_holes(100, 60, 20, [(30, 30, 20), (70, 30, 10)], corner=(0, 0, 0))
+    assert P.volume(plate) == pytest.approx(100 * 60 * 20 - math.pi / 4 * (400 + 100) * 20, rel=REL)
+
+
+def test_split_collar_removes_its_slot():
+    ring = P.volume(P.cylinder(30, 10, 8.5))
+    slot = 1.5 * (30 - 8.5) / 2 * 10  # first order: the slot's ends are flat, the ring's curved
+    assert P.volume(P.split_collar(8.5, 30, 10, 1.5)) == pytest.approx(ring - slot, rel=2e-3)
+
+
+def test_spring_wire_volume_is_the_swept_circle():
+    d, mean, length, coils = 1.143, 11.43, 8.89, 6.0
+    pitch = (length - d) / coils
+    wire = math.pi * d * d / 4 * coils * math.hypot(math.pi * mean, pitch)
+    spring = P.compression_spring(d, mean, length, coils)
+    assert P.is_valid(spring) and len(P.solids(spring)) == 1
+    lo, hi = P.bounding_box(spring)
+    assert lo[2] == pytest.approx(0.0, abs=1e-6) and hi[2] == pytest.approx(length, abs=1e-6)  # ground ends
+    # grinding the ends removes a little of the first and last coil: between 0 and 10 % of the wire
+    assert 0.9 * wire < P.volume(spring) < wire

@@ -1,0 +1,58 @@
+"""Session fixtures shared by the test folders: the three assemblies, each built once per session."""
+
+import contextlib
+import io
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+ASSEMBLY_DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
+                    "split_pinion": ROOT / "assemblies/split_pinion.toml"}
+
+
+class BuiltAssemblies:
+    """Each assembly of :data:`ASSEMBLY_DESIGNS` built once per session, when a test first asks
+    for it, with ``geargen build DESIGN --out DIR --quiet`` through :func:`geargen.cli.main` (the
+    README's command for the robot joint, the documented one for the others).
+
+    ``built[name]`` is the export folder (a test fails with the command's message if the build
+    did; the build is not repeated for the next test). :meth:`step` re-reads a part's STEP file
+    once per session (reading the large gears takes ~1 s each).
+    """
+
+    def __init__(self, root: Path):
+        self.root = root
+        self._built: dict[str, tuple[Path, str | None]] = {}
+        self._steps: dict[tuple[str, str], object] = {}
+
+    def __getitem__(self, name: str) -> Path:
+        if name not in self._built:
+            from geargen.cli import main
+            folder = self.root / name / name
+            err = io.StringIO()
+            try:
+                with contextlib.redirect_stderr(err):
+                    code = main(["build", str(ASSEMBLY_DESIGNS[name]), "--out", str(folder), "--quiet"])
+                problem = None if code == 0 else f"exit status {code}: {err.getvalue()}"
+            except BaseException as exc:  # noqa: BLE001 - reported to every test that needs this build
+                problem = f"{type(exc).__name__}: {exc}\n{err.getvalue()}"
+            self._built[name] = (folder, problem)
+        folder, problem = self._built[name]
+        if problem is not None:
+            pytest.fail(f"geargen build {name} failed: {problem}", pytrace=False)
+        return folder
+
+    def step(self, name: str, part: str):
+        """The re-imported STEP file of ``part`` (:class:`geargen.cad.export.StepContents`)."""
+        key = (name, part)
+        if key not in self._steps:
+            from geargen.cad.export import read_step
+            self._steps[key] = read_step(self[name] / f"{part}.step")
+        return self._steps[key]
+
+
+@pytest.fixture(scope="session")
+def built_assemblies(tmp_path_factory) -> BuiltAssemblies:
+    """The three assemblies built once per session (:class:`BuiltAssemblies`)."""
+    return BuiltAssemblies(tmp_path_factory.mktemp("assemblies"))
