@@ -115,7 +115,7 @@ def _exported_gears(built_assemblies, name, mesh, manifest):
             for p in (mesh.part1, mesh.part2)]
 
 
-@pytest.mark.parametrize("name", ["robot_joint", "split_pinion"])  # helical sections: see the report's notes
+@pytest.mark.parametrize("name", list(DESIGNS))
 def test_backlash_measured_on_the_exported_solids_is_in_the_design_range(built_assemblies, name):
     """Sections of the re-imported STEP solids at mid-face (geargen.checks.solids), gear 1 turned
     against gear 2 over a tooth cycle: the backlash (design kind) lies in [min, max]; and it is the
