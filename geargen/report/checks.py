@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from geargen.units import LENGTH_SUFFIXES
+from geargen.report.figures import save_png
 
 
 def _pyplot():
@@ -56,11 +57,7 @@ def plot_mesh(checks, path, unit: str = "mm") -> Path:
     c0 = checks[0]
     ax1.set_title(f"{c0.mesh}: {c0.gear1} / {c0.gear2}, centre distance {c0.centre_distance * s:.6g} {unit}")
     fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_png(fig, path)
 
 
 def plot_tolerance(result, path, unit: str = "mm") -> Path:
@@ -91,11 +88,7 @@ def plot_tolerance(result, path, unit: str = "mm") -> Path:
     ax.set_title(f"{result.mesh} ({result.meant_for}) across the error budget")
     ax.legend(fontsize=8)
     fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_png(fig, path)
 
 
 def write_check_plots(result, folder) -> list[Path]:

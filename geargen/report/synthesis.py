@@ -19,6 +19,7 @@ from geargen.core.synthesis import CentreSynthesis, LoopSolution, Placement
 from geargen.core.tolerance import ErrorBudget, ExactErrorBudget, MonteCarloResult, SensitivityTable
 from geargen.design.synthesis import ERROR_KINDS, GEAR_ROLES, GearErrors, MonteCarloSettings, SynthesisInputs
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
+from geargen.report.figures import save_png
 
 SCHEMA = "geargen.synth/1"
 
@@ -398,11 +399,7 @@ def histogram_png(run: SynthesisRun, path: str | Path, bins: int = 80) -> Path:
         ax2.set_xlabel(f"preload spring force (N), rate {mc.spring_rate:.4g} N/mm")
         ax2.set_ylabel("probability density")
     fig.tight_layout()
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=110)
-    plt.close(fig)
-    return path
+    return save_png(fig, path)
 
 
 __all__ = ["SynthesisRun", "fixed", "appendix_table", "beyond_table", "monte_carlo_table", "sensitivity_tables",
