@@ -163,6 +163,26 @@ def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: 
     if chordal_tolerance <= 0 or angular_tolerance <= 0:
         raise ValueError("tolerances must be > 0")
     t0 = time.perf_counter()
+    triangles, mesher = solid_triangles(solid, chordal_tolerance, angular_tolerance, transform)
+    with atomic_path(Path(path)) as tmp:
+        write_stl(tmp, triangles)
+    size = Path(path).stat().st_size
+    return ExportRecord(Path(path), "stl", "mm", time.perf_counter() - t0, size,
+                        chordal_tolerance=chordal_tolerance,
+                        angular_tolerance=angular_tolerance if mesher == "occt" else None,
+                        triangles=len(triangles), mesher=mesher)
+
+
+def solid_triangles(solid, chordal_tolerance: float, angular_tolerance: float = 0.5, transform=None,
+                    skip_unmeshed: bool = False):
+    """Triangles ``(n, 3, 3)`` (mm) of ``solid`` within ``chordal_tolerance`` and the mesher used.
+
+    A :class:`~geargen.cad.gear_solid.GearSolid` is meshed from its exact geometry ("exact");
+    any other shape, or a gear whose end faces that mesher cannot lay out, by the kernel
+    ("occt", see :func:`kernel_triangles`). ``transform``: optional ``(4, 4)`` matrix (mm)
+    applied to the triangles (rigid motions keep the tolerance).
+    """
+    import numpy as np
     triangles, mesher = None, "occt"
     layers = getattr(solid, "layers", None)
     if layers:
@@ -174,22 +194,18 @@ def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: 
         except TessellationError:
             triangles = None
     if triangles is None:
-        triangles = _kernel_mesh(getattr(solid, "shape", solid), chordal_tolerance, angular_tolerance)
+        triangles = kernel_triangles(getattr(solid, "shape", solid), chordal_tolerance, angular_tolerance,
+                                     skip_unmeshed)
     if transform is not None:
-        import numpy as np
         m = np.asarray(transform, dtype=float)
         triangles = triangles @ m[:3, :3].T + m[:3, 3]
-    with atomic_path(Path(path)) as tmp:
-        write_stl(tmp, triangles)
-    size = Path(path).stat().st_size
-    return ExportRecord(Path(path), "stl", "mm", time.perf_counter() - t0, size,
-                        chordal_tolerance=chordal_tolerance,
-                        angular_tolerance=angular_tolerance if mesher == "occt" else None,
-                        triangles=len(triangles), mesher=mesher)
+    return triangles, mesher
 
 
-def _kernel_mesh(shape, chordal_tolerance: float, angular_tolerance: float):
-    """Triangles ``(n, 3, 3)`` of the kernel's mesh of ``shape`` (surface deflection controlled)."""
+def kernel_triangles(shape, chordal_tolerance: float, angular_tolerance: float, skip_unmeshed: bool = False):
+    """Triangles ``(n, 3, 3)`` (mm, outward normals) of the kernel's mesh of ``shape`` (surface
+    deflection controlled). A face the kernel could not mesh is an error for an export; a picture
+    may pass ``skip_unmeshed`` and leave it out."""
     import numpy as np
     from OCP.IMeshTools import IMeshTools_Parameters
     params = IMeshTools_Parameters()
@@ -205,6 +221,9 @@ def _kernel_mesh(shape, chordal_tolerance: float, angular_tolerance: float):
         loc = TopLoc_Location()
         tri = BRep_Tool.Triangulation_s(face, loc)
         if tri is None:
+            if skip_unmeshed:
+                exp.Next()
+                continue
             raise BuildError("a face was not meshed")
         trsf = loc.Transformation()
         nodes = np.array([[p.X(), p.Y(), p.Z()] for p in
@@ -214,7 +233,7 @@ def _kernel_mesh(shape, chordal_tolerance: float, angular_tolerance: float):
             idx = idx[:, ::-1]
         out.append(nodes[idx])
         exp.Next()
-    return np.concatenate(out)
+    return np.concatenate(out) if out else np.zeros((0, 3, 3))
 
 
 def write_stl(path, triangles) -> None:

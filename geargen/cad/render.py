@@ -28,34 +28,6 @@ def view_basis(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
     return np.vstack([right, up, towards])
 
 
-def tessellate(shape, tolerance: float, angular_tolerance: float = 0.5) -> np.ndarray:
-    """Triangles of an OCCT shape as ``(n, 3, 3) float`` (mm), outward normals."""
-    from OCP.BRep import BRep_Tool
-    from OCP.BRepMesh import BRepMesh_IncrementalMesh
-    from OCP.TopAbs import TopAbs_FACE, TopAbs_REVERSED
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopLoc import TopLoc_Location
-    from OCP.TopoDS import TopoDS
-
-    BRepMesh_IncrementalMesh(shape, tolerance, False, angular_tolerance, True).Perform()
-    out = []
-    exp = TopExp_Explorer(shape, TopAbs_FACE)
-    while exp.More():
-        face = TopoDS.Face_s(exp.Current())
-        loc = TopLoc_Location()
-        tri = BRep_Tool.Triangulation_s(face, loc)
-        exp.Next()
-        if tri is None:
-            continue
-        trsf = loc.Transformation()
-        nodes = np.array([tri.Node(i).Transformed(trsf).Coord() for i in range(1, tri.NbNodes() + 1)])
-        idx = np.array([tri.Triangle(i).Get() for i in range(1, tri.NbTriangles() + 1)], dtype=int) - 1
-        if face.Orientation() == TopAbs_REVERSED:
-            idx = idx[:, ::-1]
-        out.append(nodes[idx])
-    return np.concatenate(out) if out else np.zeros((0, 3, 3))
-
-
 def render_parts(parts: Iterable, path: str | Path | None = None, view=(-60.0, 30.0), size=(9.0, 6.5),
                  dpi: int = 110, title: str = "", detail: float = 400.0,
                  meshes: dict[str, np.ndarray] | None = None) -> bytes:
@@ -94,18 +66,10 @@ def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5) -> np
     third of the triangles at a view's tolerance) and moved by the part's placement; any other
     part, or a gear that mesher cannot lay out, by the kernel.
     """
-    solid = getattr(part, "solid", None)
-    if solid is not None and getattr(solid, "layers", None):
-        from geargen.profile.tessellate import TessellationError, tessellate_layers
-        hub = solid.spec.large.hub if hasattr(solid.spec, "large") else solid.spec.hub
-        try:
-            tri = tessellate_layers(solid.layers, hub, tolerance)
-        except TessellationError:
-            tri = None
-        if tri is not None:
-            m = np.asarray(part.matrix, dtype=float)
-            return tri @ m[:3, :3].T + m[:3, 3]
-    return tessellate(part.world(), tolerance, angular_tolerance)
+    from geargen.cad.export import solid_triangles
+
+    source = part.solid if getattr(part, "solid", None) is not None else part.shape
+    return solid_triangles(source, tolerance, angular_tolerance, transform=part.matrix, skip_unmeshed=True)[0]
 
 
 def render_triangles(items, path: str | Path | None = None, view=(-60.0, 30.0), size=(9.0, 6.5), dpi: int = 110,
@@ -162,4 +126,4 @@ def render_triangles(items, path: str | Path | None = None, view=(-60.0, 30.0), 
     return data
 
 
-__all__ = ["view_basis", "tessellate", "part_triangles", "render_parts", "render_triangles"]
+__all__ = ["view_basis", "part_triangles", "render_parts", "render_triangles"]
