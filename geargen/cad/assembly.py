@@ -101,6 +101,7 @@ class PlacedPart:
     role: str = "part"
     description: str = ""
     solid: Any = None  # the GearSolid of a gear (profile, spec), for the checks
+    notes: tuple[str, ...] = ()  # what building it reported (an undercut, ...), for the build's report
     _world: TopoDS_Shape | None = field(default=None, repr=False)
 
     @property
@@ -147,17 +148,15 @@ def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
                 warnings.simplefilter("always")
                 solid = build_cluster(g.spec, tolerance) if isinstance(g.spec, ClusterSpec) \
                     else build_gear(g.spec, tolerance)
-            for w in caught:  # undercut and the like: reported with the build, not printed
-                text = f"{g.name}: {w.message}"
-                if text not in layout.notes:
-                    layout.notes.append(text)
-            cache[key] = solid
-        solid = cache[key]
+            # undercut and the like: reported with the build, not printed
+            cache[key] = (solid, tuple(dict.fromkeys(str(w.message) for w in caught)))
+        solid, notes = cache[key]
         m = transform((g.centre[0], g.centre[1], g.z), (0, 0, 1), g.rotation)
         kind = "gear_output" if "output" in g.roles else "gear_input" if "input" in g.roles or \
             "pinion_stiff" in g.roles else "gear_cluster"
         desc = _gear_text(g.spec)
-        out[g.name] = PlacedPart(g.name, solid.shape, m, g.group, kind, "gear", desc, solid)
+        out[g.name] = PlacedPart(g.name, solid.shape, m, g.group, kind, "gear", desc, solid,
+                                 tuple(f"{g.name}: {n}" for n in notes))
     return out
 
 

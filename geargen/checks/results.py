@@ -52,6 +52,9 @@ FAILURE_KINDS: dict[str, str] = {
                             "carriage would bottom or run out of travel)",
     "paths_disagree": "the exact 2-D check and the section check of the exported solid disagree beyond "
                       "the stated tolerance",
+    "backlash_out_of_range": "the backlash of the mesh as modelled and placed is outside the design range",
+    "disengaged_overlap": "a pinion slid out of mesh still overlaps its mate axially",
+    "ratio_mismatch": "the exact ratio of the train is not one the design requires",
 }
 
 #: kinds that are interference (teeth overlapping), in the order they are reported
@@ -313,6 +316,10 @@ _AGREEMENT_LENGTHS = ("normal_backlash_difference_max", "normal_backlash_differe
                       "tolerance")
 
 
+#: keys of a design-kind backlash record (DesignCheck.backlash) that are lengths
+_BACKLASH_LENGTHS = ("centre_distance", "modelled", "design_min", "design_max", "min", "max", "axial_clearance")
+
+
 @dataclass
 class DesignCheck:
     """Every mesh of a design checked: per-mesh results, tolerance results, design-level failures."""
@@ -324,6 +331,9 @@ class DesignCheck:
     agreement: list[dict[str, Any]] = field(default_factory=list)  # path 1 vs path 2 per mesh
     failures: list[Failure] = field(default_factory=list)  # design-level (not tied to one sweep)
     notes: list[str] = field(default_factory=list)
+    # per mesh, in the resolved model's kind (geargen.model.BACKLASH_KIND, mm): min/max measured on
+    # path 1, the modelled value, the design range, the centre distance where the mesh runs
+    backlash: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def all_failures(self) -> list[Failure]:
@@ -349,6 +359,8 @@ class DesignCheck:
                           for a in self.agreement],
             "failures": [f.to_dict(u) for f in self.failures],
             "notes": list(self.notes),
+            "backlash": [{key: (_num(v * s) if key in _BACKLASH_LENGTHS and v is not None else v)
+                          for key, v in b.items()} for b in self.backlash],
         }
 
 

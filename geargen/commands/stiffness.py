@@ -4,9 +4,10 @@ Prints each path (its components and their share of the compliance), the drive, 
 preload against the paper's recommendation and the preload band caused by loop errors, and
 writes the preload diagram, the torque-deflection curve and the preload band as PNG.
 
-Loop errors: when :mod:`geargen.core.synthesis` is importable and gives an error budget for the
-design (carriage travels ``dx1_sum``, ``dx1_rss``, ``dx1_mean``), those are used; otherwise the
-``[preload]`` section's loop error. The printout says which.
+The drive is the resolved one (:func:`geargen.model.resolve`) and the summary is
+:func:`geargen.model.analysis.stiffness`, the one ``geargen build`` reports. Loop errors: the
+synthesis error budget as carriage travels where a sliding carriage absorbs them, otherwise the
+``[preload]`` section's loop error; the printout says which.
 """
 
 from __future__ import annotations
@@ -15,11 +16,10 @@ import json
 import sys
 from pathlib import Path
 
-from geargen.core.stiffness import stiffness_summary
 from geargen.design.assembly import load_design
-
-BUDGET_KEYS = {"sum": "dx1_sum", "rss": "dx1_rss", "mean": "dx1_mean"}
-
+from geargen.errors import DesignError
+from geargen.model import is_drive, resolve
+from geargen.model.analysis import stiffness
 
 def add_arguments(p) -> None:
     p.add_argument("design", help="design file (TOML) with [stiffness] and [preload] sections")
@@ -29,25 +29,14 @@ def add_arguments(p) -> None:
     p.add_argument("--no-plots", action="store_true", help="skip the plots")
 
 
-def synthesis_travels(design) -> tuple[dict[str, float] | None, str]:
-    """The synthesis error budget as carriage travels (mm), and a note saying where the loop error came from."""
-    from geargen.core.synthesis import synthesize_centres
-    from geargen.core.tolerance import appendix_error_budget
-    from geargen.design.synthesis import error_budget_inputs, synthesis_inputs
-
-    if not design.section("synthesis") or not design.section("errors"):
-        return None, "loop error from the design's [preload] (no [synthesis]/[errors] sections)"
-    centres = synthesize_centres(synthesis_inputs(design)).check()
-    budget = appendix_error_budget(centres, error_budget_inputs(design))
-    travels = {label: float(getattr(budget, key)) for label, key in BUDGET_KEYS.items()}
-    return travels, "loop error from the synthesis error budget (Appendix rules)"
-
-
 def run(args) -> int:
     design = load_design(args.design)
-    travels, note = synthesis_travels(design)
-    summary = stiffness_summary(design, travels)
-    if not summary.variations and travels is None:
+    layout = resolve(design) if is_drive(design) else None
+    summary, note = stiffness(design, layout)
+    if summary is None:
+        raise DesignError("stiffness", "missing: geargen stiffness needs [stiffness] and [preload] sections",
+                          "see assemblies/robot_joint.toml")
+    if not summary.variations and note.startswith("loop error from the design"):
         note = "no loop error: give loop_error_* in [preload] or a [synthesis] section"
     from geargen.report.stiffness import format_summary, write_stiffness_plots
 

@@ -13,11 +13,9 @@ import sys
 import time
 from dataclasses import replace
 
-from geargen.core.synthesis import modelled_backlash, place_gears, solve_loop, synthesize_centres
-from geargen.core.tolerance import (appendix_error_budget, exact_error_budget, geometry_sensitivities, monte_carlo,
-                                    tolerance_sensitivities)
+from geargen.core.tolerance import exact_error_budget, geometry_sensitivities, monte_carlo, tolerance_sensitivities
 from geargen.design.assembly import Design, load_design
-from geargen.design.synthesis import GEAR_ROLES, error_budget_inputs, monte_carlo_settings, synthesis_inputs
+from geargen.design.synthesis import GEAR_ROLES, monte_carlo_settings
 from geargen.errors import DesignError, GeometryError
 from geargen.report.synthesis import SynthesisRun, histogram_png, synthesis_json, text_report, write_json
 
@@ -40,26 +38,20 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
 
 def compute(design: Design, run_monte_carlo: bool = False, samples: int | None = None, seed: int | None = None,
             spring_rate: float | None = None, preload: float = 0.0, sensitivity: bool = False) -> SynthesisRun:
-    """Every step of ``geargen synth`` on a loaded design; raises DesignError/GeometryError."""
-    inputs = synthesis_inputs(design)
-    synthesis = synthesize_centres(inputs).check()
-    exact_min = solve_loop(synthesis, inputs.circumferential_backlash_min_mesh1, inputs.circumferential_backlash_min_mesh2).check()
-    placement = place_gears(synthesis).check()
-    gears = [design.gear(role) for role in GEAR_ROLES]
-    modelled = (modelled_backlash(gears[0], gears[1], inputs.centre_distance_mesh1),
-                modelled_backlash(gears[2], gears[3], inputs.centre_distance_mesh2))
-    # gears modelled at standard thickness and distance have B = 0 up to rounding: place them tight
-    tight = 1e-9 * inputs.module_mesh1
-    placement_modelled = place_gears(synthesis, *(max(b, 0.0) for b in modelled)) if min(modelled) > -tight else None
-    if placement_modelled is not None and not placement_modelled.success:
-        placement_modelled = None  # reported as such; the design placement above stands
-    errors = error_budget_inputs(design)
-    budget = exact = None
-    if errors is not None:
-        budget = appendix_error_budget(synthesis, errors)
-        exact = exact_error_budget(synthesis, errors)
-        if not exact.success:
-            raise GeometryError("exact error budget", exact.message)
+    """Every step of ``geargen synth`` on a loaded design; raises DesignError/GeometryError.
+
+    The synthesis and the placement are those of the resolved drive (:func:`geargen.model.resolve`),
+    so the centres and backlash printed here are the ones check, build and the exports use."""
+    from geargen.model import resolve
+
+    if not design.section("synthesis"):
+        raise DesignError("synthesis", "missing: geargen synth places a dual-pinion drive",
+                          "a [synthesis] section (see assemblies/robot_joint.toml)")
+    layout = resolve(design)
+    run = replace(layout.synthesis, resolved=layout.to_dict())
+    synthesis, errors, budget, exact = run.synthesis, run.errors, run.budget, run.exact_budget
+    if errors is not None and exact is None:
+        raise GeometryError("exact error budget", exact_error_budget(synthesis, errors).message)
     mc = settings = seconds = None
     if run_monte_carlo:
         if errors is None:
@@ -86,11 +78,8 @@ def compute(design: Design, run_monte_carlo: bool = False, samples: int | None =
         geo = geometry_sensitivities(synthesis)
         if budget is not None:
             tol = tolerance_sensitivities(budget, exact)
-    return SynthesisRun(design_name=design.name, design_sha256=design.sha256, length_unit=design.length_unit,
-                        inputs=inputs, synthesis=synthesis, exact_min_backlash=exact_min, placement=placement,
-                        modelled_backlash=modelled, placement_modelled=placement_modelled,
-                        errors=errors, budget=budget, exact_budget=exact, monte_carlo=mc, monte_carlo_settings=settings,
-                        monte_carlo_seconds=seconds, geometry_sensitivity=geo, tolerance_sensitivity=tol)
+    return replace(run, monte_carlo=mc, monte_carlo_settings=settings, monte_carlo_seconds=seconds,
+                   geometry_sensitivity=geo, tolerance_sensitivity=tol)
 
 
 def run(args: argparse.Namespace) -> int:

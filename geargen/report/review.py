@@ -199,10 +199,11 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
         r.pre(appendix_table(run))
 
     r.h("Mesh checks")
-    r.p("Geometric mesh checker: path 1 on the exact 2-D outlines at every mesh position of a tooth cycle; "
-        "path 2 on sections of the built solids where available. Backlash is circumferential at the "
-        "reference pitch circles (gear 1's free rotation with gear 2 held, times its reference radius), "
-        f"in {unit}; positive is clearance.")
+    from geargen.model import BACKLASH_KIND
+    r.p("The verdict of `geargen check` (the same function): path 1 on the exact 2-D outlines at every mesh "
+        "position of a tooth cycle, the design ranges, the ratio and the error budget; path 2 on sections of "
+        f"the built solids. Backlash: {BACKLASH_KIND}, in {unit}; positive is clearance. The resolved "
+        "teeth, centres and phases are in resolved.json.")
     rows = []
     for m in result.checks.meshes:
         if m.get("status") == "disengaged":
@@ -220,6 +221,17 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
                      "ok" if not m["failures"] else "; ".join(m["failures"])])
     r.table(["mesh", "gear 1 / gear 2", f"centre distance ({unit})", "design backlash", "backlash (path 1)",
              "backlash (path 2)", "contact ratio", f"min tip clearance ({unit})", "result"], rows)
+
+    dc = getattr(result.checks, "design_check", None)
+    if dc is not None and dc.tolerances:
+        r.h("Backlash across the error budget")
+        r.p("Minimum backlash of each mesh with every error of the [errors.*] budget: the worst case and the "
+            f"Monte Carlo minimum (lengths in {unit}).")
+        r.table(["mesh", "meant for", "nominal", "worst case", "Monte Carlo min", "samples", "result"],
+                [[t.mesh, t.meant_for, _len(t.nominal_min_backlash, scale), _len(t.worst_case_min_backlash, scale),
+                  _len(t.monte_carlo_minimum, scale) if t.samples else "-", t.samples,
+                  "ok" if t.ok else "; ".join(f.message for f in t.failures)] for t in dc.tolerances])
+        r.items(list(dict.fromkeys(n for t in dc.tolerances for n in t.notes)))
 
     ov = result.checks.overlaps
     if ov is not None:

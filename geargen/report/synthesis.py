@@ -19,6 +19,7 @@ from geargen.core.synthesis import CentreSynthesis, LoopSolution, Placement
 from geargen.core.tolerance import ErrorBudget, ExactErrorBudget, MonteCarloResult, SensitivityTable
 from geargen.design.synthesis import ERROR_KINDS, GEAR_ROLES, GearErrors, MonteCarloSettings, SynthesisInputs
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
+from geargen.model.synthesis import SynthesisRun
 from geargen.report.figures import save_png
 
 SCHEMA = "geargen.synth/1"
@@ -29,46 +30,6 @@ PHASE_CONVENTION = (
     "a tooth centred on local +x, rotate it by rotation_rad about its axis, move it to its centre. Each "
     "cluster is one part with a tooth of its large and of its small gear centred on the same radial line, "
     "so both carry the cluster's rotation.")
-
-
-@dataclass(frozen=True)
-class SynthesisRun:
-    """Everything ``geargen synth`` computed for one design (internal units)."""
-
-    design_name: str
-    design_sha256: str
-    length_unit: str
-    inputs: SynthesisInputs
-    synthesis: CentreSynthesis
-    exact_min_backlash: LoopSolution
-    placement: Placement
-    modelled_backlash: tuple[float, float] = (math.nan, math.nan)
-    placement_modelled: Placement | None = None
-    errors: tuple[GearErrors, ...] | None = None
-    budget: ErrorBudget | None = None
-    exact_budget: ExactErrorBudget | None = None
-    monte_carlo: MonteCarloResult | None = None
-    monte_carlo_settings: MonteCarloSettings | None = None
-    monte_carlo_seconds: float | None = None
-    geometry_sensitivity: SensitivityTable | None = None
-    tolerance_sensitivity: SensitivityTable | None = None
-
-    @property
-    def scale(self) -> float:
-        """mm in one design length unit."""
-        return LENGTH_SUFFIXES[self.length_unit]
-
-    def length(self, value_mm):
-        """A length (float or array, mm) in the design unit."""
-        return value_mm / self.scale
-
-    @property
-    def exact_min_backlash_x1(self) -> float:
-        return float(self.exact_min_backlash.carriage_x[0]) - self.synthesis.x2
-
-    @property
-    def exact_min_backlash_C1(self) -> float:
-        return math.hypot(self.exact_min_backlash_x1, self.synthesis.y2)
 
 
 def fixed(value: float, decimals: int) -> str:
@@ -172,25 +133,21 @@ def beyond_table(run: SynthesisRun) -> str:
                               + [fixed(L(run.budget.dx1_sum), 4), fixed(L(run.budget.dx1_rss), 4)]))
         if not e.success:
             lines.append(f"warning: {e.message}")
-    inp = run.inputs
-    lines += ["Backlash of the gears as modelled (the design's tooth thickness) at Cnom.",
-              _row("B modelled", f"({u})", [fixed(L(b), 4) for b in run.modelled_backlash])]
-    for mesh, b in zip((1, 2), run.modelled_backlash):
-        lo, hi = inp.backlash(mesh, "min"), inp.backlash(mesh, "max")
-        if not lo <= b <= hi:
-            lines.append(f"note: mesh {mesh} as modelled has B = {fixed(L(b), 4)} {u}, outside [{fixed(L(lo), 4)}, "
-                         f"{fixed(L(hi), 4)}]: thin the teeth, or place the models with their own backlash "
-                         "(JSON placement_modelled_gears)")
-    if run.placement_modelled is not None:
-        lines.append(_row("carriage x", f"({u})", [fixed(L(run.placement_modelled.carriage_x), 5)])
-                     + "   (modelled gears, preloaded)")
-    else:
-        lines.append("note: the gears as modelled cannot be placed preloaded (negative backlash): no placement for them")
-    lines += ["Placed gears (output frame, preloaded at maximum backlash); rotation: tooth 0 centreline.",
-              _row("Gear", f"centre ({u})", ["x", "y", "rot (rad)", "rot (deg)"])]
-    for g in run.placement.gears:
-        lines.append(_row(g.name, "", [fixed(L(g.centre[0]), 5), fixed(L(g.centre[1]), 5), fixed(g.rotation, 6),
-                                       fixed(math.degrees(g.rotation), 4)]))
+    r = run.resolved
+    if r is not None:
+        lines += ["As built: the resolved drive (the teeth, centres and phases that check, stiffness, build and "
+                  "the exported solids use)",
+                  f"backlash: {r['backlash_kind']}; solids keep {fixed(r['loaded_flank_gap'], 6)} {u} on the "
+                  "working flanks",
+                  _row("Mesh", f"({u})", ["centre d.", "backlash", "design min", "design max"])]
+        for m in r["meshes"]:
+            lines.append(_row(m["name"], "", [fixed(m["centre_distance"], 6), fixed(m["backlash"], 6),
+                                              fixed(m["backlash_design_min"], 6), fixed(m["backlash_design_max"], 6)]))
+        lines.append(_row("Gear", f"centre ({u})", ["x", "y", "rot (rad)", "rot (deg)"]))
+        for g in r["gears"]:
+            lines.append(_row(g["name"], "", [fixed(g["centre"][0], 6), fixed(g["centre"][1], 6),
+                                              fixed(g["rotation_rad"], 6), fixed(g["rotation_deg"], 4)]))
+        lines += [f"note: {n}" for n in r["notes"]]
     return "\n".join(lines)
 
 
@@ -304,6 +261,8 @@ def synthesis_json(run: SynthesisRun) -> dict:
         "placement": {"state": "preloaded, maximum backlash", "phase_convention": PHASE_CONVENTION,
                       "gears": _placed(run, run.placement)},
     }
+    if run.resolved is not None:
+        out["resolved"] = run.resolved
     for mesh, b in zip(out["meshes"], run.modelled_backlash):
         mesh["backlash_of_modelled_gears"] = L(b)
     if run.placement_modelled is not None:

@@ -87,23 +87,26 @@ def test_pair_tolerance_fails_a_mesh_whose_backlash_is_eaten():
 # ------------------------------------------------------------------------- the robot joint
 @pytest.fixture(scope="module")
 def joint(robot_joint):
-    from geargen.commands.check import mesh_setups
-    from geargen.design.checks import checks_settings
+    from geargen.checks.verdict import mesh_setup
+    from geargen.model import resolve
 
-    setups, loop, notes = mesh_setups(robot_joint, checks_settings(robot_joint))
-    return robot_joint, setups, loop
+    layout = resolve(robot_joint)
+    return robot_joint, [mesh_setup(layout, m) for m in layout.meshes], layout
 
 
 def test_placed_robot_joint_has_its_working_flanks_in_contact(joint):
-    """The synthesis places every gear with its working flanks touching (exact involute model);
-    the exact 2-D check of the placed outlines agrees to 1 nm along the line of action."""
-    design, setups, loop = joint
-    assert [s.name for s in setups] == ["mesh1_a", "mesh1_b", "mesh2_a", "mesh2_b"]
+    """The resolved drive places every gear with its working flanks the design's loaded flank gap
+    apart (the solids must not touch; the gap is circumferential at the reference circle): the
+    exact 2-D check of the placed outlines agrees to 1 nm along the line of action."""
+    design, setups, layout = joint
+    assert sorted(s.name for s in setups) == ["mesh1_a", "mesh1_b", "mesh2_a", "mesh2_b"]
+    gap = layout.placement.loaded_flank_gap
+    assert gap > 0
     for su in setups:
         play = free_play(polar_outline(su.gear1), polar_outline(su.gear2), su.states([0.0]))
         working = min(play.ccw[0], play.cw[0]) * su.gear1.base_radius
         other = max(play.ccw[0], play.cw[0]) * su.gear1.base_radius
-        assert abs(working) < 1e-6, su.name
+        assert abs(working - gap * np.cos(su.gear1.transverse_pressure_angle)) < 1e-6, su.name
         assert other > 0.01
 
 
@@ -112,9 +115,13 @@ def test_robot_joint_loop_tolerance(joint):
     from geargen.core.tolerance import exact_error_budget
     from geargen.design.synthesis import GEAR_ROLES
 
-    design, setups, loop = joint
-    res = loop_tolerance(loop.synthesis, {s.name: s for s in setups}, loop.errors, loop.backlash_mesh1,
-                         loop.backlash_mesh2, 60, np.random.default_rng(1994))
+    from geargen.design.checks import gear_errors
+
+    design, setups, layout = joint
+    errors = {r: gear_errors(design, r) for r in GEAR_ROLES}
+    syn, gap = layout.synthesis.synthesis, layout.placement.loaded_flank_gap
+    res = loop_tolerance(syn, {s.name: s for s in setups}, errors, layout.placement.backlash_mesh1 - 2 * gap,
+                         layout.placement.backlash_mesh2 - 2 * gap, 60, np.random.default_rng(1994))
     by = {r.mesh: r for r in res}
     assert by["mesh1_a"].meant_for == "preloaded" and by["mesh2_a"].meant_for == "backlash"
     for r in res:
@@ -123,7 +130,7 @@ def test_robot_joint_loop_tolerance(joint):
         assert np.all(r.monte_carlo_min_backlash >= r.worst_case_min_backlash - 1e-6)
         assert r.ok, r.failures
     # the carriage mesh: its centre distance shrinks by about the Appendix's dC1 half-range
-    budget = exact_error_budget(loop.synthesis, tuple(loop.errors[r] for r in GEAR_ROLES))
+    budget = exact_error_budget(syn, tuple(errors[r] for r in GEAR_ROLES))
     assert by["mesh1_a"].carriage_travel == pytest.approx(max(-budget.worst_low, budget.worst_high))
     # mirror symmetry of the two paths
     assert by["mesh1_a"].worst_case_min_backlash == pytest.approx(by["mesh1_b"].worst_case_min_backlash, rel=1e-6)

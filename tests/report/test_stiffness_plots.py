@@ -37,7 +37,8 @@ def _assert_real_png(path: Path):
 
 def test_robot_joint_command_prints_summary_writes_plots_and_json(tmp_path, capsys, monkeypatch):
     budget = {"sum": 0.0121648 * IN, "rss": 0.0068853 * IN, "mean": 0.00952505 * IN}
-    monkeypatch.setattr(cmd, "synthesis_travels", lambda design: (budget, "test budget"))
+    import geargen.model.analysis as analysis
+    monkeypatch.setattr(analysis, "loop_error_travels", lambda layout: (budget, "test budget"))
     out, js = tmp_path / "plots", tmp_path / "summary.json"
     assert main(["stiffness", str(ROBOT), "--out", str(out), "--json", str(js)]) == 0
     text = capsys.readouterr().out
@@ -109,7 +110,8 @@ def test_what_the_figures_draw_is_the_model():
 
 
 def test_json_to_standard_output_keeps_it_parseable(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr(cmd, "synthesis_travels", lambda design: (None, "design"))
+    import geargen.model.analysis as analysis
+    monkeypatch.setattr(analysis, "loop_error_travels", lambda layout: (None, "design"))
     assert main(["stiffness", str(ROBOT), "--json", "-", "--no-plots"]) == 0
     captured = capsys.readouterr()
     data = json.loads(captured.out)
@@ -159,13 +161,19 @@ def test_no_loop_error_means_no_band_plot(tmp_path):
 
 def test_loop_error_falls_back_to_preload_section_without_synthesis():
     design = load_design(ROBOT)
-    bare = dataclasses.replace(design, sections={k: v for k, v in design.sections.items() if k != "synthesis"})
-    travels, note = cmd.synthesis_travels(bare)
+    bare = dataclasses.replace(design, sections={k: v for k, v in design.sections.items()
+                                                 if k not in ("synthesis", "layout")})
+    from geargen.model import is_drive
+    from geargen.model.analysis import loop_error_travels
+    assert not is_drive(bare)  # no [layout] either: nothing to resolve, the [preload] loop error stands
+    travels, note = loop_error_travels(None)
     assert travels is None and "[preload]" in note
 
 
 def test_synthesis_budget_is_the_appendix_travel():
-    travels, note = cmd.synthesis_travels(load_design(ROBOT))
+    from geargen.model import resolve
+    from geargen.model.analysis import loop_error_travels
+    travels, note = loop_error_travels(resolve(load_design(ROBOT)))
     assert "synthesis error budget" in note
     # the Appendix's Sum and RSS of the carriage travel, in inches
     assert travels["sum"] / IN == pytest.approx(0.0122, abs=5e-5)

@@ -1,0 +1,175 @@
+"""The one verdict on a resolved drive: what ``geargen check`` prints and what ``geargen build``
+gates on (the build adds only what needs its solids: sections of the gear solids and the parts'
+overlaps).
+
+For every mesh of the resolved model (:func:`geargen.model.resolve`): path 1 (exact 2-D) at the
+placed centres and phases, the design range of the backlash, the axial clearance of a
+disengaged mesh, the exact ratio the design requires, and the error budget (worst case and
+Monte Carlo, :mod:`geargen.checks.tolerance`). A design with neither ``[layout]`` nor
+``[synthesis]`` names its pairs in ``[checks] meshes``; they are checked centred in their play.
+
+Backlash in the verdict is reported in the resolved model's kind
+(:data:`geargen.model.BACKLASH_KIND`: circumferential at gear 1's reference pitch circle), the
+same number ``synth``, ``build`` and the exported solids give.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from geargen.checks.mesh2d import CheckSettings, MeshSetup, check_mesh
+from geargen.checks.results import DesignCheck, Failure
+from geargen.design.assembly import Design
+from geargen.design.checks import ChecksSettings, checks_settings, gear_errors
+from geargen.errors import DesignError
+from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive, resolve
+from geargen.units import LENGTH_SUFFIXES
+
+#: below this the design range is met (mm): the path-1 numbers carry ~1e-12 mm of round-off
+RANGE_TOLERANCE = 1e-6
+
+
+def mesh_setup(layout: Layout, mesh: MeshPlacement) -> MeshSetup:
+    """The checker's :class:`MeshSetup` of one mesh of the resolved ``layout``."""
+    p1, p2 = layout.gear(mesh.part1), layout.gear(mesh.part2)
+    z1, z2 = p1.face_z(mesh.gear1)[0], p2.face_z(mesh.gear2)[0]
+    return MeshSetup(mesh.name, mesh.gear1, mesh.gear2, tuple(p1.centre), tuple(p2.centre),
+                     p1.rotation_at(mesh.gear1, z1), p2.rotation_at(mesh.gear2, z2), face_offset2=z2 - z1)
+
+
+def design_backlash(check, gear1_reference_radius: float) -> tuple[float, float]:
+    """(min, max) backlash of a checker result in the resolved model's kind: gear 1's free
+    rotation times its reference radius (mm); NaN when nothing was measured."""
+    ang = np.asarray(check.sweep.angular_backlash, dtype=float)
+    ang = ang[np.isfinite(ang)]
+    if not ang.size:
+        return math.nan, math.nan
+    return float(np.min(ang) * gear1_reference_radius), float(np.max(ang) * gear1_reference_radius)
+
+
+def mesh_settings(settings: ChecksSettings, require_backlash: bool | None = None) -> CheckSettings:
+    """The checker's settings from ``[checks]``."""
+    return CheckSettings(steps_per_tooth=settings.steps_per_tooth, revolutions=settings.revolutions,
+                         planes=settings.section_planes, min_contact_ratio=settings.min_contact_ratio,
+                         min_tip_land_modules=settings.min_tip_land_modules,
+                         require_backlash=settings.require_backlash if require_backlash is None else require_backlash)
+
+
+def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: bool | None = None) -> DesignCheck:
+    """Every check of the resolved drive that needs no solid (see the module docstring)."""
+    design = layout.design
+    settings = checks_settings(design) if settings is None else settings
+    unit = design.length_unit
+    k = LENGTH_SUFFIXES[unit]
+    result = DesignCheck(design=design.name, length_unit=unit, meshes=[], notes=list(layout.notes))
+    setups = {}
+    for mesh in layout.meshes:
+        entry = {"mesh": mesh.name, "gear1": mesh.part1, "gear2": mesh.part2, "kind": BACKLASH_KIND,
+                 "engaged": mesh.engaged, "centre_distance": mesh.centre_distance,
+                 "modelled": mesh.modelled_backlash, "design_min": mesh.backlash_min,
+                 "design_max": mesh.backlash_max}
+        result.backlash.append(entry)
+        if not mesh.engaged:
+            p1, p2 = layout.gear(mesh.part1), layout.gear(mesh.part2)
+            (a0, a1), (b0, b1) = p1.face_z(mesh.gear1), p2.face_z(mesh.gear2)
+            clearance = max(b0 - a1, a0 - b1)  # axial gap between the two faces
+            entry["axial_clearance"] = clearance
+            if clearance <= 0:
+                result.failures.append(Failure("disengaged_overlap", mesh.name,
+                                               f"the disengaged pinion still overlaps the output axially "
+                                               f"({clearance / k:.4g} {unit})", "axial_clearance", clearance, 0.0))
+            continue
+        setup = mesh_setup(layout, mesh)
+        setups[mesh.name] = setup
+        # a mesh whose design range allows zero backlash is not required to keep it
+        check = check_mesh(setup, mesh_settings(settings, settings.require_backlash and mesh.backlash_min > 0))
+        result.meshes.append(check)
+        lo, hi = design_backlash(check, mesh.gear1.reference_radius)
+        entry.update(min=lo, max=hi)
+        if math.isfinite(lo) and not (mesh.backlash_min - RANGE_TOLERANCE <= lo
+                                      and hi <= mesh.backlash_max + RANGE_TOLERANCE):
+            result.failures.append(Failure(
+                "backlash_out_of_range", mesh.name,
+                f"backlash {lo / k:.6g} to {hi / k:.6g} {unit} ({BACKLASH_KIND}) is outside the design range "
+                f"{mesh.backlash_min / k:.6g} to {mesh.backlash_max / k:.6g} {unit}",
+                "circumferential_backlash", lo if lo < mesh.backlash_min else hi,
+                mesh.backlash_min if lo < mesh.backlash_min else mesh.backlash_max))
+    if layout.ratio and not layout.ratio["ok"]:
+        result.failures.append(Failure("ratio_mismatch", "",
+                                       f"ratio {layout.ratio['what']} is {layout.ratio['total']}, not one of "
+                                       f"{layout.ratio['required']} ({layout.ratio['text']})"))
+    if settings.tolerances if tolerances is None else tolerances:
+        result.tolerances = _tolerances(layout, setups, settings)
+    return result
+
+
+def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSettings) -> list:
+    """The error budget's worst case and Monte Carlo per engaged mesh (seeded by ``[checks] seed``)."""
+    from geargen.checks.tolerance import LOOP_MESHES, loop_tolerance, pair_tolerance
+    from geargen.design.synthesis import GEAR_ROLES
+
+    design = layout.design
+    rng = np.random.default_rng(settings.seed)
+    if layout.kind == "dual_pinion":
+        errors = {role: e for role in GEAR_ROLES if (e := gear_errors(design, role)) is not None}
+        if not errors or set(LOOP_MESHES) - set(setups):
+            return []  # no budget, or the pinions are slid out of mesh (disengaged)
+        placement = layout.placement
+        gap = placement.loaded_flank_gap
+        return loop_tolerance(layout.synthesis.synthesis, setups, errors, placement.backlash_mesh1 - 2 * gap,
+                              placement.backlash_mesh2 - 2 * gap, settings.monte_carlo_samples, rng,
+                              settings.carriage_travel_limit, settings.steps_per_tooth, design.length_unit)
+    out = []
+    for mesh in layout.meshes:
+        if mesh.name not in setups:
+            continue
+        e1, e2 = gear_errors(design, mesh.gear1.name), gear_errors(design, mesh.gear2.name)
+        if e1 is None and e2 is None:
+            continue
+        out.append(pair_tolerance(setups[mesh.name], e1, e2, settings.monte_carlo_samples, rng,
+                                  "backlash" if settings.require_backlash and mesh.backlash_min > 0 else "zero_backlash",
+                                  settings.steps_per_tooth))
+    return out
+
+
+def verify_declared(design: Design, settings: ChecksSettings, tolerances: bool | None = None) -> DesignCheck:
+    """The pairs of ``[checks] meshes`` (a design that is no drive), each centred in its play."""
+    from geargen.checks.tolerance import pair_tolerance
+
+    if not settings.meshes:
+        raise DesignError("checks.meshes", "missing: a design without [layout] or [synthesis] must declare the "
+                          "pairs to check", '[checks] meshes = [["gear1", "gear2"]] with centre_distance_<unit>')
+    cs = mesh_settings(settings)
+    setups = [MeshSetup.centred(design.gear(m.gear1), design.gear(m.gear2), m.centre_distance, m.name)
+              for m in settings.meshes]
+    result = DesignCheck(design=design.name, length_unit=design.length_unit, meshes=[check_mesh(su, cs) for su in setups])
+    for su, check in zip(setups, result.meshes):
+        lo, hi = design_backlash(check, su.gear1.reference_radius)
+        result.backlash.append({"mesh": su.name, "gear1": su.gear1.name, "gear2": su.gear2.name, "kind": BACKLASH_KIND,
+                                "engaged": True, "centre_distance": su.centre_distance, "min": lo, "max": hi})
+    if settings.tolerances if tolerances is None else tolerances:
+        rng = np.random.default_rng(settings.seed)
+        for su in setups:
+            e1, e2 = gear_errors(design, su.gear1.name), gear_errors(design, su.gear2.name)
+            if e1 is None and e2 is None:
+                continue
+            result.tolerances.append(pair_tolerance(su, e1, e2, settings.monte_carlo_samples, rng,
+                                                    "backlash" if settings.require_backlash else "zero_backlash",
+                                                    settings.steps_per_tooth))
+    return result
+
+
+def check_design(design: Design, settings: ChecksSettings | None = None, position: str | None = None,
+                 tolerances: bool | None = None) -> tuple[DesignCheck, Layout | None]:
+    """The verdict of ``geargen check`` on a loaded design, with the resolved layout it checked."""
+    settings = checks_settings(design) if settings is None else settings
+    if is_drive(design):
+        layout = resolve(design, position)
+        return verify(layout, settings, tolerances), layout
+    return verify_declared(design, settings, tolerances), None
+
+
+__all__ = ["RANGE_TOLERANCE", "mesh_setup", "design_backlash", "mesh_settings", "verify", "verify_declared", "check_design"]
