@@ -47,15 +47,17 @@ def line_of_action(c1, rb1: float, c2, rb2: float, side: int) -> np.ndarray:
     """The transverse line of action of two external gears: the internal tangent of their base
     circles from gear 1's tangent point to gear 2's, ``(2, 2)`` (mm).
 
-    ``side`` +1 takes the tangent whose direction is the line of centres turned by
-    +(pi/2 - alpha_w), -1 the other; ``cos(alpha_w) = (rb1 + rb2) / a``.
+    ``side`` +1 takes the tangent whose tangent point on gear 1 lies at the line of centres turned
+    by +alpha_w, -1 the other: the radius to the tangent point is normal to the line of action,
+    and ``cos(alpha_w) = (rb1 + rb2) / a = rb1 / r_w1``, so the line of action crosses the line of
+    centres at pi/2 - alpha_w, through the pitch point.
     """
     c1, c2 = np.asarray(c1, float), np.asarray(c2, float)
     d = c2 - c1
     a = float(np.hypot(*d))
     beta = math.atan2(d[1], d[0])
     alpha_w = math.acos(min(1.0, (rb1 + rb2) / a))
-    phi = beta + side * (math.pi / 2 - alpha_w)  # direction from centre 1 to its tangent point
+    phi = beta + side * alpha_w  # direction from centre 1 to its tangent point
     u = np.array([math.cos(phi), math.sin(phi)])
     return np.vstack([c1 + rb1 * u, c2 - rb2 * u])
 

@@ -80,7 +80,9 @@ def format_summary(s: StiffnessSummary, loop_error_note: str = "") -> str:
             lines.append(f"  preload lever                            {_g(s.lever * 1e3, 5)} mrad of output rotation of each path per mm of carriage")
     eq = "Eq. 6" if s.drive_type == "type2" else "Eq. 3"
     lines.append(f"  k_L ({eq})                              {_g(d.loop_stiffness * NM, 5)} N·m/rad")
-    lines.append(f"  k_D / k_L (Eq. 4 for type 1)             {_g(d.stiffness_ratio, 5)}")
+    # Eq. 4 is the type 1 ratio; a type 2 drive's ratio is Eq. 5 over Eq. 6
+    ratio_eq = "Eq. 4" if s.drive_type != "type2" else "Eq. 5 / Eq. 6"
+    lines.append(f"  {'k_D / k_L (' + ratio_eq + ')':<41}{_g(d.stiffness_ratio, 5)}")
     lines.append("")
 
     lines.append("Preload (torque each path carries at zero drive torque, at the output)")

@@ -179,3 +179,11 @@ def test_synthesis_budget_is_the_appendix_travel():
     assert travels["sum"] / IN == pytest.approx(0.0122, abs=5e-5)
     assert travels["rss"] / IN == pytest.approx(0.0069, abs=5e-5)
     assert travels["mean"] == pytest.approx((travels["sum"] + travels["rss"]) / 2, rel=1e-12)
+
+
+def test_stiffness_ratio_names_the_equations_of_its_drive_type():
+    """Eq. 4 is the type 1 ratio (Eq. 2 / Eq. 3); a type 2 drive's is Eq. 5 / Eq. 6 (it printed
+    "Eq. 4 for type 1" beside the type 2 number)."""
+    text = format_summary(stiffness_summary(load_design(ROBOT)))
+    line = next(x for x in text.splitlines() if "k_D / k_L" in x)
+    assert "(Eq. 5 / Eq. 6)" in line and "Eq. 4" not in line
