@@ -205,6 +205,8 @@ def inspect_folder(target: Path) -> FolderState:
         if isinstance(size, int) and p.is_file() and p.stat().st_size != size:
             changed.append(name)
     generator = data.get("generator") if isinstance(data.get("generator"), str) else None
+    if generator and re.fullmatch(r"geargen \d[\w.+-]*", generator) and "design" not in data:
+        generator = "geargen gear"  # gear folders written before manifests named the command (source unknown)
     source = data.get("source") if isinstance(data.get("source"), str) else None
     if source is None and generator is not None:
         source = _legacy_source(generator, data)
@@ -433,8 +435,8 @@ def swap_into_place(work: Path, target: Path, temporary: Path) -> None:
 
 class OutputFolder:
     """One output folder written by the policy above: :meth:`prepare` (before any work: refuses
-    what the policy refuses, proves the folder can be written, cleans stale temporaries) gives
-    the folder to write into; :meth:`commit` moves it into place; :meth:`discard` drops it.
+    what the policy refuses, proves the folder can be written, cleans stale temporaries, warns
+    on standard error about those it cannot claim) gives the folder to write into; :meth:`commit` moves it into place; :meth:`discard` drops it.
 
     ``generator`` is the command (``"geargen build"``); ``source`` what the output is of, as
     recorded in the manifest's ``"source"``; ``source_text`` says it in messages; ``flag`` names
@@ -484,13 +486,12 @@ class OutputFolder:
             self.discard()
             raise EnvironmentProblem(shown, f"cannot write in {parent}: {exc.strerror or exc}",
                                      "choose a writable output folder") from None
+        except BaseException:  # Ctrl-C, SIGTERM
+            self.discard()
+            raise
+        for folder, why in self.cleanup.left:  # the user has to decide about these
+            print(f"{self.generator}: warning: left {folder}: {why}", file=sys.stderr)
         return self.work
-
-    def notes(self) -> list[str]:
-        """Lines for the user about stale temporary folders removed or left."""
-        out = [f"removed the temporary folder of an interrupted geargen run: {p}" for p in self.cleanup.removed]
-        out += [f"left {p}: {why}" for p, why in self.cleanup.left]
-        return out
 
     def commit(self) -> Path:
         """Move the written folder onto the target (checked again: it may have changed meanwhile)."""

@@ -8,7 +8,8 @@ pinion's bearing span, the sliding pinions' travel stops)
 Each step is a function taking the results of the steps before it, so any step can be run
 alone (tests do); :func:`build` runs them all, shows progress on standard error (``quiet``
 silences it) and writes the output atomically: everything goes into a temporary folder beside
-the target, which replaces ``exports/<name>/`` only once every file is written. A build whose
+the target, which replaces ``exports/<design file name>/`` only once every file is written (the
+folder policy and the temporary folders are :mod:`geargen.outputs`'). A build whose
 mesh checks fail raises :class:`BuildFailed` and leaves nothing behind, unless ``force``: then
 the files are written and marked as failing in the manifest and the report. The mesh checks of
 the gears need only the layout and the gear solids, so :func:`build` runs them in a second
@@ -916,8 +917,6 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     work = output.prepare()
     for folder in output.cleanup.removed:
         progress.note(f"removed the temporary folder of an interrupted build: {folder}")
-    for folder, why in output.cleanup.left:  # shown even when quiet: the user has to decide
-        print(f"geargen build: warning: left {folder}: {why}", file=progress.stream)
     try:
         layout = progress.run("place", place, design, position)
         gears = progress.run("gear solids", gear_solids, layout)

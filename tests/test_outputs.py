@@ -274,3 +274,15 @@ def test_atomic_path_leaves_nothing_on_failure(tmp_path):
             tmp.write_text("half")
             raise RuntimeError("disk full")
     assert [p.name for p in tmp_path.iterdir()] == ["r.json"] and target.read_text() == "old"
+
+
+def test_a_gear_folder_from_before_manifests_named_the_command_needs_overwrite(tmp_path):
+    folder = _earlier_output(tmp_path / "g", "unused", generator="geargen 0.1.0", files={"g.step": b"step"})
+    m = json.loads((folder / "manifest.json").read_text())
+    del m["source"]
+    (folder / "manifest.json").write_text(json.dumps(m))
+    with pytest.raises(OutputRefused, match="unrecorded source.*--overwrite"):
+        check_output_folder(folder, "geargen gear", "gear g from options", "g")
+    assert check_output_folder(folder, "geargen gear", "gear g from options", "g", overwrite=True) == "replace"
+    with pytest.raises(OutputRefused, match="output of geargen gear, not of geargen build"):
+        check_output_folder(folder, BUILD, "/d/g.toml", "g", overwrite=True)
