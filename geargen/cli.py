@@ -50,7 +50,8 @@ DEBUG_VARIABLE = "GEARGEN_DEBUG"
 
 def _epilog() -> str:
     lines = ["exit status:"] + [f"  {code}  {text}" for code, text in EXIT_STATUS.items()]
-    lines += ["", "'-' as the file of --json writes to standard output. Output folders: see 'geargen build --help'."]
+    lines += ["", "'-' as the file of --json writes to standard output. build, gear and stiffness write only into a",
+              "new or empty folder or over their own earlier output, never over other files (README: Output folders)."]
     return "\n".join(lines)
 
 
