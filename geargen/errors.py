@@ -34,3 +34,34 @@ class GeometryError(GeargenError, ValueError):
 
 class BuildError(GeargenError, RuntimeError):
     """The CAD kernel produced something unusable (invalid solid, failed export)."""
+
+
+class EnvironmentProblem(GeargenError):
+    """The machine, not the input, stops the command: an output that cannot be written, a missing
+    input file, a folder where a file is expected. ``subject`` is the flag or path concerned
+    (``--out``, ``design file``); ``hint`` says what would work. The CLI exits with status 3."""
+
+    def __init__(self, subject: str, problem: str, hint: str | None = None):
+        self.subject = subject
+        self.problem = problem
+        self.hint = hint
+        text = f"{subject}: {problem}"
+        if hint:
+            text += f" ({hint})"
+        super().__init__(text)
+
+
+class OutputRefused(EnvironmentProblem):
+    """An output folder geargen will not write into or replace: it holds files geargen did not
+    write, another command's output, or an earlier output of another source (without --overwrite)."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """SIGTERM during a command: handled like Ctrl-C (temporary files removed, exit status 3).
+
+    A KeyboardInterrupt, so every ``except Exception`` lets it through and every cleanup that
+    already runs on Ctrl-C runs on it too."""
+
+    def __init__(self, signal_name: str = "SIGTERM"):
+        self.signal_name = signal_name
+        super().__init__(signal_name)

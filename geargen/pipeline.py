@@ -8,7 +8,8 @@ pinion's bearing span, the sliding pinions' travel stops)
 Each step is a function taking the results of the steps before it, so any step can be run
 alone (tests do); :func:`build` runs them all, shows progress on standard error (``quiet``
 silences it) and writes the output atomically: everything goes into a temporary folder beside
-the target, which replaces ``exports/<name>/`` only once every file is written. A build whose
+the target, which replaces ``exports/<design file name>/`` only once every file is written (the
+folder policy and the temporary folders are :mod:`geargen.outputs`'). A build whose
 mesh checks fail raises :class:`BuildFailed` and leaves nothing behind, unless ``force``: then
 the files are written and marked as failing in the manifest and the report. The mesh checks of
 the gears need only the layout and the gear solids, so :func:`build` runs them in a second
@@ -26,9 +27,7 @@ import json
 import math
 import os
 import platform
-import shutil
 import sys
-import tempfile
 import time
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
@@ -406,31 +405,42 @@ class BuildResult:
 
 
 def default_out_dir(design: Design) -> Path:
-    return Path("exports") / design.name
+    """``exports/<design file name without .toml>``: two design files that share a ``name =``
+    never share a folder (the folder policy of :mod:`geargen.outputs` guards the rest)."""
+    return Path("exports") / (Path(design.path).stem if design.path else design.name)
 
 
-def _swap_into_place(tmp: Path, target: Path) -> None:
-    """Move the finished folder ``tmp`` onto ``target`` (an old ``target`` is replaced whole)."""
-    old = None
-    if target.exists():
-        old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old.", dir=target.parent))
-        os.rmdir(old)
-        os.replace(target, old)
-    try:
-        os.replace(tmp, target)
-    except BaseException:
-        if old is not None:
-            os.replace(old, target)
-        raise
-    if old is not None:
-        shutil.rmtree(old, ignore_errors=True)
+def design_source(design: Design, design_path: str | Path | None = None) -> str:
+    """What a build is of, as its manifest records it (``"source"``): the design file's absolute path."""
+    return str(Path(design.path or design_path).resolve()) if (design.path or design_path) else design.name
+
+
+def output_folder(design: Design, out: str | Path | None = None, overwrite: bool = False,
+                  design_path: str | Path | None = None):
+    """The :class:`geargen.outputs.OutputFolder` a build of ``design`` writes (``out`` or the default)."""
+    from geargen.outputs import OutputFolder
+    target = Path(out) if out is not None else default_out_dir(design)
+    return OutputFolder(target, "geargen build", design_source(design, design_path),
+                        f"the design file {design.path or design_path}", overwrite=overwrite,
+                        flag="--out" if out is not None else "output folder")
 
 
 def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = False, force: bool = False,
-          position: str | None = None, progress: Progress | None = None, parallel: bool = True) -> BuildResult:
-    """Run every step and write the exports atomically into ``out`` (default ``exports/<name>``).
+          position: str | None = None, progress: Progress | None = None, parallel: bool = True,
+          overwrite: bool = False) -> BuildResult:
+    """Run every step and write the exports atomically into ``out`` (default ``exports/<file stem>``).
 
     Raises :class:`BuildFailed` when a check fails (nothing written) unless ``force``.
+
+    The output folder follows the policy of :mod:`geargen.outputs` (a new or empty folder, or an
+    earlier build of the same design file; ``overwrite``: also an earlier build of another design
+    file, or one whose files were changed): it is checked, and the temporary folder beside it
+    made, right after the design file is read and before anything is built, so a refused or
+    unwritable target costs nothing (:class:`geargen.errors.OutputRefused`,
+    :class:`geargen.errors.EnvironmentProblem`). Every file is written into that temporary
+    folder, which replaces the target in one step once the checks have passed; any failure or
+    interruption (Ctrl-C, SIGTERM) removes it, and one left by a killed build is removed by the
+    next build into the same parent folder.
 
     ``parallel``: the mesh checks of the gears (:func:`mesh_checks`, the longest step) run in a
     second process (:class:`Alongside`) from the moment the gear solids exist, while this one
@@ -441,39 +451,39 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     """
     progress = progress or Progress(quiet)
     design = progress.run("load", load, design_path)
-    layout = progress.run("place", place, design, position)
-    gears = progress.run("gear solids", gear_solids, layout)
-    alongside = Alongside.start(mesh_checks, layout, gears) if parallel else None
-    if alongside is not None:
-        progress.note("mesh checks: started in a second process, alongside the next steps")
+    output = output_folder(design, out, overwrite, design_path)
+    work = output.prepare()
+    for folder in output.cleanup.removed:
+        progress.note(f"removed the temporary folder of an interrupted build: {folder}")
     try:
-        summary = progress.run("stiffness", stiffness, layout)
-        parts = progress.run("other parts", other_parts, layout, gears, summary)
-        result = None
-        if alongside is None:
-            checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
-            result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
-        target = Path(out) if out is not None else default_out_dir(design)
-        target = target.resolve()
-        target.parent.mkdir(parents=True, exist_ok=True)
-        tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.build.", dir=target.parent))
+        layout = progress.run("place", place, design, position)
+        gears = progress.run("gear solids", gear_solids, layout)
+        alongside = Alongside.start(mesh_checks, layout, gears) if parallel else None
+        if alongside is not None:
+            progress.note("mesh checks: started in a second process, alongside the next steps")
         try:
+            summary = progress.run("stiffness", stiffness, layout)
+            parts = progress.run("other parts", other_parts, layout, gears, summary)
+            result = None
+            if alongside is None:
+                checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
+                result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             # the view first: its coarse tessellation is refined by the STL export (not the reverse)
             render_png = progress.run("render", render, parts, design)
-            files = progress.run("export", export, layout, parts, tmp)
+            files = progress.run("export", export, layout, parts, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, alongside, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             result.render_png, result.files = render_png, files
             result.timings = dict(progress.timings)
-            progress.run("report", _report_and_manifest, result, tmp)
-            _swap_into_place(tmp, target)
-        except BaseException:
-            shutil.rmtree(tmp, ignore_errors=True)
-            raise
-    finally:
-        if alongside is not None:
-            alongside.close()
+            progress.run("report", _report_and_manifest, result, work)
+            target = output.commit()
+        finally:
+            if alongside is not None:
+                alongside.close()
+    except BaseException:
+        output.discard()
+        raise
     result.out_dir = target
     result.timings = dict(progress.timings)
     return result
@@ -516,8 +526,35 @@ def _collect_checks(alongside: "Alongside", layout: Layout, gears, parts) -> tup
     return outcome, busy, f"(meshes checked in a second process alongside stiffness to export; waited {waited:.2f} s)"
 
 
-def _run_in_child(conn, fn, args) -> None:
+_PR_SET_PDEATHSIG = 1  # linux/prctl.h
+
+
+def _die_with_parent(parent_pid: int) -> None:
+    """Make this (forked) process end when its parent does, however the parent ends.
+
+    ``prctl(PR_SET_PDEATHSIG, SIGKILL)`` asks the kernel to kill this process when the thread
+    that forked it exits, SIGKILL of the parent included (no cleanup runs there); the parent
+    may already be gone before the request is made, so the parent's pid is compared after it
+    (an orphan has been re-parented). SIGTERM gets its default action back (the parent's
+    handler would turn it into an interruption here) and SIGINT is ignored: Ctrl-C reaches the
+    whole process group, and the parent, which handles it, ends this process itself."""
+    import ctypes
+    import signal
+    signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+    except (OSError, AttributeError):
+        pass  # not Linux's libc: the parent's close() still ends this process on every clean exit
+    if os.getppid() != parent_pid:
+        os._exit(1)
+
+
+def _run_in_child(conn, fn, args, parent_pid: int | None = None) -> None:
     """Body of the second process: send ``("ok", seconds, fn(*args))`` or ``("error", 0, text)``."""
+    if parent_pid is not None:
+        _die_with_parent(parent_pid)
     try:
         t0 = time.perf_counter()
         value = fn(*args)
@@ -540,6 +577,10 @@ class Alongside:
     and compute with numpy, nothing more. Linux only (fork); :meth:`start` returns None where a
     child cannot be had, and :meth:`result` returns None when the child delivers nothing (error,
     crash, ``timeout`` seconds): the caller then computes ``fn`` itself.
+
+    The child never outlives the caller: :meth:`close` ends it on every exit of the caller that
+    runs Python code (return, exception, Ctrl-C, SIGTERM), and on Linux the kernel kills it
+    when the caller dies without running anything (SIGKILL, a crash): :func:`_die_with_parent`.
     """
 
     def __init__(self, process, receiver):
@@ -554,7 +595,7 @@ class Alongside:
             import multiprocessing
             ctx = multiprocessing.get_context("fork")
             receiver, sender = ctx.Pipe(duplex=False)
-            process = ctx.Process(target=_run_in_child, args=(sender, fn, args), daemon=True)
+            process = ctx.Process(target=_run_in_child, args=(sender, fn, args, os.getpid()), daemon=True)
             process.start()
         except Exception:  # e.g. inside a daemonic worker, which may not have children
             return None
@@ -579,6 +620,9 @@ class Alongside:
         if self._process.is_alive():
             self._process.terminate()
         self._process.join(timeout=5.0)
+        if self._process.is_alive():  # SIGTERM is the default action there; this is the last resort
+            self._process.kill()
+            self._process.join(timeout=5.0)
 
 
 def _report_and_manifest(result: BuildResult, folder: Path) -> None:
@@ -599,6 +643,7 @@ def manifest(result: BuildResult, folder: Path, report_files: dict[str, Path] | 
     status = "ok" if result.ok else "failing"
     data = {
         "generator": "geargen build",
+        "source": design_source(design),  # what geargen.outputs recognises an earlier build of this design by
         "design": {"name": design.name, "file": str(design.path) if design.path else None, "sha256": design.sha256,
                    "length_unit": design.length_unit},
         "status": status,

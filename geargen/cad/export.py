@@ -10,16 +10,14 @@
   between a triangle and the exact surface, mm), recorded in ``manifest.json`` in the same
   folder with the triangle count, the mesher used and each file's unit.
 - Atomic: each file is written to a temporary name in its folder and moved into place with
-  ``os.replace``; a failed write leaves no partial file (and the old one, if any, untouched).
+  ``os.replace`` (:func:`geargen.outputs.atomic_path`), with the user's umask mode; a failed
+  write leaves no partial file (and the old one, if any, untouched).
 """
 
 from __future__ import annotations
 
 import json
-import os
-import tempfile
 import time
-from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
@@ -43,6 +41,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Shape
 from OCP.XCAFDoc import XCAFDoc_DocumentTool
 
 from geargen.errors import BuildError
+from geargen.outputs import atomic_path  # noqa: F401 - part of this module's interface
 
 #: STEP unit names by design length unit
 STEP_UNITS = {"mm": "MM", "in": "INCH"}
@@ -54,22 +53,6 @@ def _quiet_kernel() -> None:
     printers = Message.DefaultMessenger_s().Printers()
     if printers.Size() > 0:
         printers.First().SetTraceLevel(Message_Gravity.Message_Warning)
-
-
-@contextmanager
-def atomic_path(path: Path):
-    """Yield a temporary path next to ``path`` (same suffix); on success move it onto ``path``."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{path.suffix}", dir=path.parent)
-    os.close(fd)
-    try:
-        yield Path(tmp)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 def _parts(parts) -> list[tuple[str, TopoDS_Shape]]:

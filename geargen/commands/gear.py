@@ -9,10 +9,19 @@ or from options::
 Writes ``DIR/NAME.step`` (in the design's length unit), ``DIR/NAME.stl`` (mm, chordal tolerance
 ``--stl-tolerance`` mm), ``DIR/NAME.json`` (radii, thicknesses, tip land, undercut, span and
 over-pins/balls, in the design's length unit; angles in degrees) and ``DIR/manifest.json``.
+
+DIR (default ``exports/NAME``) follows the folder policy of :mod:`geargen.outputs`: it must not
+exist, be empty, or hold an earlier ``geargen gear`` output of the same gear (same name, from the
+same design file and table, or from options), which is replaced whole; ``--overwrite`` also
+replaces an earlier gear output of another source. An assembly's build folder is never written.
+
+A design file and gear options are alternatives: an option given with a design file is refused
+(naming it), never ignored. Errors name the option (``--teeth``), not the design-file key.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import sys
 import time
@@ -33,12 +42,12 @@ def add_arguments(p) -> None:
     pitch.add_argument("--module", type=float, metavar="MM", help="module in mm (metric design: lengths in mm)")
     pitch.add_argument("--diametral-pitch", type=float, metavar="PER_IN",
                        help="diametral pitch, teeth per inch (inch design: lengths in inches)")
-    g.add_argument("--pitch-system", choices=("normal", "transverse"), default="normal",
+    g.add_argument("--pitch-system", choices=("normal", "transverse"), default=None,
                    help="helical gears: module/pitch and pressure angle given in the normal (default) or transverse section")
-    g.add_argument("--pressure-angle", type=float, default=20.0, metavar="DEG", help="pressure angle, degrees (default 20)")
-    g.add_argument("--helix-angle", type=float, default=0.0, metavar="DEG", help="helix angle, degrees (default 0: spur)")
-    g.add_argument("--hand", choices=("right", "left"), default="right", help="helix hand (default right)")
-    g.add_argument("--profile-shift", type=float, default=0.0, metavar="X", help="profile shift coefficient x (default 0)")
+    g.add_argument("--pressure-angle", type=float, default=None, metavar="DEG", help="pressure angle, degrees (default 20)")
+    g.add_argument("--helix-angle", type=float, default=None, metavar="DEG", help="helix angle, degrees (default 0: spur)")
+    g.add_argument("--hand", choices=("right", "left"), default=None, help="helix hand (default right)")
+    g.add_argument("--profile-shift", type=float, default=None, metavar="X", help="profile shift coefficient x (default 0)")
     g.add_argument("--face-width", type=float, metavar="LEN",
                    help="face width in the unit of the pitch system: mm with --module, inches with --diametral-pitch")
     g.add_argument("--face-width-mm", type=float, metavar="MM", help="face width in mm")
@@ -46,11 +55,16 @@ def add_arguments(p) -> None:
     g.add_argument("--bore", type=float, metavar="LEN", help="bore diameter in the unit of the pitch system (default: none)")
     g.add_argument("--bore-mm", type=float, metavar="MM", help="bore diameter in mm")
     g.add_argument("--bore-in", type=float, metavar="IN", help="bore diameter in inches")
-    g.add_argument("--thinning", type=float, metavar="LEN", default=0.0,
+    g.add_argument("--thinning", type=float, metavar="LEN", default=None,
                    help="tooth thinning for backlash: circumferential (transverse arc at the reference circle), "
                         "in the unit of the pitch system (default 0)")
     g.add_argument("--name", default=None, help="part name (default: the design's, or gear_<teeth>)")
-    p.add_argument("--out", metavar="DIR", default=None, help="output folder (default: exports/<name>)")
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="output folder (default: exports/<name>); must not exist, be empty, or hold an earlier "
+                        "geargen gear output of the same gear, which is replaced")
+    p.add_argument("--overwrite", action="store_true",
+                   help="also replace an earlier geargen gear output of another source (never a folder holding "
+                        "other files, nor an assembly's build)")
     p.add_argument("--stl-tolerance", type=float, default=1e-3, metavar="MM",
                    help="STL chordal tolerance in mm (default 0.001 = 1 um)")
     p.add_argument("--no-stl", action="store_true", help="skip the STL")
@@ -58,8 +72,52 @@ def add_arguments(p) -> None:
                    help="also section the solid and report the measured flank deviation, span and over-pins size")
 
 
+#: the gear options (argparse dest -> flag) and the value each stands for when not given
+GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
+                "diametral_pitch": ("--diametral-pitch", None), "pitch_system": ("--pitch-system", "normal"),
+                "pressure_angle": ("--pressure-angle", 20.0), "helix_angle": ("--helix-angle", 0.0),
+                "hand": ("--hand", "right"), "profile_shift": ("--profile-shift", 0.0),
+                "face_width": ("--face-width", None), "face_width_mm": ("--face-width-mm", None),
+                "face_width_in": ("--face-width-in", None), "bore": ("--bore", None), "bore_mm": ("--bore-mm", None),
+                "bore_in": ("--bore-in", None), "thinning": ("--thinning", None)}
+
+
+def _given(args) -> list[str]:
+    """The flags of the gear options given on the command line."""
+    return [flag for dest, (flag, _) in GEAR_OPTIONS.items() if getattr(args, dest, None) is not None]
+
+
+def _option(args, dest):
+    value = getattr(args, dest)
+    return GEAR_OPTIONS[dest][1] if value is None else value
+
+
+def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
+    """The flag that set the gear-table key ``key`` (``face_width_mm`` -> the face-width flag used)."""
+    base = {"teeth": "--teeth", "module_mm": "--module", "diametral_pitch_per_in": "--diametral-pitch",
+            "pitch_system": "--pitch-system", "pressure_angle_deg": "--pressure-angle",
+            "helix_angle_deg": "--helix-angle", "hand": "--hand", "profile_shift": "--profile-shift"}
+    if key in base:
+        return base[key]
+    for stem, flag in (("face_width", "--face-width"), ("bore_diameter", "--bore"),
+                       ("thinning_circumferential", "--thinning")):
+        if key.startswith(stem):
+            used = [f for f in given if f.startswith(flag)]
+            return used[0] if used else flag
+    return f"--{key.replace('_', '-')}"
+
+
 def spec_from_args(args) -> GearSpec:
-    """The GearSpec the command line describes (through the design-file validation)."""
+    """The GearSpec the command line describes (through the design-file validation).
+
+    A design file and gear options exclude each other: an option given with a design file is
+    an error naming it (it would otherwise be ignored). Errors in the options name the option."""
+    flags_given = _given(args)
+    if args.gear and not args.design:
+        raise DesignError("--gear", "needs an assembly design file", "geargen gear FILE.toml --gear NAME")
+    if args.design and flags_given:
+        raise DesignError(flags_given[0], f"conflicts with the design file {args.design}, which gives the gear",
+                          "a design file or gear options, not both")
     if args.design:
         from geargen.design.schema import load_toml
         data = load_toml(args.design)
@@ -75,9 +133,9 @@ def spec_from_args(args) -> GearSpec:
     if args.teeth is None or (args.module is None and args.diametral_pitch is None):
         raise DesignError("--teeth", "give a design file, or --teeth and --module or --diametral-pitch")
     unit = "mm" if args.module is not None else "in"
-    table = {"teeth": args.teeth, "pitch_system": args.pitch_system,
-             "pressure_angle_deg": args.pressure_angle, "helix_angle_deg": args.helix_angle, "hand": args.hand,
-             "profile_shift": args.profile_shift}
+    table = {"teeth": args.teeth, "pitch_system": _option(args, "pitch_system"),
+             "pressure_angle_deg": _option(args, "pressure_angle"), "helix_angle_deg": _option(args, "helix_angle"),
+             "hand": _option(args, "hand"), "profile_shift": _option(args, "profile_shift")}
     if args.module is not None:
         table["module_mm"] = args.module
     else:
@@ -94,7 +152,12 @@ def spec_from_args(args) -> GearSpec:
     if args.thinning:
         table[f"thinning_circumferential_{unit}"] = args.thinning
     name = args.name or f"gear_{args.teeth}"
-    return gear_from_table(table, where="options", name=name, length_unit=unit)
+    try:
+        return gear_from_table(table, where="options", name=name, length_unit=unit)
+    except DesignError as exc:
+        if not exc.field.startswith("options."):
+            raise
+        raise DesignError(_flag_of_key(exc.field.split(".", 1)[1], table, flags_given), exc.problem, exc.allowed) from None
 
 
 def derived_quantities(spec: GearSpec, profile) -> dict:
@@ -148,8 +211,37 @@ def derived_quantities(spec: GearSpec, profile) -> dict:
     return out
 
 
+def gear_source(args, spec: GearSpec) -> str:
+    """What a gear output is of, as its manifest records it (``"source"``): the gear's name and the
+    design file (and table) or the options it came from."""
+    if args.design:
+        origin = str(Path(args.design).resolve()) + (f" [gears.{args.gear}]" if args.gear else " [gear]")
+    else:
+        origin = "command-line options"
+    return f"gear {spec.name} from {origin}"
+
+
 def run(args) -> int:
     spec = spec_from_args(args)
+    from geargen.outputs import OutputFolder
+    source = gear_source(args, spec)
+    output = OutputFolder(Path(args.out) if args.out else Path("exports") / spec.name, "geargen gear", source,
+                          overwrite=args.overwrite, flag="--out" if args.out else "output folder")
+    output.prepare()  # refused or unwritable: said before the gear is built
+    try:
+        target = _write_gear(args, spec, output)
+    except BaseException:
+        output.discard()
+        raise
+    names = [f"{spec.name}.step"] + ([] if args.no_stl else [f"{spec.name}.stl"]) + [f"{spec.name}.json"]
+    for name in names:
+        print(target / name)
+    return 0
+
+
+def _write_gear(args, spec: GearSpec, output) -> Path:
+    """Build the gear and write its files into ``output``'s folder; returns the target, committed."""
+    from geargen import __version__
     from geargen.cad.export import export_step, export_stl, update_manifest, write_json
     from geargen.cad.gear_solid import build_gear
     from geargen.profile.tooth import UndercutWarning
@@ -161,7 +253,7 @@ def run(args) -> int:
         t_build = time.perf_counter() - t0
     for w in caught:
         print(f"geargen gear: warning: {w.message}", file=sys.stderr)
-    out = Path(args.out) if args.out else Path("exports") / spec.name
+    out = output.work
     records = [export_step(solid, out / f"{spec.name}.step", spec.length_unit)]
     if not args.no_stl:
         records.append(export_stl(solid, out / f"{spec.name}.stl", args.stl_tolerance))
@@ -170,12 +262,17 @@ def run(args) -> int:
     data["files"] = [r.path.name for r in records]
     if args.measure:
         data["measured"] = _measure(solid, data)
-    write_json(out / f"{spec.name}.json", data)
-    update_manifest(out, records, extra={"length_unit": spec.length_unit})
-    for r in records:
-        print(r.path)
-    print(out / f"{spec.name}.json")
-    return 0
+    data_file = out / f"{spec.name}.json"
+    write_json(data_file, data)
+    update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",
+                                         "source": output.source, "version": __version__})
+    # the data file is listed too, so a later run recognises every file here as its own
+    manifest_path = out / "manifest.json"
+    manifest = json.loads(manifest_path.read_text())
+    manifest["files"][data_file.name] = {"format": "json", "length_unit": spec.length_unit,
+                                         "bytes": data_file.stat().st_size}
+    write_json(manifest_path, manifest)
+    return output.commit()
 
 
 def _measure(solid, data) -> dict:

@@ -1,8 +1,12 @@
-"""``geargen stiffness DESIGN.toml [--out DIR] [--json FILE]``: stiffness, preload and preload variation.
+"""``geargen stiffness DESIGN.toml [--out DIR] [--overwrite] [--json FILE|-]``: stiffness, preload and preload variation.
 
 Prints each path (its components and their share of the compliance), the drive, the loop, the
 preload against the paper's recommendation and the preload band caused by loop errors, and
-writes the preload diagram, the torque-deflection curve and the preload band as PNG.
+writes the preload diagram, the torque-deflection curve and the preload band as PNG, with a
+``manifest.json``, into ``exports/<design file name>-stiffness/`` (or DIR): a folder of its own,
+which ``geargen build`` (``exports/<design file name>/``) never touches. The folder follows the
+policy of :mod:`geargen.outputs` (new, empty, or an earlier ``geargen stiffness`` output of the
+same design file; ``--overwrite`` also for another design file's) and is written atomically.
 
 The drive is the resolved one (:func:`geargen.model.resolve`) and the summary is
 :func:`geargen.model.analysis.stiffness`, the one ``geargen build`` reports. Loop errors: the
@@ -21,16 +25,47 @@ from geargen.errors import DesignError
 from geargen.model import is_drive, resolve
 from geargen.model.analysis import stiffness
 
+
 def add_arguments(p) -> None:
     p.add_argument("design", help="design file (TOML) with [stiffness] and [preload] sections")
     p.add_argument("--out", metavar="DIR", default=None,
-                   help="folder for the PNG plots (default: exports/<name>/stiffness)")
+                   help="folder for the PNG plots (default: exports/<design file name>-stiffness); must not exist, "
+                        "be empty, or hold an earlier stiffness output of the same design file, which is replaced")
+    p.add_argument("--overwrite", action="store_true",
+                   help="also replace an earlier stiffness output of another design file (never a folder holding "
+                        "files geargen did not write)")
     p.add_argument("--json", metavar="FILE", default=None, help="write the summary as JSON ('-' for standard output)")
     p.add_argument("--no-plots", action="store_true", help="skip the plots")
 
 
+def default_out_dir(design_path) -> Path:
+    """``exports/<design file name>-stiffness``: beside the build's ``exports/<design file name>``, never in it."""
+    return Path("exports") / f"{Path(design_path).stem}-stiffness"
+
+
+def output_folder(args, design):
+    """The :class:`geargen.outputs.OutputFolder` of the plots."""
+    from geargen.outputs import OutputFolder
+    source = str(Path(design.path or args.design).resolve())
+    target = Path(args.out) if args.out else default_out_dir(args.design)
+    return OutputFolder(target, "geargen stiffness", source, f"the design file {source}",
+                        overwrite=args.overwrite, flag="--out" if args.out else "output folder")
+
+
 def run(args) -> int:
     design = load_design(args.design)
+    output = None if args.no_plots else output_folder(args, design)
+    if output is not None:
+        output.prepare()  # refused or unwritable: said before any work
+    try:
+        return _run(args, design, output)
+    except BaseException:
+        if output is not None:
+            output.discard()
+        raise
+
+
+def _run(args, design, output) -> int:
     layout = resolve(design) if is_drive(design) else None
     summary, note = stiffness(design, layout)
     if summary is None:
@@ -44,17 +79,21 @@ def run(args) -> int:
     print(format_summary(summary, note), file=text_out)
     data = summary.to_dict()
     data["loop_error_source"] = note
-    if not args.no_plots:
-        out = Path(args.out) if args.out else Path("exports") / design.name / "stiffness"
-        plots = write_stiffness_plots(summary, out)
+    if output is not None:
+        from geargen import __version__
+        from geargen.outputs import manifest_files, write_text
+        written = write_stiffness_plots(summary, output.work)
+        manifest = {"generator": "geargen stiffness", "source": output.source, "version": __version__,
+                    "design": {"name": design.name, "file": output.source, "sha256": design.sha256},
+                    "files": manifest_files(output.work)}
+        write_text(output.work / "manifest.json", json.dumps(manifest, indent=2) + "\n", "--out")
+        target = output.commit()
+        plots = {k: target / Path(v).name for k, v in written.items()}
         data["plots"] = {k: str(v) for k, v in plots.items()}
         print("\nPlots: " + ", ".join(str(p) for p in plots.values()), file=text_out)
     if args.json:
-        text = json.dumps(data, indent=2, default=_json_default)
-        if args.json == "-":
-            print(text)
-        else:
-            Path(args.json).write_text(text + "\n")
+        from geargen.outputs import write_text
+        write_text(args.json, json.dumps(data, indent=2, default=_json_default) + "\n", "--json")
     return 0
 
 
