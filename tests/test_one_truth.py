@@ -125,3 +125,17 @@ def test_check_refuses_an_exported_folder_of_another_design(built_assemblies, ca
     code = main(["check", str(DESIGNS["split_pinion"]), "--sections", "--exported", str(built_assemblies["robot_joint"])])
     assert code == 2
     assert "--exported" in capsys.readouterr().err
+
+
+def test_gear_data_of_an_assembly_gear_is_the_resolved_gear(tmp_path, capsys):
+    """`geargen gear DESIGN --gear NAME` writes the gear the assembly builds: the C-axis derives its
+    thinning for mid-range backlash, and the gear data says so, with the same number."""
+    from geargen.design.assembly import load_design
+    from geargen.model import resolve
+
+    layout = resolve(load_design(DESIGNS["c_axis"]))
+    want = next(g for p in layout.gears for g in p.gears if g.name == "output").thinning
+    assert main(["gear", str(DESIGNS["c_axis"]), "--gear", "output", "--out", str(tmp_path / "g"), "--no-stl"]) == 0
+    data = json.loads((tmp_path / "g" / "output.json").read_text())
+    assert data["thinning_circumferential"] == pytest.approx(want, abs=NM) and want > 0.03
+    assert data["thinning_source"].startswith("derived for mid-range backlash")

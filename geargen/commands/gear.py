@@ -107,8 +107,9 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
     return f"--{key.replace('_', '-')}"
 
 
-def spec_from_args(args) -> GearSpec:
-    """The GearSpec the command line describes (through the design-file validation).
+def spec_from_args(args) -> tuple[GearSpec, str | None]:
+    """The GearSpec the command line describes (through the design-file validation), and where an
+    assembly gear's thinning comes from (None for a gear file or options: as given).
 
     A design file and gear options exclude each other: an option given with a design file is
     an error naming it (it would otherwise be ignored). Errors in the options name the option."""
@@ -123,13 +124,13 @@ def spec_from_args(args) -> GearSpec:
         data = load_toml(args.design)
         if args.gear:
             from geargen.design.assembly import load_design
-            return load_design(args.design).gear(args.gear)
+            return assembly_gear(load_design(args.design), args.gear)
         if "gear" not in data:
             raise DesignError(str(args.design), "no [gear] table (use --gear NAME for an assembly file)")
         unknown = [k for k in data if k != "gear"]
         if unknown:
             raise DesignError(unknown[0], "unknown key or section in a gear design file", "[gear]")
-        return gear_from_table(data["gear"], where="gear", name=args.name or Path(args.design).stem)
+        return gear_from_table(data["gear"], where="gear", name=args.name or Path(args.design).stem), None
     if args.teeth is None or (args.module is None and args.diametral_pitch is None):
         raise DesignError("--teeth", "give a design file, or --teeth and --module or --diametral-pitch")
     unit = "mm" if args.module is not None else "in"
@@ -153,11 +154,28 @@ def spec_from_args(args) -> GearSpec:
         table[f"thinning_circumferential_{unit}"] = args.thinning
     name = args.name or f"gear_{args.teeth}"
     try:
-        return gear_from_table(table, where="options", name=name, length_unit=unit)
+        return gear_from_table(table, where="options", name=name, length_unit=unit), None
     except DesignError as exc:
         if not exc.field.startswith("options."):
             raise
         raise DesignError(_flag_of_key(exc.field.split(".", 1)[1], table, flags_given), exc.problem, exc.allowed) from None
+
+
+def assembly_gear(design, name: str) -> tuple[GearSpec, str]:
+    """``[gears.NAME]`` of an assembly as the assembly builds it, and where its thinning comes from:
+    in a drive the resolved one (:func:`geargen.model.resolve`: the thinning the design states, or
+    the one derived for its backlash), else the table as written."""
+    from geargen.model import is_drive, resolve
+
+    spec = design.gear(name)  # names the key when there is no such gear
+    if not is_drive(design):
+        return spec, "design"
+    layout = resolve(design)
+    for placed in layout.gears:
+        for g in placed.gears:
+            if g.name == name:
+                return g, layout.thinning.get(placed.name, {}).get("source", "design")
+    return spec, "design"
 
 
 def derived_quantities(spec: GearSpec, profile) -> dict:
@@ -222,14 +240,14 @@ def gear_source(args, spec: GearSpec) -> str:
 
 
 def run(args) -> int:
-    spec = spec_from_args(args)
+    spec, thinning_source = spec_from_args(args)
     from geargen.outputs import OutputFolder
     source = gear_source(args, spec)
     output = OutputFolder(Path(args.out) if args.out else Path("exports") / spec.name, "geargen gear", source,
                           overwrite=args.overwrite, flag="--out" if args.out else "output folder")
     output.prepare()  # refused or unwritable: said before the gear is built
     try:
-        target = _write_gear(args, spec, output)
+        target = _write_gear(args, spec, thinning_source, output)
     except BaseException:
         output.discard()
         raise
@@ -239,7 +257,7 @@ def run(args) -> int:
     return 0
 
 
-def _write_gear(args, spec: GearSpec, output) -> Path:
+def _write_gear(args, spec: GearSpec, thinning_source: str | None, output) -> Path:
     """Build the gear and write its files into ``output``'s folder; returns the target, committed."""
     from geargen import __version__
     from geargen.cad.export import export_step, export_stl, update_manifest, write_json
@@ -258,6 +276,8 @@ def _write_gear(args, spec: GearSpec, output) -> Path:
     if not args.no_stl:
         records.append(export_stl(solid, out / f"{spec.name}.stl", args.stl_tolerance))
     data = derived_quantities(spec, solid.profile)
+    if thinning_source is not None:
+        data["thinning_source"] = thinning_source
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]
     if args.measure:
