@@ -50,17 +50,15 @@ import numpy as np
 from geargen.core.involute import reference_tooth_thickness
 from geargen.design.assembly import Design, load_design
 from geargen.design.cluster import ClusterSpec
+from geargen.design.export import EXPORT_FIELDS as _EXPORT_FIELDS
 from geargen.design.gear import GearSpec, with_changes
-from geargen.design.schema import Field, read_table
+from geargen.design.layout import LAYOUT_FIELDS as _LAYOUT_FIELDS, LAYOUT_KINDS, MODEL_BACKLASH, POSITIONS
+from geargen.design.schema import read_table
 from geargen.errors import DesignError, GeargenError
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
 STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "report")
-
-LAYOUT_KINDS = ("dual_pinion", "split_pinion")
-MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
-POSITIONS = ("engaged", "disengaged")
 
 
 class BuildFailed(GeargenError):
@@ -211,31 +209,6 @@ class Layout:
             if g.name == name:
                 return g
         raise KeyError(name)
-
-
-_LAYOUT_FIELDS = [
-    Field("kind", "string", choices=LAYOUT_KINDS),
-    Field("model_backlash", "string", required=False, default="mid", choices=MODEL_BACKLASH),
-    Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0),
-    Field("position", "string", required=False, default="engaged", choices=POSITIONS),
-    # dual pinion
-    Field("cluster", "string", required=False, default="one_piece", choices=("one_piece", "separate")),
-    Field("cluster_axial_gap", "length", required=False, default=None, minimum=0.0),
-    Field("input_face_offset", "length", required=False, default=None),
-    Field("carriage_travel", "length", required=False, default=None, minimum=0.0),
-    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0),
-    # split pinion
-    Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("pinion_stiff", "string", required=False, default="pinion_stiff"),
-    Field("pinion_compliant", "string", required=False, default="pinion_compliant"),
-    Field("output", "string", required=False, default="output"),
-    Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0),
-    Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0),
-    Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0),
-    # the gear ratio the controller needs, from encoder to output
-    Field("upstream_stages", "list", required=False, default=()),
-    Field("required_ratios", "list", required=False, default=()),
-]
 
 
 def layout_settings(design: Design) -> dict[str, Any]:
@@ -751,16 +724,6 @@ def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = N
     """Step 7: assembly STEP, one STEP and one STL per part, into ``folder``; returns the file records."""
     from geargen.cad.assembly import export_parts
     return export_parts(layout, parts, Path(folder), export_settings or export_config(layout.design))
-
-
-_EXPORT_FIELDS = [
-    Field("stl_chordal_tolerance", "length", required=False, default=0.005, minimum=0.0, exclusive_minimum=True),
-    Field("stl_chordal_tolerance_parts", "length", required=False, default=0.05, minimum=0.0, exclusive_minimum=True),
-    Field("stl_angular_tolerance", "angle", required=False, default=0.5, minimum=0.0, exclusive_minimum=True),
-    Field("gear_solid_tolerance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("render_view", "list", required=False, default=None),
-    Field("render_size", "list", required=False, default=None),
-]
 
 
 def export_config(design: Design) -> dict[str, Any]:

@@ -259,6 +259,16 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     return _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
 
 
+def gear_keys_written(data: Mapping[str, Any]) -> dict[str, str]:
+    """Field name -> the key ``data`` gives it under (``"face_width": "face_width_in"``)."""
+    out = {}
+    for f in GEAR_FIELDS:
+        for key in f.keys():
+            if key in data:
+                out[f.name] = key
+    return out
+
+
 def _with_field_prefix(prefix: str, make, units: Mapping[str, str]):
     """Run ``make``; re-raise a DesignError with the design-file key path (name plus unit suffix)."""
     try:
@@ -275,4 +285,4 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "gear_from_table", "with_changes", "MM_PER_IN"]
+__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]
