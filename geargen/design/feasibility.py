@@ -10,13 +10,21 @@ tip land and a root there.
 A tooth is makeable when (transverse section, mm):
 
 * its root circle lies outside the axis: ``r_f = r - m_n (h_f* - x) > 0``;
+* the generating rack's tooth, which cuts the dedendum, does not come to a point above its tip
+  line (normal section, rack tip radius ``rho``):
+  ``h_f* tan(alpha_n) + rho* (1 - sin(alpha_n)) / cos(alpha_n) - j_n / (2 m_n) <= pi / 4``
+  (``j_n`` the normal tooth thinning, which widens the rack tooth);
 * its tip circle lies outside the base circle (else there is no involute): ``r_a > r_b``;
 * its flanks do not meet below the tip circle: the tip land
   ``s_a = 2 r_a (s_t / (2 r) + inv(alpha_t) - inv(alpha_a))`` is at least
-  :data:`MIN_TIP_LAND_MODULES` normal modules (``alpha_a = acos(r_b / r_a)``).
+  :data:`MIN_TIP_LAND_MODULES` normal modules (``alpha_a = acos(r_b / r_a)``);
+* when the rack does not undercut the gear, the involute starts (where the rack's straight
+  flank ends, roll ``t_j = (r sin(alpha_t) + v_f / sin(alpha_t)) / r_b``, ``v_f`` the height of
+  that point above the rolling line) below the tip circle: ``r_b sqrt(1 + t_j^2) < r_a``.
 
-An undercut so deep that the generating rack severs the tooth (few teeth, strongly negative
-shift) is found only by the outline itself (a ``GeometryError`` at check or build time).
+Where the rack undercuts the gear (``t_j < 0``: few teeth, strongly negative shift), how far the
+undercut climbs, and whether it severs the tooth, is found only by the outline itself: such a
+gear passes here and is refused at check or build time (a ``GeometryError`` naming the gear).
 """
 
 from __future__ import annotations
@@ -25,6 +33,7 @@ import math
 from dataclasses import replace
 from typing import Mapping
 
+from geargen.design.schema import bound_text
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
@@ -57,14 +66,38 @@ def tip_land(spec) -> float:
                       - _involute(alpha_a))
 
 
+def rack_point_excess(spec) -> float:
+    """How far (in normal modules) the generating rack's tooth half-width at its tip-rounding
+    centre passes the quarter pitch: > 0 means the rack tooth comes to a point above its tip line."""
+    a = spec.pressure_angle
+    rho = spec.rack_tip_radius_coefficient
+    return (spec.dedendum_coefficient * math.tan(a) + rho * (1 - math.sin(a)) / math.cos(a)
+            - spec.thinning_normal / (2 * spec.module) - math.pi / 4)
+
+
+def fillet_joint_roll(spec) -> float:
+    """Roll parameter ``t_j`` of the involute point the end of the rack's straight flank generates
+    (negative: the rack undercuts the gear)."""
+    a_n, a_t = spec.pressure_angle, spec.transverse_pressure_angle
+    rho = spec.rack_tip_radius_coefficient * spec.module
+    v_f = -(spec.dedendum_coefficient - spec.profile_shift) * spec.module + rho - rho * math.sin(a_n)
+    return (spec.reference_radius * math.sin(a_t) + v_f / math.sin(a_t)) / spec.base_radius
+
+
 def tooth_problem(spec) -> str | None:
-    """Which rule of the module docstring ``spec`` breaks: "negative_root", "no_involute", "pointed_tooth" or None."""
+    """Which rule of the module docstring ``spec`` breaks: "negative_root", "pointed_rack",
+    "no_involute", "pointed_tooth" or None (the names of the outline's ``GeometryError`` kinds)."""
     if spec.root_radius_standard <= 0:
         return "negative_root"
+    if rack_point_excess(spec) > 1e-12:
+        return "pointed_rack"
     if spec.tip_radius <= spec.base_radius:
         return "no_involute"
     if tip_land(spec) < MIN_TIP_LAND_MODULES * spec.module:
         return "pointed_tooth"
+    t_joint = fillet_joint_roll(spec)
+    if t_joint >= 0 and spec.base_radius * math.sqrt(1 + t_joint * t_joint) >= spec.tip_radius:
+        return "no_involute"
     return None
 
 
@@ -105,19 +138,24 @@ def _boundary(spec, name: str, toward, default_rack_tip: bool) -> float | int | 
 #: per problem: (parameter, direction that helps) in the order they are named
 _REMEDIES = {
     "negative_root": (("profile_shift", +1), ("dedendum_coefficient", -1), ("teeth", +1)),
-    "no_involute": (("profile_shift", +1), ("addendum_coefficient", +1), ("teeth", +1)),
+    "pointed_rack": (("dedendum_coefficient", -1),),
+    "no_involute": (("profile_shift", +1), ("addendum_coefficient", +1), ("dedendum_coefficient", -1),
+                    ("teeth", +1)),
     "pointed_tooth": (("profile_shift", -1), ("addendum_coefficient", -1), ("teeth", +1)),
 }
 
 _WHAT = {
     "negative_root": "the root circle reaches past the gear's axis",
-    "no_involute": "the tip circle lies inside the base circle, so the tooth has no involute flank",
+    "pointed_rack": "the generating rack's tooth comes to a point before it reaches this dedendum "
+                    "(dedendum x tan(pressure angle) too large)",
+    "no_involute": "the tooth has no involute flank below its tip circle",
     "pointed_tooth": "the tooth comes to a point below the tip circle",
 }
 
 
-def _length(value_mm: float, unit: str) -> str:
-    return f"{value_mm / LENGTH_SUFFIXES[unit]:.6g} {unit}"
+def _length(value_mm: float, unit: str, toward: str | None = None) -> str:
+    value = value_mm / LENGTH_SUFFIXES[unit]
+    return f"{bound_text(value, toward) if toward else f'{value:.6g}'} {unit}"
 
 
 def check_tooth(spec, where: str, written: Mapping[str, str], length_unit: str,
@@ -141,7 +179,7 @@ def check_tooth(spec, where: str, written: Mapping[str, str], length_unit: str,
         detail = f" (tip land {_length(tip_land(spec), unit)}, at least {_length(minimum, unit)} needed)"
     elif problem == "negative_root":
         detail = f" (root radius {_length(spec.root_radius_standard, unit)})"
-    else:
+    elif problem == "no_involute":
         detail = f" (tip radius {_length(spec.tip_radius, unit)}, base radius {_length(spec.base_radius, unit)})"
     if problem == "pointed_tooth" and spec.thinning > 0:
         unthinned = _with(spec, "thinning", 0.0)
@@ -151,7 +189,7 @@ def check_tooth(spec, where: str, written: Mapping[str, str], length_unit: str,
             key = written.get("thinning_normal") or written.get("thinning_circumferential")
             factor = math.cos(spec.helix_angle) if key.startswith("thinning_normal") else 1.0
             raise DesignError(f"{where}.{key}", f"{_length(spec.thinning * factor, unit)} thins the tooth to a point "
-                              f"below the tip circle{detail}", f"[0, {_length(most * factor, unit)}]")
+                              f"below the tip circle{detail}", f"[0, {_length(most * factor, unit, 'down')}]")
     fallback = None
     for name, direction in _REMEDIES[problem]:
         lo, hi = _RANGES[name]
@@ -162,7 +200,7 @@ def check_tooth(spec, where: str, written: Mapping[str, str], length_unit: str,
         if name == "profile_shift":
             bound, value = bound / transverse_shift_factor, value / transverse_shift_factor
         side = ">=" if direction > 0 else "<="
-        text = f"{bound:.6g}" if name != "teeth" else str(bound)
+        text = bound_text(bound, "up" if direction > 0 else "down") if name != "teeth" else str(bound)
         error = DesignError(f"{where}.{name}", f"{value:.6g}: {_WHAT[problem]}{detail}", f"{side} {text}")
         if name in written:
             raise error
@@ -174,4 +212,5 @@ def check_tooth(spec, where: str, written: Mapping[str, str], length_unit: str,
                       "a gear whose root, tip and tip land the other parameters allow")
 
 
-__all__ = ["MIN_TIP_LAND_MODULES", "reference_tooth_thickness", "tip_land", "tooth_problem", "check_tooth"]
+__all__ = ["MIN_TIP_LAND_MODULES", "reference_tooth_thickness", "tip_land", "rack_point_excess", "fillet_joint_roll",
+           "tooth_problem", "check_tooth"]

@@ -95,7 +95,7 @@ def parts_settings(design) -> dict[str, Any]:
     if not table:
         raise DesignError("parts", "missing", "a [parts] table with template = " + " | ".join(map(repr, TEMPLATES)))
     template = table.get("template")
-    if template not in TEMPLATE_FIELDS:
+    if not isinstance(template, str) or template not in TEMPLATE_FIELDS:
         raise DesignError("parts.template", f"{template!r} is not a valid choice", ", ".join(map(repr, TEMPLATES)))
     return read_table(table, TEMPLATE_FIELDS[template], "parts")
 

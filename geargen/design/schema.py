@@ -106,6 +106,17 @@ def _fmt(value: float) -> str:
     return f"{value:.6g}"
 
 
+def bound_text(value: float, toward: str) -> str:
+    """``value`` to 6 significant digits, rounded ``toward`` "down" (an upper bound) or "up" (a
+    lower bound), so that the printed limit itself is allowed."""
+    if value == 0 or not math.isfinite(value):
+        return _fmt(value)
+    quantum = 10.0 ** (math.floor(math.log10(abs(value))) - 5)
+    steps = value / quantum
+    steps = math.floor(steps) if toward == "down" else math.ceil(steps)
+    return _fmt(steps * quantum)
+
+
 def _range_text(field: Field, scale: float, unit: str) -> str:
     lo = None if field.minimum is None else field.minimum / scale
     hi = None if field.maximum is None else field.maximum / scale

@@ -51,7 +51,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.schema import Field, check_range, read_table
+from geargen.design.schema import Field, bound_text, check_range, read_table
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
@@ -166,8 +166,10 @@ def _user_keys(where: str, data: Mapping[str, Any], make):
         raise
 
 
-def _length_text(value_mm: float, unit: str) -> str:
-    return f"{value_mm / LENGTH_SUFFIXES[unit]:.6g} {unit}"
+def _length_text(value_mm: float, unit: str, toward: str | None = None) -> str:
+    """A length in ``unit``; ``toward`` "down"/"up" rounds an upper/lower bound inwards."""
+    value = value_mm / LENGTH_SUFFIXES[unit]
+    return f"{bound_text(value, toward) if toward else f'{value:.6g}'} {unit}"
 
 
 def _key(v: Mapping[str, Any], where: str, name: str) -> str:
@@ -579,7 +581,7 @@ def flexure_spec_from_table(data: Mapping[str, Any], length_unit: str | None = N
         raise DesignError(_key(v, "flexures", "travel"),
                           f"{_length_text(spec.travel, unit)} bends the blades to {spec.stress_at_travel:.4g} MPa at "
                           f"the clamps, past the allowable {spec.allowable_stress:.4g} MPa",
-                          f"(0, {_length_text(spec.travel_limit, unit)}] for these blades (3 E t travel / L^2 "
+                          f"(0, {_length_text(spec.travel_limit, unit, 'down')}] for these blades (3 E t travel / L^2 "
                           "<= allowable_stress)")
     if abs(spec.neutral_offset) > spec.travel:
         raise DesignError(_key(v, "flexures", "neutral_offset"),
@@ -704,7 +706,7 @@ def spring_spec_from_table(data: Mapping[str, Any], length_unit: str | None = No
         key = _key(v, "springs", "installed_length")
         shortest = spec.shortest_installed_length
         allowed = f"({_length_text(solid, unit)}, {_length_text(spec.free_length, unit)}]" if shortest <= solid else \
-            f"[{_length_text(shortest, unit)}, {_length_text(spec.free_length, unit)}]"
+            f"[{_length_text(shortest, unit, 'up')}, {_length_text(spec.free_length, unit)}]"
         if installed <= solid:
             raise DesignError(key, f"{_length_text(installed, unit)} is at or below the solid height "
                               f"{_length_text(solid, unit)}: the coils would have to pass through each other", allowed)
@@ -864,7 +866,7 @@ def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any]
                           f"needs a lead of {_length_text(lead, unit)} between the sliding pinions ((backlash + "
                           f"preload windup) / tan(helix)), more than the engagement length {_length_text(length, unit)}:"
                           " the leading pinion meets its engaged stop before the lead has opened the backlash",
-                          f"[0, {_length_text(max(most, 0.0), unit)}]")
+                          f"[0, {_length_text(max(most, 0.0), unit, 'down')}]")
     return spec
 
 
