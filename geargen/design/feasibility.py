@@ -31,6 +31,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+
+import numpy as np
 from typing import Mapping
 
 from geargen.design.schema import bound_text
@@ -115,24 +117,42 @@ def _with(spec, name: str, value, default_rack_tip: bool = False):
 
 def _boundary(spec, name: str, toward, default_rack_tip: bool) -> float | int | None:
     """The value of ``name`` nearest its present one (refused) that makes a makeable tooth, moving
-    towards ``toward`` (an end of its range); None when even ``toward`` does not."""
-    good = _with(spec, name, toward, default_rack_tip)
-    if good is None or tooth_problem(good) is not None:
-        return None
-    bad_value, good_value = getattr(spec, name), toward
+    towards ``toward`` (an end of its range); None when no value on the way does.
+
+    The way is scanned in small steps for the first makeable value (the makeable range of one
+    parameter is an interval that need not reach the end of its range), then the crossing is
+    bisected."""
     integer = name == "teeth"
+
+    def ok(value) -> bool:
+        trial = _with(spec, name, value, default_rack_tip)
+        return trial is not None and tooth_problem(trial) is None
+
+    start = getattr(spec, name)
+    if integer:
+        steps = sorted({int(round(v)) for v in np.geomspace(start, toward, 200)} - {start},
+                       reverse=toward < start)
+    else:
+        steps = list(np.linspace(start, toward, 201)[1:])
+    bad_value = start
+    for value in steps:
+        if ok(value):
+            good_value = value
+            break
+        bad_value = value
+    else:
+        return None
     for _ in range(200):
         if integer and abs(good_value - bad_value) <= 1:
             break
         mid = (bad_value + good_value) // 2 if integer else (bad_value + good_value) / 2
         if not integer and mid in (bad_value, good_value):
             break
-        trial = _with(spec, name, mid, default_rack_tip)
-        if trial is not None and tooth_problem(trial) is None:
+        if ok(mid):
             good_value = mid
         else:
             bad_value = mid
-    return good_value
+    return int(good_value) if integer else float(good_value)
 
 
 #: per problem: (parameter, direction that helps) in the order they are named
