@@ -129,7 +129,6 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
     if unit is not None and unit not in LENGTH_UNITS:
         problems.add(DesignError("length_unit", f"{unit!r} is not a valid choice", ", ".join(map(repr, LENGTH_UNITS))))
         unit = None
-    drive_type = preload = None
     drive = data.get("drive", {})
     if not isinstance(drive, dict):
         problems.add(DesignError("drive", f"expected a table, got {type(drive).__name__}"))
@@ -156,18 +155,15 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         problems.add(DesignError("gears", f"expected tables [gears.NAME], got {type(gear_tables).__name__}"))
         gear_tables = {}
     gears: dict[str, GearSpec] = {}
-    written: dict[str, tuple[dict[str, Any], dict[str, str]]] = {}
     for gname, table in gear_tables.items():
         if not isinstance(table, dict):
             problems.add(DesignError(f"gears.{gname}", f"expected a table, got {type(table).__name__}"))
             continue
-        merged = {**defaults, **table}
         try:
-            gears[gname] = gear_from_table(merged, where=f"gears.{gname}", name=gname, length_unit=unit)
-            written[gname] = (merged, gear_keys_written(merged))
+            gears[gname] = gear_from_table({**defaults, **table}, where=f"gears.{gname}", name=gname,
+                                           length_unit=unit)
         except DesignError as exc:
-            for e in getattr(exc, "errors", [exc]):
-                problems.add(_from_defaults(e, gname, table, defaults))
+            problems.add(_from_defaults(exc, gname, table, defaults))
     if unit is None:
         units = {g.length_unit for g in gears.values()}
         unit = units.pop() if len(units) == 1 else "mm"
@@ -183,11 +179,9 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
     if validate:
         from geargen.design.validate import validate_sections  # it reads the sections with their own modules
 
-        gears_complete = len(gears) == len(gear_tables)
-        for gname, (merged, keys) in written.items():
-            problems.run(check_gear_tooth, gears[gname], merged, keys, f"gears.{gname}", unit, gname, table_of=gear_tables,
-                         defaults=defaults)
-        validate_sections(design, problems, gears_complete, tuple(gear_tables))
+        for gname, spec in gears.items():
+            problems.run(_check_gear_tooth, gname, spec, gear_tables[gname], defaults, unit)
+        validate_sections(design, problems, len(gears) == len(gear_tables), tuple(gear_tables))
     problems.raise_any(path.name if path else None)
     return design
 
@@ -202,14 +196,17 @@ def _from_defaults(error: DesignError, gear: str, table: Mapping[str, Any], defa
     return error
 
 
-def check_gear_tooth(spec: GearSpec, merged: Mapping[str, Any], keys: Mapping[str, str], where: str, unit: str,
-                     gear: str, table_of: Mapping[str, Any], defaults: Mapping[str, Any]) -> None:
-    """:func:`geargen.design.feasibility.check_tooth` for one gear of the file."""
+def _check_gear_tooth(gear: str, spec: GearSpec, table: Mapping[str, Any], defaults: Mapping[str, Any],
+                      unit: str) -> None:
+    """:func:`geargen.design.feasibility.check_tooth` for ``[gears.GEAR]`` (merged with the defaults)."""
+    merged = {**defaults, **table}
+    # a profile shift written in the transverse system is x_t = x_n cos(beta)
     transverse = merged.get("pitch_system") == "transverse" and spec.helix_angle > 0
     try:
-        check_tooth(spec, where, keys, unit, 1.0 / math.cos(spec.helix_angle) if transverse else 1.0)
+        check_tooth(spec, f"gears.{gear}", gear_keys_written(merged), unit,
+                    1.0 / math.cos(spec.helix_angle) if transverse else 1.0)
     except DesignError as exc:
-        raise _from_defaults(exc, gear, table_of[gear], defaults) from None
+        raise _from_defaults(exc, gear, table, defaults) from None
 
 
 def load_design(path: str | Path) -> Design:

@@ -265,3 +265,49 @@ def test_shipped_designs_load_and_pass_synth_and_stiffness(tmp_path, capsys):
         assert run(capsys, "synth", path)[0] == 0
     for path in (ROBOT, C_AXIS, SPLIT):
         assert run(capsys, "stiffness", path, "--no-plots")[0] == 0
+
+
+# ------------------------------------------------------------------ the printed limit is itself accepted
+
+def _accepts(tmp_path, source, edits, name="ok") -> bool:
+    try:
+        load_design(variant(tmp_path, source, *edits, name=name))
+    except DesignError:
+        return False
+    return True
+
+
+@pytest.mark.parametrize("source, line, key, bad, bound_of", [
+    (ROBOT, r"^thinning_circumferential_in = 0\.000452", "thinning_circumferential_in", "0.02",
+     lambda allowed: allowed.split(", ")[1].split()[0]),
+    (ROBOT, r"^travel_in = 0\.020 ", "travel_in", "0.2", lambda allowed: allowed.split(", ")[1].split()[0]),
+    (C_AXIS, r"^backlash_mm = 0\.08 ", "backlash_mm", "10", lambda allowed: allowed.split(", ")[1].split()[0]),
+    (SPLIT, r"^teeth = 20\nface_width_mm = 12", "profile_shift", "1.4", lambda allowed: allowed.split()[-1]),
+])
+def test_the_printed_limit_is_accepted_and_a_little_past_it_is_not(tmp_path, source, line, key, bad, bound_of):
+    def edit(value):
+        if key == "profile_shift":
+            return (line, f"teeth = 20\nprofile_shift = {value}\nface_width_mm = 12")
+        return (line, f"{key} = {value} ")
+
+    err = error_of(variant(tmp_path, source, edit(bad), name="bad"))
+    limit = float(bound_of(err.allowed))
+    assert _accepts(tmp_path, source, [edit(repr(limit))])
+    assert not _accepts(tmp_path, source, [edit(repr(limit * 1.001))])
+
+
+def test_a_transverse_profile_shift_is_bounded_in_the_transverse_system(tmp_path):
+    data = load_toml(C_AXIS)
+    pinion = data["gears"]["cluster_small"]
+    pinion.update(pitch_system="transverse", module_mm=2.5 / math.cos(math.radians(15)), profile_shift=1.4,
+                  pressure_angle_deg=math.degrees(math.atan(math.tan(math.radians(20)) / math.cos(math.radians(15)))))
+    with pytest.raises(DesignError) as info:
+        design_from_dict(data, validate=True)
+    assert info.value.field == "gears.cluster_small.profile_shift"
+    bound = float(info.value.allowed.split()[-1])
+    # the same tooth in the normal system: x_n = x_t / cos(beta); its tip land is just the limit
+    from geargen.core.involute import tip_land_thickness
+    from geargen.design.gear import with_changes
+    spec = load_design(C_AXIS).gear("cluster_small")
+    land = tip_land_thickness(with_changes(spec, profile_shift=bound / math.cos(math.radians(15))))
+    assert 1e-3 * spec.module <= land < 1e-3 * spec.module + 1e-3
