@@ -13,6 +13,7 @@ import math
 from typing import Any
 
 from geargen.design.schema import Field, read_table
+from geargen.design.stiffness import SPRING_ENDS, spring_spec_from_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
 
@@ -105,6 +106,24 @@ def _key(v: dict[str, Any], name: str) -> str:
     return f"parts.{name}_{unit}" if unit else f"parts.{name}"
 
 
+def _check_swept_spring(design, unit: str) -> None:
+    """The swept-wire spring model (all ``Nt`` coils as one helix between ground ends) needs a
+    pitch above the wire: an installed length above ``d (Nt + 1)``, a wire more than the solid
+    height of a squared-and-ground spring."""
+    table = design.section("springs")
+    spring = spring_spec_from_table(table, unit)
+    if spring.installed_length is None:
+        return
+    coils = spring.active_coils + SPRING_ENDS[spring.end_type][0]
+    shortest = spring.wire_diameter * (coils + 1)
+    if not spring.installed_length > shortest:
+        key = next(k for k in table if k.startswith("installed_length_"))
+        scale = LENGTH_SUFFIXES[unit]
+        raise DesignError(f"springs.{key}", f"{spring.installed_length / scale:.6g} {unit} is too short for the "
+                          f"swept-wire model of the spring ({coils:g} coils of {spring.wire_diameter / scale:.6g} {unit} "
+                          "wire would touch)", f"> {shortest / scale:.6g} {unit}, or parts.spring_model = 'envelope'")
+
+
 def check_parts(design, v: dict[str, Any]) -> None:
     """The relations between part sizes, and the sections the template reads (see the module docstring)."""
     template = v["template"]
@@ -127,6 +146,8 @@ def check_parts(design, v: dict[str, Any]) -> None:
         if not v["bevel_face_width"] < cone:
             raise DesignError(_key(v, "bevel_face_width"), f"{v['bevel_face_width'] / scale:.6g} {unit} reaches past "
                               "the bevel pair's cone apex", f"< {cone / scale:.6g} {unit} (the cone distance)")
+        if v["spring_model"] == "helix":
+            _check_swept_spring(design, unit)
     for outer, inner in _MUST_EXCEED[template]:
         if inner.startswith("gears."):
             gear = design.gears.get(inner[len("gears."):])

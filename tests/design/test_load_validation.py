@@ -311,3 +311,15 @@ def test_a_transverse_profile_shift_is_bounded_in_the_transverse_system(tmp_path
     spec = load_design(C_AXIS).gear("cluster_small")
     land = tip_land_thickness(with_changes(spec, profile_shift=bound / math.cos(math.radians(15))))
     assert 1e-3 * spec.module <= land < 1e-3 * spec.module + 1e-3
+
+
+def test_springs_too_short_for_the_swept_wire_model_name_the_key_and_the_alternative(tmp_path, capsys):
+    # above the solid height (0.27 in) but below d (Nt + 1) = 0.045 x 7 = 0.315 in, where the swept
+    # helix of the parts model would close
+    bad = variant(tmp_path, ROBOT, (r"^installed_length_in = 0\.35", "installed_length_in = 0.30"))
+    code, err = run(capsys, "build", bad, "--out", tmp_path / "out", "--quiet")
+    assert code == 2 and not (tmp_path / "out").exists()
+    assert "springs.installed_length_in: 0.3 in is too short for the swept-wire model" in err
+    assert "> 0.315 in, or parts.spring_model = 'envelope'" in err
+    assert _accepts(tmp_path, ROBOT, [(r"^installed_length_in = 0\.35", "installed_length_in = 0.30"),
+                                      (r'^spring_model = "helix"', 'spring_model = "envelope"')])
