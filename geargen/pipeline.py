@@ -37,7 +37,7 @@ from typing import Any, Callable
 import numpy as np
 
 from geargen.design.assembly import Design, load_design
-from geargen.design.schema import Field, read_table
+from geargen.design.export import export_settings
 from geargen.errors import DesignError, GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement, resolve
 from geargen.units import LENGTH_SUFFIXES
@@ -290,24 +290,9 @@ def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = N
     return export_parts(layout, parts, Path(folder), export_settings or export_config(layout.design))
 
 
-_EXPORT_FIELDS = [
-    Field("stl_chordal_tolerance", "length", required=False, default=0.005, minimum=0.0, exclusive_minimum=True),
-    Field("stl_chordal_tolerance_parts", "length", required=False, default=0.05, minimum=0.0, exclusive_minimum=True),
-    Field("stl_angular_tolerance", "angle", required=False, default=0.5, minimum=0.0, exclusive_minimum=True),
-    Field("gear_solid_tolerance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("render_view", "list", required=False, default=None),
-    Field("render_size", "list", required=False, default=None),
-]
-
-
 def export_config(design: Design) -> dict[str, Any]:
-    """``[export]`` validated: STL tolerances (mm, rad), render view (azimuth, elevation deg)."""
-    v = read_table(design.section("export"), _EXPORT_FIELDS, "export")
-    for key in ("render_view", "render_size"):
-        val = v[key]
-        if val is not None and not (len(val) == 2 and all(isinstance(x, (int, float)) for x in val)):
-            raise DesignError(f"export.{key}", f"{val!r} is not two numbers", "[a, b]")
-    return v
+    """``[export]`` validated (:func:`geargen.design.export.export_settings`)."""
+    return export_settings(design)
 
 
 # ============================================================================ report
@@ -713,5 +698,5 @@ def _jsonable(value):
 
 __all__ = ["STEPS", "Progress", "GearPlacement", "MeshPlacement", "Layout", "CheckOutcome", "BuildResult",
            "BuildFailed", "load", "place", "gear_solids", "other_parts", "mesh_checks", "overlap_check",
-           "stiffness", "export", "report", "manifest", "build", "layout_settings", "export_config", "versions",
+           "stiffness", "export", "report", "manifest", "build", "export_config", "versions",
            "section_check", "contact_region", "Alongside"]

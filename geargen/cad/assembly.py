@@ -34,7 +34,8 @@ from OCP.TopoDS import TopoDS_Shape
 from geargen.cad import parts as P
 from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
 from geargen.design.cluster import ClusterSpec
-from geargen.design.schema import Field, read_table
+from geargen.design.parts import TEMPLATE_FIELDS
+from geargen.design.schema import read_table
 from geargen.errors import BuildError, DesignError
 
 # ---------------------------------------------------------------- colours (r, g, b, alpha)
@@ -168,52 +169,6 @@ def _gear_text(spec) -> str:
 
 
 # ---------------------------------------------------------------- the [parts] section
-
-def _L(name, **kw):
-    return Field(name, "length", minimum=0.0, exclusive_minimum=True, **kw)
-
-
-_COMMON = [Field("template", "string", choices=("robot_joint", "c_axis", "split_pinion")),
-           Field("bearing_clearance", "length", required=False, default=0.5, minimum=0.0)]
-
-TEMPLATE_FIELDS: dict[str, list[Field]] = {
-    "robot_joint": _COMMON + [
-        Field("bevel_pinion_teeth", "integer", minimum=4, maximum=500),
-        Field("bevel_gear_teeth", "integer", minimum=4, maximum=500),
-        Field("bevel_diametral_pitch_per_in", "number", required=False, default=None, minimum=0.1),
-        Field("bevel_module", "length", required=False, default=None, units=("mm",), minimum=0.0,
-              exclusive_minimum=True),
-        _L("bevel_face_width"), _L("input_shaft_to_bevel"),
-        _L("motor_body_diameter"), _L("motor_body_length"), _L("motor_flange"), _L("motor_flange_thickness"),
-        _L("motor_shaft_diameter"), _L("motor_shaft_length"),
-        _L("cluster_bearing_outer_diameter"), _L("cluster_bearing_width"),
-        _L("input_bearing_outer_diameter"), _L("input_bearing_width"),
-        _L("output_bearing_outer_diameter"), _L("output_bearing_width"),
-        _L("carriage_plate_thickness"), _L("carriage_width"),
-        _L("link_radius"), _L("link_wall"), _L("link_floor"), _L("link_top_clearance"),
-        Field("spring_y_offset", "length", minimum=0.0),
-        Field("spring_model", "string", required=False, default="helix", choices=("helix", "envelope")),
-    ],
-    "c_axis": _COMMON + [
-        _L("spindle_diameter"), _L("spindle_length"),
-        _L("input_shaft_diameter"), _L("input_bearing_outer_diameter"), _L("input_bearing_width"),
-        _L("cluster_shaft_diameter"), _L("cluster_bearing_outer_diameter"), _L("cluster_bearing_width"),
-        _L("cluster_bearing_spacing"),
-        _L("friction_ring_outer_diameter"), _L("friction_ring_width"),
-        _L("stop_collar_outer_diameter"), _L("stop_collar_width"), _L("stop_lug_length"), _L("stop_block_size"),
-        _L("coupling_diameter"), _L("coupling_length"),
-        _L("gearhead_diameter"), _L("gearhead_length"),
-        _L("motor_body_diameter"), _L("motor_body_length"), _L("motor_flange"), _L("motor_flange_thickness"),
-        _L("housing_thickness"), _L("housing_margin"),
-    ],
-    "split_pinion": _COMMON + [
-        _L("hollow_shaft_outer_diameter"), _L("hollow_shaft_length"),
-        _L("bearing_outer_diameter"), _L("bearing_width"),
-        _L("collar_outer_diameter"), _L("collar_width"), _L("collar_slot"),
-        _L("output_shaft_diameter"), _L("output_bearing_outer_diameter"), _L("output_bearing_width"),
-    ],
-}
-
 
 def parts_settings(design) -> dict[str, Any]:
     """``[parts]`` validated for its template (internal units, mm)."""

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from geargen.design.stiffness import SPRING_ENDS
 from geargen.errors import DesignError
 
 
@@ -195,14 +196,7 @@ def design_blade_flexure(target_stiffness: float, travel: float, width: float, e
 
 # ----------------------------------------------------------------------------------------------
 # Helical compression springs
-
-#: total coils and solid height per end type: (extra total coils, extra wire diameters in solid height)
-SPRING_ENDS = {
-    "plain": (0.0, 1.0),           # Nt = Na,     Ls = d (Nt + 1)
-    "plain_ground": (1.0, 0.0),    # Nt = Na + 1, Ls = d Nt
-    "squared": (2.0, 1.0),         # Nt = Na + 2, Ls = d (Nt + 1)
-    "squared_ground": (2.0, 0.0),  # Nt = Na + 2, Ls = d Nt
-}
+# (the end types and their coils, SPRING_ENDS, are the design file's: geargen.design.stiffness)
 
 
 def spring_index(mean_coil_diameter: float, wire_diameter: float) -> float:

@@ -20,19 +20,23 @@ Layout of the TOML::
 
     [synthesis] ...                 # each further section is read by the step that owns it
 
-Each step validates its own section with :func:`geargen.design.schema.read_table`, so an
-unknown key anywhere is an error that names it. Unknown top-level sections are errors here.
+:func:`load_design` reads every section with the module that owns it (the step that uses it
+reads it again the same way) and checks the rules between sections and whether the hardware can
+be made, so every command refuses a bad file before it computes anything; all the problems of a
+file are reported together, each naming its key as the file spells it.
 """
 
 from __future__ import annotations
 
 import hashlib
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Mapping
 
-from geargen.design.gear import GearSpec, gear_from_table
-from geargen.design.schema import load_toml
+from geargen.design.feasibility import check_tooth
+from geargen.design.gear import GearSpec, gear_from_table, gear_keys_written
+from geargen.design.schema import Problems, load_toml
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS
 
@@ -51,9 +55,9 @@ SECTIONS: dict[str, str] = {
     "beam_pinion": "the long pinion used as a beam spring (geargen.design.stiffness)",
     "engagement": "axial engagement of helical dual pinions (geargen.design.stiffness)",
     "checks": "mesh-check settings (geargen.checks)",
-    "parts": "non-gear parts of the assembly model (geargen.cad.assembly)",
-    "layout": "placement of gears without synthesis (geargen.cad.assembly)",
-    "export": "export settings: STL tolerance, colours (geargen.cad.export)",
+    "parts": "non-gear parts of the assembly model (geargen.design.parts)",
+    "layout": "placement of the gears in the build (geargen.design.layout)",
+    "export": "export settings: STL tolerances, rendered view (geargen.design.export)",
 }
 
 TOP_KEYS = ("name", "description", "length_unit")
@@ -98,55 +102,117 @@ class Design:
         return (base / relative).resolve()
 
 
-def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: str = "") -> Design:
+def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: str = "",
+                     validate: bool = False) -> Design:
+    """A :class:`Design` from the parsed TOML ``data``: top-level keys, drive and gears checked.
+
+    ``validate`` (what :func:`load_design` does) also reads and checks every further section, the
+    rules between sections and whether each gear's tooth can be cut
+    (:func:`geargen.design.validate.validate_sections`). Every problem found is reported at once:
+    one :class:`DesignError`, or :class:`~geargen.design.schema.DesignErrors` listing several.
+    """
+    if not isinstance(data, Mapping):
+        raise DesignError("<top>", "expected a table")
+    problems = Problems()
     unknown = [k for k in data if k not in SECTIONS and k not in TOP_KEYS]
-    if unknown:
-        raise DesignError(unknown[0], "unknown key or section", ", ".join(list(TOP_KEYS) + list(SECTIONS)))
+    for key in unknown:
+        problems.add(DesignError(key, "unknown key or section", ", ".join(list(TOP_KEYS) + list(SECTIONS))))
     name = data.get("name", path.stem if path else "design")
     if not isinstance(name, str) or not name or any(c in name for c in "/\\") or name.startswith("."):
-        raise DesignError("name", f"{name!r} is not a valid name", "a non-empty file-name-safe string")
+        problems.add(DesignError("name", f"{name!r} is not a valid name", "a non-empty file-name-safe string"))
+        name = path.stem if path else "design"
+    description = data.get("description", "")
+    if not isinstance(description, str):
+        problems.add(DesignError("description", f"expected a string, got {description!r}"))
+        description = ""
     unit = data.get("length_unit")
+    if unit is not None and unit not in LENGTH_UNITS:
+        problems.add(DesignError("length_unit", f"{unit!r} is not a valid choice", ", ".join(map(repr, LENGTH_UNITS))))
+        unit = None
     drive = data.get("drive", {})
     if not isinstance(drive, dict):
-        raise DesignError("drive", "expected a table")
-    bad = [k for k in drive if k not in ("type", "preload")]
-    if bad:
-        raise DesignError(f"drive.{bad[0]}", "unknown key", "type, preload")
+        problems.add(DesignError("drive", f"expected a table, got {type(drive).__name__}"))
+        drive = {}
+    for key in drive:
+        if key not in ("type", "preload"):
+            problems.add(DesignError(f"drive.{key}", "unknown key", "type, preload"))
     drive_type = drive.get("type")
     if drive_type is not None and drive_type not in DRIVE_TYPES:
-        raise DesignError("drive.type", f"{drive_type!r} is not a valid choice", "'type1', 'type2'")
+        problems.add(DesignError("drive.type", f"{drive_type!r} is not a valid choice", "'type1', 'type2'"))
+        drive_type = None
     preload = drive.get("preload")
     if preload is not None and preload not in PRELOAD_METHODS:
-        raise DesignError("drive.preload", f"{preload!r} is not a valid choice", ", ".join(map(repr, PRELOAD_METHODS)))
+        problems.add(DesignError("drive.preload", f"{preload!r} is not a valid choice",
+                                 ", ".join(map(repr, PRELOAD_METHODS))))
+        preload = None
     defaults = data.get("gear_defaults", {})
+    if not isinstance(defaults, dict):
+        problems.add(DesignError("gear_defaults", f"expected a table, got {type(defaults).__name__}",
+                                 "a [gear_defaults] table of keys shared by every gear"))
+        defaults = {}
     gear_tables = data.get("gears", {})
-    if not isinstance(defaults, dict) or not isinstance(gear_tables, dict):
-        raise DesignError("gears", "expected tables [gear_defaults] and [gears.NAME]")
+    if not isinstance(gear_tables, dict):
+        problems.add(DesignError("gears", f"expected tables [gears.NAME], got {type(gear_tables).__name__}"))
+        gear_tables = {}
     gears: dict[str, GearSpec] = {}
     for gname, table in gear_tables.items():
         if not isinstance(table, dict):
-            raise DesignError(f"gears.{gname}", "expected a table")
-        merged = {**defaults, **table}
-        spec = gear_from_table(merged, where=f"gears.{gname}", name=gname, length_unit=unit)
-        gears[gname] = spec
+            problems.add(DesignError(f"gears.{gname}", f"expected a table, got {type(table).__name__}"))
+            continue
+        try:
+            gears[gname] = gear_from_table({**defaults, **table}, where=f"gears.{gname}", name=gname,
+                                           length_unit=unit)
+        except DesignError as exc:
+            problems.add(_from_defaults(exc, gname, table, defaults))
     if unit is None:
         units = {g.length_unit for g in gears.values()}
         unit = units.pop() if len(units) == 1 else "mm"
-    if unit not in LENGTH_UNITS:
-        raise DesignError("length_unit", f"{unit!r} is not a valid choice", ", ".join(map(repr, LENGTH_UNITS)))
-    sections = {k: v for k, v in data.items() if k in SECTIONS and k not in ("drive", "gear_defaults", "gears")}
-    for k, v in sections.items():
-        if not isinstance(v, dict):
-            raise DesignError(k, "expected a table")
-    return Design(name=name, length_unit=unit, gears=gears, sections=sections,
-                  description=str(data.get("description", "")), drive_type=drive_type,
-                  preload_method=preload, path=path, sha256=sha256)
+    sections = {}
+    for k, v in data.items():
+        if k in SECTIONS and k not in ("drive", "gear_defaults", "gears"):
+            if isinstance(v, dict):
+                sections[k] = v
+            else:
+                problems.add(DesignError(k, f"expected a table, got {type(v).__name__}", f"a [{k}] table"))
+    design = Design(name=name, length_unit=unit, gears=gears, sections=sections, description=description,
+                    drive_type=drive_type, preload_method=preload, path=path, sha256=sha256)
+    if validate:
+        from geargen.design.validate import validate_sections  # it reads the sections with their own modules
+
+        for gname, spec in gears.items():
+            problems.run(_check_gear_tooth, gname, spec, gear_tables[gname], defaults, unit)
+        validate_sections(design, problems, len(gears) == len(gear_tables), tuple(gear_tables))
+    problems.raise_any(path.name if path else None)
+    return design
+
+
+def _from_defaults(error: DesignError, gear: str, table: Mapping[str, Any], defaults: Mapping[str, Any]) -> DesignError:
+    """A gear's error about a key it took from ``[gear_defaults]``, named where the file has it."""
+    prefix = f"gears.{gear}."
+    if error.field.startswith(prefix):
+        key = error.field[len(prefix):].split("[")[0]
+        if key not in table and key in defaults:
+            return DesignError(f"gear_defaults.{error.field[len(prefix):]}", error.problem, error.allowed)
+    return error
+
+
+def _check_gear_tooth(gear: str, spec: GearSpec, table: Mapping[str, Any], defaults: Mapping[str, Any],
+                      unit: str) -> None:
+    """:func:`geargen.design.feasibility.check_tooth` for ``[gears.GEAR]`` (merged with the defaults)."""
+    merged = {**defaults, **table}
+    # a profile shift written in the transverse system is x_t = x_n cos(beta)
+    transverse = merged.get("pitch_system") == "transverse" and spec.helix_angle > 0
+    try:
+        check_tooth(spec, f"gears.{gear}", gear_keys_written(merged), unit,
+                    1.0 / math.cos(spec.helix_angle) if transverse else 1.0)
+    except DesignError as exc:
+        raise _from_defaults(exc, gear, table, defaults) from None
 
 
 def load_design(path: str | Path) -> Design:
-    """Load and validate an assembly design file."""
+    """Load a design file and validate all of it: every section, the rules between sections, and
+    whether its gears, springs and flexures can be made (see :func:`design_from_dict`)."""
     path = Path(path).resolve()
     data = load_toml(path)
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
-    return design_from_dict(data, path=path, sha256=digest)
-
+    return design_from_dict(data, path=path, sha256=digest, validate=True)

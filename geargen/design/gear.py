@@ -27,7 +27,7 @@ from typing import Any, Mapping
 
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
-from geargen.units import MM_PER_IN, module_from_diametral_pitch
+from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
 
 DEG = math.pi / 180.0
 
@@ -193,8 +193,10 @@ def _check(name: str, value, lo: float, hi: float, unit: str, exclusive_lo: bool
 GEAR_FIELDS: list[Field] = [
     Field("name", "string", required=False, default=None),
     Field("teeth", "integer", minimum=4, maximum=2000),
-    Field("module", "length", required=False, units=("mm",), minimum=0.01, maximum=200.0),
-    Field("diametral_pitch_per_in", "number", required=False, minimum=0.1, maximum=2540.0),
+    Field("module", "length", required=False, units=("mm",), minimum=0.01, exclusive_minimum=True, maximum=200.0),
+    # the same module range as teeth per inch: 25.4 / 200 <= P < 25.4 / 0.01
+    Field("diametral_pitch_per_in", "number", required=False, minimum=MM_PER_IN / 200.0, maximum=MM_PER_IN / 0.01,
+          exclusive_maximum=True),
     Field("pitch_system", "string", required=False, default="normal", choices=("normal", "transverse")),
     Field("pressure_angle", "angle", units=("deg", "rad"), minimum=10 * DEG, maximum=35 * DEG),
     Field("helix_angle", "angle", required=False, default=0.0, units=("deg", "rad"), minimum=0.0, maximum=45 * DEG),
@@ -225,7 +227,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     p = f"{where}."
     if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
         raise DesignError(p + "module_mm", "give exactly one of module_mm and diametral_pitch_per_in",
-                          "module_mm in (0.01, 200] or diametral_pitch_per_in in [0.1, 2540]")
+                          "module_mm in (0.01, 200] or diametral_pitch_per_in in [0.127, 2540)")
     if v["module"] is not None:
         module = v["module"]
         unit = "mm"
@@ -248,6 +250,14 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
         thinning = v["thinning_normal"] / math.cos(beta)
     else:
         thinning = v["thinning_circumferential"] or 0.0
+    most = math.pi * module_n / math.cos(beta) / 4  # a quarter of the transverse pitch (GearSpec's limit)
+    if thinning > most:
+        kind = "thinning_normal" if v["thinning_normal"] is not None else "thinning_circumferential"
+        unit_t = v["_units"][kind]
+        factor = math.cos(beta) if kind == "thinning_normal" else 1.0
+        scale = LENGTH_SUFFIXES[unit_t]
+        raise DesignError(f"{p}{kind}_{unit_t}", f"{thinning * factor / scale:.6g} {unit_t} is out of range",
+                          f"[0, {most * factor / scale:.6g}] {unit_t} (a quarter of the circular pitch)")
     hub = _with_field_prefix(p, lambda: Hub(v["bore_diameter"], v["keyway_width"], v["keyway_depth"],
                                             v["hub_diameter"], v["hub_length"]), v["_units"])
     kwargs = dict(teeth=v["teeth"], module=module_n, pressure_angle=alpha_n, face_width=v["face_width"],
@@ -256,7 +266,27 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear",
                   length_unit=length_unit or unit)
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
+    if hub.bore_diameter > 0:
+        # GearSpec's bore rule, checked first so that the message is in the unit of the key
+        plain = _with_field_prefix(p, lambda: GearSpec(**{**kwargs, "hub": Hub()}), v["_units"])
+        root = plain.root_radius_standard
+        most = 2 * root * 0.98 - 2 * hub.keyway_depth
+        if root > 0 and hub.bore_diameter >= most:
+            unit_b = v["_units"]["bore_diameter"]
+            scale = LENGTH_SUFFIXES[unit_b]
+            raise DesignError(f"{p}bore_diameter_{unit_b}", f"{hub.bore_diameter / scale:.6g} {unit_b}: the bore (with "
+                              "keyway) cuts into the tooth root", f"< {most / scale:.6g} {unit_b}")
     return _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
+
+
+def gear_keys_written(data: Mapping[str, Any]) -> dict[str, str]:
+    """Field name -> the key ``data`` gives it under (``"face_width": "face_width_in"``)."""
+    out = {}
+    for f in GEAR_FIELDS:
+        for key in f.keys():
+            if key in data:
+                out[f.name] = key
+    return out
 
 
 def _with_field_prefix(prefix: str, make, units: Mapping[str, str]):
@@ -275,4 +305,4 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "gear_from_table", "with_changes", "MM_PER_IN"]
+__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

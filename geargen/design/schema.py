@@ -62,8 +62,59 @@ class Field:
         return [self.name]
 
 
+class DesignErrors(DesignError):
+    """Several problems of one design file at once; ``errors`` lists them, each a
+    :class:`DesignError` naming its key. ``field``, ``problem`` and ``allowed`` are the first's."""
+
+    def __init__(self, errors: list[DesignError], source: str | None = None):
+        self.errors = list(errors)
+        first = self.errors[0]
+        super().__init__(first.field, first.problem, first.allowed)
+        where = f" in {source}" if source else ""
+        self.args = (f"{len(self.errors)} problems{where}:\n" + "\n".join(f"  {e}" for e in self.errors),)
+
+
+class Problems:
+    """Collects the :class:`DesignError` s of a file so that all of them are reported together."""
+
+    def __init__(self):
+        self.errors: list[DesignError] = []
+
+    def add(self, error: DesignError) -> None:
+        if isinstance(error, DesignErrors):
+            for e in error.errors:
+                self.add(e)
+        elif str(error) not in {str(e) for e in self.errors}:
+            self.errors.append(error)
+
+    def run(self, fn, *args, **kwargs):
+        """``fn(*args, **kwargs)``, or None after recording the DesignError it raised."""
+        try:
+            return fn(*args, **kwargs)
+        except DesignError as exc:
+            self.add(exc)
+            return None
+
+    def raise_any(self, source: str | None = None) -> None:
+        if len(self.errors) == 1:
+            raise self.errors[0]
+        if self.errors:
+            raise DesignErrors(self.errors, source)
+
+
 def _fmt(value: float) -> str:
     return f"{value:.6g}"
+
+
+def bound_text(value: float, toward: str) -> str:
+    """``value`` to 6 significant digits, rounded ``toward`` "down" (an upper bound) or "up" (a
+    lower bound), so that the printed limit itself is allowed."""
+    if value == 0 or not math.isfinite(value):
+        return _fmt(value)
+    quantum = 10.0 ** (math.floor(math.log10(abs(value))) - 5)
+    steps = value / quantum
+    steps = math.floor(steps) if toward == "down" else math.ceil(steps)
+    return _fmt(steps * quantum)
 
 
 def _range_text(field: Field, scale: float, unit: str) -> str:

@@ -51,8 +51,9 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.schema import Field, check_range, read_table
+from geargen.design.schema import Field, bound_text, check_range, read_table
 from geargen.errors import DesignError
+from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
 LBF = 4.4482216152605  # N per pound-force
 IN = 25.4  # mm per inch
@@ -69,6 +70,8 @@ QUANTITY_SUFFIXES: dict[str, dict[str, float]] = {
                             "in_lbf_per_rad": LBF * IN},
     "stress": {"MPa": 1.0, "GPa": 1e3, "Pa": 1e-6, "kPa": 1e-3, "psi": PSI, "ksi": PSI * 1e3, "Mpsi": PSI * 1e6},
 }
+
+_ALL_SUFFIXES = set(LENGTH_SUFFIXES) | set(ANGLE_SUFFIXES) | {s for t in QUANTITY_SUFFIXES.values() for s in t}
 
 #: the internal unit of each family, for messages and reports
 INTERNAL_UNITS = {"force": "N", "torque": "N·mm", "linear_stiffness": "N/mm",
@@ -141,11 +144,38 @@ def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list
                        exclusive_minimum=q.exclusive_minimum)
         check_range(bounds, value, prefix + key, scale, suf)
         out[q.name] = (value, fam)
+        out["_units"][q.name] = suf
     return out
 
 
 def _value(entry) -> float | None:
     return None if entry is None else entry[0]
+
+
+def _user_keys(where: str, data: Mapping[str, Any], make):
+    """Run ``make``; re-raise a DesignError naming ``where.NAME`` with the key the file used
+    (``NAME_<unit>``) when the table gives the value with a unit suffix."""
+    try:
+        return make()
+    except DesignError as exc:
+        head, _, name = exc.field.rpartition(".")
+        if head == where and name not in data:
+            spelled = [k for k in data if k.startswith(name + "_") and k[len(name) + 1:] in _ALL_SUFFIXES]
+            if len(spelled) == 1:
+                raise DesignError(f"{where}.{spelled[0]}", exc.problem, exc.allowed) from None
+        raise
+
+
+def _length_text(value_mm: float, unit: str, toward: str | None = None) -> str:
+    """A length in ``unit``; ``toward`` "down"/"up" rounds an upper/lower bound inwards."""
+    value = value_mm / LENGTH_SUFFIXES[unit]
+    return f"{bound_text(value, toward) if toward else f'{value:.6g}'} {unit}"
+
+
+def _key(v: Mapping[str, Any], where: str, name: str) -> str:
+    """The key of field ``name`` as the file spelled it (with its unit suffix)."""
+    unit = v["_units"].get(name)
+    return f"{where}.{name}_{unit}" if unit else f"{where}.{name}"
 
 
 def _positive(name: str, value, allow_none: bool = False) -> None:
@@ -310,7 +340,7 @@ _STIFFNESS_FIELDS = [
     Field("cluster_small_gear", "string", required=False, default="cluster_small"),
     Field("output_gear", "string", required=False, default="output"),
 ]
-_MODULI = [Quantity("elastic_modulus", ("stress",)), Quantity("shear_modulus", ("stress",))]
+_MODULI = [Quantity("elastic_modulus", ("stress",), minimum=0.0), Quantity("shear_modulus", ("stress",), minimum=0.0)]
 
 _COMPONENT_FIELDS = [
     Field("kind", "string", choices=COMPONENT_KINDS),
@@ -351,11 +381,11 @@ def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
             raise DesignError(f"{where}.stiffness", f"kind {kind!r} needs a {want.replace('_', ' ')}",
                               ", ".join(f"stiffness_{s}" for s in QUANTITY_SUFFIXES[want]))
     gears = tuple(v["gears"]) if v["gears"] is not None else None
-    return ComponentSpec(name=name, kind=kind, scope=v["scope"], count=v["count"], shaft=v["shaft"], ratio=v["ratio"],
+    return _user_keys(where, data, lambda: ComponentSpec(name=name, kind=kind, scope=v["scope"], count=v["count"], shaft=v["shaft"], ratio=v["ratio"],
                          gear=v["gear"], gears=gears, face_width=v["face_width"], radius=v["radius"], stiffness=_value(stiffness), diameter=v["diameter"],
                          bore_diameter=v["bore_diameter"], length=v["length"], span=v["span"],
                          load_position=v["load_position"], support=v["support"],
-                         elastic_modulus=_value(v["elastic_modulus"]), shear_modulus=_value(v["shear_modulus"]))
+                         elastic_modulus=_value(v["elastic_modulus"]), shear_modulus=_value(v["shear_modulus"])))
 
 
 def stiffness_spec_from_table(data: Mapping[str, Any]) -> StiffnessSpec:
@@ -372,7 +402,24 @@ def stiffness_spec_from_table(data: Mapping[str, Any]) -> StiffnessSpec:
     for q in ("elastic_modulus", "shear_modulus"):
         if v[q] is not None:
             kwargs[q] = v[q][0]
-    return StiffnessSpec(components=tuple(components), **kwargs)
+    return _user_keys("stiffness", data, lambda: StiffnessSpec(components=tuple(components), **kwargs))
+
+
+def check_stiffness_gears(spec: StiffnessSpec, gears: Mapping[str, Any]) -> None:
+    """Every gear ``[stiffness]`` names (train roles, components) is a gear of the design."""
+    def named(key: str, name) -> None:
+        if name not in gears:
+            raise DesignError(key, f"no gear named {name!r} in the design", ", ".join(gears) or "a [gears.NAME] table")
+
+    if spec.train == "dual_pinion":
+        for role, name in spec.roles.items():
+            named(f"stiffness.{role}_gear", name)
+    for c in spec.components:
+        where = f"stiffness.components.{c.name}"
+        if c.gear is not None:
+            named(f"{where}.gear", c.gear)
+        for g in c.gears or ():
+            named(f"{where}.gears", g)
 
 
 # ----------------------------------------------------------------------------------------------
@@ -423,7 +470,8 @@ class PreloadSpec:
 
 
 _PRELOAD_FIELDS = [
-    Field("line_of_action_angle", "angle", required=False, default=0.0, units=("deg", "rad")),
+    Field("line_of_action_angle", "angle", required=False, default=0.0, units=("deg", "rad"),
+          minimum=-math.radians(60), maximum=math.radians(60), exclusive_minimum=True, exclusive_maximum=True),
     Field("loop_error_carriage_travel", "length", required=False, default=None, minimum=0.0),
     Field("loop_error_rotation", "angle", required=False, default=None, minimum=0.0),
     Field("loop_error_budget", "string", required=False, default="mean", choices=LOOP_BUDGETS),
@@ -439,13 +487,13 @@ _PRELOAD_QUANTITIES = [
 def preload_spec_from_table(data: Mapping[str, Any]) -> PreloadSpec:
     v = _read_section(data, _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, "preload")
     spring = v["preload_spring_stiffness"]
-    return PreloadSpec(max_output_torque=v["max_output_torque"][0], preload=_value(v["preload"]),
+    return _user_keys("preload", data, lambda: PreloadSpec(max_output_torque=v["max_output_torque"][0], preload=_value(v["preload"]),
                        line_of_action_angle=v["line_of_action_angle"],
                        loop_error_carriage_travel=v["loop_error_carriage_travel"],
                        loop_error_rotation=v["loop_error_rotation"], loop_error_budget=v["loop_error_budget"],
                        preload_spring_linear=spring[0] if spring and spring[1] == "linear_stiffness" else None,
                        preload_spring_torsional=spring[0] if spring and spring[1] == "torsional_stiffness" else None,
-                       path_backlash=v["path_backlash"])
+                       path_backlash=v["path_backlash"]))
 
 
 # ----------------------------------------------------------------------------------------------
@@ -488,6 +536,17 @@ class FlexureSpec:
             raise DesignError("flexures.neutral_offset", "must be finite")
         _positive("flexures.target_stiffness", self.target_stiffness, allow_none=True)
 
+    # closed forms of the fixed-guided blade (geargen.core.flexures has the full model)
+    @property
+    def stress_at_travel(self) -> float:
+        """Bending stress at the clamps at ``travel`` from unstressed, MPa: ``3 E t delta / L^2``."""
+        return 3.0 * self.elastic_modulus * self.thickness * self.travel / self.length ** 2
+
+    @property
+    def travel_limit(self) -> float:
+        """Deflection at which the clamp stress reaches the allowable, mm."""
+        return self.allowable_stress * self.length ** 2 / (3.0 * self.elastic_modulus * self.thickness)
+
 
 _FLEXURE_FIELDS = [
     Field("count", "integer", required=False, default=3, minimum=1, maximum=100),
@@ -503,20 +562,45 @@ _FLEXURE_QUANTITIES = [Quantity("elastic_modulus", ("stress",), minimum=0.0),
                        Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0)]
 
 
-def flexure_spec_from_table(data: Mapping[str, Any]) -> FlexureSpec:
+def flexure_spec_from_table(data: Mapping[str, Any], length_unit: str | None = None) -> FlexureSpec:
+    """``[flexures]`` read and checked: blades thinner than wide, within their allowable stress at
+    the travel, operating within the travel. Lengths in messages are in ``length_unit`` (default:
+    the unit the file gave the travel in)."""
     v = _read_section(data, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, "flexures")
     kwargs = dict(count=v["count"], thickness=v["thickness"], length=v["length"], width=v["width"],
                   travel=v["travel"], neutral_offset=v["neutral_offset"], poisson_ratio=v["poisson_ratio"],
                   allowable_stress=v["allowable_stress"][0], target_stiffness=_value(v["target_stiffness"]))
     if v["elastic_modulus"] is not None:
         kwargs["elastic_modulus"] = v["elastic_modulus"][0]
-    return FlexureSpec(**kwargs)
+    unit = length_unit or v["_units"]["travel"]
+    if not v["thickness"] < v["width"]:
+        raise DesignError(_key(v, "flexures", "thickness"), f"{_length_text(v['thickness'], unit)} is not thinner "
+                          "than the blade is wide", f"< width = {_length_text(v['width'], unit)}")
+    spec = _user_keys("flexures", data, lambda: FlexureSpec(**kwargs))
+    if spec.stress_at_travel > spec.allowable_stress:
+        raise DesignError(_key(v, "flexures", "travel"),
+                          f"{_length_text(spec.travel, unit)} bends the blades to {spec.stress_at_travel:.4g} MPa at "
+                          f"the clamps, past the allowable {spec.allowable_stress:.4g} MPa",
+                          f"(0, {_length_text(spec.travel_limit, unit, 'down')}] for these blades (3 E t travel / L^2 "
+                          "<= allowable_stress)")
+    if abs(spec.neutral_offset) > spec.travel:
+        raise DesignError(_key(v, "flexures", "neutral_offset"),
+                          f"{_length_text(spec.neutral_offset, unit)} puts the operating position outside the travel",
+                          f"[-{_length_text(spec.travel, unit)}, {_length_text(spec.travel, unit)}] (within travel)")
+    return spec
 
 
 # ----------------------------------------------------------------------------------------------
 # [springs]
 
-END_TYPES = ("plain", "plain_ground", "squared", "squared_ground")
+#: per end type: (inactive coils added to the active ones, wire diameters added to the solid height)
+SPRING_ENDS: dict[str, tuple[float, float]] = {
+    "plain": (0.0, 1.0),           # Nt = Na,     Ls = d (Nt + 1)
+    "plain_ground": (1.0, 0.0),    # Nt = Na + 1, Ls = d Nt
+    "squared": (2.0, 1.0),         # Nt = Na + 2, Ls = d (Nt + 1)
+    "squared_ground": (2.0, 0.0),  # Nt = Na + 2, Ls = d Nt
+}
+END_TYPES = tuple(SPRING_ENDS)
 
 
 @dataclass(frozen=True)
@@ -551,6 +635,35 @@ class SpringSpec:
             raise DesignError("springs.installed_length", f"{self.installed_length!r} mm is out of range",
                               f"(0, free_length = {self.free_length:.6g} mm]")
 
+    # closed forms of the helical compression spring (geargen.core.flexures has the full model)
+    @property
+    def index(self) -> float:
+        """Spring index C = D / d."""
+        return self.mean_coil_diameter / self.wire_diameter
+
+    @property
+    def solid_height(self) -> float:
+        """Length compressed solid, mm: d (Na + inactive coils + ends not ground)."""
+        extra, add = SPRING_ENDS[self.end_type]
+        return self.wire_diameter * (self.active_coils + extra + add)
+
+    @property
+    def rate(self) -> float:
+        """N/mm of one spring: ``G d^4 / (8 D^3 Na)``."""
+        return self.shear_modulus * self.wire_diameter ** 4 / (8.0 * self.mean_coil_diameter ** 3 * self.active_coils)
+
+    def shear_stress(self, force: float) -> float:
+        """Wire shear stress at ``force`` N, MPa: ``K 8 F D / (pi d^3)``, K the Wahl factor."""
+        c = self.index
+        wahl = (4.0 * c - 1.0) / (4.0 * c - 4.0) + 0.615 / c
+        return wahl * 8.0 * force * self.mean_coil_diameter / (math.pi * self.wire_diameter ** 3)
+
+    @property
+    def shortest_installed_length(self) -> float:
+        """The shortest installed length within the allowable shear stress (not below solid), mm."""
+        allowed_force = self.allowable_shear_stress / self.shear_stress(1.0)
+        return max(self.free_length - allowed_force / self.rate, self.solid_height)
+
 
 _SPRING_FIELDS = [
     Field("count", "integer", required=False, default=2, minimum=1, maximum=100),
@@ -565,14 +678,47 @@ _SPRING_QUANTITIES = [Quantity("shear_modulus", ("stress",), minimum=0.0),
                       Quantity("allowable_shear_stress", ("stress",), required=True, minimum=0.0)]
 
 
-def spring_spec_from_table(data: Mapping[str, Any]) -> SpringSpec:
+def spring_spec_from_table(data: Mapping[str, Any], length_unit: str | None = None) -> SpringSpec:
+    """``[springs]`` read and checked: a coil wider than twice its wire, a free length above the
+    solid height, an installed length above it and within the allowable shear stress. Lengths in
+    messages are in ``length_unit`` (default: the unit the file gave the free length in)."""
     v = _read_section(data, _SPRING_FIELDS, _SPRING_QUANTITIES, "springs")
     kwargs = dict(count=v["count"], wire_diameter=v["wire_diameter"], mean_coil_diameter=v["mean_coil_diameter"],
                   active_coils=v["active_coils"], end_type=v["end_type"], free_length=v["free_length"],
                   installed_length=v["installed_length"], allowable_shear_stress=v["allowable_shear_stress"][0])
     if v["shear_modulus"] is not None:
         kwargs["shear_modulus"] = v["shear_modulus"][0]
-    return SpringSpec(**kwargs)
+    unit = length_unit or v["_units"]["free_length"]
+    d, mean = v["wire_diameter"], v["mean_coil_diameter"]
+    if not mean > 2 * d:
+        raise DesignError(_key(v, "springs", "mean_coil_diameter"),
+                          f"{_length_text(mean, unit)} is not more than twice the wire ({_length_text(d, unit)}): "
+                          f"spring index {mean / d:.3g}, the coils would close on the axis",
+                          f"> {_length_text(2 * d, unit)} (spring index D/d > 2)")
+    installed = kwargs.pop("installed_length")
+    spec = _user_keys("springs", data, lambda: SpringSpec(**kwargs))
+    solid = spec.solid_height
+    if not spec.free_length > solid:
+        raise DesignError(_key(v, "springs", "free_length"),
+                          f"{_length_text(spec.free_length, unit)} is not above the solid height "
+                          f"{_length_text(solid, unit)}", f"> {_length_text(solid, unit)}")
+    if installed is not None:
+        key = _key(v, "springs", "installed_length")
+        shortest = spec.shortest_installed_length
+        allowed = f"({_length_text(solid, unit)}, {_length_text(spec.free_length, unit)}]" if shortest <= solid else \
+            f"[{_length_text(shortest, unit, 'up')}, {_length_text(spec.free_length, unit)}]"
+        if installed <= solid:
+            raise DesignError(key, f"{_length_text(installed, unit)} is at or below the solid height "
+                              f"{_length_text(solid, unit)}: the coils would have to pass through each other", allowed)
+        if installed > spec.free_length:
+            raise DesignError(key, f"{_length_text(installed, unit)} is longer than the free length "
+                              f"{_length_text(spec.free_length, unit)}: a compression spring cannot pull", allowed)
+        stress = spec.shear_stress(spec.rate * (spec.free_length - installed))
+        if stress > spec.allowable_shear_stress:
+            raise DesignError(key, f"{_length_text(installed, unit)} compresses the wire to {stress:.4g} MPa shear, past "
+                              f"the allowable {spec.allowable_shear_stress:.4g} MPa", allowed)
+        spec = SpringSpec(**kwargs, installed_length=installed)
+    return spec
 
 
 # ----------------------------------------------------------------------------------------------
@@ -624,13 +770,16 @@ _BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=
                     Quantity("allowable_stress", ("stress",), minimum=0.0)]
 
 
-def beam_pinion_spec_from_table(data: Mapping[str, Any]) -> BeamPinionSpec:
+def beam_pinion_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any] | None = None) -> BeamPinionSpec:
+    """``[beam_pinion]`` read and checked; with ``gears`` (the design's), its gear must be one of them."""
     v = _read_section(data, _BEAM_FIELDS, _BEAM_QUANTITIES, "beam_pinion")
     kwargs = dict(gear=v["gear"], span=v["span"], mesh_position=v["mesh_position"], diameter=v["diameter"],
                   target_stiffness=_value(v["target_stiffness"]), allowable_stress=_value(v["allowable_stress"]))
     if v["elastic_modulus"] is not None:
         kwargs["elastic_modulus"] = v["elastic_modulus"][0]
-    return BeamPinionSpec(**kwargs)
+    if gears is not None and v["gear"] not in gears:
+        raise DesignError("beam_pinion.gear", f"no gear named {v['gear']!r} in the design", ", ".join(gears))
+    return _user_keys("beam_pinion", data, lambda: BeamPinionSpec(**kwargs))
 
 
 # ----------------------------------------------------------------------------------------------
@@ -673,10 +822,52 @@ _ENGAGEMENT_FIELDS = [
 ]
 
 
-def engagement_spec_from_table(data: Mapping[str, Any]) -> EngagementSpec:
+def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any] | None = None,
+                               length_unit: str | None = None) -> EngagementSpec:
+    """``[engagement]`` read; with ``gears`` (the design's) also checked against its gear.
+
+    The sliding pinions are turned apart by the helix as one leads the other: the lead
+    ``(backlash + preload_windup) / tan(beta)`` must be reached while the leading pinion still
+    slides into mesh, so it may not exceed the engagement length (else the leader meets its
+    engaged stop first and the trailer enters a mesh that has no backlash for it). Without
+    ``preload_windup`` (then it comes from the stiffness model) the check uses the backlash
+    alone, a lower bound of the lead. The engagement length cannot exceed the gear's face.
+    Lengths in messages are in ``length_unit`` (default: the unit of ``backlash_*``).
+    """
     v = read_table(data, _ENGAGEMENT_FIELDS, "engagement")
-    return EngagementSpec(gear=v["gear"], backlash=v["backlash"], preload_windup=v["preload_windup"],
+    spec = EngagementSpec(gear=v["gear"], backlash=v["backlash"], preload_windup=v["preload_windup"],
                           engagement_length=v["engagement_length"], clearance=v["clearance"])
+    if gears is None:
+        return spec
+    unit = length_unit or v["_units"]["backlash"]
+    gear = gears.get(spec.gear)
+    if gear is None:
+        raise DesignError("engagement.gear", f"no gear named {spec.gear!r} in the design", ", ".join(gears))
+    if not gear.helix_angle > 0:
+        raise DesignError("engagement.gear", f"gears.{spec.gear} is a spur gear: sliding it along its axis cannot "
+                          "turn it to open backlash", "a helical gear (helix_angle_deg > 0)")
+    face = gear.face_width
+    length = face
+    if spec.engagement_length is not None:
+        length = spec.engagement_length
+        if length > face * (1 + 1e-12):
+            raise DesignError(_key(v, "engagement", "engagement_length"),
+                              f"{_length_text(length, unit)} is more than the face width of gears.{spec.gear} "
+                              f"({_length_text(face, unit)}): the pinion cannot overlap the mesh by more",
+                              f"(0, {_length_text(face, unit)}]")
+    tan_beta = math.tan(gear.helix_angle)
+    windup = spec.preload_windup or 0.0
+    lead = (spec.backlash + windup) / tan_beta
+    if lead > length * (1 + 1e-12):
+        circumferential = length * tan_beta  # what the whole engagement length turns the pinions apart
+        name = "backlash" if windup < circumferential else "preload_windup"
+        most = circumferential - (windup if name == "backlash" else spec.backlash)
+        raise DesignError(_key(v, "engagement", name),
+                          f"needs a lead of {_length_text(lead, unit)} between the sliding pinions ((backlash + "
+                          f"preload windup) / tan(helix)), more than the engagement length {_length_text(length, unit)}:"
+                          " the leading pinion meets its engaged stop before the lead has opened the backlash",
+                          f"[0, {_length_text(max(most, 0.0), unit, 'down')}]")
+    return spec
 
 
 # ----------------------------------------------------------------------------------------------
@@ -699,16 +890,21 @@ def stiffness_design(design) -> StiffnessDesign:
         table = design.section(name)
         return reader(table) if table else None
 
-    return StiffnessDesign(stiffness=stiffness_spec_from_table(design.section("stiffness")),
+    unit, gears = design.length_unit, design.gears
+    spec = stiffness_spec_from_table(design.section("stiffness"))
+    if design.section("stiffness"):
+        check_stiffness_gears(spec, gears)
+    return StiffnessDesign(stiffness=spec,
                            preload=opt("preload", preload_spec_from_table),
-                           flexures=opt("flexures", flexure_spec_from_table),
-                           springs=opt("springs", spring_spec_from_table),
-                           beam_pinion=opt("beam_pinion", beam_pinion_spec_from_table),
-                           engagement=opt("engagement", engagement_spec_from_table))
+                           flexures=opt("flexures", lambda t: flexure_spec_from_table(t, unit)),
+                           springs=opt("springs", lambda t: spring_spec_from_table(t, unit)),
+                           beam_pinion=opt("beam_pinion", lambda t: beam_pinion_spec_from_table(t, gears)),
+                           engagement=opt("engagement", lambda t: engagement_spec_from_table(t, gears, unit)))
 
 
 __all__ = ["QUANTITY_SUFFIXES", "INTERNAL_UNITS", "convert_quantity", "Quantity", "ComponentSpec", "StiffnessSpec",
            "PreloadSpec", "FlexureSpec", "SpringSpec", "BeamPinionSpec", "EngagementSpec", "StiffnessDesign",
            "stiffness_design", "component_from_table", "stiffness_spec_from_table", "preload_spec_from_table",
            "flexure_spec_from_table", "spring_spec_from_table", "beam_pinion_spec_from_table",
-           "engagement_spec_from_table", "SHAFTS", "SCOPES", "COMPONENT_KINDS", "END_TYPES"]
+           "engagement_spec_from_table", "check_stiffness_gears", "SHAFTS", "SCOPES", "COMPONENT_KINDS", "END_TYPES",
+           "SPRING_ENDS"]

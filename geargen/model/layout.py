@@ -35,15 +35,10 @@ from geargen.core.involute import reference_tooth_thickness
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec, with_changes
-from geargen.design.schema import Field, read_table
+from geargen.design.layout import LAYOUT_KINDS, MODEL_BACKLASH, POSITIONS
 from geargen.errors import DesignError
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
-
-LAYOUT_KINDS = ("dual_pinion", "split_pinion")
-MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
-POSITIONS = ("engaged", "disengaged")
-
 
 @dataclass(frozen=True)
 class GearPlacement:
@@ -180,44 +175,10 @@ class Layout:
 BACKLASH_KIND = "circumferential, transverse, at the reference pitch circle of gear 1 (j_bt / cos alpha_t)"
 
 
-_LAYOUT_FIELDS = [
-    Field("kind", "string", choices=LAYOUT_KINDS),
-    Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH),
-    Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0),
-    Field("position", "string", required=False, default="engaged", choices=POSITIONS),
-    # dual pinion
-    Field("cluster", "string", required=False, default="one_piece", choices=("one_piece", "separate")),
-    Field("cluster_axial_gap", "length", required=False, default=None, minimum=0.0),
-    Field("input_face_offset", "length", required=False, default=None),
-    Field("carriage_travel", "length", required=False, default=None, minimum=0.0),
-    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0),
-    # split pinion
-    Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("pinion_stiff", "string", required=False, default="pinion_stiff"),
-    Field("pinion_compliant", "string", required=False, default="pinion_compliant"),
-    Field("output", "string", required=False, default="output"),
-    Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0),
-    Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0),
-    Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0),
-    # the gear ratio the controller needs, from encoder to output
-    Field("upstream_stages", "list", required=False, default=()),
-    Field("required_ratios", "list", required=False, default=()),
-]
-
-
 def layout_settings(design: Design) -> dict[str, Any]:
-    """``[layout]`` validated (internal units). A design without one is a dual-pinion drive when
-    it has a ``[synthesis]``; ``model_backlash`` left out follows the gear tables (module docstring)."""
-    table = dict(design.section("layout") or {})
-    if "kind" not in table and design.section("synthesis"):
-        table["kind"] = "dual_pinion"
-    if "kind" not in table:
-        raise DesignError("layout", "missing", "a [layout] table with kind = " + " | ".join(map(repr, LAYOUT_KINDS))
-                          + " (or a [synthesis] section: a dual-pinion drive)")
-    settings = read_table(table, _LAYOUT_FIELDS, "layout")
-    if settings["model_backlash"] is None:
-        settings["model_backlash"] = "as_designed" if any(g.thinning > 0 for g in design.gears.values()) else "mid"
-    return settings
+    """``[layout]`` validated (:func:`geargen.design.layout.layout_settings`; internal units)."""
+    from geargen.design.layout import layout_settings as read
+    return read(design)
 
 
 def _modelled_backlash(lo: float, hi: float, rule: str) -> float:
@@ -244,20 +205,14 @@ def _thin_pair(a: GearSpec, b: GearSpec, backlash: float, centre_distance: float
 
 
 def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: str) -> dict[str, Any]:
-    """The exact ratio from encoder to output: upstream stages (driver, driven teeth) times the train."""
-    stages = settings["upstream_stages"]
+    """The exact ratio from encoder to output: upstream stages (driver, driven teeth; validated on
+    load by :mod:`geargen.design.layout`) times the train."""
     total = Fraction(train_ratio)
     described = []
-    for i, st in enumerate(stages):
-        if not (isinstance(st, list) and len(st) == 2 and all(isinstance(t, int) and t > 0 for t in st)):
-            raise DesignError(f"layout.upstream_stages[{i}]", f"{st!r} is not [driver_teeth, driven_teeth]",
-                              "two whole numbers > 0")
-        total *= Fraction(st[1], st[0])
-        described.append(f"{st[1]}/{st[0]}")
+    for driver, driven in settings["upstream_stages"]:
+        total *= Fraction(driven, driver)
+        described.append(f"{driven}/{driver}")
     required = settings["required_ratios"]
-    for i, r in enumerate(required):
-        if isinstance(r, bool) or not isinstance(r, int) or r <= 0:
-            raise DesignError(f"layout.required_ratios[{i}]", f"{r!r} is not a whole-number ratio", "e.g. 180 or 360")
     ok = (not required) or any(total == Fraction(r) for r in required)
     text = " x ".join(described + [f"{train_ratio}"]) + f" = {total}"
     return {"train": train_ratio, "total": total, "required": list(required), "ok": ok,
@@ -277,20 +232,12 @@ def resolve(design: Design, position: str | None = None) -> Layout:
     if position is not None:
         if position not in POSITIONS:
             raise DesignError("--position", f"{position!r} is not a valid choice", ", ".join(map(repr, POSITIONS)))
+        if position == "disengaged" and not design.section("engagement"):
+            raise DesignError("--position", "'disengaged' needs an [engagement] section", "'engaged'")
         settings["position"] = position
     if settings["kind"] == "dual_pinion":
         return _place_dual_pinion(design, settings)
     return _place_split_pinion(design, settings)
-
-
-def _refuse_override_of_thinning(design: Design, rule: str) -> None:
-    """A gear's own tooth thinning is never replaced quietly: only 'as_designed' may use it."""
-    if rule == "as_designed":
-        return
-    thinned = [name for name, g in design.gears.items() if g.thinning > 0]
-    if thinned:
-        raise DesignError("layout.model_backlash", f"{rule!r} would replace the tooth thinning given for "
-                          f"gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
 
 
 def _place_dual_pinion(design: Design, s: dict) -> Layout:
@@ -303,7 +250,6 @@ def _place_dual_pinion(design: Design, s: dict) -> Layout:
     syn = synthesize_centres(inputs).check()
     g_in, g_large, g_small, g_out = (design.gear(r) for r in ("input", "cluster_large", "cluster_small", "output"))
     rule = s["model_backlash"]
-    _refuse_override_of_thinning(design, rule)
     design_notes: list[str] = []
     ranges = {m: (inputs.backlash(m, "min"), inputs.backlash(m, "max")) for m in (1, 2)}
     if rule == "as_designed":
@@ -479,14 +425,8 @@ def _place_split_pinion(design: Design, s: dict) -> Layout:
     from geargen.core.synthesis import backlash_from_thickness_deficit as backlash_at_centre_distance, mate_rotation
     stiff, compliant, out = (design.gear(s[k]) for k in ("pinion_stiff", "pinion_compliant", "output"))
     c = s["centre_distance"]
-    lo, hi = s["circumferential_backlash_min"], s["circumferential_backlash_max"]
-    for key, v in (("centre_distance", c), ("circumferential_backlash_min", lo), ("circumferential_backlash_max", hi)):
-        if v is None:
-            raise DesignError(f"layout.{key}", "missing for a split pinion", "a length, e.g. _mm")
-    if hi < lo:
-        raise DesignError("layout.circumferential_backlash_min", "is larger than the maximum", "min <= max")
+    lo, hi = s["circumferential_backlash_min"], s["circumferential_backlash_max"]  # given and ordered (on load)
     rule = s["model_backlash"]
-    _refuse_override_of_thinning(design, rule)
     standard = (stiff.teeth + out.teeth) * out.transverse_module / 2
     alpha = out.transverse_pressure_angle
     if rule == "as_designed":

@@ -61,7 +61,7 @@ def test_component_table_reads_units_and_count():
     ({"kind": "torsion", "stiffness_Nm_per_rad": 1}, "stiffness.components.c.shaft", "missing"),
     ({"kind": "linear", "stiffness_N_per_mm": 1}, "stiffness.components.c.gear", "exactly one"),
     ({"kind": "shaft_bending", "gear": "output", "diameter_mm": 5, "span_mm": 10, "load_position_mm": 12},
-     "stiffness.components.c.load_position", "between the supports"),
+     "stiffness.components.c.load_position_mm", "between the supports"),
     ({"kind": "mesh", "gears": ["a"]}, "stiffness.components.c.gears", "pair"),
     ({"kind": "spring"}, "stiffness.components.c.kind", "not a valid choice"),
 ])

@@ -1,0 +1,120 @@
+"""The ``[layout]`` section: how the build places the gears (read by ``geargen.pipeline.place``).
+
+Layout::
+
+    [layout]
+    kind = "dual_pinion"              # gears placed by the centre synthesis of [synthesis]
+                                      # ("split_pinion": two pinions side by side on one output)
+    model_backlash = "mid"            # tooth thickness of the model: "mid", "max", "min" of the
+                                      # backlash range, or "as_designed" (the gears' own thinning)
+    loaded_flank_gap_mm = 0.0005      # left on the working flanks so the solids do not touch
+    position = "engaged"              # sliding pinions ("disengaged" needs [engagement])
+    upstream_stages = [[15, 30]]      # [driver_teeth, driven_teeth] between encoder and input
+    required_ratios = [32]            # whole-number ratios, encoder to output, the controller needs
+
+A split pinion also needs ``centre_distance_*`` and ``circumferential_backlash_min_*`` /
+``_max_*``. :func:`layout_settings` reads the table; :func:`check_layout` adds the rules that
+involve other sections (the gears named, the synthesis, the engagement).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from geargen.design.schema import Field, read_table
+from geargen.errors import DesignError
+from geargen.units import LENGTH_SUFFIXES
+
+LAYOUT_KINDS = ("dual_pinion", "split_pinion")
+MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
+POSITIONS = ("engaged", "disengaged")
+
+LAYOUT_FIELDS = [
+    Field("kind", "string", choices=LAYOUT_KINDS),
+    Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH),
+    Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0),
+    Field("position", "string", required=False, default="engaged", choices=POSITIONS),
+    # dual pinion
+    Field("cluster", "string", required=False, default="one_piece", choices=("one_piece", "separate")),
+    Field("cluster_axial_gap", "length", required=False, default=None, minimum=0.0),
+    Field("input_face_offset", "length", required=False, default=None),
+    Field("carriage_travel", "length", required=False, default=None, minimum=0.0),
+    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0),
+    # split pinion
+    Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("pinion_stiff", "string", required=False, default="pinion_stiff"),
+    Field("pinion_compliant", "string", required=False, default="pinion_compliant"),
+    Field("output", "string", required=False, default="output"),
+    Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0),
+    Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0),
+    Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0),
+    # the gear ratio the controller needs, from encoder to output
+    Field("upstream_stages", "list", required=False, default=()),
+    Field("required_ratios", "list", required=False, default=()),
+]
+
+#: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])
+SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
+
+
+def layout_settings(design) -> dict[str, Any]:
+    """``[layout]`` read and checked on its own (internal units); see :func:`check_layout`.
+
+    A design without ``[layout]`` (or without its ``kind``) that has a ``[synthesis]`` is a
+    dual-pinion drive; ``model_backlash`` left out follows the gear tables: "as_designed" when a
+    gear states its thinning, else "mid" (the thinning is then derived, and said so)."""
+    table = dict(design.section("layout") or {})
+    if "kind" not in table and design.section("synthesis"):
+        table["kind"] = "dual_pinion"
+    if "kind" not in table:
+        raise DesignError("layout", "missing", "a [layout] table with kind = " + " | ".join(map(repr, LAYOUT_KINDS))
+                          + " (or a [synthesis] section: a dual-pinion drive)")
+    v = read_table(table, LAYOUT_FIELDS, "layout")
+    if v["model_backlash"] is None:
+        v["model_backlash"] = "as_designed" if any(g.thinning > 0 for g in design.gears.values()) else "mid"
+    for i, stage in enumerate(v["upstream_stages"]):
+        if not (isinstance(stage, list) and len(stage) == 2
+                and all(isinstance(t, int) and not isinstance(t, bool) and t > 0 for t in stage)):
+            raise DesignError(f"layout.upstream_stages[{i}]", f"{stage!r} is not [driver_teeth, driven_teeth]",
+                              "two whole numbers > 0")
+    for i, ratio in enumerate(v["required_ratios"]):
+        if isinstance(ratio, bool) or not isinstance(ratio, int) or ratio <= 0:
+            raise DesignError(f"layout.required_ratios[{i}]", f"{ratio!r} is not a whole-number ratio",
+                              "whole numbers > 0, e.g. 180 or 360")
+    if v["kind"] == "split_pinion":
+        for name in SPLIT_PINION_KEYS:
+            if v[name] is None:
+                raise DesignError(f"layout.{name}", "missing for a split pinion",
+                                  " or ".join(f"{name}_{u}" for u in LENGTH_SUFFIXES))
+        lo, hi = v["circumferential_backlash_min"], v["circumferential_backlash_max"]
+        if lo > hi:
+            unit = v["_units"]["circumferential_backlash_min"]
+            scale = LENGTH_SUFFIXES[unit]
+            raise DesignError(f"layout.circumferential_backlash_min_{unit}",
+                              f"{lo / scale:.6g} {unit} is larger than the maximum {hi / scale:.6g} {unit}",
+                              f"[0, {hi / scale:.6g}] {unit}")
+    return v
+
+
+def check_layout(design, v: dict[str, Any]) -> None:
+    """The ``[layout]`` rules that involve other sections of ``design``."""
+    if v["kind"] == "dual_pinion" and not design.section("synthesis"):
+        raise DesignError("synthesis", "missing: layout.kind = 'dual_pinion' places the gears by the centre synthesis",
+                          "a [synthesis] table, or layout.kind = 'split_pinion'")
+    if v["kind"] == "split_pinion":
+        for role in ("pinion_stiff", "pinion_compliant", "output"):
+            if v[role] not in design.gears:
+                key = f"layout.{role}" if role in design.section("layout") else f"gears.{v[role]}"
+                raise DesignError(key, f"no gear named {v[role]!r} in the design", ", ".join(design.gears))
+    if v["position"] == "disengaged" and not design.section("engagement"):
+        raise DesignError("layout.position", "'disengaged' needs an [engagement] section", "'engaged'")
+    if v["model_backlash"] != "as_designed":
+        # a gear's own tooth thinning is never replaced quietly
+        thinned = [name for name, g in design.gears.items() if g.thinning > 0]
+        if thinned:
+            raise DesignError("layout.model_backlash", f"{v['model_backlash']!r} would replace the tooth thinning "
+                              f"given for gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
+
+
+__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "SPLIT_PINION_KEYS", "layout_settings",
+           "check_layout"]

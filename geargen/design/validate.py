@@ -1,0 +1,186 @@
+"""Every section of a design file, read and checked when the file is loaded.
+
+:func:`validate_sections` is what :func:`geargen.design.assembly.load_design` runs after the
+top-level keys, the drive and the gears: each further section is read by the module that owns
+it (the same reader the step that uses it calls), then the rules between sections and whether
+the hardware can be made:
+
+=================  ==============================================================================
+section            read and checked by
+=================  ==============================================================================
+[synthesis]        geargen.design.synthesis.synthesis_inputs (the four gears, Eq. 8 solvable)
+[errors.*]         .synthesis.error_budget_inputs, or .checks.gear_errors without [synthesis]
+[monte_carlo]      .synthesis.monte_carlo_settings
+[checks]           .checks.checks_settings (declared meshes name gears of the file)
+[stiffness] ...    .stiffness: components, preload, flexures (stress at the travel), springs
+                   (solid height, index, installed stress), beam pinion, engagement (lead)
+[layout]           .layout.layout_settings, check_layout
+[parts]            .parts.parts_settings, check_parts
+[export]           .export.export_settings
+=================  ==============================================================================
+
+Whether each gear's tooth can be cut is checked where the gear tables are read
+(:func:`geargen.design.feasibility.check_tooth`, from ``design_from_dict``).
+
+Every problem is recorded in a :class:`~geargen.design.schema.Problems` and reported together.
+A check that needs the gears runs only when every gear table was read: a broken gear is
+reported once, not again by each section that names it.
+
+:func:`key_schema` answers "what does the schema allow at this key" (the :class:`Field` or
+:class:`~geargen.design.stiffness.Quantity` that owns it), for tools and tests that generate or
+document design files.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Mapping
+
+from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings, gear_errors
+from geargen.design.export import EXPORT_FIELDS, export_settings
+from geargen.design.gear import GEAR_FIELDS
+from geargen.design.layout import LAYOUT_FIELDS, check_layout, layout_settings
+from geargen.design.parts import TEMPLATE_FIELDS, check_parts, parts_settings
+from geargen.design.schema import Field, Problems
+from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
+                                      _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
+                                      _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, _SPRING_FIELDS, _SPRING_QUANTITIES,
+                                      _STIFFNESS_FIELDS, Quantity, beam_pinion_spec_from_table,
+                                      check_stiffness_gears, engagement_spec_from_table, flexure_spec_from_table,
+                                      preload_spec_from_table, spring_spec_from_table, stiffness_spec_from_table)
+from geargen.design.synthesis import (ERROR_FIELDS, GEAR_ROLES, MONTE_CARLO_FIELDS, SYNTHESIS_FIELDS,
+                                      error_budget_inputs, monte_carlo_settings, synthesis_inputs)
+from geargen.errors import DesignError
+
+#: sections that need the drive type (the stiffness step reads it)
+_NEED_DRIVE_TYPE = ("stiffness", "preload", "flexures", "springs", "beam_pinion", "engagement")
+
+
+def validate_sections(design, problems: Problems, gears_complete: bool = True,
+                      gear_names: tuple[str, ...] | None = None) -> None:
+    """Read and check every section of ``design`` past its gears, recording each problem in
+    ``problems``. ``gears_complete``: every gear table was read (else the checks that need the
+    gears are skipped); ``gear_names``: the gear tables the file has, read or not."""
+    run = problems.run
+    sections = design.sections
+    unit = design.length_unit
+    gears = design.gears if gears_complete else None
+    names = tuple(gear_names if gear_names is not None else design.gears)
+
+    if "synthesis" in sections and gears_complete:
+        run(synthesis_inputs, design)
+    if "errors" in sections:
+        if "synthesis" in sections:
+            run(error_budget_inputs, design)
+        else:
+            for gear in sections["errors"]:
+                if gear not in names:
+                    problems.add(DesignError(f"errors.{gear}", "no gear of this name", ", ".join(names)))
+                elif not isinstance(sections["errors"][gear], Mapping):
+                    problems.add(DesignError(f"errors.{gear}", "expected a table"))
+                else:
+                    run(gear_errors, design, gear)
+    if "monte_carlo" in sections:
+        run(monte_carlo_settings, design)
+    if "checks" in sections and gears_complete:
+        run(checks_settings, design)
+
+    if design.drive_type is None and any(s in sections for s in _NEED_DRIVE_TYPE):
+        present = next(s for s in _NEED_DRIVE_TYPE if s in sections)
+        problems.add(DesignError("drive.type", f"missing: [{present}] describes a drive of a type", "'type1', 'type2'"))
+    if "stiffness" in sections:
+        spec = run(stiffness_spec_from_table, sections["stiffness"])
+        if spec is not None and gears_complete:
+            run(check_stiffness_gears, spec, design.gears)
+    if "preload" in sections:
+        run(preload_spec_from_table, sections["preload"])
+    if "flexures" in sections:
+        run(flexure_spec_from_table, sections["flexures"], unit)
+    if "springs" in sections:
+        run(spring_spec_from_table, sections["springs"], unit)
+    if "beam_pinion" in sections:
+        run(beam_pinion_spec_from_table, sections["beam_pinion"], gears)
+    if "engagement" in sections:
+        run(engagement_spec_from_table, sections["engagement"], gears, unit)
+
+    if "layout" in sections or "synthesis" in sections:  # a synthesis alone is a dual-pinion layout
+        settings = run(layout_settings, design)
+        if settings is not None and gears_complete:
+            run(check_layout, design, settings)
+    if "parts" in sections:
+        settings = run(parts_settings, design)
+        if settings is not None and gears_complete:
+            run(check_parts, design, settings)
+    if "export" in sections:
+        run(export_settings, design)
+
+
+# ---------------------------------------------------------------------------------------------
+# the schema of one key
+
+_TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
+    "synthesis": (SYNTHESIS_FIELDS, []),
+    "monte_carlo": (MONTE_CARLO_FIELDS, []),
+    "checks": (CHECKS_FIELDS + [Field("centre_distance", "length", required=False, minimum=0.0,
+                                      exclusive_minimum=True)], []),
+    "stiffness": (_STIFFNESS_FIELDS, _MODULI),
+    "preload": (_PRELOAD_FIELDS, _PRELOAD_QUANTITIES),
+    "flexures": (_FLEXURE_FIELDS, _FLEXURE_QUANTITIES),
+    "springs": (_SPRING_FIELDS, _SPRING_QUANTITIES),
+    "beam_pinion": (_BEAM_FIELDS, _BEAM_QUANTITIES),
+    "engagement": (_ENGAGEMENT_FIELDS, []),
+    "layout": (LAYOUT_FIELDS, []),
+    "export": (EXPORT_FIELDS, []),
+}
+
+#: the top-level keys and [drive], as fields (all optional)
+TOP_FIELDS = [Field("name", "string", required=False), Field("description", "string", required=False),
+              Field("length_unit", "string", required=False, choices=("mm", "in"))]
+DRIVE_FIELDS = [Field("type", "string", required=False, choices=("type1", "type2")),
+                Field("preload", "string", required=False,
+                      choices=("radial", "axial", "angular", "frictional_interface"))]
+
+
+def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[Field], list[Quantity]] | None:
+    """The fields and quantities of the table at ``path`` (``("springs",)``, ``("gears", "input")``,
+    ``("stiffness", "components", "cluster_shaft")``) of the parsed file ``data``; None for a
+    table the schema does not describe key by key."""
+    if path == ():
+        return TOP_FIELDS, []
+    head = path[0]
+    if path == ("drive",):
+        return DRIVE_FIELDS, []
+    if head in ("gears", "gear_defaults") and len(path) == (2 if head == "gears" else 1):
+        # a gear table is read merged with [gear_defaults]: a key is required when neither gives it
+        return GEAR_FIELDS, []
+    if head == "errors" and len(path) == 2:
+        required = "synthesis" in data
+        return [Field(f.name, f.kind, required=required, default=0.0, minimum=0.0) for f in ERROR_FIELDS], []
+    if path[:2] == ("stiffness", "components") and len(path) == 3:
+        return _COMPONENT_FIELDS, _COMPONENT_QUANTITIES
+    if head == "parts" and len(path) == 1:
+        template = data.get("parts", {}).get("template")
+        return (TEMPLATE_FIELDS[template], []) if template in TEMPLATE_FIELDS else None
+    if len(path) == 1 and head in _TABLE_SCHEMA:
+        return _TABLE_SCHEMA[head]
+    return None
+
+
+def key_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> Field | Quantity | None:
+    """The :class:`Field` or :class:`Quantity` that owns the key ``path[-1]`` of the table ``path[:-1]``."""
+    schema = table_schema(data, path[:-1])
+    if schema is None:
+        return None
+    fields, quantities = schema
+    key = path[-1]
+    if path[0] == "checks" and key in _CENTRE_KEYS:
+        return next(f for f in fields if f.name == "centre_distance")
+    for f in fields:
+        if key in f.keys():
+            return f
+    for q in quantities:
+        if key in q.keys():
+            return q
+    return None
+
+
+__all__ = ["validate_sections", "table_schema", "key_schema", "TOP_FIELDS", "DRIVE_FIELDS", "GEAR_ROLES"]
