@@ -268,42 +268,33 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     members = {side: [p for p in layout.gears if p.group == f"cluster_{side}"] for side in ("a", "b")}
     clusters = [members["a"][0], members["b"][0]]
     gap = s["bearing_clearance"]
-
-    # --- heights of the gear faces
-    z_in0, z_in1 = inp.height
-    z_out0, z_out1 = outg.height
-    z_cl0 = min(p.height[0] for p in members["a"])
-    z_cl1 = max(p.height[1] for p in members["a"])
     x_in = inp.centre[0]
 
-    # --- cluster shafts and bearings
-    d_cl = _bore(clusters[0].spec)
-    bw, bod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
-    zb_lo = z_cl0 - gap - bw
-    zb_hi = z_cl1 + gap
-    for side, c in zip(("a", "b"), clusters):
-        x, y = c.centre
-        shaft = out.add(f"cluster_shaft_{side}", out.shared(P.shaft, d_cl, zb_hi + bw - zb_lo), _at(x, y, zb_lo), f"cluster_{side}",
-                        "shaft", description=f"d {d_cl:.4g} mm")
-        for member in members[side]:
-            out.touch(shaft, member.name, "cluster gear on its shaft (pressed and bonded)")
-        for where, z in (("lower", zb_lo), ("upper", zb_hi)):
-            b = out.add(f"cluster_bearing_{where}_{side}", out.shared(P.bearing, d_cl, bod, bw), _at(x, y, z), f"cluster_{side}",
-                        "bearing", description=f"{d_cl:.4g} x {bod:.4g} x {bw:.4g} mm")
-            out.touch(b, shaft, "bearing on its shaft")
+    # --- shafts and bearings, where the model places them (geargen.model.shafts: the stiffness reads the same)
+    from geargen.model.shafts import robot_joint_shafts
+    placed_shafts = robot_joint_shafts(layout, s)
 
-    # --- output shaft and bearings
-    d_out = _bore(outg.spec)
+    def shaft_with_bearings(sh, group, what, gears, contact):
+        part = out.add(sh.name, out.shared(P.shaft, sh.diameter, sh.length), _at(*sh.centre, sh.z_lo), group, "shaft",
+                       description=what)
+        for gear in gears:
+            out.touch(part, gear, contact)
+        for b in sh.bearings:
+            ring = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(*sh.centre, b.z), group,
+                           "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm")
+            out.touch(ring, part, "bearing on its shaft")
+        return part
+
+    for side in ("a", "b"):
+        sh = placed_shafts[f"cluster_{side}"]
+        shaft_with_bearings(sh, f"cluster_{side}", f"d {sh.diameter:.4g} mm", [m.name for m in members[side]],
+                            "cluster gear on its shaft (pressed and bonded)")
+    oshaft = shaft_with_bearings(placed_shafts["output"], "output", f"joint shaft d {placed_shafts['output'].diameter:.4g} mm",
+                                 ["output"], "shaft in the output gear's bore")
+    bw, bod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
+    zb_lo, zb_hi = (b.z for b in placed_shafts["cluster_a"].bearings)
     obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
-    zo_lo = z_out0 - gap - obw
-    zo_hi = z_out1 + gap
-    oshaft = out.add("output_shaft", out.shared(P.shaft, d_out, zo_hi + obw - zo_lo), _at(0, 0, zo_lo), "output", "shaft",
-                     description=f"joint shaft d {d_out:.4g} mm")
-    out.touch(oshaft, "output", "shaft in the output gear's bore")
-    for where, z in (("lower", zo_lo), ("upper", zo_hi)):
-        b = out.add(f"output_bearing_{where}", out.shared(P.bearing, d_out, obod, obw), _at(0, 0, z), "output", "bearing",
-                    description=f"{d_out:.4g} x {obod:.4g} x {obw:.4g} mm")
-        out.touch(b, oshaft, "bearing on its shaft")
+    zo_lo, zo_hi = (b.z for b in placed_shafts["output"].bearings)
 
     # --- bevel pair
     if (s["bevel_module"] is None) == (s["bevel_diametral_pitch_per_in"] is None):
@@ -311,8 +302,7 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
     bev = P.bevel_pair_geometry(s["bevel_pinion_teeth"], s["bevel_gear_teeth"], module, s["bevel_face_width"])
     d_in = _bore(inp.spec)
-    z_mid_in = (z_in0 + z_in1) / 2
-    z_heel = z_mid_in + s["input_shaft_to_bevel"]
+    z_heel = placed_shafts["input"].loads["bevel_gear"]
     z_apex = z_heel + bev.apex_height("gear")
     bevel_gear = out.add("bevel_gear", P.bevel_pitch_cone(bev, "gear", bore=d_in), _at(x_in, 0, z_heel), "carriage",
                          "bevel", description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg")
@@ -322,19 +312,19 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
                      description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg")
     out.touch(bevel_gear, pinion, "bevel pitch cones roll on each other (pitch-cone model)")
 
-    # --- input shaft and bearings
+    # --- input shaft and bearings (placed by the model), up through the bevel gear
+    ish = placed_shafts["input"]
     ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
-    zi_lo = z_in0 - gap - ibw
-    zi_hi = z_in1 + gap
+    zi_lo, zi_hi = (b.z for b in ish.bearings)
     z_shaft_top = z_heel + bev.axial_height("gear")
-    ishaft = out.add("input_shaft", out.shared(P.shaft, d_in, z_shaft_top - zi_lo), _at(x_in, 0, zi_lo), "carriage", "shaft",
-                     description=f"d {d_in:.4g} mm")
+    ishaft = out.add("input_shaft", out.shared(P.shaft, d_in, z_shaft_top - ish.z_lo), _at(x_in, 0, ish.z_lo), "carriage",
+                     "shaft", description=f"d {d_in:.4g} mm")
     out.touch(ishaft, "input", "shaft in the input gear's bore")
     out.touch(ishaft, bevel_gear, "shaft in the bevel gear's bore")
-    for where, z in (("lower", zi_lo), ("upper", zi_hi)):
-        b = out.add(f"input_bearing_{where}", out.shared(P.bearing, d_in, ibod, ibw), _at(x_in, 0, z), "carriage", "bearing",
-                    description=f"{d_in:.4g} x {ibod:.4g} x {ibw:.4g} mm")
-        out.touch(b, ishaft, "bearing on its shaft")
+    for b in ish.bearings:
+        ring = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(x_in, 0, b.z), "carriage",
+                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm")
+        out.touch(ring, ishaft, "bearing on its shaft")
 
     # --- motor along +x, its stub ending on the pinion's heel
     stub = s["motor_shaft_length"]

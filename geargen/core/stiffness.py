@@ -215,6 +215,9 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
                         train: DualPinionTrain | None) -> ComponentStiffness:
     """Reduce one design component to torsion at the output."""
     where = f"stiffness.components.{spec.name}"
+    if spec.from_geometry:
+        raise DesignError(f"{where}.from_geometry", "its lengths come from the placed shafts, which only the resolved "
+                          "drive knows (geargen.model.analysis.stiffness)", "a design with [parts] placing its shafts")
     e = spec.elastic_modulus or stiffness.elastic_modulus
     g = spec.shear_modulus or stiffness.shear_modulus
     radius = None
@@ -643,11 +646,13 @@ def loop_errors_from_travels(travels: Mapping[str, float], lever: float, source:
 
 
 def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = None,
-                      travel_source: str = "synthesis") -> StiffnessSummary:
+                      travel_source: str = "synthesis", components=None) -> StiffnessSummary:
     """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
 
     ``carriage_travels`` (mm, peak-to-peak; e.g. the synthesis error budget by label) replace
-    the loop error of the ``[preload]`` section when given.
+    the loop error of the ``[preload]`` section when given. ``components``: the design's
+    ``[stiffness.components]`` with the lengths of the placed shafts filled in
+    (:func:`geargen.model.analysis.placed_components`); default: as the design gives them.
     """
     sd = stiffness_design(design)
     if sd.preload is None:
@@ -662,7 +667,8 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     comps: list[ComponentStiffness] = []
     if train is not None:
         comps += train_mesh_components(train, spec.elastic_modulus)
-    comps += [component_stiffness(c, design, spec, train) for c in spec.components]
+    comps += [component_stiffness(c, design, spec, train) for c in (spec.components if components is None
+                                                                    else components)]
     path1, path2, common = split_paths(comps)
     for p in (path1, path2):
         if not p.components:
@@ -860,23 +866,11 @@ def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):
     return design.gears[name]
 
 
-def drive_from_design(design, location: str = "output") -> TwoPathDrive:
-    """The two-path drive model of ``design``: ``k1``, ``k2``, ``k3`` and the loop preload.
-
-    Referred to the output by default: torques in N·mm, rotations in rad, stiffnesses in
-    N·mm/rad (divide by 1e3 for the N·m of the measurement contract). Components with scope
-    "common" are in series with the drive and not part of this model; see
-    :attr:`StiffnessSummary.common`.
-    """
-    summary = stiffness_summary(design)
-    return summary.drive if location == "output" else summary.drive_at(location)
-
-
 __all__ = [
     "MESH_DIVISOR", "mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness", "series", "parallel",
     "reflect", "torsional_from_linear", "linear_from_torsional", "DualPinionTrain", "train_from_design",
     "ComponentStiffness", "component_stiffness", "train_mesh_components", "PathStiffness", "split_paths",
     "preload_lever", "preload_spring_at_output", "loop_error_from_carriage_travel", "carriage_force",
     "required_preload", "preload_to_carry", "LoopError", "PreloadVariation", "preload_variation", "PreloadSpring",
-    "StiffnessSummary", "loop_errors_from_travels", "stiffness_summary", "drive_from_design",
+    "StiffnessSummary", "loop_errors_from_travels", "stiffness_summary",
 ]

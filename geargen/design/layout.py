@@ -30,7 +30,7 @@ MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
 POSITIONS = ("engaged", "disengaged")
 
 LAYOUT_FIELDS = [
-    Field("kind", "string", choices=LAYOUT_KINDS),
+    Field("kind", "string", required=False, default=None, choices=LAYOUT_KINDS),  # dual_pinion with a [synthesis]
     Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH),
     Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0),
     Field("position", "string", required=False, default="engaged", choices=POSITIONS),
@@ -63,13 +63,12 @@ def layout_settings(design) -> dict[str, Any]:
     A design without ``[layout]`` (or without its ``kind``) that has a ``[synthesis]`` is a
     dual-pinion drive; ``model_backlash`` left out follows the gear tables: "as_designed" when a
     gear states its thinning, else "mid" (the thinning is then derived, and said so)."""
-    table = dict(design.section("layout") or {})
-    if "kind" not in table and design.section("synthesis"):
-        table["kind"] = "dual_pinion"
-    if "kind" not in table:
-        raise DesignError("layout", "missing", "a [layout] table with kind = " + " | ".join(map(repr, LAYOUT_KINDS))
-                          + " (or a [synthesis] section: a dual-pinion drive)")
-    v = read_table(table, LAYOUT_FIELDS, "layout")
+    v = read_table(design.section("layout") or {}, LAYOUT_FIELDS, "layout")
+    if v["kind"] is None:
+        if not design.section("synthesis"):
+            raise DesignError("layout.kind", "missing", " | ".join(map(repr, LAYOUT_KINDS))
+                              + " (or a [synthesis] section: a dual-pinion drive)")
+        v["kind"] = "dual_pinion"
     if v["model_backlash"] is None:
         v["model_backlash"] = "as_designed" if any(g.thinning > 0 for g in design.gears.values()) else "mid"
     for i, stage in enumerate(v["upstream_stages"]):

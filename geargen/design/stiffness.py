@@ -199,8 +199,8 @@ SUPPORTS = ("simple", "fixed", "cantilever")
 _KIND_KEYS = {
     "torsion": {"stiffness"},
     "linear": {"gear", "radius", "stiffness"},
-    "shaft_torsion": {"diameter", "bore_diameter", "length", "shear_modulus"},
-    "shaft_bending": {"gear", "radius", "diameter", "bore_diameter", "span", "load_position", "support",
+    "shaft_torsion": {"diameter", "bore_diameter", "length", "shear_modulus", "from_geometry"},
+    "shaft_bending": {"gear", "radius", "diameter", "bore_diameter", "span", "load_position", "support", "from_geometry",
                       "elastic_modulus"},
     "mesh": {"gears", "face_width", "elastic_modulus"},
 }
@@ -247,6 +247,9 @@ class ComponentSpec:
     support: str = "simple"
     elastic_modulus: float | None = None
     shear_modulus: float | None = None
+    # True: diameter, length, span and load position are those of the placed shaft
+    # (geargen.model.shafts), never typed a second time here
+    from_geometry: bool = False
 
     def __post_init__(self):
         where = f"stiffness.components.{self.name}"
@@ -279,10 +282,20 @@ class ComponentSpec:
             if (self.gears is None or len(self.gears) != 2 or not all(isinstance(g, str) for g in self.gears)):
                 raise DesignError(f"{where}.gears", f"{self.gears!r} is not a pair of gear names", "[\"PINION\", \"GEAR\"]")
             _positive(f"{where}.face_width", self.face_width, allow_none=True)
-        if self.kind == "shaft_torsion":
+        if self.from_geometry:
+            typed = [k for k in ("diameter", "length", "span", "load_position") if getattr(self, k) is not None]
+            if typed:
+                raise DesignError(f"{where}.{typed[0]}", "is the placed shaft's (from_geometry = true): "
+                                  "one home for every length", "leave it out, or from_geometry = false")
+            if self.kind == "shaft_torsion" and self.shaft is None:
+                raise DesignError(f"{where}.shaft", "missing: which placed shaft twists",
+                                  " | ".join(map(repr, SHAFTS)))
+            if self.kind == "shaft_bending" and self.gear is None:
+                raise DesignError(f"{where}.gear", "missing: the gear whose mesh force bends its shaft", "a gear name")
+        elif self.kind == "shaft_torsion":
             _positive(f"{where}.diameter", self.diameter)
             _positive(f"{where}.length", self.length)
-        if self.kind == "shaft_bending":
+        if self.kind == "shaft_bending" and not self.from_geometry:
             _positive(f"{where}.diameter", self.diameter)
             _positive(f"{where}.load_position", self.load_position)
             if self.support == "cantilever":
@@ -358,6 +371,7 @@ _COMPONENT_FIELDS = [
     Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
     Field("load_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
     Field("support", "string", required=False, default="simple", choices=SUPPORTS),
+    Field("from_geometry", "bool", required=False, default=False),
 ]
 _COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0),
                          Quantity("elastic_modulus", ("stress",), minimum=0.0),
@@ -385,7 +399,8 @@ def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
                          gear=v["gear"], gears=gears, face_width=v["face_width"], radius=v["radius"], stiffness=_value(stiffness), diameter=v["diameter"],
                          bore_diameter=v["bore_diameter"], length=v["length"], span=v["span"],
                          load_position=v["load_position"], support=v["support"],
-                         elastic_modulus=_value(v["elastic_modulus"]), shear_modulus=_value(v["shear_modulus"])))
+                         elastic_modulus=_value(v["elastic_modulus"]), shear_modulus=_value(v["shear_modulus"]),
+                         from_geometry=v["from_geometry"]))
 
 
 def stiffness_spec_from_table(data: Mapping[str, Any]) -> StiffnessSpec:

@@ -24,13 +24,81 @@ def loop_error_travels(layout: Layout | None) -> tuple[dict[str, float] | None, 
         "loop error from the synthesis error budget (Appendix rules)"
 
 
+#: the [stiffness.components] shaft names and the placed shaft (geargen.model.shafts) each means
+_PLACED = {"cluster": "cluster_a", "input": "input", "output": "output"}
+
+
+def placed_components(design: Design, layout: Layout | None) -> tuple:
+    """The design's stiffness components, those with ``from_geometry = true`` completed from the
+    placed shafts (:func:`geargen.model.shafts.shafts`): a shaft in bending gets the shaft's
+    diameter, its bearings' span and the gear's mid-face distance from the lower bearing; a shaft
+    in torsion the diameter and the length between the two loads it carries (the cluster's two
+    gears, the input gear and its bevel gear)."""
+    from dataclasses import replace
+
+    from geargen.design.stiffness import stiffness_design
+    from geargen.errors import DesignError
+    from geargen.model.shafts import shafts
+
+    components = stiffness_design(design).stiffness.components
+    if not any(c.from_geometry for c in components):
+        return components
+    placed = shafts(layout) if layout is not None else {}
+    out = []
+    for c in components:
+        if not c.from_geometry:
+            out.append(c)
+            continue
+        where = f"stiffness.components.{c.name}.from_geometry"
+        if c.kind == "shaft_bending":
+            shaft = next((sh for sh in placed.values() if c.gear in sh.loads), None)
+            if shaft is None:
+                raise DesignError(where, f"no placed shaft carries gears.{c.gear}", "a design whose [parts] places "
+                                  "its shafts, or the lengths given here with from_geometry = false")
+            if not shaft.diameter > 0:
+                raise DesignError(where, f"the shaft of gears.{c.gear} fills its bore, and the gear gives none",
+                                  "bore_diameter_* in the gear table")
+            out.append(replace(c, from_geometry=False, diameter=shaft.diameter,
+                               span=None if c.support == "cantilever" else shaft.span,
+                               load_position=shaft.load_position(c.gear)))
+        else:
+            shaft = placed.get(_PLACED.get(c.shaft, ""))
+            if shaft is None or len(shaft.loads) < 2:
+                raise DesignError(where, f"no placed {c.shaft} shaft carrying two loads", "a design whose [parts] "
+                                  "places its shafts, or diameter and length given here with from_geometry = false")
+            if not shaft.diameter > 0:
+                raise DesignError(where, f"the placed {c.shaft} shaft fills the gears' bore, and gears.{next(iter(shaft.loads))} "
+                                  "gives none", "bore_diameter_* in the gear table")
+            first, second = list(shaft.loads)[:2]
+            out.append(replace(c, from_geometry=False, diameter=shaft.diameter, length=shaft.distance(first, second)))
+    return tuple(out)
+
+
 def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
     """``(StiffnessSummary or None, note)``: None when the design has no [stiffness]/[preload]."""
     if not design.section("stiffness") or not design.section("preload"):
         return None, "no [stiffness] and [preload] sections"
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
-    return stiffness_summary(design, travels), note
+    return stiffness_summary(design, travels, components=placed_components(design, layout)), note
 
 
-__all__ = ["loop_error_travels", "stiffness"]
+def drive_from_design(design: Design, location: str = "output"):
+    """The two-path drive model (:class:`geargen.core.drive.TwoPathDrive`: ``k1``, ``k2``, ``k3``
+    and the loop preload) of ``design`` as every command computes it: from the resolved drive
+    when the design is one, so the placed shafts size its components.
+
+    Referred to the output by default: torques in N·mm, rotations in rad, stiffnesses in
+    N·mm/rad (divide by 1e3 for the N·m of the measurement contract). Components with scope
+    "common" are in series with the drive and not part of this model (``StiffnessSummary.common``).
+    """
+    from geargen.errors import DesignError
+    from geargen.model.layout import is_drive, resolve
+    summary, _ = stiffness(design, resolve(design) if is_drive(design) else None)
+    if summary is None:
+        raise DesignError("stiffness", "missing: the drive model needs [stiffness] and [preload] sections",
+                          "see assemblies/robot_joint.toml")
+    return summary.drive if location == "output" else summary.drive_at(location)
+
+
+__all__ = ["loop_error_travels", "placed_components", "stiffness", "drive_from_design"]

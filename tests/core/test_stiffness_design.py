@@ -8,7 +8,8 @@ from pathlib import Path
 import pytest
 
 from geargen.core import flexures as fx
-from geargen.core.stiffness import drive_from_design, stiffness_summary
+from geargen.core.stiffness import stiffness_summary
+from geargen.model.analysis import drive_from_design
 from geargen.design.assembly import design_from_dict, load_design
 from geargen.design.stiffness import (component_from_table, convert_quantity, preload_spec_from_table,
                                       stiffness_design)
@@ -85,20 +86,37 @@ def test_preload_section_needs_the_max_load():
 
 # --- the robot joint, recomputed by hand ----------------------------------------------------------
 
+def _robot_joint_summary():
+    """The robot joint's summary with the lengths of its from_geometry components from the resolved
+    drive's placed shafts (as every command computes it), and the [preload] loop error."""
+    from geargen.model import resolve
+    from geargen.model.analysis import placed_components
+    design = load_design(ROBOT)
+    return stiffness_summary(design, components=placed_components(design, resolve(design)))
+
+
 def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
-    s = stiffness_summary(load_design(ROBOT))
+    """Every length below is worked out by hand from the design file: the cluster's large gear
+    face 0..0.1875 in, the 0.0625 in gap, the small gear 0.25..0.5625 in; its bearings 0.196 in
+    wide a 0.02 in clearance beyond the faces, so supports at -0.118 and 0.6805 in: span
+    0.7985 in, the small gear's mid-face (0.40625 in) 0.52425 in from the lower support; the
+    shaft twists over 0.3125 in between the gears' mid-planes; the input shaft over 0.50 in
+    (input_shaft_to_bevel)."""
+    s = _robot_joint_summary()
     E, G = 207e3, 79.3e3
     cos20 = math.cos(20 * DEG)
     R2, R1 = 112 / 21, 3.0
     rb2, rb3, rb4 = 0.75 * IN * cos20, 21 / 64 * IN * cos20, 1.75 * IN * cos20
     mesh1 = E * 0.1875 * IN / 11 * (rb2 * R2) ** 2  # Eq. 1 at the large gear, reflected through R2
     mesh2 = E * 0.25 * IN / 11 * rb4 ** 2
-    shaft = G * math.pi * (0.25 * IN) ** 4 / 32 / (0.30 * IN) * R2 ** 2
+    shaft = G * math.pi * (0.25 * IN) ** 4 / 32 / (0.3125 * IN) * R2 ** 2
     ei = E * math.pi * (0.25 * IN) ** 4 / 64
-    bending = 3 * ei * 0.60 * IN / ((0.20 * IN) ** 2 * (0.40 * IN) ** 2) * (rb3 * R2) ** 2
+    span, a = 0.7985 * IN, 0.52425 * IN
+    bending = 3 * ei * span / (a ** 2 * (span - a) ** 2) * (rb3 * R2) ** 2
     bearings = 2 * 10e3 * (rb3 * R2) ** 2
     k_path = 1 / (1 / mesh1 + 1 / mesh2 + 1 / shaft + 1 / bending + 1 / bearings)
     assert s.drive.k1 == pytest.approx(k_path, rel=1e-12) and s.drive.k2 == pytest.approx(k_path, rel=1e-12)
+    assert k_path == pytest.approx(16.226e6, rel=1e-4)  # N·mm/rad; 17.28e6 with the lengths typed before
     common = 1 / (1 / (G * math.pi * (0.1875 * IN) ** 4 / 32 / (0.5 * IN) * (R1 * R2) ** 2)
                   + 1 / (G * math.pi * ((1.25 * IN) ** 4 - IN ** 4) / 32 / (0.4 * IN)))
     assert s.common.stiffness == pytest.approx(common, rel=1e-12)
@@ -127,7 +145,7 @@ def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
 
 def test_robot_joint_drive_from_design_and_other_locations():
     design = load_design(ROBOT)
-    s = stiffness_summary(design)
+    s = _robot_joint_summary()
     d = drive_from_design(design)
     assert (d.drive_type, d.k1, d.k2, d.k3, d.preload) == ("type2", s.drive.k1, s.drive.k2, s.drive.k3, s.drive.preload)
     at_input = drive_from_design(design, location="input")
@@ -141,9 +159,11 @@ def test_robot_joint_drive_from_design_and_other_locations():
 
 
 def test_robot_joint_with_a_synthesis_budget():
+    from geargen.model import resolve
+    from geargen.model.analysis import placed_components
     design = load_design(ROBOT)
     travels = {"sum": 0.0121648 * IN, "rss": 0.0068853 * IN, "mean": 0.00952505 * IN}
-    s = stiffness_summary(design, travels)
+    s = stiffness_summary(design, travels, components=placed_components(design, resolve(design)))
     assert [v.label for v in s.variations] == ["sum", "rss", "mean"]
     assert s.headline.label == "mean" and all(v.source == "synthesis" for v in s.variations)
     lam = s.lever
@@ -204,7 +224,10 @@ def test_type1_rejects_a_preload_spring_and_carriage_travel():
 
 
 def _gear_table(g):
-    return {"teeth": g.teeth, "module_mm": g.module, "pressure_angle_rad": g.pressure_angle, "face_width_mm": g.face_width}
+    table = {"teeth": g.teeth, "module_mm": g.module, "pressure_angle_rad": g.pressure_angle, "face_width_mm": g.face_width}
+    if g.hub.bore_diameter:
+        table["bore_diameter_mm"] = g.hub.bore_diameter  # the placed shafts fill the bores
+    return table
 
 
 def _c_axis(**extra):
@@ -262,8 +285,10 @@ def test_preload_set_twice_is_an_error():
     raw["preload"] = {**raw["preload"], "preload_Nm": 3.0}  # the springs' installed length also sets it
     twice = design_from_dict({"name": "rj", "length_unit": "in", "drive": {"type": "type2", "preload": "radial"},
                               "gears": {n: _gear_table(g) for n, g in design.gears.items()}, **raw})
+    from geargen.model import resolve
+    from geargen.model.analysis import stiffness
     with pytest.raises(DesignError) as info:
-        stiffness_summary(twice)
+        stiffness(twice, resolve(twice))
     assert info.value.field == "preload.preload"
 
 

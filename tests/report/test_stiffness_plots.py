@@ -21,6 +21,14 @@ ROBOT = Path(__file__).resolve().parents[2] / "assemblies" / "robot_joint.toml"
 IN = 25.4
 
 
+
+def _summary(design, travels=None):
+    """The stiffness summary as the commands compute it: from-geometry components sized by the
+    resolved drive's placed shafts (geargen.model.analysis)."""
+    from geargen.model import resolve
+    from geargen.model.analysis import placed_components
+    return stiffness_summary(design, travels, components=placed_components(design, resolve(design)))
+
 def _assert_real_png(path: Path):
     """A PNG that decodes, is a sensible size and carries a drawing, not a blank canvas."""
     import matplotlib.image as mpimg
@@ -43,7 +51,7 @@ def test_robot_joint_command_prints_summary_writes_plots_and_json(tmp_path, caps
     assert main(["stiffness", str(ROBOT), "--out", str(out), "--json", str(js)]) == 0
     text = capsys.readouterr().out
 
-    summary = stiffness_summary(load_design(ROBOT), budget)
+    summary = _summary(load_design(ROBOT), budget)
     d = summary.drive
     for needle in ("path 1 = path 2", "k_D (Eq. 5", "k_L (Eq. 6)", "k3, preload spring", "Preload variation",
                    "test budget", "Blade flexures", "Compression springs", "No warnings."):
@@ -77,7 +85,7 @@ def _artist(fig, gid, ax_index=0):
 
 def test_what_the_figures_draw_is_the_model():
     budget = {"sum": 0.0121648 * IN, "rss": 0.0068853 * IN, "mean": 0.00952505 * IN}
-    s = stiffness_summary(load_design(ROBOT), budget)
+    s = _summary(load_design(ROBOT), budget)
     d = s.drive
     # preload diagram: the two path lines cross at the preload point, with the paths' rates
     fig = preload_diagram_figure(s)
@@ -148,10 +156,10 @@ def test_no_loop_error_means_no_band_plot(tmp_path):
     sections = dict(design.sections)
     sections["preload"] = {k: v for k, v in sections["preload"].items() if not k.startswith("loop_error")}
     gears = {n: {"teeth": g.teeth, "diametral_pitch_per_in": 32, "pressure_angle_deg": 20,
-                 "face_width_mm": g.face_width} for n, g in design.gears.items()}
+                 "face_width_mm": g.face_width, "bore_diameter_mm": g.hub.bore_diameter} for n, g in design.gears.items()}
     bare = design_from_dict({"name": "rj", "length_unit": "in", "drive": {"type": "type2", "preload": "radial"},
                              "gears": gears, **sections})
-    s = stiffness_summary(bare)
+    s = _summary(bare)
     assert s.variations == ()
     assert set(write_stiffness_plots(s, tmp_path)) == {"preload_diagram", "torque_deflection"}
     assert "no loop error given" in format_summary(s)
@@ -184,6 +192,6 @@ def test_synthesis_budget_is_the_appendix_travel():
 def test_stiffness_ratio_names_the_equations_of_its_drive_type():
     """Eq. 4 is the type 1 ratio (Eq. 2 / Eq. 3); a type 2 drive's is Eq. 5 / Eq. 6 (it printed
     "Eq. 4 for type 1" beside the type 2 number)."""
-    text = format_summary(stiffness_summary(load_design(ROBOT)))
+    text = format_summary(_summary(load_design(ROBOT)))
     line = next(x for x in text.splitlines() if "k_D / k_L" in x)
     assert "(Eq. 5 / Eq. 6)" in line and "Eq. 4" not in line
