@@ -32,6 +32,7 @@ __all__ = [
     "working_pressure_angle", "working_centre_distance", "shift_sum_for_centre_distance",
     "mesh_geometry", "tight_mesh_centre_distance", "backlash_at_centre_distance",
     "SpecificSliding", "specific_sliding", "ShiftSplit", "split_profile_shift", "SHIFT_SPLIT_RULE",
+    "profile_shift_limits",
     "minimum_teeth_without_undercut", "rack_flank_addendum_coefficient", "undercut", "involute_start_radius",
     "tip_land", "check_tip_land",
     "span_length", "span_contact_radius", "recommended_teeth_spanned", "span_measurement",
@@ -682,6 +683,15 @@ class ShiftSplit:
 _SHIFT_LIMIT = 1.5  # GearSpec's range of profile shift coefficients
 
 
+def profile_shift_limits(spec: GearSpec) -> tuple[float, float]:
+    """(lowest, highest) normal profile shift coefficient x for which ``spec`` (its teeth, rack and
+    helix as they are) is a gear: GearSpec's -1.5 <= x <= 1.5, and the tip circle outside the base
+    circle, r + (h_a* + x) m_n > r_b, i.e. x > (r_b - r) / m_n - h_a* (a strict bound where it
+    is the lowest)."""
+    lowest = (spec.base_radius - spec.reference_radius) / spec.module - spec.addendum_coefficient
+    return max(-_SHIFT_LIMIT, lowest), _SHIFT_LIMIT
+
+
 def split_profile_shift(pair: GearPair, shift_sum: float) -> ShiftSplit:
     """Split ``shift_sum`` = x_n1 + x_n2 between the gears of ``pair`` by :data:`SHIFT_SPLIT_RULE`.
 
@@ -689,7 +699,8 @@ def split_profile_shift(pair: GearPair, shift_sum: float) -> ShiftSplit:
     used as given. Sliding is balanced by bracketing the shift of gear 1: raising it shortens
     the path of contact on gear 1's root and lengthens it on gear 2's, so the difference of the
     two root slidings (compared through atan, which keeps interference's -inf finite) changes
-    sign once. Each shift stays within [-1.5, 1.5] and keeps its tip above its base circle.
+    sign once. Each shift stays within :func:`profile_shift_limits` (GearSpec's range, tip
+    outside the base circle).
     Raises :class:`DesignError` (``shift_sum``) when the sum cannot be split within those limits.
     """
     from scipy.optimize import brentq  # lazily, as for the undercut boundary
@@ -697,14 +708,14 @@ def split_profile_shift(pair: GearPair, shift_sum: float) -> ShiftSplit:
     g1, g2 = pair.gear1, pair.gear2
     shift_sum = float(shift_sum)
 
-    def lowest(g):  # the tip must stay on or above the base circle
-        return max(-_SHIFT_LIMIT, (g.base_radius - g.reference_radius) / g.module - g.addendum_coefficient)
-
-    lo = max(lowest(g1), shift_sum - _SHIFT_LIMIT)
-    hi = min(_SHIFT_LIMIT, shift_sum - lowest(g2))
+    (lo1, hi1), (lo2, hi2) = profile_shift_limits(g1), profile_shift_limits(g2)
+    # a margin keeps each tip strictly outside its base circle at the ends of the range
+    margin = 1e-9
+    lo = max(lo1, shift_sum - hi2) + margin
+    hi = min(hi1, shift_sum - lo2) - margin
     if not (math.isfinite(shift_sum) and lo < hi):
         raise DesignError("shift_sum", f"{shift_sum!r} cannot be split between the two gears",
-                          f"({lowest(g1) + lowest(g2):.6g}, {2 * _SHIFT_LIMIT:.6g})")
+                          f"({lo1 + lo2:.6g}, {hi1 + hi2:.6g})")
     # the sum fixes the centre distance; it raises DesignError (profile_shift) if none exists
     centre_distance = working_centre_distance(shift_sum, pair.teeth_sum, g1.module, g1.pressure_angle, g1.helix_angle)
 
