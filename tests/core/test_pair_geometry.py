@@ -173,3 +173,14 @@ def test_circumferential_backlash_at_the_reference_circle():
     g1, g2 = spec(**kw1, thinning=0.03), spec(**kw2, thinning=0.05)
     b = geo.backlash_at_centre_distance(GearPair(g1, g2), geo.mesh_geometry(GearPair(g1, g2)).centre_distance)
     assert b.circumferential_reference == pytest.approx(0.08, rel=1e-10)
+
+
+def test_profile_shift_limits_put_the_tip_on_the_base_circle():
+    # lowest shift: r + (1 + x) m = r cos(alpha_t), i.e. x = -1 - z (1 - cos(alpha_t)) / (2 cos(beta))
+    for kw in (dict(teeth=12, module=3.0), dict(teeth=10, module=1.0, helix_angle=20 * DEG)):
+        g = spec(**kw)
+        alpha_t = math.atan(math.tan(20 * DEG) / math.cos(g.helix_angle))
+        lowest = -1 - g.teeth * (1 - math.cos(alpha_t)) / (2 * math.cos(g.helix_angle))
+        assert geo.profile_shift_limits(g) == pytest.approx((lowest, 1.5), abs=1e-12)
+    # for many teeth GearSpec's -1.5 is the tighter bound
+    assert geo.profile_shift_limits(spec(teeth=200)) == (-1.5, 1.5)
