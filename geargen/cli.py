@@ -28,6 +28,7 @@ COMMANDS = {
     "check": "geometric mesh checks of every mesh of an assembly",
     "build": "build a whole assembly into exports/<design file name>/",
     "fit": "fit a bench measurement, diagnose and report what the model missed",
+    "pair": "gear-pair calculator: centre distance, pressure angle, contact ratio, backlash, shifts",
 }
 
 EXIT_OK = 0

@@ -18,7 +18,7 @@ scipy is imported lazily, only where a root must be found numerically (undercut 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -31,6 +31,8 @@ __all__ = [
     "GearPair", "MeshGeometry", "MeshBacklash", "Undercut", "TipLand", "SpanMeasurement", "PinMeasurement",
     "working_pressure_angle", "working_centre_distance", "shift_sum_for_centre_distance",
     "mesh_geometry", "tight_mesh_centre_distance", "backlash_at_centre_distance",
+    "SpecificSliding", "specific_sliding", "ShiftSplit", "split_profile_shift", "SHIFT_SPLIT_RULE",
+    "profile_shift_limits",
     "minimum_teeth_without_undercut", "rack_flank_addendum_coefficient", "undercut", "involute_start_radius",
     "tip_land", "check_tip_land",
     "span_length", "span_contact_radius", "recommended_teeth_spanned", "span_measurement",
@@ -198,6 +200,7 @@ class MeshGeometry:
     involute_start_radii: tuple[float, float]  # where each gear's usable involute begins
     involute_interference: tuple[bool, bool]  # the mate's tip reaches below the usable involute
     tip_root_clearances: tuple[float, float]  # a' - r_a1 - r_f2, a' - r_a2 - r_f1
+    normal_working_pressure_angle: float  # sin(alpha_wn) = sin(alpha_wt) cos(beta_b); = alpha_wt for spur
 
 
 TIP_RADII_MODES = ("spec", "constant_clearance")
@@ -287,6 +290,9 @@ def mesh_geometry(pair: GearPair, centre_distance: float | None = None, tip_radi
         active_profile_start_radii=(sap1, sap2), involute_start_radii=(start1, start2),
         involute_interference=(bool(interf1), bool(interf2)),
         tip_root_clearances=(a - ra1 - g2.root_radius_standard, a - ra2 - g1.root_radius_standard),
+        # the flank normal at the working pitch cylinder: its transverse part is inclined alpha_wt,
+        # and the normal itself is tilted beta_b out of the transverse plane
+        normal_working_pressure_angle=math.asin(math.sin(alpha_w) * math.cos(g1.base_helix_angle)),
     )
 
 
@@ -330,6 +336,7 @@ class MeshBacklash:
     tight_mesh_centre_distance: float  # zero backlash here (nan if the teeth are too thin for any)
     working_pressure_angle: float | np.ndarray  # transverse, at the centre distance
     circumferential: float | np.ndarray  # j_wt: transverse arc at the working pitch circles
+    circumferential_reference: float | np.ndarray  # j_t = j_bt / cos(alpha_t): transverse arc at the reference circles
     base_tangent: float | np.ndarray  # j_bt = j_wt cos(alpha_wt): along the transverse line of action
     normal: float | np.ndarray  # j_bn = j_wt cos(alpha_wt) cos(beta_b): normal to the flanks
     angular1: float | np.ndarray  # free rotation of gear 1 with gear 2 held: j_wt / r_w1
@@ -347,6 +354,10 @@ def backlash_at_centre_distance(pair: GearPair, centre_distance) -> MeshBacklash
       r_wi = r_bi / cos(alpha_wt) of this centre distance:
       j_wt = (z1 + z2) m_t cos(alpha_t) / cos(alpha_wt) * (inv(alpha_wt) - inv(alpha_w0)),
       alpha_w0 the tight-mesh angle (:func:`tight_mesh_centre_distance`).
+    * ``circumferential_reference`` j_t = j_bt / cos(alpha_t): the same free play as a transverse
+      arc on the reference circles (where tooth thinning is stated); = 2 a (inv(alpha_wt) -
+      inv(alpha_w0)) with a the standard centre distance, and equal to the summed thinning at the
+      working centre distance of the profile shifts.
     * ``base_tangent`` j_bt = j_wt cos(alpha_wt) = 2 (r_b1 + r_b2)(inv(alpha_wt) - inv(alpha_w0)):
       the gap along the transverse line of action (for spur gears this is the normal backlash).
     * ``normal`` j_bn = j_wt cos(alpha_wt) cos(beta_b): the shortest distance between the
@@ -376,7 +387,8 @@ def backlash_at_centre_distance(pair: GearPair, centre_distance) -> MeshBacklash
         a_tight = math.nan
     return MeshBacklash(
         centre_distance=_out(a), tight_mesh_centre_distance=a_tight, working_pressure_angle=_out(alpha_w),
-        circumferential=_out(j_wt), base_tangent=_out(j_bt), normal=_out(j_bt * math.cos(g1.base_helix_angle)),
+        circumferential=_out(j_wt), circumferential_reference=_out(j_bt / math.cos(g1.transverse_pressure_angle)),
+        base_tangent=_out(j_bt), normal=_out(j_bt * math.cos(g1.base_helix_angle)),
         angular1=_out(j_bt / rb1), angular2=_out(j_bt / rb2), centre_distance_change=_out(a - a_tight),
     )
 
@@ -578,6 +590,177 @@ def check_tip_land(spec: GearSpec, minimum_thickness: float = 0.0) -> TipLand:
                             f"flanks meet at {land.pointed_radius:.6g} mm, required tip land "
                             f">= {minimum_thickness:.6g} mm); reduce profile_shift, addendum_coefficient or thinning")
     return land
+
+
+# ---------------------------------------------------------------------------------------------
+# Specific sliding, and how to split a sum of profile shifts between the two gears
+# ---------------------------------------------------------------------------------------------
+
+@dataclass(frozen=True)
+class SpecificSliding:
+    """Specific sliding at the two ends of the path of contact; see :func:`specific_sliding`.
+
+    Pairs are (gear 1, gear 2), dimensionless. ``root``: at each gear's lowest contact point, where
+    the mate's tip touches it (negative and largest in magnitude on a normal mesh; -inf when the
+    mate's tip reaches the base tangent point or beyond, i.e. involute interference). ``tip``: at
+    each gear's own tip.
+    """
+
+    centre_distance: float  # mm
+    root: tuple[float, float]
+    tip: tuple[float, float]
+
+
+def specific_sliding(pair: GearPair, centre_distance: float | None = None,
+                     tip_radii: tuple[float, float] | None = None) -> SpecificSliding:
+    """Specific sliding of each flank at the ends of the path of contact (transverse section).
+
+    A contact point on the line of action lies at roll length rho_i (the flank's radius of
+    curvature) from gear i's base tangent point, rho_1 + rho_2 = a' sin(alpha_wt). Each flank
+    passes the contact at rho_i omega_i, so the sliding speed over gear 1's own speed is
+    zeta_1 = 1 - rho_2 omega_2 / (rho_1 omega_1) = 1 - rho_2 z_1 / (rho_1 z_2), and
+    zeta_2 = 1 - rho_1 z_2 / (rho_2 z_1); zero at the pitch point. A gear's root contact has the
+    mate's tip at rho_mate = sqrt(r_a,mate^2 - r_b,mate^2).
+
+    Parameters
+    ----------
+    pair : GearPair
+    centre_distance : float, optional
+        a' (mm); default the working centre distance of the profile shifts.
+    tip_radii : (float, float), optional
+        Tip radii (mm); default each gear's ``tip_radius``.
+    """
+    g1, g2 = pair.gear1, pair.gear2
+    a = (working_centre_distance(pair.shift_sum, pair.teeth_sum, g1.module, g1.pressure_angle, g1.helix_angle)
+         if centre_distance is None else float(centre_distance))
+    rb1, rb2 = g1.base_radius, g2.base_radius
+    if not (math.isfinite(a) and a > rb1 + rb2):
+        raise DesignError("centre_distance", f"{a!r} mm does not clear the base circles", f"> {rb1 + rb2:.6g} mm")
+    ra1, ra2 = (g1.tip_radius, g2.tip_radius) if tip_radii is None else (float(v) for v in tip_radii)
+    for i, (ra, rb) in enumerate(((ra1, rb1), (ra2, rb2)), start=1):
+        if not (math.isfinite(ra) and ra >= rb):
+            raise DesignError(f"gear{i}.tip_radius", f"{ra:.6g} mm is below the base circle", f">= {rb:.6g} mm")
+    line = math.sqrt(a * a - (rb1 + rb2) ** 2)  # a' sin(alpha_wt), between the base tangent points
+    roll_tip1, roll_tip2 = math.sqrt(ra1 * ra1 - rb1 * rb1), math.sqrt(ra2 * ra2 - rb2 * rb2)
+    speed_2_over_1 = g1.teeth / g2.teeth  # omega_2 / omega_1
+
+    def zeta(rho_own, rho_mate, mate_speed_over_own):
+        if rho_own <= 0:
+            return -math.inf
+        return 1.0 - rho_mate * mate_speed_over_own / rho_own
+
+    root = (zeta(line - roll_tip2, roll_tip2, speed_2_over_1), zeta(line - roll_tip1, roll_tip1, 1 / speed_2_over_1))
+    tip = (zeta(roll_tip1, line - roll_tip1, speed_2_over_1), zeta(roll_tip2, line - roll_tip2, 1 / speed_2_over_1))
+    return SpecificSliding(centre_distance=a, root=root, tip=tip)
+
+
+SHIFT_SPLIT_RULE = (
+    "equal specific sliding at the two roots (the lowest contact point of each gear, tips as built, "
+    "addendum (h_a* + x) m_n, at the working centre distance of the sum); a shift below its minimum "
+    "without undercut is then raised to that minimum and the other gear takes the rest of the sum")
+
+
+@dataclass(frozen=True)
+class ShiftSplit:
+    """A sum of normal profile shifts split between two gears; see :func:`split_profile_shift`.
+
+    ``success`` is False (and ``message`` says why) when no split balances the sliding within the
+    gears' range of shifts, or when the sum is too small for both gears to escape undercut; the
+    shifts are then the best the rule gives, not a recommendation to use blindly.
+    """
+
+    shift_sum: float
+    profile_shifts: tuple[float, float]  # the recommendation
+    balanced_shifts: tuple[float, float]  # equal root specific sliding, before the undercut rule
+    root_specific_sliding: tuple[float, float]  # at ``profile_shifts``
+    minimum_profile_shifts: tuple[float, float]  # each gear's minimum without undercut
+    raised_for_undercut: tuple[bool, bool]
+    success: bool
+    message: str
+    rule: str = SHIFT_SPLIT_RULE
+
+
+_SHIFT_LIMIT = 1.5  # GearSpec's range of profile shift coefficients
+
+
+def profile_shift_limits(spec: GearSpec) -> tuple[float, float]:
+    """(lowest, highest) normal profile shift coefficient x for which ``spec`` (its teeth, rack and
+    helix as they are) is a gear: GearSpec's -1.5 <= x <= 1.5, and the tip circle outside the base
+    circle, r + (h_a* + x) m_n > r_b, i.e. x > (r_b - r) / m_n - h_a* (a strict bound where it
+    is the lowest)."""
+    lowest = (spec.base_radius - spec.reference_radius) / spec.module - spec.addendum_coefficient
+    return max(-_SHIFT_LIMIT, lowest), _SHIFT_LIMIT
+
+
+def split_profile_shift(pair: GearPair, shift_sum: float) -> ShiftSplit:
+    """Split ``shift_sum`` = x_n1 + x_n2 between the gears of ``pair`` by :data:`SHIFT_SPLIT_RULE`.
+
+    The profile shifts the pair carries are ignored; everything else (teeth, rack, thinning) is
+    used as given. Sliding is balanced by bracketing the shift of gear 1: raising it shortens
+    the path of contact on gear 1's root and lengthens it on gear 2's, so the difference of the
+    two root slidings (compared through atan, which keeps interference's -inf finite) changes
+    sign once. Each shift stays within :func:`profile_shift_limits` (GearSpec's range, tip
+    outside the base circle).
+    Raises :class:`DesignError` (``shift_sum``) when the sum cannot be split within those limits.
+    """
+    from scipy.optimize import brentq  # lazily, as for the undercut boundary
+
+    g1, g2 = pair.gear1, pair.gear2
+    shift_sum = float(shift_sum)
+
+    (lo1, hi1), (lo2, hi2) = profile_shift_limits(g1), profile_shift_limits(g2)
+    # a margin keeps each tip strictly outside its base circle at the ends of the range
+    margin = 1e-9
+    lo = max(lo1, shift_sum - hi2) + margin
+    hi = min(hi1, shift_sum - lo2) - margin
+    if not (math.isfinite(shift_sum) and lo < hi):
+        raise DesignError("shift_sum", f"{shift_sum!r} cannot be split between the two gears",
+                          f"({lo1 + lo2:.6g}, {hi1 + hi2:.6g})")
+    # the sum fixes the centre distance; it raises DesignError (profile_shift) if none exists
+    centre_distance = working_centre_distance(shift_sum, pair.teeth_sum, g1.module, g1.pressure_angle, g1.helix_angle)
+
+    def shifted(x1):
+        x1 = min(max(x1, lo), hi)
+        return GearPair(replace(g1, profile_shift=x1), replace(g2, profile_shift=shift_sum - x1))
+
+    def imbalance(x1):
+        root = specific_sliding(shifted(x1), centre_distance).root
+        return math.atan(root[0]) - math.atan(root[1])
+
+    f_lo, f_hi = imbalance(lo), imbalance(hi)
+    success, message = True, "balanced"
+    if f_lo == 0:
+        x1 = lo
+    elif f_hi == 0:
+        x1 = hi
+    elif (f_lo < 0) != (f_hi < 0):
+        x1 = brentq(imbalance, lo, hi, xtol=1e-12, rtol=1e-14)
+    else:
+        x1 = lo if abs(f_lo) < abs(f_hi) else hi
+        success, message = False, "no split of the sum balances the sliding within the range of shifts; nearest end taken"
+    balanced = (x1, shift_sum - x1)
+
+    minimum = (undercut(g1).minimum_profile_shift, undercut(g2).minimum_profile_shift)
+    x = list(balanced)
+    raised = [False, False]
+    below = [x[i] < minimum[i] for i in (0, 1)]
+    if any(below):
+        if shift_sum < minimum[0] + minimum[1]:
+            success = False
+            message = (f"the sum {shift_sum:.6g} is below the two minimum shifts without undercut together "
+                       f"({minimum[0]:.6g} + {minimum[1]:.6g}): no split avoids undercut on both gears")
+        else:
+            i = 0 if below[0] else 1
+            x[i] = minimum[i]
+            x[1 - i] = shift_sum - minimum[i]
+            raised[i] = True
+            message = f"gear {i + 1} raised to its minimum shift without undercut"
+    final = shifted(x[0])
+    return ShiftSplit(shift_sum=shift_sum, profile_shifts=(final.gear1.profile_shift, final.gear2.profile_shift),
+                      balanced_shifts=balanced,
+                      root_specific_sliding=specific_sliding(final, centre_distance).root,
+                      minimum_profile_shifts=minimum, raised_for_undercut=(raised[0], raised[1]),
+                      success=success, message=message)
 
 
 # ---------------------------------------------------------------------------------------------

@@ -1,0 +1,191 @@
+"""``geargen pair``: the gear-pair calculator (pure math, no CAD import)::
+
+    geargen pair --teeth 12 24 --module 3 --profile-shift 0.6 0.36
+    geargen pair --teeth 16 48 --diametral-pitch 32 --centre-distance 1.004 --profile-shift 0 0
+    geargen pair --teeth 12 60 --module 3 --helix-angle 30 --hand right --face-width 20 --centre-distance 125
+
+Prints, in the design's unit (mm with ``--module``, inches with ``--diametral-pitch``): the
+diameters of each gear (reference, base, tip, root, working pitch), the standard, working and
+operating centre distances, the working pressure angle (transverse, and normal for helical
+pairs), the contact ratios, the backlash of each kind, undercut and the minimum shift without
+it, the tip land, span and over-pins/balls measurements, and a recommended split of the sum
+of profile shifts (the rule is printed). ``--json FILE|-`` writes the same numbers
+(:func:`geargen.report.pair.pair_data`).
+
+``--centre-distance``: the shift sum for zero backlash there (the inverse) is always reported.
+With ``--profile-shift`` the pair is taken as given and its backlash at that centre distance is
+reported; without it the shifts are the recommended split of that sum (backlash then comes
+from ``--thinning`` only). The printout says which.
+
+All gear inputs are in the normal system: ``--module``/``--diametral-pitch``, ``--pressure-angle``
+and ``--profile-shift`` are normal values for a helical pair.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import sys
+
+from geargen.design.gear import GearSpec, gear_from_table
+from geargen.errors import DesignError
+from geargen.units import from_mm, to_mm
+
+#: face width the gears are given when --face-width is not: as wide as GearSpec allows (mm), so
+#: that no measurement is refused for want of face; the overlap ratio is then not reported
+_UNSTATED_FACE_WIDTH_MM = 5000.0
+
+
+def add_arguments(p) -> None:
+    p.add_argument("--teeth", nargs=2, type=int, metavar=("Z1", "Z2"), required=True,
+                   help="teeth of gear 1 (the pinion) and gear 2")
+    pitch = p.add_mutually_exclusive_group(required=True)
+    pitch.add_argument("--module", type=float, metavar="MM", help="normal module in mm (metric: lengths in mm)")
+    pitch.add_argument("--diametral-pitch", type=float, metavar="PER_IN",
+                       help="normal diametral pitch, teeth per inch (inch design: lengths in inches)")
+    p.add_argument("--pressure-angle", type=float, default=20.0, metavar="DEG",
+                   help="normal pressure angle, degrees (default 20)")
+    p.add_argument("--helix-angle", type=float, default=0.0, metavar="DEG", help="helix angle, degrees (default 0: spur)")
+    p.add_argument("--hand", choices=("right", "left"), default=None,
+                   help="helix hand of gear 1 (default right); gear 2 has the opposite hand")
+    p.add_argument("--profile-shift", type=float, nargs=2, default=None, metavar=("X1", "X2"),
+                   help="normal profile shift coefficients (default 0 0, or with --centre-distance the "
+                        "recommended split of the sum it needs)")
+    p.add_argument("--face-width", type=float, default=None, metavar="LEN",
+                   help="common face width in the design's unit, for the overlap ratio")
+    p.add_argument("--centre-distance", type=float, default=None, metavar="LEN",
+                   help="operating centre distance in the design's unit (default: the working centre distance "
+                        "of the shifts)")
+    p.add_argument("--thinning", type=float, nargs=2, default=None, metavar=("T1", "T2"),
+                   help="tooth thinning for backlash, circumferential (transverse arc) at the reference circle, "
+                        "in the design's unit (default 0 0)")
+    p.add_argument("--json", metavar="FILE", default=None, help="write the numbers as JSON ('-' for standard output)")
+
+
+#: gear-table key (without a unit suffix) -> the option that sets it
+_FLAGS = {"teeth": "--teeth", "module_mm": "--module", "diametral_pitch_per_in": "--diametral-pitch",
+          "pressure_angle_deg": "--pressure-angle", "helix_angle_deg": "--helix-angle", "hand": "--hand",
+          "profile_shift": "--profile-shift", "face_width": "--face-width", "thinning_circumferential": "--thinning"}
+#: options given once for both gears: their messages need not say which gear
+_COMMON = {"--module", "--diametral-pitch", "--pressure-angle", "--helix-angle", "--face-width"}
+
+
+def _flag(key: str) -> str:
+    for stem, flag in _FLAGS.items():
+        if key == stem or key.startswith(stem + "_"):
+            return flag
+    return f"--{key.replace('_', '-')}"
+
+
+def gears_from_args(args) -> tuple[GearSpec, GearSpec, str]:
+    """The two gears the options describe (validated as a design file's ``[gear]`` table is), and
+    the length unit. Errors name the option and, for per-gear values, the gear."""
+    unit = "mm" if args.module is not None else "in"
+    helical = args.helix_angle != 0
+    if args.hand is not None and not helical:
+        raise DesignError("--hand", "a spur pair has no hand", "--hand only with --helix-angle > 0")
+    hand1 = args.hand or "right"
+    hands = (hand1, "left" if hand1 == "right" else "right") if helical else ("right", "right")
+    shifts = args.profile_shift or (0.0, 0.0)
+    thinning = args.thinning or (0.0, 0.0)
+    if args.face_width is not None and not (math.isfinite(args.face_width) and args.face_width > 0):
+        raise DesignError("--face-width", f"{args.face_width!r} is out of range", f"> 0 {unit}")
+    gears = []
+    for i in range(2):
+        table = {"teeth": args.teeth[i], "pressure_angle_deg": args.pressure_angle,
+                 "helix_angle_deg": args.helix_angle, "hand": hands[i], "profile_shift": shifts[i],
+                 f"thinning_circumferential_{unit}": thinning[i]}
+        if args.module is not None:
+            table["module_mm"] = args.module
+        else:
+            table["diametral_pitch_per_in"] = args.diametral_pitch
+        if args.face_width is None:
+            table["face_width_mm"] = _UNSTATED_FACE_WIDTH_MM
+        else:
+            table[f"face_width_{unit}"] = args.face_width
+        try:
+            gears.append(gear_from_table(table, where="options", name=f"gear {i + 1}", length_unit=unit))
+        except DesignError as exc:
+            flag = _flag(exc.field.split(".", 1)[1]) if exc.field.startswith("options.") else exc.field
+            problem = exc.problem if flag in _COMMON else f"gear {i + 1}: {exc.problem}"
+            raise DesignError(flag, problem, exc.allowed) from None
+    from geargen.core.geometry import profile_shift_limits
+
+    for i, g in enumerate(gears):
+        lowest = profile_shift_limits(g)[0]
+        if g.tip_radius <= g.base_radius:
+            raise DesignError("--profile-shift", f"gear {i + 1}: {g.profile_shift!r} puts the tip circle inside the "
+                              "base circle", f"> {lowest:.6g} for {g.teeth} teeth")
+    return gears[0], gears[1], unit
+
+
+def check_centre_distance(args, gear1: GearSpec, gear2: GearSpec, unit: str) -> float | None:
+    """``--centre-distance`` in mm, refused (in the design's unit) where no mesh exists, or, without
+    ``--profile-shift``, where the shift sum it needs is beyond what the gears can carry."""
+    if args.centre_distance is None:
+        return None
+    from geargen.core.geometry import profile_shift_limits, working_centre_distance
+
+    base_sum = gear1.base_radius + gear2.base_radius
+    value = to_mm(args.centre_distance, unit)
+    if not (math.isfinite(value) and value > base_sum):
+        raise DesignError("--centre-distance", f"{args.centre_distance!r} {unit} does not clear the base circles",
+                          f"> {from_mm(base_sum, unit):.6g} {unit}, the sum of the base radii")
+    if args.profile_shift is None:
+        # the shifts will be a split of the sum this centre distance needs: that sum must be one
+        # the two gears can share (profile_shift_limits)
+        (lo1, hi1), (lo2, hi2) = profile_shift_limits(gear1), profile_shift_limits(gear2)
+        teeth_sum = gear1.teeth + gear2.teeth
+
+        def centre_distance_of(shift_sum):
+            try:
+                return float(working_centre_distance(shift_sum, teeth_sum, gear1.module, gear1.pressure_angle,
+                                                     gear1.helix_angle))
+            except DesignError:  # no working pressure angle: the base circles are the limit
+                return base_sum
+
+        smallest, biggest = centre_distance_of(lo1 + lo2), centre_distance_of(hi1 + hi2)
+        if not smallest < value <= biggest:
+            raise DesignError("--centre-distance", f"{args.centre_distance!r} {unit} needs a profile shift sum that the "
+                              f"two gears cannot share (x1 + x2 in ({lo1 + lo2:.6g}, {hi1 + hi2:.6g}])",
+                              f"({from_mm(smallest, unit):.6g}, {from_mm(biggest, unit):.6g}] {unit}, or give "
+                              "--profile-shift to see the backlash there")
+    return value
+
+
+def run(args) -> int:
+    from geargen.report.pair import format_pair, pair_data
+
+    gear1, gear2, unit = gears_from_args(args)
+    centre_distance = check_centre_distance(args, gear1, gear2, unit)
+    if args.profile_shift is not None:
+        source = "given"
+    else:
+        source = "default" if centre_distance is None else "centre_distance"
+    try:
+        data = pair_data(gear1, gear2, shift_source=source, centre_distance=centre_distance,
+                         face_width=None if args.face_width is None else to_mm(args.face_width, unit),
+                         diametral_pitch=args.diametral_pitch)
+    except DesignError as exc:
+        # the core names its own fields; say which option they came from
+        flag = {"shift_sum": "--centre-distance" if source == "centre_distance" else "--profile-shift",
+                "profile_shift": "--profile-shift", "centre_distance": "--centre-distance"}.get(exc.field)
+        if flag is None:
+            raise
+        raise DesignError(flag, exc.problem, exc.allowed) from None
+    from geargen import __version__
+    data = {"generator": "geargen pair", "version": __version__, **data}
+    data["options"] = {k: getattr(args, k) for k in ("teeth", "module", "diametral_pitch", "pressure_angle",
+                                                      "helix_angle", "hand", "profile_shift", "face_width",
+                                                      "centre_distance", "thinning")}
+    print(format_pair(data), file=sys.stderr if args.json == "-" else sys.stdout)
+    if args.json:
+        from geargen.outputs import write_text
+        write_text(args.json, json.dumps(data, indent=2, allow_nan=False, default=_json_default) + "\n", "--json")
+    return 0
+
+
+def _json_default(value):
+    if hasattr(value, "item"):
+        return value.item()
+    raise TypeError(f"not JSON serialisable: {type(value).__name__}")
