@@ -494,8 +494,9 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     out.touch(motor, gearhead, "motor on the gearhead")
 
     # --- each dual pinion
+    from geargen.model.shafts import c_axis_shafts
+    placed_shafts = c_axis_shafts(layout, s)
     d_cs = s["cluster_shaft_diameter"]
-    cbw, cbod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
     cw, cod, lug, block = s["stop_collar_width"], s["stop_collar_outer_diameter"], s["stop_lug_length"], s["stop_block_size"]
     z_floor = math.inf
     for side in ("a", "b"):
@@ -506,25 +507,25 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
                                   f"{_bore(part.spec):.6g} mm")
         x, y = small.centre
         shift = layout.axial_shift.get(f"cluster_{side}", 0.0)
-        zs0, zs1 = small.height
-        zl0, zl1 = large.height
+        zl1 = large.height[1]
         ring_w = s["friction_ring_width"]
         ring = out.add(f"friction_ring_{side}", P.cylinder(s["friction_ring_outer_diameter"], ring_w, d_cs),
                        _at(x, y, zl1), f"cluster_{side}", "friction",
                        description="frictional preload interface: locking ring clamping the large gear to the "
                                    "pinion shaft (released, turned to wind the loop, clamped)")
         out.touch(ring, large.name, "frictional interface on the large gear")
-        zb_hi = zl0 - gap - cbw
-        zb_lo = zb_hi - s["cluster_bearing_spacing"]
-        z_collar = zb_lo - gap - cw
-        shaft = out.add(f"cluster_shaft_{side}", out.shared(P.shaft, d_cs, zs1 - z_collar), _at(x, y, z_collar), f"cluster_{side}",
-                        "shaft", description=f"dual pinion shaft d {d_cs:.4g} mm (slides with the pinion)")
+        # shaft and quill bearings where the model places them (the stiffness reads the same)
+        sh = placed_shafts[f"cluster_{side}"]
+        z_collar = sh.z_lo
+        shaft = out.add(sh.name, out.shared(P.shaft, sh.diameter, sh.length), _at(x, y, sh.z_lo), f"cluster_{side}",
+                        "shaft", description=f"dual pinion shaft d {sh.diameter:.4g} mm (slides with the pinion)")
         for part in (small.name, large.name, ring):
             out.touch(shaft, part, "on the pinion shaft")
-        for where, z in (("lower", zb_lo), ("upper", zb_hi)):
-            b = out.add(f"cluster_bearing_{where}_{side}", out.shared(P.bearing, d_cs, cbod, cbw), _at(x, y, z), f"cluster_{side}",
-                        "bearing", description=f"{d_cs:.4g} x {cbod:.4g} x {cbw:.4g} mm in the sliding quill")
-            out.touch(b, shaft, "bearing on its shaft")
+        for b in sh.bearings:
+            ring_b = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(x, y, b.z),
+                             f"cluster_{side}", "bearing",
+                             description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm in the sliding quill")
+            out.touch(ring_b, shaft, "bearing on its shaft")
         # stop collar at the shaft's lower end, its lug pointing radially out from the spindle
         lug_w = min(cw, cod / 2)
         collar = P.fuse([P.cylinder(cod, cw, d_cs),

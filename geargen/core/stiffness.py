@@ -81,6 +81,36 @@ def shaft_bending_stiffness(elastic_modulus: float, diameter: float, span: float
     raise DesignError("support", f"{support!r} is not a valid choice", "'simple', 'fixed', 'cantilever'")
 
 
+def supported_shaft_compliance(elastic_modulus: float, diameter: float, span: float, load_position: float,
+                               bearing_stiffness: tuple[float, float], bore: float = 0.0) -> tuple[float, float]:
+    """Lateral compliance (mm/N) and slope per unit load (rad/N) at a gear on a round shaft carried
+    by two bearings ``span`` apart, the gear at ``load_position`` from the first (negative, or
+    beyond ``span``: overhung), the bearings of radial stiffness ``bearing_stiffness`` (N/mm).
+
+    Exact for a linear beam on elastic point supports, by superposition: the beam on rigid supports
+    (between them ``a^2 b^2 / (3 E I L)``; overhung by ``c`` beyond a support ``c^2 (L + c) / (3 E I)``)
+    plus the rigid-body motion of the shaft on its bearings, whose reactions follow the lever
+    (``R1 = P (L - z) / L``, ``R2 = P z / L``).
+    """
+    ei = elastic_modulus * round_section_second_moment(diameter, bore)
+    L, z = span, load_position
+    if not L > 0:
+        raise DesignError("span", f"{L!r} mm: two bearings at one place", "> 0")
+    k1, k2 = bearing_stiffness
+    r1, r2 = (L - z) / L, z / L  # reactions per unit load (signed)
+    bearings = r1 * r1 / k1 + r2 * r2 / k2
+    tilt = (r2 / k2 - r1 / k1) / L  # rigid-body slope per unit load
+    if 0 <= z <= L:
+        a, b = z, L - z
+        bending = a * a * b * b / (3 * ei * L)
+        slope = a * b * (b - a) / (3 * ei * L)  # beam slope under the load (simply supported)
+    else:
+        c = z - L if z > L else -z
+        bending = c * c * (L + c) / (3 * ei)
+        slope = c * (2 * L + 3 * c) / (6 * ei) * (1 if z > L else -1)
+    return bearings + bending, tilt + slope
+
+
 def series(*stiffnesses):
     """Stiffnesses in series: ``1 / sum(1/k)``. ``inf`` (rigid) adds nothing; arrays broadcast."""
     with np.errstate(divide="ignore"):
@@ -215,7 +245,7 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
                         train: DualPinionTrain | None) -> ComponentStiffness:
     """Reduce one design component to torsion at the output."""
     where = f"stiffness.components.{spec.name}"
-    if spec.from_geometry:
+    if spec.from_geometry and not spec.placed:
         raise DesignError(f"{where}.from_geometry", "its lengths come from the placed shafts, which only the resolved "
                           "drive knows (geargen.model.analysis.stiffness)", "a design with [parts] placing its shafts")
     e = spec.elastic_modulus or stiffness.elastic_modulus
@@ -237,6 +267,15 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
                                             spec.bore_diameter)
             detail = f"{spec.support} shaft d={spec.diameter:.4g} mm in bending"
         unit = "N/mm"
+        ratio = _component_location(spec, train, spec.gear, where)
+    elif spec.kind == "shaft_support":
+        radius = _gear_base_radius(design, spec.gear, f"{where}.gear")
+        compliance, _ = supported_shaft_compliance(e, spec.diameter, spec.span, spec.load_position,
+                                                   (spec.stiffness, spec.stiffness), spec.bore_diameter)
+        local, unit = 1.0 / compliance, "N/mm"
+        where_load = ("between its bearings" if 0 <= spec.load_position <= spec.span else "overhung")
+        detail = (f"shaft d={spec.diameter:.4g} mm on bearings {spec.span:.4g} mm apart ({spec.stiffness:.4g} N/mm "
+                  f"each), gear {where_load} at {spec.load_position:.4g} mm")
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "mesh":
         a, b = spec.gears
@@ -449,6 +488,29 @@ LOCATION_NAMES = {"output": "output torsion", "cluster": "cluster-shaft torsion"
 
 
 @dataclass(frozen=True)
+class SupportDeflection:
+    """A gear on its placed shaft and bearings under the mesh force of the preload (mm, rad, N):
+    how far it moves along the line of action and how much it tilts, and the misalignment that
+    tilt makes across its face (``tilt * face_width``)."""
+
+    component: str
+    gear: str
+    force: float
+    deflection: float
+    tilt: float
+    face_width: float
+
+    @property
+    def misalignment(self) -> float:
+        return abs(self.tilt) * self.face_width
+
+
+#: a tilt making more than this across a face (mm) is warned about: about the helix-form tolerance
+#: of an ISO 1328 grade 6 gear of 20-100 mm face, which a mesh misaligned by more loses
+MISALIGNMENT_WARNING = 0.010
+
+
+@dataclass(frozen=True)
 class StiffnessSummary:
     """Everything the stiffness step knows about a design; output-referred internal units.
 
@@ -488,6 +550,7 @@ class StiffnessSummary:
     beam: BeamPinion | None = None
     engagement: HelicalEngagement | None = None
     warnings: tuple[str, ...] = field(default_factory=tuple)
+    supports: tuple["SupportDeflection", ...] = ()
 
     # --- drive quantities ---
     @property
@@ -540,6 +603,10 @@ class StiffnessSummary:
             "reference": "output torsion",
             "report_location": self.location,
             "report_location_ratio": self.location_ratio,
+            "supports": [{"component": u.component, "gear": u.gear, "force_N": u.force, "deflection_um": u.deflection * 1e3,
+                          "stiffness_N_per_um": u.force / u.deflection * 1e-3, "tilt_urad": u.tilt * 1e6,
+                          "misalignment_um": u.misalignment * 1e3, "face_width_mm": u.face_width}
+                         for u in self.supports],
             "paths": [
                 {"name": p.name, "stiffness_Nm_per_rad": p.stiffness * nm,
                  "components": [{"name": c.name, "kind": c.kind, "scope": c.scope, "local": c.local,
@@ -845,6 +912,26 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         engagement = helical_engagement(gear.helix_angle, gear.reference_radius, eg.backlash, windup,
                                         eg.engagement_length or gear.face_width, eg.clearance)
 
+    # --- gears on placed shafts: deflection and tilt under the preload's mesh force ---
+    supports = []
+    used = {c.name: c for c in (spec.components if components is None else components)}
+    for comp in comps:
+        c = used.get(comp.name)
+        if c is None or c.kind != "shaft_support":
+            continue
+        e = c.elastic_modulus or spec.elastic_modulus
+        compliance, tilt = supported_shaft_compliance(e, c.diameter, c.span, c.load_position,
+                                                      (c.stiffness, c.stiffness), c.bore_diameter)
+        force = preload / (comp.ratio * comp.radius)  # the path's preload torque as mesh force at the gear
+        sup = SupportDeflection(c.name, c.gear, force, force * compliance, force * tilt,
+                                design.gears[c.gear].face_width)
+        supports.append(sup)
+        if sup.misalignment > MISALIGNMENT_WARNING:
+            warnings.append(f"{c.name}: at the preload's mesh force {force:.4g} N gears.{c.gear} deflects "
+                            f"{sup.deflection * 1e3:.4g} um and tilts {sup.tilt * 1e6:.4g} urad: "
+                            f"{sup.misalignment * 1e3:.3g} um of misalignment across its {sup.face_width:.4g} mm face "
+                            f"(more than {MISALIGNMENT_WARNING * 1e3:g} um: the flank contact moves to one end)")
+
     location = spec.reduce_to
     ratios = {"output": 1.0} if train is None else {s: train.shaft_ratio(s) for s in ("output", "cluster", "input")}
     return StiffnessSummary(
@@ -857,7 +944,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         flexure_design_gauge=flex_gauge, spring=spring,
         spring_count=0 if sd.springs is None else sd.springs.count,
         spring_installed_length_for_preload=installed_for_preload, beam=beam, engagement=engagement,
-        warnings=tuple(warnings))
+        warnings=tuple(warnings), supports=tuple(supports))
 
 
 def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):
@@ -867,10 +954,11 @@ def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):
 
 
 __all__ = [
-    "MESH_DIVISOR", "mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness", "series", "parallel",
+    "MESH_DIVISOR", "mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness",
+    "supported_shaft_compliance", "series", "parallel",
     "reflect", "torsional_from_linear", "linear_from_torsional", "DualPinionTrain", "train_from_design",
     "ComponentStiffness", "component_stiffness", "train_mesh_components", "PathStiffness", "split_paths",
     "preload_lever", "preload_spring_at_output", "loop_error_from_carriage_travel", "carriage_force",
     "required_preload", "preload_to_carry", "LoopError", "PreloadVariation", "preload_variation", "PreloadSpring",
-    "StiffnessSummary", "loop_errors_from_travels", "stiffness_summary",
+    "StiffnessSummary", "SupportDeflection", "MISALIGNMENT_WARNING", "loop_errors_from_travels", "stiffness_summary",
 ]

@@ -192,7 +192,7 @@ SHAFTS = ("input", "cluster", "output")
 LOCATIONS = SHAFTS
 TRAINS = ("dual_pinion", "custom")
 SCOPES = ("each_path", "path1", "path2", "common")
-COMPONENT_KINDS = ("torsion", "linear", "shaft_torsion", "shaft_bending", "mesh")
+COMPONENT_KINDS = ("torsion", "linear", "shaft_torsion", "shaft_bending", "shaft_support", "mesh")
 SUPPORTS = ("simple", "fixed", "cantilever")
 
 #: keys each component kind uses besides kind, scope, count, shaft and ratio; anything else is an error
@@ -202,6 +202,7 @@ _KIND_KEYS = {
     "shaft_torsion": {"diameter", "bore_diameter", "length", "shear_modulus", "from_geometry"},
     "shaft_bending": {"gear", "radius", "diameter", "bore_diameter", "span", "load_position", "support", "from_geometry",
                       "elastic_modulus"},
+    "shaft_support": {"gear", "stiffness", "from_geometry", "elastic_modulus"},
     "mesh": {"gears", "face_width", "elastic_modulus"},
 }
 
@@ -221,6 +222,9 @@ class ComponentSpec:
       * ``shaft_bending``: the shaft carrying ``gear`` bends under its mesh force: a round beam of
         ``diameter`` over ``span`` with the gear at ``load_position`` from one support
         (``support`` "simple", "fixed" both ends, or "cantilever" of overhang ``load_position``);
+      * ``shaft_support``: the shaft carrying ``gear`` on its two placed bearings (``from_geometry``
+        only): the shaft bending between or beyond them (an overhung gear) and each bearing's
+        radial ``stiffness`` (N/mm per bearing) through the lever of its distance to the gear;
       * ``mesh``: a tooth mesh of the two ``gears`` (Eq. 1, ``E w / 11`` along the line of action,
         ``w`` the smaller face width unless ``face_width`` is given), acting at the second gear.
 
@@ -248,8 +252,10 @@ class ComponentSpec:
     elastic_modulus: float | None = None
     shear_modulus: float | None = None
     # True: diameter, length, span and load position are those of the placed shaft
-    # (geargen.model.shafts), never typed a second time here
+    # (geargen.model.shafts), never typed a second time here; ``placed``: they have been filled in
+    # from it (geargen.model.analysis.placed_components)
     from_geometry: bool = False
+    placed: bool = False
 
     def __post_init__(self):
         where = f"stiffness.components.{self.name}"
@@ -269,8 +275,11 @@ class ComponentSpec:
         located = self.shaft is not None or self.ratio is not None
         if self.kind in ("torsion", "shaft_torsion") and not located:
             raise DesignError(f"{where}.shaft", "missing", "shaft = " + " | ".join(map(repr, SHAFTS)) + " or ratio")
-        if self.kind in ("torsion", "linear"):
+        if self.kind in ("torsion", "linear", "shaft_support"):
             _positive(f"{where}.stiffness", self.stiffness)
+        if self.kind == "shaft_support" and (not self.from_geometry or self.gear is None):
+            raise DesignError(f"{where}.from_geometry", "a shaft support is the placed shaft's: give gear = NAME and "
+                              "from_geometry = true", "from_geometry = true with gear")
         if self.kind in ("linear", "shaft_bending"):
             if (self.gear is None) == (self.radius is None):
                 raise DesignError(f"{where}.gear", "give exactly one of gear and radius_*",
@@ -282,6 +291,8 @@ class ComponentSpec:
             if (self.gears is None or len(self.gears) != 2 or not all(isinstance(g, str) for g in self.gears)):
                 raise DesignError(f"{where}.gears", f"{self.gears!r} is not a pair of gear names", "[\"PINION\", \"GEAR\"]")
             _positive(f"{where}.face_width", self.face_width, allow_none=True)
+        if self.placed:
+            return  # lengths of the placed shafts (geargen.model.shafts), checked where they are made
         if self.from_geometry:
             typed = [k for k in ("diameter", "length", "span", "load_position") if getattr(self, k) is not None]
             if typed:
@@ -290,7 +301,7 @@ class ComponentSpec:
             if self.kind == "shaft_torsion" and self.shaft is None:
                 raise DesignError(f"{where}.shaft", "missing: which placed shaft twists",
                                   " | ".join(map(repr, SHAFTS)))
-            if self.kind == "shaft_bending" and self.gear is None:
+            if self.kind in ("shaft_bending", "shaft_support") and self.gear is None:
                 raise DesignError(f"{where}.gear", "missing: the gear whose mesh force bends its shaft", "a gear name")
         elif self.kind == "shaft_torsion":
             _positive(f"{where}.diameter", self.diameter)

@@ -30,8 +30,9 @@ _PLACED = {"cluster": "cluster_a", "input": "input", "output": "output"}
 
 def placed_components(design: Design, layout: Layout | None) -> tuple:
     """The design's stiffness components, those with ``from_geometry = true`` completed from the
-    placed shafts (:func:`geargen.model.shafts.shafts`): a shaft in bending gets the shaft's
-    diameter, its bearings' span and the gear's mid-face distance from the lower bearing; a shaft
+    placed shafts (:func:`geargen.model.shafts.shafts`): a shaft in bending, or on its bearings
+    (``shaft_support``), gets the shaft's diameter, its bearings' span and the gear's mid-face
+    distance from the lower bearing (beyond the span: overhung); a shaft
     in torsion the diameter and the length between the two loads it carries (the cluster's two
     gears, the input gear and its bevel gear)."""
     from dataclasses import replace
@@ -50,7 +51,7 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
             out.append(c)
             continue
         where = f"stiffness.components.{c.name}.from_geometry"
-        if c.kind == "shaft_bending":
+        if c.kind in ("shaft_bending", "shaft_support"):
             shaft = next((sh for sh in placed.values() if c.gear in sh.loads), None)
             if shaft is None:
                 raise DesignError(where, f"no placed shaft carries gears.{c.gear}", "a design whose [parts] places "
@@ -58,7 +59,10 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
             if not shaft.diameter > 0:
                 raise DesignError(where, f"the shaft of gears.{c.gear} fills its bore, and the gear gives none",
                                   "bore_diameter_* in the gear table")
-            out.append(replace(c, from_geometry=False, diameter=shaft.diameter,
+            if len(shaft.bearings) != 2:
+                raise DesignError(where, f"the shaft of gears.{c.gear} has {len(shaft.bearings)} bearings",
+                                  "two bearings")
+            out.append(replace(c, placed=True, diameter=shaft.diameter,
                                span=None if c.support == "cantilever" else shaft.span,
                                load_position=shaft.load_position(c.gear)))
         else:
@@ -70,7 +74,7 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
                 raise DesignError(where, f"the placed {c.shaft} shaft fills the gears' bore, and gears.{next(iter(shaft.loads))} "
                                   "gives none", "bore_diameter_* in the gear table")
             first, second = list(shaft.loads)[:2]
-            out.append(replace(c, from_geometry=False, diameter=shaft.diameter, length=shaft.distance(first, second)))
+            out.append(replace(c, placed=True, diameter=shaft.diameter, length=shaft.distance(first, second)))
     return tuple(out)
 
 

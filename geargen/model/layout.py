@@ -27,7 +27,7 @@ train states its thinning, else "mid".
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from fractions import Fraction
 from typing import Any
 
@@ -235,12 +235,21 @@ def resolve(design: Design, position: str | None = None) -> Layout:
         if position == "disengaged" and not design.section("engagement"):
             raise DesignError("--position", "'disengaged' needs an [engagement] section", "'engaged'")
         settings["position"] = position
-    if settings["kind"] == "dual_pinion":
-        return _place_dual_pinion(design, settings)
-    return _place_split_pinion(design, settings)
+    if settings["kind"] != "dual_pinion":
+        return _place_split_pinion(design, settings)
+    wanted = settings["position"]
+    layout = _place_dual_pinion(design, {**settings, "position": "engaged"}, None)
+    if not design.section("engagement"):
+        return layout
+    # the lead and stops of the sliding pinions come from the stiffness of the drive engaged
+    # (its preload windup), whose shafts are placed by this very layout
+    engagement = _engagement(layout)
+    if wanted == "engaged":
+        return replace(layout, engagement=engagement)
+    return _place_dual_pinion(design, settings, engagement)
 
 
-def _place_dual_pinion(design: Design, s: dict) -> Layout:
+def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
     from geargen.core.synthesis import place_gears, solve_loop, synthesize_centres
     from geargen.core.tolerance import appendix_error_budget, exact_error_budget
     from geargen.design.synthesis import error_budget_inputs, synthesis_inputs
@@ -329,12 +338,9 @@ def _place_dual_pinion(design: Design, s: dict) -> Layout:
         GearPlacement("output", g_out, pg["output"].centre, z_out, rot_out, "output", ("output",)),
         GearPlacement("input", g_in, pg["input"].centre, z_in, rot_in, "carriage", ("input",)),
     ]
-    engagement = None
     shifts: dict[str, float] = {}
     position = s["position"]
     notes = list(design_notes)
-    if position == "disengaged" or design.section("engagement"):
-        engagement = _engagement(design)
     for side in ("a", "b"):
         centre = pg[f"cluster_large_{side}"].centre
         rot = pg[f"cluster_large_{side}"].rotation
@@ -412,10 +418,13 @@ def running_backlash(a: GearSpec, b: GearSpec, centre_distance: float) -> float:
     return float(backlash_from_thickness_deficit(deficit, centre_distance, standard, a.transverse_pressure_angle))
 
 
-def _engagement(design: Design):
-    """The lead and travel stops of helical pinions sliding axially into mesh (stiffness step's helper)."""
+def _engagement(layout: Layout):
+    """The lead and travel stops of helical pinions sliding axially into mesh (the stiffness
+    summary's helper, with the shafts placed by the engaged ``layout``)."""
     from geargen.core.stiffness import stiffness_summary
-    summary = stiffness_summary(design)
+    from geargen.model.analysis import placed_components
+    design = layout.design
+    summary = stiffness_summary(design, components=placed_components(design, layout))
     if summary.engagement is None:
         raise DesignError("engagement", "missing", "an [engagement] section for the sliding pinions")
     return summary.engagement

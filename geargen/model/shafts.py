@@ -110,8 +110,28 @@ def robot_joint_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
     return out
 
 
+def c_axis_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
+    """The C-axis dual pinions' shafts (Fig. 12): each slides in a quill whose two bearings,
+    ``cluster_bearing_spacing`` apart, sit a ``bearing_clearance`` below the large gear; the
+    large gear and, beyond it, the pinion meshing the bull gear are overhung above them. The
+    shaft runs from its stop collar (a clearance below the lower bearing) to the pinion's top."""
+    gap = parts["bearing_clearance"]
+    width, outer = parts["cluster_bearing_width"], parts["cluster_bearing_outer_diameter"]
+    out: dict[str, Shaft] = {}
+    for side in ("a", "b"):
+        large, small = layout.gear(f"cluster_large_{side}"), layout.gear(f"cluster_small_{side}")
+        diameter = parts["cluster_shaft_diameter"]
+        upper = Bearing(f"cluster_bearing_upper_{side}", large.height[0] - gap - width, width, diameter, outer)
+        lower = Bearing(f"cluster_bearing_lower_{side}", upper.z - parts["cluster_bearing_spacing"], width, diameter, outer)
+        z_collar = lower.z - gap - parts["stop_collar_width"]
+        loads = {g.name: _mid(p, g) for p in (large, small) for g in p.gears}
+        out[f"cluster_{side}"] = Shaft(f"cluster_shaft_{side}", tuple(small.centre), z_collar, small.height[1], diameter,
+                                       (lower, upper), loads)
+    return out
+
+
 #: the shafts of each parts template that the model places
-SHAFT_BUILDERS = {"robot_joint": robot_joint_shafts}
+SHAFT_BUILDERS = {"robot_joint": robot_joint_shafts, "c_axis": c_axis_shafts}
 
 
 def shafts(layout: Layout) -> dict[str, Shaft]:
@@ -124,4 +144,4 @@ def shafts(layout: Layout) -> dict[str, Shaft]:
     return builder(layout, parts) if builder is not None else {}
 
 
-__all__ = ["Bearing", "Shaft", "robot_joint_shafts", "shafts", "SHAFT_BUILDERS"]
+__all__ = ["Bearing", "Shaft", "robot_joint_shafts", "c_axis_shafts", "shafts", "SHAFT_BUILDERS"]

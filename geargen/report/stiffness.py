@@ -152,6 +152,13 @@ def format_summary(s: StiffnessSummary, loop_error_note: str = "") -> str:
         lines.append(f"  stops: leader {e.leader_retracted_stop / per_unit:.4g} .. {e.leader_engaged_stop:.4g} {unit}, "
                      f"trailer {e.trailer_retracted_stop / per_unit:.4g} .. {e.trailer_engaged_stop:.4g} {unit}")
         lines.append("")
+    if s.supports:
+        lines.append("Gears on their placed shafts and bearings, under the preload's mesh force")
+        for sup in s.supports:
+            lines.append(f"  {sup.gear:<22} {sup.force:.4g} N: deflects {sup.deflection * 1e3:.4g} µm "
+                         f"({sup.force / sup.deflection * 1e-3:.4g} N/µm), tilts {sup.tilt * 1e6:.4g} µrad = "
+                         f"{sup.misalignment * 1e3:.3g} µm across its {sup.face_width:.4g} mm face")
+        lines.append("")
     if s.warnings:
         lines.append("Warnings")
         lines += [f"  - {w}" for w in s.warnings]

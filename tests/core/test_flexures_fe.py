@@ -28,6 +28,7 @@ class Frame:
         self.members: list[tuple[int, int, float, float, float, float | None]] = []
         self.fixed: set[int] = set()
         self.loads: dict[int, float] = {}
+        self.springs: dict[int, float] = {}  # grounded springs on single dofs (elastic supports)
 
     def node(self, x, y):
         self.nodes.append((float(x), float(y)))
@@ -44,6 +45,10 @@ class Frame:
     def fix(self, node, *dofs):
         for d in dofs:
             self.fixed.add(3 * node + "uvt".index(d))
+
+    def spring(self, node, dof, k):
+        i = 3 * node + "uvt".index(dof)
+        self.springs[i] = self.springs.get(i, 0.0) + k
 
     def load(self, node, dof, value):
         k = 3 * node + "uvt".index(dof)
@@ -81,6 +86,8 @@ class Frame:
             ke = t.T @ self.element(E, A, I, L, shear) @ t
             dofs = [3 * a, 3 * a + 1, 3 * a + 2, 3 * b, 3 * b + 1, 3 * b + 2]
             K[np.ix_(dofs, dofs)] += ke
+        for i, k in self.springs.items():
+            K[i, i] += k
         f = np.zeros(n)
         for k, v in self.loads.items():
             f[k] = v
@@ -260,3 +267,26 @@ def test_shaft_bending_stiffness_against_frame_model(support, a):
     fr.load(load, "v", 1.0)
     fr.solve()
     assert 1.0 / fr.disp(load, "v") == pytest.approx(k_formula, rel=1e-9)
+
+
+@pytest.mark.parametrize("load_position", [-20.0, 12.0, 30.0, 83.5])
+def test_shaft_on_elastic_bearings_against_frame_model(load_position):
+    """A 30 mm shaft on two bearings 30 mm apart (150 N/um and 90 N/um), the gear between them or
+    overhung on either side (the C-axis dual pinion: 53.5 mm beyond the upper bearing): deflection
+    and slope under the load from the frame model with spring supports."""
+    from geargen.core.stiffness import supported_shaft_compliance
+    d, span, k1, k2 = 30.0, 30.0, 150e3, 90e3
+    I = math.pi * d ** 4 / 64
+    fr = Frame()
+    xs = sorted({0.0, span, load_position})
+    nodes = {x: fr.node(x, 0) for x in xs}
+    for a, b in zip(xs[:-1], xs[1:]):
+        fr.member(nodes[a], nodes[b], E, 700.0, I, pieces=6)
+    fr.fix(nodes[xs[0]], "u")  # axial only; laterally the shaft floats on its bearings
+    fr.spring(nodes[0.0], "v", k1)
+    fr.spring(nodes[span], "v", k2)
+    fr.load(nodes[load_position], "v", 1.0)
+    fr.solve()
+    compliance, slope = supported_shaft_compliance(E, d, span, load_position, (k1, k2))
+    assert compliance == pytest.approx(fr.disp(nodes[load_position], "v"), rel=1e-9)
+    assert slope == pytest.approx(fr.disp(nodes[load_position], "t"), rel=1e-9)

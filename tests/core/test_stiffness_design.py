@@ -112,11 +112,15 @@ def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
     shaft = G * math.pi * (0.25 * IN) ** 4 / 32 / (0.3125 * IN) * R2 ** 2
     ei = E * math.pi * (0.25 * IN) ** 4 / 64
     span, a = 0.7985 * IN, 0.52425 * IN
-    bending = 3 * ei * span / (a ** 2 * (span - a) ** 2) * (rb3 * R2) ** 2
-    bearings = 2 * 10e3 * (rb3 * R2) ** 2
-    k_path = 1 / (1 / mesh1 + 1 / mesh2 + 1 / shaft + 1 / bending + 1 / bearings)
+    b = span - a
+    # the small gear on its shaft and two 10 N/um bearings: beam between rigid supports plus the
+    # bearings through their levers (reactions b/L and a/L of the load)
+    support = 1 / (a * a * b * b / (3 * ei * span) + ((b / span) ** 2 + (a / span) ** 2) / 10e3) * (rb3 * R2) ** 2
+    k_path = 1 / (1 / mesh1 + 1 / mesh2 + 1 / shaft + 1 / support)
     assert s.drive.k1 == pytest.approx(k_path, rel=1e-12) and s.drive.k2 == pytest.approx(k_path, rel=1e-12)
-    assert k_path == pytest.approx(16.226e6, rel=1e-4)  # N·mm/rad; 17.28e6 with the lengths typed before
+    # N·mm/rad: the reviewer's "about 15,500 N m/rad with the built geometry" (17.28e6 with the lengths
+    # typed in the file before, 0.60 in span and the load 0.20 in from a bearing)
+    assert k_path == pytest.approx(15.518e6, rel=1e-4)
     common = 1 / (1 / (G * math.pi * (0.1875 * IN) ** 4 / 32 / (0.5 * IN) * (R1 * R2) ** 2)
                   + 1 / (G * math.pi * ((1.25 * IN) ** 4 - IN ** 4) / 32 / (0.4 * IN)))
     assert s.common.stiffness == pytest.approx(common, rel=1e-12)
@@ -298,5 +302,5 @@ def test_stiffness_design_reads_every_robot_section():
     assert sd.springs.count == 2 and sd.springs.installed_length == pytest.approx(0.35 * IN)
     assert sd.preload.max_output_torque == pytest.approx(5000.0)
     assert sd.beam_pinion is None and sd.engagement is None
-    assert [c.name for c in sd.stiffness.components] == ["cluster_shaft", "cluster_shaft_bending", "cluster_bearings",
-                                                         "input_shaft", "output_hub"]
+    assert [c.name for c in sd.stiffness.components] == ["cluster_shaft", "cluster_support", "input_shaft", "output_hub"]
+    assert [c.from_geometry for c in sd.stiffness.components] == [True, True, True, False]
