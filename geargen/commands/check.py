@@ -120,14 +120,15 @@ def check_design(design: Design, settings: ChecksSettings | None = None, section
 
     do_tol = settings.tolerances if tolerances is None else tolerances
     if do_tol:
-        from geargen.checks.tolerance import loop_tolerance, pair_tolerance
+        from geargen.checks.tolerance import carriage_travel_limits, loop_tolerance, pair_tolerance
 
         rng = np.random.default_rng(settings.seed)
         if loop is not None:
             if loop.errors:
                 result.tolerances = loop_tolerance(loop.synthesis, {su.name: su for su in setups}, loop.errors,
                                                    loop.backlash_mesh1, loop.backlash_mesh2,
-                                                   settings.monte_carlo_samples, rng, settings.carriage_travel_limit,
+                                                   settings.monte_carlo_samples, rng,
+                                                   carriage_travel_limits(design, settings.carriage_travel_limit),
                                                    settings.steps_per_tooth, design.length_unit)
         else:
             for su in setups:
@@ -136,7 +137,7 @@ def check_design(design: Design, settings: ChecksSettings | None = None, section
                     continue
                 result.tolerances.append(pair_tolerance(su, e1, e2, settings.monte_carlo_samples, rng,
                                                         "backlash" if settings.require_backlash else "zero_backlash",
-                                                        settings.steps_per_tooth))
+                                                        settings.steps_per_tooth, design.length_unit))
 
     if settings.sections if sections is None else sections:
         from geargen.checks.solids import (check_mesh_sections, compare_paths, export_and_section, section_planes,
