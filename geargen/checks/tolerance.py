@@ -205,7 +205,7 @@ def pair_minima(setup: MeshSetup, errors1: GearErrors | None, errors2: GearError
     g1, g2 = model.gear1, model.gear2
     # displacements of a pair differ by at most this much along the line of action
     spread = 2 * (t1 * g1.base_radius / g1.reference_radius + t2 * g2.base_radius / g2.reference_radius)
-    excess = TipExcess(model, np.linspace(a0 - offsets, a0 + offsets, 9 if offsets > 0 else 1), spread)
+    excess = TipExcess(model, np.linspace(a0 - offsets, a0 + offsets, 33 if offsets > 0 else 1), spread)
     search = HuntingSearch(model, (b1, p1, b2, p2), excess, steps_per_tooth)
     e1 = builds.displacement1 / g1.reference_radius
     e2 = builds.displacement2 / g2.reference_radius
@@ -256,8 +256,7 @@ def eccentric_sweep(setup: MeshSetup, errors1: GearErrors | None, errors2: GearE
 
 
 def _pair_coverage(setup: MeshSetup) -> str:
-    return (f"the whole hunting period: {setup.hunting_revolutions} revolutions of {setup.gear1.name}, "
-            f"every tooth pair in every position")
+    return f"the whole hunting period ({setup.hunting_revolutions} revolutions of {setup.gear1.name})"
 
 
 def _guard_bound(res: ToleranceResult, unit: str) -> None:
@@ -534,7 +533,7 @@ class LoopWorstState:
     evaluations: int
 
 
-def _search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: int = 2) -> LoopWorstState:
+def search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: int = 2) -> LoopWorstState:
     """Smallest ``objective(sol, offsets, tooth)`` over every error state of the budget.
 
     Variables: each gear's bearing and pitch-line phase (free), each contact's tooth
@@ -739,7 +738,7 @@ def loop_tolerance(synthesis, setups: dict[str, MeshSetup], errors: dict[str, Ge
         for name in CARRIAGE_MESHES:
             nw = builds.non_working[name]
             idx = np.nonzero(closed)[0]
-            sub = _take_solution(sol, idx)
+            sub = subset_solution(sol, idx)
             circ, _, _ = model.exact_clearance(name, sub, builds.offsets[idx], builds.tooth[idx], nw[idx])
             model_circ, _ = model.clearance(name, sub, builds.offsets[idx], builds.tooth[idx], nw[idx])
             aligned = np.full(samples, np.nan)  # by build, for the worst-case starts and the loop count
@@ -758,14 +757,14 @@ def loop_tolerance(synthesis, setups: dict[str, MeshSetup], errors: dict[str, Ge
         def objective(sol, off, tooth, name=name):
             return model.clearance(name, sol, off, tooth, model.worst_non_working(name, len(off)))[0]
 
-        worst[name] = _search_loop(model, objective, worst_starts(mc[name][2] if mc else None))
+        worst[name] = search_loop(model, objective, worst_starts(mc[name][2] if mc else None))
     travel = {}
     for sign in (1.0, -1.0):
         starts = []
         if builds is not None and mc_travel.size:
             j = np.nonzero(closed)[0][int(np.argmin(sign * mc_travel))]
             starts = [(builds.phases[j], builds.tooth[j])]
-        travel[sign] = _search_loop(model, lambda sol, off, tooth, s=sign: s * (sol.carriage_x - model.x0), starts)
+        travel[sign] = search_loop(model, lambda sol, off, tooth, s=sign: s * (sol.carriage_x - model.x0), starts)
     travel_low, travel_high = travel[1.0].value, -travel[-1.0].value
 
     for k, name in enumerate(CARRIAGE_MESHES):
@@ -783,8 +782,7 @@ def loop_tolerance(synthesis, setups: dict[str, MeshSetup], errors: dict[str, Ge
             monte_carlo_min_backlash=mc[name][0] if mc else np.empty(0),
             worst_case_centre_distance_change=float(np.hypot(*(c_cl - c_in)[0]) - su.centre_distance),
             carriage_travel=max(abs(travel_low), abs(travel_high)),
-            monte_carlo_coverage="one instant of each build (offsets turned to a random instant of the loop, "
-                                 "the teeth in contact drawn uniformly)",
+            monte_carlo_coverage="one random instant of the loop",
             monte_carlo_model_difference=mc[name][1] if mc else float("nan"),
             worst_case_method=f"global search over the error state ({w.evaluations} loop closures: phase grid "
                               "per gear, then L-BFGS-B), measured by the exact check",
@@ -839,7 +837,8 @@ def loop_tolerance(synthesis, setups: dict[str, MeshSetup], errors: dict[str, Ge
     return [results[name] for name in LOOP_MESHES]
 
 
-def _take_solution(sol, idx):
+def subset_solution(sol, idx):
+    """The states ``idx`` of a :class:`~geargen.core.synthesis.LoopSolution`."""
     from geargen.core.synthesis import LoopSolution
 
     conv = sol.converged[idx]
@@ -874,4 +873,5 @@ def _carriage_failures(res: ToleranceResult, low: float, high: float, mc_travel:
 
 __all__ = ["alternating_flanks", "worst_flanks", "random_flanks", "worst_case_pair", "PairBuilds", "PairMonteCarlo",
            "pair_minima", "monte_carlo_pair", "eccentric_sweep", "pair_tolerance", "carriage_travel_limits",
-           "CARRIAGE_MESHES", "LOOP_MESHES", "LoopModel", "LoopWorstState", "loop_tolerance", "NO_ERRORS"]
+           "CARRIAGE_MESHES", "LOOP_MESHES", "LoopModel", "LoopWorstState", "search_loop", "subset_solution",
+           "loop_tolerance", "NO_ERRORS"]
