@@ -574,7 +574,7 @@ class HuntingSearch:
             better = upd < best
             best = np.where(better, upd, best)
             taken += batch
-        self.last_cycles_evaluated = taken
+        self.cycles_examined = taken  # tooth cycles whose bound did not rule them out (at most)
         # refine the best local minima of each build by golden section between their neighbours
         rows_all = np.concatenate([p[0] for p in positions])
         P_all = np.concatenate([np.pad(p[1], ((0, 0), (0, max(q[1].shape[1] for q in positions) - p[1].shape[1])),
