@@ -18,7 +18,7 @@ centre distance, grows with it, and the widened teeth contain every displaced to
 build at any position has less. It is attained: the closest approach happens at a mesh position
 the eccentricity phases choose, and wherever two different teeth of each gear bound the play
 (every double-contact stretch) the teeth there can sit at opposite limits (the tests build that
-state and find the bound within 1e-6 mm). *Monte Carlo*: each sample is one build (uniform
+state and find the bound within 1e-9 mm). *Monte Carlo*: each sample is one build (uniform
 eccentricity phases, a uniform displacement per tooth); its value is its minimum over the whole
 hunting period of the pair, found on the closed-form pair model
 (:class:`geargen.checks.pair_model.HuntingSearch`: every tooth cycle whose lower bound is below
