@@ -64,7 +64,7 @@ from geargen.checks.mesh2d import (Eccentricity, MeshSetup, MeshState, free_play
                                    sweep_mesh)
 from geargen.checks.pair_model import HuntingSearch, PairModel, TipExcess
 from geargen.checks.results import CarriageTravelLimits, Failure, ToleranceResult
-from geargen.design.synthesis import GEAR_ROLES, GearErrors
+from geargen.design.synthesis import GearErrors
 from geargen.profile import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 

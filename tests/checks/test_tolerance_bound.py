@@ -22,7 +22,7 @@ from geargen.checks.tolerance import (CARRIAGE_MESHES, LoopModel, PairBuilds, al
                                       subset_solution, worst_case_pair)
 from geargen.core.synthesis import solve_loop
 from geargen.design.assembly import Design, load_design
-from geargen.design.checks import checks_settings, gear_errors
+from geargen.design.checks import checks_settings
 
 from checks_support import gear
 
