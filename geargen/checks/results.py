@@ -48,8 +48,11 @@ FAILURE_KINDS: dict[str, str] = {
     "low_contact_ratio": "contact ratio below the minimum (1.1 by default)",
     "backlash_lost": "across the tolerances of the error budget the minimum backlash of a mesh meant to "
                      "run with backlash reaches zero",
-    "preload_contact_lost": "a preloaded mesh cannot stay in contact across the tolerances (the preload "
-                            "carriage would bottom or run out of travel)",
+    "preload_contact_lost": "a preloaded mesh cannot stay in contact across the tolerances (its non-working "
+                            "flanks close, or the loop does not close: the springs no longer set the preload)",
+    "carriage_travel_exceeded": "across the tolerances the preload carriage must travel further than its "
+                                "hardware allows (flexure travel, spring solid height or free length, or "
+                                "[checks] carriage_travel_limit)",
     "paths_disagree": "the exact 2-D check and the section check of the exported solid disagree beyond "
                       "the stated tolerance",
     "backlash_out_of_range": "the backlash of the mesh as modelled and placed is outside the design range",
@@ -93,7 +96,7 @@ class Failure:
 
 #: quantities (names used in Failure.quantity) that are lengths
 LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
-                     "tip_land", "path_difference")
+                     "tip_land", "path_difference", "carriage_travel")
 
 
 def _num(v):
@@ -253,16 +256,40 @@ class MeshCheck:
         return out
 
 
+@dataclass(frozen=True)
+class CarriageTravelLimits:
+    """How far the preload carriage may move from its nominal position (mm, + away from the output).
+
+    ``low`` (<= 0) and ``high`` (>= 0) are the travel limits each way, None where nothing limits
+    it; ``low_source``/``high_source`` say which limit applies (e.g. ``"[flexures] travel"``,
+    ``"[springs] solid height"``, ``"[checks] carriage_travel_limit"``).
+    """
+
+    low: float | None = None
+    high: float | None = None
+    low_source: str = ""
+    high_source: str = ""
+    notes: tuple[str, ...] = ()
+
+    @property
+    def limited(self) -> bool:
+        return self.low is not None or self.high is not None
+
+
 @dataclass
 class ToleranceResult:
     """Minimum backlash of one mesh across the tolerances of the error budget (mm, circumferential
-    on gear 1's operating pitch circle, and normal).
+    at gear 1's reference circle - the resolved model's kind - and normal).
 
-    ``worst_case_*``: every error at its limit in the worst phase at once (the error budget's
-    "Sum"); ``monte_carlo_*``: the distribution of the per-sample minimum over whole revolutions
-    (``samples`` draws of a seeded :class:`numpy.random.Generator`). ``nominal_min_backlash`` is
-    the error-free minimum. ``meant_for`` is ``"backlash"`` (must stay positive) or
-    ``"preloaded"`` (must stay in contact, see :mod:`geargen.checks.tolerance`).
+    ``worst_case_*``: the smallest backlash any error state within the budget can give - a bound
+    no build at any instant falls below (how it is found: ``worst_case_method``, see
+    :mod:`geargen.checks.tolerance`). ``monte_carlo_min_backlash``: per sample (one random build,
+    ``samples`` draws of a seeded :class:`numpy.random.Generator`) its minimum over the positions
+    ``monte_carlo_coverage`` names. ``nominal_min_backlash`` is the error-free minimum.
+    ``meant_for`` is ``"backlash"`` (must stay positive) or ``"preloaded"`` (must stay in contact).
+    Carriage quantities (meshes on a preload carriage): ``carriage_travel_low``/``_high`` the
+    worst-case travel each way from nominal, ``monte_carlo_travel`` per sample, ``carriage_limits``
+    the hardware's limits.
     """
 
     mesh: str
@@ -270,16 +297,29 @@ class ToleranceResult:
     nominal_min_backlash: float
     worst_case_min_backlash: float
     worst_case_min_normal_backlash: float
-    monte_carlo_min_backlash: np.ndarray  # (samples,) per-sample minimum over the revolutions
+    monte_carlo_min_backlash: np.ndarray  # (samples,) per-sample minimum over monte_carlo_coverage
     worst_case_centre_distance_change: float  # mm, radial (negative: closer)
     failures: list[Failure] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
-    carriage_travel: float = float("nan")  # mm, worst-case travel of a preload carriage (if any)
+    carriage_travel: float = float("nan")  # mm, largest worst-case travel either way of a preload carriage
     revolutions: MeshSweep | None = None  # the mesh over its hunting period with the eccentricities aligned
+    monte_carlo_coverage: str = ""
+    monte_carlo_model_difference: float = float("nan")  # mm, largest |exact - model| at the samples' minima
+    worst_case_method: str = ""
+    carriage_travel_low: float = float("nan")
+    carriage_travel_high: float = float("nan")
+    monte_carlo_travel: np.ndarray = field(default_factory=lambda: np.empty(0))
+    carriage_limits: CarriageTravelLimits | None = None
+    loop_samples_without_backlash: int | None = None  # builds losing backlash in some mesh of the loop
 
     @property
     def samples(self) -> int:
         return int(self.monte_carlo_min_backlash.size)
+
+    @property
+    def samples_without_backlash(self) -> int:
+        """Samples whose minimum backlash over the positions they cover is <= 0."""
+        return int(np.count_nonzero(self.monte_carlo_min_backlash <= 0))
 
     @property
     def monte_carlo_minimum(self) -> float:
@@ -294,21 +334,39 @@ class ToleranceResult:
 
     def to_dict(self, unit: str = "mm") -> dict[str, Any]:
         s = 1.0 / LENGTH_SUFFIXES[unit]
-        return {
+        travel = self.monte_carlo_travel
+        lim = self.carriage_limits
+        out = {
             "mesh": self.mesh, "meant_for": self.meant_for, "length_unit": unit,
             "nominal_min_backlash": self.nominal_min_backlash * s,
             "worst_case_min_backlash": self.worst_case_min_backlash * s,
             "worst_case_min_normal_backlash": self.worst_case_min_normal_backlash * s,
             "worst_case_centre_distance_change": self.worst_case_centre_distance_change * s,
+            "worst_case_method": self.worst_case_method,
             "monte_carlo_samples": self.samples,
+            "monte_carlo_coverage": self.monte_carlo_coverage,
+            "monte_carlo_samples_without_backlash": self.samples_without_backlash,
             "monte_carlo_min_backlash": _num(self.monte_carlo_minimum * s),
             "monte_carlo_min_backlash_p01": _num(self.monte_carlo_quantile(0.01) * s),
             "monte_carlo_min_backlash_median": _num(self.monte_carlo_quantile(0.5) * s),
+            "monte_carlo_model_difference": _num(self.monte_carlo_model_difference * s),
             "carriage_travel": _num(self.carriage_travel * s),
+            "carriage_travel_low": _num(self.carriage_travel_low * s),
+            "carriage_travel_high": _num(self.carriage_travel_high * s),
+            "monte_carlo_carriage_travel_low": _num(travel.min() * s) if travel.size else None,
+            "monte_carlo_carriage_travel_high": _num(travel.max() * s) if travel.size else None,
             "ok": self.ok,
             "failures": [f.to_dict(unit) for f in self.failures],
             "notes": list(self.notes),
         }
+        if lim is not None:
+            out["carriage_travel_limit_low"] = None if lim.low is None else lim.low * s
+            out["carriage_travel_limit_high"] = None if lim.high is None else lim.high * s
+            out["carriage_travel_limit_low_source"] = lim.low_source
+            out["carriage_travel_limit_high_source"] = lim.high_source
+        if self.loop_samples_without_backlash is not None:
+            out["loop_samples_without_backlash"] = self.loop_samples_without_backlash
+        return out
 
 
 #: keys of a path-agreement record (geargen.checks.solids.compare_paths) that are lengths
@@ -365,4 +423,4 @@ class DesignCheck:
 
 
 __all__ = ["FAILURE_KINDS", "INTERFERENCE_KINDS", "INTERFERENCE_CODES", "Failure", "MeshSweep", "MeshCheck",
-           "ToleranceResult", "DesignCheck"]
+           "CarriageTravelLimits", "ToleranceResult", "DesignCheck"]

@@ -108,7 +108,7 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
 
 def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSettings) -> list:
     """The error budget's worst case and Monte Carlo per engaged mesh (seeded by ``[checks] seed``)."""
-    from geargen.checks.tolerance import LOOP_MESHES, loop_tolerance, pair_tolerance
+    from geargen.checks.tolerance import LOOP_MESHES, carriage_travel_limits, loop_tolerance, pair_tolerance
     from geargen.design.synthesis import GEAR_ROLES
 
     design = layout.design
@@ -121,7 +121,8 @@ def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSe
         gap = placement.loaded_flank_gap
         return loop_tolerance(layout.synthesis.synthesis, setups, errors, placement.backlash_mesh1 - 2 * gap,
                               placement.backlash_mesh2 - 2 * gap, settings.monte_carlo_samples, rng,
-                              settings.carriage_travel_limit, settings.steps_per_tooth, design.length_unit)
+                              carriage_travel_limits(design, settings.carriage_travel_limit), settings.steps_per_tooth,
+                              design.length_unit)
     out = []
     for mesh in layout.meshes:
         if mesh.name not in setups:
@@ -131,7 +132,7 @@ def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSe
             continue
         out.append(pair_tolerance(setups[mesh.name], e1, e2, settings.monte_carlo_samples, rng,
                                   "backlash" if settings.require_backlash and mesh.backlash_min > 0 else "zero_backlash",
-                                  settings.steps_per_tooth))
+                                  settings.steps_per_tooth, design.length_unit))
     return out
 
 
@@ -158,7 +159,7 @@ def verify_declared(design: Design, settings: ChecksSettings, tolerances: bool |
                 continue
             result.tolerances.append(pair_tolerance(su, e1, e2, settings.monte_carlo_samples, rng,
                                                     "backlash" if settings.require_backlash else "zero_backlash",
-                                                    settings.steps_per_tooth))
+                                                    settings.steps_per_tooth, design.length_unit))
     return result
 
 

@@ -171,7 +171,7 @@ def table(result: DesignCheck) -> str:
         lines.append(f"{m.mesh:<24}{m.path:<10}{_fmt(m.min_normal_backlash, u):>12}{_fmt(m.min_clearance, u):>12}"
                      f"{eps:>9}  {kinds}")
     if result.tolerances:
-        lines += ["", "minimum backlash across the error budget (circumferential)"]
+        lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
         head = f"{'mesh':<16}{'meant for':<11}{'nominal':>12}{'worst case':>12}{'MC min':>12}{'MC 1%':>12}{'samples':>9}  failure"
         lines += [head, "-" * len(head)]
         for t in result.tolerances:

@@ -79,11 +79,14 @@ def plot_tolerance(result, path, unit: str = "mm") -> Path:
         fig, ax = plt.subplots(figsize=(7, 4))
     mc = np.asarray(result.monte_carlo_min_backlash) * s
     if mc.size:
-        ax.hist(mc, bins=min(60, max(10, mc.size // 10)), color="tab:blue", alpha=0.7, label="Monte Carlo")
+        ax.hist(mc, bins=min(60, max(10, mc.size // 10)), color="tab:blue", alpha=0.7,
+                label=f"Monte Carlo: {mc.size} builds")
     ax.axvline(result.nominal_min_backlash * s, color="k", lw=1.2, label="nominal minimum")
-    ax.axvline(result.worst_case_min_backlash * s, color="tab:red", lw=1.2, ls="--", label="worst case")
+    ax.axvline(result.worst_case_min_backlash * s, color="tab:red", lw=1.2, ls="--", label="worst case (bound)")
     ax.axvline(0.0, color="tab:red", lw=0.6)
-    ax.set_xlabel(f"minimum circumferential backlash ({unit})")
+    coverage = getattr(result, "monte_carlo_coverage", "")
+    ax.set_xlabel(f"minimum circumferential backlash ({unit})" + (f"\nper build: {coverage}" if coverage else ""),
+                  fontsize=9)
     ax.set_ylabel("samples")
     ax.set_title(f"{result.mesh} ({result.meant_for}) across the error budget")
     ax.legend(fontsize=8)

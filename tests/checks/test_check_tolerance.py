@@ -19,8 +19,9 @@ C2 = 2.078125 * IN
 
 
 def _circ(g1, g2, a):
-    a_w = math.acos((g1.base_radius + g2.base_radius) / a)
-    return theory_normal_backlash(g1, g2, a) / math.cos(a_w)
+    """Backlash of the resolved model's kind (circumferential at gear 1's reference circle) of a
+    spur pair: the normal backlash over cos(alpha), the profile angle at the reference circle."""
+    return theory_normal_backlash(g1, g2, a) / math.cos(g1.transverse_pressure_angle)
 
 
 def test_worst_case_of_eccentricities_is_the_backlash_at_the_closest_centres():
