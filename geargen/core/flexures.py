@@ -439,24 +439,68 @@ def beam_pinion(diameter: float, elastic_modulus: float, force: float = 0.0, *, 
 
 
 # ----------------------------------------------------------------------------------------------
+# ----------------------------------------------------------------------------------------------
 # Helical dual pinions engaging axially (C-axis)
 
+#: sign of a helix hand in :attr:`SlidingMesh.turn_rate` (a right-hand helix turns counter-clockwise
+#: seen from +z as it advances along +z)
+HAND_SIGN = {"right": 1.0, "left": -1.0}
+
+
 def rotation_from_axial_travel(axial_travel, pitch_radius: float, helix_angle: float):
-    """Rotation (rad) of a helical gear slid ``axial_travel`` (mm) along its axis while in mesh.
+    """Rotation (rad) of one helical gear slid ``axial_travel`` (mm) along its axis against a mate
+    that does not move (its magnitude; :attr:`SlidingMesh.turn_rate` carries the sign).
 
     The tooth advances ``z tan(beta)`` around the reference cylinder, so ``theta = z tan(beta) / r``
-    (one lead, ``2 pi r / tan(beta)``, gives one turn).
+    (one helix lead, ``2 pi r / tan(beta)``, gives one turn). A cluster of two gears turns by
+    neither of its gears' rates alone: see :func:`cluster_opening_rate`.
     """
     if not 0 < helix_angle < math.pi / 2:
         raise DesignError("helix_angle", f"{helix_angle!r} rad is out of range", "(0, pi/2): a helical gear")
     return np.asarray(axial_travel, dtype=float) * math.tan(helix_angle) / pitch_radius
 
 
-def axial_travel_for_circumferential(circumferential, helix_angle: float):
-    """Axial travel (mm) whose helix turns a gear by ``circumferential`` mm at its reference circle."""
-    if not 0 < helix_angle < math.pi / 2:
-        raise DesignError("helix_angle", f"{helix_angle!r} rad is out of range", "(0, pi/2): a helical gear")
-    return np.asarray(circumferential, dtype=float) / math.tan(helix_angle)
+@dataclass(frozen=True)
+class SlidingMesh:
+    """A mesh whose ``gear`` slides along its own axis while its ``mate`` stays put (mm, rad).
+
+    ``helix_angle`` (at the reference circle, 0 for spur), ``reference_radius`` and ``hand``
+    ("right" or "left") are the sliding gear's; on an external mesh the mate has the same helix
+    angle and the other hand. ``gear`` and ``mate`` name the two for messages and reports.
+    """
+
+    gear: str
+    mate: str
+    helix_angle: float
+    reference_radius: float
+    hand: str = "right"
+
+    def __post_init__(self):
+        if self.hand not in HAND_SIGN:
+            raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
+        if not (math.isfinite(self.helix_angle) and 0 <= self.helix_angle < math.pi / 2):
+            raise DesignError("helix_angle", f"{self.helix_angle!r} rad is out of range", "[0, pi/2)")
+        _require_positive(reference_radius=self.reference_radius)
+
+    @property
+    def turn_rate(self) -> float:
+        """Turn of the sliding gear per mm of slide that keeps its teeth where they were against the
+        mate, rad/mm: ``s tan(beta) / r`` (``s`` +1 right hand, -1 left), counter-clockwise seen from
+        the side the gear slides towards; ``2 pi / helix lead`` in magnitude, 0 for a spur gear."""
+        return HAND_SIGN[self.hand] * math.tan(self.helix_angle) / self.reference_radius
+
+
+def cluster_opening_rate(engaging: SlidingMesh, other: SlidingMesh | None = None) -> float:
+    """Turn of a sliding cluster's engaging gear against its mate per mm of slide, rad/mm (signed).
+
+    The cluster (``engaging`` gear and the ``other`` gear on one shaft, one rigid body) slides
+    while both mates are held; the other mesh stays engaged and so sets the cluster's turn, and
+    the engaging gear then stands against its mate as if turned by ``other.turn_rate -
+    engaging.turn_rate`` per mm without sliding. Counter-clockwise seen from the side the cluster
+    slides towards; ``other`` None (or a spur other gear) leaves the engaging gear's helix alone.
+    The derivation is in :func:`helical_engagement`.
+    """
+    return (0.0 if other is None else other.turn_rate) - engaging.turn_rate
 
 
 @dataclass(frozen=True)
@@ -465,17 +509,28 @@ class HelicalEngagement:
 
     Axial positions ``z`` are along the engaging direction, 0 where a pinion is fully engaged.
     The leading pinion runs ``lead`` ahead of the trailing one while they slide; the lead turns
-    it (through the helix) by ``relative_rotation`` against the other, which unwinds the loop's
-    preload and opens ``backlash`` so both pinions slide into mesh freely. The leader stops at its
-    engaged stop first; the trailer closes the lead against its own stop, which winds the loop
-    back up to the preload. Retracted stops leave ``clearance`` between the faces, the trailer
-    ``lead`` further back.
+    it (through the helices of both meshes of its cluster, :func:`cluster_opening_rate`) by
+    ``relative_rotation`` against the other, which unwinds the loop's preload and opens
+    ``backlash`` so both pinions slide into mesh freely. The leader stops at its engaged stop
+    first; the trailer closes the lead against its own stop, which winds the loop back up to the
+    preload. Retracted stops leave ``clearance`` between the faces, the trailer ``lead`` further
+    back.
+
+    ``engaging`` is the mesh the pinions slide into (``helix_angle`` and ``pitch_radius`` are its
+    sliding gear's), ``other`` the cluster's other mesh, which stays engaged; ``opening_rate`` is
+    the leader's turn against the trailer per mm of lead (rad/mm of the engaging gear,
+    counter-clockwise seen from the engaged side, the sign of ``opening_turn``).
+    ``backlash`` and ``preload_windup`` are circumferential at the engaging gear's reference
+    circle.
     """
 
+    engaging: SlidingMesh
+    other: SlidingMesh | None
     helix_angle: float
     pitch_radius: float
     backlash: float
     preload_windup: float
+    opening_rate: float
     lead: float
     relative_rotation: float
     engagement_length: float
@@ -486,6 +541,24 @@ class HelicalEngagement:
     trailer_retracted_stop: float
 
     @property
+    def circumferential_rate(self) -> float:
+        """Circumferential opening at the engaging gear's reference circle per mm of lead (mm/mm)."""
+        return abs(self.opening_rate) * self.pitch_radius
+
+    @property
+    def opening_turn(self) -> str:
+        """How the leader's engaging gear turns against the trailer's as it leads ("ccw" or "cw",
+        seen from the engaged side): the leader must be the path whose working flank at the
+        engaging mesh this turn lifts off (the flank that turning the other way closes)."""
+        return "ccw" if self.opening_rate > 0 else "cw"
+
+    def loop_windup(self, trailer_offset):
+        """Windup left in the loop (mm at the reference circle; negative: backlash) with the
+        trailer ``trailer_offset`` (mm) behind the leader, both pinions in mesh: ``w - c offset``.
+        The preload is this over ``preload_windup`` times the engaged preload (the loop is linear)."""
+        return self.preload_windup - self.circumferential_rate * np.asarray(trailer_offset, dtype=float)
+
+    @property
     def leader_stroke(self) -> float:
         return self.leader_engaged_stop - self.leader_retracted_stop
 
@@ -494,24 +567,79 @@ class HelicalEngagement:
         return self.trailer_engaged_stop - self.trailer_retracted_stop
 
 
-def helical_engagement(helix_angle: float, pitch_radius: float, backlash: float, preload_windup: float,
-                       engagement_length: float, clearance: float = 0.0) -> HelicalEngagement:
-    """The lead and travel stops that let two preloaded helical pinions slide into mesh.
+def helical_engagement(engaging: SlidingMesh, backlash: float, preload_windup: float, engagement_length: float,
+                       clearance: float = 0.0, other: SlidingMesh | None = None) -> HelicalEngagement:
+    """The lead and travel stops that let two preloaded helical dual pinions slide into mesh.
 
-    ``backlash`` and ``preload_windup`` are circumferential at the reference circle of the mesh
-    where the pinions slide. In the engaged position the loop is wound ``preload_windup`` past
-    contact; to slide in with ``backlash`` of clearance the lead must turn the pinions apart by
-    their sum: ``lead = (backlash + windup) / tan(beta)``.
+    ``engaging``: the mesh the pinions slide into (the pinion against the bull gear); ``other``:
+    the cluster's other mesh, which stays engaged while it slides (the large gear along the long
+    input pinion); None when the cluster's other gear does not slide against anything.
+    ``backlash`` and ``preload_windup`` are circumferential at the engaging gear's reference
+    circle; the lead may not exceed ``engagement_length`` (the trailer must be in mesh when it
+    closes the lead), else DesignError.
+
+    Derivation (z along the axes, +z the engaging direction, turns counter-clockwise seen from
+    +z). A helical gear's transverse section at height ``z`` is its ``z = 0`` section turned by
+    ``kappa z``, ``kappa = s tan(beta) / r`` (:attr:`SlidingMesh.turn_rate`). Slid by ``dz`` and
+    turned by ``psi``, the gear's section at a fixed height ``Z`` is the one it had at ``Z - dz``
+    turned by ``psi``: at angle ``psi + kappa (Z - dz)``. Its teeth are where they were at every
+    height, so a held mate meshes as before, exactly when::
+
+        psi = kappa dz                                                            (1)
+
+    A cluster is one rigid body: its gear ``o`` in the other mesh (always engaged, mate held) sets
+    ``psi = kappa_o dz`` by (1); its engaging gear ``e`` then stands against its held mate as if
+    turned, without sliding, by::
+
+        psi - kappa_e dz = (kappa_o - kappa_e) dz = omega dz                      (2)
+
+    which opens (or closes) that mesh by ``|omega| r_e dz`` at its reference circle. The two
+    clusters mesh the same input and output, so their gears have the same hands (the clusters
+    are mirror images in placement only) and (2) holds for each: with the leader ``delta`` ahead
+    of the trailer, the leader's pinion stands turned ``omega delta`` against the bull gear
+    relative to the trailer's, and nothing else in the loop changes. The preload loads the two
+    paths on opposite flanks; the lead opens the loop when the leader is the path whose working
+    flank that turn lifts off (:attr:`HelicalEngagement.opening_turn`). Engaged (``delta = 0``) the
+    loop is wound ``w`` past contact; to slide in with ``b`` of backlash::
+
+        lead = (b + w) / (|kappa_o - kappa_e| r_e)                                (3)
+
+    With a spur (or no) other mesh, ``kappa_o = 0`` and (3) is ``(b + w) / tan(beta_e)``, the
+    pinion's helix alone. Both gears of one hand (usual for a cluster: their axial thrusts
+    oppose) subtract: at one helix angle, ``|kappa_o - kappa_e| r_e = tan(beta) (1 - r_e / r_o)``;
+    opposite hands add. The C-axis (15 deg, both left hand, r_e = 25.88, r_o = 62.12 mm):
+    ``kappa_o = -4.314``, ``kappa_e = -10.353`` mrad/mm, ``omega = +6.039`` mrad/mm, so 0.1563 mm
+    of opening at the pinion's reference circle per mm of lead instead of tan(15 deg) = 0.268.
     """
-    if backlash < 0 or preload_windup < 0:
-        raise DesignError("backlash", "backlash and preload windup must be >= 0", ">= 0 mm")
-    _require_positive(pitch_radius=pitch_radius, engagement_length=engagement_length)
+    if not (math.isfinite(backlash) and backlash >= 0):
+        raise DesignError("engagement.backlash", f"{backlash!r} is out of range", ">= 0 mm")
+    if not (math.isfinite(preload_windup) and preload_windup >= 0):
+        raise DesignError("engagement.preload_windup", f"{preload_windup!r} is out of range", ">= 0 mm")
+    _require_positive(engagement_length=engagement_length)
+    omega = cluster_opening_rate(engaging, other)
+    scale = abs(engaging.turn_rate) + (0.0 if other is None else abs(other.turn_rate))
+    if not abs(omega) > 1e-12 * scale or scale == 0:
+        what = (f"the helices of {engaging.gear} and {other.gear} have one helix lead and hand: the cluster slides "
+                "like a screw" if other is not None and scale > 0 else "no mesh of the sliding cluster is helical")
+        raise DesignError("engagement.gear", f"sliding the cluster turns {engaging.gear} nothing against "
+                          f"{engaging.mate}: {what}", "a cluster whose two meshes turn it by different rates")
+    circumferential = abs(omega) * engaging.reference_radius
     needed = backlash + preload_windup
-    lead = float(axial_travel_for_circumferential(needed, helix_angle))
+    lead = needed / circumferential
+    if lead > engagement_length * (1 + 1e-12):
+        # as the load-time check (geargen.design.stiffness.engagement_spec_from_table) names it
+        capacity = engagement_length * circumferential  # what the whole engagement length opens
+        name = "backlash" if preload_windup < capacity else "preload_windup"
+        most = capacity - (preload_windup if name == "backlash" else backlash)
+        raise DesignError(f"engagement.{name}",
+                          f"needs a lead of {lead:.6g} mm between the sliding pinions ((backlash {backlash:.6g} + "
+                          f"preload windup {preload_windup:.6g} mm) / {circumferential:.6g} mm opened per mm of lead), "
+                          f"more than the engagement length {engagement_length:.6g} mm: the trailing pinion would "
+                          "reach the bull gear before the lead has opened the backlash for it", f"[0, {max(most, 0.0):.6g}] mm")
     return HelicalEngagement(
-        helix_angle=helix_angle, pitch_radius=pitch_radius, backlash=backlash, preload_windup=preload_windup,
-        lead=lead, relative_rotation=float(rotation_from_axial_travel(lead, pitch_radius, helix_angle)),
-        engagement_length=engagement_length, clearance=clearance,
+        engaging=engaging, other=other, helix_angle=engaging.helix_angle, pitch_radius=engaging.reference_radius,
+        backlash=backlash, preload_windup=preload_windup, opening_rate=omega, lead=lead,
+        relative_rotation=abs(omega) * lead, engagement_length=engagement_length, clearance=clearance,
         leader_engaged_stop=0.0, trailer_engaged_stop=0.0,
         leader_retracted_stop=-(engagement_length + clearance),
         trailer_retracted_stop=-(engagement_length + clearance + lead))
@@ -525,5 +653,6 @@ __all__ = [
     "spring_shear_stress", "CompressionSpring", "compression_spring",
     "simply_supported_deflection", "simply_supported_slope", "simply_supported_moment", "zero_slope_position",
     "beam_stiffness_at_load", "span_for_stiffness", "BeamPinion", "beam_pinion",
-    "rotation_from_axial_travel", "axial_travel_for_circumferential", "HelicalEngagement", "helical_engagement",
+    "HAND_SIGN", "rotation_from_axial_travel", "SlidingMesh", "cluster_opening_rate", "HelicalEngagement",
+    "helical_engagement",
 ]

@@ -33,9 +33,10 @@ import numpy as np
 
 from geargen.core.drive import TwoPathDrive
 from geargen.core.flexures import (BeamPinion, BladeDesign, BladeFlexure, CompressionSpring, HelicalEngagement,
-                                   beam_pinion, blade_flexure, compression_spring, design_blade_flexure,
+                                   SlidingMesh, beam_pinion, blade_flexure, compression_spring, design_blade_flexure,
                                    helical_engagement, round_section_second_moment)
-from geargen.design.stiffness import ComponentSpec, StiffnessDesign, StiffnessSpec, stiffness_design
+from geargen.design.stiffness import (ComponentSpec, StiffnessDesign, StiffnessSpec, engagement_meshes,
+                                      stiffness_design)
 from geargen.errors import DesignError
 
 #: Eq. 1's divisor: k_mesh = E w / 11 (Shigley, bending + shear + contact of a typical mesh)
@@ -687,6 +688,10 @@ class StiffnessSummary:
         if self.engagement is not None:
             g = self.engagement
             out["engagement"] = {"lead_mm": g.lead, "relative_rotation_rad": g.relative_rotation,
+                                 "opening_rate_rad_per_mm": g.opening_rate,
+                                 "opening_at_reference_circle_mm_per_mm": g.circumferential_rate,
+                                 "turn_rate_rad_per_mm": {f"{m.gear}-{m.mate}": m.turn_rate
+                                                          for m in (g.engaging, g.other) if m is not None},
                                  "backlash_mm": g.backlash, "preload_windup_mm": g.preload_windup,
                                  "leader_stops_mm": [g.leader_retracted_stop, g.leader_engaged_stop],
                                  "trailer_stops_mm": [g.trailer_retracted_stop, g.trailer_engaged_stop]}
@@ -909,8 +914,10 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
                                   "preload_windup_* circumferential at its reference circle")
             # the loop deflection at the preload, as relative rotation of the pinions, at the reference circle
             windup = preload / drive.loop_stiffness * ratio * gear.reference_radius
-        engagement = helical_engagement(gear.helix_angle, gear.reference_radius, eg.backlash, windup,
-                                        eg.engagement_length or gear.face_width, eg.clearance)
+        # the whole cluster slides: its other gear's helix turns it too (geargen.core.flexures.helical_engagement)
+        engaging, other = (_sliding_mesh(design, g, m) for g, m in engagement_meshes(eg.gear, spec))
+        engagement = helical_engagement(engaging, eg.backlash, windup, eg.engagement_length or gear.face_width,
+                                        eg.clearance, other=other)
 
     # --- gears on placed shafts: deflection and tilt under the preload's mesh force ---
     supports = []
@@ -945,6 +952,13 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         spring_count=0 if sd.springs is None else sd.springs.count,
         spring_installed_length_for_preload=installed_for_preload, beam=beam, engagement=engagement,
         warnings=tuple(warnings), supports=tuple(supports))
+
+
+def _sliding_mesh(design, gear: str, mate: str) -> SlidingMesh:
+    """``gear`` of the sliding cluster against its ``mate`` (both named by the [stiffness] gear roles)."""
+    g = _beam_gear(design, gear, "engagement.gear")
+    _beam_gear(design, mate, "engagement.gear")
+    return SlidingMesh(gear, mate, g.helix_angle, g.reference_radius, g.hand)
 
 
 def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):

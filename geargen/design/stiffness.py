@@ -848,17 +848,56 @@ _ENGAGEMENT_FIELDS = [
 ]
 
 
-def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any] | None = None,
-                               length_unit: str | None = None) -> EngagementSpec:
-    """``[engagement]`` read; with ``gears`` (the design's) also checked against its gear.
+#: per cluster gear role of the dual-pinion train: its mate's role, the cluster's other gear's
+#: role and that gear's mate's role (both gears of a cluster slide together)
+_CLUSTER_MESHES = {"cluster_small": ("output", "cluster_large", "input"),
+                   "cluster_large": ("input", "cluster_small", "output")}
 
-    The sliding pinions are turned apart by the helix as one leads the other: the lead
-    ``(backlash + preload_windup) / tan(beta)`` must be reached while the leading pinion still
-    slides into mesh, so it may not exceed the engagement length (else the leader meets its
-    engaged stop first and the trailer enters a mesh that has no backlash for it). Without
+
+def engagement_meshes(gear: str, stiffness: StiffnessSpec | None = None) -> tuple[tuple[str, str], tuple[str, str]]:
+    """The two meshes of the dual pinion that carries ``gear``, as (sliding gear, mate) names.
+
+    The first is the mesh the pinions slide into (``gear`` against its mate), the second the
+    cluster's other mesh, which stays engaged while the cluster slides (its gear slides too, and
+    its helix turns the cluster). Gear roles from ``stiffness`` (``[stiffness]``, default roles
+    when None). The gear must be one of the cluster's: sliding the input or the output moves both
+    paths alike and opens nothing between them.
+    """
+    stiffness = stiffness if stiffness is not None else StiffnessSpec()
+    if stiffness.train != "dual_pinion":
+        raise DesignError("engagement.gear", "a custom train does not say which gears slide with the pinion",
+                          "a dual-pinion train ([stiffness] train = 'dual_pinion')")
+    roles = stiffness.roles
+    role = next((r for r in _CLUSTER_MESHES if roles[r] == gear), None)
+    if role is None:
+        raise DesignError("engagement.gear", f"{gear!r} is not a gear of the sliding dual pinions (sliding the input "
+                          "or the output moves both paths alike)", " or ".join(repr(roles[r]) for r in _CLUSTER_MESHES))
+    mate, other, other_mate = _CLUSTER_MESHES[role]
+    return (gear, roles[mate]), (roles[other], roles[other_mate])
+
+
+def _turn_rate(gear) -> float:
+    """rad/mm a helical gear slid along its axis turns to keep its mesh with a held mate (signed by
+    hand); the closed form of ``geargen.core.flexures.SlidingMesh.turn_rate``."""
+    return (1.0 if gear.hand == "right" else -1.0) * math.tan(gear.helix_angle) / gear.reference_radius
+
+
+def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any] | None = None,
+                               length_unit: str | None = None,
+                               stiffness: StiffnessSpec | None = None) -> EngagementSpec:
+    """``[engagement]`` read; with ``gears`` (the design's) also checked against the sliding cluster.
+
+    The sliding pinions are turned apart as one leads the other: sliding a cluster turns it
+    through the helix of its other mesh (the large gear along the long input pinion) against the
+    helix of the pinion in the bull gear, so the leader's pinion turns ``|kappa_o - kappa_e|``
+    per mm of lead against the trailer's (``kappa = s tan(beta) / r`` of each gear; derivation in
+    :func:`geargen.core.flexures.helical_engagement`). The lead ``(backlash + preload_windup) /
+    (|kappa_o - kappa_e| r_e)`` must be closed by the trailer while it is in mesh, so it may not
+    exceed the engagement length (travel stops that do not allow the lead are refused). Without
     ``preload_windup`` (then it comes from the stiffness model) the check uses the backlash
     alone, a lower bound of the lead. The engagement length cannot exceed the gear's face.
-    Lengths in messages are in ``length_unit`` (default: the unit of ``backlash_*``).
+    Gear roles from ``stiffness`` (``[stiffness]``; default roles when None). Lengths in messages
+    are in ``length_unit`` (default: the unit of ``backlash_*``).
     """
     v = read_table(data, _ENGAGEMENT_FIELDS, "engagement")
     spec = EngagementSpec(gear=v["gear"], backlash=v["backlash"], preload_windup=v["preload_windup"],
@@ -869,9 +908,6 @@ def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any]
     gear = gears.get(spec.gear)
     if gear is None:
         raise DesignError("engagement.gear", f"no gear named {spec.gear!r} in the design", ", ".join(gears))
-    if not gear.helix_angle > 0:
-        raise DesignError("engagement.gear", f"gears.{spec.gear} is a spur gear: sliding it along its axis cannot "
-                          "turn it to open backlash", "a helical gear (helix_angle_deg > 0)")
     face = gear.face_width
     length = face
     if spec.engagement_length is not None:
@@ -881,17 +917,30 @@ def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any]
                               f"{_length_text(length, unit)} is more than the face width of gears.{spec.gear} "
                               f"({_length_text(face, unit)}): the pinion cannot overlap the mesh by more",
                               f"(0, {_length_text(face, unit)}]")
-    tan_beta = math.tan(gear.helix_angle)
+    (_, mate), (other, _) = engagement_meshes(spec.gear, stiffness)
+    if other not in gears or mate not in gears:
+        return spec  # a role that names no gear: reported by check_stiffness_gears
+    kappa_e, kappa_o = _turn_rate(gear), _turn_rate(gears[other])
+    if not abs(kappa_o - kappa_e) > 1e-12 * (abs(kappa_e) + abs(kappa_o)) or kappa_e == kappa_o:
+        why = ("neither gear of the cluster is helical" if kappa_e == kappa_o == 0 else
+               f"gears.{spec.gear} and gears.{other} have one hand and one helix lead: the cluster slides like a screw")
+        raise DesignError("engagement.gear", f"sliding the cluster cannot turn gears.{spec.gear} against gears.{mate} "
+                          f"to open backlash: {why}",
+                          f"a cluster whose gears turn by different rates as it slides (tan(helix) / reference radius, "
+                          "signed by hand)")
+    per_lead = abs(kappa_o - kappa_e) * gear.reference_radius  # opened at the pinion's reference circle per mm
     windup = spec.preload_windup or 0.0
-    lead = (spec.backlash + windup) / tan_beta
+    lead = (spec.backlash + windup) / per_lead
     if lead > length * (1 + 1e-12):
-        circumferential = length * tan_beta  # what the whole engagement length turns the pinions apart
-        name = "backlash" if windup < circumferential else "preload_windup"
-        most = circumferential - (windup if name == "backlash" else spec.backlash)
+        capacity = length * per_lead  # what the whole engagement length turns the pinions apart
+        name = "backlash" if windup < capacity else "preload_windup"
+        most = capacity - (windup if name == "backlash" else spec.backlash)
         raise DesignError(_key(v, "engagement", name),
                           f"needs a lead of {_length_text(lead, unit)} between the sliding pinions ((backlash + "
-                          f"preload windup) / tan(helix)), more than the engagement length {_length_text(length, unit)}:"
-                          " the leading pinion meets its engaged stop before the lead has opened the backlash",
+                          f"preload windup) / {per_lead:.6g}, the opening at the reference circle of gears.{spec.gear} "
+                          f"per unit of lead from the helices of gears.{spec.gear} and gears.{other}), more than the "
+                          f"engagement length {_length_text(length, unit)}: the trailing pinion would reach the "
+                          "bull gear before the lead has opened the backlash for it",
                           f"[0, {_length_text(max(most, 0.0), unit, 'down')}]")
     return spec
 
@@ -925,12 +974,12 @@ def stiffness_design(design) -> StiffnessDesign:
                            flexures=opt("flexures", lambda t: flexure_spec_from_table(t, unit)),
                            springs=opt("springs", lambda t: spring_spec_from_table(t, unit)),
                            beam_pinion=opt("beam_pinion", lambda t: beam_pinion_spec_from_table(t, gears)),
-                           engagement=opt("engagement", lambda t: engagement_spec_from_table(t, gears, unit)))
+                           engagement=opt("engagement", lambda t: engagement_spec_from_table(t, gears, unit, spec)))
 
 
 __all__ = ["QUANTITY_SUFFIXES", "INTERNAL_UNITS", "convert_quantity", "Quantity", "ComponentSpec", "StiffnessSpec",
            "PreloadSpec", "FlexureSpec", "SpringSpec", "BeamPinionSpec", "EngagementSpec", "StiffnessDesign",
            "stiffness_design", "component_from_table", "stiffness_spec_from_table", "preload_spec_from_table",
            "flexure_spec_from_table", "spring_spec_from_table", "beam_pinion_spec_from_table",
-           "engagement_spec_from_table", "check_stiffness_gears", "SHAFTS", "SCOPES", "COMPONENT_KINDS", "END_TYPES",
+           "engagement_spec_from_table", "engagement_meshes", "check_stiffness_gears", "SHAFTS", "SCOPES", "COMPONENT_KINDS", "END_TYPES",
            "SPRING_ENDS"]

@@ -87,8 +87,9 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
     if design.drive_type is None and any(s in sections for s in _NEED_DRIVE_TYPE):
         present = next(s for s in _NEED_DRIVE_TYPE if s in sections)
         problems.add(DesignError("drive.type", f"missing: [{present}] describes a drive of a type", "'type1', 'type2'"))
+    stiffness = None  # the gear roles the [engagement] check needs (defaults without [stiffness])
     if "stiffness" in sections:
-        spec = run(stiffness_spec_from_table, sections["stiffness"])
+        stiffness = spec = run(stiffness_spec_from_table, sections["stiffness"])
         if spec is not None and gears_complete:
             run(check_stiffness_gears, spec, design.gears)
     if "preload" in sections:
@@ -100,7 +101,8 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
     if "beam_pinion" in sections:
         run(beam_pinion_spec_from_table, sections["beam_pinion"], gears)
     if "engagement" in sections:
-        run(engagement_spec_from_table, sections["engagement"], gears, unit)
+        roles_read = stiffness is not None or "stiffness" not in sections
+        run(engagement_spec_from_table, sections["engagement"], gears if roles_read else None, unit, stiffness)
 
     if "layout" in sections or "synthesis" in sections:  # a synthesis alone is a dual-pinion layout
         settings = run(layout_settings, design)

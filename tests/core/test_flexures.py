@@ -203,15 +203,23 @@ def test_one_lead_of_axial_travel_turns_the_gear_once():
 
 def test_helical_engagement_lead_and_stops_by_hand():
     beta, r = math.radians(20.0), 20.0
-    e = fx.helical_engagement(beta, r, backlash=0.05, preload_windup=0.03, engagement_length=25.0, clearance=2.0)
+    pinion = fx.SlidingMesh("pinion", "bull", beta, r, "left")
+    # a cluster whose other gear is spur: the pinion's helix alone turns it, lead = (b + w) / tan(beta)
+    e = fx.helical_engagement(pinion, backlash=0.05, preload_windup=0.03, engagement_length=25.0, clearance=2.0,
+                              other=fx.SlidingMesh("large", "input", 0.0, 60.0))
     assert e.lead == pytest.approx(0.08 / math.tan(beta), rel=1e-14)
     assert e.relative_rotation == pytest.approx(0.08 / r, rel=1e-14)  # z tan(beta) / r
     assert (e.leader_engaged_stop, e.trailer_engaged_stop) == (0.0, 0.0)
     assert e.leader_retracted_stop == pytest.approx(-27.0, rel=1e-15)
     assert e.trailer_retracted_stop == pytest.approx(-27.0 - e.lead, rel=1e-15)
     assert e.trailer_stroke - e.leader_stroke == pytest.approx(e.lead, rel=1e-14)
+    # a helical other gear of the same hand (a 60 mm gear at 20 deg) takes back r / 60 of it
+    both = fx.helical_engagement(pinion, 0.05, 0.03, 25.0, 2.0, other=fx.SlidingMesh("large", "input", beta, 60.0, "left"))
+    assert both.lead == pytest.approx(0.08 / (math.tan(beta) * (1 - r / 60.0)), rel=1e-14)
+    assert both.relative_rotation == pytest.approx(0.08 / r, rel=1e-14)
+    assert both.trailer_retracted_stop == pytest.approx(-27.0 - both.lead, rel=1e-15)
     with pytest.raises(DesignError):
-        fx.helical_engagement(0.0, r, 0.05, 0.03, 25.0)  # a spur gear turns nothing
+        fx.helical_engagement(fx.SlidingMesh("pinion", "bull", 0.0, r), 0.05, 0.03, 25.0)  # a spur gear turns nothing
 
 
 def test_beam_and_blade_inputs_are_checked():

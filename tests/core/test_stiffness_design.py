@@ -272,7 +272,11 @@ def test_beam_pinion_is_the_preload_spring_and_engagement_lead_follows():
     pin = design.gears["cluster_small"]
     windup = 250e3 / s.loop_stiffness * (120 / 17) * pin.reference_radius
     assert s.engagement.preload_windup == pytest.approx(windup, rel=1e-12)
-    assert s.engagement.lead == pytest.approx((0.10 + windup) / math.tan(15 * DEG), rel=1e-12)
+    # the whole cluster slides: its right-hand large gear along the left-hand input turns it the
+    # other way from the left-hand pinion's helix, so the two add: tan(beta) (1 + r_e / r_o)
+    per_lead = math.tan(15 * DEG) * (1 + pin.reference_radius / large.reference_radius)
+    assert (large.hand, pin.hand) == ("right", "left")
+    assert s.engagement.lead == pytest.approx((0.10 + windup) / per_lead, rel=1e-12)
     assert s.engagement.engagement_length == pytest.approx(30.0)
     assert s.engagement.trailer_retracted_stop == pytest.approx(-33.0 - s.engagement.lead, rel=1e-12)
 

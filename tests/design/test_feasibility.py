@@ -13,7 +13,7 @@ import pytest
 from geargen.core import flexures as fx
 from geargen.core.involute import tip_land_thickness
 from geargen.design import feasibility as fe
-from geargen.design.gear import GearSpec
+from geargen.design.gear import GearSpec, gear_from_table
 from geargen.design.stiffness import FlexureSpec, SpringSpec
 from geargen.errors import DesignError, GeometryError
 from geargen.profile import tooth
@@ -128,6 +128,16 @@ def test_flexure_closed_forms_match_core():
 
 
 def test_engagement_lead_matches_core():
-    # the load's lead (backlash + windup) / tan(beta) is the helper's
-    eng = fx.helical_engagement(math.radians(15), 25.0, 0.08, 0.3, 30.0, 3.0)
-    assert eng.lead == pytest.approx((0.08 + 0.3) / math.tan(math.radians(15)), rel=1e-15)
+    # the load's lead (backlash + windup) / (|kappa_o - kappa_e| r_e) is the helper's, every hand
+    from geargen.design.stiffness import _turn_rate
+    for hand_e, hand_o, beta_o in (("left", "left", 15), ("left", "right", 15), ("right", "right", 10),
+                                   ("right", "left", 0)):
+        pinion = gear_from_table({"teeth": 20, "module_mm": 2.5, "pressure_angle_deg": 20, "helix_angle_deg": 15, "hand": hand_e,
+                                  "face_width_mm": 30})
+        large = gear_from_table({"teeth": 60, "module_mm": 2.0, "pressure_angle_deg": 20, "helix_angle_deg": beta_o, "hand": hand_o,
+                                 "face_width_mm": 20})
+        per_lead = abs(_turn_rate(large) - _turn_rate(pinion)) * pinion.reference_radius
+        eng = fx.helical_engagement(
+            fx.SlidingMesh("small", "out", pinion.helix_angle, pinion.reference_radius, pinion.hand), 0.08, 0.3,
+            30.0, 3.0, other=fx.SlidingMesh("large", "in", large.helix_angle, large.reference_radius, large.hand))
+        assert eng.lead == pytest.approx((0.08 + 0.3) / per_lead, rel=1e-14)

@@ -199,22 +199,31 @@ def test_travel_stops_that_do_not_allow_the_engagement_lead(tmp_path, capsys):
     bad = variant(tmp_path, C_AXIS, (r"^backlash_mm = 0\.08 ", "backlash_mm = 10 "))
     code, err = run(capsys, "synth", bad)
     assert code == 2
-    # lead = backlash / tan(beta) (+ windup, >= 0) against the 30 mm engagement length
-    beta = math.radians(15)
-    assert f"engagement.backlash_mm: needs a lead of {10 / math.tan(beta):.6g} mm" in err
+    # lead = (backlash (+ windup, >= 0)) / (|kappa_o - kappa_e| r_e) against the 30 mm engagement length:
+    # the whole cluster slides, its large gear (60 x 2 mm) along the long pinion too; both gears
+    # left hand at 15 deg, so per mm of lead tan(beta) (1 - r_e / r_o), r_e / r_o = 50 / 120
+    per_lead = math.tan(math.radians(15)) * (1 - 50 / 120)
+    assert f"engagement.backlash_mm: needs a lead of {10 / per_lead:.6g} mm" in err
     printed = float(re.search(r"\(allowed: \[0, ([0-9.e-]+) mm\]\)", err).group(1))
-    assert 30 * math.tan(beta) * (1 - 1e-5) <= printed <= 30 * math.tan(beta)
+    assert 30 * per_lead * (1 - 1e-5) <= printed <= 30 * per_lead
     err = error_of(variant(tmp_path, C_AXIS, (r"^engagement_length_mm = 30 ", "engagement_length_mm = 31 ")))
     assert err.field == "engagement.engagement_length_mm" and err.allowed == "(0, 30 mm]"
 
 
-def test_sliding_a_spur_pinion_cannot_open_backlash(tmp_path):
+def test_sliding_a_cluster_that_turns_nothing_cannot_open_backlash(tmp_path):
+    # a spur pinion still turns against a spur bull gear when the cluster's large gear is helical
     data = load_toml(C_AXIS)
     data["gears"]["cluster_small"]["helix_angle_deg"] = 0
     data["gears"]["output"]["helix_angle_deg"] = 0
+    with pytest.raises(DesignError) as info:  # (the synthesis' centre distance no longer fits spur gears)
+        design_from_dict(data, validate=True)
+    assert "engagement." not in str(info.value)
+    # all spur: nothing turns
+    data["gear_defaults"]["helix_angle_deg"] = 0
     with pytest.raises(DesignError) as info:
         design_from_dict(data, validate=True)
-    assert "engagement.gear: gears.cluster_small is a spur gear" in str(info.value)
+    assert "engagement.gear: sliding the cluster cannot turn gears.cluster_small against gears.output" \
+        in str(info.value) and "neither gear of the cluster is helical" in str(info.value)
 
 
 # ------------------------------------------------------------------ 5. all problems at once
