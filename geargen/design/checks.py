@@ -114,12 +114,7 @@ def checks_settings(design: Design) -> ChecksSettings:
     raw = dict(design.section("checks"))
     centre_keys = [k for k in raw if k in _CENTRE_KEYS]
     centre_raw = {k: raw.pop(k) for k in centre_keys}
-    try:
-        v = read_table(raw, CHECKS_FIELDS, "checks")
-    except DesignError as exc:
-        if exc.field.startswith("checks.") and exc.problem == "unknown key":
-            raise DesignError(exc.field, exc.problem, exc.allowed + ", " + ", ".join(_CENTRE_KEYS)) from None
-        raise
+    v = read_table(raw, CHECKS_FIELDS, "checks", read_elsewhere=_CENTRE_KEYS)
     meshes = _declared_meshes(design, v["meshes"], centre_raw)
     kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
                                 "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",

@@ -51,7 +51,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.schema import Field, bound_text, check_range, read_table
+from geargen.design.schema import Field, bound_text, check_range, raise_unknown_keys, read_table, unknown_key
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
@@ -117,10 +117,11 @@ def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list
         for key, (fam, suf) in q.keys().items():
             qkeys[key] = (q, fam, suf)
     field_keys = {k for f in fields for k in f.keys()}
-    for key in data:
-        if key not in qkeys and key not in field_keys and key not in tables:
-            allowed = sorted(field_keys | set(tables)) + [f"{q.name}_<unit>" for q in quantities]
-            raise DesignError(prefix + key, "unknown key", ", ".join(allowed))
+    unknown = [key for key in data if key not in qkeys and key not in field_keys and key not in tables]
+    if unknown:
+        allowed = ", ".join(sorted(field_keys | set(tables)) + [f"{q.name}_<unit>" for q in quantities])
+        known = [k for f in fields for k in f.keys()] + list(tables) + list(qkeys)
+        raise_unknown_keys([unknown_key(prefix + key, key, known, allowed) for key in unknown])
     out = read_table({k: v for k, v in data.items() if k in field_keys}, fields, where)
     for q in quantities:
         present = [k for k in data if k in qkeys and qkeys[k][0] is q]
