@@ -28,6 +28,7 @@ COMMANDS = {
     "check": "geometric mesh checks of every mesh of an assembly",
     "build": "build a whole assembly into exports/<design file name>/",
     "fit": "fit a bench measurement, diagnose and report what the model missed",
+    "new": "write a commented starter design file that builds (dual_pinion, split_pinion)",
 }
 
 EXIT_OK = 0

@@ -229,21 +229,19 @@ class MonteCarloSettings:
 
 SYNTHESIS_FIELDS: list[Field] = [
     Field("centre_distance_mesh1", "length", minimum=0.0, exclusive_minimum=True,
-          help="operating centre distance of mesh 1 (input and cluster_large)"),
+          help="operating centre distance of mesh 1 (input and cluster_large), above the sum of the base radii"),
     Field("centre_distance_mesh2", "length", minimum=0.0, exclusive_minimum=True,
-          help="operating centre distance of mesh 2 (cluster_small and output)"),
+          help="operating centre distance of mesh 2 (cluster_small and output), above the sum of the base radii"),
     Field("circumferential_backlash_max_mesh1", "length",
-          help="mesh 1 backlash with the thinnest teeth the tolerances allow (circumferential, at the reference "
-               "circles)"),
+          help="mesh 1 backlash with the thinnest teeth the tolerances allow; in [0, half the circular pitch)"),
     Field("circumferential_backlash_min_mesh1", "length",
-          help="mesh 1 backlash with the thickest teeth (circumferential, at the reference circles)"),
+          help="mesh 1 backlash with the thickest teeth; in [0, the maximum]"),
     Field("circumferential_backlash_max_mesh2", "length",
-          help="mesh 2 backlash with the thinnest teeth (circumferential, at the reference circles)"),
+          help="mesh 2 backlash with the thinnest teeth the tolerances allow; in [0, half the circular pitch)"),
     Field("circumferential_backlash_min_mesh2", "length",
-          help="mesh 2 backlash with the thickest teeth (circumferential, at the reference circles)"),
+          help="mesh 2 backlash with the thickest teeth; in [0, the maximum]"),
     Field("start_angle_A1", "angle", units=("deg", "rad"),
-          help="nominal direction from cluster A's centre to the input's centre, from +x (negative, as in the "
-               "Appendix)"),
+          help="nominal direction from cluster A's centre to the input's centre, from +x; in (-90, 0) deg"),
     Field("rounding", "string", choices=ROUNDING_RULES,
           help="how the increment count of Eq. 7 is rounded: whole_* keep whole teeth of the input gear, half_* "
                "allow half teeth"),
