@@ -115,10 +115,9 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         raise DesignError("<top>", "expected a table")
     problems = Problems()
     unknown = [k for k in data if k not in SECTIONS and k not in TOP_KEYS]
+    known = list(TOP_KEYS) + list(SECTIONS)
     for key in unknown:
-        known = list(TOP_KEYS) + list(SECTIONS)
-        error = unknown_key(key, key, known, ", ".join(known))
-        problems.add(DesignError(key, error.problem.replace("unknown key", "unknown key or section", 1), error.allowed))
+        problems.add(unknown_key(key, key, known, ", ".join(known), "unknown key or section"))
     name = data.get("name", path.stem if path else "design")
     if not isinstance(name, str) or not name or any(c in name for c in "/\\") or name.startswith("."):
         problems.add(DesignError("name", f"{name!r} is not a valid name", "a non-empty file-name-safe string"))

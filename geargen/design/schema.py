@@ -177,12 +177,12 @@ def _or_list(items: list[str]) -> str:
     return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " or " + items[-1]
 
 
-def unknown_key(where: str, written: str, known: Iterable[str], allowed: str | None = None) -> DesignError:
+def unknown_key(where: str, written: str, known: Iterable[str], allowed: str | None = None,
+                problem: str = "unknown key") -> DesignError:
     """The error of the unknown key ``written`` (at the dotted path ``where``) of a table whose
-    keys are ``known``: "unknown key; did you mean ...?" when some known key is close."""
+    keys are ``known``: ``problem`` with "; did you mean ...?" when some known key is close."""
     suggestions = close_keys(written, known)
-    problem = "unknown key" + (f"; did you mean {_or_list(suggestions)}?" if suggestions else "")
-    return DesignError(where, problem, allowed)
+    return DesignError(where, problem + (f"; did you mean {_or_list(suggestions)}?" if suggestions else ""), allowed)
 
 
 def raise_unknown_keys(errors: list[DesignError]) -> None:
