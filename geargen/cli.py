@@ -29,6 +29,7 @@ COMMANDS = {
     "build": "build a whole assembly into exports/<design file name>/",
     "fit": "fit a bench measurement, diagnose and report what the model missed",
     "pair": "gear-pair calculator: centre distance, pressure angle, contact ratio, backlash, shifts",
+    "new": "write a commented starter design file that builds (dual_pinion, split_pinion)",
 }
 
 EXIT_OK = 0

@@ -36,7 +36,7 @@ from typing import Any, Mapping
 
 from geargen.design.feasibility import check_tooth
 from geargen.design.gear import GearSpec, gear_from_table, gear_keys_written
-from geargen.design.schema import Problems, load_toml
+from geargen.design.schema import DesignErrors, Problems, load_toml, unknown_key
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS
 
@@ -115,8 +115,9 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         raise DesignError("<top>", "expected a table")
     problems = Problems()
     unknown = [k for k in data if k not in SECTIONS and k not in TOP_KEYS]
+    known = list(TOP_KEYS) + list(SECTIONS)
     for key in unknown:
-        problems.add(DesignError(key, "unknown key or section", ", ".join(list(TOP_KEYS) + list(SECTIONS))))
+        problems.add(unknown_key(key, key, known, ", ".join(known), "unknown key or section"))
     name = data.get("name", path.stem if path else "design")
     if not isinstance(name, str) or not name or any(c in name for c in "/\\") or name.startswith("."):
         problems.add(DesignError("name", f"{name!r} is not a valid name", "a non-empty file-name-safe string"))
@@ -135,7 +136,7 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         drive = {}
     for key in drive:
         if key not in ("type", "preload"):
-            problems.add(DesignError(f"drive.{key}", "unknown key", "type, preload"))
+            problems.add(unknown_key(f"drive.{key}", key, ("type", "preload"), "type, preload"))
     drive_type = drive.get("type")
     if drive_type is not None and drive_type not in DRIVE_TYPES:
         problems.add(DesignError("drive.type", f"{drive_type!r} is not a valid choice", "'type1', 'type2'"))
@@ -188,6 +189,8 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
 
 def _from_defaults(error: DesignError, gear: str, table: Mapping[str, Any], defaults: Mapping[str, Any]) -> DesignError:
     """A gear's error about a key it took from ``[gear_defaults]``, named where the file has it."""
+    if isinstance(error, DesignErrors):  # several unknown keys of one table
+        return DesignErrors([_from_defaults(e, gear, table, defaults) for e in error.errors])
     prefix = f"gears.{gear}."
     if error.field.startswith(prefix):
         key = error.field[len(prefix):].split("[")[0]

@@ -90,20 +90,35 @@ class ChecksSettings:
 
 
 CHECKS_FIELDS: list[Field] = [
-    Field("steps_per_tooth", "integer", required=False, default=24, minimum=2, maximum=10000),
-    Field("revolutions", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("section_planes", "integer", required=False, default=5, minimum=1, maximum=200),
-    Field("min_contact_ratio", "number", required=False, default=1.1, minimum=0.0, maximum=10.0),
-    Field("min_tip_land_modules", "number", required=False, default=0.2, minimum=0.0, maximum=2.0),
-    Field("require_backlash", "bool", required=False, default=True),
-    Field("tolerances", "bool", required=False, default=True),
-    Field("monte_carlo_samples", "integer", required=False, default=400, minimum=0, maximum=10_000_000),
-    Field("seed", "integer", required=False, default=0, minimum=0),
-    Field("sections", "bool", required=False, default=False),
-    Field("sections_planes", "integer", required=False, default=3, minimum=1, maximum=200),
-    Field("stl_chordal_tolerance", "length", required=False, default=1e-3, minimum=0.0, exclusive_minimum=True),
-    Field("carriage_travel_limit", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("meshes", "list", required=False, default=None),
+    Field("steps_per_tooth", "integer", required=False, default=24, minimum=2, maximum=10000,
+          help="mesh positions checked per tooth of the turned gear"),
+    Field("revolutions", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="revolutions of the turned gear to sweep (default: one tooth cycle, or the whole hunting period when "
+               "errors are swept)"),
+    Field("section_planes", "integer", required=False, default=5, minimum=1, maximum=200,
+          help="transverse planes through a helical pair (path 1)"),
+    Field("min_contact_ratio", "number", required=False, default=1.1, minimum=0.0, maximum=10.0,
+          help="smallest contact ratio accepted (transverse for spur pairs, total for helical)"),
+    Field("min_tip_land_modules", "number", required=False, default=0.2, minimum=0.0, maximum=2.0,
+          help="a tip land below this many normal modules fails as pointed_tooth"),
+    Field("require_backlash", "bool", required=False, default=True,
+          help="every mesh must keep backlash (false: zero-backlash meshes pass)"),
+    Field("tolerances", "bool", required=False, default=True,
+          help="worst case and Monte Carlo of the minimum backlash over the [errors.*] budget"),
+    Field("monte_carlo_samples", "integer", required=False, default=400, minimum=0, maximum=10_000_000,
+          help="random builds of the error budget"),
+    Field("seed", "integer", required=False, default=0, minimum=0, help="seed of the Monte Carlo draws"),
+    Field("sections", "bool", required=False, default=False,
+          help="also check sections of the exported solids (path 2)"),
+    Field("sections_planes", "integer", required=False, default=3, minimum=1, maximum=200,
+          help="planes sectioned per gear by path 2"),
+    Field("stl_chordal_tolerance", "length", required=False, default=1e-3, minimum=0.0, exclusive_minimum=True,
+          help="chordal tolerance of the meshes sectioned by path 2"),
+    Field("carriage_travel_limit", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="largest preload-carriage travel either way from nominal the error budget may need"),
+    Field("meshes", "list", required=False, default=None,
+          help="pairs to check in a design without [synthesis] or [layout]: [[\"gear1\", \"gear2\"], ...], the first "
+               "turned"),
 ]
 
 _CENTRE_KEYS = tuple(f"centre_distance_{u}" for u in LENGTH_SUFFIXES)
@@ -114,12 +129,7 @@ def checks_settings(design: Design) -> ChecksSettings:
     raw = dict(design.section("checks"))
     centre_keys = [k for k in raw if k in _CENTRE_KEYS]
     centre_raw = {k: raw.pop(k) for k in centre_keys}
-    try:
-        v = read_table(raw, CHECKS_FIELDS, "checks")
-    except DesignError as exc:
-        if exc.field.startswith("checks.") and exc.problem == "unknown key":
-            raise DesignError(exc.field, exc.problem, exc.allowed + ", " + ", ".join(_CENTRE_KEYS)) from None
-        raise
+    v = read_table(raw, CHECKS_FIELDS, "checks", read_elsewhere=_CENTRE_KEYS)
     meshes = _declared_meshes(design, v["meshes"], centre_raw)
     kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
                                 "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",

@@ -20,12 +20,19 @@ from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 
 EXPORT_FIELDS = [
-    Field("stl_chordal_tolerance", "length", required=False, default=0.005, minimum=0.0, exclusive_minimum=True),
-    Field("stl_chordal_tolerance_parts", "length", required=False, default=0.05, minimum=0.0, exclusive_minimum=True),
-    Field("stl_angular_tolerance", "angle", required=False, default=0.5, minimum=0.0, exclusive_minimum=True),
-    Field("gear_solid_tolerance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("render_view", "list", required=False, default=None),
-    Field("render_size", "list", required=False, default=None),
+    Field("stl_chordal_tolerance", "length", required=False, default=0.005, minimum=0.0, exclusive_minimum=True,
+          help="gear STL files within this of the exact flanks"),
+    Field("stl_chordal_tolerance_parts", "length", required=False, default=0.05, minimum=0.0, exclusive_minimum=True,
+          help="the other parts' STL files within this of their solids"),
+    Field("stl_angular_tolerance", "angle", required=False, default=0.5, minimum=0.0, exclusive_minimum=True,
+          help="angular tolerance of the STL meshing"),
+    Field("gear_solid_tolerance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="flank splines of the gear solids within this of the exact surface (default: the gear builder's, "
+               "scaled down with modules below 1 mm)"),
+    Field("render_view", "list", required=False, default=None,
+          help="[azimuth, elevation] of the rendered view, degrees (default [-60, 30])"),
+    Field("render_size", "list", required=False, default=None,
+          help="[width, height] of the rendered figure, inches at its dpi (default [9, 6.5])"),
 ]
 
 #: largest figure side of the rendered view (inches at the render's dpi: a few thousand pixels)

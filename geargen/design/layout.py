@@ -30,27 +30,51 @@ MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
 POSITIONS = ("engaged", "disengaged")
 
 LAYOUT_FIELDS = [
-    Field("kind", "string", required=False, default=None, choices=LAYOUT_KINDS),  # dual_pinion with a [synthesis]
-    Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH),
-    Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0),
-    Field("position", "string", required=False, default="engaged", choices=POSITIONS),
+    Field("kind", "string", required=False, default=None, choices=LAYOUT_KINDS,
+          help="dual_pinion: gears placed by the centre synthesis of [synthesis] (the default when there is one); "
+               "split_pinion: two pinions side by side on one output"),
+    Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH,
+          help="tooth thickness of the model: mid, max or min of the backlash range, or as_designed (the gears' own "
+               "thinning; the default when a gear gives one, else mid)"),
+    Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0,
+          help="left open on the working flanks so that the solids do not touch"),
+    Field("position", "string", required=False, default="engaged", choices=POSITIONS,
+          help="sliding pinions engaged or disengaged (disengaged needs [engagement])"),
     # dual pinion
-    Field("cluster", "string", required=False, default="one_piece", choices=("one_piece", "separate")),
-    Field("cluster_axial_gap", "length", required=False, default=None, minimum=0.0),
-    Field("input_face_offset", "length", required=False, default=None),
-    Field("carriage_travel", "length", required=False, default=None, minimum=0.0),
-    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0),
+    Field("cluster", "string", required=False, default="one_piece", choices=("one_piece", "separate"),
+          help="dual pinion: each cluster one part, or its large and small gear as two parts"),
+    Field("cluster_axial_gap", "length", required=False, default=None, minimum=0.0,
+          help="dual pinion: axial gap between a cluster's large and small gear (default: a quarter of the narrower "
+               "face)"),
+    Field("input_face_offset", "length", required=False, default=None,
+          help="dual pinion: how far the input's face sits below the cluster's large gear face (default: the input "
+               "centred on it)"),
+    Field("carriage_travel", "length", required=False, default=None, minimum=0.0,
+          help="dual pinion: travel of the preload carriage either way, drawn in the layout and the report"),
+    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0,
+          help="not read by any step yet: the retracted pinions' axial gap is [engagement] clearance_*"),
     # split pinion
-    Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("pinion_stiff", "string", required=False, default="pinion_stiff"),
-    Field("pinion_compliant", "string", required=False, default="pinion_compliant"),
-    Field("output", "string", required=False, default="output"),
-    Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0),
-    Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0),
-    Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0),
+    Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="split pinion: centre distance of both pinions from the output"),
+    Field("pinion_stiff", "string", required=False, default="pinion_stiff",
+          help="split pinion: the gear table of the stiff (outer) path's pinion"),
+    Field("pinion_compliant", "string", required=False, default="pinion_compliant",
+          help="split pinion: the gear table of the compliant (inner) path's pinion"),
+    Field("output", "string", required=False, default="output",
+          help="split pinion: the gear table of the output gear"),
+    Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0,
+          help="split pinion: axial gap between the two pinions"),
+    Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0,
+          help="split pinion: smallest backlash of each pinion with the output (circumferential, at the reference "
+               "circles)"),
+    Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0,
+          help="split pinion: largest backlash of each pinion with the output (circumferential, at the reference "
+               "circles)"),
     # the gear ratio the controller needs, from encoder to output
-    Field("upstream_stages", "list", required=False, default=()),
-    Field("required_ratios", "list", required=False, default=()),
+    Field("upstream_stages", "list", required=False, default=(),
+          help="[driver_teeth, driven_teeth] of each stage between the encoder and the input gear"),
+    Field("required_ratios", "list", required=False, default=(),
+          help="whole-number ratios, encoder to output, that the controller accepts (the build checks one is met)"),
 ]
 
 #: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])

@@ -7,11 +7,12 @@ ranges are given in internal units and reported back in the unit the user wrote.
 
 from __future__ import annotations
 
+import difflib
 import math
 import tomllib
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterable, Mapping
 
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
@@ -28,7 +29,9 @@ class Field:
     ``name`` is the key without its unit suffix. ``minimum``/``maximum`` are in internal units
     (mm, rad) and inclusive unless ``exclusive_minimum``/``exclusive_maximum``. ``choices``
     restricts strings. A field with ``required=False`` takes ``default`` when absent.
-    ``units`` narrows the accepted suffixes of a length or angle (default: all).
+    ``units`` narrows the accepted suffixes of a length or angle (default: all). ``help`` is the
+    key's one-line meaning, for the design-file reference (:mod:`geargen.design.reference`) and
+    the comments of the starter designs (``geargen new``).
     """
 
     name: str
@@ -100,6 +103,95 @@ class Problems:
             raise self.errors[0]
         if self.errors:
             raise DesignErrors(self.errors, source)
+
+
+# ---------------------------------------------------------------- unknown keys: "did you mean"
+
+_KEYBOARD_ROWS = ("1234567890", "qwertyuiop", "asdfghjkl", "zxcvbnm")
+_KEY_POSITION = {c: (row, col + 0.5 * row) for row, keys in enumerate(_KEYBOARD_ROWS) for col, c in enumerate(keys)}
+
+
+def _substitution_cost(a: str, b: str) -> float:
+    """What typing ``a`` for ``b`` costs: nothing for the same letter, a quarter for the wrong
+    case (``_nm`` for ``_Nm``), a half for a key next to it on the keyboard (``_mn`` for
+    ``_mm``), one otherwise."""
+    if a == b:
+        return 0.0
+    if a.lower() == b.lower():
+        return 0.25
+    pa, pb = _KEY_POSITION.get(a.lower()), _KEY_POSITION.get(b.lower())
+    if pa and pb and abs(pa[0] - pb[0]) <= 1 and abs(pa[1] - pb[1]) <= 1:
+        return 0.5
+    return 1.0
+
+
+def typo_distance(written: str, key: str) -> float:
+    """Edit distance from ``written`` to ``key`` (insertions, deletions, swaps of two neighbours
+    1 each; substitutions priced by :func:`_substitution_cost`), the measure by which
+    :func:`close_keys` ranks its suggestions."""
+    m, n = len(written), len(key)
+    d = [[0.0] * (n + 1) for _ in range(m + 1)]
+    for i in range(m + 1):
+        d[i][0] = float(i)
+    for j in range(n + 1):
+        d[0][j] = float(j)
+    for i in range(1, m + 1):
+        for j in range(1, n + 1):
+            d[i][j] = min(d[i - 1][j] + 1, d[i][j - 1] + 1,
+                          d[i - 1][j - 1] + _substitution_cost(written[i - 1], key[j - 1]))
+            if i > 1 and j > 1 and written[i - 1] == key[j - 2] and written[i - 2] == key[j - 1]:
+                d[i][j] = min(d[i][j], d[i - 2][j - 2] + 1)
+    return d[m][n]
+
+
+def close_keys(written: str, known: Iterable[str], most: int = 3) -> list[str]:
+    """The known keys ``written`` most likely meant, best first (empty when none is close).
+
+    A key written without its unit suffix (``face_width``) gets the spellings that add one
+    (``face_width_mm``, ``face_width_in``, ...); a shortened name with a unit suffix
+    (``thinning_mm``) the longer names of that unit (``thinning_circumferential_mm``,
+    ``thinning_normal_mm``). Otherwise the candidates are those :func:`difflib.get_close_matches`
+    finds similar, ranked by :func:`typo_distance`, so a mistyped unit suffix finds the unit next
+    to it on the keyboard (``face_width_mn`` -> ``face_width_mm``, not ``face_width_m``); keys
+    tied for the closest are all given.
+    """
+    known = list(dict.fromkeys(known))
+    with_unit = [k for k in known if k.startswith(written + "_")]
+    if with_unit:
+        return with_unit[:most]
+    cuts = [i for i, c in enumerate(written) if c == "_"]
+    for i in reversed(cuts):  # the longest name first: the most specific
+        stem, suffix = written[:i + 1], "_" + written[i + 1:]
+        longer = [k for k in known if k.startswith(stem) and k.endswith(suffix) and len(k) > len(written)]
+        if longer:
+            return longer[:most]
+    similar = difflib.get_close_matches(written, known, n=len(known), cutoff=0.6)
+    if not similar:
+        return []
+    ranked = sorted(similar, key=lambda k: (typo_distance(written, k), known.index(k)))
+    best = typo_distance(written, ranked[0])
+    return [k for k in ranked if typo_distance(written, k) == best][:most]
+
+
+def _or_list(items: list[str]) -> str:
+    return items[0] if len(items) == 1 else ", ".join(items[:-1]) + " or " + items[-1]
+
+
+def unknown_key(where: str, written: str, known: Iterable[str], allowed: str | None = None,
+                problem: str = "unknown key") -> DesignError:
+    """The error of the unknown key ``written`` (at the dotted path ``where``) of a table whose
+    keys are ``known``: ``problem`` with "; did you mean ...?" when some known key is close."""
+    suggestions = close_keys(written, known)
+    return DesignError(where, problem + (f"; did you mean {_or_list(suggestions)}?" if suggestions else ""), allowed)
+
+
+def raise_unknown_keys(errors: list[DesignError]) -> None:
+    """Raise the unknown-key errors of one table: the error itself when there is one, else all
+    of them together (:class:`DesignErrors`, which :class:`Problems` lists one by one)."""
+    if len(errors) == 1:
+        raise errors[0]
+    if errors:
+        raise DesignErrors(errors)
 
 
 def _fmt(value: float) -> str:
@@ -182,12 +274,17 @@ def _convert(field: Field, key: str, raw: Any, where: str) -> Any:
     return raw
 
 
-def read_table(data: Mapping[str, Any], fields: list[Field], where: str = "") -> dict[str, Any]:
+def read_table(data: Mapping[str, Any], fields: list[Field], where: str = "",
+               read_elsewhere: Iterable[str] = ()) -> dict[str, Any]:
     """Validate ``data`` against ``fields``; return ``{field.name: value in internal units}``.
 
     Also returns, under ``"_units"``, the unit suffix each length/angle field was written in,
-    so reports can echo the user's units. ``where`` is the dotted path of the table.
+    so reports can echo the user's units. ``where`` is the dotted path of the table;
+    ``read_elsewhere`` are further keys of the table that the caller reads itself (accepted
+    here, offered as suggestions, not returned). Every unknown key of the table is reported, each
+    with the closest known keys (:func:`close_keys`).
     """
+    read_elsewhere = tuple(read_elsewhere)
     prefix = f"{where}." if where else ""
     if not isinstance(data, Mapping):
         raise DesignError(where or "<top>", "expected a table")
@@ -195,10 +292,11 @@ def read_table(data: Mapping[str, Any], fields: list[Field], where: str = "") ->
     for f in fields:
         for k in f.keys():
             owner[k] = f
-    unknown = [k for k in data if k not in owner]
+    unknown = [k for k in data if k not in owner and k not in read_elsewhere]
     if unknown:
-        allowed = ", ".join(sorted(owner))
-        raise DesignError(prefix + unknown[0], "unknown key", allowed)
+        known = list(owner) + list(read_elsewhere)
+        allowed = ", ".join(sorted(known))
+        raise_unknown_keys([unknown_key(prefix + k, k, known, allowed) for k in unknown])
     out: dict[str, Any] = {}
     units: dict[str, str] = {}
     for f in fields:

@@ -51,7 +51,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.schema import Field, bound_text, check_range, read_table
+from geargen.design.schema import Field, bound_text, check_range, raise_unknown_keys, read_table, unknown_key
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
@@ -88,7 +88,8 @@ class Quantity:
     """A design key whose unit suffix is a force, torque, stiffness or stress unit.
 
     ``families`` lists the quantity families accepted under this name (a stiffness may be
-    linear or torsional; the suffix decides). Bounds are in internal units.
+    linear or torsional; the suffix decides). Bounds are in internal units. ``help`` is the key's
+    one-line meaning (as :attr:`geargen.design.schema.Field.help`).
     """
 
     name: str
@@ -97,6 +98,7 @@ class Quantity:
     minimum: float | None = None
     exclusive_minimum: bool = True
     maximum: float | None = None
+    help: str = ""
 
     def keys(self) -> dict[str, tuple[str, str]]:
         """Accepted spellings -> (family, suffix)."""
@@ -117,10 +119,11 @@ def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list
         for key, (fam, suf) in q.keys().items():
             qkeys[key] = (q, fam, suf)
     field_keys = {k for f in fields for k in f.keys()}
-    for key in data:
-        if key not in qkeys and key not in field_keys and key not in tables:
-            allowed = sorted(field_keys | set(tables)) + [f"{q.name}_<unit>" for q in quantities]
-            raise DesignError(prefix + key, "unknown key", ", ".join(allowed))
+    unknown = [key for key in data if key not in qkeys and key not in field_keys and key not in tables]
+    if unknown:
+        allowed = ", ".join(sorted(field_keys | set(tables)) + [f"{q.name}_<unit>" for q in quantities])
+        known = [k for f in fields for k in f.keys()] + list(tables) + list(qkeys)
+        raise_unknown_keys([unknown_key(prefix + key, key, known, allowed) for key in unknown])
     out = read_table({k: v for k, v in data.items() if k in field_keys}, fields, where)
     for q in quantities:
         present = [k for k in data if k in qkeys and qkeys[k][0] is q]
@@ -357,36 +360,67 @@ class StiffnessSpec:
 
 
 _STIFFNESS_FIELDS = [
-    Field("reduce_to", "string", required=False, default="output", choices=LOCATIONS),
-    Field("train", "string", required=False, default="dual_pinion", choices=TRAINS),
-    Field("input_gear", "string", required=False, default="input"),
-    Field("cluster_large_gear", "string", required=False, default="cluster_large"),
-    Field("cluster_small_gear", "string", required=False, default="cluster_small"),
-    Field("output_gear", "string", required=False, default="output"),
+    Field("reduce_to", "string", required=False, default="output", choices=LOCATIONS,
+          help="where path stiffnesses are reported, as torsion of that shaft (a custom train: the output)"),
+    Field("train", "string", required=False, default="dual_pinion", choices=TRAINS,
+          help="dual_pinion: each path's two meshes come from the gears; custom: list every component (meshes too) "
+               "with its ratio"),
+    Field("input_gear", "string", required=False, default="input",
+          help="dual-pinion train: the gear table of the input (gear 1)"),
+    Field("cluster_large_gear", "string", required=False, default="cluster_large",
+          help="dual-pinion train: the gear table of a cluster's large gear (gear 2)"),
+    Field("cluster_small_gear", "string", required=False, default="cluster_small",
+          help="dual-pinion train: the gear table of a cluster's small gear (gear 3)"),
+    Field("output_gear", "string", required=False, default="output",
+          help="dual-pinion train: the gear table of the output (gear 4)"),
 ]
-_MODULI = [Quantity("elastic_modulus", ("stress",), minimum=0.0), Quantity("shear_modulus", ("stress",), minimum=0.0)]
+_MODULI = [Quantity("elastic_modulus", ("stress",), minimum=0.0,
+                    help="Young's modulus of gears and shafts (Eq. 1: k_mesh = E w / 11)"),
+           Quantity("shear_modulus", ("stress",), minimum=0.0, help="shear modulus of the shafts (torsion)")]
 
 _COMPONENT_FIELDS = [
-    Field("kind", "string", choices=COMPONENT_KINDS),
-    Field("scope", "string", required=False, default="each_path", choices=SCOPES),
-    Field("count", "integer", required=False, default=1, minimum=1, maximum=1000),
-    Field("shaft", "string", required=False, default=None, choices=SHAFTS),
-    Field("ratio", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("gear", "string", required=False, default=None),
-    Field("gears", "list", required=False, default=None),
-    Field("face_width", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("radius", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("bore_diameter", "length", required=False, default=0.0, minimum=0.0),
-    Field("length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("load_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("support", "string", required=False, default="simple", choices=SUPPORTS),
-    Field("from_geometry", "bool", required=False, default=False),
+    Field("kind", "string", choices=COMPONENT_KINDS,
+          help="torsion: a torsional stiffness; linear: a linear stiffness on a line of action; shaft_torsion, "
+               "shaft_bending: a round shaft; shaft_support: a gear on its placed shaft and bearings "
+               "(from_geometry); mesh: a tooth mesh (Eq. 1)"),
+    Field("scope", "string", required=False, default="each_path", choices=SCOPES,
+          help="in each path, in path 1 or path 2 only, or common: in series with the whole drive"),
+    Field("count", "integer", required=False, default=1, minimum=1, maximum=1000,
+          help="identical components acting in parallel"),
+    Field("shaft", "string", required=False, default=None, choices=SHAFTS,
+          help="dual-pinion train: the shaft it sits on (or give ratio)"),
+    Field("ratio", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="speed of its shaft over the output's (any train; instead of shaft)"),
+    Field("gear", "string", required=False, default=None,
+          help="linear, shaft_bending, shaft_support: the gear on whose line of action it acts (at its base radius)"),
+    Field("gears", "list", required=False, default=None,
+          help="mesh: the two gears, [\"PINION\", \"GEAR\"]; it acts at the second"),
+    Field("face_width", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="mesh: face width in contact (default: the narrower gear's)"),
+    Field("radius", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="linear, shaft_bending: the radius it acts at, instead of gear (needs shaft or ratio)"),
+    Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="shaft_torsion, shaft_bending: shaft diameter"),
+    Field("bore_diameter", "length", required=False, default=0.0, minimum=0.0,
+          help="shaft_torsion, shaft_bending: bore of a hollow shaft (0: solid)"),
+    Field("length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="shaft_torsion: the twisted length"),
+    Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="shaft_bending: distance between the supports (not for a cantilever)"),
+    Field("load_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="shaft_bending: the gear's distance from one support (a cantilever's overhang)"),
+    Field("support", "string", required=False, default="simple", choices=SUPPORTS,
+          help="shaft_bending: simply supported, fixed at both ends, or a cantilever"),
+    Field("from_geometry", "bool", required=False, default=False,
+          help="shaft_torsion, shaft_bending, shaft_support: diameter, length, span and load position are the "
+               "placed shaft's (geargen.model.shafts), never typed here"),
 ]
-_COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0),
-                         Quantity("elastic_modulus", ("stress",), minimum=0.0),
-                         Quantity("shear_modulus", ("stress",), minimum=0.0)]
+_COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0,
+                                  help="torsion: a torsional stiffness; linear: a linear stiffness"),
+                         Quantity("elastic_modulus", ("stress",), minimum=0.0,
+                                  help="this component's Young's modulus (default: [stiffness] elastic_modulus_*)"),
+                         Quantity("shear_modulus", ("stress",), minimum=0.0,
+                                  help="this component's shear modulus (default: [stiffness] shear_modulus_*)")]
 
 
 def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
@@ -497,16 +531,27 @@ class PreloadSpec:
 
 _PRELOAD_FIELDS = [
     Field("line_of_action_angle", "angle", required=False, default=0.0, units=("deg", "rad"),
-          minimum=-math.radians(60), maximum=math.radians(60), exclusive_minimum=True, exclusive_maximum=True),
-    Field("loop_error_carriage_travel", "length", required=False, default=None, minimum=0.0),
-    Field("loop_error_rotation", "angle", required=False, default=None, minimum=0.0),
-    Field("loop_error_budget", "string", required=False, default="mean", choices=LOOP_BUDGETS),
-    Field("path_backlash", "angle", required=False, default=None, minimum=0.0),
+          minimum=-math.radians(60), maximum=math.radians(60), exclusive_minimum=True, exclusive_maximum=True,
+          help="angle between the preload motion and each mesh-1 line of action (0: the optimal configuration of "
+               "Fig. 9)"),
+    Field("loop_error_carriage_travel", "length", required=False, default=None, minimum=0.0,
+          help="peak-to-peak preload-carriage travel from loop errors, used without a synthesis error budget"),
+    Field("loop_error_rotation", "angle", required=False, default=None, minimum=0.0,
+          help="peak-to-peak loop error as output rotation, used without a synthesis error budget"),
+    Field("loop_error_budget", "string", required=False, default="mean", choices=LOOP_BUDGETS,
+          help="which synthesis budget the headline uses: mean ((sum + rss) / 2), sum or rss"),
+    Field("path_backlash", "angle", required=False, default=None, minimum=0.0,
+          help="flank clearance of one path as output rotation, drawn in the preload diagram"),
 ]
 _PRELOAD_QUANTITIES = [
-    Quantity("max_output_torque", ("torque",), required=True, minimum=0.0),
-    Quantity("preload", ("torque",), minimum=0.0, exclusive_minimum=False),
-    Quantity("preload_spring_stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0),
+    Quantity("max_output_torque", ("torque",), required=True, minimum=0.0,
+             help="largest drive torque at the output, either direction"),
+    Quantity("preload", ("torque",), minimum=0.0, exclusive_minimum=False,
+             help="output torque each path carries at zero drive torque (default: the springs' installed force, "
+                  "else the paper's rule)"),
+    Quantity("preload_spring_stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0,
+             help="a preload spring not described by [springs], [flexures] or [beam_pinion]: linear at the carriage "
+                  "or torsional at the output"),
 ]
 
 
@@ -575,17 +620,27 @@ class FlexureSpec:
 
 
 _FLEXURE_FIELDS = [
-    Field("count", "integer", required=False, default=3, minimum=1, maximum=100),
-    Field("thickness", "length", minimum=0.0, exclusive_minimum=True),
-    Field("length", "length", minimum=0.0, exclusive_minimum=True),
-    Field("width", "length", minimum=0.0, exclusive_minimum=True),
-    Field("travel", "length", minimum=0.0, exclusive_minimum=True),
-    Field("neutral_offset", "length", required=False, default=0.0),
-    Field("poisson_ratio", "number", required=False, default=0.29, minimum=0.0, maximum=0.5, exclusive_maximum=True),
+    Field("count", "integer", required=False, default=3, minimum=1, maximum=100,
+          help="identical parallel blades guiding the preload carriage"),
+    Field("thickness", "length", minimum=0.0, exclusive_minimum=True, help="blade thickness, along the motion"),
+    Field("length", "length", minimum=0.0, exclusive_minimum=True,
+          help="free blade length between the clamps (clamped at both ends)"),
+    Field("width", "length", minimum=0.0, exclusive_minimum=True, help="blade width, across the motion"),
+    Field("travel", "length", minimum=0.0, exclusive_minimum=True,
+          help="largest deflection from unstressed the blades must take (stress 3 E t travel / L^2 within the "
+               "allowable)"),
+    Field("neutral_offset", "length", required=False, default=0.0,
+          help="operating position to the blades' unstressed position, along the preload (the blades then add k x "
+               "offset)"),
+    Field("poisson_ratio", "number", required=False, default=0.29, minimum=0.0, maximum=0.5, exclusive_maximum=True,
+          help="Poisson's ratio of the blade material"),
 ]
-_FLEXURE_QUANTITIES = [Quantity("elastic_modulus", ("stress",), minimum=0.0),
-                       Quantity("allowable_stress", ("stress",), required=True, minimum=0.0),
-                       Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0)]
+_FLEXURE_QUANTITIES = [Quantity("elastic_modulus", ("stress",), minimum=0.0, help="Young's modulus of the blades"),
+                       Quantity("allowable_stress", ("stress",), required=True, minimum=0.0,
+                                help="allowable bending stress at the clamps"),
+                       Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0,
+                                help="asks the design helper for blades of this stiffness (all blades, along the "
+                                     "motion)")]
 
 
 def flexure_spec_from_table(data: Mapping[str, Any], length_unit: str | None = None) -> FlexureSpec:
@@ -692,16 +747,21 @@ class SpringSpec:
 
 
 _SPRING_FIELDS = [
-    Field("count", "integer", required=False, default=2, minimum=1, maximum=100),
-    Field("wire_diameter", "length", minimum=0.0, exclusive_minimum=True),
-    Field("mean_coil_diameter", "length", minimum=0.0, exclusive_minimum=True),
-    Field("active_coils", "number", minimum=0.5, maximum=500.0),
-    Field("end_type", "string", required=False, default="squared_ground", choices=END_TYPES),
-    Field("free_length", "length", minimum=0.0, exclusive_minimum=True),
-    Field("installed_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("count", "integer", required=False, default=2, minimum=1, maximum=100,
+          help="identical helical compression springs pushing the preload carriage"),
+    Field("wire_diameter", "length", minimum=0.0, exclusive_minimum=True, help="wire diameter d"),
+    Field("mean_coil_diameter", "length", minimum=0.0, exclusive_minimum=True,
+          help="mean coil diameter D (spring index D/d above 2)"),
+    Field("active_coils", "number", minimum=0.5, maximum=500.0, help="active coils Na (rate G d^4 / (8 D^3 Na))"),
+    Field("end_type", "string", required=False, default="squared_ground", choices=END_TYPES,
+          help="how the ends are finished: sets the inactive coils and the solid height"),
+    Field("free_length", "length", minimum=0.0, exclusive_minimum=True, help="unloaded length"),
+    Field("installed_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="length at the carriage's operating position: sets the preload force"),
 ]
-_SPRING_QUANTITIES = [Quantity("shear_modulus", ("stress",), minimum=0.0),
-                      Quantity("allowable_shear_stress", ("stress",), required=True, minimum=0.0)]
+_SPRING_QUANTITIES = [Quantity("shear_modulus", ("stress",), minimum=0.0, help="shear modulus of the wire"),
+                      Quantity("allowable_shear_stress", ("stress",), required=True, minimum=0.0,
+                               help="allowable wire shear stress (Wahl-corrected) at the installed length")]
 
 
 def spring_spec_from_table(data: Mapping[str, Any], length_unit: str | None = None) -> SpringSpec:
@@ -786,14 +846,19 @@ class BeamPinionSpec:
 
 
 _BEAM_FIELDS = [
-    Field("gear", "string"),
-    Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("mesh_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
+    Field("gear", "string", help="the long pinion whose bending is the preload spring"),
+    Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="bearing span of the pinion (or give target_stiffness)"),
+    Field("mesh_position", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="distance from one bearing to the middle of the mesh (default: mid-span, zero slope)"),
+    Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="diameter of the bending section (default: the pinion's root diameter)"),
 ]
-_BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0),
-                    Quantity("elastic_modulus", ("stress",), minimum=0.0),
-                    Quantity("allowable_stress", ("stress",), minimum=0.0)]
+_BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0,
+                             help="stiffness at the mesh that sets the span (instead of span)"),
+                    Quantity("elastic_modulus", ("stress",), minimum=0.0, help="Young's modulus of the pinion"),
+                    Quantity("allowable_stress", ("stress",), minimum=0.0,
+                             help="allowable bending stress of the pinion under the preload (a warning past it)")]
 
 
 def beam_pinion_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any] | None = None) -> BeamPinionSpec:
@@ -840,11 +905,15 @@ class EngagementSpec:
 
 
 _ENGAGEMENT_FIELDS = [
-    Field("gear", "string"),
-    Field("backlash", "length", minimum=0.0),
-    Field("preload_windup", "length", required=False, default=None, minimum=0.0),
-    Field("engagement_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True),
-    Field("clearance", "length", required=False, default=0.0, minimum=0.0),
+    Field("gear", "string", help="the helical gear the pinions slide into mesh with"),
+    Field("backlash", "length", minimum=0.0,
+          help="circumferential clearance at its reference circle that the sliding pinions need to enter"),
+    Field("preload_windup", "length", required=False, default=None, minimum=0.0,
+          help="circumferential loop deflection at that circle when preloaded (default: from the drive model)"),
+    Field("engagement_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="axial overlap when engaged (default: the gear's face width)"),
+    Field("clearance", "length", required=False, default=0.0, minimum=0.0,
+          help="axial gap to the gear when retracted"),
 ]
 
 

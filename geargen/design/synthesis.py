@@ -228,25 +228,47 @@ class MonteCarloSettings:
 
 
 SYNTHESIS_FIELDS: list[Field] = [
-    Field("centre_distance_mesh1", "length", minimum=0.0, exclusive_minimum=True),
-    Field("centre_distance_mesh2", "length", minimum=0.0, exclusive_minimum=True),
-    Field("circumferential_backlash_max_mesh1", "length"),
-    Field("circumferential_backlash_min_mesh1", "length"),
-    Field("circumferential_backlash_max_mesh2", "length"),
-    Field("circumferential_backlash_min_mesh2", "length"),
-    Field("start_angle_A1", "angle", units=("deg", "rad")),
-    Field("rounding", "string", choices=ROUNDING_RULES),
+    Field("centre_distance_mesh1", "length", minimum=0.0, exclusive_minimum=True,
+          help="operating centre distance of mesh 1 (input and cluster_large), above the sum of the base radii"),
+    Field("centre_distance_mesh2", "length", minimum=0.0, exclusive_minimum=True,
+          help="operating centre distance of mesh 2 (cluster_small and output), above the sum of the base radii"),
+    Field("circumferential_backlash_max_mesh1", "length",
+          help="mesh 1 backlash with the thinnest teeth the tolerances allow; in [0, half the circular pitch)"),
+    Field("circumferential_backlash_min_mesh1", "length",
+          help="mesh 1 backlash with the thickest teeth; in [0, the maximum]"),
+    Field("circumferential_backlash_max_mesh2", "length",
+          help="mesh 2 backlash with the thinnest teeth the tolerances allow; in [0, half the circular pitch)"),
+    Field("circumferential_backlash_min_mesh2", "length",
+          help="mesh 2 backlash with the thickest teeth; in [0, the maximum]"),
+    Field("start_angle_A1", "angle", units=("deg", "rad"),
+          help="nominal direction from cluster A's centre to the input's centre, from +x; in (-90, 0) deg"),
+    Field("rounding", "string", choices=ROUNDING_RULES,
+          help="how the increment count of Eq. 7 is rounded: whole_* keep whole teeth of the input gear, half_* "
+               "allow half teeth"),
 ]
 
-ERROR_FIELDS: list[Field] = [Field(name, "length", minimum=0.0) for name in ERROR_KINDS]
+ERROR_FIELDS: list[Field] = [
+    Field("bearing_eccentricity_tir", "length", minimum=0.0,
+          help="runout of the gear's bearing seat (total indicator reading)"),
+    Field("pitch_line_eccentricity_tir", "length", minimum=0.0,
+          help="runout of the pitch circle about the bore (total indicator reading)"),
+    Field("tooth_to_tooth_tir", "length", minimum=0.0, help="tooth-to-tooth composite error (total indicator reading)"),
+]
 
 MONTE_CARLO_FIELDS: list[Field] = [
-    Field("samples", "integer", required=False, default=100_000, minimum=100, maximum=100_000_000),
-    Field("seed", "integer", required=False, default=0, minimum=0),
-    Field("model", "string", required=False, default="exact", choices=MONTE_CARLO_MODELS),
-    Field("error_shape", "string", required=False, default="physical", choices=ERROR_SHAPES),
-    Field("include_backlash_tolerance", "bool", required=False, default=False),
-    Field("histogram_bins", "integer", required=False, default=80, minimum=5, maximum=1000),
+    Field("samples", "integer", required=False, default=100_000, minimum=100, maximum=100_000_000,
+          help="random builds drawn from the error budget"),
+    Field("seed", "integer", required=False, default=0, minimum=0,
+          help="seed of the random draws (the same seed gives the same result)"),
+    Field("model", "string", required=False, default="exact", choices=MONTE_CARLO_MODELS,
+          help="exact: re-solve the loop geometry per sample; appendix: the spreadsheet's linear factors"),
+    Field("error_shape", "string", required=False, default="physical", choices=ERROR_SHAPES,
+          help="how errors are drawn: physical (eccentricities at a random phase, tooth-to-tooth uniform); the "
+               "appendix model also takes uniform or normal3 (its range as +-3 sigma)"),
+    Field("include_backlash_tolerance", "bool", required=False, default=False,
+          help="also draw each mesh's backlash within its [min, max]"),
+    Field("histogram_bins", "integer", required=False, default=80, minimum=5, maximum=1000,
+          help="bins of the carriage-travel histogram"),
 ]
 
 

@@ -33,6 +33,7 @@ document design files.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any, Mapping
 
 from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings, gear_errors
@@ -123,7 +124,9 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
     "synthesis": (SYNTHESIS_FIELDS, []),
     "monte_carlo": (MONTE_CARLO_FIELDS, []),
     "checks": (CHECKS_FIELDS + [Field("centre_distance", "length", required=False, minimum=0.0,
-                                      exclusive_minimum=True)], []),
+                                      exclusive_minimum=True,
+                                      help="centre distance of the pairs in meshes: one number, or a list of "
+                                           "one per pair")], []),
     "stiffness": (_STIFFNESS_FIELDS, _MODULI),
     "preload": (_PRELOAD_FIELDS, _PRELOAD_QUANTITIES),
     "flexures": (_FLEXURE_FIELDS, _FLEXURE_QUANTITIES),
@@ -135,11 +138,17 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
 }
 
 #: the top-level keys and [drive], as fields (all optional)
-TOP_FIELDS = [Field("name", "string", required=False), Field("description", "string", required=False),
-              Field("length_unit", "string", required=False, choices=("mm", "in"))]
-DRIVE_FIELDS = [Field("type", "string", required=False, choices=("type1", "type2")),
+TOP_FIELDS = [Field("name", "string", required=False,
+                    help="the design's name in reports and manifests (default: the file name)"),
+              Field("description", "string", required=False, help="one line describing the design, shown in the report"),
+              Field("length_unit", "string", required=False, choices=("mm", "in"),
+                    help="the unit of reports and exports (default: mm for module gears, in for diametral pitch)")]
+DRIVE_FIELDS = [Field("type", "string", required=False, choices=("type1", "type2"),
+                      help="Hale & Slocum's drive type: type1 (the compliant path carries the preload only) or "
+                           "type2 (both paths alike)"),
                 Field("preload", "string", required=False,
-                      choices=("radial", "axial", "angular", "frictional_interface"))]
+                      choices=("radial", "axial", "angular", "frictional_interface"),
+                      help="how the preload is applied")]
 
 
 def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[Field], list[Quantity]] | None:
@@ -156,7 +165,7 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
         return GEAR_FIELDS, []
     if head == "errors" and len(path) == 2:
         required = "synthesis" in data
-        return [Field(f.name, f.kind, required=required, default=0.0, minimum=0.0) for f in ERROR_FIELDS], []
+        return [replace(f, required=required, default=0.0) for f in ERROR_FIELDS], []
     if path[:2] == ("stiffness", "components") and len(path) == 3:
         return _COMPONENT_FIELDS, _COMPONENT_QUANTITIES
     if head == "parts" and len(path) == 1:

@@ -349,11 +349,12 @@ def test_opening_rate_matches_the_kinematic_solve(hands, betas):
 
 @pytest.fixture(scope="module")
 def c_axis():
-    from geargen.core.stiffness import stiffness_summary
     from geargen.design.assembly import load_design
+    from geargen.model.analysis import stiffness
     from geargen.model.layout import resolve
     design = load_design(C_AXIS)
-    return design, resolve(design), stiffness_summary(design)
+    layout = resolve(design)
+    return design, layout, stiffness(design, layout)[0]
 
 
 def _layout_cluster(layout, side):
@@ -383,17 +384,17 @@ def test_c_axis_rates_and_lead_on_the_placed_gears(c_axis):
     # (b + w) / c: 80 um + the windup of 300 N m, over 0.1563 mm per mm instead of tan(15 deg)
     assert eng.circumferential_rate == pytest.approx(math.tan(large.helix_angle) * (1 - 50 / 120), rel=1e-12)
     assert eng.lead == pytest.approx((0.08 + eng.preload_windup) / eng.circumferential_rate, rel=1e-12)
-    assert eng.lead == pytest.approx(2.40, abs=0.01)
-    assert eng.backlash + eng.preload_windup == pytest.approx(0.374, abs=1e-3)
-    # the single-helix lead (1.397 mm) opens 218 um: the pinions would slide in against 77 N m of
-    # preload, or with the 80 um backlash kept, the engaged preload would be 141 N m
-    old_lead = (eng.backlash + eng.preload_windup) / math.tan(small.helix_angle)
+    # the reviewer's case, the windup of the stiffness modelled then (294.3 um at 300 N m): 2.40 mm
+    # where the single-helix rule gave 1.397 mm, which opens only 218 um
+    reviewer_windup = 0.2943
+    assert (eng.backlash + reviewer_windup) / eng.circumferential_rate == pytest.approx(2.394, abs=2e-3)
+    old_lead = (eng.backlash + reviewer_windup) / math.tan(small.helix_angle)
     assert old_lead == pytest.approx(1.397, abs=1e-3)
     assert eng.circumferential_rate * old_lead == pytest.approx(0.218, abs=1e-3)
-    preload = summary.drive.preload
-    assert preload * eng.loop_windup(old_lead) / eng.preload_windup * 1e-3 == pytest.approx(77.5, abs=0.5)
-    assert preload * (eng.circumferential_rate * old_lead - eng.backlash) / eng.preload_windup * 1e-3 \
-        == pytest.approx(141, abs=1)
+    # the drive as resolved now: each path about 2.4e5 N m/rad with the pinion overhung on its quill
+    # bearings (geargen.model.shafts), so the loop winds up 644 um at 300 N m: a 4.63 mm lead
+    assert eng.preload_windup == pytest.approx(0.6437, abs=5e-4)
+    assert eng.lead == pytest.approx(4.630, abs=2e-3)
     assert float(eng.loop_windup(eng.lead)) == pytest.approx(-eng.backlash, rel=1e-12)
 
 
@@ -425,8 +426,8 @@ def test_c_axis_trailer_slid_back_by_the_lead_opens_backlash_plus_windup(c_axis)
     assert psi1 / -eng.lead * 1e3 == pytest.approx(-4.3137, abs=1e-4)   # the reviewer's 4.31 mrad/mm
     assert psi2 / -eng.lead * 1e3 == pytest.approx(-10.3528, abs=1e-4)  # and 10.35
     assert opened * r_e == pytest.approx(eng.backlash + eng.preload_windup, rel=1e-6)  # the brief asks < 1 %
-    # the single-helix lead would open only 218 um there
-    old_lead = (eng.backlash + eng.preload_windup) / math.tan(eng.helix_angle)
+    # the single-helix lead of the reviewer's case (1.397 mm) would open only 218 um there
+    old_lead = (eng.backlash + 0.2943) / math.tan(eng.helix_angle)
     assert _opening(cl, m1, m2, -old_lead)[0] * r_e == pytest.approx(0.2183, abs=1e-4)
     # a short slide keeps every flank clear: the working flank's gap, measured directly, grows
     short = -0.05
@@ -452,18 +453,21 @@ def test_c_axis_leader_is_the_path_the_lead_opens(c_axis):
 def test_c_axis_engagement_too_short_for_the_preload_windup_is_refused():
     # the load can only check the backlash (the windup comes from the stiffness model): 2 mm of
     # engagement pass it (0.08 / 0.1563 = 0.51 mm of lead) but not the stiffness step, where the
-    # windup of 300 N m needs 2.39 mm
+    # windup of 300 N m (the drive as resolved, its pinions on their placed quills) needs more
     import tomllib
-    from geargen.core.stiffness import stiffness_summary
     from geargen.design.assembly import design_from_dict
+    from geargen.model.layout import resolve
     data = tomllib.loads(C_AXIS.read_text())
     data["engagement"]["engagement_length_mm"] = 2
     design = design_from_dict(data, validate=True)
     with pytest.raises(DesignError) as info:
-        stiffness_summary(design)
+        resolve(design)  # the engagement is part of the resolved drive
     per_lead = math.tan(math.radians(15)) * (1 - 50 / 120)
-    assert info.value.field == "engagement.backlash"
-    assert "needs a lead of 2.394" in str(info.value) and "more than the engagement length 2 mm" in str(info.value)
-    windup = stiffness_summary(design_from_dict({**data, "engagement": {**data["engagement"], "engagement_length_mm": 30}}))
-    most = 2 * per_lead - windup.engagement.preload_windup
+    full = resolve(design_from_dict({**data, "engagement": {**data["engagement"], "engagement_length_mm": 30}}))
+    windup = full.engagement
+    # the windup alone (644 um) is more than 2 mm of engagement opens (313 um): it is the key named
+    assert info.value.field == "engagement.preload_windup"
+    assert f"needs a lead of {windup.lead:.4g}" in str(info.value)
+    assert "more than the engagement length 2 mm" in str(info.value)
+    most = 2 * per_lead - windup.backlash
     assert info.value.allowed == f"[0, {most:.6g}] mm"

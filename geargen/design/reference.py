@@ -1,0 +1,369 @@
+"""The design-file reference, written from the schema itself (``docs/design-files.md``).
+
+Every key of every section comes from the :class:`~geargen.design.schema.Field` (or
+:class:`~geargen.design.stiffness.Quantity`) that reads it, through
+:func:`geargen.design.validate.table_schema`: its unit suffixes, range, default, choices and
+one-line meaning (``help``). The examples are cut from the shipped ``assemblies/*.toml``. So the
+document cannot drift from what ``load_design`` accepts: ``tests/design/test_reference.py``
+regenerates it and compares it with the committed file. To regenerate::
+
+    python -m geargen.design.reference > docs/design-files.md
+
+:func:`key_type` and :func:`key_comment` describe one key in a line; the starter designs of
+``geargen new`` (:mod:`geargen.design.starters`) comment their keys with them.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from geargen.design.assembly import SECTIONS
+from geargen.design.schema import Field, _fmt, _range_text
+from geargen.design.stiffness import (_KIND_KEYS, INTERNAL_UNITS, QUANTITY_SUFFIXES, BeamPinionSpec, ComponentSpec,
+                                      FlexureSpec, PreloadSpec, Quantity, SpringSpec, StiffnessSpec)
+from geargen.design.validate import table_schema
+from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
+
+DEG = math.pi / 180.0
+
+#: the shipped designs the examples are cut from
+ASSEMBLIES = Path(__file__).resolve().parents[2] / "assemblies"
+
+#: per table, the dataclass whose defaults a :class:`Quantity` left out takes (a Quantity has none of its own)
+_QUANTITY_DEFAULTS = {("stiffness",): StiffnessSpec, ("preload",): PreloadSpec, ("flexures",): FlexureSpec,
+                      ("springs",): SpringSpec, ("beam_pinion",): BeamPinionSpec,
+                      ("stiffness", "components", "NAME"): ComponentSpec}
+
+_FAMILY_NAMES = {"force": "force", "torque": "torque", "linear_stiffness": "linear stiffness",
+                 "torsional_stiffness": "torsional stiffness", "stress": "stress"}
+
+
+@dataclass(frozen=True)
+class Example:
+    """Tables cut from a shipped design: ``headers`` (``"gears.input"``; ``""`` the top-level keys)."""
+
+    file: str
+    headers: tuple[str, ...]
+
+
+@dataclass(frozen=True)
+class Table:
+    """One documented table: its heading, the path :func:`table_schema` knows it by, the parsed-file
+    context the schema depends on, a short introduction and the example."""
+
+    heading: str
+    path: tuple[str, ...]
+    intro: str
+    example: Example | None = None
+    example_text: str = ""  # when no shipped design has the table
+    context: dict = dataclasses.field(default_factory=dict)
+    sections: tuple[str, ...] = ()  # the SECTIONS entries it documents
+
+
+_CHECKS_EXAMPLE = '''[checks]
+steps_per_tooth = 24
+min_contact_ratio = 1.2
+monte_carlo_samples = 1000
+seed = 7
+# a design without [synthesis] or [layout]: the pairs to check and their centre distances
+meshes = [["pinion", "wheel"]]
+centre_distance_mm = 25.5
+'''
+
+TABLES: tuple[Table, ...] = (
+    Table("Top-level keys", (), "Keys before the first table. Everything is optional.",
+          Example("robot_joint.toml", ("",))),
+    Table("[drive]", ("drive",), "The drive after Hale & Slocum. Sections that describe a drive of a type "
+          "([stiffness], [preload], [flexures], [springs], [beam_pinion], [engagement]) need `type`.",
+          Example("robot_joint.toml", ("drive",)), sections=("drive",)),
+    Table("[gears.NAME] and [gear_defaults]", ("gears", "NAME"),
+          "One table per gear; `NAME` is the gear's name in the rest of the file. `[gear_defaults]` takes any "
+          "of the same keys and gives them to every gear (a gear's own table wins). A key is required when "
+          "neither gives it. Give exactly one of `module_mm` and `diametral_pitch_per_in`. A dual-pinion drive "
+          "names its gears `input`, `cluster_large`, `cluster_small` and `output` (the paper's gears 1 to 4); "
+          "a split pinion `pinion_stiff`, `pinion_compliant` and `output` (or the names its [layout] gives).",
+          Example("c_axis.toml", ("gear_defaults", "gears.input")), sections=("gears", "gear_defaults")),
+    Table("[synthesis]", ("synthesis",),
+          "Centre synthesis of a dual-pinion drive (the paper's Eqs. 7-8 and Appendix): where the clusters sit "
+          "so that both paths mesh. Backlash B is circumferential, at the reference pitch circles "
+          "(B = j_bt / cos alpha_t); max is with the thinnest teeth the tolerances allow, min with the thickest.",
+          Example("robot_joint.toml", ("synthesis",)), sections=("synthesis",)),
+    Table("[errors.GEAR]", ("errors", "GEAR"),
+          "The error budget of one gear, as total indicator readings. With a [synthesis] every gear of the "
+          "train needs its table and every key is required; without one (declared [checks] meshes) a key left "
+          "out is 0.", Example("robot_joint.toml", ("errors.input",)), context={"synthesis": {}},
+          sections=("errors",)),
+    Table("[monte_carlo]", ("monte_carlo",),
+          "The tolerance simulation of `geargen synth --monte-carlo`: the carriage travel over random builds "
+          "of the error budget.", Example("robot_joint.toml", ("monte_carlo",)), sections=("monte_carlo",)),
+    Table("[checks]", ("checks",),
+          "What the geometric mesh checks (`geargen check`, and the build's gate) sweep, require and compare.",
+          example_text=_CHECKS_EXAMPLE, sections=("checks",)),
+    Table("[stiffness]", ("stiffness",),
+          "Materials and the train whose path stiffnesses, drive stiffness (Eqs. 2, 5) and loop stiffness "
+          "(Eqs. 3, 6) `geargen stiffness` computes. The meshes of a dual-pinion train come from the gears "
+          "(Eq. 1); further components are tables [stiffness.components.NAME].",
+          Example("robot_joint.toml", ("stiffness",)), sections=("stiffness",)),
+    Table("[stiffness.components.NAME]", ("stiffness", "components", "NAME"),
+          "One compliance of a path, in series with the rest of it; `count` identical ones act in parallel. "
+          "Each kind reads its own keys (below); a key another kind reads is refused.",
+          Example("robot_joint.toml", ("stiffness.components.cluster_shaft",
+                                       "stiffness.components.cluster_support"))),
+    Table("[preload]", ("preload",),
+          "The load the drive carries, the preload and the loop errors it must absorb.",
+          Example("robot_joint.toml", ("preload",)), sections=("preload",)),
+    Table("[flexures]", ("flexures",),
+          "Parallel blade flexures (clamped at both ends) guiding the preload carriage of a radial-preload "
+          "drive. Checked on load: thinner than wide, within the allowable stress at the travel.",
+          Example("robot_joint.toml", ("flexures",)), sections=("flexures",)),
+    Table("[springs]", ("springs",),
+          "Helical compression springs pushing the preload carriage. Checked on load: index above 2, free "
+          "length above solid, installed length above solid and within the allowable shear stress.",
+          Example("robot_joint.toml", ("springs",)), sections=("springs",)),
+    Table("[beam_pinion]", ("beam_pinion",),
+          "A long pinion, simply supported, whose bending is the preload spring (the C-axis, Fig. 12). Give "
+          "`span_*` or `target_stiffness_*`.", Example("c_axis.toml", ("beam_pinion",)), sections=("beam_pinion",)),
+    Table("[engagement]", ("engagement",),
+          "Helical dual pinions that slide axially into mesh, one leading the other so that the helix opens "
+          "backlash (the C-axis). The lead (backlash + preload windup) / tan(helix) must fit in the "
+          "engagement length.", Example("c_axis.toml", ("engagement",)), sections=("engagement",)),
+    Table("[layout]", ("layout",),
+          "How the build places the gears. A file with [synthesis] and no [layout] is a dual-pinion drive "
+          "with every default. A split pinion also needs `centre_distance_*` and the backlash range.",
+          Example("split_pinion.toml", ("layout",)), sections=("layout",)),
+    Table("[parts], template \"robot_joint\"", ("parts",),
+          "The non-gear parts of the assembly model, sized by one template. The robot joint's (Fig. 10): "
+          "bevel pair and servo motor, bearings, the preload carriage on its [flexures] pushed by its "
+          "[springs], the link around it all. Every length is required unless a default is shown.",
+          Example("robot_joint.toml", ("parts",)), context={"parts": {"template": "robot_joint"}},
+          sections=("parts",)),
+    Table("[parts], template \"c_axis\"", ("parts",),
+          "The machine-tool C-axis (Fig. 12): spindle stub, the long beam-spring pinion with its gearhead and "
+          "motor, the sliding dual pinions in their quills with the locking rings and travel stops, the "
+          "housing plate. Sized from [beam_pinion] and [engagement].",
+          Example("c_axis.toml", ("parts",)), context={"parts": {"template": "c_axis"}}),
+    Table("[parts], template \"split_pinion\"", ("parts",),
+          "The concentric split pinion (Fig. 8): hollow shaft and its bearings, the clamp collar (the "
+          "frictional interface), the inner shaft (sized by [stiffness.components.inner_shaft]), the output "
+          "shaft and bearings.", Example("split_pinion.toml", ("parts",)),
+          context={"parts": {"template": "split_pinion"}}),
+    Table("[export]", ("export",), "Tolerances of the exported files and the rendered view. Every key is optional.",
+          Example("robot_joint.toml", ("export",)), sections=("export",)),
+)
+
+
+# ---------------------------------------------------------------- one key
+
+
+def _quantity_families(q: Quantity) -> str:
+    return " or ".join(_FAMILY_NAMES[f] for f in q.families)
+
+
+def key_type(schema: Field | Quantity) -> str:
+    """What the key takes, with its unit suffixes: ``"length: _mm _in _um _m"``, ``"whole number"``."""
+    if isinstance(schema, Quantity):
+        return "; ".join(f"{_FAMILY_NAMES[f]}: " + " ".join(f"_{s}" for s in QUANTITY_SUFFIXES[f])
+                         for f in schema.families)
+    if schema.kind in ("length", "angle"):
+        return f"{schema.kind}: " + " ".join(f"_{s}" for s in schema.suffixes())
+    if schema.kind == "string" and schema.choices:
+        return "one of " + ", ".join(f'"{c}"' for c in schema.choices)
+    return {"integer": "whole number", "number": "number", "string": "string", "bool": "true or false",
+            "list": "list", "table": "table"}[schema.kind]
+
+
+def range_text(schema: Field | Quantity) -> str:
+    """The allowed values: lengths in mm, angles in degrees, quantities in their internal unit."""
+    if isinstance(schema, Quantity):
+        family = schema.families[0]
+        bounds = Field(schema.name, "number", minimum=schema.minimum, maximum=schema.maximum,
+                       exclusive_minimum=schema.exclusive_minimum)
+        unit = "" if schema.minimum in (None, 0.0) and schema.maximum is None else INTERNAL_UNITS[family]
+        return _range_text(bounds, 1.0, unit)
+    if schema.kind not in ("length", "angle", "number", "integer"):
+        return ""
+    if schema.kind == "length":
+        return _range_text(schema, 1.0, "mm")
+    if schema.kind == "angle":
+        return _range_text(schema, DEG, "deg")
+    return _range_text(schema, 1.0, "")
+
+
+def _value_text(value: Any, kind: str) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, str):
+        return f'"{value}"'
+    if isinstance(value, (tuple, list)):
+        return "[" + ", ".join(_value_text(v, kind) for v in value) + "]"
+    if kind == "length":
+        return f"{_fmt(value)} mm"
+    if kind == "angle":
+        degrees = value / DEG
+        return f"{_fmt(degrees)} deg" if math.isclose(degrees, float(_fmt(degrees)), abs_tol=1e-12) else f"{_fmt(value)} rad"
+    return _fmt(value) if isinstance(value, float) else str(value)
+
+
+def _quantity_default(q: Quantity, path: tuple[str, ...]) -> str:
+    spec = _QUANTITY_DEFAULTS.get(path)
+    field = next((f for f in dataclasses.fields(spec) if f.name == q.name), None) if spec else None
+    value = None if field is None else field.default
+    if not isinstance(value, (int, float)) or isinstance(value, bool):
+        return ""
+    family = q.families[0]
+    if family == "stress" and value >= 1e3:
+        return f"{_fmt(value / 1e3)} GPa"
+    return f"{_fmt(value)} {INTERNAL_UNITS[family]}"
+
+
+def default_text(schema: Field | Quantity, path: tuple[str, ...] = ()) -> str:
+    """``"required"``, the default in internal units, or ``""`` (not set: the meaning says what happens)."""
+    if schema.required:
+        return "required"
+    if isinstance(schema, Quantity):
+        return _quantity_default(schema, path)
+    if schema.default is None:
+        return ""
+    return _value_text(schema.default, schema.kind)
+
+
+def key_comment(schema: Field | Quantity, key: str) -> str:
+    """The one-line comment of ``key`` in a design file: its meaning and the unit it is written in."""
+    suffix = ""
+    if isinstance(schema, Quantity):
+        suffix = key[len(schema.name) + 1:]
+    elif schema.kind in ("length", "angle"):
+        suffix = key[len(schema.name) + 1:]
+    text = schema.help
+    if suffix:
+        text += f" [{suffix}]"
+    elif isinstance(schema, Field) and schema.kind == "string" and schema.choices \
+            and not all(c in text for c in schema.choices):
+        text += ": " + " | ".join(schema.choices)
+    return text
+
+
+# ---------------------------------------------------------------- examples
+
+
+def example_text(example: Example, root: Path = ASSEMBLIES) -> str:
+    """The tables ``example.headers`` of a shipped design, as written there (comments included;
+    comment lines at the start of a line after a table belong to the next one and are left out)."""
+    lines = (root / example.file).read_text().splitlines()
+    header = re.compile(r"^\s*\[")
+    blocks = []
+    for wanted in example.headers:
+        if wanted == "":
+            start = next(i for i, line in enumerate(lines) if line.strip() and not line.startswith("#"))
+        else:
+            start = next((i for i, line in enumerate(lines) if re.match(rf"^\[{re.escape(wanted)}\]", line)), None)
+            if start is None:
+                raise KeyError(f"[{wanted}] is not a table of {example.file}")
+        end = next((i for i in range(start + 1, len(lines)) if header.match(lines[i])), len(lines))
+        block = lines[start:end]
+        while block and (not block[-1].strip() or block[-1].startswith("#")):
+            block.pop()
+        blocks.append("\n".join(block))
+    return "\n\n".join(blocks) + "\n"
+
+
+# ---------------------------------------------------------------- the document
+
+
+def _cell(text: str) -> str:
+    return text.replace("|", "\\|")
+
+
+def _key_cell(schema: Field | Quantity) -> str:
+    if isinstance(schema, Quantity) or schema.kind in ("length", "angle"):
+        return f"`{schema.name}_<unit>`"
+    return f"`{schema.name}`"
+
+
+def table_rows(table: Table) -> list[tuple[Field | Quantity, tuple[str, str, str, str, str]]]:
+    """(schema, (key, type and unit, range, default, meaning)) of every key of ``table``."""
+    fields, quantities = table_schema(table.context, table.path)
+    rows = []
+    for schema in list(fields) + list(quantities):
+        rows.append((schema, (_key_cell(schema), key_type(schema), range_text(schema),
+                              default_text(schema, table.path), schema.help)))
+    return rows
+
+
+def _units_section() -> list[str]:
+    out = ["## Units", "",
+           "Every key that has a unit carries it as a suffix, and any suffix of its kind may be used: "
+           "`face_width_mm = 8` and `face_width_in = 0.315` are the same key. Ranges below are given in "
+           "internal units (mm, degrees for angles, N, N·mm, MPa); messages give them in the unit the file used.",
+           "", "| kind | suffixes (factor to the internal unit) |", "|---|---|"]
+    out.append("| length (mm) | " + ", ".join(f"`_{s}` ({_fmt(f)})" for s, f in LENGTH_SUFFIXES.items()) + " |")
+    out.append("| angle (deg) | " + ", ".join(f"`_{s}` ({_fmt(f / DEG)})" for s, f in ANGLE_SUFFIXES.items()) + " |")
+    for family, table in QUANTITY_SUFFIXES.items():
+        out.append(f"| {_FAMILY_NAMES[family]} ({INTERNAL_UNITS[family]}) | "
+                   + ", ".join(f"`_{s}` ({_fmt(f)})" for s, f in table.items()) + " |")
+    out.append("")
+    return out
+
+
+def _component_kinds() -> list[str]:
+    common = ("kind", "scope", "count", "shaft", "ratio")
+    out = ["Keys each kind reads (besides `" + "`, `".join(common) + "`):", "",
+           "| kind | keys |", "|---|---|"]
+    for kind, keys in _KIND_KEYS.items():
+        out.append(f"| `{kind}` | " + ", ".join(f"`{k}`" for k in sorted(keys)) + " |")
+    return out + [""]
+
+
+def design_files_markdown(root: Path = ASSEMBLIES) -> str:
+    """``docs/design-files.md``: every section and key of a design file, from the schema."""
+    from geargen.design.starters import STARTERS  # it comments its keys with this module
+
+    kinds = ", ".join(f"`{k}`" for k in STARTERS)
+    out = ["# Design files", "",
+           "<!-- Generated by `python -m geargen.design.reference > docs/design-files.md` from the schema "
+           "(geargen/design); edit the Fields' help there, not this file. -->", "",
+           "A design file is TOML. Each table below is read by the module that uses it, every key checked "
+           "when the file is loaded: an unknown key is refused with the closest known keys "
+           "(`face_width_mn` -> did you mean `face_width_mm`?), a value out of range with the range in the "
+           "key's unit, and every problem of a file is reported at once. `geargen new KIND FILE.toml` writes a "
+           f"commented starter design ({kinds}) that builds.", "",
+           "Columns: the key (`_<unit>`: any suffix of its kind), what it takes, its range (`[a, b]` inclusive, "
+           "`(a, b)` exclusive), its default (`required`, or blank: not set, the meaning says what happens), "
+           "and its meaning.", ""]
+    out += _units_section()
+    out += ["## Sections", ""]
+    for table in TABLES:
+        out += [f"### {table.heading}", "", table.intro, "",
+                "| key | takes | range | default | meaning |", "|---|---|---|---|---|"]
+        for _, cells in table_rows(table):
+            out.append("| " + " | ".join(_cell(c) for c in cells) + " |")
+        out.append("")
+        if table.path == ("stiffness", "components", "NAME"):
+            out += _component_kinds()
+        text = example_text(table.example, root) if table.example else table.example_text
+        source = f" (from `assemblies/{table.example.file}`)" if table.example else ""
+        out += [f"Example{source}:", "", "```toml", text.rstrip("\n"), "```", ""]
+    return "\n".join(out)
+
+
+def documented_sections() -> set[str]:
+    """The top-level sections (:data:`geargen.design.assembly.SECTIONS`) the reference covers."""
+    return {s for t in TABLES for s in t.sections}
+
+
+def main() -> int:
+    sys.stdout.write(design_files_markdown())
+    return 0
+
+
+__all__ = ["TABLES", "Table", "Example", "design_files_markdown", "documented_sections", "example_text",
+           "key_comment", "key_type", "range_text", "default_text", "table_rows", "SECTIONS"]
+
+if __name__ == "__main__":
+    sys.exit(main())
