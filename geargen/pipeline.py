@@ -489,8 +489,14 @@ def _all_checks(layout: Layout, gears, parts, meshes: CheckOutcome | None = None
     """The mesh checks (``meshes`` if already made), the parts' overlaps and the exact ratio."""
     outcome = meshes if meshes is not None else mesh_checks(layout, gears)
     outcome.overlaps = overlap_check(parts, layout)
-    for o in outcome.overlaps.unintended:
+    ov = outcome.overlaps
+    for o in ov.unintended:
         outcome.failures.append(f"parts overlap: {o.part1} and {o.part2} share {o.volume:.4g} mm^3")
+    for o in ov.interpenetrating:
+        outcome.failures.append(f"parts meant to touch run into each other: {o.part1} and {o.part2} share "
+                                f"{o.volume:.4g} mm^3 ({o.why})")
+    for a, b, gap, why in ov.missing_contacts:
+        outcome.failures.append(f"intended contact missing: {a} and {b} are {gap:.4g} mm apart, not touching ({why})")
     return outcome
 
 
@@ -672,6 +678,9 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     overlaps = None if ov is None else {
         "parts": ov.parts, "pairs_checked": ov.pairs_checked, "tolerance_mm3": ov.tolerance,
         "unintended": [[o.part1, o.part2, o.volume] for o in ov.unintended],
+        "interpenetrating_contacts": [[o.part1, o.part2, o.volume] for o in ov.interpenetrating],
+        "missing_contacts": [[a, b, gap] for a, b, gap, _ in ov.missing_contacts],
+        "contact_tolerance_mm": ov.contact_tolerance,
         "intended_contacts": [list(c) for c in ov.intended], "meshing_pairs": [list(c) for c in ov.delegated]}
     from geargen.model import BACKLASH_KIND
     dc = result.checks.design_check

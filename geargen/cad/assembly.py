@@ -478,8 +478,8 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         out.touch(b, ishaft, "bearing on its shaft")
     # coupling (half on the shaft), gearhead (the exact upstream ratio), motor with the encoder
     zc = ish_hi - cl / 2
-    coupling = out.add("coupling", P.cylinder(s["coupling_diameter"], cl), _at(x_in, 0, zc), "drive", "shaft",
-                       description="shaft coupling")
+    coupling = out.add("coupling", P.cylinder(s["coupling_diameter"], cl, d_ish), _at(x_in, 0, zc), "drive", "shaft",
+                       description="shaft coupling (bored for the pinion shaft, which fills half its length)")
     out.touch(coupling, ishaft, "coupling on the pinion shaft")
     zg = zc + cl
     stages = " x ".join(f"{b}:{a}" for a, b in layout.settings.get("upstream_stages", ()))
@@ -499,6 +499,7 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     d_cs = s["cluster_shaft_diameter"]
     cw, cod, lug, block = s["stop_collar_width"], s["stop_collar_outer_diameter"], s["stop_lug_length"], s["stop_block_size"]
     z_floor = math.inf
+    stops = []
     for side in ("a", "b"):
         small, large = g[f"cluster_small_{side}"], g[f"cluster_large_{side}"]
         for part in (small, large):
@@ -535,22 +536,31 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         cname = out.add(f"stop_collar_{side}", collar, transform((x, y, z_collar), (0, 0, 1), direction),
                         f"cluster_{side}", "stop", description="stop collar with lug")
         out.touch(cname, shaft, "collar on the shaft")
-        # the fixed stops, placed from the engaged position (shift 0) and the helper's strokes
+        # the fixed stops, placed from the engaged position (shift 0) and the helper's strokes; built
+        # once the housing plate's height (under the lower of the two retracted stops) is known
         z_collar_engaged = z_collar - shift
         retract = -(eng.leader_retracted_stop if side == "a" else eng.trailer_retracted_stop)
         r_lug = math.hypot(x, y) + cod / 2 + lug / 2
+        stops.append((side, cname, shift, direction, r_lug, z_collar_engaged + cw, z_collar_engaged - retract))
+        z_floor = min(z_floor, z_collar_engaged - retract - block)
+    for side, cname, shift, direction, r_lug, z_engaged, z_retracted in stops:
         bx, by = r_lug * math.cos(direction), r_lug * math.sin(direction)
-        cube = P.box_between((-block / 2, -block / 2, 0), (block / 2, block / 2, block))
-        en = out.add(f"travel_stop_engaged_{side}", cube, transform((bx, by, z_collar_engaged + cw), (0, 0, 1), direction),
-                     "housing", "stop", description="engaged travel stop: the pinion fully in mesh")
-        z_re = z_collar_engaged - retract - block
-        re = out.add(f"travel_stop_retracted_{side}", cube, transform((bx, by, z_re), (0, 0, 1), direction),
-                     "housing", "stop",
-                     description=f"retracted travel stop, stroke {retract:.4g} mm"
+        place = transform((bx, by, 0.0), (0, 0, 1), direction)
+        # the engaged stop: a block over the lug on a column beside the lug's path, down to the plate
+        bracket = P.fuse([P.box_between((-block / 2, -block / 2, z_engaged), (block / 2, block / 2, z_engaged + block)),
+                          P.box_between((-block / 2, block / 2, z_floor), (block / 2, block, z_engaged + block))],
+                         "engaged stop")
+        en = out.add(f"travel_stop_engaged_{side}", bracket, place, "housing", "stop",
+                     description="engaged travel stop on its column: the pinion fully in mesh")
+        # the retracted stop: a block standing on the plate up to where the lug stops
+        re = out.add(f"travel_stop_retracted_{side}", P.box_between((-block / 2, -block / 2, z_floor),
+                                                                     (block / 2, block / 2, z_retracted)),
+                     place, "housing", "stop",
+                     description=f"retracted travel stop, stroke {z_engaged - cw - z_retracted:.4g} mm"
                                  + (f" (the trailing pinion: {eng.lead:.4g} mm lead further)" if side == "b" else ""))
         out.touch(cname, en if shift == 0 else re, "pinion against its travel stop")
         out.touch(re, "housing", "stop fixed to the housing plate")
-        z_floor = min(z_floor, z_re)
+        out.touch(en, "housing", "stop column fixed to the housing plate")
     # --- the housing plate under the stops (reference body)
     t = s["housing_thickness"]
     margin = s["housing_margin"]
@@ -838,14 +848,22 @@ class OverlapReport:
     tolerance: float
     intended: list[tuple[str, str, str]]
     delegated: list[tuple[str, str, str]] = field(default_factory=list)
+    # intended contacts whose solids do not touch: (part, part, gap mm, why)
+    missing_contacts: list[tuple[str, str, float, str]] = field(default_factory=list)
+    contact_tolerance: float = 1e-3
 
     @property
     def unintended(self) -> list[Overlap]:
         return [o for o in self.overlaps if not o.intended and o.volume > self.tolerance]
 
     @property
+    def interpenetrating(self) -> list[Overlap]:
+        """Intended contacts whose solids share volume: parts meant to touch that run into each other."""
+        return [o for o in self.overlaps if o.intended and o.volume > self.tolerance]
+
+    @property
     def ok(self) -> bool:
-        return not self.unintended
+        return not (self.unintended or self.interpenetrating or self.missing_contacts)
 
 
 def _bbox(shape) -> Bnd_Box:
@@ -853,6 +871,35 @@ def _bbox(shape) -> Bnd_Box:
     BRepBndLib.Add_s(shape, box, True)
     return box
 
+
+def _faces_within(shape, box: Bnd_Box) -> list:
+    """The faces of ``shape`` whose geometric bounding box meets ``box``."""
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    out = []
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        face = exp.Current()
+        exp.Next()
+        fb = Bnd_Box()
+        BRepBndLib.Add_s(face, fb, False)
+        if not fb.IsOut(box):
+            out.append(face)
+    return out
+
+
+def contact_gap(a, b, tolerance: float) -> float:
+    """The smallest distance (mm) between the solids ``a`` and ``b``. Where they come within
+    ``tolerance`` of each other only the faces of each that can are measured (a gear's teeth
+    never come near its shaft), so a shaft in a 112-tooth gear's bore costs milliseconds."""
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    box_a, box_b = _bbox(a), _bbox(b)
+    box_a.Enlarge(tolerance)
+    box_b.Enlarge(tolerance)
+    fa, fb = ([], []) if box_a.IsOut(box_b) else (_faces_within(a, box_b), _faces_within(b, box_a))
+    # apart: measured on the whole solids (only a missing contact, the failure, pays for that)
+    dist = BRepExtrema_DistShapeShape(P.compound(fa), P.compound(fb)) if fa and fb else BRepExtrema_DistShapeShape(a, b)
+    return float(dist.Value()) if dist.IsDone() else math.inf
 
 def _volume(shape) -> float:
     props = GProp_GProps()
@@ -868,6 +915,29 @@ def intersection_volume(a, b) -> float:
     if not op.IsDone():
         raise BuildError("boolean common failed")
     return _volume(op.Shape())
+
+
+def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
+    """The material of a gear part between its bore and its root circle (and its hubs), in the
+    assembly frame: a cheap solid wholly inside the gear, so what runs into it runs into the gear
+    (a shaft too big for the bore). None for a part that is not a gear, or one with a keyway
+    (the core would not be all material)."""
+    solid = part.solid
+    if solid is None:
+        return None
+    spec = solid.spec
+    gears = (spec.large, spec.small) if isinstance(spec, ClusterSpec) else (spec,)
+    if any(g.hub.keyway_width > 0 for g in gears):
+        return None
+    pieces = []
+    for g, z0 in zip(gears, (0.0, spec.small_gear_z) if isinstance(spec, ClusterSpec) else (0.0,)):
+        bore = g.hub.bore_diameter
+        # 2 % inside the root circle (the margin the design rules keep a bore from it): all material
+        pieces.append(P.translate(P.cylinder(2 * 0.98 * g.root_radius_standard, g.face_width, bore), (0, 0, z0)))
+        if g.hub.hub_length > 0:
+            pieces.append(P.translate(P.cylinder(g.hub.hub_diameter, g.hub.hub_length, bore),
+                                      (0, 0, z0 - g.hub.hub_length)))
+    return P.compound(pieces).Moved(location(part.matrix))
 
 
 def gear_envelope(part: PlacedPart) -> TopoDS_Shape | None:
@@ -897,7 +967,7 @@ def gear_envelope(part: PlacedPart) -> TopoDS_Shape | None:
 
 def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str, str, str]] = (),
                       tolerance: float = 1e-3, skip_intended: bool = True,
-                      delegated: Iterable[tuple[str, str, str]] = ()) -> OverlapReport:
+                      delegated: Iterable[tuple[str, str, str]] = (), contact_tolerance: float = 1e-3) -> OverlapReport:
     """Check every pair of parts for shared volume (boolean common, after a bounding-box test).
 
     Pairs listed in ``intended`` (part, part, why) are meant to touch: with ``skip_intended``
@@ -906,8 +976,12 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
     skipped here. A gear is first tested through its tip-cylinder envelope; only when that
     shares volume with the other part are the exact solids intersected. Any other pair sharing
     more than ``tolerance`` mm^3 is an overlap.
+
+    Every intended contact is verified: its two solids must come within ``contact_tolerance``
+    (mm) of each other (:func:`contact_gap`), else it is a missing contact, and must not share
+    more than ``tolerance`` mm^3 (interpenetrating).
     """
-    parts = list(parts)
+    parts, intended = list(parts), list(intended)
     wanted = {frozenset((a, b)): why for a, b, why in intended}
     skip = {frozenset((a, b)) for a, b, _ in delegated}
     boxes = [_bbox(p.world()) for p in parts]
@@ -930,7 +1004,27 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
             v = intersection_volume(parts[i].world(), parts[j].world())
             if v > tolerance or key in wanted:
                 overlaps.append(Overlap(parts[i].name, parts[j].name, v, key in wanted, wanted.get(key, "")))
-    report = OverlapReport(len(parts), checked, overlaps, tolerance, list(intended))
+    # every intended contact must be one: the two solids touch (a check that can fail), and
+    # (when not intersected above) do not run into each other
+    by_name = {p.name: p for p in parts}
+    missing = []
+    for a, b, why in intended:
+        if a not in by_name or b not in by_name:
+            missing.append((a, b, math.inf, why + " (no such part)"))
+            continue
+        gap = contact_gap(by_name[a].world(), by_name[b].world(), contact_tolerance)
+        if gap > contact_tolerance:
+            missing.append((a, b, gap, why))
+        elif skip_intended:
+            # a gear is represented by its core (bore to root circle): exact for what comes in
+            # through the bore, and milliseconds instead of a boolean with every tooth
+            core_a, core_b = gear_core(by_name[a]), gear_core(by_name[b])
+            v = intersection_volume(core_a if core_a is not None else by_name[a].world(),
+                                    core_b if core_b is not None else by_name[b].world())
+            if v > tolerance:
+                overlaps.append(Overlap(a, b, v, True, why))
+    report = OverlapReport(len(parts), checked, overlaps, tolerance, list(intended), missing_contacts=missing,
+                           contact_tolerance=contact_tolerance)
     report.delegated = list(delegated)
     return report
 

@@ -70,3 +70,32 @@ def test_spring_wire_volume_is_the_swept_circle():
     assert lo[2] == pytest.approx(0.0, abs=1e-6) and hi[2] == pytest.approx(length, abs=1e-6)  # ground ends
     # grinding the ends removes a little of the first and last coil: between 0 and 10 % of the wire
     assert 0.9 * wire < P.volume(spring) < wire
+
+
+def test_intended_contacts_are_verified_not_assumed():
+    """An intended contact is checked: touching solids pass, solids 0.5 mm apart are a missing
+    contact (the C-axis retracted stop floated above its plate), and a part run into its mate
+    is interpenetrating (the C-axis coupling shared 14,137 mm^3 with its shaft)."""
+    import numpy as np
+
+    from geargen.cad.assembly import PlacedPart, pairwise_overlaps
+
+    def part(name, shape, dz=0.0):
+        m = np.eye(4)
+        m[2, 3] = dz
+        return PlacedPart(name, shape, m, "g", "shaft")
+
+    shaft = part("shaft", P.cylinder(10.0, 50.0))
+    sleeve = part("sleeve", P.cylinder(30.0, 20.0, 10.0), dz=10.0)  # bored to the shaft: touches
+    solid_hub = part("hub", P.cylinder(30.0, 20.0), dz=10.0)  # no bore: runs into the shaft
+    block = part("block", P.box_between((-5, -5, 0), (5, 5, 5)), dz=50.5)  # 0.5 mm above the shaft's end
+    ok = pairwise_overlaps([shaft, sleeve], [("shaft", "sleeve", "sleeve on its shaft")])
+    assert ok.ok and not ok.missing_contacts and not ok.interpenetrating
+    bad = pairwise_overlaps([shaft, solid_hub, block], [("shaft", "hub", "hub on its shaft"),
+                                                        ("shaft", "block", "block on the shaft's end")])
+    assert not bad.ok
+    assert [(a, b) for a, b, _, _ in bad.missing_contacts] == [("shaft", "block")]
+    assert bad.missing_contacts[0][2] == pytest.approx(0.5, abs=1e-6)
+    (o,) = bad.interpenetrating
+    assert {o.part1, o.part2} == {"shaft", "hub"}
+    assert o.volume == pytest.approx(math.pi * 5.0 ** 2 * 20.0, rel=1e-6)
