@@ -804,17 +804,9 @@ def faces_near(shape, points, radius: float) -> TopoDS_Shape:
     The boxes come from the faces' geometry (B-spline poles, analytic bounds), so they hold the
     whole face: every point of a dropped face is farther than ``radius`` from every point.
     """
-    from OCP.TopAbs import TopAbs_FACE
-    from OCP.TopExp import TopExp_Explorer
-
     pts = np.asarray(points, dtype=float).reshape(-1, 2)
     kept = []
-    exp = TopExp_Explorer(shape, TopAbs_FACE)
-    while exp.More():
-        face = exp.Current()
-        exp.Next()
-        box = Bnd_Box()
-        BRepBndLib.Add_s(face, box, False)  # from the geometry, not a (possibly coarse) mesh
+    for face, box in _faces_with_boxes(shape):
         x0, y0, _, x1, y1, _ = box.Get()
         dx = np.maximum(np.maximum(x0 - pts[:, 0], pts[:, 0] - x1), 0.0)
         dy = np.maximum(np.maximum(y0 - pts[:, 1], pts[:, 1] - y1), 0.0)
@@ -872,20 +864,23 @@ def _bbox(shape) -> Bnd_Box:
     return box
 
 
-def _faces_within(shape, box: Bnd_Box) -> list:
-    """The faces of ``shape`` whose geometric bounding box meets ``box``."""
+def _faces_with_boxes(shape):
+    """Each face of ``shape`` with its bounding box, taken from the face's geometry (B-spline
+    poles, analytic bounds), not from a possibly coarse mesh: the box holds the whole face."""
     from OCP.TopAbs import TopAbs_FACE
     from OCP.TopExp import TopExp_Explorer
-    out = []
     exp = TopExp_Explorer(shape, TopAbs_FACE)
     while exp.More():
         face = exp.Current()
         exp.Next()
-        fb = Bnd_Box()
-        BRepBndLib.Add_s(face, fb, False)
-        if not fb.IsOut(box):
-            out.append(face)
-    return out
+        box = Bnd_Box()
+        BRepBndLib.Add_s(face, box, False)
+        yield face, box
+
+
+def _faces_within(shape, box: Bnd_Box) -> list:
+    """The faces of ``shape`` whose geometric bounding box meets ``box``."""
+    return [face for face, fb in _faces_with_boxes(shape) if not fb.IsOut(box)]
 
 
 def contact_gap(a, b, tolerance: float) -> float:
