@@ -38,7 +38,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from geargen.fit.effects import PARAMETER_COUNT
-from geargen.fit.measurement import Measurement
+from geargen.fit.measurement import Measurement, MeasurementError
 from geargen.fit.model import ModelFit, make_model
 from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual
 
@@ -151,11 +151,38 @@ def _round_entry(e: dict) -> dict:
     return {k: (_round(v) if isinstance(v, float) else v) for k, v in e.items()}
 
 
+#: a noise level below this fraction of a channel's largest reading is rounding error, not noise
+ROUNDING_LEVEL = 1e3 * float(np.finfo(float).eps)
+
+
 def estimate_noise(meas: Measurement) -> NoiseEstimate:
-    """Model-free noise of the residual, in residual units."""
+    """Model-free noise of the residual, in residual units.
+
+    Raises :class:`MeasurementError` naming the file and the column when a channel has no noise
+    level (every selection statistic is measured against it): no run of four readings free of
+    a gap, or a level at the rounding error of the readings (a stuck, coarsely quantised or
+    computed signal, whose runs of four readings are mostly exactly smooth).
+    """
     if meas.kind == "preload_trace":
-        return noise_of_signal(meas.time_s, meas.carriage_um)
-    return noise_of_torque_residual(meas.time_s, meas.torque_Nm, meas.rotation_rad * 1e6)
+        est = noise_of_signal(meas.time_s, meas.carriage_um)
+        _require_level(meas, "carriage", est.rms, meas.carriage_um)
+        return est
+    est = noise_of_torque_residual(meas.time_s, meas.torque_Nm, meas.rotation_rad * 1e6)
+    _require_level(meas, "torque", est.channels["torque"], meas.torque_Nm)
+    _require_level(meas, "rotation", est.rms, None)
+    return est
+
+
+def _require_level(meas: Measurement, channel: str, level: float, readings: np.ndarray | None) -> None:
+    if math.isnan(level):
+        raise MeasurementError(meas.where(channel), "no noise level can be estimated: no run of four consecutive "
+                               "readings is free of a drop-out gap", "a record sampled without a gap in most places")
+    floor = ROUNDING_LEVEL * float(np.max(np.abs(readings))) if readings is not None else 0.0
+    if not (math.isfinite(level) and level > floor):
+        raise MeasurementError(meas.where(channel), f"no noise level can be estimated: {level:.3g} is rounding error; "
+                               "most runs of four consecutive readings are exactly smooth in time (a quadratic or "
+                               "less), as the readings of a stuck, coarsely quantised or computed signal are",
+                               "a measured signal with its noise")
 
 
 def bic_gain(rss_before: float, rss_after: float, n: int, k: int) -> float:
