@@ -219,7 +219,7 @@ def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: Selec
     square by which noise moves the effect in a fit (from the fit's parameter covariance; for
     nested fits Var(part - full) = Var(part) - Var(full)).
     """
-    n = fit.residual.size
+    n = model.n  # (not fit.residual.size: a long fit makes its arrays only when asked)
     e = fit.contributions[index]
     e = e - e.mean()
     size = _rms(e)
