@@ -309,14 +309,38 @@ class PreloadModel:
             cols.extend(fx.harmonic_basis(theta, t.order).T)
         return np.column_stack(cols)
 
-    def _design(self, terms, rows) -> np.ndarray:
-        """Columns (offset, declared sinusoids, then each term's) at the given rows: a slice or an
-        index array. For a one-block record the whole matrix is made once and kept."""
+    def _design(self, terms, rows, extra: np.ndarray | None = None) -> np.ndarray:
+        """Columns (offset, declared sinusoids, then each term's, then ``extra`` if given) at the
+        given rows: a slice or an index array. For a one-block record the whole matrix is made
+        once and kept; otherwise each block is filled in place, column by column."""
         if self._one_block:
             X, _ = self._columns(tuple(terms))
-            return X[rows]
-        blocks = [self._base_rows(rows)] + [self._term_rows(t, rows) for t in terms if self._width(t)]
-        return np.hstack(blocks) if len(blocks) > 1 else blocks[0]
+            return X[rows] if extra is None else np.column_stack([X[rows], extra])
+        theta = self.theta[rows]
+        width = 1 + 2 * len(self.declared) + sum(self._width(t) for t in terms)
+        X = np.empty((theta.size, width + (extra is not None)), order="F")
+        X[:, 0] = 1.0
+        phase = np.empty(theta.size)
+        col = 1
+        orders = [t.order for t in self.declared]
+        for q in orders:
+            np.multiply(q, theta, out=phase)
+            np.cos(phase, out=X[:, col])
+            np.sin(phase, out=X[:, col + 1])
+            col += 2
+        for term in terms:
+            if term.effect == "harmonic":
+                np.multiply(term.order, theta, out=phase)
+                np.cos(phase, out=X[:, col])
+                np.sin(phase, out=X[:, col + 1])
+                col += 2
+            elif term.effect == "drift":
+                v = _drift_variable(self.meas, term.variable)
+                np.subtract(v[rows], self._drift_mean(term.variable), out=X[:, col])
+                col += 1
+        if extra is not None:
+            X[:, col] = extra
+        return X
 
     def _base_columns(self) -> np.ndarray:
         """Offset and declared sinusoids, (n, 1 + 2 x declared orders); one-block records only."""
@@ -485,34 +509,34 @@ class PreloadModel:
     def _fit_play(self, terms, coef, mask, h0):
         """Gauss-Newton on (linear coefficients, h) using the play's local structure."""
         x = self.x
-
-        def design(rows):
-            return self._design(terms, rows)
-
         if h0 is None:  # the side the play takes as h grows from 0 gives h's first estimate
             m = self._predict(terms, coef)
             _, _, side = fx.play_structure(m, 0.0)
             del m
-            sol = self._solve(lambda rows: np.column_stack([design(rows), side[rows]]), mask)
+            sol = self._solve(lambda rows: self._design(terms, rows, extra=side[rows]), mask)
             coef, h0 = sol[:-1], max(float(sol[-1]), 0.0)
             if h0 == 0.0:
                 h0 = 0.1 * self.noise.rms
         h = float(h0)
 
-        def rss_of(c, hh):
-            return self._masked_sum_of_squares(x - fx.play_operator(self._predict(terms, c), hh), mask)
+        def rss_of(c, hh, m=None):
+            m = self._predict(terms, c) if m is None else m
+            return self._masked_sum_of_squares(x - fx.play_operator(m, hh), mask)
 
         rss = rss_of(coef, h)
         converged = False
         for _ in range(60):
-            _, src, side = fx.play_structure(self._predict(terms, coef), h)
-            sol = self._solve(lambda rows: np.column_stack([design(src[rows]), side[rows]]), mask)
+            m = self._predict(terms, coef)
+            _, src, side = fx.play_structure(m, h)
+            sol = self._solve(lambda rows: self._design(terms, src[rows], extra=side[rows]), mask)
             del src, side
             d_coef, d_h = sol[:-1] - coef, float(sol[-1]) - h
+            # a long record's line search moves along X d_coef, made once, not through the columns again
+            dm = None if self._one_block else self._predict(terms, d_coef)
             step = 1.0
             while step > 1e-3:
                 c_new, h_new = coef + step * d_coef, max(h + step * d_h, 0.0)
-                r_new = rss_of(c_new, h_new)
+                r_new = rss_of(c_new, h_new, None if dm is None else m + step * dm)
                 if r_new <= rss * (1 + 1e-12):
                     break
                 step *= 0.5
@@ -534,26 +558,41 @@ class PreloadModel:
         Gram matrices J^T J and C^T C are formed, block by block."""
         terms, coef, h, mask = fit.terms, fit.state["coef"], fit.state["half_width"], fit.state["mask"]
         hyst = any(t.effect == "hysteresis" for t in terms)
+        width = 1 + 2 * len(self.declared) + sum(self._width(t) for t in terms)
         if not hyst:
             sl = fit.state["slices"][index]
-            JtJ = self._gram(lambda rows: self._design(terms, rows), mask)
-            CtC = self._gram(lambda rows: self._design(terms, rows)[:, sl])
-            return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(JtJ.shape[0])[sl])
+
+            def jacobians(rows):
+                X = self._design(terms, rows)
+                return X, X[:, sl]
+            JtJ, CtC = self._two_grams(jacobians, mask)
+            return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
         _, src, side = fx.play_structure(self._predict(terms, coef), h)
         if terms[index].effect == "hysteresis":
             cols = None
 
-            def contribution_columns(rows):
-                return np.column_stack([self._design(terms, src[rows]) - self._design(terms, rows), side[rows]])
+            def jacobians(rows):
+                J = self._design(terms, src[rows], extra=side[rows])
+                return J, np.column_stack([J[:, :-1] - self._design(terms, rows), side[rows]])
         else:
             sl = fit.state["slices"][index]
-            cols = np.arange(1 + 2 * len(self.declared) + sum(self._width(t) for t in terms) + 1)[sl]
+            cols = np.arange(width + 1)[sl]
 
-            def contribution_columns(rows):
-                return self._design(terms, rows)[:, sl]
-        JtJ = self._gram(lambda rows: np.column_stack([self._design(terms, src[rows]), side[rows]]), mask)
-        CtC = self._gram(contribution_columns)
+            def jacobians(rows):
+                return self._design(terms, src[rows], extra=side[rows]), self._design(terms, rows)[:, sl]
+        JtJ, CtC = self._two_grams(jacobians, mask)
         return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, cols)
+
+    def _two_grams(self, make, mask) -> tuple[np.ndarray, np.ndarray]:
+        """(J^T J over the masked rows, C^T C over all rows) for ``make(rows) -> (J, C)`` blocks."""
+        JtJ = CtC = None
+        for rows in (self._blocks() if not self._one_block else [slice(None)]):
+            J, C = make(rows)
+            if not mask[rows].all():
+                J = J[mask[rows]]
+            JtJ = J.T @ J if JtJ is None else JtJ + J.T @ J
+            CtC = C.T @ C if CtC is None else CtC + C.T @ C
+        return JtJ, CtC
 
     # ---------------------------------------------------------------- effects
     def periodogram(self, residual: np.ndarray):
@@ -671,10 +710,14 @@ class PreloadModel:
             xs = Xs.T @ side
             G = Xs.T @ Xs
         else:
-            G = self._gram(lambda rows: self._design(terms, rows))
+            G = xs = 0.0
+            for rows in self._blocks():
+                X = self._design(terms, rows)
+                G = G + X.T @ X
+                xs = xs + X.T @ side[rows]
             norms = np.sqrt(np.diag(G))
             norms = np.where(norms > 0, norms, 1.0)
-            xs = sum(self._design(terms, rows).T @ side[rows] for rows in self._blocks()) / norms
+            xs = xs / norms
             G = G / np.outer(norms, norms)
         ss = float(side @ side - xs @ np.linalg.pinv(G) @ xs)
         g = float(side @ fit.residual)
