@@ -27,6 +27,7 @@ at their declared values instead of letting them wander.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -806,8 +807,24 @@ class TorqueModel:
         self.t = meas.time_s
         self.n = meas.samples
         self.type2 = self.spec.drive_type == "type2"
+        self._check_slope()
         self.T_smooth = fx.driving_signal(self.t, self.T, noise.channels.get("torque", noise.rms), self.SMOOTH_HALF_WINDOW)
         self.declared_start = self._declared_start()
+
+    def _check_slope(self) -> None:
+        """The torque must rise with the rotation where both paths carry it (|T| < 25 % of its
+        peak): a drive is a spring. A falling or flat curve is a probe read with the wrong sign,
+        or not a torque-deflection test; the two-path law cannot be fitted to it."""
+        T, rot = self.T, self.rot_urad * 1e-6
+        inner = np.abs(T) < 0.25 * np.max(np.abs(T))
+        slope = _slope(rot[inner], T[inner]) if inner.sum() > 5 else _slope(rot, T)
+        if not (math.isfinite(slope) and slope > 0):
+            m = self.meas
+            raise MeasurementError(
+                f"{m.file}: columns {m.column('torque')}, {m.column('rotation')}",
+                f"the torque does not rise with the rotation: its slope near zero torque is {slope:.3g} Nm/rad "
+                "(is the rotation read with the wrong sign?)",
+                "torque rising with rotation, as a drive's stiffness makes it")
 
     # ---------------------------------------------------------------- declared law
     def _declared_start(self) -> dict:
@@ -1136,7 +1153,9 @@ def _side_curvature(phi_rad: np.ndarray, r: np.ndarray) -> tuple[float, float]:
             out.append(0.0)
             continue
         p = phi_rad[side] * 1e3
-        coef = np.polyfit(p, r[side], 2)
+        with warnings.catch_warnings():  # a poorly spread side only blurs this evidence text
+            warnings.simplefilter("ignore", np.exceptions.RankWarning)
+            coef = np.polyfit(p, r[side], 2)
         out.append(float(coef[0]))
     return out[0], out[1]
 
