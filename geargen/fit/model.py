@@ -105,9 +105,20 @@ class ModelFit:
 
     @property
     def residual(self) -> np.ndarray:
-        if self._residual is None:
-            self._residual = self._arrays.residual(self.prediction)
+        if self._residual is None:  # (the prediction made on the way is not kept unless asked for)
+            prediction = self._prediction if self._prediction is not None else self._arrays.prediction()
+            self._residual = self._arrays.residual(prediction)
         return self._residual
+
+    @property
+    def arrays_kept(self) -> bool:
+        """True when the prediction or the residual is held in memory."""
+        return self._prediction is not None or self._residual is not None
+
+    def release(self) -> None:
+        """Let go of the prediction and residual when they can be made again (a streamed fit)."""
+        if self._arrays is not None and getattr(self._arrays, "remakeable", False):
+            self._prediction = self._residual = None
 
     @property
     def contributions(self):
@@ -225,6 +236,7 @@ class _PreloadArrays:
 
     def __init__(self, model: "PreloadModel", terms, coef, half_width: float, hysteresis: bool):
         self.model, self.terms, self.coef, self.h, self.hysteresis = model, terms, coef, half_width, hysteresis
+        self.remakeable = not model._one_block
 
     def equilibrium(self) -> np.ndarray:
         return self.model._predict(self.terms, self.coef)
@@ -430,12 +442,13 @@ class PreloadModel:
             G = A.T @ A if G is None else G + A.T @ A
         return G
 
-    def _masked_sum_of_squares(self, r: np.ndarray, mask) -> float:
+    def _rss(self, prediction: np.ndarray, mask) -> float:
+        """Sum over the masked samples of (carriage - prediction)^2 (block by block when long)."""
         if self._one_block:
-            return float(np.sum(r[mask] ** 2))
+            return float(np.sum((self.x - prediction)[mask] ** 2))
         total = 0.0
         for rows in self._blocks():
-            part = r[rows][mask[rows]]
+            part = (self.x[rows] - prediction[rows])[mask[rows]]
             total += float(part @ part)
         return total
 
@@ -465,9 +478,11 @@ class PreloadModel:
             coef, h, success, message = self._fit_play(terms, coef, mask, h0)
         arrays = _PreloadArrays(self, terms, coef, h, bool(hyst))
         prediction = arrays.prediction()
-        residual = self.x - prediction
-        rss = self._masked_sum_of_squares(residual, mask)
-        if not self._one_block:  # made again when asked for: most fits are only compared by their rss
+        if self._one_block:
+            residual = self.x - prediction
+            rss = float(np.sum(residual[mask] ** 2))
+        else:  # made again when asked for: most fits are only compared by their rss
+            rss = self._rss(prediction, mask)
             prediction = residual = None
         values = []
         for i, term in enumerate(terms):
@@ -502,8 +517,9 @@ class PreloadModel:
                 "angles spread over the turn, as a trace turned through one or more revolutions has")
 
     def equilibrium(self, fit: ModelFit) -> np.ndarray:
-        """The model carriage before the play (the prediction itself without hysteresis)."""
-        if any(t.effect == "hysteresis" for t in fit.terms):
+        """The model carriage before the play (the prediction itself without hysteresis); made
+        anew, and not kept, for a streamed fit."""
+        if any(t.effect == "hysteresis" for t in fit.terms) or not self._one_block:
             return self._predict(fit.terms, fit.state["coef"])
         return fit.prediction
 
@@ -511,9 +527,7 @@ class PreloadModel:
         """Gauss-Newton on (linear coefficients, h) using the play's local structure."""
         x = self.x
         if h0 is None:  # the side the play takes as h grows from 0 gives h's first estimate
-            m = self._predict(terms, coef)
-            _, _, side = fx.play_structure(m, 0.0)
-            del m
+            side = fx.play_structure(self._predict(terms, coef), 0.0)[2]
             sol = self._solve(lambda rows: self._design(terms, rows, extra=side[rows]), mask)
             coef, h0 = sol[:-1], max(float(sol[-1]), 0.0)
             if h0 == 0.0:
@@ -522,13 +536,13 @@ class PreloadModel:
 
         def rss_of(c, hh, m=None):
             m = self._predict(terms, c) if m is None else m
-            return self._masked_sum_of_squares(x - fx.play_operator(m, hh), mask)
+            return self._rss(fx.play_operator(m, hh), mask)
 
         rss = rss_of(coef, h)
         converged = False
         for _ in range(60):
             m = self._predict(terms, coef)
-            _, src, side = fx.play_structure(m, h)
+            src, side = fx.play_structure(m, h)[1:]
             sol = self._solve(lambda rows: self._design(terms, src[rows], extra=side[rows]), mask)
             del src, side
             d_coef, d_h = sol[:-1] - coef, float(sol[-1]) - h
@@ -568,7 +582,7 @@ class PreloadModel:
                 return X, X[:, sl]
             JtJ, CtC = self._two_grams(jacobians, mask)
             return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
-        _, src, side = fx.play_structure(self._predict(terms, coef), h)
+        src, side = fx.play_structure(self._predict(terms, coef), h)[1:]
         if terms[index].effect == "hysteresis":
             cols = None
 
@@ -597,7 +611,7 @@ class PreloadModel:
 
     # ---------------------------------------------------------------- effects
     def periodogram(self, residual: np.ndarray):
-        return ls_periodogram(self.theta, residual - residual.mean(), self.order_min, self.order_max)
+        return ls_periodogram(self.theta, residual, self.order_min, self.order_max, offset=residual.mean())
 
     def model_orders(self, terms) -> list[float]:
         return [t.order for t in self.declared] + [t.order for t in terms if t.effect == "harmonic"]
@@ -700,28 +714,34 @@ class PreloadModel:
         model carriage's motion), a linear column, projected off the current model's columns."""
         if term.effect != "hysteresis":
             return None
-        m = self.equilibrium(fit)
-        side = -np.sign(np.diff(m, prepend=m[0]))
-        del m
         terms = fit.terms
+        m = self.equilibrium(fit)
         if self._one_block:
+            side = -np.sign(np.diff(m, prepend=m[0]))
             X, _ = self._columns(tuple(terms))
             norms = np.sqrt(np.einsum("ij,ij->j", X, X))
             Xs = X / np.where(norms > 0, norms, 1.0)
             xs = Xs.T @ side
             G = Xs.T @ Xs
-        else:
+            side_sq, g = float(side @ side), float(side @ fit.residual)
+        else:  # block by block: no full-length temporaries
             G = xs = 0.0
+            side_sq = g = 0.0
+            r = fit.residual
             for rows in self._blocks():
+                lo = rows.start
+                side = -np.sign(np.diff(m[rows], prepend=m[lo - 1] if lo else m[0]))
                 X = self._design(terms, rows)
                 G = G + X.T @ X
-                xs = xs + X.T @ side[rows]
+                xs = xs + X.T @ side
+                side_sq += float(side @ side)
+                g += float(side @ r[rows])
             norms = np.sqrt(np.diag(G))
             norms = np.where(norms > 0, norms, 1.0)
             xs = xs / norms
             G = G / np.outer(norms, norms)
-        ss = float(side @ side - xs @ np.linalg.pinv(G) @ xs)
-        g = float(side @ fit.residual)
+        del m
+        ss = float(side_sq - xs @ np.linalg.pinv(G) @ xs)
         return g * g / ss if ss > 0 else 0.0
 
     def polish(self, fit: ModelFit) -> ModelFit:

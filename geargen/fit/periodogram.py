@@ -48,15 +48,16 @@ def _spread(position: np.ndarray, weights: np.ndarray, length: int) -> np.ndarra
     return grid
 
 
-def _spread_blocks(rev: np.ndarray, rev0: float, d_rev: float, weights: np.ndarray | None, length: int,
-                   out: np.ndarray) -> None:
-    """Add the tent spreading of ``weights`` (ones when None) at revolutions ``rev`` (turned into
-    grid positions ``(rev - rev0) / d_rev``) to ``out[:length + 2]``, block by block."""
-    n = rev.size
+def _spread_blocks(theta: np.ndarray, rev0: float, d_rev: float, weights: np.ndarray | None, offset: float,
+                   length: int, out: np.ndarray) -> None:
+    """Add the tent spreading of ``weights - offset`` (ones when None) at angles ``theta`` (rad,
+    turned into grid positions ``(theta / 2 pi - rev0) / d_rev``) to ``out[:length + 2]``, block
+    by block."""
+    n = theta.size
     for lo in range(0, n, SPREAD_BLOCK):
         hi = min(lo + SPREAD_BLOCK, n)
-        position = (rev[lo:hi] - rev0) / d_rev
-        w = np.ones(hi - lo) if weights is None else weights[lo:hi]
+        position = (theta[lo:hi] / TWO_PI - rev0) / d_rev
+        w = np.ones(hi - lo) if weights is None else weights[lo:hi] - offset if offset else weights[lo:hi]
         out[:length + 2] += _spread(position, w, length)
 
 
@@ -75,8 +76,9 @@ MIN_GRID_CAP = 1 << 20
 
 
 def ls_periodogram(angle_rad: np.ndarray, residual: np.ndarray, order_min: float, order_max: float,
-                   oversample: int = 5) -> Periodogram:
-    """Least-squares periodogram of residual (n,) at output angles (n,) rad over [order_min, order_max].
+                   oversample: int = 5, offset: float = 0.0) -> Periodogram:
+    """Least-squares periodogram of ``residual - offset`` (n,) at output angles (n,) rad over
+    [order_min, order_max] (the offset is taken off block by block, without a copy of the residual).
 
     The spreading grid is bounded (:data:`MIN_GRID_CAP`, or n / 2 points): a record spanning so
     many revolutions that 32 points per period of ``order_max`` with a step of resolution /
@@ -107,14 +109,12 @@ def ls_periodogram(angle_rad: np.ndarray, residual: np.ndarray, order_min: float
     if length + 2 > n_fft:
         n_fft = int(2 ** math.ceil(math.log2(length + 2)))
         order_step = 1.0 / (n_fft * d_rev)
-    rev = theta / TWO_PI
     g_r = np.zeros(n_fft)
-    _spread_blocks(rev, rev0, d_rev, r, length, g_r)
+    _spread_blocks(theta, rev0, d_rev, r, offset, length, g_r)
     f_r = np.fft.rfft(g_r)
     del g_r
     g_1 = np.zeros(n_fft)
-    _spread_blocks(rev, rev0, d_rev, None, length, g_1)
-    del rev
+    _spread_blocks(theta, rev0, d_rev, None, 0.0, length, g_1)
     f_1 = np.fft.rfft(g_1)
     del g_1
     k_lo = max(int(math.floor(order_min / order_step)), 1)

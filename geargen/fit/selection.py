@@ -39,6 +39,7 @@ import numpy as np
 
 from geargen.fit.effects import PARAMETER_COUNT
 from geargen.fit.measurement import Measurement, MeasurementError
+from geargen.fit import model as model_module
 from geargen.fit.model import ModelFit, make_model
 from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual
 
@@ -196,6 +197,19 @@ def _rms(v: np.ndarray) -> float:
     return float(np.sqrt(np.mean(v ** 2)))
 
 
+def _rms_centred_difference(a: np.ndarray, b: np.ndarray) -> float:
+    """rms((a - mean a) - b), block by block for a long record (no full-length temporaries)."""
+    n = a.size
+    if n <= model_module.ROW_BLOCK:
+        return _rms((a - a.mean()) - b)
+    mean = a.mean()
+    total = 0.0
+    for lo in range(0, n, model_module.ROW_BLOCK):
+        d = (a[lo:lo + model_module.ROW_BLOCK] - mean) - b[lo:lo + model_module.ROW_BLOCK]
+        total += float(d @ d)
+    return math.sqrt(total / n)
+
+
 SPLITS = {
     "time": "the first and the second half of the record",
     "interleaved": "alternate sixteenths of the record",
@@ -235,7 +249,8 @@ def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: Selec
             expected.append(math.inf)
             continue
         ep = part.contributions[index]
-        out.append(_rms((ep - ep.mean()) - e) / size)
+        out.append(_rms_centred_difference(ep, e) / size)
+        del ep
         e_part = model.contribution_noise(part, index)
         expected.append(math.inf if not math.isfinite(e_part - e_full) else math.sqrt(max(e_part - e_full, 0.0)) / size)
     return out[0], out[1], max(expected)
@@ -272,7 +287,6 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     rule = rule or SelectionRule()
     noise = estimate_noise(meas)
     model = make_model(meas, noise)
-    nominal = model.nominal()
     declared = model.fit(())
     current = declared
     n = meas.samples
@@ -340,6 +354,9 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
             break
         dbic, cand, f, ho, dn, split = chosen
         rms_before = current.rms
+        if current is not declared:
+            current.release()
+        declared.release()  # a long record's fit makes its arrays again when the report asks for them
         current = f
         entry = model.entry(current, len(current.terms) - 1)
         entry["evidence"] = (f"{cand.evidence}. Fitted jointly with the model: dBIC = {dbic:.1f} (>= {rule.bic_threshold:g}); "
@@ -355,6 +372,7 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         added[i] = AddedEffect(fresh, a.delta_bic, a.held_out, a.rms_before, a.rms_after)
     tests = residual_tests(final, noise, last_round, rule, meas.units)
     unexplained = not all(t.passed for t in tests)
+    nominal = model.nominal()  # (made last: it is one more array of the record's length)
     return Diagnosis(measurement=meas, noise=noise, model=model, nominal_residual=nominal, declared=declared,
                      extended=final, added=tuple(added), candidates=tuple(log), tests=tuple(tests),
                      unexplained=unexplained, rule=rule)
