@@ -327,6 +327,8 @@ def read_csv(path: Path, select=None) -> tuple[list[str], list[np.ndarray]]:
                 capacity = max(_line_breaks(path) - (first + start), 1)
                 columns = [np.empty(capacity) for _ in keep]
                 first, lines = first + start + 1, lines[start + 1:]
+            if not any(line.strip() and not line.lstrip().startswith("#") for line in lines):
+                continue
             try:
                 table = np.loadtxt(lines, delimiter=",", ndmin=2, dtype=float, comments="#")
                 if table.size == 0:
