@@ -8,6 +8,13 @@ spellings, other angle and length suffixes of :mod:`geargen.units` are accepted 
 Rows with an empty or non-numeric-NaN value in a required column are dropped (a probe
 drop-out) with a note; a missing temperature value is interpolated in time, with a note.
 Unknown extra columns are ignored, with a note.
+
+A record that cannot be fitted is refused with a :class:`MeasurementError` naming the file and
+the column: no usable rows or too few, a column empty in every row, a record that spans no time,
+a measured channel that is constant or reads one value in more than half of its rows (a stuck,
+saturated or disconnected probe), values beyond what double precision can square, a preload
+trace whose output does not turn. The CSV is read in blocks straight into one float64 array per
+used column, so reading a file costs about 8 bytes per used value, not the file's text.
 """
 
 from __future__ import annotations
