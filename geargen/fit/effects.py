@@ -83,13 +83,24 @@ def play_operator(u: np.ndarray, half_width: float, initial: float | None = None
     """The play (backlash) operator: output y lags input u by a play of half-width h.
 
     ``y[k] = clip(y[k-1], u[k] - h, u[k] + h)`` with ``y[-1] = initial`` (default ``u[0]``).
-    u: (n,) float; returns (n,) float. Computed without a Python loop: every step is a clamp
-    map ``y -> clip(y, L, U)``, clamp maps compose into clamp maps (later-after-earlier is
-    ``(clip(L_e, L_l, U_l), clip(U_e, L_l, U_l))``), so the prefix compositions come from a
-    log2(n)-step doubling scan. The values are exact: only min/max are taken.
+    u: (n,) float; returns (n,) float. Computed without a Python loop over samples (see
+    :func:`_play_block`), in blocks of :data:`PLAY_BLOCK` samples.
     """
-    y, _, _ = play_structure(u, half_width, initial)
+    u = np.asarray(u, dtype=float)
+    h = float(half_width)
+    if h < 0:
+        raise ValueError("half_width must be >= 0")
+    y = np.empty(u.size)
+    previous = float(u[0]) if initial is None else float(initial)
+    for start in range(0, u.size, PLAY_BLOCK):
+        stop = min(start + PLAY_BLOCK, u.size)
+        y[start:stop] = _play_block(u[start:stop], h, previous)
+        previous = float(y[stop - 1])
     return y
+
+
+#: samples of the play operator composed at a time: the doubling scan's temporaries stay this size
+PLAY_BLOCK = 1 << 17
 
 
 def play_structure(u: np.ndarray, half_width: float, initial: float | None = None):
@@ -100,17 +111,53 @@ def play_structure(u: np.ndarray, half_width: float, initial: float | None = Non
     ``side`` (n,) float -1 where the output was last pushed up (y = u[source] - h), +1 where
     pushed down (y = u[source] + h), 0 before the first engagement. Locally
     ``y = u[source] + side * h``, which makes the play linear in u and h for Gauss-Newton fits.
+
+    Long inputs are processed in blocks of :data:`PLAY_BLOCK` samples, each started from the
+    previous block's last output (the play is a recursion, so this is exact) and carrying the
+    last engagement across.
     """
     u = np.asarray(u, dtype=float)
     h = float(half_width)
     if h < 0:
         raise ValueError("half_width must be >= 0")
     n = u.size
-    y0 = float(u[0]) if initial is None else float(initial)
-    lo_raw = u - h
-    hi_raw = u + h
-    lo = lo_raw.copy()
-    hi = hi_raw.copy()
+    y = np.empty(n)
+    source = np.empty(n, dtype=np.int64)
+    side = np.empty(n)
+    previous = float(u[0]) if initial is None else float(initial)
+    last_source, last_side = 0, 0.0  # before the first engagement
+    for start in range(0, n, PLAY_BLOCK):
+        stop = min(start + PLAY_BLOCK, n)
+        ub = u[start:stop]
+        yb = _play_block(ub, h, previous)
+        y[start:stop] = yb
+        previous = float(yb[-1])
+        index = np.arange(stop - start)
+        if h == 0.0:  # y = u; the side is the one the play would take as h grows from zero
+            source[start:stop] = index + start
+            side[start:stop] = -np.sign(np.diff(ub, prepend=u[start - 1] if start else u[0]))
+            continue
+        pushed_up = yb == ub - h
+        pushed_down = (yb == ub + h) & ~pushed_up
+        engaged = pushed_up | pushed_down
+        last = np.maximum.accumulate(np.where(engaged, index, -1))
+        side_now = np.where(pushed_up, -1.0, np.where(pushed_down, 1.0, 0.0))
+        seen = last >= 0
+        side[start:stop] = np.where(seen, side_now[np.maximum(last, 0)], last_side)
+        source[start:stop] = np.where(seen, last + start, last_source)
+        if seen[-1]:
+            last_source, last_side = int(last[-1]) + start, float(side_now[last[-1]])
+    return y, source, side
+
+
+def _play_block(u: np.ndarray, h: float, y0: float) -> np.ndarray:
+    """The play output over u (n,) from the output y0 before it: every step is a clamp map
+    ``y -> clip(y, L, U)``, clamp maps compose into clamp maps (later-after-earlier is
+    ``(clip(L_e, L_l, U_l), clip(U_e, L_l, U_l))``), so the prefix compositions come from a
+    log2(n)-step doubling scan. The values are exact: only min/max are taken."""
+    n = u.size
+    lo = u - h
+    hi = u + h
     step = 1
     while step < n:
         new_lo = np.minimum(np.maximum(lo[:-step], lo[step:]), hi[step:])
@@ -118,19 +165,7 @@ def play_structure(u: np.ndarray, half_width: float, initial: float | None = Non
         lo[step:] = new_lo
         hi[step:] = new_hi
         step *= 2
-    y = np.minimum(np.maximum(y0, lo), hi)
-    index = np.arange(n)
-    if h == 0.0:  # y = u; the side is the one the play would take as h grows from zero
-        side = -np.sign(np.diff(u, prepend=u[0]))
-        return y, index, side
-    pushed_up = y == lo_raw
-    pushed_down = (y == hi_raw) & ~pushed_up
-    engaged = pushed_up | pushed_down
-    last = np.maximum.accumulate(np.where(engaged, index, -1))
-    side_now = np.where(pushed_up, -1.0, np.where(pushed_down, 1.0, 0.0))
-    side = np.where(last >= 0, side_now[np.maximum(last, 0)], 0.0)
-    source = np.maximum(last, 0)
-    return y, source, side
+    return np.minimum(np.maximum(y0, lo), hi)
 
 
 def play_operator_reference(u: np.ndarray, half_width: float, initial: float | None = None) -> np.ndarray:

@@ -8,13 +8,19 @@ spellings, other angle and length suffixes of :mod:`geargen.units` are accepted 
 Rows with an empty or non-numeric-NaN value in a required column are dropped (a probe
 drop-out) with a note; a missing temperature value is interpolated in time, with a note.
 Unknown extra columns are ignored, with a note.
+
+A record that cannot be fitted is refused with a :class:`MeasurementError` naming the file and
+the column: no usable rows or too few, a column empty in every row, a record that spans no time,
+a measured channel that is constant or reads one value in more than half of its rows (a stuck,
+saturated or disconnected probe), values beyond what double precision can square, a preload
+trace whose output does not turn. The CSV is read in blocks straight into one float64 array per
+used column, so reading a file costs about 8 bytes per used value, not the file's text.
 """
 
 from __future__ import annotations
 
-import io
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -49,6 +55,9 @@ MODEL_KEYS = {
 }
 TOP_KEYS = ("kind", "description", "model", "assembly")
 MIN_SAMPLES = 50
+#: values (in the column's unit) beyond which squares and sums of squares leave double precision
+MAX_MAGNITUDE = 1e100
+MIN_SPAN = 1e-100
 
 
 class MeasurementError(DesignError):
@@ -118,7 +127,9 @@ class Measurement:
 
     preload_trace: ``angle_rad`` (output angle), ``carriage_um``.
     torque_deflection: ``torque_Nm`` (output torque), ``rotation_rad`` (output rotation).
-    ``temperature_C`` is None when the file has no temperature column.
+    ``temperature_C`` is None when the file has no temperature column. ``columns`` maps each
+    channel (time, angle, carriage, torque, rotation, temperature) to the CSV column it was read
+    from; :meth:`column` falls back to the contract's spelling.
     """
 
     kind: str
@@ -133,6 +144,7 @@ class Measurement:
     description: str = ""
     notes: tuple[str, ...] = ()
     source: Path | None = None
+    columns: dict = field(default_factory=dict)
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -143,7 +155,7 @@ class Measurement:
             raise MeasurementError("model", f"a {self.kind} needs a {spec_type.__name__}")
         n = np.asarray(self.time_s).size
         if n < MIN_SAMPLES:
-            raise MeasurementError("samples", f"{n} samples are too few to fit", f">= {MIN_SAMPLES}")
+            raise MeasurementError(f"{self.file}: samples", f"{n} samples are too few to fit", f">= {MIN_SAMPLES}")
         for name in ("time_s",) + want + (("temperature_C",) if self.temperature_C is not None else ()):
             arr = getattr(self, name)
             if arr is None or np.asarray(arr).shape != (n,):
@@ -151,14 +163,33 @@ class Measurement:
             if not np.all(np.isfinite(arr)):
                 raise MeasurementError(name, "holds values that are not finite")
         if self.kind == "preload_trace" and np.ptp(self.angle_rad) < math.pi:
-            raise MeasurementError("output_angle_deg", f"the output turns only {np.degrees(np.ptp(self.angle_rad)):.3g} deg",
+            raise MeasurementError(self.where("angle"), f"the output turns only {np.degrees(np.ptp(self.angle_rad)):.3g} deg",
                                    "a preload trace over one or more revolutions (at least half of one)")
         if self.kind == "torque_deflection" and not np.ptp(self.torque_Nm) > 0:
-            raise MeasurementError("output_torque_Nm", "the torque never changes", "a torque cycled 0 -> +T -> -T -> 0")
-        if np.any(np.diff(self.time_s) <= 0):
-            i = int(np.flatnonzero(np.diff(self.time_s) <= 0)[0])
-            raise MeasurementError("time_s", f"not increasing at sample {i + 1} ({self.time_s[i + 1]} after {self.time_s[i]})",
+            raise MeasurementError(self.where("torque"), "the torque never changes", "a torque cycled 0 -> +T -> -T -> 0")
+        if self.kind == "torque_deflection" and not np.ptp(self.rotation_rad) > 0:
+            raise MeasurementError(self.where("rotation"), "the rotation never changes", "a measured, varying rotation")
+        step_ok = np.diff(self.time_s) > 0
+        if not step_ok.all():
+            i = int(np.flatnonzero(~step_ok)[0])
+            raise MeasurementError(self.where("time"), f"not increasing at sample {i + 2} ({self.time_s[i + 1]} after {self.time_s[i]})",
                                    "rows in time order, strictly increasing time")
+
+    @property
+    def file(self) -> str:
+        """The CSV's file name (``NAME.csv`` for a measurement made in memory)."""
+        return self.source.name if self.source is not None else f"{self.name}.csv"
+
+    def column(self, channel: str) -> str:
+        """The CSV column a channel (time, angle, carriage, torque, rotation, temperature) came from."""
+        if channel in self.columns:
+            return self.columns[channel]
+        stem, suffixes = CHANNELS[channel]
+        return f"{stem}_{next(iter(suffixes))}"
+
+    def where(self, channel: str) -> str:
+        """``FILE: column NAME`` of a channel, for error messages."""
+        return f"{self.file}: column {self.column(channel)}"
 
     @property
     def samples(self) -> int:
@@ -223,35 +254,116 @@ def _parse_rows(lines: list[str], first_line: int, ncols: int, header: list[str]
     return np.array(rows, dtype=float).reshape(-1, ncols)
 
 
-def read_csv(path: Path) -> tuple[list[str], np.ndarray]:
-    """Header names and the (rows, columns) float table of a measurement CSV (NaN where empty)."""
+#: bytes of CSV text parsed at a time: the file is never held whole, as text or as Python objects
+CSV_BLOCK_BYTES = 1 << 24
+
+
+def _decode(block: bytes, where: str, first_line: int) -> str:
+    try:
+        return block.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = first_line + block[:exc.start].count(b"\n")
+        raise MeasurementError(f"{where}: line {line}", "is not UTF-8 text") from None
+
+
+def _text_blocks(handle, first_line: int, where: str):
+    """(line number of the block's first line, its lines) for blocks of whole lines of an open
+    binary file, about :data:`CSV_BLOCK_BYTES` each."""
+    carry = b""
+    line = first_line
+    while True:
+        data = handle.read(CSV_BLOCK_BYTES)
+        block = carry + data
+        if not data:
+            if block:
+                lines = _decode(block, where, line).splitlines()
+                yield line, lines
+            return
+        cut = block.rfind(b"\n")
+        if cut < 0:
+            cut = block.rfind(b"\r")
+        if cut < 0:  # one very long line so far: read on
+            carry = block
+            continue
+        carry = block[cut + 1:]
+        lines = _decode(block[:cut + 1], where, line).splitlines()
+        yield line, lines
+        line += len(lines)
+
+
+def _line_breaks(path: Path) -> int:
+    """An upper bound on the lines of a file (its LF or, for old Mac files, CR count, plus one)."""
+    lf = cr = 0
+    with path.open("rb") as f:
+        while data := f.read(CSV_BLOCK_BYTES):
+            lf += data.count(b"\n")
+            cr += data.count(b"\r")
+    return max(lf, cr) + 1
+
+
+def read_csv(path: Path, select=None) -> tuple[list[str], list[np.ndarray]]:
+    """Header names and the float columns (NaN where a cell is empty) of a measurement CSV.
+
+    ``select(header) -> column indices`` picks the columns to keep (default: all). The file is
+    read in blocks of about :data:`CSV_BLOCK_BYTES`, each parsed by numpy (or, where numpy
+    refuses it, by a careful parser that names the line and column of a bad value) straight
+    into one preallocated float64 array per kept column, so reading costs 8 bytes per kept
+    value plus one block, whatever the file's size.
+    """
     where = path.name
     try:
-        text = path.read_text(encoding="utf-8-sig")
+        handle = path.open("rb")
     except FileNotFoundError:
         raise MeasurementError(str(path), "no such measurement file") from None
-    lines = text.splitlines()
-    start = 0
-    while start < len(lines) and (not lines[start].strip() or lines[start].lstrip().startswith("#")):
-        start += 1
-    if start == len(lines):
+    header = None
+    columns: list[np.ndarray] = []
+    keep: list[int] = []
+    rows = capacity = 0
+    with handle:
+        for first, lines in _text_blocks(handle, 1, where):
+            if header is None:
+                if first == 1 and lines:
+                    lines[0] = lines[0].removeprefix("\ufeff")
+                start = 0
+                while start < len(lines) and (not lines[start].strip() or lines[start].lstrip().startswith("#")):
+                    start += 1
+                if start == len(lines):
+                    continue
+                header = _header(lines[start], first + start, where)
+                keep = list(range(len(header))) if select is None else list(select(header))
+                capacity = max(_line_breaks(path) - (first + start), 1)
+                columns = [np.empty(capacity) for _ in keep]
+                first, lines = first + start + 1, lines[start + 1:]
+            if not any(line.strip() and not line.lstrip().startswith("#") for line in lines):
+                continue
+            try:
+                table = np.loadtxt(lines, delimiter=",", ndmin=2, dtype=float, comments="#")
+                if table.size == 0:
+                    table = table.reshape(0, len(header))
+                if table.shape[1] != len(header):
+                    raise ValueError
+            except ValueError:
+                table = _parse_rows(lines, first, len(header), header, where)
+            m = table.shape[0]
+            if rows + m > capacity:  # line breaks the count did not see (unusual line ends)
+                capacity = max(2 * capacity, rows + m)
+                columns = [np.resize(c, capacity) for c in columns]
+            for c, i in zip(columns, keep):
+                c[rows:rows + m] = table[:, i]
+            rows += m
+    if header is None:
         raise MeasurementError(where, "is empty", "a header row of column names, then numbers")
-    header = [h.strip().strip('"').strip("'").strip() for h in lines[start].split(",")]
+    return header, [c[:rows] for c in columns]
+
+
+def _header(line: str, lineno: int, where: str) -> list[str]:
+    header = [h.strip().strip('"').strip("'").strip() for h in line.split(",")]
     if any(not h for h in header):
-        raise MeasurementError(f"{where}: line {start + 1}", "header has an empty column name")
+        raise MeasurementError(f"{where}: line {lineno}", "header has an empty column name")
     dup = [h for h in header if header.count(h) > 1]
     if dup:
         raise MeasurementError(f"{where}: column {dup[0]}", "appears twice in the header")
-    body = lines[start + 1:]
-    try:
-        table = np.loadtxt(io.StringIO("\n".join(body)), delimiter=",", ndmin=2, dtype=float, comments="#")
-        if table.size == 0:
-            table = table.reshape(0, len(header))
-        if table.shape[1] != len(header):
-            raise ValueError
-    except ValueError:
-        table = _parse_rows(body, start + 2, len(header), header, where)
-    return header, table
+    return header
 
 
 # ----------------------------------------------------------------------------- sidecar
@@ -381,40 +493,138 @@ def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSp
 
 # ----------------------------------------------------------------------------- reading
 
+def _repeated_value(v: np.ndarray) -> tuple[float, int] | None:
+    """(value, rows) when one value fills more than half of v, else None. Such a value is the
+    median, so one partial sort finds it whatever the length."""
+    if v.size == 0:
+        return None
+    med = float(np.median(v))
+    count = int(np.count_nonzero(v == med))
+    return (med, count) if 2 * count > v.size else None
+
+
+def _check_channels(kind: str, data: dict[str, np.ndarray], cols: dict, where: str) -> None:
+    """Degenerate channels of a usable record, each named by its column.
+
+    The measured channels (carriage, torque, rotation) are noise-estimated from runs of four
+    consecutive readings (:mod:`geargen.fit.noise`, a median): a channel that reads one value in
+    more than half of its rows makes that median a flat run and has no noise level; such a probe
+    is stuck, saturated at its range limit, or disconnected.
+    """
+    def column(ch):
+        return f"{where}: column {cols[ch][2]}"
+
+    def as_read(ch, value):  # the value in the column's own unit
+        return f"{value / cols[ch][1]:.6g}"
+
+    for ch, v in data.items():  # (temperature may still hold gaps, to be interpolated)
+        finite = v if ch != "temperature" else v[np.isfinite(v)]
+        if finite.size == 0:
+            continue
+        scale = abs(cols[ch][1])
+        biggest, span = float(np.max(np.abs(finite))), float(np.ptp(finite))
+        if biggest > MAX_MAGNITUDE * scale:
+            raise MeasurementError(column(ch), f"holds a value of magnitude {biggest / scale:.3g}",
+                                   f"|value| <= {MAX_MAGNITUDE:.0e}: squares of residuals must stay finite in double precision")
+        if 0 < span < MIN_SPAN * scale:
+            raise MeasurementError(column(ch), f"varies by only {span / scale:.3g} over the record",
+                                   f"a variation > {MIN_SPAN:.0e}: squares of the noise level must stay above zero "
+                                   "in double precision")
+    t = data["time"]
+    if np.ptp(t) == 0:
+        raise MeasurementError(column("time"), f"every usable row has the same time {as_read('time', t[0])}: "
+                               "the record spans no time", "rows in time order, strictly increasing time")
+    if kind == "preload_trace":
+        turn = float(np.ptp(data["angle"]))
+        if turn < math.pi:
+            raise MeasurementError(column("angle"), f"the output turns only {np.degrees(turn):.3g} deg",
+                                   "a preload trace over one or more revolutions (at least half of one)")
+    measured = ("carriage",) if kind == "preload_trace" else ("torque", "rotation")
+    for ch in measured:
+        v = data[ch]
+        if np.ptp(v) == 0:
+            what = "the torque never changes" if ch == "torque" else "is constant"
+            raise MeasurementError(column(ch), f"{what}: every usable row reads {as_read(ch, v[0])}",
+                                   "a torque cycled 0 -> +T -> -T -> 0" if ch == "torque" else
+                                   "a measured, varying signal")
+        stuck = _repeated_value(v)
+        if stuck:
+            raise MeasurementError(column(ch), f"reads {as_read(ch, stuck[0])} in {stuck[1]} of {v.size} usable rows: "
+                                   "the probe is stuck, saturated at its range limit or disconnected, and the "
+                                   "noise level cannot be estimated from its readings",
+                                   "one value in at most half of the rows")
+
+
 def read_measurement(csv_path: str | Path) -> Measurement:
-    """Read and validate ``NAME.csv`` and its sidecar ``NAME.toml``."""
+    """Read and validate ``NAME.csv`` and its sidecar ``NAME.toml``.
+
+    Degenerate records (no usable rows, too few, a channel that is empty, constant or stuck on
+    one value, a record that spans no time or a preload trace whose output does not turn) are
+    refused with a :class:`MeasurementError` that names the file and the column.
+    """
     csv_path = Path(csv_path)
     if csv_path.suffix.lower() == ".toml":
         csv_path = csv_path.with_suffix(".csv")
+    where = csv_path.name
     notes: list[str] = []
     kind, description, model = read_sidecar(csv_path.with_suffix(".toml"), notes)
-    header, table = read_csv(csv_path)
-    cols, ignored = _column_map(header, kind, csv_path.name)
+    found: dict = {}
+
+    def select(header):
+        cols, ignored = _column_map(header, kind, where)
+        found.update(cols=cols, ignored=ignored)
+        return [i for i, _, _ in cols.values()]
+
+    _, arrays = read_csv(csv_path, select)
+    cols, ignored = found["cols"], found["ignored"]
     if ignored:
         notes.append("unknown columns ignored: " + ", ".join(ignored))
     for ch, (_, _, name) in cols.items():
         stem, suffixes = CHANNELS[ch]
         if name != f"{stem}_{next(iter(suffixes))}":
             notes.append(f"column {name} converted from its unit")
-    data = {ch: table[:, i] * factor for ch, (i, factor, _) in cols.items()}
+    data = dict(zip(cols, arrays))
+    for ch, (_, factor, _) in cols.items():
+        if factor != 1.0:
+            data[ch] *= factor  # in place: the column arrays belong to this reader
     required = REQUIRED[kind]
-    bad_rows = np.zeros(table.shape[0], bool)
+    names = ", ".join(cols[ch][2] for ch in required)
+    rows = data["time"].size
+    if rows == 0:
+        raise MeasurementError(f"{where}: columns {names}", "no data rows under the header",
+                               f">= {MIN_SAMPLES} rows of numbers")
+    bad_rows = np.zeros(rows, bool)
     for ch in required:
         v = data[ch]
         if np.any(np.isinf(v)):
             row = int(np.flatnonzero(np.isinf(v))[0])
-            raise MeasurementError(f"{csv_path.name}: column {cols[ch][2]}", f"value {v[row]} in data row {row + 1} is not finite")
-        bad_rows |= np.isnan(v)
-    if bad_rows.any():
-        notes.append(f"{int(bad_rows.sum())} rows with a missing value in a required column dropped (probe drop-outs)")
-    keep = ~bad_rows
-    data = {ch: v[keep] for ch, v in data.items()}
+            raise MeasurementError(f"{where}: column {cols[ch][2]}", f"value {v[row]} in data row {row + 1} is not finite")
+        missing = np.isnan(v)
+        if missing.all():
+            raise MeasurementError(f"{where}: column {cols[ch][2]}",
+                                   f"is empty in every one of its {rows} rows (all probe drop-outs)", "measured values")
+        bad_rows |= missing
+        del missing
+    dropped = int(bad_rows.sum())
+    if dropped:
+        notes.append(f"{dropped} rows with a missing value in a required column dropped (probe drop-outs)")
+        keep = ~bad_rows
+        data = {ch: v[keep] for ch, v in data.items()}
+        del keep
     t = data["time"]
-    if t.size >= 2 and np.any(np.diff(t) <= 0):
-        i = int(np.flatnonzero(np.diff(t) <= 0)[0])
-        raise MeasurementError(f"{csv_path.name}: column {cols['time'][2]}",
-                               f"not increasing at data row {np.flatnonzero(keep)[i + 1] + 1} ({t[i + 1]} after {t[i]})",
+    if t.size < MIN_SAMPLES:
+        raise MeasurementError(f"{where}: columns {names}",
+                               f"only {t.size} rows hold all of them ({rows} rows read, {dropped} with a drop-out): "
+                               "too few to fit", f">= {MIN_SAMPLES} rows")
+    _check_channels(kind, data, cols, where)
+    step_ok = np.diff(t) > 0
+    if not step_ok.all():
+        i = int(np.flatnonzero(~step_ok)[0])
+        row = int(np.flatnonzero(~bad_rows)[i + 1]) + 1 if dropped else i + 2
+        raise MeasurementError(f"{where}: column {cols['time'][2]}",
+                               f"not increasing at data row {row} ({t[i + 1]} after {t[i]})",
                                "rows in time order, strictly increasing time")
+    del step_ok, bad_rows
     temperature = data.get("temperature")
     if temperature is not None:
         good = np.isfinite(temperature)
@@ -424,10 +634,9 @@ def read_measurement(csv_path: str | Path) -> Measurement:
         elif not good.all():
             notes.append(f"{int((~good).sum())} missing temperature values interpolated in time")
             temperature = np.interp(t, t[good], temperature[good])
-    if t.size < MIN_SAMPLES:
-        raise MeasurementError(csv_path.name, f"{t.size} usable samples are too few to fit", f">= {MIN_SAMPLES}")
     common = dict(kind=kind, name=csv_path.stem, time_s=t, model=model, temperature_C=temperature,
-                  description=description, notes=tuple(notes), source=csv_path.resolve())
+                  description=description, notes=tuple(notes), source=csv_path.resolve(),
+                  columns={ch: name for ch, (_, _, name) in cols.items()})
     if kind == "preload_trace":
         return Measurement(angle_rad=data["angle"], carriage_um=data["carriage"], **common)
     return Measurement(torque_Nm=data["torque"], rotation_rad=data["rotation"], **common)

@@ -27,6 +27,7 @@ at their declared values instead of letting them wander.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -34,7 +35,7 @@ from scipy.optimize import least_squares
 
 from geargen.core.drive import TwoPathDrive
 from geargen.fit import effects as fx
-from geargen.fit.measurement import Measurement, PreloadModelSpec, TorqueModelSpec
+from geargen.fit.measurement import Measurement, MeasurementError, PreloadModelSpec, TorqueModelSpec
 from geargen.fit.noise import NoiseEstimate
 from geargen.fit.orders import TrainOrder, attribute_order, declared_orders, train_orders
 from geargen.fit.periodogram import ls_periodogram, peaks
@@ -65,30 +66,88 @@ class Term:
         return self.effect
 
 
-@dataclass(frozen=True, eq=False)
 class ModelFit:
     """A fitted model. ``prediction``/``residual`` (n,) over all samples; ``rss`` over the fitted
     samples (the mask); ``n_params`` counts the declared and effect parameters;
     ``contributions`` (one (n,) array per term) is what each effect adds to the prediction;
     ``values`` (one dict per term) its parameters in the contract's names; ``state`` internal
-    parameters for warm starts."""
+    parameters for warm starts.
 
-    terms: tuple[Term, ...]
-    prediction: np.ndarray
-    residual: np.ndarray
-    rss: float
-    n_fitted: int
-    n_params: int
-    contributions: tuple[np.ndarray, ...]
-    values: tuple[dict, ...]
-    declared_values: dict
-    state: dict = field(default_factory=dict)
-    success: bool = True
-    message: str = ""
+    The arrays are either given, or made on first use by ``arrays`` (an object with
+    ``prediction()``, ``residual()`` and ``contribution(index)``): a fit of a long record then
+    costs memory only once its arrays are asked for. ``prediction`` and ``residual`` are kept
+    once made; each contribution is made anew when asked for (they are asked for once or twice).
+    """
+
+    def __init__(self, terms: tuple[Term, ...], rss: float, n_fitted: int, n_params: int, values: tuple[dict, ...],
+                 declared_values: dict, state: dict | None = None, success: bool = True, message: str = "",
+                 prediction: np.ndarray | None = None, residual: np.ndarray | None = None,
+                 contributions: tuple[np.ndarray, ...] | None = None, arrays=None):
+        self.terms = tuple(terms)
+        self.rss = rss
+        self.n_fitted = n_fitted
+        self.n_params = n_params
+        self.values = tuple(values)
+        self.declared_values = declared_values
+        self.state = state if state is not None else {}
+        self.success = success
+        self.message = message
+        self._prediction = prediction
+        self._residual = residual
+        self._contributions = tuple(contributions) if contributions is not None else None
+        self._arrays = arrays
+
+    @property
+    def prediction(self) -> np.ndarray:
+        if self._prediction is None:
+            self._prediction = self._arrays.prediction()
+        return self._prediction
+
+    @property
+    def residual(self) -> np.ndarray:
+        if self._residual is None:  # (the prediction made on the way is not kept unless asked for)
+            prediction = self._prediction if self._prediction is not None else self._arrays.prediction()
+            self._residual = self._arrays.residual(prediction)
+        return self._residual
+
+    @property
+    def arrays_kept(self) -> bool:
+        """True when the prediction or the residual is held in memory."""
+        return self._prediction is not None or self._residual is not None
+
+    def release(self) -> None:
+        """Let go of the prediction and residual when they can be made again (a streamed fit)."""
+        if self._arrays is not None and getattr(self._arrays, "remakeable", False):
+            self._prediction = self._residual = None
+
+    @property
+    def contributions(self):
+        if self._contributions is not None:
+            return self._contributions
+        return _Contributions(self._arrays, len(self.terms))
 
     @property
     def rms(self) -> float:
         return float(np.sqrt(np.mean(self.residual ** 2)))
+
+
+class _Contributions:
+    """The contributions of a fit's terms, each made when asked for: ``fit.contributions[i]``."""
+
+    def __init__(self, arrays, count: int):
+        self._arrays = arrays
+        self._count = count
+
+    def __len__(self) -> int:
+        return self._count
+
+    def __getitem__(self, index: int) -> np.ndarray:
+        if not -self._count <= index < self._count:
+            raise IndexError(index)
+        return self._arrays.contribution(index % self._count)
+
+    def __iter__(self):
+        return (self[i] for i in range(self._count))
 
 
 @dataclass(frozen=True)
@@ -99,6 +158,10 @@ class Candidate:
     evidence: str
     start: dict = field(default_factory=dict)
     statistic: float = 0.0
+
+
+#: condition number of the column-scaled normal equations above which they are not trusted
+CONDITION_LIMIT = 1e10
 
 
 def solve_linear(X: np.ndarray, y: np.ndarray, mask: np.ndarray | None = None) -> np.ndarray:
@@ -112,15 +175,31 @@ def solve_linear(X: np.ndarray, y: np.ndarray, mask: np.ndarray | None = None) -
         X, y = X[mask], y[mask]
     G = X.T @ X
     b = X.T @ y
+    coef = _solve_normal(G, b)
+    return coef if coef is not None else np.linalg.lstsq(X, y, rcond=None)[0]
+
+
+def _solve_normal(G: np.ndarray, b: np.ndarray) -> np.ndarray | None:
+    """Solution of the column-scaled normal equations, or None when they are ill-conditioned."""
     norms = np.sqrt(np.diag(G))
     norms = np.where(norms > 0, norms, 1.0)
     Gs = G / np.outer(norms, norms)
     try:
-        if np.linalg.cond(Gs) < 1e10:
+        if np.linalg.cond(Gs) < CONDITION_LIMIT:
             return np.linalg.solve(Gs, b / norms) / norms
     except np.linalg.LinAlgError:
         pass
-    return np.linalg.lstsq(X, y, rcond=None)[0]
+    return None
+
+
+def _condition(G: np.ndarray) -> float:
+    """Condition number of a normal matrix with its columns scaled to unit norm."""
+    norms = np.sqrt(np.diag(G))
+    norms = np.where(norms > 0, norms, 1.0)
+    try:
+        return float(np.linalg.cond(G / np.outer(norms, norms)))
+    except np.linalg.LinAlgError:
+        return math.inf
 
 
 def _mask_or_all(mask, n):
@@ -144,6 +223,38 @@ def _drift_value(variable: str, rate: float) -> dict:
 
 
 # ======================================================================== preload trace
+
+#: Rows of a design matrix made at a time. A record of at most this many rows is fitted from one
+#: block, whose columns are kept between fits (as fast as one matrix); a longer record is
+#: streamed through blocks: normal equations, Gram matrices and products are summed block by
+#: block, so the fit holds a few arrays of the record's length, never (rows x columns) ones.
+ROW_BLOCK = 1 << 17
+
+
+class _PreloadArrays:
+    """Makes the arrays of one preload fit when they are asked for (see :class:`ModelFit`)."""
+
+    def __init__(self, model: "PreloadModel", terms, coef, half_width: float, hysteresis: bool):
+        self.model, self.terms, self.coef, self.h, self.hysteresis = model, terms, coef, half_width, hysteresis
+        self.remakeable = not model._one_block
+
+    def equilibrium(self) -> np.ndarray:
+        return self.model._predict(self.terms, self.coef)
+
+    def prediction(self) -> np.ndarray:
+        m = self.equilibrium()
+        return fx.play_operator(m, self.h) if self.hysteresis else m
+
+    def residual(self, prediction: np.ndarray) -> np.ndarray:
+        return self.model.x - prediction
+
+    def contribution(self, index: int) -> np.ndarray:
+        if self.terms[index].effect == "hysteresis":
+            m = self.equilibrium()
+            return fx.play_operator(m, self.h) - m
+        sl = self.model._slices(self.terms)[index]
+        return self.model._predict(self.terms, self.coef, columns=sl)
+
 
 class PreloadModel:
     """Declared sinusoids at the train's shaft and mesh orders, plus library effects."""
@@ -169,19 +280,85 @@ class PreloadModel:
         self._base = None
         self._cache: dict = {}
         self._columns_cache: dict = {}
+        self._means: dict = {}
 
-    # ---------------------------------------------------------------- stages
-    def nominal(self) -> np.ndarray:
-        """Ideal gears: the carriage stays at its mean position."""
-        return self.x - self.x.mean()
+    # ---------------------------------------------------------------- design, in row blocks
+    @property
+    def _one_block(self) -> bool:
+        return self.n <= ROW_BLOCK
+
+    def _blocks(self):
+        """Row slices covering the record, :data:`ROW_BLOCK` rows each."""
+        return [slice(lo, min(lo + ROW_BLOCK, self.n)) for lo in range(0, self.n, ROW_BLOCK)]
+
+    def _drift_mean(self, variable: str) -> float:
+        if variable not in self._means:
+            self._means[variable] = _drift_variable(self.meas, variable).mean()
+        return self._means[variable]
+
+    def _width(self, term: Term) -> int:
+        return 2 if term.effect == "harmonic" else 1 if term.effect == "drift" else 0
+
+    def _slices(self, terms) -> list[slice]:
+        out, width = [], 1 + 2 * len(self.declared)
+        for term in terms:
+            out.append(slice(width, width + self._width(term)))
+            width += self._width(term)
+        return out
+
+    def _term_rows(self, term: Term, rows) -> np.ndarray:
+        """A term's columns at the given rows (a slice or an index array)."""
+        if term.effect == "harmonic":
+            return fx.harmonic_basis(self.theta[rows], term.order)
+        if term.effect == "drift":
+            v = _drift_variable(self.meas, term.variable)
+            return (v[rows] - self._drift_mean(term.variable))[:, None]
+        return np.zeros((self.theta[rows].shape[0], 0))
+
+    def _base_rows(self, rows) -> np.ndarray:
+        theta = self.theta[rows]
+        cols = [np.ones(theta.size)]
+        for t in self.declared:
+            cols.extend(fx.harmonic_basis(theta, t.order).T)
+        return np.column_stack(cols)
+
+    def _design(self, terms, rows, extra: np.ndarray | None = None) -> np.ndarray:
+        """Columns (offset, declared sinusoids, then each term's, then ``extra`` if given) at the
+        given rows: a slice or an index array. For a one-block record the whole matrix is made
+        once and kept; otherwise each block is filled in place, column by column."""
+        if self._one_block:
+            X, _ = self._columns(tuple(terms))
+            return X[rows] if extra is None else np.column_stack([X[rows], extra])
+        theta = self.theta[rows]
+        width = 1 + 2 * len(self.declared) + sum(self._width(t) for t in terms)
+        X = np.empty((theta.size, width + (extra is not None)), order="F")
+        X[:, 0] = 1.0
+        phase = np.empty(theta.size)
+        col = 1
+        orders = [t.order for t in self.declared]
+        for q in orders:
+            np.multiply(q, theta, out=phase)
+            np.cos(phase, out=X[:, col])
+            np.sin(phase, out=X[:, col + 1])
+            col += 2
+        for term in terms:
+            if term.effect == "harmonic":
+                np.multiply(term.order, theta, out=phase)
+                np.cos(phase, out=X[:, col])
+                np.sin(phase, out=X[:, col + 1])
+                col += 2
+            elif term.effect == "drift":
+                v = _drift_variable(self.meas, term.variable)
+                np.subtract(v[rows], self._drift_mean(term.variable), out=X[:, col])
+                col += 1
+        if extra is not None:
+            X[:, col] = extra
+        return X
 
     def _base_columns(self) -> np.ndarray:
-        """Offset and declared sinusoids, (n, 1 + 2 x declared orders); computed once."""
+        """Offset and declared sinusoids, (n, 1 + 2 x declared orders); one-block records only."""
         if self._base is None:
-            cols = [np.ones(self.n)]
-            for t in self.declared:
-                cols.extend(fx.harmonic_basis(self.theta, t.order).T)
-            self._base = np.column_stack(cols)
+            self._base = self._base_rows(slice(None))
         return self._base
 
     def _term_columns(self, term: Term) -> np.ndarray:
@@ -189,14 +366,7 @@ class PreloadModel:
         if key not in self._cache:
             if len(self._cache) > 64:
                 self._cache.clear()
-            if term.effect == "harmonic":
-                c = fx.harmonic_basis(self.theta, term.order)
-            elif term.effect == "drift":
-                v = _drift_variable(self.meas, term.variable)
-                c = (v - v.mean())[:, None]
-            else:
-                c = np.zeros((self.n, 0))
-            self._cache[key] = c
+            self._cache[key] = self._term_rows(term, slice(None))
         return self._cache[key]
 
     def _columns(self, terms: tuple[Term, ...]):
@@ -221,12 +391,81 @@ class PreloadModel:
             width += c.shape[1]
         return (np.hstack(blocks) if len(blocks) > 1 else base), slices
 
+    def _predict(self, terms, coef, columns: slice | None = None) -> np.ndarray:
+        """X @ coef over all samples (n,), or the part of it from ``columns`` alone."""
+        coef = np.asarray(coef)
+        if self._one_block:
+            X, _ = self._columns(tuple(terms))
+            return X @ coef if columns is None else X[:, columns] @ coef[columns]
+        out = np.empty(self.n)
+        for rows in self._blocks():
+            X = self._design(terms, rows)
+            out[rows] = X @ coef if columns is None else X[:, columns] @ coef[columns]
+        return out
+
+    def _solve(self, make, mask) -> np.ndarray:
+        """Least squares of the carriage on the columns ``make(rows)`` over the masked rows.
+
+        One block: :func:`solve_linear` itself. Several: the normal equations summed block by
+        block; if they are ill-conditioned, the R factor of the QR decomposition of [A | y] is
+        built block by block (each block's rows stacked under the R so far) and the problem
+        solved on it, which is the least-squares problem on A itself.
+        """
+        if self._one_block:
+            return solve_linear(make(slice(None)), self.x, mask)
+        G = b = None
+        for rows in self._blocks():
+            A, y = make(rows), self.x[rows]
+            if mask is not None and not mask[rows].all():
+                A, y = A[mask[rows]], y[mask[rows]]
+            G = A.T @ A if G is None else G + A.T @ A
+            b = A.T @ y if b is None else b + A.T @ y
+        coef = _solve_normal(G, b)
+        if coef is not None:
+            return coef
+        R = None
+        for rows in self._blocks():
+            A = np.column_stack([make(rows), self.x[rows]])
+            if mask is not None:
+                A = A[mask[rows]]
+            R = np.linalg.qr(A if R is None else np.vstack([R, A]), mode="r")
+        p = G.shape[0]
+        return np.linalg.lstsq(R[:p, :p], R[:p, p], rcond=None)[0]
+
+    def _gram(self, make, mask=None) -> np.ndarray:
+        """Sum over the (masked) rows of A^T A for the columns ``make(rows)``."""
+        G = None
+        for rows in (self._blocks() if not self._one_block else [slice(None)]):
+            A = make(rows)
+            if mask is not None and not mask[rows].all():
+                A = A[mask[rows]]
+            G = A.T @ A if G is None else G + A.T @ A
+        return G
+
+    def _rss(self, prediction: np.ndarray, mask) -> float:
+        """Sum over the masked samples of (carriage - prediction)^2 (block by block when long)."""
+        if self._one_block:
+            return float(np.sum((self.x - prediction)[mask] ** 2))
+        total = 0.0
+        for rows in self._blocks():
+            part = (self.x[rows] - prediction[rows])[mask[rows]]
+            total += float(part @ part)
+        return total
+
+    # ---------------------------------------------------------------- stages
+    def nominal(self) -> np.ndarray:
+        """Ideal gears: the carriage stays at its mean position."""
+        return self.x - self.x.mean()
+
     def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
         terms = tuple(terms)
+        whole = mask is None
         mask = _mask_or_all(mask, self.n)
-        X, slices = self._columns(terms)
+        slices = self._slices(terms)
         hyst = [i for i, t in enumerate(terms) if t.effect == "hysteresis"]
-        coef = solve_linear(X, self.x, mask)
+        if not terms and whole:
+            self._check_declared_design()
+        coef = self._solve(lambda rows: self._design(terms, rows), mask)
         h = 0.0
         message = "linear least squares"
         success = True
@@ -236,19 +475,20 @@ class PreloadModel:
                 h0 = extra["half_width"]
             elif start is not None and "half_width" in start.state:
                 h0 = start.state["half_width"]
-            coef, h, success, message = self._fit_play(X, coef, mask, h0)
-        m = X @ coef
-        pred = fx.play_operator(m, h) if hyst else m
-        resid = self.x - pred
-        contributions, values = [], []
+            coef, h, success, message = self._fit_play(terms, coef, mask, h0)
+        arrays = _PreloadArrays(self, terms, coef, h, bool(hyst))
+        prediction = arrays.prediction()
+        if self._one_block:
+            residual = self.x - prediction
+            rss = float(np.sum(residual[mask] ** 2))
+        else:  # made again when asked for: most fits are only compared by their rss
+            rss = self._rss(prediction, mask)
+            prediction = residual = None
+        values = []
         for i, term in enumerate(terms):
             if term.effect == "hysteresis":
-                contributions.append(pred - m)
                 values.append({"half_width": h})
-                continue
-            c = X[:, slices[i]] @ coef[slices[i]]
-            contributions.append(c)
-            if term.effect == "harmonic":
+            elif term.effect == "harmonic":
                 a, b = coef[slices[i]]
                 amp, ph = fx.harmonic_parameters(a, b)
                 values.append({"order": term.order, "amplitude": amp, "phase_deg": ph})
@@ -258,42 +498,60 @@ class PreloadModel:
         for j, t in enumerate(self.declared):
             amp, ph = fx.harmonic_parameters(coef[1 + 2 * j], coef[2 + 2 * j])
             declared_values[t.name] = {"order": t.order, "amplitude": amp, "phase_deg": ph}
-        n_params = X.shape[1] + sum(1 for t in terms if t.effect == "harmonic") + len(hyst)
-        return ModelFit(terms=terms, prediction=pred, residual=resid, rss=float(np.sum(resid[mask] ** 2)),
-                        n_fitted=int(mask.sum()), n_params=n_params, contributions=tuple(contributions),
-                        values=tuple(values), declared_values=declared_values,
-                        state={"coef": coef, "half_width": h, "equilibrium": m, "X": X, "slices": slices, "mask": mask},
-                        success=success, message=message)
+        width = 1 + 2 * len(self.declared) + sum(self._width(t) for t in terms)
+        n_params = width + sum(1 for t in terms if t.effect == "harmonic") + len(hyst)
+        return ModelFit(terms=terms, rss=rss, n_fitted=int(mask.sum()), n_params=n_params, values=tuple(values),
+                        declared_values=declared_values,
+                        state={"coef": coef, "half_width": h, "slices": slices, "mask": mask},
+                        success=success, message=message, prediction=prediction, residual=residual, arrays=arrays)
 
-    def _fit_play(self, X, coef, mask, h0):
+    def _check_declared_design(self) -> None:
+        """The recorded output angles must tell the declared sinusoids and the offset apart."""
+        cond = _condition(self._gram(lambda rows: self._design((), rows)))
+        if cond >= CONDITION_LIMIT:
+            raise MeasurementError(
+                self.meas.where("angle"),
+                f"the recorded output angles cannot tell the declared orders "
+                f"({', '.join(f'{t.order:.4g}' for t in self.declared)}) and the offset apart: their sinusoids are "
+                f"linearly dependent over these angles (condition number {cond:.3g})",
+                "angles spread over the turn, as a trace turned through one or more revolutions has")
+
+    def equilibrium(self, fit: ModelFit) -> np.ndarray:
+        """The model carriage before the play (the prediction itself without hysteresis); made
+        anew, and not kept, for a streamed fit."""
+        if any(t.effect == "hysteresis" for t in fit.terms) or not self._one_block:
+            return self._predict(fit.terms, fit.state["coef"])
+        return fit.prediction
+
+    def _fit_play(self, terms, coef, mask, h0):
         """Gauss-Newton on (linear coefficients, h) using the play's local structure."""
         x = self.x
         if h0 is None:  # the side the play takes as h grows from 0 gives h's first estimate
-            m = X @ coef
-            _, _, side = fx.play_structure(m, 0.0)
-            A = np.column_stack([X, side])
-            sol = solve_linear(A, x, mask)
+            side = fx.play_structure(self._predict(terms, coef), 0.0)[2]
+            sol = self._solve(lambda rows: self._design(terms, rows, extra=side[rows]), mask)
             coef, h0 = sol[:-1], max(float(sol[-1]), 0.0)
             if h0 == 0.0:
                 h0 = 0.1 * self.noise.rms
         h = float(h0)
 
-        def rss_of(c, hh):
-            r = x - fx.play_operator(X @ c, hh)
-            return float(np.sum(r[mask] ** 2))
+        def rss_of(c, hh, m=None):
+            m = self._predict(terms, c) if m is None else m
+            return self._rss(fx.play_operator(m, hh), mask)
 
         rss = rss_of(coef, h)
         converged = False
         for _ in range(60):
-            m = X @ coef
-            _, src, side = fx.play_structure(m, h)
-            A = np.column_stack([X[src], side])
-            sol = solve_linear(A, x, mask)
+            m = self._predict(terms, coef)
+            src, side = fx.play_structure(m, h)[1:]
+            sol = self._solve(lambda rows: self._design(terms, src[rows], extra=side[rows]), mask)
+            del src, side
             d_coef, d_h = sol[:-1] - coef, float(sol[-1]) - h
+            # a long record's line search moves along X d_coef, made once, not through the columns again
+            dm = None if self._one_block else self._predict(terms, d_coef)
             step = 1.0
             while step > 1e-3:
                 c_new, h_new = coef + step * d_coef, max(h + step * d_h, 0.0)
-                r_new = rss_of(c_new, h_new)
+                r_new = rss_of(c_new, h_new, None if dm is None else m + step * dm)
                 if r_new <= rss * (1 + 1e-12):
                     break
                 step *= 0.5
@@ -311,26 +569,49 @@ class PreloadModel:
         """Mean square by which noise alone moves term ``index``'s contribution in this fit:
         ``trace(C Cov C^T) / n`` with ``Cov = sigma^2 (J^T J)^-1`` over the fitted samples, J the
         prediction's Jacobian w.r.t. (coefficients[, h]) and C the contribution's, both from the
-        model's (locally) linear structure (the play: ``y = m[source] + side * h``)."""
-        X, coef, h, mask = fit.state["X"], fit.state["coef"], fit.state["half_width"], fit.state["mask"]
-        hyst = any(t.effect == "hysteresis" for t in fit.terms)
+        model's (locally) linear structure (the play: ``y = m[source] + side * h``). Only the
+        Gram matrices J^T J and C^T C are formed, block by block."""
+        terms, coef, h, mask = fit.terms, fit.state["coef"], fit.state["half_width"], fit.state["mask"]
+        hyst = any(t.effect == "hysteresis" for t in terms)
+        width = 1 + 2 * len(self.declared) + sum(self._width(t) for t in terms)
         if not hyst:
             sl = fit.state["slices"][index]
-            Xm = X if mask.all() else X[mask]
-            return _contribution_noise(Xm, X[:, sl], self.noise.rms, np.arange(X.shape[1])[sl])
-        _, src, side = fx.play_structure(X @ coef, h)
-        J = np.column_stack([X[src], side])
-        if fit.terms[index].effect == "hysteresis":
-            C = np.column_stack([X[src] - X, side])
+
+            def jacobians(rows):
+                X = self._design(terms, rows)
+                return X, X[:, sl]
+            JtJ, CtC = self._two_grams(jacobians, mask)
+            return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
+        src, side = fx.play_structure(self._predict(terms, coef), h)[1:]
+        if terms[index].effect == "hysteresis":
             cols = None
+
+            def jacobians(rows):
+                J = self._design(terms, src[rows], extra=side[rows])
+                return J, np.column_stack([J[:, :-1] - self._design(terms, rows), side[rows]])
         else:
             sl = fit.state["slices"][index]
-            C, cols = X[:, sl], np.arange(X.shape[1])[sl]
-        return _contribution_noise(J if mask.all() else J[mask], C, self.noise.rms, cols)
+            cols = np.arange(width + 1)[sl]
+
+            def jacobians(rows):
+                return self._design(terms, src[rows], extra=side[rows]), self._design(terms, rows)[:, sl]
+        JtJ, CtC = self._two_grams(jacobians, mask)
+        return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, cols)
+
+    def _two_grams(self, make, mask) -> tuple[np.ndarray, np.ndarray]:
+        """(J^T J over the masked rows, C^T C over all rows) for ``make(rows) -> (J, C)`` blocks."""
+        JtJ = CtC = None
+        for rows in (self._blocks() if not self._one_block else [slice(None)]):
+            J, C = make(rows)
+            if not mask[rows].all():
+                J = J[mask[rows]]
+            JtJ = J.T @ J if JtJ is None else JtJ + J.T @ J
+            CtC = C.T @ C if CtC is None else CtC + C.T @ C
+        return JtJ, CtC
 
     # ---------------------------------------------------------------- effects
     def periodogram(self, residual: np.ndarray):
-        return ls_periodogram(self.theta, residual - residual.mean(), self.order_min, self.order_max)
+        return ls_periodogram(self.theta, residual, self.order_min, self.order_max, offset=residual.mean())
 
     def model_orders(self, terms) -> list[float]:
         return [t.order for t in self.declared] + [t.order for t in terms if t.effect == "harmonic"]
@@ -340,17 +621,35 @@ class PreloadModel:
         linear part (projection on the complement of its columns), removes most."""
         from scipy.optimize import minimize_scalar
 
-        X, _ = self._columns(tuple(t for t in fit.terms if t.effect != "hysteresis"))
-        norms = np.sqrt(np.einsum("ij,ij->j", X, X))
-        Xs = X / np.where(norms > 0, norms, 1.0)
-        G_inv = np.linalg.pinv(Xs.T @ Xs)
+        terms = tuple(t for t in fit.terms if t.effect != "hysteresis")
         r = fit.residual
+        if self._one_block:
+            X, _ = self._columns(terms)
+            norms = np.sqrt(np.einsum("ij,ij->j", X, X))
+            Xs = X / np.where(norms > 0, norms, 1.0)
+            G_inv = np.linalg.pinv(Xs.T @ Xs)
+
+            def sums(q):
+                B = fx.harmonic_basis(self.theta, q)
+                return Xs.T @ B, B.T @ r, B.T @ B
+        else:
+            G = self._gram(lambda rows: self._design(terms, rows))
+            norms = np.sqrt(np.diag(G))
+            norms = np.where(norms > 0, norms, 1.0)
+            G_inv = np.linalg.pinv(G / np.outer(norms, norms))
+
+            def sums(q):
+                XtB, g, BtB = 0.0, 0.0, 0.0
+                for rows in self._blocks():
+                    B = fx.harmonic_basis(self.theta[rows], q)
+                    XtB = XtB + self._design(terms, rows).T @ B
+                    g = g + B.T @ r[rows]
+                    BtB = BtB + B.T @ B
+                return XtB / norms[:, None], g, BtB
 
         def drop(q):
-            B = fx.harmonic_basis(self.theta, q)
-            XtB = Xs.T @ B
-            g = B.T @ r
-            M = B.T @ B - XtB.T @ G_inv @ XtB
+            XtB, g, BtB = sums(q)
+            M = BtB - XtB.T @ G_inv @ XtB
             try:
                 return float(g @ np.linalg.solve(M, g))
             except np.linalg.LinAlgError:
@@ -363,7 +662,7 @@ class PreloadModel:
     def candidates(self, fit: ModelFit, count: int = 3) -> list[Candidate]:
         out: list[Candidate] = []
         r = fit.residual
-        sigma2 = max(self.noise.rms, 1e-300) ** 2
+        sigma = max(self.noise.rms, 1e-300)
         taken = self.model_orders(fit.terms)
         pg = self.periodogram(r)
         step = float(pg.orders[1] - pg.orders[0]) if pg.orders.size > 1 else 0.0
@@ -381,10 +680,12 @@ class PreloadModel:
                 continue
             where = attribute_order(q, self.train)
             src = f"{where[1]} x {where[0].name} (order {where[0].order:.4f})" if where else "no shaft or mesh"
+            sigma2 = sigma ** 2
+            power = drop / sigma2 if sigma2 >= np.finfo(float).tiny else drop / sigma / sigma  # sigma**2 may underflow
             out.append(Candidate(Term("harmonic", order=q),
                                  f"peak of the residual order spectrum at order {q:.4f} ({src}), amplitude "
-                                 f"{pg.amplitude[i]:.3g} {self.meas.units}, power {drop / sigma2:.1f} x noise variance",
-                                 statistic=drop / sigma2))
+                                 f"{pg.amplitude[i]:.3g} {self.meas.units}, power {power:.1f} x noise variance",
+                                 statistic=power))
         present = {(t.effect, t.variable) for t in fit.terms}
         for term in drift_terms(self.meas):
             if ("drift", term.variable) in present:
@@ -395,11 +696,9 @@ class PreloadModel:
             out.append(Candidate(term, f"residual correlates with {term.variable} (r = {corr:+.3f}) over a range of "
                                        f"{np.ptp(v):.3g} {unit}", statistic=corr))
         if ("hysteresis", "") not in present:
-            m = fit.state["equilibrium"]
-            direction = np.sign(np.diff(m, prepend=m[0]))
-            up, down = r[direction > 0], r[direction < 0]
-            if up.size > 10 and down.size > 10:
-                gap = float(down.mean() - up.mean())
+            up, down = _means_by_direction(self.equilibrium(fit), r)
+            if up is not None:
+                gap = float(down - up)
                 out.append(Candidate(Term("hysteresis"),
                                      f"residual while the model carriage moves down minus while it moves up: {gap:+.3g} "
                                      f"{self.meas.units} (friction lag gives +2h)", statistic=gap))
@@ -415,14 +714,34 @@ class PreloadModel:
         model carriage's motion), a linear column, projected off the current model's columns."""
         if term.effect != "hysteresis":
             return None
-        m = fit.state["equilibrium"]
-        side = -np.sign(np.diff(m, prepend=m[0]))
-        X = fit.state["X"]
-        norms = np.sqrt(np.einsum("ij,ij->j", X, X))
-        Xs = X / np.where(norms > 0, norms, 1.0)
-        xs = Xs.T @ side
-        ss = float(side @ side - xs @ np.linalg.pinv(Xs.T @ Xs) @ xs)
-        g = float(side @ fit.residual)
+        terms = fit.terms
+        m = self.equilibrium(fit)
+        if self._one_block:
+            side = -np.sign(np.diff(m, prepend=m[0]))
+            X, _ = self._columns(tuple(terms))
+            norms = np.sqrt(np.einsum("ij,ij->j", X, X))
+            Xs = X / np.where(norms > 0, norms, 1.0)
+            xs = Xs.T @ side
+            G = Xs.T @ Xs
+            side_sq, g = float(side @ side), float(side @ fit.residual)
+        else:  # block by block: no full-length temporaries
+            G = xs = 0.0
+            side_sq = g = 0.0
+            r = fit.residual
+            for rows in self._blocks():
+                lo = rows.start
+                side = -np.sign(np.diff(m[rows], prepend=m[lo - 1] if lo else m[0]))
+                X = self._design(terms, rows)
+                G = G + X.T @ X
+                xs = xs + X.T @ side
+                side_sq += float(side @ side)
+                g += float(side @ r[rows])
+            norms = np.sqrt(np.diag(G))
+            norms = np.where(norms > 0, norms, 1.0)
+            xs = xs / norms
+            G = G / np.outer(norms, norms)
+        del m
+        ss = float(side_sq - xs @ np.linalg.pinv(G) @ xs)
         return g * g / ss if ss > 0 else 0.0
 
     def polish(self, fit: ModelFit) -> ModelFit:
@@ -456,6 +775,28 @@ class PreloadModel:
                 "law": "play operator on the model carriage position (friction on the preload carriage)"}
 
 
+def _means_by_direction(m: np.ndarray, r: np.ndarray, minimum: int = 10):
+    """(mean of r where m rises, mean where it falls), None for both when either has <= minimum
+    samples; block by block (no full-length temporaries)."""
+    n = m.size
+    if n <= ROW_BLOCK:
+        direction = np.sign(np.diff(m, prepend=m[0]))
+        up, down = r[direction > 0], r[direction < 0]
+        return (up.mean(), down.mean()) if up.size > minimum and down.size > minimum else (None, None)
+    sums = [0.0, 0.0]
+    counts = [0, 0]
+    for lo in range(0, n, ROW_BLOCK):
+        hi = min(lo + ROW_BLOCK, n)
+        d = np.diff(m[lo:hi], prepend=m[lo - 1] if lo else m[0])
+        for k, sel in enumerate((d > 0, d < 0)):
+            part = r[lo:hi][sel]
+            sums[k] += float(part.sum())
+            counts[k] += part.size
+    if min(counts) <= minimum:
+        return None, None
+    return sums[0] / counts[0], sums[1] / counts[1]
+
+
 # ======================================================================== torque deflection
 
 def law_torque_Nm(drive_type: str, k1_Nm_per_rad: float, k2_Nm_per_rad: float, k3_Nm_per_rad: float | None,
@@ -486,8 +827,24 @@ class TorqueModel:
         self.t = meas.time_s
         self.n = meas.samples
         self.type2 = self.spec.drive_type == "type2"
+        self._check_slope()
         self.T_smooth = fx.driving_signal(self.t, self.T, noise.channels.get("torque", noise.rms), self.SMOOTH_HALF_WINDOW)
         self.declared_start = self._declared_start()
+
+    def _check_slope(self) -> None:
+        """The torque must rise with the rotation where both paths carry it (|T| < 25 % of its
+        peak): a drive is a spring. A falling or flat curve is a probe read with the wrong sign,
+        or not a torque-deflection test; the two-path law cannot be fitted to it."""
+        T, rot = self.T, self.rot_urad * 1e-6
+        inner = np.abs(T) < 0.25 * np.max(np.abs(T))
+        slope = _slope(rot[inner], T[inner]) if inner.sum() > 5 else _slope(rot, T)
+        if not (math.isfinite(slope) and slope > 0):
+            m = self.meas
+            raise MeasurementError(
+                f"{m.file}: columns {m.column('torque')}, {m.column('rotation')}",
+                f"the torque does not rise with the rotation: its slope near zero torque is {slope:.3g} Nm/rad "
+                "(is the rotation read with the wrong sign?)",
+                "torque rising with rotation, as a drive's stiffness makes it")
 
     # ---------------------------------------------------------------- declared law
     def _declared_start(self) -> dict:
@@ -771,12 +1128,18 @@ class TorqueModel:
 
 def _contribution_noise(J: np.ndarray, C: np.ndarray, sigma: float, columns=None) -> float:
     """trace(C Cov C^T) / n with Cov = sigma^2 (J^T J)^-1: J (m, p); C (n, p), or (n, k) holding
-    only the given ``columns`` of it (the rest zero).
+    only the given ``columns`` of it (the rest zero). See :func:`_contribution_noise_gram`."""
+    return _contribution_noise_gram(J.T @ J, C.T @ C, C.shape[0], sigma, columns)
+
+
+def _contribution_noise_gram(JtJ: np.ndarray, CtC: np.ndarray, n: int, sigma: float, columns=None) -> float:
+    """trace(C Cov C^T) / n = sum(Cov * C^T C) / n with Cov = sigma^2 (J^T J)^-1, from the Gram
+    matrices alone: J^T J (p, p) and C^T C (p, p), or (k, k) for the given ``columns`` of C.
 
     Infinite when J^T J is singular (a parameter the fitted samples cannot determine: a dead
     band seen from one side only is the probe zero): noise then moves the effect without bound.
     """
-    G = J.T @ J
+    G = JtJ
     norms = np.sqrt(np.diag(G))
     if np.any(norms == 0):
         return math.inf
@@ -786,7 +1149,7 @@ def _contribution_noise(J: np.ndarray, C: np.ndarray, sigma: float, columns=None
     cov = np.linalg.inv(Gs) / np.outer(norms, norms) * sigma ** 2
     if columns is not None:
         cov = cov[np.ix_(columns, columns)]
-    return float(np.sum(cov * (C.T @ C)) / C.shape[0])
+    return float(np.sum(cov * CtC) / n)
 
 
 def _slope(x: np.ndarray, y: np.ndarray) -> float:
@@ -810,7 +1173,9 @@ def _side_curvature(phi_rad: np.ndarray, r: np.ndarray) -> tuple[float, float]:
             out.append(0.0)
             continue
         p = phi_rad[side] * 1e3
-        coef = np.polyfit(p, r[side], 2)
+        with warnings.catch_warnings():  # a poorly spread side only blurs this evidence text
+            warnings.simplefilter("ignore", np.exceptions.RankWarning)
+            coef = np.polyfit(p, r[side], 2)
         out.append(float(coef[0]))
     return out[0], out[1]
 

@@ -24,6 +24,7 @@ sample is ``s_T^2 + k^2 s_theta^2``.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -47,6 +48,49 @@ class NoiseEstimate:
     channels: dict
 
 
+#: runs of four samples handled at a time: the contrasts' temporaries stay this size at any length
+RUN_BLOCK = 1 << 17
+
+
+def _time_scale(median_spacing: float) -> float:
+    """A power of two that brings the median sample spacing near 1. Scaling the times by a power
+    of two is exact, and the unit-norm contrasts do not depend on the time unit, so the contrasts
+    are bit for bit those of the unscaled times, without the products of three spacings
+    overflowing or underflowing for very long or very short spacings."""
+    if not (math.isfinite(median_spacing) and median_spacing > 0):
+        return 1.0
+    return math.ldexp(1.0, -math.frexp(median_spacing)[1])
+
+
+def _contrast_block(ts: np.ndarray, ys: np.ndarray) -> np.ndarray:
+    """Unit-norm third divided differences of the runs starting at each of ts[:-3] (ts scaled)."""
+    m = ts.size - 3
+    tj = [ts[j:m + j] for j in range(4)]
+    weights = []
+    for j in range(4):
+        den = np.ones(m)
+        for k in range(4):
+            if k != j:
+                den = den * (tj[j] - tj[k])
+        weights.append(1.0 / den)
+    norm = np.sqrt(sum(w * w for w in weights))
+    return sum(w * ys[j:m + j] for j, w in enumerate(weights)) / norm
+
+
+def _runs(t: np.ndarray, y: np.ndarray, gap_ratio: float, block: int = RUN_BLOCK):
+    """(start, contrasts, valid) for consecutive blocks of the n-3 runs of four samples."""
+    n = t.size
+    median = float(np.median(np.diff(t), overwrite_input=True))
+    scale = _time_scale(median)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        for lo in range(0, n - 3, block):
+            hi = min(lo + block, n - 3)
+            c = _contrast_block(t[lo:hi + 3] * scale, y[lo:hi + 3])
+            spacing = np.diff(t[lo:hi + 3])
+            widest = np.maximum(np.maximum(spacing[:-2], spacing[1:-1]), spacing[2:])
+            yield lo, c, np.isfinite(c) & (widest <= gap_ratio * median)
+
+
 def difference_contrasts(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0):
     """Unit-norm third divided differences of y along t over every run of four samples.
 
@@ -58,21 +102,11 @@ def difference_contrasts(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0):
     n = t.size
     if n < 4:
         return np.zeros(0), np.zeros(0, bool)
-    ts = [t[j:n - 3 + j] for j in range(4)]
-    ys = [y[j:n - 3 + j] for j in range(4)]
-    weights = []
-    for j in range(4):
-        den = np.ones(n - 3)
-        for k in range(4):
-            if k != j:
-                den = den * (ts[j] - ts[k])
-        weights.append(1.0 / den)
-    norm = np.sqrt(sum(w * w for w in weights))
-    contrast = sum(w * v for w, v in zip(weights, ys)) / norm
-    spacing = np.diff(t)
-    median = np.median(spacing)
-    widest = np.maximum(np.maximum(spacing[:-2], spacing[1:-1]), spacing[2:])
-    valid = np.isfinite(contrast) & (widest <= gap_ratio * median)
+    contrast = np.empty(n - 3)
+    valid = np.empty(n - 3, bool)
+    for lo, c, v in _runs(t, y, gap_ratio):
+        contrast[lo:lo + c.size] = c
+        valid[lo:lo + c.size] = v
     return contrast, valid
 
 
@@ -84,12 +118,33 @@ def robust_level(contrast: np.ndarray, valid: np.ndarray) -> float:
     return float(MAD_TO_SIGMA * np.median(c))
 
 
+def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[float, int]:
+    """(robust level, valid runs) of one channel: :func:`robust_level` of
+    :func:`difference_contrasts`, made block by block into one array of |contrast| (the only
+    full-length temporary), so its memory is one float per sample."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    n = t.size
+    if n < 4:
+        return float("nan"), 0
+    magnitudes = np.empty(n - 3)
+    count = 0
+    for _, c, v in _runs(t, y, gap_ratio):
+        kept = np.abs(c[v])
+        magnitudes[count:count + kept.size] = kept
+        count += kept.size
+    if count == 0:
+        return float("nan"), 0
+    return float(MAD_TO_SIGMA * np.median(magnitudes[:count], overwrite_input=True)), count
+
+
 def noise_of_signal(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> NoiseEstimate:
-    """Stationary noise of one channel y(t) (the carriage reading of a preload trace)."""
-    c, valid = difference_contrasts(t, y, gap_ratio)
-    sigma = robust_level(c, valid)
+    """Stationary noise of one channel y(t) (the carriage reading of a preload trace).
+
+    ``variance`` is a read-only broadcast of the one level (no memory per sample)."""
+    sigma, windows = level_of(t, y, gap_ratio)
     n = np.asarray(y).size
-    return NoiseEstimate(rms=sigma, variance=np.full(n, sigma * sigma), windows=int(valid.sum()),
+    return NoiseEstimate(rms=sigma, variance=np.broadcast_to(sigma * sigma, (n,)), windows=windows,
                          method="third divided differences along time over 4-sample runs, 1.4826 x median",
                          channels={"signal": sigma})
 
@@ -114,13 +169,11 @@ def local_slope(x: np.ndarray, y: np.ndarray, half_window: int = 12) -> np.ndarr
 def noise_of_torque_residual(t: np.ndarray, torque: np.ndarray, rotation: np.ndarray,
                              gap_ratio: float = 4.0, half_window: int = 12) -> NoiseEstimate:
     """Noise of ``torque - law(rotation)`` in torque units, from both channels (see module doc)."""
-    ct, vt = difference_contrasts(t, torque, gap_ratio)
-    cr, vr = difference_contrasts(t, rotation, gap_ratio)
-    s_t = robust_level(ct, vt)
-    s_r = robust_level(cr, vr)
+    s_t, w_t = level_of(t, torque, gap_ratio)
+    s_r, w_r = level_of(t, rotation, gap_ratio)
     k = local_slope(rotation, torque, half_window)
     variance = s_t * s_t + (k * s_r) ** 2
-    return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=int((vt & vr).sum()),
+    return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=min(w_t, w_r),
                          method=("third divided differences along time of torque and of rotation, 1.4826 x median; "
                                  "rotation noise carried into torque by the local slope dT/dtheta of the data"),
                          channels={"torque": s_t, "rotation": s_r})

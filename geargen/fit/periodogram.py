@@ -35,6 +35,10 @@ class Periodogram:
     resolution: float
 
 
+#: samples spread onto the grid at a time (the spreading's temporaries stay this size)
+SPREAD_BLOCK = 1 << 17
+
+
 def _spread(position: np.ndarray, weights: np.ndarray, length: int) -> np.ndarray:
     """Linear (tent) spreading of weights at fractional grid positions onto a grid."""
     i0 = np.floor(position).astype(np.int64)
@@ -42,6 +46,19 @@ def _spread(position: np.ndarray, weights: np.ndarray, length: int) -> np.ndarra
     grid = np.bincount(i0, weights * (1.0 - frac), minlength=length + 2)
     grid += np.bincount(i0 + 1, weights * frac, minlength=length + 2)
     return grid
+
+
+def _spread_blocks(theta: np.ndarray, rev0: float, d_rev: float, weights: np.ndarray | None, offset: float,
+                   length: int, out: np.ndarray) -> None:
+    """Add the tent spreading of ``weights - offset`` (ones when None) at angles ``theta`` (rad,
+    turned into grid positions ``(theta / 2 pi - rev0) / d_rev``) to ``out[:length + 2]``, block
+    by block."""
+    n = theta.size
+    for lo in range(0, n, SPREAD_BLOCK):
+        hi = min(lo + SPREAD_BLOCK, n)
+        position = (theta[lo:hi] / TWO_PI - rev0) / d_rev
+        w = np.ones(hi - lo) if weights is None else weights[lo:hi] - offset if offset else weights[lo:hi]
+        out[:length + 2] += _spread(position, w, length)
 
 
 def _two_term_fit(c, s, cc, ss, cs):
@@ -53,33 +70,55 @@ def _two_term_fit(c, s, cc, ss, cs):
     return a, b, a * c + b * s
 
 
+#: the spreading grid of :func:`ls_periodogram` holds at most this many points, or one per two
+#: samples for longer records; its FFTs then cost about as much memory as two of the record's arrays
+MIN_GRID_CAP = 1 << 20
+
+
 def ls_periodogram(angle_rad: np.ndarray, residual: np.ndarray, order_min: float, order_max: float,
-                   oversample: int = 5) -> Periodogram:
-    """Least-squares periodogram of residual (n,) at output angles (n,) rad over [order_min, order_max]."""
+                   oversample: int = 5, offset: float = 0.0) -> Periodogram:
+    """Least-squares periodogram of ``residual - offset`` (n,) at output angles (n,) rad over
+    [order_min, order_max] (the offset is taken off block by block, without a copy of the residual).
+
+    The spreading grid is bounded (:data:`MIN_GRID_CAP`, or n / 2 points): a record spanning so
+    many revolutions that 32 points per period of ``order_max`` with a step of resolution /
+    ``oversample`` would not fit takes, in turn, fewer grid points per period (down to 4, the
+    tent's aliasing then below about 10 % of a peak's power; peaks are refined by exact sums
+    anyway), a coarser order step (down to the resolution), and at last a lower top order:
+    ``orders`` says how far the spectrum reaches.
+    """
     theta = np.asarray(angle_rad, dtype=float)
     r = np.asarray(residual, dtype=float)
-    rev = theta / TWO_PI
-    rev0 = float(rev.min())
-    span = max(float(rev.max()) - rev0, 1e-12)
+    rev0 = float(theta.min()) / TWO_PI  # = min(theta / 2 pi): dividing by a constant keeps the order
+    span = max(float(theta.max()) / TWO_PI - rev0, 1e-12)
     resolution = 1.0 / span
-    d_rev = 1.0 / (32.0 * max(order_max, 1.0))  # grid step, revolutions
+    top = max(order_max, 1.0)
+    d_rev = 1.0 / (32.0 * top)  # grid step, revolutions
     # FFT length gives an order step of resolution / oversample
     n_fft = int(2 ** math.ceil(math.log2(max(oversample * span / d_rev, span / d_rev + 4))))
+    cap = max(MIN_GRID_CAP, 2 ** int(math.floor(math.log2(max(r.size // 2, 1)))))
+    if n_fft > cap:
+        n_fft = cap
+        coarsest = 1.0 / (4.0 * top)
+        d_rev = max(d_rev, oversample * span / (n_fft - 8))
+        if d_rev > coarsest:
+            d_rev = max(coarsest, span / (n_fft - 8))
     d_rev = oversample * span / n_fft if oversample * span / n_fft <= d_rev else d_rev
     order_step = 1.0 / (n_fft * d_rev)
-    position = (rev - rev0) / d_rev
-    length = int(math.ceil(position.max())) + 2
+    length = int(math.ceil(span / d_rev)) + 2
     if length + 2 > n_fft:
         n_fft = int(2 ** math.ceil(math.log2(length + 2)))
         order_step = 1.0 / (n_fft * d_rev)
     g_r = np.zeros(n_fft)
-    g_1 = np.zeros(n_fft)
-    g_r[:length + 2] = _spread(position, r, length)
-    g_1[:length + 2] = _spread(position, np.ones_like(r), length)
+    _spread_blocks(theta, rev0, d_rev, r, offset, length, g_r)
     f_r = np.fft.rfft(g_r)
+    del g_r
+    g_1 = np.zeros(n_fft)
+    _spread_blocks(theta, rev0, d_rev, None, 0.0, length, g_1)
     f_1 = np.fft.rfft(g_1)
+    del g_1
     k_lo = max(int(math.floor(order_min / order_step)), 1)
-    k_hi = int(math.ceil(order_max / order_step))
+    k_hi = int(math.ceil(min(order_max, 1.0 / (4.0 * d_rev)) / order_step))
     k_hi = min(k_hi, (f_1.size - 1) // 2)
     k = np.arange(k_lo, k_hi + 1)
     q = k * order_step

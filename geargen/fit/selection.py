@@ -38,7 +38,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from geargen.fit.effects import PARAMETER_COUNT
-from geargen.fit.measurement import Measurement
+from geargen.fit.measurement import Measurement, MeasurementError
+from geargen.fit import model as model_module
 from geargen.fit.model import ModelFit, make_model
 from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual
 
@@ -151,11 +152,38 @@ def _round_entry(e: dict) -> dict:
     return {k: (_round(v) if isinstance(v, float) else v) for k, v in e.items()}
 
 
+#: a noise level below this fraction of a channel's largest reading is rounding error, not noise
+ROUNDING_LEVEL = 1e3 * float(np.finfo(float).eps)
+
+
 def estimate_noise(meas: Measurement) -> NoiseEstimate:
-    """Model-free noise of the residual, in residual units."""
+    """Model-free noise of the residual, in residual units.
+
+    Raises :class:`MeasurementError` naming the file and the column when a channel has no noise
+    level (every selection statistic is measured against it): no run of four readings free of
+    a gap, or a level at the rounding error of the readings (a stuck, coarsely quantised or
+    computed signal, whose runs of four readings are mostly exactly smooth).
+    """
     if meas.kind == "preload_trace":
-        return noise_of_signal(meas.time_s, meas.carriage_um)
-    return noise_of_torque_residual(meas.time_s, meas.torque_Nm, meas.rotation_rad * 1e6)
+        est = noise_of_signal(meas.time_s, meas.carriage_um)
+        _require_level(meas, "carriage", est.rms, meas.carriage_um)
+        return est
+    est = noise_of_torque_residual(meas.time_s, meas.torque_Nm, meas.rotation_rad * 1e6)
+    _require_level(meas, "torque", est.channels["torque"], meas.torque_Nm)
+    _require_level(meas, "rotation", est.rms, None)
+    return est
+
+
+def _require_level(meas: Measurement, channel: str, level: float, readings: np.ndarray | None) -> None:
+    if math.isnan(level):
+        raise MeasurementError(meas.where(channel), "no noise level can be estimated: no run of four consecutive "
+                               "readings is free of a drop-out gap", "a record sampled without a gap in most places")
+    floor = ROUNDING_LEVEL * float(np.max(np.abs(readings))) if readings is not None else 0.0
+    if not (math.isfinite(level) and level > floor):
+        raise MeasurementError(meas.where(channel), f"no noise level can be estimated: {level:.3g} is rounding error; "
+                               "most runs of four consecutive readings are exactly smooth in time (a quadratic or "
+                               "less), as the readings of a stuck, coarsely quantised or computed signal are",
+                               "a measured signal with its noise")
 
 
 def bic_gain(rss_before: float, rss_after: float, n: int, k: int) -> float:
@@ -167,6 +195,19 @@ def bic_gain(rss_before: float, rss_after: float, n: int, k: int) -> float:
 
 def _rms(v: np.ndarray) -> float:
     return float(np.sqrt(np.mean(v ** 2)))
+
+
+def _rms_centred_difference(a: np.ndarray, b: np.ndarray) -> float:
+    """rms((a - mean a) - b), block by block for a long record (no full-length temporaries)."""
+    n = a.size
+    if n <= model_module.ROW_BLOCK:
+        return _rms((a - a.mean()) - b)
+    mean = a.mean()
+    total = 0.0
+    for lo in range(0, n, model_module.ROW_BLOCK):
+        d = (a[lo:lo + model_module.ROW_BLOCK] - mean) - b[lo:lo + model_module.ROW_BLOCK]
+        total += float(d @ d)
+    return math.sqrt(total / n)
 
 
 SPLITS = {
@@ -192,7 +233,7 @@ def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: Selec
     square by which noise moves the effect in a fit (from the fit's parameter covariance; for
     nested fits Var(part - full) = Var(part) - Var(full)).
     """
-    n = fit.residual.size
+    n = model.n  # (not fit.residual.size: a long fit makes its arrays only when asked)
     e = fit.contributions[index]
     e = e - e.mean()
     size = _rms(e)
@@ -208,7 +249,8 @@ def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: Selec
             expected.append(math.inf)
             continue
         ep = part.contributions[index]
-        out.append(_rms((ep - ep.mean()) - e) / size)
+        out.append(_rms_centred_difference(ep, e) / size)
+        del ep
         e_part = model.contribution_noise(part, index)
         expected.append(math.inf if not math.isfinite(e_part - e_full) else math.sqrt(max(e_part - e_full, 0.0)) / size)
     return out[0], out[1], max(expected)
@@ -245,7 +287,6 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     rule = rule or SelectionRule()
     noise = estimate_noise(meas)
     model = make_model(meas, noise)
-    nominal = model.nominal()
     declared = model.fit(())
     current = declared
     n = meas.samples
@@ -313,6 +354,9 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
             break
         dbic, cand, f, ho, dn, split = chosen
         rms_before = current.rms
+        if current is not declared:
+            current.release()
+        declared.release()  # a long record's fit makes its arrays again when the report asks for them
         current = f
         entry = model.entry(current, len(current.terms) - 1)
         entry["evidence"] = (f"{cand.evidence}. Fitted jointly with the model: dBIC = {dbic:.1f} (>= {rule.bic_threshold:g}); "
@@ -328,6 +372,7 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         added[i] = AddedEffect(fresh, a.delta_bic, a.held_out, a.rms_before, a.rms_after)
     tests = residual_tests(final, noise, last_round, rule, meas.units)
     unexplained = not all(t.passed for t in tests)
+    nominal = model.nominal()  # (made last: it is one more array of the record's length)
     return Diagnosis(measurement=meas, noise=noise, model=model, nominal_residual=nominal, declared=declared,
                      extended=final, added=tuple(added), candidates=tuple(log), tests=tuple(tests),
                      unexplained=unexplained, rule=rule)

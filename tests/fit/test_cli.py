@@ -1,6 +1,8 @@
 """``geargen fit NAME.csv --json REPORT.json --report DIR`` end to end, through the files."""
 
 import json
+import subprocess
+import sys
 
 import numpy as np
 
@@ -61,3 +63,37 @@ def test_cli_error_names_the_column(tmp_path, capsys):
     assert main(["fit", str(tmp_path / "bad.csv"), "--json", str(tmp_path / "r.json")]) == 2
     assert "carriage_x_um" in capsys.readouterr().err
     assert not (tmp_path / "r.json").exists()
+
+
+def test_json_dash_is_standard_output(tmp_path, capsys, monkeypatch):
+    """``--json -`` means standard output, as for the other commands: the JSON alone there, the
+    human summary on standard error, no file named '-', the report in its default place."""
+    sim = simulate_preload_trace(PreloadTruth(), np.random.default_rng(3))
+    csv = write_measurement(sim.measurement, tmp_path, "run")
+    monkeypatch.chdir(tmp_path)
+    assert main(["fit", str(csv), "--json", "-", "--no-plots"]) == 0
+    captured = capsys.readouterr()
+    _check(json.loads(captured.out), "preload_trace", "um")
+    assert "unexplained: no" in captured.err and "wrote standard output" in captured.err
+    assert not (tmp_path / "-").exists()
+    assert not (tmp_path / "run.fit.json").exists()
+    assert (tmp_path / "run_fit" / "report.md").exists()  # beside the CSV
+
+
+def test_json_dash_keeps_the_report_folder(tmp_path, capsys, monkeypatch):
+    sim = simulate_torque_deflection(TorqueTruth(), np.random.default_rng(4))
+    csv = write_measurement(sim.measurement, tmp_path, "stiff")
+    monkeypatch.chdir(tmp_path)
+    assert main(["fit", str(csv), "--json", "-", "--report", str(tmp_path / "rep"), "--no-plots"]) == 0
+    _check(json.loads(capsys.readouterr().out), "torque_deflection", "Nm")
+    assert (tmp_path / "rep" / "report.md").exists() and not (tmp_path / "-").exists()
+
+
+def test_json_dash_as_a_user_runs_it(tmp_path):
+    sim = simulate_preload_trace(PreloadTruth(), np.random.default_rng(5))
+    csv = write_measurement(sim.measurement, tmp_path, "run")
+    res = subprocess.run([sys.executable, "-m", "geargen.cli", "fit", str(csv), "--json", "-", "--no-plots"],
+                         capture_output=True, text=True, cwd=tmp_path, check=True)
+    _check(json.loads(res.stdout), "preload_trace", "um")  # nothing but the JSON on standard output
+    assert "preload_trace:" in res.stderr
+    assert not (tmp_path / "-").exists()
