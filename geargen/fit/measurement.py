@@ -385,22 +385,14 @@ def _model_from_assembly(kind: str, design_path: Path, where: str, notes: list[s
         teeth = tuple(design.gear(g).teeth for g in ("input", "cluster_large", "cluster_small", "output"))
         notes.append(f"teeth {list(teeth)} and drive {design.drive_type} from the assembly {design_path.name}")
         return {"teeth": list(teeth), "drive": design.drive_type}
-    try:
-        from geargen.core.stiffness import drive_from_design  # written alongside; optional here
-    except ImportError as exc:
-        raise MeasurementError(f"{where}.assembly",
-                               "the drive law cannot be derived from a design file in this installation "
-                               f"(geargen.core.stiffness.drive_from_design is not available: {exc})",
-                               "a [model] table with drive, k1_Nm_per_rad, k2_Nm_per_rad, k3_Nm_per_rad, preload_Nm") from None
+    from geargen.model.analysis import drive_from_design  # the drive as every command resolves it
+
     drive = drive_from_design(design)
-    try:
-        # TwoPathDrive in geargen's internal units: N*mm/rad and N*mm
-        values = {"drive": drive.drive_type, "k1_Nm_per_rad": drive.k1 * 1e-3, "k2_Nm_per_rad": drive.k2 * 1e-3,
-                  "preload_Nm": drive.preload * 1e-3}
-        if drive.drive_type == "type2":
-            values["k3_Nm_per_rad"] = drive.k3 * 1e-3
-    except AttributeError as exc:
-        raise MeasurementError(f"{where}.assembly", f"drive_from_design returned {type(drive).__name__}, not a TwoPathDrive ({exc})") from None
+    # TwoPathDrive in geargen's internal units: N*mm/rad and N*mm
+    values = {"drive": drive.drive_type, "k1_Nm_per_rad": drive.k1 * 1e-3, "k2_Nm_per_rad": drive.k2 * 1e-3,
+              "preload_Nm": drive.preload * 1e-3}
+    if drive.drive_type == "type2":
+        values["k3_Nm_per_rad"] = drive.k3 * 1e-3
     notes.append(f"drive law from the assembly {design_path.name}: " + ", ".join(f"{k} = {v:.6g}" if isinstance(v, float) else f"{k} = {v}" for k, v in values.items()))
     return values
 

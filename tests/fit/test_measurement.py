@@ -1,6 +1,5 @@
 """Reading NAME.csv + NAME.toml: validation errors name the column, line or key."""
 
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -125,22 +124,11 @@ def test_teeth_from_an_assembly(tmp_path):
                                        drive_type="type2")
 
 
-def test_torque_law_from_an_assembly_needs_drive_from_design(tmp_path, monkeypatch):
-    design = ROOT / "assemblies" / "robot_joint.toml"
-    monkeypatch.setitem(sys.modules, "geargen.core.stiffness", None)  # as if not installed
-    toml_text = f'kind = "torque_deflection"\nassembly = "{design.as_posix()}"\n'
-    with pytest.raises(MeasurementError, match="drive_from_design is not available.*k1_Nm_per_rad"):
-        read_measurement(_write(tmp_path, "time_s,output_torque_Nm,output_rotation_urad\n" + _rows(), toml_text))
-
-
 def test_torque_law_from_an_assembly(tmp_path):
+    from geargen.design.assembly import load_design
+    from geargen.model.analysis import drive_from_design
     design = ROOT / "assemblies" / "robot_joint.toml"
-    try:  # written alongside this package: use it when it is there and can model the design
-        from geargen.core.stiffness import drive_from_design
-        from geargen.design.assembly import load_design
-        drive = drive_from_design(load_design(design))
-    except Exception as exc:  # noqa: BLE001
-        pytest.skip(f"drive_from_design not usable here: {exc}")
+    drive = drive_from_design(load_design(design))  # the drive as stiffness and build report it
     toml_text = f'kind = "torque_deflection"\nassembly = "{design.as_posix()}"\n'
     m = read_measurement(_write(tmp_path, "time_s,output_torque_Nm,output_rotation_urad\n" + _rows(), toml_text))
     # the law's N*mm/rad and N*mm become the contract's Nm/rad and Nm
