@@ -208,7 +208,7 @@ def mesh_checks(layout: Layout, gears: dict[str, Any] | None = None, path2: bool
     """Step 5: the verdict of ``geargen check`` on the resolved drive (:func:`geargen.checks.verdict.verify`:
     path 1 of every mesh, the design ranges, the ratio and the error budget), plus path 2 (sections
     of the built gear solids) when ``gears`` are given. Every failure of the verdict fails the build."""
-    from geargen.checks.verdict import design_backlash, verify
+    from geargen.checks.verdict import design_backlash, sections_decide, undecided, verify
     dc = verify(layout)
     outcome = CheckOutcome(meshes=[], design_check=dc)
     for f in dc.all_failures:
@@ -233,13 +233,11 @@ def mesh_checks(layout: Layout, gears: dict[str, Any] | None = None, path2: bool
                 s2 = section_check(layout, mesh, gears[mesh.part1].shape, gears[mesh.part2].shape)
                 lo2, hi2 = design_backlash(s2, mesh.gear1.reference_radius)
                 entry.update(path2=s2, path2_backlash_min=lo2, path2_backlash_max=hi2)
-                # the sections decide only where they resolve the working flanks' gap; coarser ones
-                # (helical flanks sampled by chords) are reported, the exact path 1 decides
-                resolves = s2.tolerance < max(layout.settings.get("loaded_flank_gap") or 0.0, 1e-3)
-                for f in s2.failures:
-                    text = f"{mesh.name} (sections of the solids, {f.kind}): {f.message}"
-                    (outcome.failures if resolves else outcome.warnings).append(
-                        text if resolves else text + f" [section tolerance {s2.tolerance:.3g} mm: not decisive]")
+                if sections_decide(s2, layout.settings.get("loaded_flank_gap")):
+                    outcome.failures += [f"{mesh.name} (sections of the solids, {f.kind}): {f.message}"
+                                         for f in s2.failures]
+                else:
+                    outcome.warnings += undecided(s2)
             except Exception as exc:  # report, do not hide: the exact check still decides
                 outcome.warnings.append(f"{mesh.name}: section check (path 2) failed to run: {exc}")
         outcome.meshes.append(entry)

@@ -8,6 +8,7 @@ measure the same backlash (with the section chords bisected to 0.2 nm of the cur
 """
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
@@ -87,8 +88,10 @@ def test_every_command_reports_the_same_resolved_drive(built_assemblies, capsys,
 @pytest.mark.parametrize("name", list(DESIGNS))
 def test_sections_of_the_exported_step_measure_the_resolved_backlash(built_assemblies, name):
     """The teeth in the STEP files are the resolved ones: mid-face sections of the re-imported solids
-    (chords within 0.2 nm of the exact section curves) give the resolved backlash to 1 nm."""
+    (chords within 0.2 nm of the exact section curves) give the resolved backlash to 1 nm plus the
+    build's stated spline tolerance on the two flanks."""
     from geargen import pipeline as pl
+    from geargen.cad.gear_solid import default_tolerance
     from geargen.checks.verdict import design_backlash
 
     folder = built_assemblies[name]
@@ -105,7 +108,12 @@ def test_sections_of_the_exported_step_measure_the_resolved_backlash(built_assem
     result = pl.section_check(layout, mesh, *shapes, chord_tolerance=2e-7)
     lo, hi = design_backlash(result, mesh.gear1.reference_radius)
     want = next(m for m in resolved["meshes"] if m["name"] == mesh.name)["backlash"] * LENGTH_SUFFIXES[resolved["length_unit"]]
-    assert lo == pytest.approx(want, abs=NM) and hi == pytest.approx(want, abs=NM), (lo, hi, want)
+    # each flank spline lies within the build's gear_solid_tolerance of the exact surface (the
+    # C-axis builds its helicoids to 0.1 um): two flanks, along the normal, seen on the reference circle
+    spline = pl.export_config(layout.design)["gear_solid_tolerance"] or default_tolerance(mesh.gear1)
+    g = mesh.gear1
+    allowed = NM + 2 * spline / (math.cos(g.transverse_pressure_angle) * math.cos(g.base_helix_angle))
+    assert lo == pytest.approx(want, abs=allowed) and hi == pytest.approx(want, abs=allowed), (lo, hi, want, allowed)
 
 
 @pytest.mark.parametrize("name", list(DESIGNS))

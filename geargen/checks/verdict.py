@@ -50,6 +50,21 @@ def design_backlash(check, gear1_reference_radius: float) -> tuple[float, float]
     return float(np.min(ang) * gear1_reference_radius), float(np.max(ang) * gear1_reference_radius)
 
 
+def sections_decide(path2, loaded_flank_gap: float = 0.0) -> bool:
+    """Whether the failures of a section check (path 2) fail a build or a check: only where the
+    sections resolve the working flanks' gap (their stated tolerance below the loaded flank gap,
+    and below 1 um). Coarser sections (an STL at its chordal tolerance, helical flanks sampled by
+    chords) are reported with their tolerance; the exact path 1 decides, and the agreement of the
+    two paths, which allows for the tolerance, is still checked."""
+    return path2.tolerance < max(loaded_flank_gap or 0.0, 1e-3)
+
+
+def undecided(path2) -> list[str]:
+    """The failures of a section check that does not decide (:func:`sections_decide`), as notes."""
+    return [f"{path2.mesh} (sections of the solids, {f.kind}): {f.message} "
+            f"[section tolerance {path2.tolerance:.3g} mm: not decisive]" for f in path2.failures]
+
+
 def mesh_settings(settings: ChecksSettings, require_backlash: bool | None = None) -> CheckSettings:
     """The checker's settings from ``[checks]``."""
     return CheckSettings(steps_per_tooth=settings.steps_per_tooth, revolutions=settings.revolutions,

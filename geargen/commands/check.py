@@ -24,7 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from geargen.checks.results import DesignCheck, Failure
-from geargen.checks.verdict import check_design as verdict, mesh_setup, mesh_settings
+from geargen.checks.verdict import check_design as verdict, mesh_setup, mesh_settings, sections_decide, undecided
 from geargen.design.assembly import Design, load_design
 from geargen.design.checks import ChecksSettings, checks_settings
 from geargen.errors import DesignError
@@ -126,6 +126,9 @@ def check_design(design: Design, settings: ChecksSettings | None = None, section
                     cache[key] = export_and_section(g, z, chordal_tolerance=settings.stl_chordal_tolerance)
             secs.append(cache[key])
         path2 = check_mesh_sections(su, secs[0], secs[1], cs, exact.sweep.mesh_position)
+        if not sections_decide(path2, layout.settings.get("loaded_flank_gap") if layout is not None else 0.0):
+            path2.notes += undecided(path2)  # the same rule as the build's
+            path2.failures = []
         result.meshes.append(path2)
         agreement = compare_paths(su, path2)
         result.agreement.append(agreement)
