@@ -97,3 +97,90 @@ def test_c_axis_pinion_overhung_on_its_quill_bearings():
     assert sup.tilt == pytest.approx(sup.force * tilt, rel=1e-9)
     assert sup.misalignment * 1e3 == pytest.approx(78, abs=1)  # um across the 30 mm face
     assert any("misalignment" in w for w in summary.warnings)
+
+
+def _beam_on_springs(ei: float, nodes: list[float], springs: dict[int, float], load_at: int) -> float:
+    """Lateral deflection under a unit load at node ``load_at`` of a free round beam (Euler-Bernoulli,
+    two-node Hermite elements between the sorted ``nodes`` heights, mm) on radial ``springs``
+    (node -> N/mm): a matrix-stiffness solve, exact for point loads at the nodes."""
+    import numpy as np
+    n = len(nodes)
+    k = np.zeros((2 * n, 2 * n))
+    for i in range(n - 1):
+        L = nodes[i + 1] - nodes[i]
+        ke = ei / L ** 3 * np.array([[12, 6 * L, -12, 6 * L], [6 * L, 4 * L * L, -6 * L, 2 * L * L],
+                                     [-12, -6 * L, 12, -6 * L], [6 * L, 2 * L * L, -6 * L, 4 * L * L]])
+        idx = [2 * i, 2 * i + 1, 2 * i + 2, 2 * i + 3]
+        k[np.ix_(idx, idx)] += ke
+    for node, stiffness in springs.items():
+        k[2 * node, 2 * node] += stiffness
+    f = np.zeros(2 * n)
+    f[2 * load_at] = 1.0
+    return float(np.linalg.solve(k, f)[2 * load_at])
+
+
+def test_split_pinion_compliant_pinion_between_two_supports():
+    """The reviewer's split pinion: the compliant pinion hung 86 mm out on the 8.5 mm inner shaft with no
+    radial support (1.45 mm and 1.5 deg at 22 N m, into the hollow shaft's 0.5 mm clearance; path 2
+    about 771 N m/rad). Now it sits between the clamp collar (on the hollow shaft's overhung end) and
+    an outboard bearing, both measured on the built solids; its support stiffness equals an
+    independent matrix-stiffness solve of the two shafts (hollow shaft on its bearing pair carrying
+    the collar, inner shaft on the collar and the outboard bearing), and its deflection at the
+    preload is a few hundredths of the clearance."""
+    from geargen.pipeline import other_parts
+    design = load_design(ROOT / "assemblies/split_pinion.toml")
+    layout = resolve(design)
+    summary, _ = stiffness(design, layout)
+    parts = {p.name: p for p in other_parts(layout, None, summary).parts}
+
+    def mid(name):
+        return sum(_z_extent(parts[name])) / 2
+
+    compl = layout.gear("pinion_compliant")
+    z_pinion = sum(compl.face_z(compl.spec)) / 2
+    z_collar, z_outboard = mid("friction_collar"), mid("compliant_bearing")
+    z_b2, z_b1 = mid("pinion_bearing_2"), mid("pinion_bearing_1")
+    assert z_collar < z_b2 < z_b1 < z_pinion < z_outboard  # straddled: no overhang
+    E, kb = 207e3, 50e3
+    d_in, d_h, bore_h = 8.5, 16.0, 8.5 + 2 * 0.5
+    ei_in = E * math.pi * d_in ** 4 / 64
+    ei_h = E * math.pi * (d_h ** 4 - bore_h ** 4) / 64
+    # the hollow shaft at the collar: its end overhangs the lower bearing of the pair
+    collar_compliance = _beam_on_springs(ei_h, [z_collar, z_b2, z_b1], {1: kb, 2: kb}, 0)
+    pinion_compliance = _beam_on_springs(ei_in, [z_collar, z_pinion, z_outboard],
+                                         {0: 1 / collar_compliance, 2: kb}, 1)
+    comp = next(c for c in summary.components if c.name == "compliant_support")
+    assert comp.local == pytest.approx(1 / pinion_compliance, rel=1e-9)
+    (sup,) = [x for x in summary.supports if x.component == "compliant_support"]
+    assert sup.force == pytest.approx(22e3 / 4 / compl.spec.base_radius, rel=1e-9)  # 22 N m at the output, ratio 4
+    assert sup.deflection == pytest.approx(sup.force * pinion_compliance, rel=1e-9)
+    assert sup.deflection < 0.05  # mm, against 1.45 mm unsupported and the 0.5 mm clearance
+    # path 2 by hand: mesh (Eq. 1), the inner shaft twisting collar face to pinion face, the support
+    out = layout.gear("output")
+    G = 79.3e3
+    mesh = E * compl.spec.face_width / 11 * out.spec.base_radius ** 2
+    twist = G * math.pi * d_in ** 4 / 32 / (compl.face_z(compl.spec)[0] - (z_collar + 5.0)) * 16  # collar 10 mm wide
+    support = 1 / pinion_compliance * compl.spec.base_radius ** 2 * 16
+    path2 = 1 / (1 / mesh + 1 / twist + 1 / support)
+    assert summary.drive.k2 == pytest.approx(path2, rel=1e-6)
+    assert 6000 < path2 / 1e3 < 8000  # N m/rad: 6,821 (the unsupported pinion gave about 771)
+
+
+def test_robot_joint_rotating_shafts_clear_the_link():
+    """The reviewer saw the rotating shafts (and the bearings' inner rings) standing on the stationary
+    link floor. The bosses now hold only the lower bearings' outer rings: each shaft end clears the
+    link by the relief bore, reaching the ring's middle diameter, so radially by (OD - d) / 4, and
+    each lower bearing still touches the link (the contact the build verifies)."""
+    from geargen.cad.assembly import contact_gap
+    from geargen.model.shafts import shafts
+    from geargen.pipeline import other_parts
+    design = load_design(ROOT / "assemblies/robot_joint.toml")
+    layout = resolve(design)
+    summary, _ = stiffness(design, layout)
+    parts = {p.name: p for p in other_parts(layout, None, summary).parts}
+    link = parts["link"].world()
+    for placed in (s for key, s in shafts(layout).items() if key != "input"):
+        lower = placed.supports()[0]
+        assert contact_gap(parts[lower.name].world(), link, 1e-3) < 1e-6, lower.name
+        gap = contact_gap(parts[placed.name].world(), link, 1e-3)
+        assert gap == pytest.approx((lower.outer_diameter - placed.diameter) / 4, rel=1e-6), placed.name

@@ -248,8 +248,9 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     for the motor, an end wall the springs push on) hangs on three vertical blades standing on
     the link's floor; the motor lies along +x, its bevel pinion driving the bevel gear on the
     input shaft. Bearings are rings a ``bearing_clearance`` from the gear faces; the lower ones
-    of clusters and output stand on bosses of the link floor (the upper ones sit in the removed
-    cover, as in the paper's figure).
+    of clusters and output stand by their outer rings on bosses of the link floor, relieved under
+    the inner ring and the shaft end (the upper ones sit in the removed cover, as in the paper's
+    figure).
     """
     from geargen.design.stiffness import stiffness_design
     from geargen.core.flexures import spring_total_coils
@@ -398,15 +399,17 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     length = x_end_inner + wall
     z_top = max(z_apex + motor_r, zo_hi + obw, zb_hi + bw) + s["link_top_clearance"]
     z_bottom = z_floor - floor
-    bosses = [(0.0, 0.0, obod, zo_lo - z_floor)]
-    bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor) for c in clusters]
+    # each boss holds its bearing's outer ring: a relief bore to the ring's middle diameter keeps
+    # the inner ring and the rotating shaft end clear of the stationary link
+    d_os, d_cs = (placed_shafts[k].diameter for k in ("output", "cluster_a"))
+    bosses = [(0.0, 0.0, obod, zo_lo - z_floor, (obod + d_os) / 2)]
+    bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor, (bod + d_cs) / 2) for c in clusters]
     radius = s["link_radius"]
     link = P.link_tray(radius, length, z_top - z_bottom, wall, floor, bosses)
     out.add("link", link, _at(0, 0, z_bottom), "link", "reference", "reference",
             "robot link envelope (reference body, covers removed)")
-    for name in ("output_bearing_lower", oshaft, "cluster_bearing_lower_a", "cluster_bearing_lower_b",
-                 "cluster_shaft_a", "cluster_shaft_b"):
-        out.touch(name, "link", "stands on a boss of the link floor")
+    for name in ("output_bearing_lower", "cluster_bearing_lower_a", "cluster_bearing_lower_b"):
+        out.touch(name, "link", "outer ring on a boss of the link floor")
     out.dims.update(link=dict(radius=radius, length=length, height=z_top - z_bottom, wall=wall, floor=floor,
                               bosses=bosses, z_bottom=z_bottom),
                     carriage=dict(x_min=x_in - arm_half - t, x_max=x_wall1, travel=layout.carriage_travel),
@@ -588,82 +591,86 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
 
 def split_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     """The concentric Type 1 drive of Fig. 8: the stiff pinion on a hollow shaft (outer path), the
-    compliant pinion on the inner shaft that runs through it to the clamp collar (the frictional
-    interface where preload is set), a preloaded bearing pair on the hollow shaft, the output
-    shaft and bearings.
+    compliant pinion on the inner shaft that runs through it from the clamp collar (the frictional
+    interface where preload is set) to an outboard bearing, a preloaded bearing pair on the
+    hollow shaft, the output shaft and bearings, and the housing's two plates that hold every
+    bearing.
 
-    The inner shaft's diameter and free length are the stiffness model's ``inner_shaft``
-    component (``[stiffness.components.inner_shaft]``): the part is built from the same numbers.
+    Shafts and bearings stand where :func:`geargen.model.shafts.split_pinion_shafts` places them:
+    the stiffness model reads the same shafts (the inner shaft's torsion, each pinion's support).
     """
-    from geargen.design.stiffness import stiffness_design
+    from geargen.model.shafts import split_pinion_shafts
 
-    design = layout.design
-    sd = stiffness_design(design)
-    comp = {c.name: c for c in sd.stiffness.components}
-    if "inner_shaft" not in comp:
-        raise DesignError("stiffness.components.inner_shaft", "missing: the compliant path's shaft",
-                          "a shaft_torsion component named inner_shaft")
-    inner = comp["inner_shaft"]
     out = _Parts()
     g = {p.name: p for p in layout.gears}
     st = layout.settings
     stiff, compl, outg = g[st["pinion_stiff"]], g[st["pinion_compliant"]], g[st["output"]]
-    x_p = stiff.centre[0]
     gap = s["bearing_clearance"]
-    d_hollow = s["hollow_shaft_outer_diameter"]
-    if not _bore(stiff.spec) == d_hollow:
+    if not _bore(stiff.spec) == s["hollow_shaft_outer_diameter"]:
         raise DesignError("parts.hollow_shaft_outer_diameter", "must equal the stiff pinion's bore",
                           f"{_bore(stiff.spec):.6g} mm")
-    d_inner = inner.diameter
-    if not _bore(compl.spec) == d_inner:
-        raise DesignError(f"gears.{compl.name}.bore_diameter", "must equal the inner shaft's diameter",
-                          f"{d_inner:.6g} mm (stiffness.components.inner_shaft)")
-    zs0, zs1 = stiff.height
-    zc0, zc1 = compl.height
-    # the hollow shaft runs from the stiff pinion down, through the bearings, to the collar
-    h_len = s["hollow_shaft_length"]
-    z_hollow0 = zs1 - h_len
-    bore_hollow = d_inner + 2 * gap
-    hollow = out.add("hollow_shaft", out.shared(P.shaft, d_hollow, h_len, bore_hollow), _at(x_p, 0, z_hollow0), "split_pinion",
-                     "shaft", description=f"outer (stiff) path: hollow shaft {d_hollow:.4g}/{bore_hollow:.4g} mm")
-    out.touch(hollow, stiff.name, "stiff pinion on the hollow shaft")
-    bw, bod = s["bearing_width"], s["bearing_outer_diameter"]
-    for i, z in enumerate((zs0 - gap - bw, zs0 - 2 * gap - 2 * bw), start=1):
-        b = out.add(f"pinion_bearing_{i}", out.shared(P.bearing, d_hollow, bod, bw), _at(x_p, 0, z), "split_pinion", "bearing",
-                    description=f"angular-contact pair (preloaded), {d_hollow:.4g} x {bod:.4g} x {bw:.4g} mm")
-        out.touch(b, hollow, "bearing on the hollow shaft")
-    # the clamp collar at the far end of the hollow shaft grips the inner shaft: frictional interface
-    cw = s["collar_width"]
-    z_collar = z_hollow0 - cw
-    collar = out.add("friction_collar", P.split_collar(d_inner, s["collar_outer_diameter"], cw, s["collar_slot"]),
-                     _at(x_p, 0, z_collar), "split_pinion", "friction",
-                     description="frictional interface: clamp collar joining the inner shaft to the hollow shaft; "
-                                 "set screws wind the inner shaft before clamping")
-    out.touch(collar, hollow, "collar against the hollow shaft's end")
-    # inner shaft: from the collar, through the hollow shaft and the stiff pinion, into the compliant pinion
-    z_in0 = z_collar
-    z_in1 = zc1
-    ishaft = out.add("inner_shaft", out.shared(P.shaft, d_inner, z_in1 - z_in0), _at(x_p, 0, z_in0), "split_pinion", "shaft",
-                     description=f"inner (compliant) path: d {d_inner:.4g} mm, twisting over {inner.length:.4g} mm "
-                                 "(stiffness model)")
-    out.touch(ishaft, collar, "clamped in the collar")
-    out.touch(ishaft, compl.name, "compliant pinion on the inner shaft")
-    twist_len = zc0 - z_hollow0
-    out.dims["inner_shaft"] = dict(diameter=d_inner, free_length_model=inner.length, free_length_geometry=twist_len)
-    if abs(twist_len - inner.length) > 0.05 * inner.length:
-        out.notes.append(f"inner shaft: free length in the model {inner.length:.4g} mm, in the geometry "
-                         f"{twist_len:.4g} mm (collar to compliant pinion)")
-    # output shaft and bearings
+    placed = split_pinion_shafts(layout, s)
+    hollow, inner = placed["hollow"], placed["inner"]
+    x_p = hollow.centre[0]
+    hollow_part = out.add("hollow_shaft", out.shared(P.shaft, hollow.diameter, hollow.length, hollow.bore),
+                          _at(x_p, 0, hollow.z_lo), "split_pinion", "shaft",
+                          description=f"outer (stiff) path: hollow shaft {hollow.diameter:.4g}/{hollow.bore:.4g} mm")
+    out.touch(hollow_part, stiff.name, "stiff pinion on the hollow shaft")
+    for b in hollow.bearings:
+        name = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(x_p, 0, b.z),
+                       "split_pinion", "bearing", description=f"angular-contact pair (preloaded), {b.bore:.4g} x "
+                                                              f"{b.outer_diameter:.4g} x {b.width:.4g} mm")
+        out.touch(name, hollow_part, "bearing on the hollow shaft")
+    collar, outboard = inner.supports()
+    collar_part = out.add(collar.name, P.split_collar(collar.bore, collar.outer_diameter, collar.width, s["collar_slot"]),
+                          _at(x_p, 0, collar.z), "split_pinion", "friction",
+                          description="frictional interface: clamp collar joining the inner shaft to the hollow shaft; "
+                                      "set screws wind the inner shaft before clamping")
+    out.touch(collar_part, hollow_part, "collar against the hollow shaft's end")
+    inner_part = out.add("inner_shaft", out.shared(P.shaft, inner.diameter, inner.length), _at(x_p, 0, inner.z_lo),
+                         "split_pinion", "shaft",
+                         description=f"inner (compliant) path: d {inner.diameter:.4g} mm, twisting over "
+                                     f"{inner.twist_length:.4g} mm, collar to compliant pinion")
+    out.touch(inner_part, collar_part, "clamped in the collar")
+    out.touch(inner_part, compl.name, "compliant pinion on the inner shaft")
+    top = out.add(outboard.name, out.shared(P.bearing, outboard.bore, outboard.outer_diameter, outboard.width),
+                  _at(x_p, 0, outboard.z), "split_pinion", "bearing",
+                  description=f"outboard bearing of the compliant pinion, {outboard.bore:.4g} x "
+                              f"{outboard.outer_diameter:.4g} x {outboard.width:.4g} mm")
+    out.touch(top, inner_part, "bearing on the inner shaft")
+    out.dims["inner_shaft"] = dict(diameter=inner.diameter, twist_length=inner.twist_length)
+    # output shaft and bearings: the lower one level with the pinion pair's upper bearing, the upper
+    # one level with the outboard bearing, so that one plate holds each level
     d_os = _bore(outg.spec)
     obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
     zo0, zo1 = outg.height
-    oshaft = out.add("output_shaft", out.shared(P.shaft, d_os, (zo1 + gap + obw) - (zo0 - gap - obw)), _at(0, 0, zo0 - gap - obw),
+    z_low, z_high = zo0 - gap - obw, max(zo1 + gap, outboard.z)
+    oshaft = out.add("output_shaft", out.shared(P.shaft, d_os, z_high + obw - z_low), _at(0, 0, z_low),
                      "output", "shaft", description=f"d {d_os:.4g} mm")
     out.touch(oshaft, outg.name, "output gear on its shaft")
-    for where, z in (("lower", zo0 - gap - obw), ("upper", zo1 + gap)):
-        b = out.add(f"output_bearing_{where}", out.shared(P.bearing, d_os, obod, obw), _at(0, 0, z), "output", "bearing",
-                    description=f"{d_os:.4g} x {obod:.4g} x {obw:.4g} mm")
-        out.touch(b, oshaft, "bearing on its shaft")
+    output_bearings = {}
+    for where, z in (("lower", z_low), ("upper", z_high)):
+        output_bearings[where] = out.add(f"output_bearing_{where}", out.shared(P.bearing, d_os, obod, obw),
+                                         _at(0, 0, z), "output", "bearing",
+                                         description=f"{d_os:.4g} x {obod:.4g} x {obw:.4g} mm")
+        out.touch(output_bearings[where], oshaft, "bearing on its shaft")
+    # the housing: a bottom plate holding the pinion pair and the lower output bearing, a top plate
+    # holding the outboard and the upper output bearing (both fixed to the machine: the ground)
+    margin = s["housing_margin"]
+    lo_pair = min(b.z for b in hollow.bearings)
+    hi_pair = max(b.z + b.width for b in hollow.bearings)
+    pair_od = max(b.outer_diameter for b in hollow.bearings)
+    plates = (("bottom_plate", lo_pair, hi_pair - lo_pair, pair_od, [*hollow.bearings], output_bearings["lower"]),
+              ("top_plate", outboard.z, outboard.width, outboard.outer_diameter, [outboard], output_bearings["upper"]))
+    for name, z, thickness, od_pinion, held, held_output in plates:
+        half_y = max(od_pinion, obod) / 2 + margin
+        x0, x1 = -obod / 2 - margin, x_p + od_pinion / 2 + margin
+        plate = out.add(name, P.plate_with_holes(x1 - x0, 2 * half_y, thickness, [(0.0, 0.0, obod), (x_p, 0.0, od_pinion)],
+                                                 corner=(x0, -half_y, 0.0)), _at(0, 0, z), "housing", "housing",
+                        description=f"housing plate, {thickness:.4g} mm, holds the bearings at this level")
+        for b in held:
+            out.touch(plate, b.name, "bearing seated in the plate")
+        out.touch(plate, held_output, "bearing seated in the plate")
     return out.done()
 
 

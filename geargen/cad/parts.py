@@ -391,13 +391,15 @@ def plate_with_holes(size_x: float, size_y: float, thickness: float, holes: list
 
 
 def link_tray(radius: float, length: float, height: float, wall: float, floor: float,
-              bosses: list[tuple[float, float, float, float]] = ()) -> TopoDS_Shape:
+              bosses: list[tuple[float, ...]] = ()) -> TopoDS_Shape:
     """The envelope of a robot link as an open-top tray: a round end of ``radius`` about the
     origin joined to a straight part out to x = ``length`` (width ``2 radius``), walls
     ``wall`` thick, floor ``floor`` thick, z in [0, height]; ``bosses`` ``(x, y, diameter,
-    height)`` stand on the floor (their height counted from the floor's top).
+    height[, relief])`` stand on the floor (their height counted from the floor's top), each
+    with a blind relief bore of diameter ``relief`` from its top down to the floor (so a bearing's
+    outer ring sits on the boss while its inner ring and the shaft end run clear).
 
-    Volume ``A(R) h - A(R - wall) (h - floor) + sum pi/4 d^2 h_b`` with
+    Volume ``A(R) h - A(R - wall) (h - floor) + sum pi/4 (d^2 - relief^2) h_b`` with
     ``A(R) = pi R^2 / 2 + 2 R length`` (half disc plus rectangle).
     """
     _positive(radius=radius, length=length, height=height, wall=wall, floor=floor)
@@ -410,20 +412,28 @@ def link_tray(radius: float, length: float, height: float, wall: float, floor: f
         return clean(union(disc, rect))
 
     tray = cut(outline(radius, 0.0, height), outline(radius - wall, floor, height - floor))
-    extra = [_cylinder(d / 2, h, (x, y, floor)) for x, y, d, h in bosses]
+    bosses = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
+    extra = [_cylinder(d / 2, h, (x, y, floor)) for x, y, d, h, _ in bosses]
     if extra:
         tray = union(tray, *extra)
+    reliefs = [_cylinder(r / 2, h, (x, y, floor)) for x, y, d, h, r in bosses if r > 0]
+    for x, y, d, h, r in bosses:
+        if not 0 <= r < d:
+            raise DesignError("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
+    if reliefs:
+        tray = cut(tray, *reliefs)
     return _single(clean(tray), "link tray")
 
 
 def link_tray_volume(radius: float, length: float, height: float, wall: float, floor: float,
-                     bosses: list[tuple[float, float, float, float]] = ()) -> float:
+                     bosses: list[tuple[float, ...]] = ()) -> float:
     """The closed-form volume of :func:`link_tray` (mm^3)."""
     def area(r):
         return math.pi * r * r / 2 + 2 * r * (length - (radius - r))
 
+    bosses = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
     return (area(radius) * height - area(radius - wall) * (height - floor)
-            + sum(math.pi * d * d / 4 * h for _, _, d, h in bosses))
+            + sum(math.pi * (d * d - r * r) / 4 * h for _, _, d, h, r in bosses))
 
 
 def split_collar(bore: float, outer_diameter: float, width: float, slot: float) -> TopoDS_Shape:

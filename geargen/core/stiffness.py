@@ -271,12 +271,15 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "shaft_support":
         radius = _gear_base_radius(design, spec.gear, f"{where}.gear")
-        compliance, _ = supported_shaft_compliance(e, spec.diameter, spec.span, spec.load_position,
-                                                   (spec.stiffness, spec.stiffness), spec.bore_diameter)
+        supports = spec.support_stiffness or (spec.stiffness, spec.stiffness)
+        compliance, _ = supported_shaft_compliance(e, spec.diameter, spec.span, spec.load_position, supports,
+                                                   spec.bore_diameter)
         local, unit = 1.0 / compliance, "N/mm"
-        where_load = ("between its bearings" if 0 <= spec.load_position <= spec.span else "overhung")
-        detail = (f"shaft d={spec.diameter:.4g} mm on bearings {spec.span:.4g} mm apart ({spec.stiffness:.4g} N/mm "
-                  f"each), gear {where_load} at {spec.load_position:.4g} mm")
+        where_load = ("between its supports" if 0 <= spec.load_position <= spec.span else "overhung")
+        each = (f"{supports[0]:.4g} N/mm each" if supports[0] == supports[1]
+                else f"{supports[0]:.4g} and {supports[1]:.4g} N/mm")
+        detail = (f"shaft d={spec.diameter:.4g} mm on supports {spec.span:.4g} mm apart ({each}), "
+                  f"gear {where_load} at {spec.load_position:.4g} mm")
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "mesh":
         a, b = spec.gears
@@ -928,7 +931,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
             continue
         e = c.elastic_modulus or spec.elastic_modulus
         compliance, tilt = supported_shaft_compliance(e, c.diameter, c.span, c.load_position,
-                                                      (c.stiffness, c.stiffness), c.bore_diameter)
+                                                      c.support_stiffness or (c.stiffness, c.stiffness), c.bore_diameter)
         force = preload / (comp.ratio * comp.radius)  # the path's preload torque as mesh force at the gear
         sup = SupportDeflection(c.name, c.gear, force, force * compliance, force * tilt,
                                 design.gears[c.gear].face_width)

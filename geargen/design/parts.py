@@ -101,9 +101,17 @@ TEMPLATE_FIELDS: dict[str, list[Field]] = {
         _L("hollow_shaft_length", help="hollow shaft from the stiff pinion's far face to the clamp collar"),
         _L("bearing_outer_diameter", help="outer diameter of the hollow shaft's bearing pair"),
         _L("bearing_width", help="width of each of the hollow shaft's bearings"),
+        _L("bearing_spacing", required=False, default=None,
+           help="centre distance of the hollow shaft's two bearings (default: side by side, a bearing_clearance "
+                "apart); the stiff pinion overhangs the upper one"),
         _L("collar_outer_diameter", help="clamp collar joining inner and hollow shaft (the frictional interface)"),
         _L("collar_width", help="width of the clamp collar"),
         _L("collar_slot", help="width of the collar's clamping slot"),
+        _L("compliant_bearing_outer_diameter",
+           help="outboard bearing above the compliant pinion (bore: the compliant pinion's), held by the top plate"),
+        _L("compliant_bearing_width", help="width of the outboard bearing above the compliant pinion"),
+        _L("housing_margin", required=False, default=5.0,
+           help="top and bottom plates: material left around the outermost bearing seats"),
         _L("output_shaft_diameter",
            help="output shaft (checked against its bearing; the model takes the output's bore)"),
         _L("output_bearing_outer_diameter", help="outer diameter of the output shaft's bearings"),
@@ -125,6 +133,7 @@ _MUST_EXCEED: dict[str, tuple[tuple[str, str], ...]] = {
                ("friction_ring_outer_diameter", "cluster_shaft_diameter"),
                ("stop_collar_outer_diameter", "cluster_shaft_diameter")),
     "split_pinion": (("bearing_outer_diameter", "hollow_shaft_outer_diameter"),
+                     ("compliant_bearing_outer_diameter", "gears.pinion_compliant"),
                      ("output_bearing_outer_diameter", "output_shaft_diameter")),
 }
 

@@ -149,9 +149,10 @@ TABLES: tuple[Table, ...] = (
           "housing plate. Sized from [beam_pinion] and [engagement].",
           Example("c_axis.toml", ("parts",)), context={"parts": {"template": "c_axis"}}),
     Table("[parts], template \"split_pinion\"", ("parts",),
-          "The concentric split pinion (Fig. 8): hollow shaft and its bearings, the clamp collar (the "
-          "frictional interface), the inner shaft (sized by [stiffness.components.inner_shaft]), the output "
-          "shaft and bearings.", Example("split_pinion.toml", ("parts",)),
+          "The concentric split pinion (Fig. 8): hollow shaft and its bearing pair, the clamp collar (the "
+          "frictional interface), the inner shaft from the collar through the compliant pinion to its outboard "
+          "bearing (the stiffness model reads the same shafts), the output shaft and bearings, the housing's "
+          "bottom and top plates that hold every bearing.", Example("split_pinion.toml", ("parts",)),
           context={"parts": {"template": "split_pinion"}}),
     Table("[export]", ("export",), "Tolerances of the exported files and the rendered view. Every key is optional.",
           Example("robot_joint.toml", ("export",)), sections=("export",)),

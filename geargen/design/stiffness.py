@@ -202,7 +202,7 @@ SUPPORTS = ("simple", "fixed", "cantilever")
 _KIND_KEYS = {
     "torsion": {"stiffness"},
     "linear": {"gear", "radius", "stiffness"},
-    "shaft_torsion": {"diameter", "bore_diameter", "length", "shear_modulus", "from_geometry"},
+    "shaft_torsion": {"gear", "diameter", "bore_diameter", "length", "shear_modulus", "from_geometry"},
     "shaft_bending": {"gear", "radius", "diameter", "bore_diameter", "span", "load_position", "support", "from_geometry",
                       "elastic_modulus"},
     "shaft_support": {"gear", "stiffness", "from_geometry", "elastic_modulus"},
@@ -221,13 +221,16 @@ class ComponentSpec:
       * ``torsion``: a torsional stiffness value (key, coupling, bearing tilt), N·mm/rad;
       * ``linear``: a linear stiffness (bearing, support), N/mm, acting along the line of action
         at the base radius of ``gear`` (or at ``radius``);
-      * ``shaft_torsion``: a round shaft of ``diameter`` (optional ``bore_diameter``) and ``length``;
+      * ``shaft_torsion``: a round shaft of ``diameter`` (optional ``bore_diameter``) and ``length``
+        (``from_geometry``: the placed ``shaft``, or the placed shaft carrying ``gear``);
       * ``shaft_bending``: the shaft carrying ``gear`` bends under its mesh force: a round beam of
         ``diameter`` over ``span`` with the gear at ``load_position`` from one support
         (``support`` "simple", "fixed" both ends, or "cantilever" of overhang ``load_position``);
       * ``shaft_support``: the shaft carrying ``gear`` on its two placed bearings (``from_geometry``
         only): the shaft bending between or beyond them (an overhung gear) and each bearing's
-        radial ``stiffness`` (N/mm per bearing) through the lever of its distance to the gear;
+        radial ``stiffness`` (N/mm per bearing) through the lever of its distance to the gear; a
+        support that is itself on another placed shaft (a clamp collar on a hollow shaft) adds
+        that shaft's compliance there, on its bearings of the same ``stiffness``;
       * ``mesh``: a tooth mesh of the two ``gears`` (Eq. 1, ``E w / 11`` along the line of action,
         ``w`` the smaller face width unless ``face_width`` is given), acting at the second gear.
 
@@ -259,6 +262,8 @@ class ComponentSpec:
     # from it (geargen.model.analysis.placed_components)
     from_geometry: bool = False
     placed: bool = False
+    # placed shaft_support: radial stiffness (N/mm) of the lower and the upper support
+    support_stiffness: tuple[float, float] | None = None
 
     def __post_init__(self):
         where = f"stiffness.components.{self.name}"
@@ -301,9 +306,9 @@ class ComponentSpec:
             if typed:
                 raise DesignError(f"{where}.{typed[0]}", "is the placed shaft's (from_geometry = true): "
                                   "one home for every length", "leave it out, or from_geometry = false")
-            if self.kind == "shaft_torsion" and self.shaft is None:
+            if self.kind == "shaft_torsion" and self.shaft is None and self.gear is None:
                 raise DesignError(f"{where}.shaft", "missing: which placed shaft twists",
-                                  " | ".join(map(repr, SHAFTS)))
+                                  " | ".join(map(repr, SHAFTS)) + ", or gear = NAME (the shaft carrying it)")
             if self.kind in ("shaft_bending", "shaft_support") and self.gear is None:
                 raise DesignError(f"{where}.gear", "missing: the gear whose mesh force bends its shaft", "a gear name")
         elif self.kind == "shaft_torsion":
@@ -392,7 +397,8 @@ _COMPONENT_FIELDS = [
     Field("ratio", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="speed of its shaft over the output's (any train; instead of shaft)"),
     Field("gear", "string", required=False, default=None,
-          help="linear, shaft_bending, shaft_support: the gear on whose line of action it acts (at its base radius)"),
+          help="linear, shaft_bending, shaft_support: the gear on whose line of action it acts (at its base radius); "
+               "shaft_torsion with from_geometry: the gear whose placed shaft twists"),
     Field("gears", "list", required=False, default=None,
           help="mesh: the two gears, [\"PINION\", \"GEAR\"]; it acts at the second"),
     Field("face_width", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,

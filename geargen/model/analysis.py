@@ -62,20 +62,45 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
             if len(shaft.bearings) != 2:
                 raise DesignError(where, f"the shaft of gears.{c.gear} has {len(shaft.bearings)} bearings",
                                   "two bearings")
+            extra = {}
+            if c.kind == "shaft_support":
+                e = c.elastic_modulus or stiffness_design(design).stiffness.elastic_modulus
+                extra = dict(bore_diameter=shaft.bore or c.bore_diameter,
+                             support_stiffness=tuple(_support_stiffness(b, c.stiffness, e, placed)
+                                                     for b in shaft.supports()))
             out.append(replace(c, placed=True, diameter=shaft.diameter,
                                span=None if c.support == "cantilever" else shaft.span,
-                               load_position=shaft.load_position(c.gear)))
+                               load_position=shaft.load_position(c.gear), **extra))
         else:
-            shaft = placed.get(_PLACED.get(c.shaft, ""))
-            if shaft is None or len(shaft.loads) < 2:
-                raise DesignError(where, f"no placed {c.shaft} shaft carrying two loads", "a design whose [parts] "
+            if c.gear is not None:
+                shaft = next((sh for sh in placed.values() if c.gear in sh.loads), None)
+                what = f"shaft carrying gears.{c.gear}"
+            else:
+                shaft = placed.get(_PLACED.get(c.shaft, ""))
+                what = f"{c.shaft} shaft"
+            if shaft is None or (shaft.twist is None and len(shaft.loads) < 2):
+                raise DesignError(where, f"no placed {what} with two loads", "a design whose [parts] "
                                   "places its shafts, or diameter and length given here with from_geometry = false")
             if not shaft.diameter > 0:
-                raise DesignError(where, f"the placed {c.shaft} shaft fills the gears' bore, and gears.{next(iter(shaft.loads))} "
+                raise DesignError(where, f"the placed {what} fills the gears' bore, and gears.{next(iter(shaft.loads))} "
                                   "gives none", "bore_diameter_* in the gear table")
-            first, second = list(shaft.loads)[:2]
-            out.append(replace(c, placed=True, diameter=shaft.diameter, length=shaft.distance(first, second)))
+            out.append(replace(c, placed=True, diameter=shaft.diameter, bore_diameter=shaft.bore or c.bore_diameter,
+                               length=shaft.twist_length))
     return tuple(out)
+
+
+def _support_stiffness(bearing, bearing_stiffness: float, elastic_modulus: float, placed: dict) -> float:
+    """Radial stiffness (N/mm) of one support of a shaft: a bearing's own, or, for a part that
+    holds the shaft on another placed shaft (``via``), that shaft's lateral stiffness at this
+    height on its own bearings (each ``bearing_stiffness``)."""
+    from geargen.core.stiffness import supported_shaft_compliance
+    if bearing.via is None:
+        return bearing_stiffness
+    host = next(sh for sh in placed.values() if sh.name == bearing.via)
+    compliance, _ = supported_shaft_compliance(elastic_modulus, host.diameter, host.span,
+                                               bearing.centre_z - host.lower_support,
+                                               (bearing_stiffness, bearing_stiffness), host.bore)
+    return 1.0 / compliance
 
 
 def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:

@@ -15,18 +15,24 @@ from dataclasses import dataclass
 from typing import Any
 
 from geargen.design.cluster import ClusterSpec
+from geargen.errors import DesignError
 from geargen.model.layout import Layout
 
 
 @dataclass(frozen=True)
 class Bearing:
-    """A rolling bearing on a shaft (mm): lower face at ``z``, ``width``, ``bore`` x ``outer_diameter``."""
+    """A support of a shaft (mm): lower face at ``z``, ``width``, ``bore`` x ``outer_diameter``.
+
+    A rolling bearing to the structure, or (``via`` = another placed shaft's name) a part that
+    holds this shaft on that shaft (the split pinion's clamp collar on the hollow shaft): its
+    radial support is then that shaft's lateral compliance at this height."""
 
     name: str
     z: float
     width: float
     bore: float
     outer_diameter: float
+    via: str | None = None
 
     @property
     def centre_z(self) -> float:
@@ -47,10 +53,30 @@ class Shaft:
     diameter: float
     bearings: tuple[Bearing, ...]
     loads: dict[str, float]
+    bore: float = 0.0  # a hollow shaft's bore
+    # heights between which the shaft twists, where they are not the first two loads' mid-faces
+    # (the split pinion's inner shaft: from its clamp collar's face to the compliant pinion's face)
+    twist: tuple[float, float] | None = None
 
     @property
     def length(self) -> float:
         return self.z_hi - self.z_lo
+
+    @property
+    def twist_length(self) -> float:
+        """Length of shaft twisting between the torque's way in and out."""
+        if self.twist is not None:
+            return abs(self.twist[1] - self.twist[0])
+        first, second = list(self.loads)[:2]
+        return self.distance(first, second)
+
+    @property
+    def lower_support(self) -> float:
+        return min(b.centre_z for b in self.bearings)
+
+    def supports(self) -> tuple[Bearing, ...]:
+        """The bearings from the lowest up."""
+        return tuple(sorted(self.bearings, key=lambda b: b.centre_z))
 
     @property
     def span(self) -> float:
@@ -60,7 +86,7 @@ class Shaft:
 
     def load_position(self, gear: str) -> float:
         """Distance of ``gear``'s mid-face from the lower support (inside the span when between them)."""
-        return self.loads[gear] - min(b.centre_z for b in self.bearings)
+        return self.loads[gear] - self.lower_support
 
     def distance(self, gear_a: str, gear_b: str) -> float:
         """Length of shaft twisting between two gears' mid-faces."""
@@ -130,8 +156,57 @@ def c_axis_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     return out
 
 
+def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
+    """The split pinion's two concentric shafts (Fig. 8).
+
+    ``hollow``: the stiff pinion's shaft (its bore, so the inner shaft clears it by a
+    ``bearing_clearance`` all round), ``hollow_shaft_length`` from the stiff pinion's far face
+    down, on its bearing pair (``bearing_spacing`` apart) just below the stiff pinion, which it
+    overhangs.
+    ``inner``: the compliant pinion's shaft (the pinion's bore), from the clamp collar below the
+    hollow shaft's end, up through it and the compliant pinion to an outboard bearing a
+    ``bearing_clearance`` above the compliant pinion and the output gear (the plate that holds
+    it clears both). It is carried by the collar (on the hollow shaft) and the outboard bearing,
+    so the compliant pinion sits between two supports; it twists from the collar's face to the
+    compliant pinion's face."""
+    gap = parts["bearing_clearance"]
+    stiff, compl = layout.gear(layout.settings["pinion_stiff"]), layout.gear(layout.settings["pinion_compliant"])
+    output = layout.gear(layout.settings["output"])
+    d_hollow, d_inner = parts["hollow_shaft_outer_diameter"], _bore(compl.spec)
+    if not d_inner > 0:
+        raise DesignError(f"gears.{compl.name}.bore_diameter", "missing: the inner shaft fills the compliant "
+                          "pinion's bore", "bore_diameter_* > 0")
+    bore_hollow = d_inner + 2 * gap
+    if not bore_hollow < d_hollow:
+        raise DesignError("parts.hollow_shaft_outer_diameter", f"{d_hollow:.6g} mm leaves no wall around the inner "
+                          f"shaft ({d_inner:.6g} mm + {gap:.6g} mm clearance all round)", f"> {bore_hollow:.6g} mm")
+    zs0, zs1 = stiff.height
+    zc0, zc1 = compl.height
+    bw, bod = parts["bearing_width"], parts["bearing_outer_diameter"]
+    z_hollow0 = zs1 - parts["hollow_shaft_length"]
+    spacing = parts.get("bearing_spacing") or (bw + gap)
+    if not spacing >= bw + gap:
+        raise DesignError("parts.bearing_spacing", f"{spacing:.6g} mm puts the two bearings into each other",
+                          f">= {bw + gap:.6g} mm (a bearing width and a bearing_clearance)")
+    upper = Bearing("pinion_bearing_1", zs0 - gap - bw, bw, d_hollow, bod)
+    pair = (Bearing("pinion_bearing_2", upper.z - spacing, bw, d_hollow, bod), upper)
+    if not z_hollow0 < pair[0].z:
+        raise DesignError("parts.hollow_shaft_length", f"{parts['hollow_shaft_length']:.6g} mm does not reach "
+                          "through the bearing pair", f"> {zs1 - pair[0].z:.6g} mm")
+    hollow = Shaft("hollow_shaft", tuple(stiff.centre), z_hollow0, zs1, d_hollow, pair,
+                   {g.name: _mid(stiff, g) for g in stiff.gears}, bore=bore_hollow)
+    cw = parts["collar_width"]
+    collar = Bearing("friction_collar", z_hollow0 - cw, cw, d_inner, parts["collar_outer_diameter"], via=hollow.name)
+    z_top = max(zc1, output.height[1]) + gap
+    outboard = Bearing("compliant_bearing", z_top, parts["compliant_bearing_width"], d_inner,
+                       parts["compliant_bearing_outer_diameter"])
+    inner = Shaft("inner_shaft", tuple(compl.centre), collar.z, outboard.z + outboard.width, d_inner,
+                  (collar, outboard), {g.name: _mid(compl, g) for g in compl.gears}, twist=(z_hollow0, zc0))
+    return {"hollow": hollow, "inner": inner}
+
+
 #: the shafts of each parts template that the model places
-SHAFT_BUILDERS = {"robot_joint": robot_joint_shafts, "c_axis": c_axis_shafts}
+SHAFT_BUILDERS = {"robot_joint": robot_joint_shafts, "c_axis": c_axis_shafts, "split_pinion": split_pinion_shafts}
 
 
 def shafts(layout: Layout) -> dict[str, Shaft]:
@@ -144,4 +219,5 @@ def shafts(layout: Layout) -> dict[str, Shaft]:
     return builder(layout, parts) if builder is not None else {}
 
 
-__all__ = ["Bearing", "Shaft", "robot_joint_shafts", "c_axis_shafts", "shafts", "SHAFT_BUILDERS"]
+__all__ = ["Bearing", "Shaft", "robot_joint_shafts", "c_axis_shafts", "split_pinion_shafts", "shafts",
+           "SHAFT_BUILDERS"]

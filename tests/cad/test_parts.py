@@ -47,6 +47,11 @@ def test_servo_motor_and_blade_volumes():
 def test_link_tray_volume_matches_formula():
     args = (50.8, 120.0, 70.0, 3.0, 4.0, [(0.0, 0.0, 38.1, 20.0), (47.0, 23.9, 15.9, 25.0)])
     assert P.volume(P.link_tray(*args)) == pytest.approx(P.link_tray_volume(*args), rel=REL)
+    relieved = (50.8, 120.0, 70.0, 3.0, 4.0, [(0.0, 0.0, 38.1, 20.0, 31.0), (47.0, 23.9, 15.9, 25.0, 12.0)])
+    assert P.volume(P.link_tray(*relieved)) == pytest.approx(P.link_tray_volume(*relieved), rel=REL)
+    # the reliefs are blind: down to the floor's top, not through it
+    assert P.volume(P.link_tray(*args)) - P.volume(P.link_tray(*relieved)) == pytest.approx(
+        math.pi / 4 * (31.0 ** 2 * 20.0 + 12.0 ** 2 * 25.0), rel=REL)
 
 
 def test_plate_with_holes_volume():
