@@ -37,6 +37,7 @@ from typing import Any, Callable
 import numpy as np
 
 from geargen.design.assembly import Design, load_design
+from geargen.design.checks import checks_settings
 from geargen.design.export import export_settings
 from geargen.errors import DesignError, GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement, resolve
@@ -148,6 +149,7 @@ class CheckOutcome:
     failures: list[str] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)
     design_check: Any = None  # geargen.checks.results.DesignCheck when the checker ran
+    structure: Any = None  # geargen.checks.structure.StructureReport of the built parts
 
     @property
     def ok(self) -> bool:
@@ -495,7 +497,23 @@ def _all_checks(layout: Layout, gears, parts, meshes: CheckOutcome | None = None
                                 f"{o.volume:.4g} mm^3 ({o.why})")
     for a, b, gap, why in ov.missing_contacts:
         outcome.failures.append(f"intended contact missing: {a} and {b} are {gap:.4g} mm apart, not touching ({why})")
+    outcome.structure = structure_check(parts, layout)
+    if checks_settings(layout.design).structure == "fail":
+        outcome.failures += [f"structure: {f}" for f in outcome.structure.failures]
+    else:
+        outcome.warnings += [f"structure ([checks] structure = \"report\"): {f}" for f in outcome.structure.failures]
     return outcome
+
+
+def structure_check(parts, layout: Layout):
+    """How the built parts hold together (:func:`geargen.checks.structure.structure_check`), read
+    from the contacts the overlap check verified on the solids; the gears rotate."""
+    from geargen.checks.structure import structure_check as check
+    rolling = {frozenset(p) for p in parts.rolling}
+    contacts = [(a, b) for a, b, _ in parts.intended_contacts if frozenset((a, b)) not in rolling]
+    rotating = [g.name for g in layout.gears] + list(parts.rotating)
+    kinds = {g.name: "gear" for g in layout.gears} | {p.name: p.kind for p in parts.parts}
+    return check(kinds, contacts, parts.ground, parts.stationary, rotating)
 
 
 def _collect_checks(alongside: "Alongside", layout: Layout, gears, parts) -> tuple[CheckOutcome, float, str]:
@@ -683,8 +701,10 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     from geargen.model import BACKLASH_KIND
     dc = result.checks.design_check
     tolerances = [t.to_dict("mm") for t in dc.tolerances] if dc is not None else []
+    structure = result.checks.structure
     return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
-            "meshes": meshes, "tolerances": tolerances, "overlaps": overlaps}
+            "meshes": meshes, "tolerances": tolerances, "overlaps": overlaps,
+            "structure": None if structure is None else structure.to_dict()}
 
 
 def _jsonable(value):

@@ -184,3 +184,54 @@ def test_robot_joint_rotating_shafts_clear_the_link():
         assert contact_gap(parts[lower.name].world(), link, 1e-3) < 1e-6, lower.name
         gap = contact_gap(parts[placed.name].world(), link, 1e-3)
         assert gap == pytest.approx((lower.outer_diameter - placed.diameter) / 4, rel=1e-6), placed.name
+
+
+def _structure(name: str, text_change=None, tmp_path=None):
+    from geargen.pipeline import other_parts, structure_check
+    path = ROOT / f"assemblies/{name}.toml"
+    if text_change is not None:
+        new = tmp_path / f"{name}.toml"
+        new.write_text(path.read_text().replace(*text_change))
+        path = new
+    design = load_design(path)
+    layout = resolve(design)
+    summary, _ = stiffness(design, layout)
+    return structure_check(other_parts(layout, None, summary), layout)
+
+
+def test_structure_of_the_shipped_assemblies():
+    """Connectivity read from the verified contacts: the split pinion is sound (every bearing seated in
+    a plate, the compliant pinion's shaft between collar and outboard bearing), so is the robot joint
+    (the upper bearings seated in the link cover, the lower ones on the floor bosses by their outer
+    rings, the input bearings in the carriage on its blades); the C-axis names what its model does not
+    yet hold (quills, the long pinion's housing, the motor mount, the stop collars)."""
+    assert _structure("split_pinion").failures == []
+    robot = _structure("robot_joint")
+    assert robot.failures == []
+    # the body that carries the output gear holds its shaft and nothing stationary
+    assert ("output", "output_shaft") in robot.bodies
+    c_axis = _structure("c_axis")
+    assert {"input_shaft", "servo_motor", "gearhead"} <= set(c_axis.ungrounded)
+    assert any(fixed == "housing" for _, fixed in c_axis.rotating_on_stationary)
+
+
+def test_structure_check_fails_the_build_unless_reported(tmp_path):
+    """The C-axis findings are warnings while its design file says structure = "report", and fail the
+    build with "fail" (the default); the robot joint passes with the default."""
+    from geargen.pipeline import _all_checks, CheckOutcome, gear_solids, other_parts
+
+    def outcome_of(path):
+        design = load_design(path)
+        layout = resolve(design)
+        summary, _ = stiffness(design, layout)
+        gears = gear_solids(layout)
+        return _all_checks(layout, gears, other_parts(layout, gears, summary), CheckOutcome(meshes=[]))
+
+    findings = len(_structure("c_axis").failures)
+    reported = outcome_of(ROOT / "assemblies/c_axis.toml")
+    assert not any(f.startswith("structure") for f in reported.failures)
+    assert sum(w.startswith("structure (") for w in reported.warnings) == findings > 0
+    path = tmp_path / "c_axis.toml"
+    path.write_text((ROOT / "assemblies/c_axis.toml").read_text().replace('structure = "report"', 'structure = "fail"'))
+    assert sum(f.startswith("structure: ") for f in outcome_of(path).failures) == findings
+    assert outcome_of(ROOT / "assemblies/robot_joint.toml").failures == []

@@ -124,6 +124,12 @@ class PartSet:
     intended_contacts: list[tuple[str, str, str]]  # (part, part, why)
     notes: list[str] = field(default_factory=list)
     dimensions: dict[str, Any] = field(default_factory=dict)  # key sizes for the report (mm)
+    # how the parts hold together (geargen.checks.structure): held by the machine (or supported
+    # outside the model), never turning, turning besides the gears, contacts that roll (a mesh)
+    ground: tuple[str, ...] = ()
+    stationary: tuple[str, ...] = ()
+    rotating: tuple[str, ...] = ()
+    rolling: tuple[tuple[str, str], ...] = ()
 
     def part(self, name: str) -> PlacedPart:
         for p in self.parts:
@@ -201,6 +207,10 @@ class _Parts:
         self.notes: list[str] = []
         self.dims: dict[str, Any] = {}
         self._shapes: dict[tuple, Any] = {}
+        self.ground: list[str] = []
+        self.stationary: list[str] = []
+        self.rotating: list[str] = []
+        self.rolling: list[tuple[str, str]] = []
 
     def shared(self, builder, *args):
         """``builder(*args)``, built once per assembly: parts made alike (two bearings of one size,
@@ -219,7 +229,9 @@ class _Parts:
         self.contacts.append((a, b, why))
 
     def done(self) -> PartSet:
-        return PartSet(self.parts, self.contacts, self.notes, self.dims)
+        fixed = [g for g in self.ground if g not in self.rotating] + self.stationary  # a spindle turns
+        return PartSet(self.parts, self.contacts, self.notes, self.dims, tuple(self.ground),
+                       tuple(dict.fromkeys(fixed)), tuple(self.rotating), tuple(self.rolling))
 
 
 def _at(x=0.0, y=0.0, z=0.0) -> np.ndarray:
@@ -312,6 +324,8 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
                      "carriage", "bevel",
                      description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg")
     out.touch(bevel_gear, pinion, "bevel pitch cones roll on each other (pitch-cone model)")
+    out.rolling.append((bevel_gear, pinion))
+    out.rotating += [bevel_gear, pinion]
 
     # --- input shaft and bearings (placed by the model), up through the bevel gear
     ish = placed_shafts["input"]
@@ -362,12 +376,16 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         P.box_between((x_wall0, -wall_half, z_plate_bot), (x_wall1, wall_half, z_wall_top)),  # spring wall
     ]
     body = P.fuse(pieces, "carriage")
-    hole = P.translate(P.cylinder(d_in + 2 * gap, z_arm_top - z_arm_bot), (x_in, 0, z_arm_bot))
-    body = P._single(P.cut(body, hole), "carriage")
+    # through the arm and the base plate under the input shaft: each bearing bears on the carriage by
+    # its outer ring only (the hole reaches the ring's middle diameter), the turning shaft runs clear
+    relief = max((ibod + d_in) / 2, d_in + 2 * gap)
+    holes = [P.translate(P.cylinder(relief, z1 - z0), (x_in, 0, z0))
+             for z0, z1 in ((z_arm_bot, z_arm_top), (z_plate_bot, z_plate_top))]
+    body = P._single(P.cut(body, *holes), "carriage")
     carriage = out.add("carriage", body, np.eye(4), "carriage", "carriage",
                        description="carries motor, bevel pair and input gear; rides on the blades")
-    for name in ("input_bearing_lower", "input_bearing_upper", ishaft):
-        out.touch(name, carriage, "held by the carriage")
+    for name in ("input_bearing_lower", "input_bearing_upper"):
+        out.touch(name, carriage, "outer ring held by the carriage")
     out.touch(motor, carriage, "motor on its saddle")
 
     # --- three blade flexures under the carriage, standing on the link floor
@@ -406,12 +424,33 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor, (bod + d_cs) / 2) for c in clusters]
     radius = s["link_radius"]
     link = P.link_tray(radius, length, z_top - z_bottom, wall, floor, bosses)
+    out.ground.append("link")
+    out.stationary.append(carriage)
     out.add("link", link, _at(0, 0, z_bottom), "link", "reference", "reference",
             "robot link envelope (reference body, covers removed)")
     for name in ("output_bearing_lower", "cluster_bearing_lower_a", "cluster_bearing_lower_b"):
         out.touch(name, "link", "outer ring on a boss of the link floor")
+    # --- the cover over the link's round end: seats for the upper bearings' outer rings, its rim on
+    # the walls; it stops short of the bevel pinion and motor that rise above it
+    uppers = [(placed_shafts[k], placed_shafts[k].supports()[-1]) for k in ("output", "cluster_a", "cluster_b")]
+    z_cover = max(b.z + b.width for _, b in uppers)
+    above = [p for p in out.parts if p.group == "carriage" and _bbox(p.world()).Get()[5] > z_cover]
+    x_end = min((_bbox(p.world()).Get()[0] for p in above), default=length) - gap
+    reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
+    if not x_end > reach:
+        raise DesignError("parts.input_shaft_to_bevel", f"the bevel pair and motor rise above the upper bearings "
+                          f"within {reach - x_end:.4g} mm of them: no room for the link cover's seats",
+                          "a longer input_shaft_to_bevel, or smaller cluster bearings")
+    seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width), (b.outer_diameter + sh.diameter) / 2)
+             for sh, b in uppers]
+    cover = out.add("link_cover", P.link_cover(radius, wall, x_end, floor, seats), _at(0, 0, z_cover), "link",
+                    "housing", description="link cover over the round end: holds the upper bearings' outer rings")
+    out.touch(cover, "link", "cover rim on the link's walls")
+    out.ground.append(cover)
+    for _, b in uppers:
+        out.touch(cover, b.name, "outer ring in the cover's seat")
     out.dims.update(link=dict(radius=radius, length=length, height=z_top - z_bottom, wall=wall, floor=floor,
-                              bosses=bosses, z_bottom=z_bottom),
+                              bosses=bosses, z_bottom=z_bottom, cover=dict(z=z_cover, x_end=x_end, seats=seats)),
                     carriage=dict(x_min=x_in - arm_half - t, x_max=x_wall1, travel=layout.carriage_travel),
                     bevel=bev, blade_x=list(map(float, xs)), spring_total_coils=coils)
     out.notes.append(f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}) as pitch-cone frusta; "
@@ -456,6 +495,8 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     spindle = out.add("spindle", out.shared(P.shaft, d_sp, sp_len), _at(0, 0, (z_b0 + z_b1 - sp_len) / 2), "spindle",
                       "reference", "reference", f"lathe spindle (reference), d {d_sp:.4g} mm")
     out.touch(spindle, "output", "bull gear on the spindle")
+    out.ground.append(spindle)  # turns in the machine's own spindle bearings, outside the model
+    out.rotating.append(spindle)
 
     # --- the long pinion: bearings at the beam span, symmetric about the engaged mesh
     shift_a = layout.axial_shift.get("cluster_a", 0.0)
@@ -574,6 +615,8 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     # the long pinion's shaft passes the plate through a clearance hole
     holes = [(x_in, 0.0, ibod + 2 * gap)] if z_lo_bearing < lo[2] < ish_hi else []
     plate = P.plate_with_holes(hi[0] - lo[0], hi[1] - lo[1], t, holes, corner=lo)
+    out.ground.append("housing")
+    out.stationary += [p.name for p in out.parts if p.kind == "stop" and p.group == "housing"]
     out.add("housing", plate, np.eye(4), "housing", "housing", "reference",
             "C-axis housing plate (reference body); the retracted stops stand on it")
     out.dims.update(beam=beam, engagement=eng, z_mesh=z_mesh, housing=dict(lo=lo, hi=hi))
@@ -671,6 +714,7 @@ def split_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         for b in held:
             out.touch(plate, b.name, "bearing seated in the plate")
         out.touch(plate, held_output, "bearing seated in the plate")
+        out.ground.append(plate)
     return out.done()
 
 

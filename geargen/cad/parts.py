@@ -436,6 +436,41 @@ def link_tray_volume(radius: float, length: float, height: float, wall: float, f
             + sum(math.pi * (d * d - r * r) / 4 * h for _, _, d, h, r in bosses))
 
 
+def link_cover(radius: float, wall: float, x_end: float, thickness: float,
+               seats: list[tuple[float, float, float, float, float]] = ()) -> TopoDS_Shape:
+    """The part of a robot link's cover over its round end, z in [0, thickness]: the tray's inner
+    outline (:func:`link_tray` with ``radius``, ``wall``: a half disc of ``radius - wall`` joined
+    to a rectangle) up to x = ``x_end``, so its rim bears on the tray's walls. ``seats``
+    ``(x, y, diameter, depth, relief)``: a boss of ``diameter`` hanging ``depth`` below the cover
+    (0: none) onto a bearing's outer ring, with a through relief bore of ``relief`` for the
+    shaft and the inner ring.
+
+    Volume ``(pi r^2 / 2 + 2 r x_end) t + sum pi/4 (d^2 depth - relief^2 (t + depth))``,
+    ``r = radius - wall``, for ``x_end >= r`` (the half disc lies wholly on the x < 0 side)."""
+    _positive(radius=radius, wall=wall, x_end=x_end, thickness=thickness)
+    r = radius - wall
+    if not r > 0:
+        raise DesignError("wall", "walls leave no room inside", "wall < radius")
+    disc = _cylinder(r, thickness)
+    rect = _box(x_end, 2 * r, thickness, (0.0, -r, 0.0))
+    cover = intersect(union(disc, rect), _box(x_end + r, 2 * r, thickness, (-r, -r, 0.0)))
+    bosses = [_cylinder(d / 2, depth, (x, y, -depth)) for x, y, d, depth, _ in seats if depth > 0]
+    if bosses:
+        cover = union(cover, *bosses)
+    bores = [_cylinder(rl / 2, thickness + depth, (x, y, -depth)) for x, y, _, depth, rl in seats if rl > 0]
+    if bores:
+        cover = cut(cover, *bores)
+    return _single(clean(cover), "link cover")
+
+
+def link_cover_volume(radius: float, wall: float, x_end: float, thickness: float,
+                      seats: list[tuple[float, float, float, float, float]] = ()) -> float:
+    """The closed-form volume of :func:`link_cover` (mm^3)."""
+    r = radius - wall
+    return ((math.pi * r * r / 2 + 2 * r * x_end) * thickness
+            + sum(math.pi / 4 * (d * d * depth - rl * rl * (thickness + depth)) for _, _, d, depth, rl in seats))
+
+
 def split_collar(bore: float, outer_diameter: float, width: float, slot: float) -> TopoDS_Shape:
     """A clamp collar (the frictional interface of a split pinion): a ring with one radial slot
     of width ``slot`` through the wall on +x, z in [0, width].
@@ -453,4 +488,5 @@ def split_collar(bore: float, outer_diameter: float, width: float, slot: float) 
 __all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
            "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "BevelPairGeometry",
            "bevel_pair_geometry", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
-           "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "split_collar"]
+           "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
+           "link_cover_volume", "split_collar"]

@@ -17,6 +17,8 @@ Every key is optional::
     sections_planes = 3
     stl_chordal_tolerance_mm = 0.001
     carriage_travel_limit_in = 0.02 # preload carriage: largest travel either way from nominal
+    structure = "fail"              # build: how the parts hold together (geargen.checks.structure);
+                                    # "report" lists its findings as warnings instead
 
     # pairs to check in a design without [synthesis]; centre distance per pair (one number for
     # one pair, or a list), in any length unit
@@ -73,6 +75,7 @@ class ChecksSettings:
     sections_planes: int = 3
     stl_chordal_tolerance: float = 1e-3
     carriage_travel_limit: float | None = None
+    structure: str = "fail"
     meshes: tuple[DeclaredMesh, ...] = field(default=())
 
     def __post_init__(self):
@@ -116,6 +119,9 @@ CHECKS_FIELDS: list[Field] = [
           help="chordal tolerance of the meshes sectioned by path 2"),
     Field("carriage_travel_limit", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="largest preload-carriage travel either way from nominal the error budget may need"),
+    Field("structure", "string", required=False, default="fail", choices=("fail", "report"),
+          help="build: every part grounded through contacts, rotating parts on stationary ones only through "
+               "bearings, every bearing seated on both sides; fail the build, or report the findings as warnings"),
     Field("meshes", "list", required=False, default=None,
           help="pairs to check in a design without [synthesis] or [layout]: [[\"gear1\", \"gear2\"], ...], the first "
                "turned"),
@@ -134,7 +140,7 @@ def checks_settings(design: Design) -> ChecksSettings:
     kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
                                 "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",
                                 "seed", "sections", "sections_planes", "stl_chordal_tolerance",
-                                "carriage_travel_limit")}
+                                "carriage_travel_limit", "structure")}
     return _with_field_prefix("checks.", lambda: ChecksSettings(meshes=meshes, **kwargs), v["_units"])
 
 

@@ -104,3 +104,15 @@ def test_intended_contacts_are_verified_not_assumed():
     (o,) = bad.interpenetrating
     assert {o.part1, o.part2} == {"shaft", "hub"}
     assert o.volume == pytest.approx(math.pi * 5.0 ** 2 * 20.0, rel=1e-6)
+
+
+def test_link_cover_volume_matches_formula():
+    seats = [(0.0, 0.0, 38.1, 0.0, 31.75), (47.07, 23.89, 15.875, 0.58, 11.1125), (47.07, -23.89, 15.875, 0.58, 11.1125)]
+    args = (50.8, 3.048, 64.0, 3.81, seats)
+    cover = P.link_cover(*args)
+    assert P.is_valid(cover)
+    assert P.volume(cover) == pytest.approx(P.link_cover_volume(*args), rel=REL)
+    lo, hi = P.bounding_box(cover)
+    # the rim lies on the tray's inner walls (radius - wall), the bosses hang below the cover
+    assert hi[0] == pytest.approx(64.0, abs=1e-6) and lo[0] == pytest.approx(-(50.8 - 3.048), abs=1e-6)
+    assert lo[2] == pytest.approx(-0.58, abs=1e-6) and hi[2] == pytest.approx(3.81, abs=1e-6)
