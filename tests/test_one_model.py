@@ -39,13 +39,20 @@ def _z_extent(part) -> tuple[float, float]:
     return z0, z1
 
 
-def _measured(design):
-    """(span, load position from the lower support) of cluster A's shaft measured on the built
-    bearing and gear solids (mm), the summary's cluster_support component, the summary, the parts."""
+def _placed(design, gears=None):
+    """(layout, stiffness summary, PartSet) of a design: the resolved drive and its non-gear parts
+    (with ``gears``, the gear parts too)."""
     from geargen.pipeline import other_parts
     layout = resolve(design)
     summary, _ = stiffness(design, layout)
-    parts = {p.name: p for p in other_parts(layout, None, summary).parts}
+    return layout, summary, other_parts(layout, gears, summary)
+
+
+def _measured(design):
+    """(span, load position from the lower support) of cluster A's shaft measured on the built
+    bearing and gear solids (mm), the summary's cluster_support component, the summary, the parts."""
+    layout, summary, part_set = _placed(design)
+    parts = {p.name: p for p in part_set.parts}
     lo = sum(_z_extent(parts["cluster_bearing_lower_a"])) / 2
     hi = sum(_z_extent(parts["cluster_bearing_upper_a"])) / 2
     small = layout.gear("cluster_small_a")
@@ -127,11 +134,8 @@ def test_split_pinion_compliant_pinion_between_two_supports():
     independent matrix-stiffness solve of the two shafts (hollow shaft on its bearing pair carrying
     the collar, inner shaft on the collar and the outboard bearing), and its deflection at the
     preload is a few hundredths of the clearance."""
-    from geargen.pipeline import other_parts
-    design = load_design(ROOT / "assemblies/split_pinion.toml")
-    layout = resolve(design)
-    summary, _ = stiffness(design, layout)
-    parts = {p.name: p for p in other_parts(layout, None, summary).parts}
+    layout, summary, part_set = _placed(load_design(ROOT / "assemblies/split_pinion.toml"))
+    parts = {p.name: p for p in part_set.parts}
 
     def mid(name):
         return sum(_z_extent(parts[name])) / 2
@@ -173,11 +177,8 @@ def test_robot_joint_rotating_shafts_clear_the_link():
     each lower bearing still touches the link (the contact the build verifies)."""
     from geargen.cad.assembly import contact_gap
     from geargen.model.shafts import shafts
-    from geargen.pipeline import other_parts
-    design = load_design(ROOT / "assemblies/robot_joint.toml")
-    layout = resolve(design)
-    summary, _ = stiffness(design, layout)
-    parts = {p.name: p for p in other_parts(layout, None, summary).parts}
+    layout, _, part_set = _placed(load_design(ROOT / "assemblies/robot_joint.toml"))
+    parts = {p.name: p for p in part_set.parts}
     link = parts["link"].world()
     for placed in (s for key, s in shafts(layout).items() if key != "input"):
         lower = placed.supports()[0]
@@ -186,17 +187,11 @@ def test_robot_joint_rotating_shafts_clear_the_link():
         assert gap == pytest.approx((lower.outer_diameter - placed.diameter) / 4, rel=1e-6), placed.name
 
 
-def _structure(name: str, text_change=None, tmp_path=None):
-    from geargen.pipeline import other_parts, structure_check
-    path = ROOT / f"assemblies/{name}.toml"
-    if text_change is not None:
-        new = tmp_path / f"{name}.toml"
-        new.write_text(path.read_text().replace(*text_change))
-        path = new
-    design = load_design(path)
-    layout = resolve(design)
-    summary, _ = stiffness(design, layout)
-    return structure_check(other_parts(layout, None, summary), layout)
+def _structure(name: str):
+    """The structure report of a shipped assembly's placed parts."""
+    from geargen.pipeline import structure_check
+    layout, _, part_set = _placed(load_design(ROOT / f"assemblies/{name}.toml"))
+    return structure_check(part_set, layout)
 
 
 def test_structure_of_the_shipped_assemblies():
@@ -218,14 +213,13 @@ def test_structure_of_the_shipped_assemblies():
 def test_structure_check_fails_the_build_unless_reported(tmp_path):
     """The C-axis findings are warnings while its design file says structure = "report", and fail the
     build with "fail" (the default); the robot joint passes with the default."""
-    from geargen.pipeline import _all_checks, CheckOutcome, gear_solids, other_parts
+    from geargen.pipeline import _all_checks, CheckOutcome, gear_solids
 
     def outcome_of(path):
         design = load_design(path)
-        layout = resolve(design)
-        summary, _ = stiffness(design, layout)
-        gears = gear_solids(layout)
-        return _all_checks(layout, gears, other_parts(layout, gears, summary), CheckOutcome(meshes=[]))
+        gears = gear_solids(resolve(design))
+        layout, _, part_set = _placed(design, gears)
+        return _all_checks(layout, gears, part_set, CheckOutcome(meshes=[]))
 
     findings = len(_structure("c_axis").failures)
     reported = outcome_of(ROOT / "assemblies/c_axis.toml")

@@ -378,7 +378,7 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     body = P.fuse(pieces, "carriage")
     # through the arm and the base plate under the input shaft: each bearing bears on the carriage by
     # its outer ring only (the hole reaches the ring's middle diameter), the turning shaft runs clear
-    relief = max((ibod + d_in) / 2, d_in + 2 * gap)
+    relief = max(P.ring_relief(ibod, d_in), d_in + 2 * gap)
     holes = [P.translate(P.cylinder(relief, z1 - z0), (x_in, 0, z0))
              for z0, z1 in ((z_arm_bot, z_arm_top), (z_plate_bot, z_plate_top))]
     body = P._single(P.cut(body, *holes), "carriage")
@@ -417,11 +417,11 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     length = x_end_inner + wall
     z_top = max(z_apex + motor_r, zo_hi + obw, zb_hi + bw) + s["link_top_clearance"]
     z_bottom = z_floor - floor
-    # each boss holds its bearing's outer ring: a relief bore to the ring's middle diameter keeps
-    # the inner ring and the rotating shaft end clear of the stationary link
+    # each boss holds its bearing's outer ring: the relief keeps the inner ring and the rotating
+    # shaft end clear of the stationary link
     d_os, d_cs = (placed_shafts[k].diameter for k in ("output", "cluster_a"))
-    bosses = [(0.0, 0.0, obod, zo_lo - z_floor, (obod + d_os) / 2)]
-    bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor, (bod + d_cs) / 2) for c in clusters]
+    bosses = [(0.0, 0.0, obod, zo_lo - z_floor, P.ring_relief(obod, d_os))]
+    bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor, P.ring_relief(bod, d_cs)) for c in clusters]
     radius = s["link_radius"]
     link = P.link_tray(radius, length, z_top - z_bottom, wall, floor, bosses)
     out.ground.append("link")
@@ -434,15 +434,15 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     # the walls; it stops short of the bevel pinion and motor that rise above it
     uppers = [(placed_shafts[k], placed_shafts[k].supports()[-1]) for k in ("output", "cluster_a", "cluster_b")]
     z_cover = max(b.z + b.width for _, b in uppers)
-    above = [p for p in out.parts if p.group == "carriage" and _bbox(p.world()).Get()[5] > z_cover]
-    x_end = min((_bbox(p.world()).Get()[0] for p in above), default=length) - gap
+    boxes = [_bbox(p.world()).Get() for p in out.parts if p.group == "carriage"]
+    x_end = min((box[0] for box in boxes if box[5] > z_cover), default=length) - gap
     reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
     if not x_end > reach:
         raise DesignError("parts.input_shaft_to_bevel", f"the bevel pair and motor rise above the upper bearings "
                           f"within {reach - x_end:.4g} mm of them: no room for the link cover's seats",
                           "a longer input_shaft_to_bevel, or smaller cluster bearings")
-    seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width), (b.outer_diameter + sh.diameter) / 2)
-             for sh, b in uppers]
+    seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width),
+              P.ring_relief(b.outer_diameter, sh.diameter)) for sh, b in uppers]
     cover = out.add("link_cover", P.link_cover(radius, wall, x_end, floor, seats), _at(0, 0, z_cover), "link",
                     "housing", description="link cover over the round end: holds the upper bearings' outer rings")
     out.touch(cover, "link", "cover rim on the link's walls")

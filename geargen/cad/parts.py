@@ -412,17 +412,30 @@ def link_tray(radius: float, length: float, height: float, wall: float, floor: f
         return clean(union(disc, rect))
 
     tray = cut(outline(radius, 0.0, height), outline(radius - wall, floor, height - floor))
-    bosses = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
+    bosses = _relieved(bosses)
     extra = [_cylinder(d / 2, h, (x, y, floor)) for x, y, d, h, _ in bosses]
     if extra:
         tray = union(tray, *extra)
     reliefs = [_cylinder(r / 2, h, (x, y, floor)) for x, y, d, h, r in bosses if r > 0]
-    for x, y, d, h, r in bosses:
-        if not 0 <= r < d:
-            raise DesignError("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
     if reliefs:
         tray = cut(tray, *reliefs)
     return _single(clean(tray), "link tray")
+
+
+def _relieved(bosses) -> list[tuple[float, float, float, float, float]]:
+    """Bosses ``(x, y, diameter, height[, relief])`` with their relief (0: none), checked."""
+    out = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
+    for _, _, d, _, r in out:
+        if not 0 <= r < d:
+            raise DesignError("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
+    return out
+
+
+def ring_relief(outer_diameter: float, bore: float) -> float:
+    """Diameter of the relief under a bearing seated by its outer ring: the ring's middle diameter,
+    so the seat bears on the outer ring only and the inner ring and the shaft end run clear (by
+    ``(outer_diameter - bore) / 4`` radially)."""
+    return (outer_diameter + bore) / 2
 
 
 def link_tray_volume(radius: float, length: float, height: float, wall: float, floor: float,
@@ -431,7 +444,7 @@ def link_tray_volume(radius: float, length: float, height: float, wall: float, f
     def area(r):
         return math.pi * r * r / 2 + 2 * r * (length - (radius - r))
 
-    bosses = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
+    bosses = _relieved(bosses)
     return (area(radius) * height - area(radius - wall) * (height - floor)
             + sum(math.pi * (d * d - r * r) / 4 * h for _, _, d, h, r in bosses))
 
@@ -489,4 +502,4 @@ __all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compoun
            "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "BevelPairGeometry",
            "bevel_pair_geometry", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
            "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
-           "link_cover_volume", "split_collar"]
+           "link_cover_volume", "ring_relief", "split_collar"]

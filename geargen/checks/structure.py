@@ -20,7 +20,7 @@ assembly's parts and verified contacts.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Iterable, Mapping
 
 #: part kinds whose two sides may move against each other
@@ -34,8 +34,7 @@ class StructureReport:
     bodies: tuple[tuple[str, ...], ...]  # rigid bodies, each sorted
     ungrounded: tuple[str, ...]  # parts that reach no ground through contacts
     rotating_on_stationary: tuple[tuple[str, str], ...]  # (rotating part, stationary part) in one body
-    one_sided: tuple[tuple[str, tuple[str, ...]], ...]  # joint element, the one body it touches
-    notes: tuple[str, ...] = field(default=())
+    one_sided: tuple[tuple[str, tuple[str, ...]], ...]  # joint element, the parts (of one body) it touches
 
     @property
     def failures(self) -> list[str]:
@@ -106,10 +105,8 @@ def structure_check(kinds: Mapping[str, str], contacts: Iterable[tuple[str, str]
     one_sided = []
     for n in names:
         if kinds[n] in JOINT_KINDS:
-            touched = sorted({find(m) for m in neighbours[n]})
-            if len(touched) < 2:
-                body = tuple(sorted(m for m in neighbours[n]))
-                one_sided.append((n, body))
+            if len({find(m) for m in neighbours[n]}) < 2:
+                one_sided.append((n, tuple(sorted(neighbours[n]))))
     return StructureReport(bodies, ungrounded, tuple(clashes), tuple(one_sided))
 
 
