@@ -309,84 +309,69 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
     zo_lo, zo_hi = (b.z for b in placed_shafts["output"].bearings)
 
-    # --- bevel pair
-    if (s["bevel_module"] is None) == (s["bevel_diametral_pitch_per_in"] is None):
-        raise DesignError("parts.bevel_module_mm", "give exactly one of bevel_module_mm and bevel_diametral_pitch_per_in")
-    module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
-    bev = P.bevel_pair_geometry(s["bevel_pinion_teeth"], s["bevel_gear_teeth"], module, s["bevel_face_width"])
-    d_in = _bore(inp.spec)
-    z_heel = placed_shafts["input"].loads["bevel_gear"]
-    z_apex = z_heel + bev.apex_height("gear")
-    bevel_gear = out.add("bevel_gear", P.bevel_pitch_cone(bev, "gear", bore=d_in), _at(x_in, 0, z_heel), "carriage",
-                         "bevel", description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg")
-    x_pinion_heel = x_in + bev.apex_height("pinion")
-    pinion = out.add("bevel_pinion", P.bevel_pitch_cone(bev, "pinion"), _along_x(x_pinion_heel, 0, z_apex, True),
-                     "carriage", "bevel",
-                     description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg")
-    out.touch(bevel_gear, pinion, "bevel pitch cones roll on each other (pitch-cone model)")
-    out.rolling.append((bevel_gear, pinion))
-    out.rotating += [bevel_gear, pinion]
-
-    # --- input shaft and bearings (placed by the model), up through the bevel gear
+    from geargen.design.stages import stages
+    stage_list = stages(design)
     ish = placed_shafts["input"]
     ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
     zi_lo, zi_hi = (b.z for b in ish.bearings)
-    z_shaft_top = z_heel + bev.axial_height("gear")
-    ishaft = out.add("input_shaft", out.shared(P.shaft, d_in, z_shaft_top - ish.z_lo), _at(x_in, 0, ish.z_lo), "carriage",
-                     "shaft", description=f"d {d_in:.4g} mm")
-    out.touch(ishaft, "input", "shaft in the input gear's bore")
-    out.touch(ishaft, bevel_gear, "shaft in the bevel gear's bore")
-    for b in ish.bearings:
-        ring = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(x_in, 0, b.z), "carriage",
-                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm")
-        out.touch(ring, ishaft, "bearing on its shaft")
-
-    # --- motor along +x, its stub ending on the pinion's heel
-    stub = s["motor_shaft_length"]
-    x_flange = x_pinion_heel + stub
-    motor_r = s["motor_body_diameter"] / 2
-    motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
-                                                 s["motor_flange_thickness"], s["motor_shaft_diameter"], stub),
-                    _along_x(x_flange, 0, z_apex), "carriage", "motor", description="servo motor with encoder (envelope)")
-    out.touch(motor, pinion, "motor shaft stub on the bevel pinion")
-    x_motor_end = x_flange + s["motor_flange_thickness"] + s["motor_body_length"]
-
-    # --- the carriage, one solid
+    d_in = _bore(inp.spec)
     t = s["carriage_plate_thickness"]
     half_w = s["carriage_width"] / 2
     z_plate_top = zi_lo
     z_plate_bot = z_plate_top - t
     z_arm_bot = zi_hi + ibw
     z_arm_top = z_arm_bot + t
-    x_wall0 = x_motor_end + 2 * gap
-    x_wall1 = x_wall0 + t
     r_in = inp.gears[0].tip_radius
     post_x0 = x_in + max(r_in, ibod / 2) + gap
     post_x1 = post_x0 + t
     arm_half = max(ibod / 2 + gap, d_in)
     spring_r = (sp.mean_coil_diameter + sp.wire_diameter) / 2
     wall_half = s["spring_y_offset"] + spring_r + gap
+    holes = []  # through the carriage: (x, y, diameter, z0, z1)
+    if stage_list:
+        drive = _stage_drive(out, layout, s, placed_shafts, stage_list, z_arm_top, post_x0, post_x1)
+        pieces = drive["pieces"]
+        holes += drive["holes"]
+    else:
+        drive = _bevel_drive(out, layout, s, ish, x_in, d_in)
+        pieces = [P.box_between((drive["saddle_x0"], -half_w * 0.6, z_plate_top),
+                                (drive["x_end"] - gap, half_w * 0.6, drive["z_axis"] - drive["motor_r"]))]
+    x_motor_end, z_top_parts = drive["x_end"], drive["z_top"]
+    out.touch("servo_motor", "carriage", "motor on its mount")
+    # the input shaft and its bearings (placed by the model), up through the carriage arm to the
+    # gear that drives it
+    ishaft = out.add("input_shaft", out.shared(P.shaft, d_in, drive["input_top"] - ish.z_lo), _at(x_in, 0, ish.z_lo),
+                     "carriage", "shaft", description=f"d {d_in:.4g} mm")
+    out.touch(ishaft, "input", "shaft in the input gear's bore")
+    for b in ish.bearings:
+        ring = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(x_in, 0, b.z), "carriage",
+                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm")
+        out.touch(ring, ishaft, "bearing on its shaft")
+
+    # --- the carriage, one solid
+    x_wall0 = x_motor_end + 2 * gap
+    x_wall1 = x_wall0 + t
     z_wall_top = max(z_arm_top, spring_r + gap)
-    saddle_x0 = x_flange + s["motor_flange_thickness"] + gap
-    pieces = [
+    x_arm1 = max([post_x1] + [p["x_end"] for p in drive.get("arm", ())])
+    arm_y = max([arm_half] + [p["half"] for p in drive.get("arm", ())])
+    pieces += [
         P.box_between((x_in - arm_half - t, -half_w, z_plate_bot), (x_wall0, half_w, z_plate_top)),  # base plate
         P.box_between((post_x0, -arm_half, z_plate_top), (post_x1, arm_half, z_arm_bot)),  # post
-        P.box_between((x_in - arm_half, -arm_half, z_arm_bot), (post_x1, arm_half, z_arm_top)),  # arm
-        P.box_between((saddle_x0, -half_w * 0.6, z_plate_top), (x_motor_end - gap, half_w * 0.6, z_apex - motor_r)),
+        P.box_between((x_in - arm_half, -arm_y, z_arm_bot), (x_arm1, arm_y, z_arm_top)),  # arm
         P.box_between((x_wall0, -wall_half, z_plate_bot), (x_wall1, wall_half, z_wall_top)),  # spring wall
     ]
     body = P.fuse(pieces, "carriage")
     # through the arm and the base plate under the input shaft: each bearing bears on the carriage by
     # its outer ring only (the hole reaches the ring's middle diameter), the turning shaft runs clear
     relief = max(P.ring_relief(ibod, d_in), d_in + 2 * gap)
-    holes = [P.translate(P.cylinder(relief, z1 - z0), (x_in, 0, z0))
-             for z0, z1 in ((z_arm_bot, z_arm_top), (z_plate_bot, z_plate_top))]
-    body = P._single(P.cut(body, *holes), "carriage")
+    holes += [(x_in, 0.0, relief, z0, z1) for z0, z1 in ((z_arm_bot, z_arm_top), (z_plate_bot, z_plate_top))]
+    body = P._single(P.cut(body, *[P.translate(P.cylinder(d, z1 - z0), (x, y, z0)) for x, y, d, z0, z1 in holes]),
+                     "carriage")
     carriage = out.add("carriage", body, np.eye(4), "carriage", "carriage",
-                       description="carries motor, bevel pair and input gear; rides on the blades")
+                       description="carries motor, " + ("stages" if stage_list else "bevel pair")
+                                   + " and input gear; rides on the blades")
     for name in ("input_bearing_lower", "input_bearing_upper"):
         out.touch(name, carriage, "outer ring held by the carriage")
-    out.touch(motor, carriage, "motor on its saddle")
 
     # --- three blade flexures under the carriage, standing on the link floor
     z_floor = z_plate_bot - fl.length
@@ -415,7 +400,7 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     wall, floor = s["link_wall"], s["link_floor"]
     x_end_inner = x_wall1 + sp.installed_length
     length = x_end_inner + wall
-    z_top = max(z_apex + motor_r, zo_hi + obw, zb_hi + bw) + s["link_top_clearance"]
+    z_top = max(z_top_parts, zo_hi + obw, zb_hi + bw) + s["link_top_clearance"]
     z_bottom = z_floor - floor
     # each boss holds its bearing's outer ring: the relief keeps the inner ring and the rotating
     # shaft end clear of the stationary link
@@ -434,13 +419,14 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     # the walls; it stops short of the bevel pinion and motor that rise above it
     uppers = [(placed_shafts[k], placed_shafts[k].supports()[-1]) for k in ("output", "cluster_a", "cluster_b")]
     z_cover = max(b.z + b.width for _, b in uppers)
-    boxes = [_bbox(p.world()).Get() for p in out.parts if p.group == "carriage"]
-    x_end = min((box[0] for box in boxes if box[5] > z_cover), default=length) - gap
+    x_end = min((_x_min_above(p.world(), z_cover, (-radius, -radius, z_bottom), (length, radius, z_top))
+                 for p in out.parts if p.group == "carriage"), default=length) - gap
     reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
     if not x_end > reach:
-        raise DesignError("parts.input_shaft_to_bevel", f"the bevel pair and motor rise above the upper bearings "
-                          f"within {reach - x_end:.4g} mm of them: no room for the link cover's seats",
-                          "a longer input_shaft_to_bevel, or smaller cluster bearings")
+        key = "parts.stage_bearing_width" if stage_list else "parts.input_shaft_to_bevel"
+        raise DesignError(key, f"the carriage rises above the upper bearings within {reach - x_end:.4g} mm of them: "
+                          "no room for the link cover's seats",
+                          "smaller cluster bearings" + ("" if stage_list else ", or a longer input_shaft_to_bevel"))
     seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width),
               P.ring_relief(b.outer_diameter, sh.diameter)) for sh, b in uppers]
     cover = out.add("link_cover", P.link_cover(radius, wall, x_end, floor, seats), _at(0, 0, z_cover), "link",
@@ -452,10 +438,117 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     out.dims.update(link=dict(radius=radius, length=length, height=z_top - z_bottom, wall=wall, floor=floor,
                               bosses=bosses, z_bottom=z_bottom, cover=dict(z=z_cover, x_end=x_end, seats=seats)),
                     carriage=dict(x_min=x_in - arm_half - t, x_max=x_wall1, travel=layout.carriage_travel),
-                    bevel=bev, blade_x=list(map(float, xs)), spring_total_coils=coils)
-    out.notes.append(f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}) as pitch-cone frusta; "
-                     f"motor to output ratio {bev.ratio * layout.ratio['train']:.6g}")
+                    blade_x=list(map(float, xs)), spring_total_coils=coils, **drive.get("dims", {}))
+    out.notes.append(drive["note"])
     return out.done()
+
+
+def _x_min_above(shape, z: float, lo, hi) -> float:
+    """The smallest x of ``shape`` above height ``z`` within the box ``lo``..``hi`` (inf: none)."""
+    above = BRepAlgoAPI_Common(shape, P.box_between((lo[0] - 1, lo[1] - 1, z), (hi[0] + 1, hi[1] + 1, hi[2] + 1))).Shape()
+    box = _bbox(above)
+    return math.inf if box.IsVoid() else box.Get()[0]
+
+
+def _bevel_drive(out: _Parts, layout, s: Mapping[str, Any], ish, x_in: float, d_in: float) -> dict[str, Any]:
+    """The motor lying along +x on the carriage, driving the input shaft through a bevel pair
+    (the robot joint, Fig. 10): the bevel gear's heel ``input_shaft_to_bevel`` above the input's
+    mid-face (the placed input shaft's load), the motor's stub ending on the pinion's heel."""
+    module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
+    bev = P.bevel_pair_geometry(s["bevel_pinion_teeth"], s["bevel_gear_teeth"], module, s["bevel_face_width"])
+    gap = s["bearing_clearance"]
+    z_heel = ish.loads["bevel_gear"]
+    z_apex = z_heel + bev.apex_height("gear")
+    bevel_gear = out.add("bevel_gear", P.bevel_pitch_cone(bev, "gear", bore=d_in), _at(x_in, 0, z_heel), "carriage",
+                         "bevel", description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg")
+    x_pinion_heel = x_in + bev.apex_height("pinion")
+    pinion = out.add("bevel_pinion", P.bevel_pitch_cone(bev, "pinion"), _along_x(x_pinion_heel, 0, z_apex, True),
+                     "carriage", "bevel",
+                     description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg")
+    out.touch(bevel_gear, pinion, "bevel pitch cones roll on each other (pitch-cone model)")
+    out.touch("input_shaft", bevel_gear, "shaft in the bevel gear's bore")
+    out.rolling.append((bevel_gear, pinion))
+    out.rotating += [bevel_gear, pinion]
+    # motor along +x, its stub ending on the pinion's heel
+    stub = s["motor_shaft_length"]
+    x_flange = x_pinion_heel + stub
+    motor_r = s["motor_body_diameter"] / 2
+    motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
+                                                 s["motor_flange_thickness"], s["motor_shaft_diameter"], stub),
+                    _along_x(x_flange, 0, z_apex), "carriage", "motor", description="servo motor with encoder (envelope)")
+    out.touch(motor, pinion, "motor shaft stub on the bevel pinion")
+    x_end = x_flange + s["motor_flange_thickness"] + s["motor_body_length"]
+    return dict(x_end=x_end, z_axis=z_apex, motor_r=motor_r, z_top=z_apex + motor_r,
+                saddle_x0=x_flange + s["motor_flange_thickness"] + gap, input_top=z_heel + bev.axial_height("gear"),
+                dims=dict(bevel=bev),
+                note=f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}) as pitch-cone frusta; "
+                     f"motor to output ratio {bev.ratio * layout.ratio['train']:.6g}")
+
+
+def _stage_drive(out: _Parts, layout, s: Mapping[str, Any], placed_shafts, stage_list, z_arm_top: float,
+                 post_x0: float, post_x1: float) -> dict[str, Any]:
+    """The motor standing on the carriage's bridge, driving the input through the design's
+    [stages]: each stage shaft between a lower bearing standing on the carriage arm (extended
+    under it) and an upper one under the bridge; two side columns on the base plate carry the
+    bridge clear of every stage gear; the first driver sits on the motor's shaft, which comes
+    down through the bridge."""
+    gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
+    g = {p.name: p for p in layout.gears}
+    shafts = [placed_shafts[k] for k in sorted(k for k in placed_shafts if k.startswith("stage_"))]
+    sob, sbw = s["stage_bearing_outer_diameter"], s["stage_bearing_width"]
+    for sh in shafts:
+        part = out.add(sh.name, out.shared(P.shaft, sh.diameter, sh.length), _at(*sh.centre, sh.z_lo), "carriage",
+                       "shaft", description=f"stage shaft d {sh.diameter:.4g} mm")
+        for gear in sh.loads:
+            out.touch(part, gear, "stage gear on its shaft")
+        for b in sh.bearings:
+            ring = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(*sh.centre, b.z),
+                           "carriage", "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm")
+            out.touch(ring, part, "bearing on its shaft")
+            out.touch(ring, "carriage", "outer ring seated on the carriage")
+    out.touch("input_shaft", stage_list[-1].driven, "shaft in the driving stage gear's bore")
+    # the motor on the bridge, its shaft down through it into the first driver's bore
+    first = g[stage_list[0].driver]
+    d_motor = _bore(first.spec)
+    if not d_motor > 0:
+        raise DesignError(f"gears.{first.name}.bore_diameter", "missing: the gear sits on the motor shaft", "> 0")
+    gears_top = max(g[n].height[1] for st in stage_list for n in (st.driver, st.driven))
+    z_bridge0 = gears_top + gap + sbw
+    z_bridge1 = z_bridge0 + t
+    stub = z_bridge1 - first.height[0]
+    motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
+                                                 s["motor_flange_thickness"], d_motor, stub),
+                    _at(*first.centre, z_bridge1), "carriage", "motor",
+                    description="servo motor with encoder (envelope), standing on the carriage's bridge")
+    out.touch(motor, first.name, "first stage driver on the motor shaft")
+    # the stage gears' reach: the columns stand outside it, the bridge and arm reach the shafts
+    stage_gears = [g[n] for st in stage_list for n in (st.driver, st.driven)]
+    reach_y = max(abs(p.centre[1]) + p.gears[0].tip_radius for p in stage_gears)
+    y_col = reach_y + gap
+    xs = [sh.centre[0] for sh in shafts] + [first.centre[0]]
+    r_seat = max(sob, s["motor_flange"]) / 2 + gap
+    # the columns rise beside the stage gears from the base plate, past the loop's gears (beyond
+    # their tips along +x)
+    x_col = max([post_x0] + [p.centre[0] + p.gears[0].tip_radius + gap for p in layout.gears
+                             if p.group.startswith("cluster_") or p.group == "output"])
+    x_b0, x_b1 = min(min(xs) - r_seat, x_col), max(xs) + r_seat
+    half = y_col + t
+    pieces = [P.box_between((x_b0, -half, z_bridge0), (x_b1, half, z_bridge1))]  # bridge
+    z_plate_top = min(b.z for b in placed_shafts["input"].bearings)
+    for sign in (1, -1):
+        y0, y1 = sorted((sign * y_col, sign * half))
+        pieces.append(P.box_between((x_col, y0, z_plate_top - t), (x_col + t, y1, z_bridge0)))
+    # the base plate reaches out under the columns only (the loop's bearing bosses stand beside it)
+    pieces.append(P.box_between((x_col, -half, z_plate_top - t), (x_col + t, half, z_plate_top)))
+    holes = [(sh.centre[0], sh.centre[1], P.ring_relief(sob, sh.diameter), z_arm_top - t, z_arm_top) for sh in shafts]
+    holes += [(sh.centre[0], sh.centre[1], P.ring_relief(sob, sh.diameter), z_bridge0, z_bridge1) for sh in shafts]
+    holes.append((first.centre[0], first.centre[1], d_motor + 2 * gap, z_bridge0, z_bridge1))
+    arm = [dict(x_end=max(sh.centre[0] for sh in shafts) + sob / 2 + gap if shafts else post_x1,
+                half=max([abs(sh.centre[1]) + sob / 2 + gap for sh in shafts], default=0.0))]
+    ratio = layout.ratio
+    return dict(pieces=pieces, holes=holes, arm=arm, x_end=x_b1, z_top=z_bridge1,
+                input_top=g[stage_list[-1].driven].height[1],
+                note=f"{len(stage_list)} stage(s) before the input on the carriage ({ratio['text']})")
 
 
 # ---------------------------------------------------------------- C-axis (Fig. 12)

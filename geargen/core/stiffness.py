@@ -26,7 +26,7 @@ is then ``k_carriage / lambda^2``; the carriage force is ``F_e = 2 lambda P`` fo
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -155,6 +155,9 @@ class DualPinionTrain:
 
     gears: Mapping[str, Any]
     names: Mapping[str, str]
+    # the gears of the stages before the input (geargen.design.stages), each to its shaft's speed
+    # over the output's
+    upstream: Mapping[str, float] = field(default_factory=dict)
 
     @property
     def ratio_mesh1(self) -> float:
@@ -198,7 +201,9 @@ def train_from_design(design, spec: StiffnessSpec) -> DualPinionTrain:
                               ", ".join(design.gears) or "a [gears.NAME] table")
         gears[role] = design.gears[name]
         names[role] = name
-    return DualPinionTrain(gears=gears, names=names)
+    from geargen.design.stages import shaft_speeds, stages
+    train = DualPinionTrain(gears=gears, names=names)
+    return replace(train, upstream=shaft_speeds(design, stages(design), train.ratio))
 
 
 @dataclass(frozen=True)
@@ -229,6 +234,8 @@ def _component_location(spec: ComponentSpec, train: DualPinionTrain | None, gear
                           "ratio = speed of its shaft / speed of the output")
     if spec.shaft is not None:
         return train.shaft_ratio(spec.shaft)
+    if gear in train.upstream:
+        return train.upstream[gear]
     shaft = train.shaft_of_gear(gear) if gear else None
     if shaft is None:
         raise DesignError(f"{where}.shaft", f"gear {gear!r} is not one of the train's four gears; say where it sits",

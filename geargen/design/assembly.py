@@ -56,6 +56,7 @@ SECTIONS: dict[str, str] = {
     "engagement": "axial engagement of helical dual pinions (geargen.design.stiffness)",
     "checks": "mesh-check settings (geargen.checks)",
     "parts": "non-gear parts of the assembly model (geargen.design.parts)",
+    "stages": "gear stages between the motor and the anti-backlash loop (geargen.design.stages)",
     "layout": "placement of the gears in the build (geargen.design.layout)",
     "export": "export settings: STL tolerances, rendered view (geargen.design.export)",
 }

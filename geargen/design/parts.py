@@ -30,22 +30,33 @@ _COMMON = [Field("template", "string", choices=TEMPLATES, help="the assembly who
 
 TEMPLATE_FIELDS: dict[str, list[Field]] = {
     "robot_joint": _COMMON + [
-        Field("bevel_pinion_teeth", "integer", minimum=4, maximum=500,
-              help="teeth of the bevel pinion on the motor shaft"),
-        Field("bevel_gear_teeth", "integer", minimum=4, maximum=500,
+        Field("bevel_pinion_teeth", "integer", required=False, default=None, minimum=4, maximum=500,
+              help="teeth of the bevel pinion on the motor shaft (the motor drives the input through a bevel pair; "
+                   "a design with [stages] drives it through those instead)"),
+        Field("bevel_gear_teeth", "integer", required=False, default=None, minimum=4, maximum=500,
               help="teeth of the bevel gear on the input shaft"),
         Field("bevel_diametral_pitch_per_in", "number", required=False, default=None, minimum=0.1,
               help="diametral pitch of the bevel pair (give this or bevel_module_mm)"),
         Field("bevel_module", "length", required=False, default=None, units=("mm",), minimum=0.0,
               exclusive_minimum=True, help="module of the bevel pair (give this or bevel_diametral_pitch_per_in)"),
-        _L("bevel_face_width", help="face width of the bevel pair (less than the cone distance)"),
-        _L("input_shaft_to_bevel", help="input gear's mid-plane to the bevel gear's heel"),
+        _L("bevel_face_width", required=False, default=None,
+           help="face width of the bevel pair (less than the cone distance)"),
+        _L("input_shaft_to_bevel", required=False, default=None,
+           help="input gear's mid-plane to the bevel gear's heel"),
+        _L("stage_bearing_outer_diameter", required=False, default=None,
+           help="with [stages]: outer diameter of the stage shafts' bearings (bore: the shaft's gears' bore)"),
+        _L("stage_bearing_width", required=False, default=None,
+           help="with [stages]: width of the stage shafts' bearings; the lower ones stand on the carriage arm, "
+                "the upper ones under its bridge, where the motor stands"),
         _L("motor_body_diameter", help="servo motor body (with encoder), envelope diameter"),
         _L("motor_body_length", help="servo motor body length"),
         _L("motor_flange", help="side of the motor's square mounting flange"),
         _L("motor_flange_thickness", help="thickness of the motor flange"),
-        _L("motor_shaft_diameter", help="motor shaft diameter"),
-        _L("motor_shaft_length", help="motor shaft stub from the flange to the bevel pinion's heel"),
+        _L("motor_shaft_diameter", required=False, default=None,
+           help="motor shaft diameter (with [stages]: the first stage driver's bore, not given here)"),
+        _L("motor_shaft_length", required=False, default=None,
+           help="motor shaft stub from the flange to the bevel pinion's heel (with [stages]: down through the "
+                "bridge to the first driver, not given here)"),
         _L("cluster_bearing_outer_diameter",
            help="outer diameter of the cluster shafts' bearings (bore: the cluster_small bore)"),
         _L("cluster_bearing_width", help="width of the cluster shafts' bearings"),
@@ -179,6 +190,30 @@ def _check_swept_spring(design, unit: str) -> None:
                           "wire would touch)", f"> {shortest / scale:.6g} {unit}, or parts.spring_model = 'envelope'")
 
 
+#: the carriage's keys of each way the motor drives the input gear
+_BEVEL_KEYS = ("bevel_pinion_teeth", "bevel_gear_teeth", "bevel_face_width", "input_shaft_to_bevel",
+               "motor_shaft_diameter", "motor_shaft_length")
+_STAGE_KEYS = ("stage_bearing_outer_diameter", "stage_bearing_width")
+
+
+def _check_motor_drive(design, v: dict[str, Any]) -> None:
+    """The carriage's motor drives the input through a bevel pair, or (a design with [stages])
+    through those stages standing on the carriage: each needs its own keys and refuses the other's."""
+    staged = bool(design.section("stages"))
+    needed, refused = (_STAGE_KEYS, _BEVEL_KEYS + ("bevel_module", "bevel_diametral_pitch_per_in")) if staged \
+        else (_BEVEL_KEYS, _STAGE_KEYS)
+    why = "the design's [stages] drive the input" if staged else "the motor drives the input through the bevel pair"
+    for name in refused:
+        if v.get(name) is not None:
+            raise DesignError(_key(v, name), f"not read: {why}", "remove it")
+    for name in needed:
+        if v.get(name) is None:
+            raise DesignError(f"parts.{name}", f"missing: {why}", "a value")
+    if not staged and (v["bevel_module"] is None) == (v["bevel_diametral_pitch_per_in"] is None):
+        raise DesignError("parts.bevel_module_mm", "give exactly one of bevel_module_mm and "
+                          "bevel_diametral_pitch_per_in", "one of them")
+
+
 def check_parts(design, v: dict[str, Any]) -> None:
     """The relations between part sizes, and the sections the template reads (see the module docstring)."""
     template = v["template"]
@@ -191,9 +226,8 @@ def check_parts(design, v: dict[str, Any]) -> None:
         if "installed_length" not in {k.rsplit("_", 1)[0] for k in design.section("springs")}:
             raise DesignError("springs.installed_length", "missing: the model shows the springs at their installed "
                               "length", " or ".join(f"installed_length_{u}" for u in LENGTH_SUFFIXES))
-        if (v["bevel_module"] is None) == (v["bevel_diametral_pitch_per_in"] is None):
-            raise DesignError("parts.bevel_module_mm", "give exactly one of bevel_module_mm and "
-                              "bevel_diametral_pitch_per_in", "one of them")
+        _check_motor_drive(design, v)
+    if template == "robot_joint" and not design.section("stages"):
         module = v["bevel_module"] or MM_PER_IN / v["bevel_diametral_pitch_per_in"]
         # the face must stay short of the cone's apex: cone distance r_p / sin(gamma_p), shaft angle 90 deg
         zp, zg = v["bevel_pinion_teeth"], v["bevel_gear_teeth"]
@@ -201,9 +235,11 @@ def check_parts(design, v: dict[str, Any]) -> None:
         if not v["bevel_face_width"] < cone:
             raise DesignError(_key(v, "bevel_face_width"), f"{v['bevel_face_width'] / scale:.6g} {unit} reaches past "
                               "the bevel pair's cone apex", f"< {cone / scale:.6g} {unit} (the cone distance)")
-        if v["spring_model"] == "helix":
-            _check_swept_spring(design, unit)
+    if template == "robot_joint" and v["spring_model"] == "helix":
+        _check_swept_spring(design, unit)
     for outer, inner in _MUST_EXCEED[template]:
+        if v.get(outer) is None or (not inner.startswith("gears.") and v.get(inner) is None):
+            continue  # a key of the other motor drive (_check_motor_drive)
         if inner.startswith("gears."):
             gear = design.gears.get(inner[len("gears."):])
             if gear is None or gear.hub.bore_diameter <= 0:

@@ -133,6 +133,13 @@ TABLES: tuple[Table, ...] = (
           "Helical dual pinions that slide axially into mesh, one leading the other so that the helix opens "
           "backlash (the C-axis). The lead (backlash + preload windup) / tan(helix) must fit in the "
           "engagement length.", Example("c_axis.toml", ("engagement",)), sections=("engagement",)),
+    Table("[stages.NAME]", ("stages", "NAME"),
+          "The plain gear stages between the motor and a dual-pinion loop, one table per stage, in order from the "
+          "motor: each stage's driven gear shares a shaft with the next stage's driver, the last driven gear sits on "
+          "the input gear's shaft, the first driver on the motor. They stand with the motor on the preload carriage, "
+          "in levels above its arm; each keeps its backlash (checked against its range) and counts in the ratio and, "
+          "as [stiffness.components] of kind mesh, in the stiffness.",
+          Example("metric_dual_pinion.toml", ("stages.motor", "stages.idler")), sections=("stages",)),
     Table("[layout]", ("layout",),
           "How the build places the gears. A file with [synthesis] and no [layout] is a dual-pinion drive "
           "with every default. A split pinion also needs `centre_distance_*` and the backlash range.",

@@ -14,6 +14,7 @@ section            read and checked by
 [checks]           .checks.checks_settings (declared meshes name gears of the file)
 [stiffness] ...    .stiffness: components, preload, flexures (stress at the travel), springs
                    (solid height, index, installed stress), beam pinion, engagement (lead)
+[stages.*]         .stages.stages, check_stages
 [layout]           .layout.layout_settings, check_layout
 [parts]            .parts.parts_settings, check_parts
 [export]           .export.export_settings
@@ -42,6 +43,7 @@ from geargen.design.gear import GEAR_FIELDS
 from geargen.design.layout import LAYOUT_FIELDS, check_layout, layout_settings
 from geargen.design.parts import TEMPLATE_FIELDS, check_parts, parts_settings
 from geargen.design.schema import Field, Problems
+from geargen.design.stages import STAGE_FIELDS, check_stages, stages
 from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
                                       _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
                                       _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, _SPRING_FIELDS, _SPRING_QUANTITIES,
@@ -105,10 +107,15 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
         roles_read = stiffness is not None or "stiffness" not in sections
         run(engagement_spec_from_table, sections["engagement"], gears if roles_read else None, unit, stiffness)
 
+    settings = None
     if "layout" in sections or "synthesis" in sections:  # a synthesis alone is a dual-pinion layout
         settings = run(layout_settings, design)
         if settings is not None and gears_complete:
             run(check_layout, design, settings)
+    if "stages" in sections and gears_complete:
+        if run(stages, design) is not None:
+            kind = settings["kind"] if settings is not None else None
+            run(check_stages, design, kind)
     if "parts" in sections:
         settings = run(parts_settings, design)
         if settings is not None and gears_complete:
@@ -168,6 +175,8 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
         return [replace(f, required=required, default=0.0) for f in ERROR_FIELDS], []
     if path[:2] == ("stiffness", "components") and len(path) == 3:
         return _COMPONENT_FIELDS, _COMPONENT_QUANTITIES
+    if head == "stages" and len(path) == 2:
+        return STAGE_FIELDS, []
     if head == "parts" and len(path) == 1:
         template = data.get("parts", {}).get("template")
         return (TEMPLATE_FIELDS[template], []) if template in TEMPLATE_FIELDS else None

@@ -205,11 +205,13 @@ def _thin_pair(a: GearSpec, b: GearSpec, backlash: float, centre_distance: float
 
 
 def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: str) -> dict[str, Any]:
-    """The exact ratio from encoder to output: upstream stages (driver, driven teeth; validated on
-    load by :mod:`geargen.design.layout`) times the train."""
+    """The exact ratio from encoder to output: the upstream stages (the gears of ``[stages]``, or
+    ``[layout] upstream_stages`` as driver and driven teeth) times the train."""
     total = Fraction(train_ratio)
     described = []
-    for driver, driven in settings["upstream_stages"]:
+    from geargen.design.stages import stages
+    pairs = [(design.gear(st.driver).teeth, design.gear(st.driven).teeth) for st in stages(design)]
+    for driver, driven in pairs or settings["upstream_stages"]:
         total *= Fraction(driven, driver)
         described.append(f"{driven}/{driver}")
     required = settings["required_ratios"]
@@ -394,6 +396,10 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
                                     *ranges[2], running_backlash(spec, g_out, c), engaged,
                                     "cluster cw" if side == "a" else "cluster ccw", c))
     train = Fraction(g_large.teeth, g_in.teeth) * Fraction(g_out.teeth, g_small.teeth)
+    stage_gears, stage_meshes, stage_notes = _place_stages(design, s, gears, rule)
+    gears += stage_gears
+    meshes += stage_meshes
+    notes += stage_notes
     source = "design" if rule == "as_designed" else f"derived for {rule}-range backlash ([layout] model_backlash)"
     thinning = {g.name: {"source": source} for g in gears}
     if rule != "as_designed":
@@ -406,6 +412,75 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
                   synthesis=run, carriage_x=placement.carriage_x, carriage_travel=s["carriage_travel"],
                   engagement=engagement, axial_shift=shifts, ratio=_ratio_check(design, s, train, "encoder to output"),
                   notes=tuple(notes), settings=s, placement=placement, thinning=thinning)
+
+
+def stage_levels(design, loop_gears) -> float:
+    """Height (mm) where the lowest upstream stage's gears may start: above the input gear, its
+    upper bearing, the preload carriage's arm that holds it and the intermediate shafts' lower
+    bearings standing on the arm; and above the link cover that holds the loop's upper bearings
+    (the stage gears turn over it). ``loop_gears``: the placed loop gears (the carriage hardware
+    of ``[parts]`` sizes the rest)."""
+    from geargen.design.parts import parts_settings
+    from geargen.model.shafts import loop_shafts
+    p = parts_settings(design)
+    for key in ("stage_bearing_width", "input_bearing_width", "carriage_plate_thickness"):
+        if p.get(key) is None:
+            raise DesignError(f"parts.{key}", "missing: the upstream stages stand on the preload carriage's arm",
+                              "a length")
+    gap = p["bearing_clearance"]
+    shafts = loop_shafts(loop_gears, p)
+    z_arm_top = shafts["input"].z_hi + p["carriage_plate_thickness"]
+    z_cover_top = max(shafts[k].z_hi for k in ("output", "cluster_a", "cluster_b")) + p["link_floor"]
+    return max(z_arm_top + p["stage_bearing_width"], z_cover_top) + gap
+
+
+def _place_stages(design: Design, s: dict, loop_gears: list[GearPlacement], rule: str):
+    """The upstream stages (:mod:`geargen.design.stages`) placed: from the input's shaft
+    outwards, each stage's driver at its centre distance in its direction from the driven gear;
+    stacked in levels above the carriage arm, the last stage lowest, a ``bearing_clearance``
+    between levels. Each pair sits in the middle of its play (a stage is not preloaded).
+    Returns (gear placements, meshes, notes)."""
+    from geargen.design.parts import parts_settings
+    from geargen.design.stages import stages
+    stage_list = stages(design)
+    if not stage_list:
+        return [], [], []
+    gap = parts_settings(design)["bearing_clearance"]
+    level = stage_levels(design, loop_gears)
+    centre = next(g for g in loop_gears if g.name == "input").centre
+    gears: list[GearPlacement] = []
+    meshes: list[MeshPlacement] = []
+    notes: list[str] = []
+    for st in reversed(stage_list):
+        driver, driven = design.gear(st.driver), design.gear(st.driven)
+        if rule != "as_designed":
+            driver, driven = _thin_pair(driver, driven, _modelled_backlash(st.backlash_min, st.backlash_max, rule),
+                                        st.centre_distance, f"stages.{st.name}")
+        height = max(driver.face_width, driven.face_width)
+        z_driver = level + (height - driver.face_width) / 2
+        z_driven = level + (height - driven.face_width) / 2
+        driven_centre = centre
+        driver_centre = (centre[0] + st.centre_distance * math.cos(st.direction),
+                         centre[1] + st.centre_distance * math.sin(st.direction))
+        # the driver's tooth 0 points at the driven gear, which shows it a tooth space: the middle
+        # of the play, in the level's lowest plane (carried to each gear's own face by its helix)
+        r_driver = st.direction + math.pi - section_rotation(driver, level - z_driver)
+        r_driven = st.direction + math.pi / driven.teeth - section_rotation(driven, level - z_driven)
+        group = f"stage_{st.name}"
+        gears.append(GearPlacement(st.driven, driven, driven_centre, z_driven, r_driven, group, ("stage_driven",)))
+        gears.append(GearPlacement(st.driver, driver, driver_centre, z_driver, r_driver, group, ("stage_driver",)))
+        lo = max(z_driver, z_driven)
+        hi = min(z_driver + driver.face_width, z_driven + driven.face_width)
+        meshes.append(MeshPlacement(f"stage_{st.name}", st.driver, driver, st.driven, driven, (lo + hi) / 2,
+                                    st.backlash_min, st.backlash_max,
+                                    running_backlash(driver, driven, st.centre_distance), True, "", st.centre_distance))
+        if rule != "as_designed":
+            notes.append(f"stage {st.name}: thinning derived for {rule}-range backlash: {st.driver} "
+                         f"{driver.thinning / LENGTH_SUFFIXES[design.length_unit]:.6g}, {st.driven} "
+                         f"{driven.thinning / LENGTH_SUFFIXES[design.length_unit]:.6g} {design.length_unit}")
+        centre = driver_centre
+        level += height + gap
+    return gears, meshes, notes
 
 
 def running_backlash(a: GearSpec, b: GearSpec, centre_distance: float) -> float:

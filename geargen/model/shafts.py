@@ -11,6 +11,7 @@ Frame as :mod:`geargen.model.layout` (mm, z along the gear axes). A bearing is a
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -103,12 +104,14 @@ def _mid(placed, gear) -> float:
     return (z0 + z1) / 2
 
 
-def robot_joint_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
-    """The robot joint's shafts (Fig. 10): each cluster's, the output's and the input's, with two
-    bearings each a ``bearing_clearance`` beyond the faces of the gears they carry. ``parts``:
-    the ``[parts]`` settings (:func:`geargen.design.parts.parts_settings`)."""
+def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
+    """The robot joint's loop shafts (Fig. 10) from its placed loop ``gears``
+    (:class:`~geargen.model.layout.GearPlacement`): each cluster's, the output's and the
+    input's, with two bearings each a ``bearing_clearance`` beyond the faces of the gears they
+    carry. ``parts``: the ``[parts]`` settings (:func:`geargen.design.parts.parts_settings`)."""
     gap = parts["bearing_clearance"]
-    by = {p.name: p for p in layout.gears}
+    gears = list(gears)
+    by = {p.name: p for p in gears}
     out: dict[str, Shaft] = {}
 
     def on_shaft(name, bearing_names, members, width, outer):
@@ -121,18 +124,70 @@ def robot_joint_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
         return Shaft(name, tuple(members[0].centre), lower.z, upper.z + width, diameter, (lower, upper), loads)
 
     for side in ("a", "b"):
-        members = [p for p in layout.gears if p.group == f"cluster_{side}"]
+        members = [p for p in gears if p.group == f"cluster_{side}"]
         out[f"cluster_{side}"] = on_shaft(f"cluster_shaft_{side}", (f"cluster_bearing_lower_{side}",
                                                                     f"cluster_bearing_upper_{side}"), members,
                                           parts["cluster_bearing_width"], parts["cluster_bearing_outer_diameter"])
     out["output"] = on_shaft("output_shaft", ("output_bearing_lower", "output_bearing_upper"), [by["output"]],
                              parts["output_bearing_width"], parts["output_bearing_outer_diameter"])
-    shaft = on_shaft("input_shaft", ("input_bearing_lower", "input_bearing_upper"), [by["input"]],
-                     parts["input_bearing_width"], parts["input_bearing_outer_diameter"])
-    # the input shaft runs on to the bevel gear, whose heel is input_shaft_to_bevel above the input's mid-face
-    bevel_heel = shaft.loads["input"] + parts["input_shaft_to_bevel"]
-    out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, shaft.z_hi, shaft.diameter, shaft.bearings,
-                         {**shaft.loads, "bevel_gear": bevel_heel})
+    out["input"] = on_shaft("input_shaft", ("input_bearing_lower", "input_bearing_upper"), [by["input"]],
+                            parts["input_bearing_width"], parts["input_bearing_outer_diameter"])
+    return out
+
+
+def robot_joint_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
+    """The robot joint's shafts (Fig. 10): the loop's (:func:`loop_shafts`), the input's running
+    on to the gear that drives it (the bevel gear, or the last of the [stages]), and the stage
+    shafts (:func:`stage_shafts`)."""
+    out = loop_shafts(layout.gears, parts)
+    shaft = out["input"]
+    from geargen.design.stages import stages
+    stage_list = stages(layout.design)
+    if not stage_list:
+        # the input shaft runs on to the bevel gear, whose heel is input_shaft_to_bevel above the input's mid-face
+        bevel_heel = shaft.loads["input"] + parts["input_shaft_to_bevel"]
+        out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, shaft.z_hi, shaft.diameter, shaft.bearings,
+                             {**shaft.loads, "bevel_gear": bevel_heel})
+        return out
+    # the input shaft runs up through the carriage arm to the last stage's driven gear
+    last = layout.gear(stage_list[-1].driven)
+    if not math.isclose(_bore(last.spec), shaft.diameter, rel_tol=1e-9):
+        raise DesignError(f"gears.{last.name}.bore_diameter", f"{_bore(last.spec):.6g} mm: the gear sits on the input "
+                          "gear's shaft", f"the input's bore, {shaft.diameter:.6g} mm")
+    out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, last.height[1], shaft.diameter, shaft.bearings,
+                         {**shaft.loads, last.name: _mid(last, last.spec)})
+    out.update(stage_shafts(layout, parts, stage_list))
+    return out
+
+
+def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str, Shaft]:
+    """The shafts between the upstream stages (:mod:`geargen.design.stages`): each carries one
+    stage's driven gear and the next stage's driver, from its lower bearing standing on the
+    carriage arm to its upper bearing under the bridge over the highest stage."""
+    gap, width, outer = parts["bearing_clearance"], parts["stage_bearing_width"], parts["stage_bearing_outer_diameter"]
+    by = {p.name: p for p in layout.gears}
+    loop = [p for p in layout.gears if not p.group.startswith("stage_")]
+    z_lower = loop_shafts(loop, parts)["input"].z_hi + parts["carriage_plate_thickness"]  # on the carriage arm
+    top = max(by[g].height[1] for st in stage_list for g in (st.driver, st.driven))
+    z_upper = top + gap
+    out: dict[str, Shaft] = {}
+    for i, (st, nxt) in enumerate(zip(stage_list, stage_list[1:]), start=1):
+        members = [by[st.driven], by[nxt.driver]]
+        bores = {_bore(m.spec) for m in members}
+        if len(bores) != 1:
+            raise DesignError(f"gears.{nxt.driver}.bore_diameter", f"{_bore(members[1].spec):.6g} mm: it shares a shaft "
+                              f"with {st.driven}", f"{_bore(members[0].spec):.6g} mm, the same bore")
+        diameter = bores.pop()
+        if not diameter > 0:
+            raise DesignError(f"gears.{st.driven}.bore_diameter", "missing: the gear sits on a stage shaft", "> 0")
+        if not outer > diameter:
+            raise DesignError("parts.stage_bearing_outer_diameter", f"not larger than the stage shaft ({diameter:.6g} mm)",
+                              f"> {diameter:.6g} mm")
+        bearings = (Bearing(f"stage_bearing_lower_{i}", z_lower, width, diameter, outer),
+                    Bearing(f"stage_bearing_upper_{i}", z_upper, width, diameter, outer))
+        loads = {m.name: _mid(m, m.spec) for m in members}
+        out[f"stage_{i}"] = Shaft(f"stage_shaft_{i}", tuple(members[0].centre), z_lower, z_upper + width, diameter,
+                                  bearings, loads)
     return out
 
 

@@ -1,0 +1,148 @@
+"""The ``[stages.NAME]`` tables: the gear stages between the motor and the anti-backlash loop.
+
+A dual-pinion drive's loop (input, two clusters, output) is driven through any number of plain
+stages. Each table names the stage's two gears (tables of ``[gears]``); the tables are read in
+the order written, from the motor to the loop::
+
+    [stages.motor]                    # on the motor shaft
+    driver = "motor_pinion"
+    driven = "idler_gear"
+    circumferential_backlash_min_mm = 0.04
+    circumferential_backlash_max_mm = 0.12
+
+    [stages.idler]                    # its driven gear sits on the input gear's shaft
+    driver = "idler_pinion"           # on one shaft with the previous stage's driven gear
+    driven = "input_drive_gear"
+    centre_distance_mm = 30.05        # default: the standard centre distance
+    direction_deg = 0                 # where the driver's shaft lies, seen from the driven one
+
+Each stage's driven gear shares a shaft with the next stage's driver; the last driven gear
+shares the input gear's shaft, the first driver is on the motor. Outside the preloaded loop a
+stage keeps its backlash: its range is checked like any mesh, and its ratio and stiffness count
+from the encoder (on the motor) to the output.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from fractions import Fraction
+from typing import Any
+
+from geargen.design.schema import Field, read_table
+from geargen.errors import DesignError
+from geargen.units import LENGTH_SUFFIXES
+
+STAGE_FIELDS = [
+    Field("driver", "string", help="the gear table of the stage's driving gear (the first stage's: on the motor)"),
+    Field("driven", "string", help="the gear table of the stage's driven gear (the last stage's: on the input "
+                                   "gear's shaft)"),
+    Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="operating centre distance of the pair (default: the standard one, (z1 + z2) m_t / 2)"),
+    Field("direction", "angle", required=False, default=0.0, minimum=-2 * math.pi, maximum=2 * math.pi,
+          help="direction of the driver's shaft from the driven gear's, from +x (away from the output) towards +y"),
+    Field("circumferential_backlash_min", "length", minimum=0.0,
+          help="smallest backlash of the pair (circumferential, at the reference circles)"),
+    Field("circumferential_backlash_max", "length", minimum=0.0,
+          help="largest backlash of the pair (circumferential, at the reference circles)"),
+]
+
+
+@dataclass(frozen=True)
+class Stage:
+    """One upstream stage (mm, rad): its gears by name, where it runs, its backlash range."""
+
+    name: str
+    driver: str
+    driven: str
+    centre_distance: float  # operating
+    standard_centre_distance: float
+    direction: float
+    backlash_min: float
+    backlash_max: float
+
+    def ratio(self, design) -> Fraction:
+        """Driver speed over driven speed."""
+        return Fraction(design.gears[self.driven].teeth, design.gears[self.driver].teeth)
+
+
+def stages(design) -> tuple[Stage, ...]:
+    """The design's upstream stages, from the motor to the loop (empty without ``[stages]``)."""
+    table = design.section("stages")
+    if not isinstance(table, dict):
+        raise DesignError("stages", "expected tables [stages.NAME]")
+    out = []
+    used: dict[str, str] = {}
+    for name, data in table.items():
+        where = f"stages.{name}"
+        if not isinstance(data, dict):
+            raise DesignError(where, "expected a table")
+        v = read_table(data, STAGE_FIELDS, where)
+        gears = []
+        for role in ("driver", "driven"):
+            gear = v[role]
+            if gear not in design.gears:
+                raise DesignError(f"{where}.{role}", f"no gear named {gear!r} in the design", ", ".join(design.gears))
+            if gear in ("input", "cluster_large", "cluster_small", "output"):
+                raise DesignError(f"{where}.{role}", f"{gear!r} is a gear of the anti-backlash loop",
+                                  "a gear table of its own for each stage gear")
+            if gear in used:
+                raise DesignError(f"{where}.{role}", f"{gear!r} is already the {used[gear]}", "a gear in one stage only")
+            used[gear] = f"{role} of stages.{name}"
+            gears.append(design.gears[gear])
+        a, b = gears
+        if not (math.isclose(a.module, b.module, rel_tol=1e-9)
+                and math.isclose(a.pressure_angle, b.pressure_angle, rel_tol=1e-9)
+                and math.isclose(a.helix_angle, b.helix_angle, abs_tol=1e-12)):
+            raise DesignError(f"{where}.driven", f"{v['driver']!r} and {v['driven']!r} cannot mesh: module, pressure "
+                              "angle and helix angle must match", "a pair cut by one tool")
+        if a.is_helical and a.hand == b.hand:
+            raise DesignError(f"{where}.driven", f"{v['driver']!r} and {v['driven']!r} have the same hand", "opposite hands")
+        standard = (a.teeth + b.teeth) * a.transverse_module / 2
+        cd = v["centre_distance"] if v["centre_distance"] is not None else standard
+        unit = design.length_unit
+        k = LENGTH_SUFFIXES[unit]
+        if not v["circumferential_backlash_min"] <= v["circumferential_backlash_max"]:
+            raise DesignError(f"{where}.circumferential_backlash_min_{v['_units']['circumferential_backlash_min']}",
+                              f"{v['circumferential_backlash_min'] / k:.6g} {unit} is above the maximum",
+                              f"<= {v['circumferential_backlash_max'] / k:.6g} {unit}")
+        if not abs(cd - standard) < 0.5 * a.module:
+            raise DesignError(f"{where}.centre_distance_{v['_units'].get('centre_distance', unit)}",
+                              f"{cd / k:.6g} {unit} is far from the standard {standard / k:.6g} {unit}",
+                              f"within half a module of it ({(standard - 0.5 * a.module) / k:.6g} to "
+                              f"{(standard + 0.5 * a.module) / k:.6g} {unit}; profile shifts are the gears' own)")
+        out.append(Stage(name, v["driver"], v["driven"], cd, standard, v["direction"],
+                         v["circumferential_backlash_min"], v["circumferential_backlash_max"]))
+    if out and design.section("layout").get("upstream_stages"):
+        raise DesignError("layout.upstream_stages", "the [stages] tables already give the stages before the input",
+                          "one of them")
+    return tuple(out)
+
+
+def upstream_ratio(design, stage_list: tuple[Stage, ...]) -> Fraction:
+    """Motor speed over the input gear's speed."""
+    total = Fraction(1)
+    for s in stage_list:
+        total *= s.ratio(design)
+    return total
+
+
+def shaft_speeds(design, stage_list: tuple[Stage, ...], input_speed: float) -> dict[str, float]:
+    """Each stage gear's speed (over the output's, given the input's ``input_speed``): the last
+    stage's driven gear turns with the input, each driver with the next-higher driven gear."""
+    speeds: dict[str, float] = {}
+    speed = input_speed
+    for s in reversed(stage_list):
+        speeds[s.driven] = speed
+        speed *= float(s.ratio(design))
+        speeds[s.driver] = speed
+    return speeds
+
+
+def check_stages(design, layout_kind: str) -> None:
+    """Stages drive the input gear of a dual-pinion loop."""
+    if design.section("stages") and layout_kind != "dual_pinion":
+        raise DesignError("stages", "stages drive the input gear of a dual-pinion drive", "a [synthesis] drive")
+
+
+__all__ = ["STAGE_FIELDS", "Stage", "stages", "upstream_ratio", "shaft_speeds", "check_stages"]
