@@ -1,4 +1,4 @@
-"""Session fixtures shared by the test folders: the three assemblies, each built once per session."""
+"""Session fixtures shared by the test folders: the shipped assemblies, each built once per session."""
 
 import contextlib
 import io
@@ -8,7 +8,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 ASSEMBLY_DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
-                    "split_pinion": ROOT / "assemblies/split_pinion.toml"}
+                    "split_pinion": ROOT / "assemblies/split_pinion.toml",
+                    "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml"}
 
 
 class BuiltAssemblies:
@@ -54,5 +55,5 @@ class BuiltAssemblies:
 
 @pytest.fixture(scope="session")
 def built_assemblies(tmp_path_factory) -> BuiltAssemblies:
-    """The three assemblies built once per session (:class:`BuiltAssemblies`)."""
+    """The shipped assemblies built once per session (:class:`BuiltAssemblies`)."""
     return BuiltAssemblies(tmp_path_factory.mktemp("assemblies"))

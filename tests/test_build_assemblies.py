@@ -1,9 +1,9 @@
-"""The three assemblies build end to end; the exports re-import as valid named solids, no parts
+"""The shipped assemblies build end to end; the exports re-import as valid named solids, no parts
 overlap except the listed contacts, and the teeth of every mesh, measured on sections of the
 exported solids at mid-face, have backlash in the design's range.
 
 Every test here needs the CAD kernel (marked slow; CI runs them): the builds are shared by the
-whole session (tests/conftest.py), so the file costs about three builds and the re-imports."""
+whole session (tests/conftest.py), so the file costs one build per assembly and the re-imports."""
 
 import json
 import math
@@ -20,7 +20,8 @@ pytestmark = pytest.mark.slow
 
 ROOT = Path(__file__).resolve().parents[1]
 DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
-           "split_pinion": ROOT / "assemblies/split_pinion.toml"}
+           "split_pinion": ROOT / "assemblies/split_pinion.toml",
+           "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml"}  # a design file only: no Python of its own
 
 # Each assembly is built once per session, through geargen.cli.main (the README's command), by the
 # ``built_assemblies`` fixture of tests/conftest.py; its re-imported STEP files are read once too.
@@ -177,8 +178,9 @@ def test_c_axis_disengaged_slides_the_pinions_out_with_the_lead():
     assert all(e["axial_clearance"] > 0 for e in checks.meshes if e.get("status") == "disengaged")
 
 
-def test_split_pinion_inner_shaft_keeps_the_preload_band():
-    s = pl.stiffness(pl.place(pl.load(DESIGNS["split_pinion"])))
+@pytest.mark.parametrize("name", ["split_pinion", "split_pinion_inch"])
+def test_split_pinion_inner_shaft_keeps_the_preload_band(name):
+    s = pl.stiffness(pl.place(pl.load(DESIGNS[name])))
     v = s.headline
     assert s.drive_type == "type1" and s.preload_ok
     assert v.relative < 0.2 and not v.unloads  # sized for a 20 % band at the anticipated loop error
