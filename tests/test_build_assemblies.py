@@ -21,7 +21,9 @@ pytestmark = pytest.mark.slow
 ROOT = Path(__file__).resolve().parents[1]
 DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
            "split_pinion": ROOT / "assemblies/split_pinion.toml",
-           "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml"}  # a design file only: no Python of its own
+           # design files only: no Python of their own
+           "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
+           "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml"}
 
 # Each assembly is built once per session, through geargen.cli.main (the README's command), by the
 # ``built_assemblies`` fixture of tests/conftest.py; its re-imported STEP files are read once too.
