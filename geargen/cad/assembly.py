@@ -6,8 +6,8 @@ line towards the input, +z the gear axes). Per-part STEP/STL files are written i
 frame, so they overlay into the assembly (each part's placement is in the manifest; its inverse
 brings the part back to its own machining frame).
 
-The non-gear parts of the three case studies are laid out by :func:`robot_joint_parts`,
-:func:`c_axis_parts` and :func:`split_pinion_parts` from the ``[parts]`` section (sizes the paper
+The non-gear parts are laid out by the drive's hardware (:func:`carriage_parts`,
+:func:`beam_pinion_parts`, :func:`split_pinion_parts`) from the ``[parts]`` section (sizes the paper
 does not give, written in the design file) and the stiffness step's sections (blade flexures,
 springs, beam-spring pinion, shafts). Every contact that is meant to be there (a shaft in its
 bore, a bearing on its shaft, a spring on its seat) is listed in ``intended_contacts``; the
@@ -34,8 +34,7 @@ from OCP.TopoDS import TopoDS_Shape
 from geargen.cad import parts as P
 from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
 from geargen.design.cluster import ClusterSpec
-from geargen.design.parts import TEMPLATE_FIELDS
-from geargen.design.schema import read_table
+from geargen.design.parts import parts_settings
 from geargen.errors import BuildError, DesignError
 
 # ---------------------------------------------------------------- colours (r, g, b, alpha)
@@ -176,30 +175,19 @@ def _gear_text(spec) -> str:
 
 # ---------------------------------------------------------------- the [parts] section
 
-def parts_settings(design) -> dict[str, Any]:
-    """``[parts]`` validated for its template (internal units, mm)."""
-    table = design.section("parts")
-    if not table:
-        raise DesignError("parts", "missing", "a [parts] table with template = 'robot_joint' | 'c_axis' | 'split_pinion'")
-    template = table.get("template")
-    if template not in TEMPLATE_FIELDS:
-        raise DesignError("parts.template", f"{template!r} is not a valid choice",
-                          ", ".join(map(repr, TEMPLATE_FIELDS)))
-    return read_table(table, TEMPLATE_FIELDS[template], "parts")
-
-
 def non_gear_parts(layout, stiffness=None) -> PartSet:
-    """The non-gear parts of ``layout``'s design, placed, with the intended contacts."""
+    """The non-gear parts of ``layout``'s design, placed, with the intended contacts: built by
+    the drive's hardware (:func:`geargen.design.parts.hardware_of`)."""
     s = parts_settings(layout.design)
-    builder = {"robot_joint": robot_joint_parts, "c_axis": c_axis_parts, "split_pinion": split_pinion_parts}
-    return builder[s["template"]](layout, s, stiffness)
+    builder = {"carriage": carriage_parts, "beam_pinion": beam_pinion_parts, "split_pinion": split_pinion_parts}
+    return builder[s["hardware"]](layout, s, stiffness)
 
 
 # ---------------------------------------------------------------- helpers
 
 
 class _Parts:
-    """Collects parts and contacts while a template lays them out."""
+    """Collects parts and contacts while the hardware lays them out."""
 
     def __init__(self):
         self.parts: list[PlacedPart] = []
@@ -251,7 +239,7 @@ def _bore(spec) -> float:
 # ---------------------------------------------------------------- robot joint (Fig. 10)
 
 
-def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
+def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     """Motor, bevel pair, carriage on three blade flexures, two preload springs, shafts, bearings,
     and the link as a reference tray, around the gears of the robot joint (Fig. 10).
 
@@ -284,8 +272,8 @@ def robot_joint_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     x_in = inp.centre[0]
 
     # --- shafts and bearings, where the model places them (geargen.model.shafts: the stiffness reads the same)
-    from geargen.model.shafts import robot_joint_shafts
-    placed_shafts = robot_joint_shafts(layout, s)
+    from geargen.model.shafts import carriage_shafts
+    placed_shafts = carriage_shafts(layout, s)
 
     def shaft_with_bearings(sh, group, what, gears, contact):
         part = out.add(sh.name, out.shared(P.shaft, sh.diameter, sh.length), _at(*sh.centre, sh.z_lo), group, "shaft",
@@ -554,7 +542,7 @@ def _stage_drive(out: _Parts, layout, s: Mapping[str, Any], placed_shafts, stage
 # ---------------------------------------------------------------- C-axis (Fig. 12)
 
 
-def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
+def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     """Spindle stub, the long beam-spring pinion with its shaft, bearings, coupling, gearhead and
     motor, and per dual pinion: its shaft, two bearings (in a sliding quill), the frictional
     preload interface (a locking ring clamping the large gear to the shaft), a stop collar with a
@@ -631,8 +619,8 @@ def c_axis_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     out.touch(motor, gearhead, "motor on the gearhead")
 
     # --- each dual pinion
-    from geargen.model.shafts import c_axis_shafts
-    placed_shafts = c_axis_shafts(layout, s)
+    from geargen.model.shafts import beam_pinion_shafts
+    placed_shafts = beam_pinion_shafts(layout, s)
     d_cs = s["cluster_shaft_diameter"]
     cw, cod, lug, block = s["stop_collar_width"], s["stop_collar_outer_diameter"], s["stop_lug_length"], s["stop_block_size"]
     z_floor = math.inf
@@ -1169,6 +1157,6 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
 
 
 __all__ = ["COLOURS", "transform", "location", "PlacedPart", "PartSet", "gear_parts", "parts_settings",
-           "non_gear_parts", "robot_joint_parts", "c_axis_parts", "split_pinion_parts", "all_parts", "assembly_document",
+           "non_gear_parts", "carriage_parts", "beam_pinion_parts", "split_pinion_parts", "all_parts", "assembly_document",
            "write_assembly_step", "export_parts", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
            "pairwise_overlaps"]

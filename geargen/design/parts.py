@@ -1,10 +1,15 @@
-"""The ``[parts]`` section: the non-gear parts of the assembly model, one key table per template.
+"""The ``[parts]`` section: the sizes of the non-gear parts, one key table per kind of hardware.
 
-``template`` picks the assembly ("robot_joint", "c_axis", "split_pinion"); every other key is
-a size of one part (bearings, shafts, motor, housing, ...), a length with its unit suffix.
-:func:`parts_settings` reads the table for its template; :func:`check_parts` adds the relations
-between sizes that no part can violate (a bearing wider than its bore, a shaft thinner than the
-motor it comes out of, walls that leave room inside) and the sections each template reads.
+The drive the file describes decides its hardware (:func:`hardware_of`): a split pinion
+(``[layout] kind = "split_pinion"``) its concentric shafts, collar and housing plates; a
+dual pinion whose long input pinion is a beam spring (``[beam_pinion]``) its sliding dual
+pinions, stops and housing; any other dual pinion a preload carriage on blade flexures
+(``[flexures]``, ``[springs]``) with its motor, driving the input through a bevel pair or the
+``[stages]``. Every key is a size of one part (bearings, shafts, motor, housing, ...), a length
+with its unit suffix. :func:`parts_settings` reads the table for the drive's hardware;
+:func:`check_parts` adds the relations between sizes that no part can violate (a bearing wider
+than its bore, a shaft thinner than the motor it comes out of, walls that leave room inside) and
+the sections the hardware is sized from.
 """
 
 from __future__ import annotations
@@ -17,19 +22,26 @@ from geargen.design.stiffness import SPRING_ENDS, spring_spec_from_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
 
-TEMPLATES = ("robot_joint", "c_axis", "split_pinion")
+HARDWARE = ("carriage", "beam_pinion", "split_pinion")
+
+
+def hardware_of(data) -> str:
+    """The hardware of a drive (one of :data:`HARDWARE`): from a loaded design or the parsed file."""
+    sections = data.sections if hasattr(data, "sections") else data
+    if (sections.get("layout") or {}).get("kind") == "split_pinion":
+        return "split_pinion"
+    return "beam_pinion" if sections.get("beam_pinion") else "carriage"
 
 
 def _L(name, **kw):
     return Field(name, "length", minimum=0.0, exclusive_minimum=True, **kw)
 
 
-_COMMON = [Field("template", "string", choices=TEMPLATES, help="the assembly whose non-gear parts are built"),
-           Field("bearing_clearance", "length", required=False, default=0.5, minimum=0.0,
+_COMMON = [Field("bearing_clearance", "length", required=False, default=0.5, minimum=0.0,
                  help="axial gap between a bearing and the gear face next to it")]
 
-TEMPLATE_FIELDS: dict[str, list[Field]] = {
-    "robot_joint": _COMMON + [
+HARDWARE_FIELDS: dict[str, list[Field]] = {
+    "carriage": _COMMON + [
         Field("bevel_pinion_teeth", "integer", required=False, default=None, minimum=4, maximum=500,
               help="teeth of the bevel pinion on the motor shaft (the motor drives the input through a bevel pair; "
                    "a design with [stages] drives it through those instead)"),
@@ -77,7 +89,7 @@ TEMPLATE_FIELDS: dict[str, list[Field]] = {
         Field("spring_model", "string", required=False, default="helix", choices=("helix", "envelope"),
               help="preload springs modelled as a swept wire (helix) or as a tube (envelope)"),
     ],
-    "c_axis": _COMMON + [
+    "beam_pinion": _COMMON + [
         _L("spindle_diameter",
            help="lathe spindle through the bull gear (reference; the model takes the output's bore)"),
         _L("spindle_length", help="length of the spindle stub"),
@@ -133,13 +145,13 @@ TEMPLATE_FIELDS: dict[str, list[Field]] = {
 #: (larger, smaller): ring-shaped parts whose outer diameter must exceed the diameter inside them.
 #: A name "gears.NAME" stands for that gear's bore (the shaft it sits on).
 _MUST_EXCEED: dict[str, tuple[tuple[str, str], ...]] = {
-    "robot_joint": (("cluster_bearing_outer_diameter", "gears.cluster_small"),
+    "carriage": (("cluster_bearing_outer_diameter", "gears.cluster_small"),
                     ("input_bearing_outer_diameter", "gears.input"),
                     ("output_bearing_outer_diameter", "gears.output"),
                     ("motor_body_diameter", "motor_shaft_diameter"),
                     ("motor_flange", "motor_shaft_diameter"),
                     ("link_radius", "link_wall")),
-    "c_axis": (("input_bearing_outer_diameter", "input_shaft_diameter"),
+    "beam_pinion": (("input_bearing_outer_diameter", "input_shaft_diameter"),
                ("cluster_bearing_outer_diameter", "cluster_shaft_diameter"),
                ("friction_ring_outer_diameter", "cluster_shaft_diameter"),
                ("stop_collar_outer_diameter", "cluster_shaft_diameter")),
@@ -148,23 +160,21 @@ _MUST_EXCEED: dict[str, tuple[tuple[str, str], ...]] = {
                      ("output_bearing_outer_diameter", "output_shaft_diameter")),
 }
 
-#: the sections each template's parts are sized from
+#: the sections each hardware's parts are sized from
 _NEEDS: dict[str, tuple[str, ...]] = {
-    "robot_joint": ("flexures", "springs"),
-    "c_axis": ("beam_pinion", "engagement"),
+    "carriage": ("flexures", "springs"),
+    "beam_pinion": ("beam_pinion", "engagement"),
     "split_pinion": (),
 }
 
 
 def parts_settings(design) -> dict[str, Any]:
-    """``[parts]`` read for its template (internal units, mm)."""
+    """``[parts]`` read for the drive's hardware (internal units, mm; ``"hardware"`` says which)."""
     table = design.section("parts")
+    hardware = hardware_of(design)
     if not table:
-        raise DesignError("parts", "missing", "a [parts] table with template = " + " | ".join(map(repr, TEMPLATES)))
-    template = table.get("template")
-    if not isinstance(template, str) or template not in TEMPLATE_FIELDS:
-        raise DesignError("parts.template", f"{template!r} is not a valid choice", ", ".join(map(repr, TEMPLATES)))
-    return read_table(table, TEMPLATE_FIELDS[template], "parts")
+        raise DesignError("parts", "missing", f"a [parts] table sizing the {hardware} hardware")
+    return {**read_table(table, HARDWARE_FIELDS[hardware], "parts"), "hardware": hardware}
 
 
 def _key(v: dict[str, Any], name: str) -> str:
@@ -215,19 +225,19 @@ def _check_motor_drive(design, v: dict[str, Any]) -> None:
 
 
 def check_parts(design, v: dict[str, Any]) -> None:
-    """The relations between part sizes, and the sections the template reads (see the module docstring)."""
-    template = v["template"]
+    """The relations between part sizes, and the sections the hardware reads (see the module docstring)."""
+    hardware = v["hardware"]
     unit = design.length_unit
     scale = LENGTH_SUFFIXES[unit]
-    for section in _NEEDS[template]:
+    for section in _NEEDS[hardware]:
         if not design.section(section):
-            raise DesignError(section, f"missing: the {template} parts are sized from it", f"a [{section}] table")
-    if template == "robot_joint":
+            raise DesignError(section, f"missing: the {hardware} parts are sized from it", f"a [{section}] table")
+    if hardware == "carriage":
         if "installed_length" not in {k.rsplit("_", 1)[0] for k in design.section("springs")}:
             raise DesignError("springs.installed_length", "missing: the model shows the springs at their installed "
                               "length", " or ".join(f"installed_length_{u}" for u in LENGTH_SUFFIXES))
         _check_motor_drive(design, v)
-    if template == "robot_joint" and not design.section("stages"):
+    if hardware == "carriage" and not design.section("stages"):
         module = v["bevel_module"] or MM_PER_IN / v["bevel_diametral_pitch_per_in"]
         # the face must stay short of the cone's apex: cone distance r_p / sin(gamma_p), shaft angle 90 deg
         zp, zg = v["bevel_pinion_teeth"], v["bevel_gear_teeth"]
@@ -235,9 +245,9 @@ def check_parts(design, v: dict[str, Any]) -> None:
         if not v["bevel_face_width"] < cone:
             raise DesignError(_key(v, "bevel_face_width"), f"{v['bevel_face_width'] / scale:.6g} {unit} reaches past "
                               "the bevel pair's cone apex", f"< {cone / scale:.6g} {unit} (the cone distance)")
-    if template == "robot_joint" and v["spring_model"] == "helix":
+    if hardware == "carriage" and v["spring_model"] == "helix":
         _check_swept_spring(design, unit)
-    for outer, inner in _MUST_EXCEED[template]:
+    for outer, inner in _MUST_EXCEED[hardware]:
         if v.get(outer) is None or (not inner.startswith("gears.") and v.get(inner) is None):
             continue  # a key of the other motor drive (_check_motor_drive)
         if inner.startswith("gears."):
@@ -252,4 +262,4 @@ def check_parts(design, v: dict[str, Any]) -> None:
                               f"({d_inner / scale:.6g} {unit})", f"> {d_inner / scale:.6g} {unit}")
 
 
-__all__ = ["TEMPLATES", "TEMPLATE_FIELDS", "parts_settings", "check_parts"]
+__all__ = ["HARDWARE", "HARDWARE_FIELDS", "hardware_of", "parts_settings", "check_parts"]

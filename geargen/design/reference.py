@@ -144,23 +144,26 @@ TABLES: tuple[Table, ...] = (
           "How the build places the gears. A file with [synthesis] and no [layout] is a dual-pinion drive "
           "with every default. A split pinion also needs `centre_distance_*` and the backlash range.",
           Example("split_pinion.toml", ("layout",)), sections=("layout",)),
-    Table("[parts], template \"robot_joint\"", ("parts",),
-          "The non-gear parts of the assembly model, sized by one template. The robot joint's (Fig. 10): "
-          "bevel pair and servo motor, bearings, the preload carriage on its [flexures] pushed by its "
-          "[springs], the link around it all. Every length is required unless a default is shown.",
-          Example("robot_joint.toml", ("parts",)), context={"parts": {"template": "robot_joint"}},
-          sections=("parts",)),
-    Table("[parts], template \"c_axis\"", ("parts",),
-          "The machine-tool C-axis (Fig. 12): spindle stub, the long beam-spring pinion with its gearhead and "
-          "motor, the sliding dual pinions in their quills with the locking rings and travel stops, the "
-          "housing plate. Sized from [beam_pinion] and [engagement].",
-          Example("c_axis.toml", ("parts",)), context={"parts": {"template": "c_axis"}}),
-    Table("[parts], template \"split_pinion\"", ("parts",),
+    Table("[parts] of a dual pinion on a preload carriage", ("parts",),
+          "The sizes of the non-gear parts; the drive the file describes decides which (a dual pinion with "
+          "[flexures] and [springs]: this table). The robot joint's layout (Fig. 10): the preload carriage on "
+          "its [flexures] pushed by its [springs], carrying the input and the motor, which drives the input "
+          "through a bevel pair (the bevel keys) or through the [stages] standing on the carriage (the stage "
+          "keys); the loop's shafts and bearings, the link and its cover around it all. Every length is "
+          "required unless a default is shown or it belongs to the other motor drive.",
+          Example("robot_joint.toml", ("parts",)), sections=("parts",)),
+    Table("[parts] of a dual pinion with a beam-spring pinion", ("parts",),
+          "A dual pinion whose long input pinion is the preload spring ([beam_pinion]; the machine-tool "
+          "C-axis, Fig. 12): spindle stub, the long pinion with its gearhead and motor, the sliding dual "
+          "pinions in their quills with the locking rings and travel stops, the housing. Sized from "
+          "[beam_pinion] and [engagement].",
+          Example("c_axis.toml", ("parts",)), context={"beam_pinion": {"span_mm": 1}}),
+    Table("[parts] of a split pinion", ("parts",),
           "The concentric split pinion (Fig. 8): hollow shaft and its bearing pair, the clamp collar (the "
           "frictional interface), the inner shaft from the collar through the compliant pinion to its outboard "
           "bearing (the stiffness model reads the same shafts), the output shaft and bearings, the housing's "
           "bottom and top plates that hold every bearing.", Example("split_pinion.toml", ("parts",)),
-          context={"parts": {"template": "split_pinion"}}),
+          context={"layout": {"kind": "split_pinion"}}),
     Table("[export]", ("export",), "Tolerances of the exported files and the rendered view. Every key is optional.",
           Example("robot_joint.toml", ("export",)), sections=("export",)),
 )

@@ -226,7 +226,6 @@ _DUAL_PINION = Starter(
             Key("required_ratios", [30], "motor to output 2 x 15 = 30:1"),
         ), "The assembly model (geargen build): placement, the other parts, exports."),
         Table("parts", (
-            Key("template", "robot_joint"),
             Key("bearing_clearance_mm", 0.5),
             Key("bevel_pinion_teeth", 15),
             Key("bevel_gear_teeth", 30),
@@ -373,7 +372,6 @@ _SPLIT_PINION = Starter(
             Key("circumferential_backlash_max_mm", 0.08),
         ), "The assembly model (geargen build): placement, the other parts, exports."),
         Table("parts", (
-            Key("template", "split_pinion"),
             Key("bearing_clearance_mm", 0.5),
             Key("hollow_shaft_outer_diameter_mm", 12),
             Key("hollow_shaft_length_mm", 58, "the inner shaft then twists over 60 mm, collar to narrow pinion"),

@@ -41,7 +41,7 @@ from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings, 
 from geargen.design.export import EXPORT_FIELDS, export_settings
 from geargen.design.gear import GEAR_FIELDS
 from geargen.design.layout import LAYOUT_FIELDS, check_layout, layout_settings
-from geargen.design.parts import TEMPLATE_FIELDS, check_parts, parts_settings
+from geargen.design.parts import HARDWARE_FIELDS, check_parts, hardware_of, parts_settings
 from geargen.design.schema import Field, Problems
 from geargen.design.stages import STAGE_FIELDS, check_stages, stages
 from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
@@ -178,8 +178,7 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
     if head == "stages" and len(path) == 2:
         return STAGE_FIELDS, []
     if head == "parts" and len(path) == 1:
-        template = data.get("parts", {}).get("template")
-        return (TEMPLATE_FIELDS[template], []) if template in TEMPLATE_FIELDS else None
+        return HARDWARE_FIELDS[hardware_of(data)], []
     if len(path) == 1 and head in _TABLE_SCHEMA:
         return _TABLE_SCHEMA[head]
     return None

@@ -135,7 +135,7 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
     return out
 
 
-def robot_joint_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
+def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     """The robot joint's shafts (Fig. 10): the loop's (:func:`loop_shafts`), the input's running
     on to the gear that drives it (the bevel gear, or the last of the [stages]), and the stage
     shafts (:func:`stage_shafts`)."""
@@ -191,7 +191,7 @@ def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str,
     return out
 
 
-def c_axis_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
+def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     """The C-axis dual pinions' shafts (Fig. 12): each slides in a quill whose two bearings,
     ``cluster_bearing_spacing`` apart, sit a ``bearing_clearance`` below the large gear; the
     large gear and, beyond it, the pinion meshing the bull gear are overhung above them. The
@@ -260,19 +260,19 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     return {"hollow": hollow, "inner": inner}
 
 
-#: the shafts of each parts template that the model places
-SHAFT_BUILDERS = {"robot_joint": robot_joint_shafts, "c_axis": c_axis_shafts, "split_pinion": split_pinion_shafts}
+#: the shafts of each kind of hardware that the model places
+SHAFT_BUILDERS = {"carriage": carriage_shafts, "beam_pinion": beam_pinion_shafts, "split_pinion": split_pinion_shafts}
 
 
 def shafts(layout: Layout) -> dict[str, Shaft]:
-    """The placed shafts of the resolved drive (empty where its parts template has none here yet)."""
+    """The placed shafts of the resolved drive (empty without a [parts] table)."""
     from geargen.design.parts import parts_settings
     if not layout.design.section("parts"):
         return {}
     parts = parts_settings(layout.design)
-    builder = SHAFT_BUILDERS.get(parts["template"])
+    builder = SHAFT_BUILDERS.get(parts["hardware"])
     return builder(layout, parts) if builder is not None else {}
 
 
-__all__ = ["Bearing", "Shaft", "robot_joint_shafts", "c_axis_shafts", "split_pinion_shafts", "shafts",
+__all__ = ["Bearing", "Shaft", "carriage_shafts", "beam_pinion_shafts", "split_pinion_shafts", "shafts",
            "SHAFT_BUILDERS"]

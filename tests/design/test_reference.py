@@ -21,7 +21,7 @@ from geargen.design.checks import CHECKS_FIELDS
 from geargen.design.export import EXPORT_FIELDS
 from geargen.design.gear import GEAR_FIELDS, gear_from_table
 from geargen.design.layout import LAYOUT_FIELDS
-from geargen.design.parts import TEMPLATE_FIELDS
+from geargen.design.parts import HARDWARE_FIELDS
 from geargen.design.schema import DesignErrors, close_keys, read_table, typo_distance
 from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
                                       _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
@@ -53,7 +53,9 @@ SCHEMA = {
     "[beam_pinion]": _BEAM_FIELDS + _BEAM_QUANTITIES,
     "[engagement]": _ENGAGEMENT_FIELDS,
     "[layout]": LAYOUT_FIELDS,
-    **{f'[parts], template "{t}"': fields for t, fields in TEMPLATE_FIELDS.items()},
+    "[parts] of a dual pinion on a preload carriage": HARDWARE_FIELDS["carriage"],
+    "[parts] of a dual pinion with a beam-spring pinion": HARDWARE_FIELDS["beam_pinion"],
+    "[parts] of a split pinion": HARDWARE_FIELDS["split_pinion"],
     "[export]": EXPORT_FIELDS,
 }
 
@@ -122,7 +124,7 @@ def test_the_error_fields_keep_their_order():
     ("[springs]", "shear_modulus", True, "> 0", "79.3 GPa"),
     ("[export]", "stl_angular_tolerance", True, "> 0 deg", "0.5 rad"),  # 0.5 rad is 28.6479 deg
     ("[export]", "stl_chordal_tolerance", True, "> 0 mm", "0.005 mm"),
-    ("[parts], template \"robot_joint\"", "bearing_clearance", True, ">= 0 mm", "0.5 mm"),
+    ("[parts] of a dual pinion on a preload carriage", "bearing_clearance", True, ">= 0 mm", "0.5 mm"),
     ("[errors.GEAR]", "tooth_to_tooth_tir", True, ">= 0 mm", "required"),
     ("[layout]", "upstream_stages", False, "", "[]"),
     ("[checks]", "require_backlash", False, "", "true"),
