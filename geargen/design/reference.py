@@ -145,8 +145,10 @@ TABLES: tuple[Table, ...] = (
           sections=("parts",)),
     Table("[parts], template \"c_axis\"", ("parts",),
           "The machine-tool C-axis (Fig. 12): spindle stub, the long beam-spring pinion with its gearhead and "
-          "motor, the sliding dual pinions in their quills with the locking rings and travel stops, the "
-          "housing plate. Sized from [beam_pinion] and [engagement].",
+          "motor, the dual pinions with their locking rings and locknuts, each on two bearings in a quill that "
+          "slides in the housing block, its lug between the travel stops under the block; the drive column on "
+          "the block with the plates that seat the long pinion's bearings and carry gearhead and motor. Sized "
+          "from [beam_pinion] and [engagement].",
           Example("c_axis.toml", ("parts",)), context={"parts": {"template": "c_axis"}}),
     Table("[parts], template \"split_pinion\"", ("parts",),
           "The concentric split pinion (Fig. 8): hollow shaft and its bearing pair, the clamp collar (the "
