@@ -55,6 +55,7 @@ COLOURS: dict[str, tuple[float, float, float, float]] = {
     "stop": (0.80, 0.20, 0.20, 1.0),
     "friction": (0.85, 0.35, 0.10, 1.0),
     "housing": (0.62, 0.64, 0.60, 0.35),
+    "quill": (0.50, 0.54, 0.60, 1.0),
 }
 
 
@@ -544,15 +545,19 @@ def _stage_drive(out: _Parts, layout, s: Mapping[str, Any], placed_shafts, stage
 
 def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     """Spindle stub, the long beam-spring pinion with its shaft, bearings, coupling, gearhead and
-    motor, and per dual pinion: its shaft, two bearings (in a sliding quill), the frictional
-    preload interface (a locking ring clamping the large gear to the shaft), a stop collar with a
-    lug and the engaged and retracted travel stops; the housing plate as a reference body.
+    motor, and per dual pinion: its shaft, two bearings in a sliding quill, the frictional preload
+    interface (a locking ring clamping the large gear to the shaft), a locknut on the bearings'
+    inner rings, and the engaged and retracted travel stops that meet the quill's lug; the
+    housing block the quills slide in (the ground), and the drive column bolted to it that
+    carries the long pinion's bearing plates and the motor plate.
 
     Heights: the pinions engage the bull gear moving along +z and slide out along -z, away from
     it (the large gears stay in mesh with the long pinion). The long pinion's bearings are
     symmetric about its engaged mesh (zero slope there) at the span the beam-spring helper
     sized (``StiffnessSummary.beam``); the stops come from the engagement helper (lead and
-    strokes, ``StiffnessSummary.engagement``).
+    strokes, ``StiffnessSummary.engagement``). The housing block's top is a clearance below the
+    lowest a large gear comes (the trailer retracted); the quills reach down through it to their
+    lugs, which play between the stops under it.
     """
     from geargen.core.stiffness import stiffness_summary
 
@@ -596,11 +601,13 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     ishaft = out.add("input_shaft", out.shared(P.shaft, d_ish, ish_hi - ish_lo), _at(x_in, 0, ish_lo), "drive", "shaft",
                      description=f"long pinion's shaft d {d_ish:.4g} mm, bearing span {span:.4g} mm (beam spring)")
     out.touch(ishaft, "input", "pinion teeth on their shaft")
+    input_bearings = []
     for where, z in (("lower", z_lo_bearing), ("upper", z_hi_bearing)):
         b = out.add(f"input_bearing_{where}", out.shared(P.bearing, d_ish, ibod, ibw), _at(x_in, 0, z), "drive", "bearing",
                     description=f"{d_ish:.4g} x {ibod:.4g} x {ibw:.4g} mm, simple support of the beam at "
                                 f"z = {z + ibw / 2:.5g} mm")
         out.touch(b, ishaft, "bearing on its shaft")
+        input_bearings.append((b, z))
     # coupling (half on the shaft), gearhead (the exact upstream ratio), motor with the encoder
     zc = ish_hi - cl / 2
     coupling = out.add("coupling", P.cylinder(s["coupling_diameter"], cl, d_ish), _at(x_in, 0, zc), "drive", "shaft",
@@ -611,28 +618,45 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     gearhead = out.add("gearhead", P.cylinder(s["gearhead_diameter"], s["gearhead_length"]), _at(x_in, 0, zg), "drive",
                        "motor", description=f"planetary gearhead {stages}")
     out.touch(gearhead, coupling, "gearhead output in the coupling")
-    zm = zg + s["gearhead_length"]
-    stub = 1.0
+    # gearhead and motor both bolt to the motor plate, from below and above; the motor's shaft reaches
+    # through the plate into the gearhead's input. Each is a joint between the plate (its housing) and
+    # what it turns: the gearhead the coupling, the motor the gearhead's input
+    z_plate = zg + s["gearhead_length"]
+    t_plate = s["motor_plate_thickness"]
+    d_stub = d_ish * 0.5
     motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
-                                                 s["motor_flange_thickness"], d_ish * 0.5, stub),
-                    _at(x_in, 0, zm + stub), "drive", "motor", description="servo motor with the C-axis encoder")
-    out.touch(motor, gearhead, "motor on the gearhead")
+                                                 s["motor_flange_thickness"], d_stub, t_plate),
+                    _at(x_in, 0, z_plate + t_plate), "drive", "motor", description="servo motor with the C-axis encoder")
+    out.touch(motor, gearhead, "motor shaft in the gearhead's input")
 
-    # --- each dual pinion
+    # --- the housing block's heights: its top a clearance below the lowest a large gear comes (the
+    # trailer retracted), its thickness the length of the bores the quills slide in
+    strokes = {"a": -eng.leader_retracted_stop, "b": -eng.trailer_retracted_stop}
+    clusters = {side: (g[f"cluster_small_{side}"], g[f"cluster_large_{side}"],
+                       layout.axial_shift.get(f"cluster_{side}", 0.0)) for side in ("a", "b")}
+    z_block_top = min(large.height[0] - shift - strokes[side] for side, (_, large, shift) in clusters.items()) - gap
+    z_block = z_block_top - s["housing_thickness"]
+
+    # --- each dual pinion: shaft, bearings, quill, stops
     from geargen.model.shafts import beam_pinion_shafts
     placed_shafts = beam_pinion_shafts(layout, s)
     d_cs = s["cluster_shaft_diameter"]
-    cw, cod, lug, block = s["stop_collar_width"], s["stop_collar_outer_diameter"], s["stop_lug_length"], s["stop_block_size"]
-    z_floor = math.inf
-    stops = []
-    for side in ("a", "b"):
-        small, large = g[f"cluster_small_{side}"], g[f"cluster_large_{side}"]
+    d_quill = s["quill_outer_diameter"]
+    lug, lug_w, lug_t, block = s["stop_lug_length"], s["stop_lug_width"], s["stop_lug_thickness"], s["stop_block_size"]
+    hole = max(ibod, 2 * inp.gears[0].tip_radius) + 2 * gap  # the long pinion (and its bearing) pass the block
+    for small, _, _ in clusters.values():
+        wall = math.hypot(small.centre[0] - x_in, small.centre[1]) - (d_quill + hole) / 2
+        if not wall > 0:
+            raise DesignError("parts.quill_outer_diameter_mm", f"{d_quill:.6g} mm: the quill's bore in the housing "
+                              f"block runs {-wall:.4g} mm into the hole the long pinion passes",
+                              f"< {d_quill + 2 * wall:.6g} mm")
+    quills = []
+    for side, (small, large, shift) in clusters.items():
         for part in (small, large):
             if not math.isclose(_bore(part.spec), d_cs):
                 raise DesignError("parts.cluster_shaft_diameter_mm", f"must equal the bore of {part.name}",
                                   f"{_bore(part.spec):.6g} mm")
         x, y = small.centre
-        shift = layout.axial_shift.get(f"cluster_{side}", 0.0)
         zl1 = large.height[1]
         ring_w = s["friction_ring_width"]
         ring = out.add(f"friction_ring_{side}", P.cylinder(s["friction_ring_outer_diameter"], ring_w, d_cs),
@@ -642,7 +666,6 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         out.touch(ring, large.name, "frictional interface on the large gear")
         # shaft and quill bearings where the model places them (the stiffness reads the same)
         sh = placed_shafts[f"cluster_{side}"]
-        z_collar = sh.z_lo
         shaft = out.add(sh.name, out.shared(P.shaft, sh.diameter, sh.length), _at(x, y, sh.z_lo), f"cluster_{side}",
                         "shaft", description=f"dual pinion shaft d {sh.diameter:.4g} mm (slides with the pinion)")
         for part in (small.name, large.name, ring):
@@ -652,55 +675,103 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
                              f"cluster_{side}", "bearing",
                              description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm in the sliding quill")
             out.touch(ring_b, shaft, "bearing on its shaft")
-        # stop collar at the shaft's lower end, its lug pointing radially out from the spindle
-        lug_w = min(cw, cod / 2)
-        collar = P.fuse([P.cylinder(cod, cw, d_cs),
-                         P.box_between((cod / 2 - 0.2 * cod, -lug_w / 2, 0), (cod / 2 + lug, lug_w / 2, cw))],
-                        "stop collar")
-        direction = math.atan2(y, x)
-        cname = out.add(f"stop_collar_{side}", collar, transform((x, y, z_collar), (0, 0, 1), direction),
-                        f"cluster_{side}", "stop", description="stop collar with lug")
-        out.touch(cname, shaft, "collar on the shaft")
-        # the fixed stops, placed from the engaged position (shift 0) and the helper's strokes; built
-        # once the housing plate's height (under the lower of the two retracted stops) is known
-        z_collar_engaged = z_collar - shift
-        retract = -(eng.leader_retracted_stop if side == "a" else eng.trailer_retracted_stop)
-        r_lug = math.hypot(x, y) + cod / 2 + lug / 2
-        stops.append((side, cname, shift, direction, r_lug, z_collar_engaged + cw, z_collar_engaged - retract))
-        z_floor = min(z_floor, z_collar_engaged - retract - block)
-    for side, cname, shift, direction, r_lug, z_engaged, z_retracted in stops:
-        bx, by = r_lug * math.cos(direction), r_lug * math.sin(direction)
-        place = transform((bx, by, 0.0), (0, 0, 1), direction)
-        # the engaged stop: a block over the lug on a column beside the lug's path, down to the plate
-        bracket = P.fuse([P.box_between((-block / 2, -block / 2, z_engaged), (block / 2, block / 2, z_engaged + block)),
-                          P.box_between((-block / 2, block / 2, z_floor), (block / 2, block, z_engaged + block))],
-                         "engaged stop")
-        en = out.add(f"travel_stop_engaged_{side}", bracket, place, "housing", "stop",
-                     description="engaged travel stop on its column: the pinion fully in mesh")
-        # the retracted stop: a block standing on the plate up to where the lug stops
-        re = out.add(f"travel_stop_retracted_{side}", P.box_between((-block / 2, -block / 2, z_floor),
-                                                                     (block / 2, block / 2, z_retracted)),
-                     place, "housing", "stop",
-                     description=f"retracted travel stop, stroke {z_engaged - cw - z_retracted:.4g} mm"
+        lower, upper = sh.supports()
+        nut = out.add(f"locknut_{side}", out.shared(P.cylinder, s["locknut_outer_diameter"], s["locknut_width"], d_cs),
+                      _at(x, y, sh.z_lo), f"cluster_{side}", "shaft",
+                      description="locknut clamping the bearings' inner rings to the shaft")
+        out.touch(nut, shaft, "locknut on the shaft")
+        out.touch(nut, lower.name, "locknut against the lower bearing's inner ring")
+        # The quill holds both outer rings (a shoulder between them, the shaft and inner rings clear
+        # by the ring relief) and slides in the housing block without turning. The travel stops act
+        # on a lug of the quill: stop and lug are both stationary in rotation, so the stops need no
+        # thrust bearing (a lug on the turning shaft would rub on them at speed, or need a collar and
+        # a thrust bearing to hold the quill); the angular-contact pair already carries the axial
+        # force between shaft and quill.
+        z_top = upper.z + upper.width
+        z_lug_engaged = z_block - block - lug_t  # the lug's lower face, engaged: its top on the engaged stop
+        z_bottom = z_lug_engaged + shift
+        relief = P.ring_relief(lower.outer_diameter, d_cs)
+        steps = [(0.0, lower.z + lower.width - z_bottom, lower.outer_diameter),
+                 (lower.z + lower.width - z_bottom, upper.z - z_bottom, relief),
+                 (upper.z - z_bottom, z_top - z_bottom, upper.outer_diameter)]
+        # the lug points away from the long pinion: its stops stay clear of the drive line
+        direction = math.atan2(y, x - x_in)
+        quill = out.add(f"quill_{side}", P.quill(d_quill, z_top - z_bottom, [st for st in steps if st[1] > st[0]], lug,
+                                                 lug_w, lug_t),
+                        transform((x, y, z_bottom), (0, 0, 1), direction), f"cluster_{side}", "quill",
+                        description=f"quill {d_quill:.4g} mm, {z_top - z_bottom:.4g} mm long: holds both bearings' "
+                                    "outer rings, slides in the housing block, its lug between the travel stops")
+        for b in (lower, upper):
+            out.touch(quill, b.name, "outer ring seated in the quill")
+        out.touch(quill, "housing", "quill in the housing block's bore (a sliding fit; the quill does not turn)")
+        out.stationary.append(quill)
+        quills.append((x, y))
+        out.dims.setdefault("quills", {})[side] = dict(z=(z_bottom, z_top), steps=steps, direction=direction)
+        # the stops, in the quill's frame at the engaged position: the engaged stop a block under the
+        # housing over the lug's end; the retracted stop a foot under the lug on a column just beyond
+        # the lug's end, up to the housing
+        place = transform((x, y, 0.0), (0, 0, 1), direction)
+        x_end = d_quill / 2 + lug
+        engaged_stop = out.add(f"travel_stop_engaged_{side}",
+                     P.box_between((x_end - block, -block / 2, z_block - block), (x_end, block / 2, z_block)),
+                     place, "housing", "stop", description="engaged travel stop under the housing block: the "
+                                                           "pinion fully in mesh")
+        z_foot = z_lug_engaged - strokes[side]
+        foot_and_column = P.fuse([P.box_between((x_end - block, -block / 2, z_foot - block),
+                                                (x_end + gap + block, block / 2, z_foot)),
+                                  P.box_between((x_end + gap, -block / 2, z_foot), (x_end + gap + block, block / 2, z_block))],
+                                 "retracted stop")
+        retracted_stop = out.add(f"travel_stop_retracted_{side}", foot_and_column, place, "housing", "stop",
+                     description=f"retracted travel stop, stroke {strokes[side]:.4g} mm"
                                  + (f" (the trailing pinion: {eng.lead:.4g} mm lead further)" if side == "b" else ""))
-        out.touch(cname, en if shift == 0 else re, "pinion against its travel stop")
-        out.touch(re, "housing", "stop fixed to the housing plate")
-        out.touch(en, "housing", "stop column fixed to the housing plate")
-    # --- the housing plate under the stops (reference body)
-    t = s["housing_thickness"]
+        out.touch(quill, engaged_stop if shift == 0 else retracted_stop, "the quill's lug against its travel stop")
+        out.touch(engaged_stop, "housing", "stop bolted under the housing block")
+        out.touch(retracted_stop, "housing", "stop's column bolted under the housing block")
+        out.stationary += [engaged_stop, retracted_stop]
+
+    # --- the drive column beside the long pinion, a clearance beyond the drive line and the large gears
+    width, thick = s["drive_column_width"], s["drive_column_thickness"]
     margin = s["housing_margin"]
-    xs = [g[f"cluster_small_{k}"].centre[0] for k in "ab"] + [x_in]
-    ys = [g[f"cluster_small_{k}"].centre[1] for k in "ab"]
-    lo = (min(xs) - margin, min(ys) - margin, z_floor - t)
-    hi = (max(xs) + margin, max(ys) + margin, z_floor)
-    # the long pinion's shaft passes the plate through a clearance hole
-    holes = [(x_in, 0.0, ibod + 2 * gap)] if z_lo_bearing < lo[2] < ish_hi else []
-    plate = P.plate_with_holes(hi[0] - lo[0], hi[1] - lo[1], t, holes, corner=lo)
+    reach = max(s["coupling_diameter"], s["gearhead_diameter"], ibod, 2 * inp.gears[0].tip_radius) / 2 + gap
+    large_reach = max(large.centre[0] + large.gears[0].tip_radius for _, large, _ in clusters.values()) + gap
+    x_col = max(x_in + width / 2, x_in + hole / 2 + margin, x_in + reach, large_reach)
+    column = out.add("drive_column", P.box_between((x_col, -width / 2, z_lo_bearing), (x_col + thick, width / 2, z_plate)),
+                     np.eye(4), "housing", "housing",
+                     description="column bolted to the housing block: carries the long pinion's bearing plates and "
+                                 "the motor plate")
+    out.touch(column, "housing", "column bolted to the housing block's end")
+    # the long pinion's bearings seated in plates on the column (each as thick as its bearing)
+    for b, z in input_bearings:
+        plate = out.add(f"{b}_plate", P.plate_with_holes(x_col - (x_in - width / 2), width, ibw, [(x_in, 0.0, ibod)],
+                                                         corner=(x_in - width / 2, -width / 2, z)),
+                        np.eye(4), "housing", "housing", description="bearing plate on the drive column")
+        out.touch(plate, b, "outer ring seated in the plate")
+        out.touch(plate, column, "plate bolted to the column")
+        out.stationary.append(plate)
+    flange = max(width, s["motor_flange"], s["gearhead_diameter"])
+    x_plate1 = max(x_col + thick, x_in + flange / 2)
+    mplate = out.add("motor_plate", P.plate_with_holes(x_plate1 - (x_in - flange / 2), flange, t_plate,
+                                                       [(x_in, 0.0, d_stub + 2 * gap)],
+                                                       corner=(x_in - flange / 2, -flange / 2, z_plate)),
+                     np.eye(4), "housing", "housing", description="motor plate on the drive column: the gearhead hangs "
+                                                                  "under it, the motor stands on it")
+    out.touch(mplate, column, "plate on the column's top")
+    out.touch(gearhead, mplate, "gearhead housing bolted under the motor plate")
+    out.touch(motor, mplate, "motor flange bolted on the motor plate")
+    out.stationary += [column, mplate]
+
+    # --- the housing block: the quills' bores, the long pinion's hole, over the stops; it ends at the column
+    holes = [(x, y, d_quill) for x, y in quills] + [(x_in, 0.0, hole)]
+    boxes = [((hx - hd / 2, hy - hd / 2), (hx + hd / 2, hy + hd / 2)) for hx, hy, hd in holes]
+    boxes += [P.bounding_box(p.world()) for p in out.parts if p.kind == "stop"]
+    lo = (float(min(b[0][0] for b in boxes)) - margin, float(min(b[0][1] for b in boxes)) - margin, z_block)
+    hi = (x_col, float(max(b[1][1] for b in boxes)) + margin, z_block_top)
+    housing = P.plate_with_holes(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], holes, corner=lo)
     out.ground.append("housing")
-    out.stationary += [p.name for p in out.parts if p.kind == "stop" and p.group == "housing"]
-    out.add("housing", plate, np.eye(4), "housing", "housing", "reference",
-            "C-axis housing plate (reference body); the retracted stops stand on it")
-    out.dims.update(beam=beam, engagement=eng, z_mesh=z_mesh, housing=dict(lo=lo, hi=hi))
+    out.add("housing", housing, np.eye(4), "housing", "housing",
+            description="C-axis housing block, bolted to the headstock: the quills slide in its bores, the stops hang under it")
+    out.dims.update(beam=beam, engagement=eng, z_mesh=z_mesh, housing=dict(lo=lo, hi=hi),
+                    drive_column=dict(x=x_col, width=width, thickness=thick, z=(z_lo_bearing, z_plate)))
     out.notes.append(f"long pinion: bearing span {span:.4g} mm symmetric about the engaged mesh at z = {z_mesh:.4g} mm "
                      f"(zero slope there), beam stiffness {beam.stiffness:.4g} N/mm; static deflection at the preload "
                      f"{beam.deflection * 1e3:.3g} um (the model shows the straight beam)")

@@ -484,6 +484,49 @@ def link_cover_volume(radius: float, wall: float, x_end: float, thickness: float
             + sum(math.pi / 4 * (d * d * depth - rl * rl * (thickness + depth)) for _, _, d, depth, rl in seats))
 
 
+def quill(outer_diameter: float, length: float, bores: list[tuple[float, float, float]], lug_length: float,
+          lug_width: float, lug_thickness: float) -> TopoDS_Shape:
+    """A bearing quill: a non-rotating sleeve of ``outer_diameter`` on +z, z in [0, length], bored
+    in steps ``bores`` ``(z0, z1, diameter)`` (apart, each inside [0, length] and thinner than the
+    sleeve: bearing seats and the shoulders between them), with a lug on +x at its lower end, z in
+    [0, lug_thickness], ``lug_width`` along y, reaching ``lug_length`` beyond the sleeve. The lug
+    grows out of the middle of the wall, so it meets the sleeve in an area, not along an edge.
+
+    Volume ``pi/4 (D^2 L - sum d_i^2 (z1 - z0)) + t (w (R + l) - w x0 / 2 - R^2 asin(w / 2R))``,
+    ``R = D/2``, ``x0 = sqrt(R^2 - w^2/4)``: the lug's box less the part of it inside the sleeve's
+    outer cylinder, for a lug whose root (inside that cylinder) clears the bores."""
+    _positive(outer_diameter=outer_diameter, length=length, lug_length=lug_length, lug_width=lug_width,
+              lug_thickness=lug_thickness)
+    radius = outer_diameter / 2
+    spans = sorted(bores)
+    for (z0, z1, d), following in zip(spans, spans[1:] + [(length, length, 0.0)]):
+        if not (0 <= z0 < z1 <= following[0] and 0 < d < outer_diameter):
+            raise DesignError("bores", f"({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range",
+                              f"apart, inside [0, {length:.6g}] mm, diameters in (0, {outer_diameter:.6g}) mm")
+    if not lug_width < outer_diameter:
+        raise DesignError("lug_width", f"{lug_width:.6g} mm is not narrower than the sleeve", f"< {outer_diameter:.6g} mm")
+    # the lug's root: the middle of the wall around the widest bore at the lug's height
+    widest = max((d for z0, z1, d in spans if z0 < lug_thickness), default=0.0)
+    root = (widest / 2 + radius) / 2
+    # the root's corners inside the outer cylinder: the lug meets the sleeve across its whole section
+    if not math.hypot(root, lug_width / 2) < radius:
+        raise DesignError("lug_width", f"{lug_width:.6g} mm is too wide for the sleeve's wall",
+                          f"< {2 * math.sqrt(radius ** 2 - root ** 2):.6g} mm")
+    solid = _cylinder(radius, length)
+    solid = cut(solid, *[_cylinder(d / 2, z1 - z0, (0.0, 0.0, z0)) for z0, z1, d in spans]) if spans else solid
+    lug = _box(radius + lug_length - root, lug_width, lug_thickness, (root, -lug_width / 2, 0.0))
+    return _single(clean(union(solid, lug)), "quill")
+
+
+def quill_volume(outer_diameter: float, length: float, bores: list[tuple[float, float, float]], lug_length: float,
+                 lug_width: float, lug_thickness: float) -> float:
+    """The closed-form volume of :func:`quill` (mm^3)."""
+    r, w = outer_diameter / 2, lug_width
+    x0 = math.sqrt(r * r - w * w / 4)
+    sleeve = math.pi / 4 * (outer_diameter ** 2 * length - sum(d * d * (z1 - z0) for z0, z1, d in bores))
+    return sleeve + lug_thickness * (w * (r + lug_length) - w * x0 / 2 - r * r * math.asin(w / (2 * r)))
+
+
 def split_collar(bore: float, outer_diameter: float, width: float, slot: float) -> TopoDS_Shape:
     """A clamp collar (the frictional interface of a split pinion): a ring with one radial slot
     of width ``slot`` through the wall on +x, z in [0, width].
@@ -502,4 +545,4 @@ __all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compoun
            "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "BevelPairGeometry",
            "bevel_pair_geometry", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
            "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
-           "link_cover_volume", "ring_relief", "split_collar"]
+           "link_cover_volume", "ring_relief", "quill", "quill_volume", "split_collar"]

@@ -104,10 +104,16 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         _L("friction_ring_outer_diameter",
            help="locking ring clamping the large gear to its shaft (the frictional interface)"),
         _L("friction_ring_width", help="width of the locking ring"),
-        _L("stop_collar_outer_diameter", help="stop collar at the lower end of each dual-pinion shaft"),
-        _L("stop_collar_width", help="width of the stop collar"),
-        _L("stop_lug_length", help="radial length of the collar's lug that meets the travel stops"),
-        _L("stop_block_size", help="side of the cube-shaped travel stops"),
+        _L("locknut_outer_diameter",
+           help="locknut under each dual pinion's lower bearing, clamping the inner rings to the shaft"),
+        _L("locknut_width", help="width of the locknut (the shaft ends at its lower face)"),
+        _L("quill_outer_diameter",
+           help="sleeve that holds a dual pinion's two bearings by their outer rings and slides in the housing "
+                "block's bore (its bore: the bearings' outer diameter)"),
+        _L("stop_lug_length", help="how far the quill's lug, which meets the travel stops, reaches beyond the quill"),
+        _L("stop_lug_width", help="width of the quill's lug"),
+        _L("stop_lug_thickness", help="thickness of the quill's lug along the axis, at the quill's lower end"),
+        _L("stop_block_size", help="side of the square travel stops under the housing block"),
         _L("coupling_diameter", help="coupling between gearhead and long pinion shaft"),
         _L("coupling_length", help="length of the coupling"),
         _L("gearhead_diameter", help="planetary gearhead on the motor"),
@@ -116,8 +122,16 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         _L("motor_body_length", help="servo motor body length"),
         _L("motor_flange", help="side of the motor's square mounting flange"),
         _L("motor_flange_thickness", help="thickness of the motor flange"),
-        _L("housing_thickness", help="thickness of the housing plate the retracted stops stand on"),
-        _L("housing_margin", help="housing plate margin around the pinion centres"),
+        _L("housing_thickness",
+           help="thickness of the housing block: the length of the bores the quills slide in"),
+        _L("housing_margin", help="housing block's wall around the quill bores, the long pinion's hole and the stops"),
+        _L("drive_column_width",
+           help="width of the column beside the long pinion and of the plates on it that seat the long pinion's "
+                "bearings"),
+        _L("drive_column_thickness", help="thickness of that column, away from the long pinion"),
+        _L("motor_plate_thickness",
+           help="plate on the column between gearhead and motor: both bolt to it, the motor's shaft reaches "
+                "through it into the gearhead"),
     ],
     "split_pinion": _COMMON + [
         _L("hollow_shaft_outer_diameter", help="hollow shaft of the stiff path (equal to the stiff pinion's bore)"),
@@ -154,7 +168,10 @@ _MUST_EXCEED: dict[str, tuple[tuple[str, str], ...]] = {
     "beam_pinion": (("input_bearing_outer_diameter", "input_shaft_diameter"),
                ("cluster_bearing_outer_diameter", "cluster_shaft_diameter"),
                ("friction_ring_outer_diameter", "cluster_shaft_diameter"),
-               ("stop_collar_outer_diameter", "cluster_shaft_diameter")),
+               ("locknut_outer_diameter", "cluster_shaft_diameter"),
+               ("cluster_bearing_outer_diameter", "locknut_outer_diameter"),
+               ("quill_outer_diameter", "cluster_bearing_outer_diameter"),
+               ("drive_column_width", "input_bearing_outer_diameter")),
     "split_pinion": (("bearing_outer_diameter", "hollow_shaft_outer_diameter"),
                      ("compliant_bearing_outer_diameter", "gears.pinion_compliant"),
                      ("output_bearing_outer_diameter", "output_shaft_diameter")),
@@ -247,6 +264,13 @@ def check_parts(design, v: dict[str, Any]) -> None:
                               "the bevel pair's cone apex", f"< {cone / scale:.6g} {unit} (the cone distance)")
     if hardware == "carriage" and v["spring_model"] == "helix":
         _check_swept_spring(design, unit)
+    if hardware == "beam_pinion":
+        # the stops stand over the lug's outer end, a stop's side from it: they must clear the quill
+        reach = v["stop_block_size"] + v["bearing_clearance"]
+        if not v["stop_lug_length"] > reach:
+            raise DesignError(_key(v, "stop_lug_length"), f"{v['stop_lug_length'] / scale:.6g} {unit} puts the travel "
+                              "stops against the quill", f"> {reach / scale:.6g} {unit} (stop_block_size + "
+                              "bearing_clearance)")
     for outer, inner in _MUST_EXCEED[hardware]:
         if v.get(outer) is None or (not inner.startswith("gears.") and v.get(inner) is None):
             continue  # a key of the other motor drive (_check_motor_drive)

@@ -154,9 +154,11 @@ TABLES: tuple[Table, ...] = (
           Example("robot_joint.toml", ("parts",)), sections=("parts",)),
     Table("[parts] of a dual pinion with a beam-spring pinion", ("parts",),
           "A dual pinion whose long input pinion is the preload spring ([beam_pinion]; the machine-tool "
-          "C-axis, Fig. 12): spindle stub, the long pinion with its gearhead and motor, the sliding dual "
-          "pinions in their quills with the locking rings and travel stops, the housing. Sized from "
-          "[beam_pinion] and [engagement].",
+          "C-axis, Fig. 12): spindle stub, the long pinion with its gearhead and motor, the dual pinions with "
+          "their locking rings and locknuts, each on two bearings in a quill that slides in the housing block, "
+          "its lug between the travel stops under the block; the drive column on the block with the plates "
+          "that seat the long pinion's bearings and carry gearhead and motor. Sized from [beam_pinion] and "
+          "[engagement].",
           Example("c_axis.toml", ("parts",)), context={"beam_pinion": {"span_mm": 1}}),
     Table("[parts] of a split pinion", ("parts",),
           "The concentric split pinion (Fig. 8): hollow shaft and its bearing pair, the clamp collar (the "

@@ -195,7 +195,7 @@ def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
     """The C-axis dual pinions' shafts (Fig. 12): each slides in a quill whose two bearings,
     ``cluster_bearing_spacing`` apart, sit a ``bearing_clearance`` below the large gear; the
     large gear and, beyond it, the pinion meshing the bull gear are overhung above them. The
-    shaft runs from its stop collar (a clearance below the lower bearing) to the pinion's top."""
+    shaft runs from its locknut (against the lower bearing's inner ring) to the pinion's top."""
     gap = parts["bearing_clearance"]
     width, outer = parts["cluster_bearing_width"], parts["cluster_bearing_outer_diameter"]
     out: dict[str, Shaft] = {}
@@ -204,9 +204,9 @@ def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
         diameter = parts["cluster_shaft_diameter"]
         upper = Bearing(f"cluster_bearing_upper_{side}", large.height[0] - gap - width, width, diameter, outer)
         lower = Bearing(f"cluster_bearing_lower_{side}", upper.z - parts["cluster_bearing_spacing"], width, diameter, outer)
-        z_collar = lower.z - gap - parts["stop_collar_width"]
+        z_nut = lower.z - parts["locknut_width"]
         loads = {g.name: _mid(p, g) for p in (large, small) for g in p.gears}
-        out[f"cluster_{side}"] = Shaft(f"cluster_shaft_{side}", tuple(small.centre), z_collar, small.height[1], diameter,
+        out[f"cluster_{side}"] = Shaft(f"cluster_shaft_{side}", tuple(small.centre), z_nut, small.height[1], diameter,
                                        (lower, upper), loads)
     return out
 

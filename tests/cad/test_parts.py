@@ -116,3 +116,26 @@ def test_link_cover_volume_matches_formula():
     # the rim lies on the tray's inner walls (radius - wall), the bosses hang below the cover
     assert hi[0] == pytest.approx(64.0, abs=1e-6) and lo[0] == pytest.approx(-(50.8 - 3.048), abs=1e-6)
     assert lo[2] == pytest.approx(-0.58, abs=1e-6) and hi[2] == pytest.approx(3.81, abs=1e-6)
+
+
+def test_quill_volume_matches_formula():
+    """The C-axis quill: a sleeve bored to two bearing seats with a shoulder between them, and a lug
+    at its lower end; the lug adds its box less the circular segment inside the sleeve's cylinder."""
+    from geargen.errors import DesignError
+    bores = [(0.0, 100.0, 55.0), (100.0, 117.0, 42.5), (117.0, 130.0, 55.0)]
+    args = (75.0, 130.0, bores, 35.0, 12.0, 12.0)
+    quill = P.quill(*args)
+    assert P.is_valid(quill) and len(P.solids(quill)) == 1
+    assert P.volume(quill) == pytest.approx(P.quill_volume(*args), rel=REL)
+    sleeve = math.pi / 4 * (75.0 ** 2 * 130 - 55.0 ** 2 * 113 - 42.5 ** 2 * 17)
+    r, w, t = 37.5, 12.0, 12.0
+    segment = r * r * math.asin(w / (2 * r)) - math.sqrt(r * r - w * w / 4) * w / 2
+    assert P.volume(quill) - sleeve == pytest.approx((r + 35.0 - math.sqrt(r * r - w * w / 4)) * w * t - segment * t,
+                                                     rel=1e-6)
+    lo, hi = P.bounding_box(quill)
+    assert hi[0] == pytest.approx(r + 35.0, abs=1e-6) and lo[0] == pytest.approx(-r, abs=1e-6)
+    assert lo[2] == pytest.approx(0.0, abs=1e-6) and hi[2] == pytest.approx(130.0, abs=1e-6)
+    with pytest.raises(DesignError):
+        P.quill(75.0, 130.0, [(0.0, 130.0, 80.0)], 35.0, 12.0, 12.0)  # bored through its wall
+    with pytest.raises(DesignError):
+        P.quill(75.0, 130.0, bores, 35.0, 40.0, 12.0)  # a lug wider than the wall can hold
