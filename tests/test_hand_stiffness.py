@@ -96,9 +96,10 @@ def _series(*k: float) -> float:
     return 1.0 / sum(1.0 / x for x in k)
 
 
-def hand_calculation(path: Path) -> dict:
-    """Every component, both paths, the loop and the preload band of the split pinion ``path``
-    (N·mm/rad at the output, N·mm), by hand from its solids and its TOML."""
+def _built(path: Path):
+    """The design ``path`` as its TOML (``data``), its stiffness summary, its built parts by name
+    (gears included), the materials ``E`` and ``G`` (MPa), and ``gear(name)`` -> (teeth, base
+    radius, face width) read from the TOML with this file's own unit factors."""
     from geargen.pipeline import gear_solids, other_parts
 
     data = tomllib.loads(path.read_text())
@@ -106,19 +107,27 @@ def hand_calculation(path: Path) -> dict:
     layout = resolve(design)
     summary, _ = stiffness(design, layout)
     parts = {p.name: p for p in other_parts(layout, gear_solids(layout), summary).parts}
-
-    st, comps = data["stiffness"], data["stiffness"]["components"]
+    st = data["stiffness"]
     E, G = _value(st, "elastic_modulus", STRESS), _value(st, "shear_modulus", STRESS)
     defaults = data.get("gear_defaults", {})
 
     def gear(name):
         table = {**defaults, **data["gears"][name]}
         module = table["module_mm"] if "module_mm" in table else 25.4 / table["diametral_pitch_per_in"]
-        base_radius = table["teeth"] * module / 2 * math.cos(math.radians(table["pressure_angle_deg"]))
-        return table["teeth"], base_radius
+        face = next(table[k] * LENGTH[k.rsplit("_", 1)[1]] for k in table if k.startswith("face_width_"))
+        base = table["teeth"] * module / 2 * math.cos(math.radians(table["pressure_angle_deg"]))
+        return table["teeth"], base, face
 
-    z_out, rb_out = gear("output")
-    z_pin, rb_pin = gear("pinion_stiff")
+    return data, summary, parts, E, G, gear
+
+
+def hand_calculation(path: Path) -> dict:
+    """Every component, both paths, the loop and the preload band of the split pinion ``path``
+    (N·mm/rad at the output, N·mm), by hand from its solids and its TOML."""
+    data, summary, parts, E, G, gear = _built(path)
+    comps = data["stiffness"]["components"]
+    z_out, rb_out, _ = gear("output")
+    z_pin, rb_pin, _ = gear("pinion_stiff")
     assert gear("pinion_compliant")[0] == z_pin  # both pinions mesh the one output at one centre
     R = z_out / z_pin
 
@@ -236,24 +245,8 @@ def carriage_hand_calculation(path: Path) -> dict:
     - common: the input shaft from the input's mid-face to the mid-face of the gear that drives it
       (the bevel gear's heel for the robot joint: its typed distance), each stage mesh at its driven
       gear's speed (teeth ratios counted here), the output hub as typed."""
-    from geargen.pipeline import gear_solids, other_parts
-
-    data = tomllib.loads(path.read_text())
-    design = load_design(path)
-    layout = resolve(design)
-    summary, _ = stiffness(design, layout)
-    parts = {p.name: p for p in other_parts(layout, gear_solids(layout), summary).parts}
-    st, comps = data["stiffness"], data["stiffness"]["components"]
-    E, G = _value(st, "elastic_modulus", STRESS), _value(st, "shear_modulus", STRESS)
-    defaults = data.get("gear_defaults", {})
-
-    def gear(name):
-        table = {**defaults, **data["gears"][name]}
-        module = table["module_mm"] if "module_mm" in table else 25.4 / table["diametral_pitch_per_in"]
-        face = next(table[k] * LENGTH[k.rsplit("_", 1)[1]] for k in table if k.startswith("face_width_"))
-        base = table["teeth"] * module / 2 * math.cos(math.radians(table["pressure_angle_deg"]))
-        return table["teeth"], base, face
-
+    data, summary, parts, E, G, gear = _built(path)
+    comps = data["stiffness"]["components"]
     (z_in, _, w_in), (z_cl, rb_cl, w_cl) = gear("input"), gear("cluster_large")
     (z_cs, rb_cs, w_cs), (z_out, rb_out, w_out) = gear("cluster_small"), gear("output")
     r2 = z_out / z_cs

@@ -273,7 +273,7 @@ def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     x_in = inp.centre[0]
 
     # --- shafts and bearings, where the model places them (geargen.model.shafts: the stiffness reads the same)
-    from geargen.model.shafts import carriage_shafts
+    from geargen.model.shafts import carriage_arm_top, carriage_shafts
     placed_shafts = carriage_shafts(layout, s)
 
     def shaft_with_bearings(sh, group, what, gears, contact):
@@ -301,15 +301,14 @@ def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     from geargen.design.stages import stages
     stage_list = stages(design)
     ish = placed_shafts["input"]
-    ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
-    zi_lo, zi_hi = (b.z for b in ish.bearings)
+    ibod = s["input_bearing_outer_diameter"]
     d_in = _bore(inp.spec)
     t = s["carriage_plate_thickness"]
     half_w = s["carriage_width"] / 2
-    z_plate_top = zi_lo
+    z_plate_top = ish.supports()[0].z  # the lower bearing stands on the base plate
     z_plate_bot = z_plate_top - t
-    z_arm_bot = zi_hi + ibw
-    z_arm_top = z_arm_bot + t
+    z_arm_top = carriage_arm_top(ish, s)
+    z_arm_bot = z_arm_top - t
     r_in = inp.gears[0].tip_radius
     post_x0 = x_in + max(r_in, ibod / 2) + gap
     post_x1 = post_x0 + t
@@ -523,7 +522,7 @@ def _stage_drive(out: _Parts, layout, s: Mapping[str, Any], placed_shafts, stage
     x_b0, x_b1 = min(min(xs) - r_seat, x_col), max(xs) + r_seat
     half = y_col + t
     pieces = [P.box_between((x_b0, -half, z_bridge0), (x_b1, half, z_bridge1))]  # bridge
-    z_plate_top = min(b.z for b in placed_shafts["input"].bearings)
+    z_plate_top = placed_shafts["input"].supports()[0].z
     for sign in (1, -1):
         y0, y1 = sorted((sign * y_col, sign * half))
         pieces.append(P.box_between((x_col, y0, z_plate_top - t), (x_col + t, y1, z_bridge0)))

@@ -119,14 +119,6 @@ def stages(design) -> tuple[Stage, ...]:
     return tuple(out)
 
 
-def upstream_ratio(design, stage_list: tuple[Stage, ...]) -> Fraction:
-    """Motor speed over the input gear's speed."""
-    total = Fraction(1)
-    for s in stage_list:
-        total *= s.ratio(design)
-    return total
-
-
 def shaft_speeds(design, stage_list: tuple[Stage, ...], input_speed: float) -> dict[str, float]:
     """Each stage gear's speed (over the output's, given the input's ``input_speed``): the last
     stage's driven gear turns with the input, each driver with the next-higher driven gear."""
@@ -145,4 +137,4 @@ def check_stages(design, layout_kind: str) -> None:
         raise DesignError("stages", "stages drive the input gear of a dual-pinion drive", "a [synthesis] drive")
 
 
-__all__ = ["STAGE_FIELDS", "Stage", "stages", "upstream_ratio", "shaft_speeds", "check_stages"]
+__all__ = ["STAGE_FIELDS", "Stage", "stages", "shaft_speeds", "check_stages"]

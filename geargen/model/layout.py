@@ -421,7 +421,7 @@ def stage_levels(design, loop_gears) -> float:
     (the stage gears turn over it). ``loop_gears``: the placed loop gears (the carriage hardware
     of ``[parts]`` sizes the rest)."""
     from geargen.design.parts import parts_settings
-    from geargen.model.shafts import loop_shafts
+    from geargen.model.shafts import carriage_arm_top, loop_shafts
     p = parts_settings(design)
     for key in ("stage_bearing_width", "input_bearing_width", "carriage_plate_thickness"):
         if p.get(key) is None:
@@ -429,7 +429,7 @@ def stage_levels(design, loop_gears) -> float:
                               "a length")
     gap = p["bearing_clearance"]
     shafts = loop_shafts(loop_gears, p)
-    z_arm_top = shafts["input"].z_hi + p["carriage_plate_thickness"]
+    z_arm_top = carriage_arm_top(shafts["input"], p)
     z_cover_top = max(shafts[k].z_hi for k in ("output", "cluster_a", "cluster_b")) + p["link_floor"]
     return max(z_arm_top + p["stage_bearing_width"], z_cover_top) + gap
 

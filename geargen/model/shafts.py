@@ -135,6 +135,12 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
     return out
 
 
+def carriage_arm_top(input_shaft: Shaft, parts: dict[str, Any]) -> float:
+    """Top of the preload carriage's arm, which holds the input's upper bearing from above: where
+    the stage shafts' lower bearings stand."""
+    return max(b.z + b.width for b in input_shaft.bearings) + parts["carriage_plate_thickness"]
+
+
 def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     """The robot joint's shafts (Fig. 10): the loop's (:func:`loop_shafts`), the input's running
     on to the gear that drives it (the bevel gear, or the last of the [stages]), and the stage
@@ -167,7 +173,7 @@ def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str,
     gap, width, outer = parts["bearing_clearance"], parts["stage_bearing_width"], parts["stage_bearing_outer_diameter"]
     by = {p.name: p for p in layout.gears}
     loop = [p for p in layout.gears if not p.group.startswith("stage_")]
-    z_lower = loop_shafts(loop, parts)["input"].z_hi + parts["carriage_plate_thickness"]  # on the carriage arm
+    z_lower = carriage_arm_top(loop_shafts(loop, parts)["input"], parts)
     top = max(by[g].height[1] for st in stage_list for g in (st.driver, st.driven))
     z_upper = top + gap
     out: dict[str, Shaft] = {}
