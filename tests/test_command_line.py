@@ -358,10 +358,17 @@ def test_the_next_output_removes_temporaries_of_killed_runs_and_reports_unknown_
 # ---------------------------------------------------------------- builds (slow)
 
 
+def _sigint_as_at_a_terminal() -> None:
+    """In the child before exec: Ctrl-C's default action. A runner that starts the tests as a
+    background job has SIGINT ignored, the build would inherit that and rightly keep ignoring it."""
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def _start_build(design: Path, out: Path, quiet: bool = True, cwd: Path | None = None):
     return subprocess.Popen(_cli("build", design, "--out", out, *(["--quiet"] if quiet else [])),
                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL if quiet else subprocess.PIPE,
-                            text=True, env=_env(), cwd=cwd, start_new_session=True)
+                            text=True, env=_env(), cwd=cwd, start_new_session=True,
+                            preexec_fn=_sigint_as_at_a_terminal)
 
 
 def _snapshot(folder: Path):
