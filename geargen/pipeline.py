@@ -130,7 +130,16 @@ def other_parts(layout: Layout, gears: dict[str, Any] | None = None, stiffness=N
     """Step 4: every non-gear part, placed; returns ``geargen.cad.assembly.PartSet`` holding the
     gears too (first) when ``gears`` are given."""
     from geargen.cad.assembly import non_gear_parts
-    parts = non_gear_parts(layout, stiffness)
+    try:
+        parts = non_gear_parts(layout, stiffness)
+    except DesignError as exc:
+        defaulted = {d.key.split(".")[0] for d in layout.design.defaulted}
+        section = exc.field.split(".")[0]
+        if section not in defaulted:
+            raise
+        raise DesignError(exc.field, f"{exc.problem} (the default hardware: the file gives no [{section}] table, "
+                          "geargen sized it; see geargen check)",
+                          f"{exc.allowed}; or a [{section}] table of your own") from None
     if gears:
         parts.parts = list(gears.values()) + parts.parts
         parts.notes = [n for g in gears.values() for n in g.notes] + parts.notes
@@ -200,10 +209,22 @@ def section_check(layout: Layout, mesh: MeshPlacement, shape1, shape2, planes: i
         shape1 = faces_near(shape1, q1, g2.tip_radius + 2 * g2.module)
         shape2 = faces_near(shape2, q2, g1.tip_radius + 2 * g1.module)
     z1 = section_planes(setup, planes)
-    s1 = sections_from_shape(mesh.gear1, shape1, z1, source=mesh.part1, chord_tolerance=chord_tolerance)
-    s2 = sections_from_shape(mesh.gear2, shape2, z1 - setup.face_offset2, source=mesh.part2,
+    # the planes are in each gear's own face coordinates; a one-piece cluster's small gear stands
+    # above its large gear in the part's frame
+    lift1, lift2 = (_member_height(layout, part, gear) for part, gear in ((mesh.part1, mesh.gear1),
+                                                                           (mesh.part2, mesh.gear2)))
+    s1 = sections_from_shape(mesh.gear1, shape1, z1 + lift1, source=mesh.part1, chord_tolerance=chord_tolerance)
+    s2 = sections_from_shape(mesh.gear2, shape2, z1 - setup.face_offset2 + lift2, source=mesh.part2,
                              chord_tolerance=chord_tolerance)
+    if lift1 or lift2:
+        s1, s2 = (replace(s, planes=s.planes - lift) for s, lift in ((s1, lift1), (s2, lift2)))
     return check_mesh_sections(setup, s1, s2, settings)
+
+
+def _member_height(layout: Layout, part: str, gear) -> float:
+    """Height of ``gear``'s face above its part's own z = 0 (a one-piece cluster's small gear)."""
+    placed = layout.gear(part)
+    return placed.face_z(gear)[0] - placed.z
 
 
 def mesh_checks(layout: Layout, gears: dict[str, Any] | None = None, path2: bool = True) -> CheckOutcome:

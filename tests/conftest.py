@@ -10,7 +10,9 @@ ROOT = Path(__file__).resolve().parents[1]
 ASSEMBLY_DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
                     "split_pinion": ROOT / "assemblies/split_pinion.toml",
                     "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
-                    "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml"}
+                    "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
+                    # gears and a synthesis only: built with the default hardware
+                    "gears_only": ROOT / "tests/data/metric_dual_pinion.toml"}
 
 
 class BuiltAssemblies:

@@ -23,7 +23,9 @@ DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT /
            "split_pinion": ROOT / "assemblies/split_pinion.toml",
            # design files only: no Python of their own
            "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
-           "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml"}
+           "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
+           # gears and a synthesis only: every other part from the default hardware
+           "gears_only": ROOT / "tests/data/metric_dual_pinion.toml"}
 
 # Each assembly is built once per session, through geargen.cli.main (the README's command), by the
 # ``built_assemblies`` fixture of tests/conftest.py; its re-imported STEP files are read once too.
@@ -140,6 +142,10 @@ def test_backlash_measured_on_the_exported_solids_is_in_the_design_range(built_a
         # STEP keeps the geometry to ~1e-15 relative: the exported teeth are the checked ones (1 nm)
         assert lo == pytest.approx(built[mesh.name]["path2_backlash_min"], abs=1e-6), mesh.name
         assert hi == pytest.approx(built[mesh.name]["path2_backlash_max"], abs=1e-6), mesh.name
+        # and the exact path 1's: a section of the wrong gear (a one-piece cluster's large gear
+        # where its small one meshes) lands far from it
+        assert lo == pytest.approx(built[mesh.name]["backlash_min"], abs=tol + 1e-6), mesh.name
+        assert hi == pytest.approx(built[mesh.name]["backlash_max"], abs=tol + 1e-6), mesh.name
         checked += 1
     assert checked == len([x for x in layout.meshes if x.engaged]) >= 2
 

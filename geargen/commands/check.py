@@ -210,6 +210,8 @@ def run(args: argparse.Namespace) -> int:
     result = check_design(design, settings, sections=args.sections or None, exported=args.exported,
                           tolerances=False if args.no_tolerances else None, position=args.position)
     data = result.to_dict(arrays=args.arrays)
+    if design.defaulted:
+        data["defaulted"] = {d.key: {"value": d.value, "why": d.why} for d in design.defaulted}
     if args.plots:
         from geargen.report.checks import write_check_plots
         data["plots"] = [str(p) for p in write_check_plots(result, args.plots)]
@@ -218,6 +220,10 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write("\n")
     else:
         print(table(result))
+        if design.defaulted:
+            print(f"\ndefault hardware ({len(design.defaulted)} values the file does not give; the build's report "
+                  "lists them):")
+            print("\n".join(f"  {d}" for d in design.defaulted))
         if args.json:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
             Path(args.json).write_text(json.dumps(data, indent=2) + "\n")

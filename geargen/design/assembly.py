@@ -79,6 +79,8 @@ class Design:
     preload_method: str | None = None
     path: Path | None = None
     sha256: str = ""
+    #: the values the file did not give and the default hardware chose (geargen.design.hardware_defaults)
+    defaulted: tuple = ()
 
     @property
     def mm_per_unit(self) -> float:
@@ -114,6 +116,10 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
     """
     if not isinstance(data, Mapping):
         raise DesignError("<top>", "expected a table")
+    defaulted: tuple = ()
+    if validate:
+        from geargen.design.hardware_defaults import default_hardware
+        data, defaulted = default_hardware(data)
     problems = Problems()
     unknown = [k for k in data if k not in SECTIONS and k not in TOP_KEYS]
     known = list(TOP_KEYS) + list(SECTIONS)
@@ -177,7 +183,8 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
             else:
                 problems.add(DesignError(k, f"expected a table, got {type(v).__name__}", f"a [{k}] table"))
     design = Design(name=name, length_unit=unit, gears=gears, sections=sections, description=description,
-                    drive_type=drive_type, preload_method=preload, path=path, sha256=sha256)
+                    drive_type=drive_type, preload_method=preload, path=path, sha256=sha256,
+                    defaulted=defaulted)
     if validate:
         from geargen.design.validate import validate_sections  # it reads the sections with their own modules
 

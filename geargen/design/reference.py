@@ -350,6 +350,7 @@ def design_files_markdown(root: Path = ASSEMBLIES) -> str:
            "`(a, b)` exclusive), its default (`required`, or blank: not set, the meaning says what happens), "
            "and its meaning.", ""]
     out += _units_section()
+    out += _default_hardware_section()
     out += ["## Sections", ""]
     for table in TABLES:
         out += [f"### {table.heading}", "", table.intro, "",
@@ -363,6 +364,16 @@ def design_files_markdown(root: Path = ASSEMBLIES) -> str:
         source = f" (from `assemblies/{table.example.file}`)" if table.example else ""
         out += [f"Example{source}:", "", "```toml", text.rstrip("\n"), "```", ""]
     return "\n".join(out)
+
+
+def _default_hardware_section() -> list[str]:
+    """The rules of :mod:`geargen.design.hardware_defaults`, from its docstring."""
+    import inspect
+
+    from geargen.design import hardware_defaults
+    text = inspect.getdoc(hardware_defaults).split("\n\n", 1)[1]
+    return ["## Default hardware", "", text.replace("Pure arithmetic on the parsed file: no CAD kernel.", "").rstrip(),
+            ""]
 
 
 def documented_sections() -> set[str]:

@@ -168,7 +168,8 @@ class Layout:
                                        "CCW from +x about the gear's centre",
                 "loaded_flank_gap": (self.settings.get("loaded_flank_gap") or 0.0) * k,
                 "carriage_x": None if self.carriage_x is None else self.carriage_x * k,
-                "gears": gears, "meshes": meshes, "notes": list(self.notes)}
+                "gears": gears, "meshes": meshes, "notes": list(self.notes),
+                "defaulted": {d.key: d.value for d in self.design.defaulted}}
 
 
 #: the one kind of backlash the resolved model, the checks' design range and the reports share

@@ -168,6 +168,11 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
         r.items(list(result.checks.failures))
     r.h("Warnings")
     r.items(result.warnings)
+    if design.defaulted:
+        r.h("Default hardware")
+        r.p("The design file gives none of these: geargen sized them by its default rules "
+            "(geargen.design.hardware_defaults). Copy a line into the file to change it.")
+        r.table(["key", "value", "why"], [[d.key, d.value, d.why] for d in design.defaulted])
 
     r.h("Assembly")
     r.img("Rendered view of the assembly (reference bodies translucent)", render_png)

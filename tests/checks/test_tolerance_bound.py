@@ -320,9 +320,16 @@ def test_carriage_limits_come_from_the_hardware(designs):
 
 
 def test_a_design_without_carriage_hardware_has_no_limit(designs):
-    lim = carriage_travel_limits(load_design(designs["metric"]))
+    import tomllib
+    from geargen.design.assembly import design_from_dict
+    bare = design_from_dict(tomllib.loads(designs["metric"].read_text()))  # as written, no default hardware
+    lim = carriage_travel_limits(bare)
     assert not lim.limited and "no carriage travel limit" in lim.notes[0]
-    assert carriage_travel_limits(load_design(designs["metric"]), 0.05).high == pytest.approx(0.05)
+    assert carriage_travel_limits(bare, 0.05).high == pytest.approx(0.05)
+    # loaded, the file gets the default hardware: its blades' travel limits the carriage
+    lim = carriage_travel_limits(load_design(designs["metric"]))
+    assert (lim.low, lim.high) == (pytest.approx(-0.5), pytest.approx(0.5))
+    assert lim.low_source == "[flexures] travel 0.5 mm"
 
 
 def test_springs_stroke_limit_fails_the_shipped_budget(designs):
