@@ -81,6 +81,13 @@ LAYOUT_FIELDS = [
 SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
 
 
+def is_split_pinion(data) -> bool:
+    """A loaded design or the parsed file whose ``[layout]`` says ``kind = "split_pinion"`` (the
+    drive decides its hardware and its stiffness train)."""
+    sections = data.sections if hasattr(data, "sections") else data
+    return (sections.get("layout") or {}).get("kind") == "split_pinion"
+
+
 def layout_settings(design) -> dict[str, Any]:
     """``[layout]`` read and checked on its own (internal units); see :func:`check_layout`.
 
@@ -129,6 +136,12 @@ def check_layout(design, v: dict[str, Any]) -> None:
             if v[role] not in design.gears:
                 key = f"layout.{role}" if role in design.section("layout") else f"gears.{v[role]}"
                 raise DesignError(key, f"no gear named {v[role]!r} in the design", ", ".join(design.gears))
+        stiff, compliant = design.gears[v["pinion_stiff"]], design.gears[v["pinion_compliant"]]
+        if compliant.teeth != stiff.teeth:
+            # the pinions turn together: with other teeth they would drive the output at two speeds
+            raise DesignError(f"gears.{v['pinion_compliant']}.teeth", f"{compliant.teeth} teeth, but "
+                              f"gears.{v['pinion_stiff']} has {stiff.teeth}: the two pinions turn together on one "
+                              "axis and mesh one output", f"{stiff.teeth}")
     if v["position"] == "disengaged" and not design.section("engagement"):
         raise DesignError("layout.position", "'disengaged' needs an [engagement] section", "'engaged'")
     if v["model_backlash"] != "as_designed":
@@ -139,5 +152,5 @@ def check_layout(design, v: dict[str, Any]) -> None:
                               f"given for gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
 
 
-__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "SPLIT_PINION_KEYS", "layout_settings",
-           "check_layout"]
+__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "SPLIT_PINION_KEYS", "is_split_pinion",
+           "layout_settings", "check_layout"]
