@@ -51,8 +51,6 @@ LAYOUT_FIELDS = [
                "centred on it)"),
     Field("carriage_travel", "length", required=False, default=None, minimum=0.0,
           help="dual pinion: travel of the preload carriage either way, drawn in the layout and the report"),
-    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0,
-          help="not read by any step yet: the retracted pinions' axial gap is [engagement] clearance_*"),
     # split pinion
     Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="split pinion: centre distance of both pinions from the output"),
@@ -77,6 +75,10 @@ LAYOUT_FIELDS = [
           help="whole-number ratios, encoder to output, that the controller accepts (the build checks one is met)"),
 ]
 
+#: keys [layout] no longer has -> (what they gave, the key that gives it now: its one home); a file
+#: that still has one is told where it went rather than offered the nearest spelling of another key
+MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[engagement] clearance_<unit>")}
+
 #: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])
 SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
 
@@ -94,7 +96,13 @@ def layout_settings(design) -> dict[str, Any]:
     A design without ``[layout]`` (or without its ``kind``) that has a ``[synthesis]`` is a
     dual-pinion drive; ``model_backlash`` left out follows the gear tables: "as_designed" when a
     gear states its thinning, else "mid" (the thinning is then derived, and said so)."""
-    v = read_table(design.section("layout") or {}, LAYOUT_FIELDS, "layout")
+    table = design.section("layout") or {}
+    for key in table:
+        for name, (what, home) in MOVED_KEYS.items():
+            if key == name or (key.startswith(name + "_") and key[len(name) + 1:] in LENGTH_SUFFIXES):
+                raise DesignError(f"layout.{key}", f"no longer a key of [layout]: {what} has one home, {home}",
+                                  f"leave it out; give {home}")
+    v = read_table(table, LAYOUT_FIELDS, "layout")
     if v["kind"] is None:
         if not design.section("synthesis"):
             raise DesignError("layout.kind", "missing", " | ".join(map(repr, LAYOUT_KINDS))
@@ -152,5 +160,5 @@ def check_layout(design, v: dict[str, Any]) -> None:
                               f"given for gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
 
 
-__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "SPLIT_PINION_KEYS", "is_split_pinion",
+__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "MOVED_KEYS", "SPLIT_PINION_KEYS", "is_split_pinion",
            "layout_settings", "check_layout"]

@@ -304,6 +304,16 @@ def test_a_split_pinions_speeds_come_from_its_teeth(tmp_path, capsys):
     assert err.field == "gears.pinion_compliant.teeth" and err.allowed == "20"
 
 
+def test_a_moved_layout_key_names_its_one_home(tmp_path, capsys):
+    # [layout] disengaged_clearance was read by no step: the retracted pinions' gap is [engagement] clearance_*
+    bad = variant(tmp_path, C_AXIS, (r'^position = "engaged"', 'position = "engaged"\ndisengaged_clearance_mm = 3'))
+    code, err = run(capsys, "stiffness", bad, "--no-plots")
+    assert code == 2
+    assert err.startswith("geargen stiffness: error: layout.disengaged_clearance_mm: no longer a key of [layout]: "
+                          "the retracted pinions' axial gap has one home, [engagement] clearance_<unit>")
+    assert "unknown key" not in err
+
+
 def test_shipped_designs_load_and_pass_synth_and_stiffness(tmp_path, capsys):
     for path in (ROBOT, C_AXIS, SPLIT):
         load_design(path)
