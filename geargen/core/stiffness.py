@@ -35,8 +35,8 @@ from geargen.core.drive import TwoPathDrive
 from geargen.core.flexures import (BeamPinion, BladeDesign, BladeFlexure, CompressionSpring, HelicalEngagement,
                                    SlidingMesh, beam_pinion, blade_flexure, compression_spring, design_blade_flexure,
                                    helical_engagement, round_section_second_moment)
-from geargen.design.stiffness import (ComponentSpec, StiffnessDesign, StiffnessSpec, engagement_meshes,
-                                      stiffness_design)
+from geargen.design.stiffness import (TRAIN_SHAFTS, ComponentSpec, StiffnessDesign, StiffnessSpec,
+                                      engagement_meshes, stiffness_design)
 from geargen.errors import DesignError
 
 #: Eq. 1's divisor: k_mesh = E w / 11 (Shigley, bending + shear + contact of a typical mesh)
@@ -174,6 +174,8 @@ class DualPinionTrain:
         """Input speed over output speed, R1 R2."""
         return self.ratio_mesh1 * self.ratio_mesh2
 
+    shafts = TRAIN_SHAFTS["dual_pinion"]
+
     def shaft_ratio(self, shaft: str) -> float:
         """Speed of ``shaft`` ("input", "cluster", "output") over the output's."""
         return {"output": 1.0, "cluster": self.ratio_mesh2, "input": self.ratio}[shaft]
@@ -183,6 +185,13 @@ class DualPinionTrain:
         return None if role is None else {"input": "input", "cluster_large": "cluster",
                                           "cluster_small": "cluster", "output": "output"}[role]
 
+    def gear_ratio(self, name: str) -> float | None:
+        """Speed of the shaft carrying gear ``name`` over the output's; None for a gear off the train."""
+        if name in self.upstream:
+            return self.upstream[name]
+        shaft = self.shaft_of_gear(name)
+        return None if shaft is None else self.shaft_ratio(shaft)
+
     @property
     def mesh1_face_width(self) -> float:
         return min(self.gears["input"].face_width, self.gears["cluster_large"].face_width)
@@ -190,6 +199,53 @@ class DualPinionTrain:
     @property
     def mesh2_face_width(self) -> float:
         return min(self.gears["cluster_small"].face_width, self.gears["output"].face_width)
+
+
+@dataclass(frozen=True)
+class SplitPinionTrain:
+    """Two pinions on one axis (concentric shafts turning together, Fig. 8) meshing one output.
+
+    ``gears`` and ``names`` map role ("pinion_stiff", "pinion_compliant", "output", as
+    ``[layout]`` names them) to the gear spec and its name. The pinions' shaft is "input".
+    """
+
+    gears: Mapping[str, Any]
+    names: Mapping[str, str]
+    shafts = TRAIN_SHAFTS["split_pinion"]
+
+    @property
+    def ratio(self) -> float:
+        """Input (pinion) speed over output speed, z_output / z_pinion."""
+        return self.gears["output"].teeth / self.gears["pinion_stiff"].teeth
+
+    def shaft_ratio(self, shaft: str) -> float:
+        """Speed of ``shaft`` ("input": the pinions', "output") over the output's."""
+        return {"output": 1.0, "input": self.ratio}[shaft]
+
+    def gear_ratio(self, name: str) -> float | None:
+        """Speed of the shaft carrying gear ``name`` over the output's; None for a gear off the train."""
+        role = next((r for r, n in self.names.items() if n == name), None)
+        return None if role is None else self.shaft_ratio("output" if role == "output" else "input")
+
+
+def split_pinion_train(design) -> SplitPinionTrain:
+    """The split pinion of ``design``, its gears as ``[layout]`` names them."""
+    from geargen.design.layout import layout_settings
+    settings = layout_settings(design)
+    names = {role: settings[role] for role in ("pinion_stiff", "pinion_compliant", "output")}
+    for role, name in names.items():
+        if name not in design.gears:
+            raise DesignError(f"layout.{role}", f"no gear named {name!r} in the design", ", ".join(design.gears))
+    # both pinions have one tooth count ([layout] checks it), so either gives the ratio
+    return SplitPinionTrain(gears={role: design.gears[name] for role, name in names.items()}, names=names)
+
+
+def drive_train(design, spec: StiffnessSpec) -> DualPinionTrain | SplitPinionTrain | None:
+    """The train of ``design`` that ``[stiffness] train`` names; None for a custom train (its
+    components type their ratios)."""
+    if spec.train == "dual_pinion":
+        return train_from_design(design, spec)
+    return split_pinion_train(design) if spec.train == "split_pinion" else None
 
 
 def train_from_design(design, spec: StiffnessSpec) -> DualPinionTrain:
@@ -225,22 +281,30 @@ class ComponentStiffness:
     detail: str = ""
 
 
-def _component_location(spec: ComponentSpec, train: DualPinionTrain | None, gear: str | None,
+def _component_location(spec: ComponentSpec, train: DualPinionTrain | SplitPinionTrain | None, gear: str | None,
                         where: str) -> float:
-    if spec.ratio is not None:
-        return spec.ratio
+    """The speed of the component's shaft over the output's: typed in a custom train (``train``
+    None), else from the teeth, for the shaft or the ``gear`` it names."""
     if train is None:
-        raise DesignError(f"{where}.ratio", "missing (a custom train needs each component's ratio)",
-                          "ratio = speed of its shaft / speed of the output")
-    if spec.shaft is not None:
+        if spec.ratio is None:
+            raise DesignError(f"{where}.ratio", "missing (a custom train needs each component's ratio)",
+                              "ratio = speed of its shaft / speed of the output")
+        return spec.ratio
+    shafts = " | ".join(map(repr, train.shafts))
+    if spec.shaft is not None:  # (never with a ratio: the spec refuses both)
         return train.shaft_ratio(spec.shaft)
-    if gear in train.upstream:
-        return train.upstream[gear]
-    shaft = train.shaft_of_gear(gear) if gear else None
-    if shaft is None:
-        raise DesignError(f"{where}.shaft", f"gear {gear!r} is not one of the train's four gears; say where it sits",
-                          "shaft = 'input' | 'cluster' | 'output' or ratio")
-    return train.shaft_ratio(shaft)
+    known = train.gear_ratio(gear) if gear else None
+    if spec.ratio is not None:
+        # typed, it could disagree with the teeth: the one home of a speed is the teeth
+        teeth = (f"the teeth give {known:.6g} for the shaft of gears.{gear}" if known is not None else
+                 "the teeth give the shafts' speeds: " + ", ".join(f"{s!r} {train.shaft_ratio(s):.6g}"
+                                                                   for s in train.shafts))
+        raise DesignError(f"{where}.ratio", f"{spec.ratio:g} typed, but {teeth} (a ratio is typed only in a custom "
+                          "train)", f"no ratio: shaft = {shafts} or gear = NAME (the shaft carrying it)")
+    if known is None:
+        raise DesignError(f"{where}.shaft", f"gear {gear!r} is not one of the train's gears; say where it sits"
+                          if gear else "missing: which shaft it sits on", f"shaft = {shafts}")
+    return known
 
 
 def _gear_base_radius(design, name: str, where: str) -> float:
@@ -250,7 +314,7 @@ def _gear_base_radius(design, name: str, where: str) -> float:
 
 
 def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
-                        train: DualPinionTrain | None) -> ComponentStiffness:
+                        train: DualPinionTrain | SplitPinionTrain | None) -> ComponentStiffness:
     """Reduce one design component to torsion at the output."""
     where = f"stiffness.components.{spec.name}"
     if spec.from_geometry and not spec.placed:
@@ -261,11 +325,11 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
     radius = None
     if spec.kind == "torsion":
         local, unit, detail = spec.stiffness, "N·mm/rad", "given torsional stiffness"
-        ratio = _component_location(spec, train, None, where)
+        ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "shaft_torsion":
         local = shaft_torsional_stiffness(g, spec.diameter, spec.length, spec.bore_diameter)
         unit, detail = "N·mm/rad", f"shaft d={spec.diameter:.4g} mm, L={spec.length:.4g} mm, G J / L"
-        ratio = _component_location(spec, train, None, where)
+        ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind in ("linear", "shaft_bending"):
         radius = (_gear_base_radius(design, spec.gear, f"{where}.gear") if spec.gear is not None else spec.radius)
         if spec.kind == "linear":
@@ -745,9 +809,9 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     drive_type = design.drive_type
     warnings: list[str] = []
 
-    train = train_from_design(design, spec) if spec.train == "dual_pinion" else None
+    train = drive_train(design, spec)
     comps: list[ComponentStiffness] = []
-    if train is not None:
+    if isinstance(train, DualPinionTrain):
         comps += train_mesh_components(train, spec.elastic_modulus)
     comps += [component_stiffness(c, design, spec, train) for c in (spec.components if components is None
                                                                     else components)]
@@ -759,7 +823,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
 
     method = design.preload_method
     lever = None
-    if train is not None and method in ("radial", "axial"):
+    if isinstance(train, DualPinionTrain) and method in ("radial", "axial"):
         lever = preload_lever(train, method, pre.line_of_action_angle)
 
     # --- the preload spring (type 2) ---
@@ -915,10 +979,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         gear = _beam_gear(design, eg.gear, "engagement.gear")
         windup = eg.preload_windup
         if windup is None:
-            ratio = None
-            if train is not None:
-                shaft = train.shaft_of_gear(eg.gear)
-                ratio = None if shaft is None else train.shaft_ratio(shaft)
+            ratio = None if train is None else train.gear_ratio(eg.gear)
             if ratio is None:
                 raise DesignError("engagement.preload_windup", "missing (the gear is not in the train)",
                                   "preload_windup_* circumferential at its reference circle")
@@ -950,7 +1011,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
                             f"(more than {MISALIGNMENT_WARNING * 1e3:g} um: the flank contact moves to one end)")
 
     location = spec.reduce_to
-    ratios = {"output": 1.0} if train is None else {s: train.shaft_ratio(s) for s in ("output", "cluster", "input")}
+    ratios = {"output": 1.0} if train is None else {s: train.shaft_ratio(s) for s in train.shafts}
     return StiffnessSummary(
         name=design.name, drive_type=drive_type, preload_method=method, location=location,
         location_ratio=ratios[location], shaft_ratios=ratios, length_unit=design.length_unit, components=tuple(comps), path1=path1,
@@ -981,6 +1042,7 @@ __all__ = [
     "MESH_DIVISOR", "mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness",
     "supported_shaft_compliance", "series", "parallel",
     "reflect", "torsional_from_linear", "linear_from_torsional", "DualPinionTrain", "train_from_design",
+    "SplitPinionTrain", "split_pinion_train", "drive_train",
     "ComponentStiffness", "component_stiffness", "train_mesh_components", "PathStiffness", "split_paths",
     "preload_lever", "preload_spring_at_output", "loop_error_from_carriage_travel", "carriage_force",
     "required_preload", "preload_to_carry", "LoopError", "PreloadVariation", "preload_variation", "PreloadSpring",

@@ -51,8 +51,6 @@ LAYOUT_FIELDS = [
                "centred on it)"),
     Field("carriage_travel", "length", required=False, default=None, minimum=0.0,
           help="dual pinion: travel of the preload carriage either way, drawn in the layout and the report"),
-    Field("disengaged_clearance", "length", required=False, default=None, minimum=0.0,
-          help="not read by any step yet: the retracted pinions' axial gap is [engagement] clearance_*"),
     # split pinion
     Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="split pinion: centre distance of both pinions from the output"),
@@ -77,8 +75,19 @@ LAYOUT_FIELDS = [
           help="whole-number ratios, encoder to output, that the controller accepts (the build checks one is met)"),
 ]
 
+#: keys [layout] no longer has -> (what they gave, the key that gives it now: its one home); a file
+#: that still has one is told where it went rather than offered the nearest spelling of another key
+MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[engagement] clearance_<unit>")}
+
 #: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])
 SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
+
+
+def is_split_pinion(data) -> bool:
+    """A loaded design or the parsed file whose ``[layout]`` says ``kind = "split_pinion"`` (the
+    drive decides its hardware and its stiffness train)."""
+    sections = data.sections if hasattr(data, "sections") else data
+    return (sections.get("layout") or {}).get("kind") == "split_pinion"
 
 
 def layout_settings(design) -> dict[str, Any]:
@@ -87,7 +96,13 @@ def layout_settings(design) -> dict[str, Any]:
     A design without ``[layout]`` (or without its ``kind``) that has a ``[synthesis]`` is a
     dual-pinion drive; ``model_backlash`` left out follows the gear tables: "as_designed" when a
     gear states its thinning, else "mid" (the thinning is then derived, and said so)."""
-    v = read_table(design.section("layout") or {}, LAYOUT_FIELDS, "layout")
+    table = design.section("layout") or {}
+    for key in table:
+        for name, (what, home) in MOVED_KEYS.items():
+            if key == name or (key.startswith(name + "_") and key[len(name) + 1:] in LENGTH_SUFFIXES):
+                raise DesignError(f"layout.{key}", f"no longer a key of [layout]: {what} has one home, {home}",
+                                  f"leave it out; give {home}")
+    v = read_table(table, LAYOUT_FIELDS, "layout")
     if v["kind"] is None:
         if not design.section("synthesis"):
             raise DesignError("layout.kind", "missing", " | ".join(map(repr, LAYOUT_KINDS))
@@ -129,6 +144,12 @@ def check_layout(design, v: dict[str, Any]) -> None:
             if v[role] not in design.gears:
                 key = f"layout.{role}" if role in design.section("layout") else f"gears.{v[role]}"
                 raise DesignError(key, f"no gear named {v[role]!r} in the design", ", ".join(design.gears))
+        stiff, compliant = design.gears[v["pinion_stiff"]], design.gears[v["pinion_compliant"]]
+        if compliant.teeth != stiff.teeth:
+            # the pinions turn together: with other teeth they would drive the output at two speeds
+            raise DesignError(f"gears.{v['pinion_compliant']}.teeth", f"{compliant.teeth} teeth, but "
+                              f"gears.{v['pinion_stiff']} has {stiff.teeth}: the two pinions turn together on one "
+                              "axis and mesh one output", f"{stiff.teeth}")
     if v["position"] == "disengaged" and not design.section("engagement"):
         raise DesignError("layout.position", "'disengaged' needs an [engagement] section", "'engaged'")
     if v["model_backlash"] != "as_designed":
@@ -139,5 +160,5 @@ def check_layout(design, v: dict[str, Any]) -> None:
                               f"given for gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
 
 
-__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "SPLIT_PINION_KEYS", "layout_settings",
-           "check_layout"]
+__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "MOVED_KEYS", "SPLIT_PINION_KEYS", "is_split_pinion",
+           "layout_settings", "check_layout"]

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from geargen.design.layout import is_split_pinion
 from geargen.design.schema import Field, read_table
 from geargen.design.stiffness import SPRING_ENDS, spring_spec_from_table
 from geargen.errors import DesignError
@@ -27,9 +28,9 @@ HARDWARE = ("carriage", "beam_pinion", "split_pinion")
 
 def hardware_of(data) -> str:
     """The hardware of a drive (one of :data:`HARDWARE`): from a loaded design or the parsed file."""
-    sections = data.sections if hasattr(data, "sections") else data
-    if (sections.get("layout") or {}).get("kind") == "split_pinion":
+    if is_split_pinion(data):
         return "split_pinion"
+    sections = data.sections if hasattr(data, "sections") else data
     return "beam_pinion" if sections.get("beam_pinion") else "carriage"
 
 

@@ -304,8 +304,9 @@ _SPLIT_PINION = Starter(
         Table("stiffness", (
             Key("elastic_modulus_GPa", 207),
             Key("shear_modulus_GPa", 79.3),
-            Key("train", "custom", "two concentric paths, each listed with its ratio"),
-            Key("reduce_to", "output"),
+            Key("reduce_to", "output", "the split pinion of [layout]: each component sits on the shaft or the gear "
+                "it names, whose speed comes from the teeth (\"input\", the pinions' shaft, turns 96 / 24 = 4 times "
+                "the output)"),
         ), "Inner shaft sizing. Loop error (runout of the two pinion halves against each other plus "
            "tooth-to-tooth, about 20 um at the output's 48 mm pitch radius): 400 urad at the output. Preload "
            "9 N·m (a little above the 8 N·m maximum load: the paper's rule for Type 1); preload band 20 % peak "
@@ -316,18 +317,16 @@ _SPLIT_PINION = Starter(
         Table("stiffness.components.mesh_stiff", (
             Key("kind", "mesh"),
             Key("gears", ["pinion_stiff", "output"]),
-            Key("ratio", 1.0),
             Key("scope", "path1"),
         )),
         Table("stiffness.components.mesh_compliant", (
             Key("kind", "mesh"),
             Key("gears", ["pinion_compliant", "output"]),
-            Key("ratio", 1.0),
             Key("scope", "path2"),
         )),
         Table("stiffness.components.hollow_shaft", (
             Key("kind", "shaft_torsion"),
-            Key("ratio", 4.0, "the pinions turn 96 / 24 = 4 times as fast as the output"),
+            Key("shaft", "input", "the pinions' shaft"),
             Key("diameter_mm", 12),
             Key("bore_diameter_mm", 7.5, "the inner shaft plus 0.5 mm clearance all round"),
             Key("length_mm", 22),
@@ -335,7 +334,6 @@ _SPLIT_PINION = Starter(
         ), "the stiff path's shaft between the input and the wide pinion"),
         Table("stiffness.components.inner_shaft", (
             Key("kind", "shaft_torsion"),
-            Key("ratio", 4.0),
             Key("gear", "pinion_compliant"),
             Key("from_geometry", True, "d = the narrow pinion's bore, L = 60 mm from [parts]"),
             Key("scope", "path2"),
@@ -345,7 +343,6 @@ _SPLIT_PINION = Starter(
             Key("gear", "pinion_stiff"),
             Key("from_geometry", True, "overhangs its bearing pair (20 mm apart) by 8.5 mm"),
             Key("stiffness_N_per_um", 40, "per bearing, radial"),
-            Key("ratio", 4.0),
             Key("scope", "path1"),
         ), "each pinion on its placed shaft and supports"),
         Table("stiffness.components.compliant_support", (
@@ -353,7 +350,6 @@ _SPLIT_PINION = Starter(
             Key("gear", "pinion_compliant"),
             Key("from_geometry", True, "between the clamp collar and the outboard bearing"),
             Key("stiffness_N_per_um", 40),
-            Key("ratio", 4.0),
             Key("scope", "path2"),
         )),
         Table("preload", (

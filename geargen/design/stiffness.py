@@ -23,8 +23,9 @@ Example (the robot joint, abridged)::
     elastic_modulus_GPa = 207          # gear and shaft material (Eq. 1: k_mesh = E w / 11)
     shear_modulus_GPa = 79.3
     reduce_to = "output"               # where path stiffnesses are shown: "output", "cluster", "input"
-    train = "dual_pinion"              # the two meshes of each path come from the gears; "custom": list
-                                       # every component (meshes too, kind = "mesh") with its ratio
+    train = "dual_pinion"              # the two meshes of each path come from the gears (the default;
+                                       # "split_pinion" for a [layout] kind = "split_pinion"); "custom":
+                                       # list every component (meshes too, kind = "mesh") with its ratio
     # gear roles of the dual-pinion train (defaults shown)
     input_gear = "input"
     cluster_large_gear = "cluster_large"
@@ -51,6 +52,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from geargen.design.layout import is_split_pinion
 from geargen.design.schema import Field, bound_text, check_range, raise_unknown_keys, read_table, unknown_key
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
@@ -193,14 +195,18 @@ def _positive(name: str, value, allow_none: bool = False) -> None:
 
 SHAFTS = ("input", "cluster", "output")
 LOCATIONS = SHAFTS
-TRAINS = ("dual_pinion", "custom")
+TRAINS = ("dual_pinion", "split_pinion", "custom")
+#: the shafts of each train a component may name; their speeds come from the teeth (a split
+#: pinion's "input" is the pinions' shaft: both pinions turn together, z_output / z_pinion times the
+#: output). A custom train has none: each component types its ratio.
+TRAIN_SHAFTS = {"dual_pinion": SHAFTS, "split_pinion": ("input", "output"), "custom": ()}
 SCOPES = ("each_path", "path1", "path2", "common")
 COMPONENT_KINDS = ("torsion", "linear", "shaft_torsion", "shaft_bending", "shaft_support", "mesh")
 SUPPORTS = ("simple", "fixed", "cantilever")
 
 #: keys each component kind uses besides kind, scope, count, shaft and ratio; anything else is an error
 _KIND_KEYS = {
-    "torsion": {"stiffness"},
+    "torsion": {"gear", "stiffness"},
     "linear": {"gear", "radius", "stiffness"},
     "shaft_torsion": {"gear", "diameter", "bore_diameter", "length", "shear_modulus", "from_geometry"},
     "shaft_bending": {"gear", "radius", "diameter", "bore_diameter", "span", "load_position", "support", "from_geometry",
@@ -214,9 +220,11 @@ _KIND_KEYS = {
 class ComponentSpec:
     """One stiffness component of a path, internal units (mm, N, rad).
 
-    Where it sits: ``shaft`` (a shaft of the dual-pinion train: "input", "cluster", "output") or
-    ``ratio`` (the speed of its shaft over the output's, for any train); a ``gear`` implies its
-    shaft in a dual-pinion train. Kinds:
+    Where it sits, in a train geargen models (dual or split pinion): ``shaft`` (one of
+    :data:`TRAIN_SHAFTS`) or a ``gear`` (the shaft carrying it; for a mesh its second gear), whose
+    speed over the output's comes from the teeth; in a custom train: ``ratio``, the speed of its
+    shaft over the output's, typed (and only there, so that it never disagrees with the teeth).
+    Kinds:
 
       * ``torsion``: a torsional stiffness value (key, coupling, bearing tilt), N·mm/rad;
       * ``linear``: a linear stiffness (bearing, support), N/mm, acting along the line of action
@@ -281,8 +289,9 @@ class ComponentSpec:
             raise DesignError(f"{where}.ratio", "give shaft or ratio, not both", "one of shaft, ratio")
         _positive(f"{where}.ratio", self.ratio, allow_none=True)
         located = self.shaft is not None or self.ratio is not None
-        if self.kind in ("torsion", "shaft_torsion") and not located:
-            raise DesignError(f"{where}.shaft", "missing", "shaft = " + " | ".join(map(repr, SHAFTS)) + " or ratio")
+        if self.kind in ("torsion", "shaft_torsion") and not (located or self.gear is not None):
+            raise DesignError(f"{where}.shaft", "missing", "shaft = " + " | ".join(map(repr, SHAFTS))
+                              + ", gear = NAME (the shaft carrying it) or ratio (a custom train)")
         if self.kind in ("torsion", "linear", "shaft_support"):
             _positive(f"{where}.stiffness", self.stiffness)
         if self.kind == "shaft_support" and (not self.from_geometry or self.gear is None):
@@ -351,11 +360,18 @@ class StiffnessSpec:
             raise DesignError("stiffness.train", f"{self.train!r} is not a valid choice", ", ".join(map(repr, TRAINS)))
         if self.train == "custom" and self.reduce_to != "output":
             raise DesignError("stiffness.reduce_to", "a custom train is reduced to the output", "'output'")
-        if self.train == "custom":
-            for c in self.components:
-                if c.shaft is not None:
-                    raise DesignError(f"stiffness.components.{c.name}.shaft", "a custom train has no named shafts",
-                                      "ratio = speed of the shaft / speed of the output")
+        shafts = TRAIN_SHAFTS[self.train]
+        if self.train == "split_pinion" and self.reduce_to not in shafts:
+            raise DesignError("stiffness.reduce_to", f"{self.reduce_to!r} is not a shaft of a split pinion",
+                              ", ".join(map(repr, shafts)))
+        for c in self.components:
+            where = f"stiffness.components.{c.name}"
+            if self.train == "custom" and c.shaft is not None:
+                raise DesignError(f"{where}.shaft", "a custom train has no named shafts",
+                                  "ratio = speed of the shaft / speed of the output")
+            if c.shaft is not None and c.shaft not in shafts:
+                raise DesignError(f"{where}.shaft", f"{c.shaft!r} is not a shaft of a {self.train} train",
+                                  ", ".join(map(repr, shafts)))
 
     @property
     def roles(self) -> dict[str, str]:
@@ -366,10 +382,12 @@ class StiffnessSpec:
 
 _STIFFNESS_FIELDS = [
     Field("reduce_to", "string", required=False, default="output", choices=LOCATIONS,
-          help="where path stiffnesses are reported, as torsion of that shaft (a custom train: the output)"),
-    Field("train", "string", required=False, default="dual_pinion", choices=TRAINS,
-          help="dual_pinion: each path's two meshes come from the gears; custom: list every component (meshes too) "
-               "with its ratio"),
+          help="where path stiffnesses are reported, as torsion of that shaft (a split pinion: input or output; a "
+               "custom train: the output)"),
+    Field("train", "string", required=False, default=None, choices=TRAINS,
+          help="dual_pinion (the default): each path's two meshes come from the gears; split_pinion (the default, "
+               "and the only train, of a [layout] kind = 'split_pinion'): the pinions and output that [layout] "
+               "names, the pinions' shaft 'input'; custom: list every component (meshes too) with its ratio"),
     Field("input_gear", "string", required=False, default="input",
           help="dual-pinion train: the gear table of the input (gear 1)"),
     Field("cluster_large_gear", "string", required=False, default="cluster_large",
@@ -393,12 +411,14 @@ _COMPONENT_FIELDS = [
     Field("count", "integer", required=False, default=1, minimum=1, maximum=1000,
           help="identical components acting in parallel"),
     Field("shaft", "string", required=False, default=None, choices=SHAFTS,
-          help="dual-pinion train: the shaft it sits on (or give ratio)"),
+          help="dual-pinion train: the shaft it sits on, input, cluster or output; split pinion: input (the "
+               "pinions') or output (or give gear)"),
     Field("ratio", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
-          help="speed of its shaft over the output's (any train; instead of shaft)"),
+          help="custom train only: speed of its shaft over the output's (the other trains take it from the teeth)"),
     Field("gear", "string", required=False, default=None,
           help="linear, shaft_bending, shaft_support: the gear on whose line of action it acts (at its base radius); "
-               "shaft_torsion with from_geometry: the gear whose placed shaft twists"),
+               "torsion, shaft_torsion: the gear on its shaft (with from_geometry: the placed shaft that twists); "
+               "its shaft's speed comes from the teeth"),
     Field("gears", "list", required=False, default=None,
           help="mesh: the two gears, [\"PINION\", \"GEAR\"]; it acts at the second"),
     Field("face_width", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
@@ -454,8 +474,20 @@ def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
                          from_geometry=v["from_geometry"]))
 
 
-def stiffness_spec_from_table(data: Mapping[str, Any]) -> StiffnessSpec:
+def stiffness_spec_from_table(data: Mapping[str, Any], split_pinion: bool = False) -> StiffnessSpec:
+    """``[stiffness]`` read; ``split_pinion``: the design's [layout] is a split pinion, whose train
+    is the split_pinion train (the default there, and the only one: a custom train would type the
+    ratios its teeth give)."""
     v = _read_section(data, _STIFFNESS_FIELDS, _MODULI, "stiffness", tables=("components",))
+    drive_train = "split_pinion" if split_pinion else "dual_pinion"
+    if v["train"] is None:
+        v["train"] = drive_train
+    elif split_pinion and v["train"] != "split_pinion":
+        raise DesignError("stiffness.train", f"{v['train']!r} does not describe the split pinion of [layout] kind = "
+                          "'split_pinion'", "'split_pinion' (or leave train out)")
+    elif v["train"] == "split_pinion" and not split_pinion:
+        raise DesignError("stiffness.train", "'split_pinion' needs [layout] kind = 'split_pinion' (its pinions and "
+                          "output)", "'dual_pinion', 'custom'")
     comps = data.get("components", {})
     if not isinstance(comps, Mapping):
         raise DesignError("stiffness.components", "expected tables [stiffness.components.NAME]")
@@ -940,8 +972,9 @@ def engagement_meshes(gear: str, stiffness: StiffnessSpec | None = None) -> tupl
     """
     stiffness = stiffness if stiffness is not None else StiffnessSpec()
     if stiffness.train != "dual_pinion":
-        raise DesignError("engagement.gear", "a custom train does not say which gears slide with the pinion",
-                          "a dual-pinion train ([stiffness] train = 'dual_pinion')")
+        why = ("a custom train does not say which gears slide with the pinion" if stiffness.train == "custom"
+               else "a split pinion has no sliding clusters")
+        raise DesignError("engagement.gear", why, "a dual-pinion train ([stiffness] train = 'dual_pinion')")
     roles = stiffness.roles
     role = next((r for r in _CLUSTER_MESHES if roles[r] == gear), None)
     if role is None:
@@ -1041,7 +1074,7 @@ def stiffness_design(design) -> StiffnessDesign:
         return reader(table) if table else None
 
     unit, gears = design.length_unit, design.gears
-    spec = stiffness_spec_from_table(design.section("stiffness"))
+    spec = stiffness_spec_from_table(design.section("stiffness"), is_split_pinion(design))
     if design.section("stiffness"):
         check_stiffness_gears(spec, gears)
     return StiffnessDesign(stiffness=spec,

@@ -40,7 +40,7 @@ from typing import Any, Mapping
 from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings, gear_errors
 from geargen.design.export import EXPORT_FIELDS, export_settings
 from geargen.design.gear import GEAR_FIELDS
-from geargen.design.layout import LAYOUT_FIELDS, check_layout, layout_settings
+from geargen.design.layout import LAYOUT_FIELDS, check_layout, is_split_pinion, layout_settings
 from geargen.design.parts import HARDWARE_FIELDS, check_parts, hardware_of, parts_settings
 from geargen.design.schema import Field, Problems
 from geargen.design.stages import STAGE_FIELDS, check_stages, stages
@@ -92,7 +92,7 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
         problems.add(DesignError("drive.type", f"missing: [{present}] describes a drive of a type", "'type1', 'type2'"))
     stiffness = None  # the gear roles the [engagement] check needs (defaults without [stiffness])
     if "stiffness" in sections:
-        stiffness = spec = run(stiffness_spec_from_table, sections["stiffness"])
+        stiffness = spec = run(stiffness_spec_from_table, sections["stiffness"], is_split_pinion(design))
         if spec is not None and gears_complete:
             run(check_stiffness_gears, spec, design.gears)
     if "preload" in sections:

@@ -162,6 +162,19 @@ def test_robot_joint_drive_from_design_and_other_locations():
     assert data["k1_Nm_per_rad"] == pytest.approx(d.k1 / 1e3) and data["preload_Nm"] == pytest.approx(d.preload / 1e3)
 
 
+def test_a_torsion_sits_on_the_shaft_of_the_gear_it_names():
+    """A torsional stiffness (a key, a coupling) named by its gear turns with that gear's shaft:
+    on the cluster, R2 = 112 / 21 times the output, so k R2^2 at the output."""
+    from geargen.core.stiffness import component_stiffness, train_from_design
+
+    design = load_design(ROBOT)
+    spec = stiffness_design(design).stiffness
+    key = component_from_table("key", {"kind": "torsion", "gear": "cluster_small", "stiffness_Nm_per_rad": 100})
+    c = component_stiffness(key, design, spec, train_from_design(design, spec))
+    assert c.ratio == pytest.approx(112 / 21, rel=1e-15)
+    assert c.at_output == pytest.approx(100e3 * (112 / 21) ** 2, rel=1e-12)
+
+
 def test_robot_joint_with_a_synthesis_budget():
     from geargen.model import resolve
     from geargen.model.analysis import placed_components

@@ -264,7 +264,54 @@ def test_layout_parts_and_export_rules(tmp_path):
     err = error_of(variant(tmp_path, SPLIT, (r"^render_view = \[-55, 30\]", "render_view = [1, 2, 3]")))
     assert err.field == "export.render_view"
     err = error_of(variant(tmp_path, ROBOT, (r'^kind = "dual_pinion"', 'kind = "split_pinion"')))
-    assert err.field == "layout.centre_distance"
+    assert isinstance(err, DesignErrors)  # the robot joint's cluster shaft is no shaft of a split pinion either
+    assert [e.field for e in err.errors][:2] == ["stiffness.components.cluster_shaft.shaft", "layout.centre_distance"]
+
+
+def test_a_split_pinions_speeds_come_from_its_teeth(tmp_path, capsys):
+    """Every component of the split pinion turns at the speed its teeth give (80 / 20 = 4 on the
+    pinions' shaft, 1 at the output's mesh); a typed ratio, wrong or right, is refused naming the key."""
+    from geargen.model import resolve
+    from geargen.model.analysis import stiffness
+
+    design = load_design(SPLIT)
+    summary, _ = stiffness(design, resolve(design))
+    ratios = {c.name: c.ratio for c in summary.components}
+    assert ratios == {"mesh_stiff": 1.0, "mesh_compliant": 1.0, "hollow_shaft": 80 / 20, "inner_shaft": 80 / 20,
+                      "stiff_support": 80 / 20, "compliant_support": 80 / 20}
+    # ratio 5 in the 4:1 drive (the file once typed each ratio, unchecked)
+    bad = variant(tmp_path, SPLIT, (r'^gear = "pinion_compliant"\nfrom_geometry = true ',
+                                    'gear = "pinion_compliant"\nratio = 5.0\nfrom_geometry = true '))
+    code, err = run(capsys, "stiffness", bad, "--no-plots")
+    assert code == 2
+    assert "stiffness.components.inner_shaft.ratio: 5 typed, but the teeth give 4 for the shaft of " \
+           "gears.pinion_compliant" in err
+    # a ratio instead of the shaft: the teeth's speeds of both shafts are named, even when it agrees
+    bad = variant(tmp_path, SPLIT, (r'^shaft = "input"', "ratio = 4.0"))
+    code, err = run(capsys, "stiffness", bad, "--no-plots")
+    assert code == 2
+    assert "stiffness.components.hollow_shaft.ratio: 4 typed, but the teeth give the shafts' speeds: 'input' 4, " \
+           "'output' 1" in err
+    # a split pinion has no cluster, and no other train
+    err = error_of(variant(tmp_path, SPLIT, (r'^shaft = "input"', 'shaft = "cluster"')))
+    assert err.field == "stiffness.components.hollow_shaft.shaft" and err.allowed == "'input', 'output'"
+    err = error_of(variant(tmp_path, SPLIT, (r'^reduce_to = "output"', 'reduce_to = "output"\ntrain = "custom"')))
+    assert err.field == "stiffness.train" and err.allowed == "'split_pinion' (or leave train out)"
+    err = error_of(variant(tmp_path, ROBOT, (r"^reduce_to = ", 'train = "split_pinion"\nreduce_to = ')))
+    assert err.field == "stiffness.train" and "needs [layout] kind = 'split_pinion'" in err.problem
+    # the two pinions turn together, so they have one tooth count
+    err = error_of(variant(tmp_path, SPLIT, (r"^teeth = 20\nface_width_mm = 8", "teeth = 21\nface_width_mm = 8")))
+    assert err.field == "gears.pinion_compliant.teeth" and err.allowed == "20"
+
+
+def test_a_moved_layout_key_names_its_one_home(tmp_path, capsys):
+    # [layout] disengaged_clearance was read by no step: the retracted pinions' gap is [engagement] clearance_*
+    bad = variant(tmp_path, C_AXIS, (r'^position = "engaged"', 'position = "engaged"\ndisengaged_clearance_mm = 3'))
+    code, err = run(capsys, "stiffness", bad, "--no-plots")
+    assert code == 2
+    assert err.startswith("geargen stiffness: error: layout.disengaged_clearance_mm: no longer a key of [layout]: "
+                          "the retracted pinions' axial gap has one home, [engagement] clearance_<unit>")
+    assert "unknown key" not in err
 
 
 def test_shipped_designs_load_and_pass_synth_and_stiffness(tmp_path, capsys):
