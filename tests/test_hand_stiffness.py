@@ -463,7 +463,8 @@ def c_axis_hand_calculation(path: Path) -> dict:
     # the cluster oppose, so the loop opens by the difference, at the pinion's reference circle
     eng = data["engagement"]
     defaults = data.get("gear_defaults", {})
-    (r2, _, beta), (r3, _, _) = (_transverse({**defaults, **data["gears"][n]}) for n in ("cluster_large", "cluster_small"))
+    (r2, _, beta), (r3, _, _) = (_transverse({**defaults, **data["gears"][n]})
+                                 for n in ("cluster_large", "cluster_small"))
     same = data["gears"]["cluster_large"]["hand"] == data["gears"]["cluster_small"]["hand"]
     opening = math.tan(beta) * abs(1 / r3 - (1 if same else -1) / r2) * r3  # mm at r3 per mm of slide
     windup = preload / out["k_L"] * R2 * r3  # the loop's deflection at the preload, at r3
