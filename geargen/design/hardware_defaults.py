@@ -266,8 +266,9 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
         raise DesignError("preload", "missing: the default rating's Lewis factors are for 20 deg teeth or more",
                           "a [preload] table with max_output_torque_*")
     rated = rated_output_torque(g)  # N·mm
-    torque_key, torque_scale = ("max_output_torque_Nm", 1e3) if unit == "mm" else ("max_output_torque_in_lbf",
-                                                                                    4.4482216152605 * 25.4)
+    from geargen.design.stiffness import QUANTITY_SUFFIXES
+    torque_suffix = "Nm" if unit == "mm" else "in_lbf"
+    torque_key, torque_scale = f"max_output_torque_{torque_suffix}", QUANTITY_SUFFIXES["torque"][torque_suffix]
     if "preload" in wanted:
         value = float(f"{rated / torque_scale:.2g}")
         put("preload", torque_key, value, f"Lewis rating of the loop's meshes at {STEEL_BENDING_ALLOWABLE_MPA:g} MPa "
@@ -280,16 +281,16 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
             max_torque = preload_spec_from_table(data["preload"]).max_output_torque
         except DesignError:
             return dict(data), ()  # the validating load reports the [preload] problem
-    large, small, outg = g["cluster_large"], g["cluster_small"], g["output"]
-    lever = 1.0 / (outg.teeth / small.teeth * large.base_radius)  # radial, line of action along the motion
-    carriage_force = 2.0 * lever * PRELOAD_FRACTION * max_torque
+    from geargen.core.stiffness import DualPinionTrain, carriage_force, preload_lever
+    lever = preload_lever(DualPinionTrain(gears={n: g[n] for n in LOOP}, names={n: n for n in LOOP}), "radial")
+    force_on_carriage = float(carriage_force(PRELOAD_FRACTION * max_torque, lever))
     m1 = g["input"].module
     gap = 0.5
     plate = max(3.0, 2.5 * m1)
     # --- springs and blades
-    spring = _spring(carriage_force / 2)
+    spring = _spring(force_on_carriage / 2)
     if "springs" in wanted:
-        why = (f"two springs give {carriage_force:.3g} N on the carriage: preload {PRELOAD_FRACTION:g} x the rated "
+        why = (f"two springs give {force_on_carriage:.3g} N on the carriage: preload {PRELOAD_FRACTION:g} x the rated "
                "torque")
         put("springs", "count", 2, why)
         put("springs", f"wire_diameter_{sfx}", _in_unit(spring["wire"], unit), "music wire: the thinnest standard "
