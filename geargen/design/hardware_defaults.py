@@ -281,9 +281,11 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
             max_torque = preload_spec_from_table(data["preload"]).max_output_torque
         except DesignError:
             return dict(data), ()  # the validating load reports the [preload] problem
-    from geargen.core.stiffness import DualPinionTrain, carriage_force, preload_lever
-    lever = preload_lever(DualPinionTrain(gears={n: g[n] for n in LOOP}, names={n: n for n in LOOP}), "radial")
-    force_on_carriage = float(carriage_force(PRELOAD_FRACTION * max_torque, lever))
+    # the radial preload lever and carriage force of geargen.core.stiffness (preload_lever, carriage_force)
+    # at the optimal line of action; written out because the design layer sits below core. A test holds
+    # the two equal.
+    lever = 1.0 / (g["output"].teeth / g["cluster_small"].teeth * g["cluster_large"].base_radius)
+    force_on_carriage = 2.0 * lever * PRELOAD_FRACTION * max_torque
     m1 = g["input"].module
     gap = 0.5
     plate = max(3.0, 2.5 * m1)
