@@ -50,59 +50,101 @@ def _placed(design, gears=None, position=None):
 
 def _measured(design):
     """(span, load position from the lower support) of cluster A's shaft measured on the built
-    bearing and gear solids (mm), the summary's cluster_support component, the summary, the parts."""
+    bearing and gear solids (mm), the summary's cluster_support component, the summary, the parts;
+    the placed component spec's other load is checked to sit at the large gear's measured mid-face."""
+    from geargen.model.analysis import placed_components
     layout, summary, part_set = _placed(design)
     parts = {p.name: p for p in part_set.parts}
     lo = sum(_z_extent(parts["cluster_bearing_lower_a"])) / 2
     hi = sum(_z_extent(parts["cluster_bearing_upper_a"])) / 2
-    small = layout.gear("cluster_small_a")
-    z0, z1 = small.face_z(small.spec)
+    small, large = (layout.gear(n) if n in {g.name for g in layout.gears} else layout.gear("cluster_a")
+                    for n in ("cluster_small_a", "cluster_large_a"))
+    z_small = sum(small.face_z(small.gears[-1])) / 2
+    z_large = sum(large.face_z(large.gears[0])) / 2
     comp = next(c for c in summary.components if c.name == "cluster_support")
-    return hi - lo, (z0 + z1) / 2 - lo, comp, summary, parts
+    spec = next(c for c in placed_components(design, layout) if c.name == "cluster_support")
+    ((z_other, _, _),) = spec.other_loads
+    assert z_other == pytest.approx(z_large - lo, abs=1e-9)
+    return hi - lo, z_small - lo, comp, summary, parts, spec
+
+
+def _support_compliance(influence, spec) -> float:
+    """The work of the gear's unit mesh force and the shaft's other mesh force (share and angle as
+    placed) through the shaft's displacement ``influence(load, at)``, mm/N."""
+    loads = [(spec.load_position, 1.0, 0.0), *spec.other_loads]
+    return sum(f * g * math.cos(t - u) * influence(z, y) for z, f, t in loads for y, g, u in loads)
 
 
 def test_moving_the_bearings_moves_the_solids_and_changes_the_stiffness(tmp_path):
-    span0, a0, comp0, s0, parts0 = _measured(_design(tmp_path, 0.02))
-    span1, a1, comp1, s1, parts1 = _measured(_design(tmp_path, 0.06))
+    span0, a0, comp0, s0, parts0, spec0 = _measured(_design(tmp_path, 0.02))
+    span1, a1, comp1, s1, parts1, spec1 = _measured(_design(tmp_path, 0.06))
     # the solids moved: each cluster bearing 0.04 in further from the gear faces
     dz_lo = _z_extent(parts1["cluster_bearing_lower_a"])[0] - _z_extent(parts0["cluster_bearing_lower_a"])[0]
     dz_hi = _z_extent(parts1["cluster_bearing_upper_a"])[0] - _z_extent(parts0["cluster_bearing_upper_a"])[0]
     assert dz_lo == pytest.approx(-0.04 * IN, abs=1e-6) and dz_hi == pytest.approx(0.04 * IN, abs=1e-6)
     assert span1 - span0 == pytest.approx(0.08 * IN, abs=1e-6)
-    # the stiffness is the simply supported beam of the solids' span and load position on two
-    # 10 N/um bearings (closed form: beam on rigid supports + the bearings through their levers)
+    # the stiffness is the simply supported beam of the solids' span and load positions on two
+    # 10 N/um bearings (closed form: beam on rigid supports + the bearings through their levers),
+    # under the small gear's mesh force and the large gear's
     E, kb = 207e3, 10e3
     ei = E * math.pi * (0.25 * IN) ** 4 / 64
-    for span, a, comp in ((span0, a0, comp0), (span1, a1, comp1)):
+    for span, a, comp, spec in ((span0, a0, comp0, spec0), (span1, a1, comp1, spec1)):
+        assert spec.span == pytest.approx(span, abs=1e-9) and spec.load_position == pytest.approx(a, abs=1e-9)
+
+        def influence(load, at, span=span):
+            if at > load:  # mirrored: the point on the near side of the load
+                load, at = span - load, span - at
+            b = span - load
+            return b * at * (span ** 2 - b ** 2 - at ** 2) / (6 * ei * span) + ((span - load) * (span - at)
+                                                                                 + load * at) / span ** 2 / kb
         b = span - a
-        want = 1 / (a * a * b * b / (3 * ei * span) + ((b / span) ** 2 + (a / span) ** 2) / kb)
-        assert comp.local == pytest.approx(want, rel=1e-9)
-    assert comp1.local < comp0.local  # a longer span is softer
-    assert s1.drive.k1 < s0.drive.k1
+        alone = a * a * b * b / (3 * ei * span) + ((b / span) ** 2 + (a / span) ** 2) / kb
+        assert influence(a, a) == pytest.approx(alone, rel=1e-12)
+        assert comp.local == pytest.approx(1 / _support_compliance(influence, spec), rel=1e-9)
+    # and it moved: under one force a longer span is softer, but the two mesh forces nearly oppose
+    # (a couple), and a wider bearing base carries a couple with smaller reactions: here the two
+    # effects about cancel (+0.04 %); the path follows the component
+    assert comp1.local != pytest.approx(comp0.local, rel=1e-4)
+    assert (s1.drive.k1 - s0.drive.k1) * (comp1.local - comp0.local) > 0
     # the built geometry the reviewer measured: 0.80 in span, the small gear 0.52 in from a bearing
     assert span0 / IN == pytest.approx(0.7985, abs=1e-9) and a0 / IN == pytest.approx(0.52425, abs=1e-9)
 
 
 def test_c_axis_pinion_overhung_on_its_quill_bearings():
     """The C-axis dual pinion sits 53.5 mm beyond the upper of two 150 N/um bearings 30 mm apart
-    (measured on the solids): about 12 N/um at the pinion, not the 300 N/um of two bearings in
-    parallel, each path about 2.4e5 N m/rad (was 2.39e6), and 78 um of misalignment across the
-    30 mm face at the preload (the reviewer's numbers, from a hand calculation)."""
-    span, load, comp, summary, _ = _measured(load_design(ROOT / "assemblies/c_axis.toml"))
+    (measured on the solids): about 12 N/um at the pinion under its own force (the reviewer's
+    number), not the 300 N/um of two bearings in parallel. The large gear's mesh force on the same
+    shaft (18.5 mm out, 0.42 of it, its line of action 136 deg away) holds the shaft back: 16 N/um
+    for the path, each path about 3.1e5 N m/rad (was 2.39e6 in the first round), and 68 um of
+    misalignment across the 30 mm face at the preload (78 um under the pinion's force alone)."""
+    from geargen.core.stiffness import supported_shaft_compliance
+    span, load, comp, summary, _, spec = _measured(load_design(ROOT / "assemblies/c_axis.toml"))
     c = load - span  # overhang beyond the upper support
     assert span == pytest.approx(30.0, abs=1e-6) and c == pytest.approx(53.5, abs=1e-6)
     E, kb, d = 207e3, 150e3, 30.0
     ei = E * math.pi * d ** 4 / 64
-    # overhung beam c beyond two rigid supports, plus the bearings through their levers
-    compliance = c * c * (span + c) / (3 * ei) + (((span + c) / span) ** 2 + (c / span) ** 2) / kb
-    assert comp.local == pytest.approx(1 / compliance, rel=1e-9)
-    assert comp.local / 1e3 == pytest.approx(12.1, abs=0.1)  # N/um
-    assert summary.drive.k1 / 1e3 == pytest.approx(2.40e5, rel=0.01)  # N m/rad
+
+    def influence(load, at):  # both beyond the upper support: rigid supports, plus the bearings' levers
+        near, far = sorted((load - span, at - span))
+        beam = near * near * (span + near) / (3 * ei) + near * (2 * span + 3 * near) / (6 * ei) * (far - near)
+        u_hi, u_lo = load / span / kb, (span - load) / span / kb
+        return beam + u_lo + (u_hi - u_lo) * at / span
+    alone = c * c * (span + c) / (3 * ei) + (((span + c) / span) ** 2 + (c / span) ** 2) / kb
+    assert influence(load, load) == pytest.approx(alone, rel=1e-12)
+    assert 1 / supported_shaft_compliance(E, d, span, load, (kb, kb))[0] / 1e3 == pytest.approx(12.1, abs=0.1)
+    assert comp.local == pytest.approx(1 / _support_compliance(influence, spec), rel=1e-9)
+    assert comp.local / 1e3 == pytest.approx(16.0, abs=0.1)  # N/um
+    assert summary.drive.k1 / 1e3 == pytest.approx(3.11e5, rel=0.01)  # N m/rad
     (sup,) = [x for x in summary.supports if x.component == "cluster_support"]
-    # tilt at the overhang's end: rigid-body rotation on the bearings plus the beam's slope
-    tilt = ((span + c) / span / kb + c / span / kb) / span + c * (2 * span + 3 * c) / (6 * ei)
-    assert sup.tilt == pytest.approx(sup.force * tilt, rel=1e-9)
-    assert sup.misalignment * 1e3 == pytest.approx(78, abs=1)  # um across the 30 mm face
+    # tilt at the overhang's end: rigid-body rotation on the bearings plus the beam's slope, and the
+    # same of the large gear's force (nearer: the shaft runs straight beyond it) projected on the pinion's
+    ((z_l, share, angle),) = spec.other_loads
+    c_l = z_l - span
+
+    def tilt(c):
+        return (span + 2 * c) / (span ** 2 * kb) + c * (2 * span + 3 * c) / (6 * ei)
+    assert sup.tilt == pytest.approx(sup.force * (tilt(c) + share * math.cos(angle) * tilt(c_l)), rel=1e-9)
+    assert sup.misalignment * 1e3 == pytest.approx(67.6, abs=0.1)  # um across the 30 mm face
     assert any("misalignment" in w for w in summary.warnings)
 
 

@@ -86,30 +86,72 @@ def supported_shaft_compliance(elastic_modulus: float, diameter: float, span: fl
                                bearing_stiffness: tuple[float, float], bore: float = 0.0) -> tuple[float, float]:
     """Lateral compliance (mm/N) and slope per unit load (rad/N) at a gear on a round shaft carried
     by two bearings ``span`` apart, the gear at ``load_position`` from the first (negative, or
-    beyond ``span``: overhung), the bearings of radial stiffness ``bearing_stiffness`` (N/mm).
+    beyond ``span``: overhung), the bearings of radial stiffness ``bearing_stiffness`` (N/mm):
+    :func:`shaft_influence` at the load itself."""
+    return shaft_influence(elastic_modulus, diameter, span, load_position, load_position, bearing_stiffness, bore)
 
-    Exact for a linear beam on elastic point supports, by superposition: the beam on rigid supports
-    (between them ``a^2 b^2 / (3 E I L)``; overhung by ``c`` beyond a support ``c^2 (L + c) / (3 E I)``)
-    plus the rigid-body motion of the shaft on its bearings, whose reactions follow the lever
-    (``R1 = P (L - z) / L``, ``R2 = P z / L``).
+
+def shaft_influence(elastic_modulus: float, diameter: float, span: float, load_position: float, at: float,
+                    bearing_stiffness: tuple[float, float], bore: float = 0.0) -> tuple[float, float]:
+    """Lateral displacement (mm/N) and slope (rad/N) at ``at`` of a round shaft on two elastic
+    supports ``span`` apart under a unit load at ``load_position`` (both measured from the first
+    support; outside ``[0, span]``: overhung).
+
+    Exact for a linear beam on elastic point supports: the beam on rigid supports by virtual work,
+    ``int M m / EI``, with ``M`` the moment of the unit load and ``m`` that of a unit load
+    (displacement) or a unit couple (slope) at ``at`` -- both piecewise linear between the supports
+    and the two points, so Simpson's rule on each piece is exact -- plus the rigid-body motion of the
+    shaft on its bearings, whose reactions follow the lever (``R1 = (L - z) / L``, ``R2 = z / L``).
     """
     ei = elastic_modulus * round_section_second_moment(diameter, bore)
-    L, z = span, load_position
+    L, p, q = span, load_position, at
     if not L > 0:
         raise DesignError("span", f"{L!r} mm: two bearings at one place", "> 0")
+
+    def step(x_side: float, point: float) -> float:  # [x > point], read on the open piece
+        return 1.0 if x_side > point else 0.0
+
+    def moment_of_load(x: float, side: float, z: float) -> float:
+        """Moment at x of a unit load at z (reactions (L - z)/L and z/L), summed from the left."""
+        return (L - z) / L * x * step(side, 0.0) + z / L * (x - L) * step(side, L) - (x - z) * step(side, z)
+
+    def moment_of_couple(x: float, side: float, z: float) -> float:
+        """d/dz of moment_of_load: a unit couple at z."""
+        return -x / L * step(side, 0.0) + (x - L) / L * step(side, L) + step(side, z)
+
+    points = sorted({0.0, L, p, q})
+    bending = slope = 0.0
+    for a, b in zip(points[:-1], points[1:]):
+        mid = (a + b) / 2
+        w = (b - a) / 6
+        for x, weight in ((a, w), (mid, 4 * w), (b, w)):
+            big = moment_of_load(x, mid, p)
+            bending += weight * big * moment_of_load(x, mid, q)
+            slope += weight * big * moment_of_couple(x, mid, q)
     k1, k2 = bearing_stiffness
-    r1, r2 = (L - z) / L, z / L  # reactions per unit load (signed)
-    bearings = r1 * r1 / k1 + r2 * r2 / k2
-    tilt = (r2 / k2 - r1 / k1) / L  # rigid-body slope per unit load
-    if 0 <= z <= L:
-        a, b = z, L - z
-        bending = a * a * b * b / (3 * ei * L)
-        slope = a * b * (b - a) / (3 * ei * L)  # beam slope under the load (simply supported)
-    else:
-        c = z - L if z > L else -z
-        bending = c * c * (L + c) / (3 * ei)
-        slope = c * (2 * L + 3 * c) / (6 * ei) * (1 if z > L else -1)
-    return bearings + bending, tilt + slope
+    u1, u2 = (L - p) / L / k1, p / L / k2  # the bearings give way under their reactions
+    return u1 + (u2 - u1) * q / L + bending / ei, (u2 - u1) / L + slope / ei
+
+
+def supported_gear_response(spec: ComponentSpec, elastic_modulus: float) -> tuple[float, float, float]:
+    """A gear on its placed shaft (a ``shaft_support`` component) under its mesh force and the shaft's
+    other mesh forces (``spec.other_loads``, in proportion): per unit force at the gear, its
+    displacement and slope along that force, and the compliance the path sees, ``sum_ij f_i f_j
+    cos(theta_i - theta_j) C_ij`` -- the work of all the forces, so the output rotation."""
+    supports = spec.support_stiffness or (spec.stiffness, spec.stiffness)
+    loads = ((spec.load_position, 1.0, 0.0),) + tuple(spec.other_loads)
+
+    def influence(load: float, at: float) -> tuple[float, float]:
+        return shaft_influence(elastic_modulus, spec.diameter, spec.span, load, at, supports, spec.bore_diameter)
+
+    displacement = slope = compliance = 0.0
+    for z_i, f_i, t_i in loads:
+        d, s = influence(z_i, spec.load_position)
+        displacement += f_i * math.cos(t_i) * d
+        slope += f_i * math.cos(t_i) * s
+        for z_j, f_j, t_j in loads:
+            compliance += f_i * f_j * math.cos(t_i - t_j) * influence(z_j, z_i)[0]
+    return displacement, slope, compliance
 
 
 def series(*stiffnesses):
@@ -342,15 +384,16 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "shaft_support":
         radius = _gear_base_radius(design, spec.gear, f"{where}.gear")
+        local, unit = 1.0 / supported_gear_response(spec, e)[2], "N/mm"
         supports = spec.support_stiffness or (spec.stiffness, spec.stiffness)
-        compliance, _ = supported_shaft_compliance(e, spec.diameter, spec.span, spec.load_position, supports,
-                                                   spec.bore_diameter)
-        local, unit = 1.0 / compliance, "N/mm"
         where_load = ("between its supports" if 0 <= spec.load_position <= spec.span else "overhung")
         each = (f"{supports[0]:.4g} N/mm each" if supports[0] == supports[1]
                 else f"{supports[0]:.4g} and {supports[1]:.4g} N/mm")
         detail = (f"shaft d={spec.diameter:.4g} mm on supports {spec.span:.4g} mm apart ({each}), "
                   f"gear {where_load} at {spec.load_position:.4g} mm")
+        for z, share, angle in spec.other_loads:
+            detail += (f"; with the shaft's other mesh force ({share:.3g} x, at {z:.4g} mm, "
+                       f"{math.degrees(angle) % 360:.0f} deg from the gear's)")
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "mesh":
         a, b = spec.gears
@@ -564,8 +607,8 @@ LOCATION_NAMES = {"output": "output torsion", "cluster": "cluster-shaft torsion"
 
 @dataclass(frozen=True)
 class SupportDeflection:
-    """A gear on its placed shaft and bearings under the mesh force of the preload (mm, rad, N):
-    how far it moves along the line of action and how much it tilts, and the misalignment that
+    """A gear on its placed shaft and bearings under the mesh force of the preload, with the
+    shaft's other mesh forces (a cluster's other gear) (mm, rad, N): how far it moves along its line of action and how much it tilts, and the misalignment that
     tilt makes across its face (``tilt * face_width``)."""
 
     component: str
@@ -998,8 +1041,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         if c is None or c.kind != "shaft_support":
             continue
         e = c.elastic_modulus or spec.elastic_modulus
-        compliance, tilt = supported_shaft_compliance(e, c.diameter, c.span, c.load_position,
-                                                      c.support_stiffness or (c.stiffness, c.stiffness), c.bore_diameter)
+        compliance, tilt, _ = supported_gear_response(c, e)
         force = preload / (comp.ratio * comp.radius)  # the path's preload torque as mesh force at the gear
         sup = SupportDeflection(c.name, c.gear, force, force * compliance, force * tilt,
                                 design.gears[c.gear].face_width)

@@ -272,6 +272,9 @@ class ComponentSpec:
     placed: bool = False
     # placed shaft_support: radial stiffness (N/mm) of the lower and the upper support
     support_stiffness: tuple[float, float] | None = None
+    # placed shaft_support: the other mesh forces on the same shaft (a cluster's other gear), each
+    # (distance from the lower support mm, its force over this gear's, its angle from this gear's rad)
+    other_loads: tuple[tuple[float, float, float], ...] = ()
 
     def __post_init__(self):
         where = f"stiffness.components.{self.name}"

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+import math
+
 from typing import Any
 
 from geargen.design.assembly import Design
@@ -67,7 +69,8 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
                 e = c.elastic_modulus or stiffness_design(design).stiffness.elastic_modulus
                 extra = dict(bore_diameter=shaft.bore or c.bore_diameter,
                              support_stiffness=tuple(_support_stiffness(b, c.stiffness, e, placed)
-                                                     for b in shaft.supports()))
+                                                     for b in shaft.supports()),
+                             other_loads=_other_mesh_forces(shaft, c.gear, layout))
             out.append(replace(c, placed=True, diameter=shaft.diameter,
                                span=None if c.support == "cantilever" else shaft.span,
                                load_position=shaft.load_position(c.gear), **extra))
@@ -87,6 +90,50 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
             out.append(replace(c, placed=True, diameter=shaft.diameter, bore_diameter=shaft.bore or c.bore_diameter,
                                length=shaft.twist_length))
     return tuple(out)
+
+
+def _mesh_force_direction(own: tuple[float, float], own_base: float, mate: tuple[float, float], mate_base: float,
+                          sense: int) -> float:
+    """Angle (rad) of the force a mate exerts on an external gear at ``own`` through their mesh: along
+    the line of action, tangent to both base circles (``cos(alpha_w) = (r_b + r_b') / a`` at the placed
+    centre distance ``a``), pushing the gear away from its mate and turning it ``sense`` (+1
+    counter-clockwise)."""
+    towards = math.atan2(mate[1] - own[1], mate[0] - own[0])
+    alpha = math.acos(min((own_base + mate_base) / math.dist(own, mate), 1.0))
+    # -sin(alpha) along the centre line, sense cos(alpha) across it
+    return towards + math.pi - sense * (math.pi / 2 - alpha)
+
+
+def _other_mesh_forces(shaft, gear: str, layout: Layout) -> tuple[tuple[float, float, float], ...]:
+    """The mesh forces on ``shaft`` besides ``gear``'s, for a shaft that passes torque from one gear to
+    another (a cluster): each ``(distance from the lower support, force over gear's force, angle from
+    gear's force)``. Both carry the shaft's torque, so each is ``r_b(gear) / r_b(other)`` of it; each
+    acts on the line of action of its mesh's working flank (:attr:`MeshPlacement.working_flank`, the
+    flank the preload loads). Empty when no other gear on the shaft meshes."""
+    from geargen.errors import DesignError
+    where = f"stiffness.components (the shaft of gears.{gear})"
+    forces = {}
+    for m in layout.meshes:
+        if not m.engaged:
+            continue
+        for own_part, own, mate_part, mate in ((m.part1, m.gear1, m.part2, m.gear2), (m.part2, m.gear2, m.part1, m.gear1)):
+            if own.name not in shaft.loads or math.dist(layout.gear(own_part).centre, shaft.centre) > 1e-9:
+                continue
+            if not m.working_flank:
+                raise DesignError(where, f"{m.name} has no working flank to say which line of action it loads",
+                                  "a mesh of the preloaded loop")
+            # gear 1's flank leading in that turn carries the load; the mesh force turns both gears back
+            sense = -1 if m.working_flank.split()[-1] == "ccw" else 1
+            forces[own.name] = (own.base_radius, _mesh_force_direction(
+                shaft.centre, own.base_radius, layout.gear(mate_part).centre, mate.base_radius, sense))
+    if gear not in forces or len(forces) == 1:
+        return ()
+    if len(forces) > 2:
+        raise DesignError(where, f"{len(forces)} gears mesh on one shaft: how the torque divides between them is not "
+                          "known", "two meshing gears on a supported shaft")
+    (other,) = [n for n in forces if n != gear]
+    (base, angle), (other_base, other_angle) = forces[gear], forces[other]
+    return ((shaft.load_position(other), base / other_base, other_angle - angle),)
 
 
 def _support_stiffness(bearing, bearing_stiffness: float, elastic_modulus: float, placed: dict) -> float:

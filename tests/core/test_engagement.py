@@ -391,10 +391,10 @@ def test_c_axis_rates_and_lead_on_the_placed_gears(c_axis):
     old_lead = (eng.backlash + reviewer_windup) / math.tan(small.helix_angle)
     assert old_lead == pytest.approx(1.397, abs=1e-3)
     assert eng.circumferential_rate * old_lead == pytest.approx(0.218, abs=1e-3)
-    # the drive as resolved now: each path about 2.4e5 N m/rad with the pinion overhung on its quill
-    # bearings (geargen.model.shafts), so the loop winds up 644 um at 300 N m: a 4.63 mm lead
-    assert eng.preload_windup == pytest.approx(0.6437, abs=5e-4)
-    assert eng.lead == pytest.approx(4.630, abs=2e-3)
+    # the drive as resolved now: each path about 3.1e5 N m/rad with the cluster overhung on its quill
+    # bearings (geargen.model.shafts), so the loop winds up 554 um at 300 N m: a 4.06 mm lead
+    assert eng.preload_windup == pytest.approx(0.5545, abs=5e-4)
+    assert eng.lead == pytest.approx(4.059, abs=2e-3)
     assert float(eng.loop_windup(eng.lead)) == pytest.approx(-eng.backlash, rel=1e-12)
 
 

@@ -290,3 +290,27 @@ def test_shaft_on_elastic_bearings_against_frame_model(load_position):
     compliance, slope = supported_shaft_compliance(E, d, span, load_position, (k1, k2))
     assert compliance == pytest.approx(fr.disp(nodes[load_position], "v"), rel=1e-9)
     assert slope == pytest.approx(fr.disp(nodes[load_position], "t"), rel=1e-9)
+
+
+@pytest.mark.parametrize("load_position, at", [(53.5, 35.0), (35.0, 53.5), (12.0, 22.0), (-20.0, 83.5), (83.5, -20.0)])
+def test_shaft_influence_at_another_point_against_frame_model(load_position, at):
+    """The displacement and slope at one gear of a shaft on elastic bearings under the other gear's
+    load (a cluster's two gears: the C-axis pinion and large gear both overhung, the robot joint's
+    between the bearings), from the frame model; and reciprocity (Maxwell) between the two points."""
+    from geargen.core.stiffness import shaft_influence
+    d, span, k1, k2 = 30.0, 30.0, 150e3, 90e3
+    I = math.pi * d ** 4 / 64
+    fr = Frame()
+    xs = sorted({0.0, span, load_position, at})
+    nodes = {x: fr.node(x, 0) for x in xs}
+    for a, b in zip(xs[:-1], xs[1:]):
+        fr.member(nodes[a], nodes[b], E, 700.0, I, pieces=6)
+    fr.fix(nodes[xs[0]], "u")
+    fr.spring(nodes[0.0], "v", k1)
+    fr.spring(nodes[span], "v", k2)
+    fr.load(nodes[load_position], "v", 1.0)
+    fr.solve()
+    displacement, slope = shaft_influence(E, d, span, load_position, at, (k1, k2))
+    assert displacement == pytest.approx(fr.disp(nodes[at], "v"), rel=1e-9)
+    assert slope == pytest.approx(fr.disp(nodes[at], "t"), rel=1e-9)
+    assert shaft_influence(E, d, span, at, load_position, (k1, k2))[0] == pytest.approx(displacement, rel=1e-12)

@@ -111,16 +111,44 @@ def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
     mesh2 = E * 0.25 * IN / 11 * rb4 ** 2
     shaft = G * math.pi * (0.25 * IN) ** 4 / 32 / (0.3125 * IN) * R2 ** 2
     ei = E * math.pi * (0.25 * IN) ** 4 / 64
-    span, a = 0.7985 * IN, 0.52425 * IN
+    span, a, a_large = 0.7985 * IN, 0.52425 * IN, 0.21175 * IN  # the large gear's mid-face 0.09375 in
+
+    def influence(load, at):
+        """The shaft on two rigid supports (b x (L^2 - b^2 - x^2) / (6 E I L), x on the load's near
+        side) plus the two 10 N/um bearings through their levers, mm/N."""
+        if at > load:
+            load, at = span - load, span - at
+        b = span - load
+        return (b * at * (span ** 2 - b ** 2 - at ** 2) / (6 * ei * span)
+                + ((span - load) * (span - at) + load * at) / span ** 2 / 10e3)
     b = span - a
-    # the small gear on its shaft and two 10 N/um bearings: beam between rigid supports plus the
-    # bearings through their levers (reactions b/L and a/L of the load)
-    support = 1 / (a * a * b * b / (3 * ei * span) + ((b / span) ** 2 + (a / span) ** 2) / 10e3) * (rb3 * R2) ** 2
+    assert influence(a, a) == pytest.approx(a * a * b * b / (3 * ei * span) + ((b / span) ** 2 + (a / span) ** 2)
+                                            / 10e3, rel=1e-12)
+    # the reviewer's single force: the small gear's alone, through R2 at its base radius
+    alone = 1 / influence(a, a) * (rb3 * R2) ** 2
+    assert 1 / (1 / mesh1 + 1 / mesh2 + 1 / shaft + 1 / alone) == pytest.approx(15.518e6, rel=1e-4)
+    # both mesh forces on the shaft, per unit output torque 1 / (R2 r_b) each, along the working lines
+    # of action at the placed centres: the input's on the large gear turns cluster a clockwise (the
+    # input's ccw flank works), the output's on the small gear counter-clockwise
+    from geargen.model import resolve
+    layout = resolve(load_design(ROBOT))
+    c_cl, c_in, c_out = (layout.gear(n).centre for n in ("cluster_small_a", "input", "output"))
+
+    def push(mate, rb, rb_mate, sense):  # away from the mate, turning the cluster `sense`
+        ex, ey = (mate[0] - c_cl[0]) / math.dist(mate, c_cl), (mate[1] - c_cl[1]) / math.dist(mate, c_cl)
+        alpha = math.acos((rb + rb_mate) / math.dist(mate, c_cl))
+        return (-math.sin(alpha) * ex - sense * math.cos(alpha) * ey, -math.sin(alpha) * ey + sense * math.cos(alpha) * ex)
+    n_large, n_small = push(c_in, rb2, 0.25 * IN * cos20, -1), push(c_out, rb3, rb4, +1)
+    cos = n_large[0] * n_small[0] + n_large[1] * n_small[1]
+    f_large, f_small = 1 / (R2 * rb2), 1 / (R2 * rb3)
+    support = 1 / (f_small ** 2 * influence(a, a) + f_large ** 2 * influence(a_large, a_large)
+                   + 2 * cos * f_small * f_large * influence(a_large, a))
     k_path = 1 / (1 / mesh1 + 1 / mesh2 + 1 / shaft + 1 / support)
     assert s.drive.k1 == pytest.approx(k_path, rel=1e-12) and s.drive.k2 == pytest.approx(k_path, rel=1e-12)
-    # N·mm/rad: the reviewer's "about 15,500 N m/rad with the built geometry" (17.28e6 with the lengths
-    # typed in the file before, 0.60 in span and the load 0.20 in from a bearing)
-    assert k_path == pytest.approx(15.518e6, rel=1e-4)
+    # N·mm/rad: the two forces nearly oppose (137 deg): 18,551 N m/rad (17.28e6 with the lengths typed
+    # in the file in the first round)
+    assert cos == pytest.approx(-0.7315, abs=1e-4)
+    assert k_path == pytest.approx(18.551e6, rel=1e-4)
     common = 1 / (1 / (G * math.pi * (0.1875 * IN) ** 4 / 32 / (0.5 * IN) * (R1 * R2) ** 2)
                   + 1 / (G * math.pi * ((1.25 * IN) ** 4 - IN ** 4) / 32 / (0.4 * IN)))
     assert s.common.stiffness == pytest.approx(common, rel=1e-12)
