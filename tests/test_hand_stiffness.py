@@ -486,6 +486,17 @@ def c_axis_hand_calculation(path: Path) -> dict:
     assert _mid_z(parts["cluster_large_b"]) == pytest.approx(z_mesh, abs=1e-6)
     L, a = z_hi - z_lo, z_mesh - z_lo
     k_beam = 3 * E * math.pi * d_in ** 4 / 64 * L / (a * a * (L - a) ** 2)
+    # its bearings sit in plates on the drive column, a bar bolted to the housing block's end face
+    # over the block's height: each bearing is carried by the column as a cantilever from the
+    # block's nearer face, bent along x (the preload motion) over its thickness, 3 E I / h^3
+    col, block = _box(parts["drive_column"]), _box(parts["housing"])
+    thickness, width = col[3] - col[0], col[4] - col[1]
+    assert col[0] == pytest.approx(block[3], abs=1e-6)  # the column's face on the block's end
+    i_col = width * thickness ** 3 / 12
+    h_lo, h_hi = block[2] - z_lo, z_hi - block[5]
+    k_col = (3 * E * i_col / h_lo ** 3, 3 * E * i_col / h_hi ** 3)
+    # in series with the beam through the reactions (L - a)/L and a/L of the mesh force
+    k_spring = 1 / (1 / k_beam + ((L - a) / L) ** 2 / k_col[0] + (a / L) ** 2 / k_col[1])
     # each path's mesh-1 force F = P / (R2 r_b2) pushes the input along its line of action; the
     # input moves u = F (d_a + d_b) / k and each mesh opens d . u, so the loop opens
     # P |d_a + d_b|^2 / (k (R2 r_b2)^2) = 4 P / k3. The loop is wound one way or the other (cluster
@@ -493,9 +504,9 @@ def c_axis_hand_calculation(path: Path) -> dict:
     # of action parallel (|d_a + d_b| = 2), which the solids' working flanks show
 
     _, sum_d, sum_other = _loop_winding(c_in, c_a, c_b, rb_in, rb_l)
-    out.update(k_beam=k_beam, beam_span=L, beam_mesh=a, gamma=math.acos(min(sum_d / 2, 1.0)),
-               k3=4 * k_beam * (R2 * rb_l) ** 2 / sum_d ** 2,
-               k3_other_winding=4 * k_beam * (R2 * rb_l) ** 2 / sum_other ** 2)
+    out.update(k_beam=k_beam, k_column=k_col, column_arms=(h_lo, h_hi), k_spring=k_spring, beam_span=L, beam_mesh=a,
+               gamma=math.acos(min(sum_d / 2, 1.0)), k3=4 * k_spring * (R2 * rb_l) ** 2 / sum_d ** 2,
+               k3_other_winding=4 * k_spring * (R2 * rb_l) ** 2 / sum_other ** 2)
 
     # the drive: Eq. 5 and Eq. 6 from the hand paths, the spindle (typed) in series
     k1, k2, k3 = out["path_a"], out["path_b"], out["k3"]
@@ -548,11 +559,14 @@ def test_c_axis_paths_by_hand(c_axis):
 
 def test_c_axis_preload_spring_and_drive_by_hand(c_axis):
     """The long pinion's 30 mm shaft on bearings 403.8 mm apart (measured), loaded at mid-span by
-    both mesh-1 forces: 48 E I / L^3 = 6000 N/mm; the two lines of action at the input are
-    parallel within 0.26 deg (the design's winding; the other way they meet at 2 x 41 deg and k3 is
-    1.78 x stiffer), so k3 = k (R2 r_b2)^2 = 729,822 N·m/rad: 2.34 x STIFFER than a path (311,468),
-    where the paper wants it several times softer; geargen says so in a warning. k_D = 2 k_path =
-    622,937 (556,182 with the spindle), k_L = 1 / (2 / k_path + 4 / k3) = 84,020."""
+    both mesh-1 forces: 48 E I / L^3 = 6000 N/mm; its bearings sit on the drive column (90 x 30 mm,
+    measured), a cantilever 92.5 mm below and 251.3 mm above the housing block it is bolted to:
+    158,790 and 7,925 N/mm, so the spring is 5,005 N/mm at the mesh (the column 17 % of it). The
+    two lines of action at the input are parallel within 0.26 deg (the design's winding; the other
+    way they meet at 2 x 41 deg and k3 is 1.78 x stiffer), so k3 = k (R2 r_b2)^2 = 608,836 N·m/rad:
+    1.95 x STIFFER than a path (311,468), where the paper wants it several times softer; geargen says
+    so in a warning. k_D = 2 k_path = 622,937 (556,182 with the spindle), k_L = 1 / (2 / k_path +
+    4 / k3) = 76,976."""
     s = c_axis["summary"]
     assert math.degrees(c_axis["gamma"]) < 1.0  # Fig. 9's optimum: the layout keeps the lever cos(gamma) ~ 1
     assert s.beam.span == pytest.approx(c_axis["beam_span"], rel=1e-6)  # the solids' span is the sized one
@@ -562,8 +576,10 @@ def test_c_axis_preload_spring_and_drive_by_hand(c_axis):
     assert s.drive.drive_stiffness == pytest.approx(c_axis["k_D"], rel=0.01)
     assert s.drive.loop_stiffness == pytest.approx(c_axis["k_L"], rel=0.01)
     assert s.drive_stiffness_with_common == pytest.approx(c_axis["k_D_common"], rel=0.01)
-    assert c_axis["k3"] / 1e3 == pytest.approx(729_807, rel=1e-3)
-    assert c_axis["k3"] / c_axis["path_a"] == pytest.approx(2.34, abs=0.01)
+    assert s.beam_supports == pytest.approx(c_axis["k_column"], rel=0.01)
+    assert c_axis["k_spring"] == pytest.approx(5005, rel=1e-3)
+    assert c_axis["k3"] / 1e3 == pytest.approx(608_836, rel=1e-3)
+    assert c_axis["k3"] / c_axis["path_a"] == pytest.approx(1.95, abs=0.01)
     assert c_axis["k3_other_winding"] / c_axis["k3"] == pytest.approx(1.78, abs=0.01)
     assert any("not several times softer" in w for w in s.warnings)
 
@@ -584,7 +600,7 @@ def test_c_axis_pinion_support_under_the_preload_by_hand(c_axis):
 def test_c_axis_engagement_lead_by_hand(c_axis):
     """The clusters slide as one: tan(15 deg) (1/25.88 - 1/62.12) x 25.88 = 0.1563 mm at the
     pinion's reference circle per mm; lead = (80 um + the loop's windup at the preload, P / k_L x
-    R2 x r3 = 554 um) / 0.1563 = 4.06 mm, as far as the trailer's retracted stop sits below the
+    R2 x r3 = 605 um) / 0.1563 = 4.38 mm, as far as the trailer's retracted stop sits below the
     leader's in the solids (it depends on k_L, so it moves with every stiffness above)."""
     assert c_axis["summary"].engagement.lead == pytest.approx(c_axis["lead"], rel=0.01)
     assert c_axis["lead_built"] == pytest.approx(c_axis["lead"], rel=0.01)

@@ -148,6 +148,41 @@ def test_c_axis_pinion_overhung_on_its_quill_bearings():
     assert any("misalignment" in w for w in summary.warnings)
 
 
+def _box(part) -> tuple[float, ...]:
+    from OCP.Bnd import Bnd_Box
+    from OCP.BRepBndLib import BRepBndLib
+    box = Bnd_Box()
+    BRepBndLib.Add_s(part.world(), box, False)
+    box.SetGap(0.0)
+    return box.Get()
+
+
+@pytest.mark.parametrize("thickness_mm", [30, 45])
+def test_the_c_axis_drive_column_is_in_the_preload_spring(tmp_path, thickness_mm):
+    """The long pinion's bearings sit on the drive column: its solid and k3 read the same column.
+    A thicker column is a thicker solid and a stiffer preload spring, each bearing carried by the
+    column as a cantilever from the housing block's nearer face (3 E I / h^3, measured on the
+    solids), in series with the beam through its reactions."""
+    text = (ROOT / "assemblies/c_axis.toml").read_text()
+    old = "drive_column_thickness_mm = 30\n"
+    assert old in text
+    path = tmp_path / f"c_axis_{thickness_mm}.toml"
+    path.write_text(text.replace(old, f"drive_column_thickness_mm = {thickness_mm}\n"))
+    layout, summary, part_set = _placed(load_design(path))
+    parts = {p.name: p for p in part_set.parts}
+    col, block = _box(parts["drive_column"]), _box(parts["housing"])
+    assert col[3] - col[0] == pytest.approx(thickness_mm, abs=1e-6)
+    lo, hi = (sum(_z_extent(parts[f"input_bearing_{w}"])) / 2 for w in ("lower", "upper"))
+    i_col = (col[4] - col[1]) * thickness_mm ** 3 / 12
+    E = 207e3
+    want = (3 * E * i_col / (block[2] - lo) ** 3, 3 * E * i_col / (hi - block[5]) ** 3)
+    assert summary.beam_supports == pytest.approx(want, rel=1e-9)
+    beam, span, a = summary.beam.stiffness, hi - lo, summary.beam.mesh_position
+    spring = 1 / (1 / beam + ((span - a) / span) ** 2 / want[0] + (a / span) ** 2 / want[1])
+    assert summary.preload_spring.linear_stiffness == pytest.approx(spring, rel=1e-9)
+    assert spring == pytest.approx({30: 5005, 45: 5667}[thickness_mm], rel=1e-3)
+
+
 def _beam_on_springs(ei: float, nodes: list[float], springs: dict[int, float], load_at: int) -> float:
     """Lateral deflection under a unit load at node ``load_at`` of a free round beam (Euler-Bernoulli,
     two-node Hermite elements between the sorted ``nodes`` heights, mm) on radial ``springs``

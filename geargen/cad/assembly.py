@@ -584,16 +584,14 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     out.rotating.append(spindle)
 
     # --- the long pinion: bearings at the beam span, symmetric about the engaged mesh
-    shift_a = layout.axial_shift.get("cluster_a", 0.0)
-    zl0, zl1 = g["cluster_large_a"].height
-    z_mesh = (zl0 + zl1) / 2 - shift_a
+    from geargen.model.shafts import beam_pinion_bearings, beam_pinion_shafts, housing_heights
     span = beam.span
     d_ish = s["input_shaft_diameter"]
     if not math.isclose(d_ish, _bore(inp.spec)):
         raise DesignError("parts.input_shaft_diameter_mm", "must equal the long pinion's bore", f"{_bore(inp.spec):.6g} mm")
     ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
-    z_lo_bearing = z_mesh - span / 2 - ibw / 2
-    z_hi_bearing = z_mesh + span / 2 - ibw / 2
+    z_lo_bearing, z_hi_bearing = beam_pinion_bearings(layout, s, span)
+    z_mesh = z_lo_bearing + ibw / 2 + span / 2
     cl = s["coupling_length"]
     ish_lo = z_lo_bearing
     ish_hi = z_hi_bearing + ibw + gap + cl / 2
@@ -630,14 +628,12 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
 
     # --- the housing block's heights: its top a clearance below the lowest a large gear comes (the
     # trailer retracted), its thickness the length of the bores the quills slide in
-    strokes = {"a": -eng.leader_retracted_stop, "b": -eng.trailer_retracted_stop}
     clusters = {side: (g[f"cluster_small_{side}"], g[f"cluster_large_{side}"],
                        layout.axial_shift.get(f"cluster_{side}", 0.0)) for side in ("a", "b")}
-    z_block_top = min(large.height[0] - shift - strokes[side] for side, (_, large, shift) in clusters.items()) - gap
-    z_block = z_block_top - s["housing_thickness"]
+    z_block, z_block_top = housing_heights(layout, s, eng)
+    strokes = {"a": -eng.leader_retracted_stop, "b": -eng.trailer_retracted_stop}
 
     # --- each dual pinion: shaft, bearings, quill, stops
-    from geargen.model.shafts import beam_pinion_shafts
     placed_shafts = beam_pinion_shafts(layout, s)
     d_cs = s["cluster_shaft_diameter"]
     d_quill = s["quill_outer_diameter"]

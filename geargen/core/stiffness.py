@@ -666,6 +666,7 @@ class StiffnessSummary:
     spring_count: int = 0
     spring_installed_length_for_preload: float | None = None
     beam: BeamPinion | None = None
+    beam_supports: tuple[float, float] | None = None  # N/mm under the beam's lower and upper bearing
     engagement: HelicalEngagement | None = None
     warnings: tuple[str, ...] = field(default_factory=tuple)
     supports: tuple["SupportDeflection", ...] = ()
@@ -739,6 +740,9 @@ class StiffnessSummary:
             "k1_Nm_per_rad": d.k1 * nm,
             "k2_Nm_per_rad": d.k2 * nm,
             "k3_Nm_per_rad": None if d.k3 == math.inf else d.k3 * nm,
+            "preload_spring_parts_N_per_mm": None if self.preload_spring is None else dict(
+                self.preload_spring.linear_parts),
+            "beam_supports_N_per_mm": None if self.beam_supports is None else list(self.beam_supports),
             "preload_Nm": d.preload * nm,
             "drive": {
                 "stiffness_Nm_per_rad": d.drive_stiffness * nm,
@@ -835,8 +839,13 @@ def loop_errors_from_travels(travels: Mapping[str, float], lever: float, source:
 
 
 def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = None,
-                      travel_source: str = "synthesis", components=None) -> StiffnessSummary:
+                      travel_source: str = "synthesis", components=None,
+                      beam_supports: tuple[float, float] | None = None) -> StiffnessSummary:
     """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
+
+    ``beam_supports``: radial stiffness (N/mm) of the structure under the long pinion's lower and
+    upper bearing (:meth:`geargen.model.shafts.DriveColumn.support_stiffness`); the beam pinion's
+    spring is then the beam in series with them through its reactions. Default: rigid supports.
 
     ``carriage_travels`` (mm, peak-to-peak; e.g. the synthesis error budget by label) replace
     the loop error of the ``[preload]`` section when given. ``components``: the design's
@@ -891,12 +900,14 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     beam_spec = sd.beam_pinion
     beam_stiffness = None
     if beam_spec is not None:
-        pin = _beam_gear(design, beam_spec.gear)
-        diameter = beam_spec.diameter or 2.0 * pin.root_radius_standard
-        probe = beam_pinion(diameter, beam_spec.elastic_modulus, 0.0, span=beam_spec.span,
-                            mesh_position=beam_spec.mesh_position, target_stiffness=beam_spec.target_stiffness)
+        probe = sized_beam_pinion(design, beam_spec)
         beam_stiffness = probe.stiffness
-        linear_parts.append(("beam pinion", beam_stiffness))
+        if beam_supports is not None:
+            # the supports give way under their reactions, (L - a)/L and a/L of the mesh force
+            upper_share = probe.mesh_position / probe.span
+            beam_stiffness = 1.0 / (1.0 / probe.stiffness + (1 - upper_share) ** 2 / beam_supports[0]
+                                    + upper_share ** 2 / beam_supports[1])
+        linear_parts.append(("beam pinion" if beam_supports is None else "beam pinion on its column", beam_stiffness))
     if pre.preload_spring_linear is not None:
         linear_parts.append(("preload spring", pre.preload_spring_linear))
     if pre.preload_spring_torsional is not None:
@@ -1004,9 +1015,8 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     beam = None
     if beam_spec is not None:
         pin = _beam_gear(design, beam_spec.gear)
-        diameter = beam_spec.diameter or 2.0 * pin.root_radius_standard
         force = (fe - fixed_forces) if fe is not None else 0.0
-        beam = beam_pinion(diameter, beam_spec.elastic_modulus, force, span=probe.span,
+        beam = beam_pinion(probe.diameter, beam_spec.elastic_modulus, force, span=probe.span,
                            mesh_position=probe.mesh_position, face_width=pin.face_width,
                            allowable_stress=beam_spec.allowable_stress)
         if beam.stress_ok is False:
@@ -1063,8 +1073,17 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         path_backlash=pre.path_backlash, flexure=flex, flexure_design=flex_design,
         flexure_design_gauge=flex_gauge, spring=spring,
         spring_count=0 if sd.springs is None else sd.springs.count,
-        spring_installed_length_for_preload=installed_for_preload, beam=beam, engagement=engagement,
+        spring_installed_length_for_preload=installed_for_preload, beam=beam, beam_supports=beam_supports,
+        engagement=engagement,
         warnings=tuple(warnings), supports=tuple(supports))
+
+
+def sized_beam_pinion(design, beam_spec) -> BeamPinion:
+    """The ``[beam_pinion]`` beam, unloaded: its span given, or sized for its target stiffness."""
+    pin = _beam_gear(design, beam_spec.gear)
+    diameter = beam_spec.diameter or 2.0 * pin.root_radius_standard
+    return beam_pinion(diameter, beam_spec.elastic_modulus, 0.0, span=beam_spec.span,
+                       mesh_position=beam_spec.mesh_position, target_stiffness=beam_spec.target_stiffness)
 
 
 def _sliding_mesh(design, gear: str, mate: str) -> SlidingMesh:

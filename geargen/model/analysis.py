@@ -156,7 +156,27 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
         return None, "no [stiffness] and [preload] sections"
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
-    return stiffness_summary(design, travels, components=placed_components(design, layout)), note
+    return stiffness_summary(design, travels, components=placed_components(design, layout),
+                             beam_supports=beam_supports(layout, layout.engagement if layout else None)), note
+
+
+def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | None:
+    """Radial stiffness (N/mm) of the structure under the long pinion's two bearings: the drive
+    column (:func:`geargen.model.shafts.drive_column`) where the design builds one and the sliding
+    pinions' strokes (``engagement``, which set the housing block's height) are known; else None
+    (rigid supports)."""
+    if layout is None or engagement is None or not layout.design.section("parts"):
+        return None
+    from geargen.design.parts import parts_settings
+    from geargen.design.stiffness import stiffness_design
+    from geargen.core.stiffness import sized_beam_pinion
+    from geargen.model.shafts import drive_column
+    parts = parts_settings(layout.design)
+    if parts["hardware"] != "beam_pinion":
+        return None
+    sd = stiffness_design(layout.design)
+    span = sized_beam_pinion(layout.design, sd.beam_pinion).span
+    return drive_column(layout, parts, span, engagement).support_stiffness(sd.beam_pinion.elastic_modulus)
 
 
 def drive_from_design(design: Design, location: str = "output"):
@@ -177,4 +197,4 @@ def drive_from_design(design: Design, location: str = "output"):
     return summary.drive if location == "output" else summary.drive_at(location)
 
 
-__all__ = ["loop_error_travels", "placed_components", "stiffness", "drive_from_design"]
+__all__ = ["loop_error_travels", "placed_components", "stiffness", "beam_supports", "drive_from_design"]

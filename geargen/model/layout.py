@@ -498,12 +498,30 @@ def _engagement(layout: Layout):
     """The lead and travel stops of helical pinions sliding axially into mesh (the stiffness
     summary's helper, with the shafts placed by the engaged ``layout``)."""
     from geargen.core.stiffness import stiffness_summary
-    from geargen.model.analysis import placed_components
+    from geargen.model.analysis import beam_supports, placed_components
     design = layout.design
-    summary = stiffness_summary(design, components=placed_components(design, layout))
-    if summary.engagement is None:
-        raise DesignError("engagement", "missing", "an [engagement] section for the sliding pinions")
-    return summary.engagement
+    components = placed_components(design, layout)
+    # The long pinion's column is clamped in the housing block, whose height follows the strokes,
+    # which follow the preload windup, which follows k3 on that column: a fixed point. The column's
+    # stiffness changes little with a stroke (a few tenths of a mm on a 250 mm arm), so it settles
+    # in a few rounds; started on rigid supports.
+    engagement = None
+    for _ in range(20):
+        try:
+            summary = stiffness_summary(design, components=components, beam_supports=beam_supports(layout, engagement))
+        except DesignError as e:
+            if engagement is not None or not e.field.startswith("engagement."):
+                raise
+            # refused already with the column rigid: on the real column the loop winds up more
+            raise DesignError(e.field, f"{e.problem}, with the long pinion's column taken as rigid (on the column "
+                              "it needs more)", e.allowed) from None
+        if summary.engagement is None:
+            raise DesignError("engagement", "missing", "an [engagement] section for the sliding pinions")
+        if engagement is not None and abs(summary.engagement.lead - engagement.lead) <= 1e-9:
+            return summary.engagement
+        engagement = summary.engagement
+    raise DesignError("engagement", f"the lead does not settle with the drive column's stiffness (last "
+                      f"{engagement.lead:.6g} mm)", "a stiffer column: parts.drive_column_thickness_mm")
 
 
 def _place_split_pinion(design: Design, s: dict) -> Layout:

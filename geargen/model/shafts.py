@@ -217,6 +217,56 @@ def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
     return out
 
 
+def beam_pinion_bearings(layout: Layout, parts: dict[str, Any], span: float) -> tuple[float, float]:
+    """Lower faces (z) of the long pinion's two bearings: ``span`` apart (the beam-spring helper's),
+    symmetric about the large gears' engaged mid-face, so the slope at the mesh is zero."""
+    large = layout.gear("cluster_large_a")
+    z_mesh = sum(large.height) / 2 - layout.axial_shift.get("cluster_a", 0.0)
+    width = parts["input_bearing_width"]
+    return z_mesh - span / 2 - width / 2, z_mesh + span / 2 - width / 2
+
+
+def housing_heights(layout: Layout, parts: dict[str, Any], engagement) -> tuple[float, float]:
+    """(bottom, top) of the C-axis housing block the quills slide in: its top a clearance below the
+    lowest a large gear comes (the trailer retracted, ``engagement``'s strokes), its thickness
+    ``housing_thickness``."""
+    strokes = {"a": -engagement.leader_retracted_stop, "b": -engagement.trailer_retracted_stop}
+    top = min(layout.gear(f"cluster_large_{side}").height[0] - layout.axial_shift.get(f"cluster_{side}", 0.0)
+              - strokes[side] for side in ("a", "b")) - parts["bearing_clearance"]
+    return top - parts["housing_thickness"], top
+
+
+@dataclass(frozen=True)
+class DriveColumn:
+    """The C-axis drive column: a bar ``width`` x ``thickness`` (the thickness along the preload
+    motion, x) bolted to the housing block's end face over ``clamp`` (z range), carrying the long
+    pinion's bearing plates at ``supports`` (their mid-widths, lower and upper)."""
+
+    width: float
+    thickness: float
+    clamp: tuple[float, float]
+    supports: tuple[float, float]
+
+    def support_stiffness(self, elastic_modulus: float) -> tuple[float, float]:
+        """Radial stiffness (N/mm, along x) the column gives each bearing: a cantilever from the
+        clamp's nearer edge, ``3 E I / h^3`` with ``I = width thickness^3 / 12``; the bearing plates
+        (loaded in their plane) and the bolted joint taken as rigid. Infinite inside the clamp."""
+        second_moment = self.width * self.thickness ** 3 / 12
+        out = []
+        for z in self.supports:
+            h = max(self.clamp[0] - z, z - self.clamp[1], 0.0)
+            out.append(math.inf if h == 0.0 else 3 * elastic_modulus * second_moment / h ** 3)
+        return out[0], out[1]
+
+
+def drive_column(layout: Layout, parts: dict[str, Any], span: float, engagement) -> DriveColumn:
+    """The column as the solids are built (:func:`beam_pinion_bearings`, :func:`housing_heights`)."""
+    width = parts["input_bearing_width"]
+    return DriveColumn(parts["drive_column_width"], parts["drive_column_thickness"],
+                       housing_heights(layout, parts, engagement),
+                       tuple(z + width / 2 for z in beam_pinion_bearings(layout, parts, span)))
+
+
 def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     """The split pinion's two concentric shafts (Fig. 8).
 
@@ -280,5 +330,5 @@ def shafts(layout: Layout) -> dict[str, Shaft]:
     return builder(layout, parts) if builder is not None else {}
 
 
-__all__ = ["Bearing", "Shaft", "carriage_shafts", "beam_pinion_shafts", "split_pinion_shafts", "shafts",
-           "SHAFT_BUILDERS"]
+__all__ = ["Bearing", "Shaft", "DriveColumn", "carriage_shafts", "beam_pinion_shafts", "beam_pinion_bearings",
+           "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "SHAFT_BUILDERS"]

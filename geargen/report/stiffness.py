@@ -143,6 +143,10 @@ def format_summary(s: StiffnessSummary, loop_error_note: str = "") -> str:
                      f"zero slope at {b.zero_slope_position / per_unit:.4g} {unit}, section d {b.diameter / per_unit:.4g} {unit}")
         lines.append(f"  stiffness at the mesh {_g(b.stiffness)} N/mm; at {_g(b.force)} N: deflection {b.deflection * 1e3:.4g} µm, "
                      f"slope {b.slope_at_mesh * URAD:.3g} µrad, stress {_g(b.max_stress)} MPa")
+        if s.beam_supports is not None:
+            lines.append(f"  its bearings on the drive column: {_g(s.beam_supports[0])} N/mm (lower), "
+                         f"{_g(s.beam_supports[1])} N/mm (upper); in series: "
+                         f"{_g(dict(s.preload_spring.linear_parts)['beam pinion on its column'])} N/mm at the mesh")
         lines.append("")
     if s.engagement is not None:
         e = s.engagement
