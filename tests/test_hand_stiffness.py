@@ -515,7 +515,13 @@ def c_axis_hand_calculation(path: Path) -> dict:
     sp = comps["spindle"]
     D, L_sp = _value(sp, "diameter", LENGTH), _value(sp, "length", LENGTH)
     bore = _value(sp, "bore_diameter", LENGTH) if any(k.startswith("bore_diameter_") for k in sp) else 0.0
-    out["common"] = G * math.pi * (D ** 4 - bore ** 4) / 32 / L_sp
+    # the long pinion's shaft twists from where the motor's torque enters (the middle of the length
+    # it fills in the coupling, measured) to the large gears' mid-face, at the input's speed R1 R2
+    shaft_top, coupling_bottom = _box(parts["input_shaft"])[5], _box(parts["coupling"])[2]
+    L_in = (shaft_top + coupling_bottom) / 2 - z_mesh
+    out["common_parts"] = {"spindle": G * math.pi * (D ** 4 - bore ** 4) / 32 / L_sp,
+                           "input_shaft": G * math.pi * d_in ** 4 / 32 / L_in * (out["R1"] * R2) ** 2}
+    out["common"] = _series(*out["common_parts"].values())
     out["k_D_common"] = _series(out["k_D"], out["common"])
 
     # axial engagement: the cluster slid dz turns tan(beta) dz / r against each mate; same hands on
@@ -544,7 +550,8 @@ def test_c_axis_paths_by_hand(c_axis):
     engaged) 4.578e7 + mesh 2 (30 mm) 1.192e7 + cluster shaft (30 mm over 35 mm) 6.486e6 + the
     cluster on its 30 mm quill pair under both its mesh forces (pinion 53.5 mm, large gear 18.5 mm
     beyond the upper bearing, lines of action 136 deg apart: 92 % of the path's compliance) 3.389e5
-    -> 311,468; common: the spindle as typed (100 mm over 150 mm) 5.19e6."""
+    -> 311,468; common: the long pinion's 30 mm shaft from the coupling to the large gears' mid-face
+    (221.9 mm, x 18^2) 9.207e6 in series with the spindle as typed (100 mm over 150 mm) 5.19e6."""
     s = c_axis["summary"]
     for side, path in (("a", s.path1), ("b", s.path2)):
         assert path.stiffness == pytest.approx(c_axis[f"path_{side}"], rel=0.01), side
@@ -554,7 +561,10 @@ def test_c_axis_paths_by_hand(c_axis):
             assert by_name[name] == pytest.approx(value, rel=0.01), (side, name)
     assert c_axis["R2"] == 6 and c_axis["R1"] == 3
     assert s.common.stiffness == pytest.approx(c_axis["common"], rel=0.01)
+    for c in s.common.components:
+        assert c.at_output == pytest.approx(c_axis["common_parts"][c.name], rel=0.01), c.name
     assert c_axis["path_a"] / 1e3 == pytest.approx(311_468, rel=1e-3)
+    assert c_axis["common_parts"]["input_shaft"] / 1e3 == pytest.approx(9.207e6, rel=1e-3)
 
 
 def test_c_axis_preload_spring_and_drive_by_hand(c_axis):
@@ -565,7 +575,7 @@ def test_c_axis_preload_spring_and_drive_by_hand(c_axis):
     two lines of action at the input are parallel within 0.26 deg (the design's winding; the other
     way they meet at 2 x 41 deg and k3 is 1.78 x stiffer), so k3 = k (R2 r_b2)^2 = 608,836 N·m/rad:
     1.95 x STIFFER than a path (311,468), where the paper wants it several times softer; geargen says
-    so in a warning. k_D = 2 k_path = 622,937 (556,182 with the spindle), k_L = 1 / (2 / k_path +
+    so in a warning. k_D = 2 k_path = 622,937 (524,500 with the common parts), k_L = 1 / (2 / k_path +
     4 / k3) = 76,976."""
     s = c_axis["summary"]
     assert math.degrees(c_axis["gamma"]) < 1.0  # Fig. 9's optimum: the layout keeps the lever cos(gamma) ~ 1

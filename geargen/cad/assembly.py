@@ -584,27 +584,28 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     out.rotating.append(spindle)
 
     # --- the long pinion: bearings at the beam span, symmetric about the engaged mesh
-    from geargen.model.shafts import beam_pinion_bearings, beam_pinion_shafts, housing_heights
+    from geargen.model.shafts import beam_pinion_shafts, housing_heights
     span = beam.span
     d_ish = s["input_shaft_diameter"]
     if not math.isclose(d_ish, _bore(inp.spec)):
         raise DesignError("parts.input_shaft_diameter_mm", "must equal the long pinion's bore", f"{_bore(inp.spec):.6g} mm")
     ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
-    z_lo_bearing, z_hi_bearing = beam_pinion_bearings(layout, s, span)
-    z_mesh = z_lo_bearing + ibw / 2 + span / 2
+    placed_shafts = beam_pinion_shafts(layout, s)
+    placed_input = placed_shafts["input"]
+    z_mesh = placed_input.loads["input"]
     cl = s["coupling_length"]
-    ish_lo = z_lo_bearing
-    ish_hi = z_hi_bearing + ibw + gap + cl / 2
+    ish_lo, ish_hi = placed_input.z_lo, placed_input.z_hi
     ishaft = out.add("input_shaft", out.shared(P.shaft, d_ish, ish_hi - ish_lo), _at(x_in, 0, ish_lo), "drive", "shaft",
                      description=f"long pinion's shaft d {d_ish:.4g} mm, bearing span {span:.4g} mm (beam spring)")
     out.touch(ishaft, "input", "pinion teeth on their shaft")
     input_bearings = []
-    for where, z in (("lower", z_lo_bearing), ("upper", z_hi_bearing)):
-        b = out.add(f"input_bearing_{where}", out.shared(P.bearing, d_ish, ibod, ibw), _at(x_in, 0, z), "drive", "bearing",
+    for bearing in placed_input.supports():
+        b = out.add(bearing.name, out.shared(P.bearing, d_ish, ibod, ibw), _at(x_in, 0, bearing.z), "drive", "bearing",
                     description=f"{d_ish:.4g} x {ibod:.4g} x {ibw:.4g} mm, simple support of the beam at "
-                                f"z = {z + ibw / 2:.5g} mm")
+                                f"z = {bearing.centre_z:.5g} mm")
         out.touch(b, ishaft, "bearing on its shaft")
-        input_bearings.append((b, z))
+        input_bearings.append((b, bearing.z))
+    z_lo_bearing = placed_input.supports()[0].z
     # coupling (half on the shaft), gearhead (the exact upstream ratio), motor with the encoder
     zc = ish_hi - cl / 2
     coupling = out.add("coupling", P.cylinder(s["coupling_diameter"], cl, d_ish), _at(x_in, 0, zc), "drive", "shaft",
@@ -634,7 +635,6 @@ def beam_pinion_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     strokes = {"a": -eng.leader_retracted_stop, "b": -eng.trailer_retracted_stop}
 
     # --- each dual pinion: shaft, bearings, quill, stops
-    placed_shafts = beam_pinion_shafts(layout, s)
     d_cs = s["cluster_shaft_diameter"]
     d_quill = s["quill_outer_diameter"]
     lug, lug_w, lug_t, block = s["stop_lug_length"], s["stop_lug_width"], s["stop_lug_thickness"], s["stop_block_size"]

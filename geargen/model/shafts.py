@@ -214,7 +214,32 @@ def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
         loads = {g.name: _mid(p, g) for p in (large, small) for g in p.gears}
         out[f"cluster_{side}"] = Shaft(f"cluster_shaft_{side}", tuple(small.centre), z_nut, small.height[1], diameter,
                                        (lower, upper), loads)
+    out["input"] = beam_pinion_input_shaft(layout, parts)
     return out
+
+
+def beam_pinion_input_shaft(layout: Layout, parts: dict[str, Any]) -> Shaft:
+    """The long pinion's shaft: on its two bearings (:func:`beam_pinion_bearings`, at the span the
+    beam-spring helper sizes), up through the upper one and a ``bearing_clearance`` into the
+    coupling, which it fills for half the coupling's length. The motor's torque enters along that
+    half and leaves at the meshes with the large gears: it twists from the middle of the one to the
+    large gears' mid-face (engaged)."""
+    from geargen.core.stiffness import sized_beam_pinion
+    from geargen.design.stiffness import stiffness_design
+    spec = stiffness_design(layout.design).beam_pinion
+    if spec is None:
+        raise DesignError("beam_pinion", "missing: the long pinion's span comes from it", "a [beam_pinion] section")
+    span = sized_beam_pinion(layout.design, spec).span
+    width, outer, diameter = parts["input_bearing_width"], parts["input_bearing_outer_diameter"], \
+        parts["input_shaft_diameter"]
+    z_lo, z_hi = beam_pinion_bearings(layout, parts, span)
+    lower = Bearing("input_bearing_lower", z_lo, width, diameter, outer)
+    upper = Bearing("input_bearing_upper", z_hi, width, diameter, outer)
+    in_coupling = parts["coupling_length"] / 2
+    top = z_hi + width + parts["bearing_clearance"] + in_coupling
+    z_mesh = z_lo + width / 2 + span / 2
+    return Shaft("input_shaft", tuple(layout.gear("input").centre), z_lo, top, diameter, (lower, upper),
+                 {"input": z_mesh}, twist=(z_mesh, top - in_coupling / 2))
 
 
 def beam_pinion_bearings(layout: Layout, parts: dict[str, Any], span: float) -> tuple[float, float]:
@@ -331,4 +356,5 @@ def shafts(layout: Layout) -> dict[str, Shaft]:
 
 
 __all__ = ["Bearing", "Shaft", "DriveColumn", "carriage_shafts", "beam_pinion_shafts", "beam_pinion_bearings",
+           "beam_pinion_input_shaft",
            "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "SHAFT_BUILDERS"]
