@@ -183,13 +183,12 @@ def hand_calculation(path: Path) -> dict:
 
     out = {"R": R, "summary": summary, "hollow_lower_end": hollow_box[2], "z_stiff": z_stiff,
            "hollow_measured": (D_h, d_h)}
-    # path 1: the wide pinion's mesh, the typed hollow shaft, the wide pinion overhung on the pair
+    # path 1: the wide pinion's mesh, the hollow shaft (measured tube) twisting from its lower end,
+    # where the drive turns it, to the wide pinion's mid-face, the wide pinion overhung on the pair
     w_stiff = stiff_box[5] - stiff_box[2]
     out["mesh_stiff"] = E * w_stiff / 11 * rb_out ** 2
-    hs = comps["hollow_shaft"]
-    D, d, L = (_value(hs, k, LENGTH) for k in ("diameter", "bore_diameter", "length"))
-    out["hollow_typed"] = (D, d, L)
-    out["hollow_shaft"] = G * math.pi * (D ** 4 - d ** 4) / 32 / L * R ** 2
+    out["hollow_twist"] = z_stiff - hollow_box[2]
+    out["hollow_shaft"] = G * math.pi * (D_h ** 4 - d_h ** 4) / 32 / out["hollow_twist"] * R ** 2
     kb = _value(comps["stiff_support"], "stiffness", LINEAR_STIFFNESS)
     out["stiff_support"] = rb_pin ** 2 * R ** 2 / _overhung(ei_h, span, z_stiff - zb_hi, kb)
     # path 2: the narrow pinion's mesh, the inner shaft from the collar's face to the pinion's face,
@@ -229,18 +228,20 @@ def _assert_matches(hand: dict) -> None:
 def test_split_pinion_by_hand():
     """assemblies/split_pinion.toml (module 1.5, 20/80, ratio 4; preload 22 N·m, loop error 500 urad).
 
-    By hand, N·m/rad at the output: path 1 = mesh 717,849 + hollow shaft 238,295 (typed: 16/9.5 mm
-    over 30 mm) + wide pinion overhung 10 mm on its 30 mm pair 79,345 -> 54,967; path 2 = mesh
-    478,566 + inner shaft (8.5 mm over 80 mm) 8,128 + narrow pinion between collar and outboard
-    bearing 46,537 -> 6,821; k_L = 6,068; preload band 20.48 to 23.52 N·m.
+    By hand, N·m/rad at the output: path 1 = mesh 717,849 + hollow shaft 99,290 (measured: 16/9.5 mm
+    over 72 mm, its lower end to the wide pinion's mid-face) + wide pinion overhung 10 mm on its
+    30 mm pair 79,345 -> 41,549; path 2 = mesh 478,566 + inner shaft (8.5 mm over 80 mm) 8,128 +
+    narrow pinion between collar and outboard bearing 46,537 -> 6,821; k_L = 5,859; preload band
+    20.54 to 23.46 N·m.
     """
     hand = hand_calculation(ROOT / "assemblies/split_pinion.toml")
     assert hand["R"] == 4
-    D, d, _ = hand["hollow_typed"]
-    assert hand["hollow_measured"] == pytest.approx((D, d), rel=1e-6)  # the typed tube is the built one
+    assert hand["hollow_measured"] == pytest.approx((16.0, 9.5), rel=1e-6)
+    assert hand["hollow_twist"] == pytest.approx(72.0, rel=1e-6)
     _assert_matches(hand)
+    assert hand["path1"] / 1e3 == pytest.approx(41549, rel=1e-3)
     assert hand["path2"] / 1e3 == pytest.approx(6821, rel=1e-3)
-    assert hand["loop"] / 1e3 == pytest.approx(6068, rel=1e-3)
+    assert hand["loop"] / 1e3 == pytest.approx(5859, rel=1e-3)
 
 
 def test_split_pinion_inch_by_hand():
@@ -255,10 +256,9 @@ def test_split_pinion_inch_by_hand():
     """
     hand = hand_calculation(ROOT / "assemblies/split_pinion_inch.toml")
     assert hand["R"] == 5
-    D, d, L = hand["hollow_typed"]
-    assert hand["hollow_measured"] == pytest.approx((D, d), rel=1e-6)
-    # the typed twisting length is the built one: the hollow shaft's lower end to the wide pinion's mid-face
-    assert hand["z_stiff"] - hand["hollow_lower_end"] == pytest.approx(L, rel=1e-6)
+    assert hand["hollow_measured"] == pytest.approx((0.5 * 25.4, 0.29 * 25.4), rel=1e-6)
+    # the hollow shaft's lower end to the wide pinion's mid-face: 2.4375 - 0.25 in
+    assert hand["hollow_twist"] == pytest.approx(2.1875 * 25.4, rel=1e-6)
     _assert_matches(hand)
     assert hand["path2"] / 1e3 == pytest.approx(4293, rel=1e-3)
     assert hand["loop"] / 1e3 == pytest.approx(3709, rel=1e-3)

@@ -313,7 +313,7 @@ _SPLIT_PINION = Starter(
            "to peak: k_L = 0.2 x 9 / 400e-6 = 4500 N·m/rad at the output, 281 N·m/rad on the pinion shaft "
            "(ratio 4 squared). The compliant path is almost all shaft, so G J / L = 281 N·m/rad with L = 60 mm "
            "gives d = (32 x 281e3 x 60 / (pi x 79.3e3))^(1/4) = 6.8 mm: 6.5 mm, a little softer. "
-           "With each pinion's support (below) geargen stiffness shows the band: 8.4 to 9.6 N·m (13 %)."),
+           "With each pinion's support (below) geargen stiffness shows the band: 8.5 to 9.5 N·m (12 %)."),
         Table("stiffness.components.mesh_stiff", (
             Key("kind", "mesh"),
             Key("gears", ["pinion_stiff", "output"]),
@@ -326,10 +326,9 @@ _SPLIT_PINION = Starter(
         )),
         Table("stiffness.components.hollow_shaft", (
             Key("kind", "shaft_torsion"),
-            Key("shaft", "input", "the pinions' shaft"),
-            Key("diameter_mm", 12),
-            Key("bore_diameter_mm", 7.5, "the inner shaft plus 0.5 mm clearance all round"),
-            Key("length_mm", 22),
+            Key("gear", "pinion_stiff"),
+            Key("from_geometry", True, "the placed hollow shaft: its lower end, where the drive turns it, to the "
+                "wide pinion's mid-face"),
             Key("scope", "path1"),
         ), "the stiff path's shaft between the input and the wide pinion"),
         Table("stiffness.components.inner_shaft", (

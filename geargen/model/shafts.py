@@ -298,7 +298,8 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     ``hollow``: the stiff pinion's shaft (its bore, so the inner shaft clears it by a
     ``bearing_clearance`` all round), ``hollow_shaft_length`` from the stiff pinion's far face
     down, on its bearing pair (``bearing_spacing`` apart) just below the stiff pinion, which it
-    overhangs.
+    overhangs. The drive turns it at its lower end; it twists from there to the stiff pinion's
+    mid-face.
     ``inner``: the compliant pinion's shaft (the pinion's bore), from the clamp collar below the
     hollow shaft's end, up through it and the compliant pinion to an outboard bearing a
     ``bearing_clearance`` above the compliant pinion and the output gear (the plate that holds
@@ -329,8 +330,12 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     if not z_hollow0 < pair[0].z:
         raise DesignError("parts.hollow_shaft_length", f"{parts['hollow_shaft_length']:.6g} mm does not reach "
                           "through the bearing pair", f"> {zs1 - pair[0].z:.6g} mm")
-    hollow = Shaft("hollow_shaft", tuple(stiff.centre), z_hollow0, zs1, d_hollow, pair,
-                   {g.name: _mid(stiff, g) for g in stiff.gears}, bore=bore_hollow)
+    # the drive turns the hollow shaft at its lower end, where the collar joins the inner shaft to it:
+    # the stiff path twists from there to the stiff pinion's mid-face, the compliant one from the
+    # collar's face to the compliant pinion
+    loads = {g.name: _mid(stiff, g) for g in stiff.gears}
+    hollow = Shaft("hollow_shaft", tuple(stiff.centre), z_hollow0, zs1, d_hollow, pair, loads, bore=bore_hollow,
+                   twist=(z_hollow0, next(iter(loads.values()))))
     cw = parts["collar_width"]
     collar = Bearing("friction_collar", z_hollow0 - cw, cw, d_inner, parts["collar_outer_diameter"], via=hollow.name)
     z_top = max(zc1, output.height[1]) + gap

@@ -287,13 +287,15 @@ def test_a_split_pinions_speeds_come_from_its_teeth(tmp_path, capsys):
     assert "stiffness.components.inner_shaft.ratio: 5 typed, but the teeth give 4 for the shaft of " \
            "gears.pinion_compliant" in err
     # a ratio instead of the shaft: the teeth's speeds of both shafts are named, even when it agrees
-    bad = variant(tmp_path, SPLIT, (r'^shaft = "input"', "ratio = 4.0"))
+    hollow = r'^kind = "shaft_torsion"\ngear = "pinion_stiff"\nfrom_geometry = true .*$'
+    typed = 'kind = "shaft_torsion"\ndiameter_mm = 16\nbore_diameter_mm = 9.5\nlength_mm = 72\n'
+    bad = variant(tmp_path, SPLIT, (hollow, typed + "ratio = 4.0"))
     code, err = run(capsys, "stiffness", bad, "--no-plots")
     assert code == 2
     assert "stiffness.components.hollow_shaft.ratio: 4 typed, but the teeth give the shafts' speeds: 'input' 4, " \
            "'output' 1" in err
     # a split pinion has no cluster, and no other train
-    err = error_of(variant(tmp_path, SPLIT, (r'^shaft = "input"', 'shaft = "cluster"')))
+    err = error_of(variant(tmp_path, SPLIT, (hollow, typed + 'shaft = "cluster"')))
     assert err.field == "stiffness.components.hollow_shaft.shaft" and err.allowed == "'input', 'output'"
     err = error_of(variant(tmp_path, SPLIT, (r'^reduce_to = "output"', 'reduce_to = "output"\ntrain = "custom"')))
     assert err.field == "stiffness.train" and err.allowed == "'split_pinion' (or leave train out)"
