@@ -504,7 +504,7 @@ def c_axis_hand_calculation(path: Path) -> dict:
     # of action parallel (|d_a + d_b| = 2), which the solids' working flanks show
 
     _, sum_d, sum_other = _loop_winding(c_in, c_a, c_b, rb_in, rb_l)
-    out.update(k_beam=k_beam, k_column=k_col, column_arms=(h_lo, h_hi), k_spring=k_spring, beam_span=L, beam_mesh=a,
+    out.update(R2_rb_large=R2 * rb_l, k_beam=k_beam, k_column=k_col, column_arms=(h_lo, h_hi), k_spring=k_spring, beam_span=L, beam_mesh=a,
                gamma=math.acos(min(sum_d / 2, 1.0)), k3=4 * k_spring * (R2 * rb_l) ** 2 / sum_d ** 2,
                k3_other_winding=4 * k_spring * (R2 * rb_l) ** 2 / sum_other ** 2)
 
@@ -591,7 +591,10 @@ def test_c_axis_preload_spring_and_drive_by_hand(c_axis):
     assert c_axis["k3"] / 1e3 == pytest.approx(608_836, rel=1e-3)
     assert c_axis["k3"] / c_axis["path_a"] == pytest.approx(1.95, abs=0.01)
     assert c_axis["k3_other_winding"] / c_axis["k3"] == pytest.approx(1.78, abs=0.01)
-    assert any("not several times softer" in w for w in s.warnings)
+    # and what a third of a path would take at the carriage: (k_path / 3) / (R2 r_b2)^2 = 853.6 N/mm
+    needed = c_axis["path_a"] / 3 / c_axis["R2_rb_large"] ** 2
+    assert needed == pytest.approx(853.6, abs=0.1)
+    assert any("not several times softer" in w and f"needs {needed:.4g} N/mm" in w for w in s.warnings)
 
 
 def test_c_axis_pinion_support_under_the_preload_by_hand(c_axis):

@@ -926,9 +926,14 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         preload_spring = PreloadSpring(lever, tuple(linear_parts), tuple(torsional_parts))
         k3 = preload_spring.stiffness
         if k3 > min(k1, k2) / 3.0:
+            hint = ""
+            if lever is not None and linear_parts and not torsional_parts:
+                # k3 = k lambda^-2: the linear stiffness along the preload motion that gives a third of the path
+                hint = (f"; a third of it needs {min(k1, k2) / 3.0 * lever ** 2:.4g} N/mm along the preload motion "
+                        f"(now {preload_spring.linear_stiffness:.4g})")
             warnings.append(f"preload spring k3 = {k3 * 1e-3:.4g} N·m/rad is not several times softer than a path "
                             f"({min(k1, k2) * 1e-3:.4g} N·m/rad): the loop stiffness, and so the preload variation, "
-                            "is set by the paths")
+                            f"is set by the paths{hint}")
     elif linear_parts or torsional_parts:
         raise DesignError("drive.type", "a type1 drive has no preload spring, but the design gives one "
                           f"({', '.join(n for n, _ in linear_parts + torsional_parts)})",
