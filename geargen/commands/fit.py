@@ -71,7 +71,8 @@ def run(args) -> int:
     u = s["units"]
     st = s["stages"]
     nominal = f"{st['nominal']['rms']:.4g}" if st["nominal"] else "null"
-    print(f"{s['kind']}: {s['samples']} samples, noise {s['noise_rms']:.4g} {u} rms", file=text)
+    channels = ", ".join(f"{k} {v:.4g}" for k, v in s["noise_channels"].items())
+    print(f"{s['kind']}: {s['samples']} samples, noise {s['noise_rms']:.4g} {u} rms ({channels})", file=text)
     print(f"  rms nominal {nominal} / declared {st['declared']['rms']:.4g} / extended {st['extended']['rms']:.4g} {u}",
           file=text)
     for e in s["effects_added"]:

@@ -830,6 +830,10 @@ class TorqueModel:
         self._check_slope()
         self.T_smooth = fx.driving_signal(self.t, self.T, noise.channels.get("torque", noise.rms), self.SMOOTH_HALF_WINDOW)
         self.declared_start = self._declared_start()
+        # weighted least squares (effective variance): each residual over its noise level, relative
+        # to the mean level, so that the rss stays in torque units and the noise of the fit is noise.rms
+        variance = np.asarray(noise.variance, dtype=float)
+        self.residual_scale = np.sqrt(np.maximum(variance, 1e-300) / max(float(np.mean(variance)), 1e-300))
 
     def _check_slope(self) -> None:
         """The torque must rise with the rotation where both paths carry it (|T| < 25 % of its
@@ -873,6 +877,24 @@ class TorqueModel:
 
     def _law(self, d: dict, phi_rad: np.ndarray) -> np.ndarray:
         return law_torque_Nm(self.spec.drive_type, d["k1"], d["k2"], d.get("k3"), d["preload"], phi_rad)
+
+    def law_slope(self, fit: ModelFit, spread_urad: float = 0.0) -> np.ndarray:
+        """rms dT/dtheta (Nm per urad) of ``fit``'s two-path law over the rotations the reading may
+        stand for: each sample's rotation plus a normal error of ``spread_urad`` (the rotation
+        channel's noise), by 9-point Gauss-Hermite quadrature. Near a kink of the law a noisy
+        reading falls on either side of it, so the slope it carries into the residual is a mix
+        of the two. The law is piecewise linear: a central difference over 1e-3 urad is exact."""
+        d = fit.declared_values
+        phi_urad = self.rot_urad - d["theta0_urad"]
+        step = 1e-3
+        nodes, weights = np.polynomial.hermite_e.hermegauss(9 if spread_urad > 0 else 1)
+        weights = weights / weights.sum()
+        square = np.zeros(self.n)
+        for z, w in zip(nodes, weights):
+            at = phi_urad + z * spread_urad
+            k = (self._law(d, (at + step) * 1e-6) - self._law(d, (at - step) * 1e-6)) / (2 * step)
+            square += w * k * k
+        return np.sqrt(square)
 
     def nominal(self) -> np.ndarray | None:
         """Residual of the law with the declared values and the probe zero as read; None without values."""
@@ -993,10 +1015,11 @@ class TorqueModel:
         prior_names = [nm for nm in ("ln_k1", "ln_k2", "ln_k3") if nm in names]
         pscale = max(prior_centre["preload"], 1.0)
         T = self.T
+        scale = self.residual_scale[mask]
 
         def fun(p):
             pred, *_ = self._evaluate(names, p, terms)
-            r = (T - pred)[mask]
+            r = (T - pred)[mask] / scale
             val = self._transform(names, p)
             prior = [sigma * (val[nm] - prior_centre[nm]) for nm in prior_names]
             prior.append(sigma * (val["preload"] - prior_centre["preload"]) / pscale)
@@ -1007,7 +1030,7 @@ class TorqueModel:
         resid = T - pred
         n_params = len(names)
         val = self._transform(names, res.x)
-        return ModelFit(terms=terms, prediction=pred, residual=resid, rss=float(np.sum(resid[mask] ** 2)),
+        return ModelFit(terms=terms, prediction=pred, residual=resid, rss=float(np.sum((resid[mask] / scale) ** 2)),
                         n_fitted=int(mask.sum()), n_params=n_params, contributions=tuple(contributions),
                         values=tuple(values), declared_values=d, state={"p": [val[nm] for nm in names], "names": names,
                                                                        "x": res.x, "jac": res.jac, "mask": mask},

@@ -18,8 +18,9 @@ smooth (a reversal, a kink of the play operator, a step).
 For a torque-deflection record the residual is ``T - law(theta)``, so its noise is
 ``e_T - k e_theta`` with k the local stiffness dT/dtheta. The torque and rotation channels get
 their own robust levels; k is the local slope of torque against rotation over a few dozen
-neighbouring samples (from the data, not from the model); the residual's noise variance at each
-sample is ``s_T^2 + k^2 s_theta^2``.
+neighbouring samples, as the ratio of the two channels' slopes against time (from the data, not
+from the model; a slope of one noisy channel on the other would be biased low); the residual's
+noise variance at each sample is ``s_T^2 + k^2 s_theta^2``.
 """
 
 from __future__ import annotations
@@ -166,14 +167,59 @@ def local_slope(x: np.ndarray, y: np.ndarray, half_window: int = 12) -> np.ndarr
     return np.where(var > 0, cov / np.where(var > 0, var, 1.0), 0.0)
 
 
+def stiffness_along_time(t: np.ndarray, torque: np.ndarray, rotation: np.ndarray, s_rotation: float,
+                         half_window: int = 48) -> np.ndarray:
+    """Local dT/dtheta of the data as (dT/dt) / (dtheta/dt), each slope fitted against time over
+    +-half_window samples. Time carries no noise, so neither slope is attenuated by the other
+    channel's noise (a slope of torque on a noisy rotation would be: errors in variables). Where
+    the rotation barely moves within the window (a load reversal, a dwell) the ratio is not
+    determined, and the nearest determined value is taken."""
+    n = np.asarray(t).size
+    k_t = local_slope(t, torque, half_window)
+    k_r = local_slope(t, rotation, half_window)
+    # the rotation's slope is determined when it moves by several noise levels across the window
+    span = np.abs(k_r) * np.abs(local_spacing(t, half_window)) * (2 * half_window)
+    good = span > 6.0 * max(s_rotation, 1e-300) + 1e-300
+    if not good.any():
+        return local_slope(rotation, torque, half_window)
+    ratio = np.empty(n)
+    ratio[good] = k_t[good] / k_r[good]
+    idx = np.arange(n)
+    ratio[~good] = np.interp(idx[~good], idx[good], ratio[good])
+    return ratio
+
+
+def local_spacing(t: np.ndarray, half_window: int) -> np.ndarray:
+    """Mean sample spacing over +-half_window samples."""
+    t = np.asarray(t, dtype=float)
+    n = t.size
+    idx = np.arange(n)
+    a = np.clip(idx - half_window, 0, n - 1)
+    b = np.clip(idx + half_window, 0, n - 1)
+    return (t[b] - t[a]) / np.maximum(b - a, 1)
+
+
 def noise_of_torque_residual(t: np.ndarray, torque: np.ndarray, rotation: np.ndarray,
-                             gap_ratio: float = 4.0, half_window: int = 12) -> NoiseEstimate:
+                             gap_ratio: float = 4.0) -> NoiseEstimate:
     """Noise of ``torque - law(rotation)`` in torque units, from both channels (see module doc)."""
     s_t, w_t = level_of(t, torque, gap_ratio)
     s_r, w_r = level_of(t, rotation, gap_ratio)
-    k = local_slope(rotation, torque, half_window)
+    k = stiffness_along_time(t, torque, rotation, s_r)
     variance = s_t * s_t + (k * s_r) ** 2
     return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=min(w_t, w_r),
                          method=("third divided differences along time of torque and of rotation, 1.4826 x median; "
-                                 "rotation noise carried into torque by the local slope dT/dtheta of the data"),
+                                 "rotation noise carried into torque by the local stiffness dT/dtheta of the data, "
+                                 "taken as (dT/dt) / (dtheta/dt) so that neither channel's noise biases it"),
                          channels={"torque": s_t, "rotation": s_r})
+
+
+def with_stiffness(noise: NoiseEstimate, stiffness: np.ndarray, source: str) -> NoiseEstimate:
+    """``noise`` of a torque residual with the rotation channel's noise carried into torque by
+    ``stiffness`` (n,) (dT/dtheta, torque units per rotation unit) instead: the effective variance
+    ``s_T^2 + k^2 s_theta^2``. The channels' own levels stay the model-free ones."""
+    s_t, s_r = noise.channels["torque"], noise.channels["rotation"]
+    variance = s_t * s_t + (np.asarray(stiffness, dtype=float) * s_r) ** 2
+    return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=noise.windows,
+                         method=("third divided differences along time of torque and of rotation, 1.4826 x median; "
+                                 f"rotation noise carried into torque by {source}"),
+                         channels=dict(noise.channels))

@@ -41,7 +41,7 @@ from geargen.fit.effects import PARAMETER_COUNT
 from geargen.fit.measurement import Measurement, MeasurementError
 from geargen.fit import model as model_module
 from geargen.fit.model import ModelFit, make_model
-from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual
+from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual, with_stiffness
 
 
 @dataclass(frozen=True)
@@ -123,6 +123,13 @@ class Diagnosis:
             return None
         return {"rms": _round(float(np.sqrt(np.mean(residual ** 2)))), "max_abs": _round(float(np.max(np.abs(residual))))}
 
+    def noise_channels(self) -> dict:
+        """Each measured channel's own noise level, from the data alone, keyed by its contract column."""
+        ch = self.noise.channels
+        if self.measurement.kind == "preload_trace":
+            return {"carriage_x_um": _round(ch["signal"])}
+        return {"output_torque_Nm": _round(ch["torque"]), "output_rotation_urad": _round(ch["rotation"])}
+
     def to_json(self) -> dict:
         """The report of contracts/measurements.md (plus extra keys inside effect entries)."""
         return {
@@ -130,6 +137,7 @@ class Diagnosis:
             "samples": self.measurement.samples,
             "units": self.measurement.units,
             "noise_rms": _round(self.noise.rms),
+            "noise_channels": self.noise_channels(),
             "stages": {
                 "nominal": self.stage(self.nominal_residual),
                 "declared": self.stage(self.declared.residual),
@@ -288,6 +296,15 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     noise = estimate_noise(meas)
     model = make_model(meas, noise)
     declared = model.fit(())
+    if meas.kind == "torque_deflection" and noise.channels["rotation"] > 0:
+        # errors in both channels, by effective variance: the rotation's noise reaches the torque
+        # residual through the drive's stiffness, which the fitted law knows far better than a
+        # local slope of the noisy data can (where the drive is stiff the rotation barely moves)
+        noise = with_stiffness(noise, model.law_slope(declared, noise.channels["rotation"]),
+                               "the stiffness dT/dtheta of the fitted declared law (effective variance; its rms "
+                               "over the rotation channel's noise, near a kink)")
+        model = make_model(meas, noise)
+        declared = model.fit(())
     current = declared
     n = meas.samples
     added: list[AddedEffect] = []

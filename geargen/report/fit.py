@@ -251,7 +251,8 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
         rms = f"{v['rms']:#.4g}" if v else "null"
         max_abs = f"{v['max_abs']:#.4g}" if v else "null"
         lines.append(f"| {stage} | {rms} | {max_abs} |")
-    lines += ["", f"Noise level from the data alone: **{_fmt(s['noise_rms'])} {u}** rms.",
+    channels = ", ".join(f"{k} {_fmt(v)}" for k, v in s.get("noise_channels", {}).items())
+    lines += ["", f"Noise level from the data alone: **{_fmt(s['noise_rms'])} {u}** rms (each channel: {channels}).",
               f"Error before and after (declared -> extended): **{s['stages']['declared']['rms']:#.4g} -> "
               f"{s['stages']['extended']['rms']:#.4g} {u}** rms.", ""]
     if s["unexplained"]:

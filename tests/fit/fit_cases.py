@@ -47,9 +47,11 @@ def _preload(name, seed, noise, expect, temperature=True, **truth):
     return Case(name, PreloadTruth(**truth), seed, noise, expect, {"temperature": temperature})
 
 
-def _torque(name, seed, noise, expect, temperature=True, max_torque=80.0, cycles=2, **truth):
+def _torque(name, seed, noise, expect, temperature=True, max_torque=80.0, cycles=2, rotation_noise=0.05, **truth):
+    """``noise``: on the torque channel (Nm); ``rotation_noise``: on the rotation probe (urad)."""
     return Case(name, TorqueTruth(**truth), seed, noise, expect,
-                {"temperature": temperature, "max_torque": max_torque, "cycles": cycles})
+                {"temperature": temperature, "max_torque": max_torque, "cycles": cycles,
+                 "rotation_noise": rotation_noise})
 
 
 CASES: list[Case] = [
@@ -77,6 +79,16 @@ CASES: list[Case] = [
     _torque("torque/none", 52, 0.3, "none", temperature=False),
     _torque("torque/none, no nominal values", 53, 0.1, "none", declare_values=False),
     _torque("torque/none, type 1", 54, 0.2, "none", drive_type="type1", k3=None, k2=1.5e5, preload=40.0),
+    # errors in both channels: the rotation probe's noise reaches the torque residual through the
+    # drive's stiffness (0.8 Nm/urad while both paths carry load, 0.036 beyond): heteroscedastic
+    _torque("torque/none, noise on rotation only", 101, 0.001, "none", rotation_noise=3.0),
+    _torque("torque/none, noise on rotation only", 102, 0.001, "none", rotation_noise=1.0, temperature=False),
+    _torque("torque/none, noise on both", 103, 0.2, "none", rotation_noise=2.0),
+    _torque("torque/none, noise on both, type 1", 104, 0.1, "none", rotation_noise=1.0, drive_type="type1", k3=None,
+            k2=1.5e5, preload=40.0),
+    _torque("torque/hysteresis, noise on rotation only", 105, 0.001, "effects", rotation_noise=2.0,
+            hysteresis_half_width=1.0),
+    _torque("torque/drift per kelvin, noise on both", 106, 0.1, "effects", rotation_noise=1.0, drift_per_kelvin=0.8),
     # torque-deflection tests: each library effect undeclared
     _torque("torque/drift per second", 61, 0.1, "effects", temperature=False, drift_per_second=0.003),
     _torque("torque/drift per kelvin", 62, 0.2, "effects", drift_per_kelvin=0.8),
@@ -105,7 +117,8 @@ def simulate(case: Case):
         st = PreloadSettings(noise_um=case.noise, sampling=replace(Sampling(), temperature=case.settings.get("temperature", True)))
         return simulate_preload_trace(case.truth, rng, st, name=case.name.replace("/", "_"))
     base = TorqueSettings()
-    st = replace(base, torque_noise_Nm=case.noise, max_torque_Nm=case.settings.get("max_torque", 80.0),
+    st = replace(base, torque_noise_Nm=case.noise, rotation_noise_urad=case.settings.get("rotation_noise", 0.05),
+                 max_torque_Nm=case.settings.get("max_torque", 80.0),
                  cycles=case.settings.get("cycles", 2),
                  sampling=replace(base.sampling, temperature=case.settings.get("temperature", True)))
     return simulate_torque_deflection(case.truth, rng, st, name=case.name.replace("/", "_"))

@@ -16,8 +16,14 @@ EFFECT_KEYS = {"harmonic": {"order", "amplitude", "phase_deg", "shaft", "multipl
                "dead_band": {"width_urad"}}
 
 
+#: keys added to the contract since (adding is allowed, changing is not)
+ADDED_KEYS = {"noise_channels"}
+
+
 def _check(j, kind, units):
-    assert list(j) == CONTRACT_KEYS
+    assert [k for k in j if k not in ADDED_KEYS] == CONTRACT_KEYS and ADDED_KEYS <= set(j)
+    channels = {"preload_trace": {"carriage_x_um"}, "torque_deflection": {"output_torque_Nm", "output_rotation_urad"}}
+    assert set(j["noise_channels"]) == channels[kind] and all(v > 0 for v in j["noise_channels"].values())
     assert j["kind"] == kind and j["units"] == units
     assert isinstance(j["samples"], int) and j["noise_rms"] > 0
     for name in ("declared", "extended"):

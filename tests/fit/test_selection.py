@@ -42,7 +42,10 @@ def test_bic_gain_threshold_arithmetic():
 def test_json_has_the_contract_keys():
     result = run_case(next(c for c in CASES if c.name == "preload/harmonic 2 x output"))
     j = result["report"]
-    assert list(j) == ["kind", "samples", "units", "noise_rms", "stages", "effects_added", "unexplained"]
+    contract = ["kind", "samples", "units", "noise_rms", "stages", "effects_added", "unexplained"]
+    assert [k for k in j if k in contract] == contract
+    assert set(j) - set(contract) == {"noise_channels"}  # added to the contract
+    assert j["noise_channels"]["carriage_x_um"] == pytest.approx(result["sim"].true_noise_rms, rel=0.1)
     assert set(j["stages"]) == {"nominal", "declared", "extended"}
     for stage in j["stages"].values():
         assert set(stage) == {"rms", "max_abs"}
