@@ -6,7 +6,9 @@ and rotation columns are converted from their suffix unit; ``_deg``/``_urad`` ar
 spellings, other angle and length suffixes of :mod:`geargen.units` are accepted too).
 
 Rows with an empty or non-numeric-NaN value in a required column are dropped (a probe
-drop-out) with a note; a missing temperature value is interpolated in time, with a note.
+drop-out) with a note; a missing temperature value is interpolated in time, with a note. Equal
+consecutive times are a logger's finite time resolution: each run of equal stamps is spread
+evenly to the next stamp (:func:`spread_equal_times`), with a note; a time that goes back is refused.
 Unknown extra columns are ignored, with a note.
 
 A record that cannot be fitted is refused with a :class:`MeasurementError` naming the file and
@@ -174,6 +176,14 @@ class Measurement:
             i = int(np.flatnonzero(~step_ok)[0])
             raise MeasurementError(self.where("time"), f"not increasing at sample {i + 2} ({self.time_s[i + 1]} after {self.time_s[i]})",
                                    "rows in time order, strictly increasing time")
+
+    def without(self, rows: np.ndarray, note: str) -> "Measurement":
+        """This record with the samples where ``rows`` (bool, (n,)) is true left out, ``note`` added."""
+        from dataclasses import replace
+        keep = ~np.asarray(rows, dtype=bool)
+        arrays = {name: (None if getattr(self, name) is None else np.asarray(getattr(self, name))[keep])
+                  for name in ("time_s", "angle_rad", "carriage_um", "torque_Nm", "rotation_rad", "temperature_C")}
+        return replace(self, notes=self.notes + (note,), **arrays)
 
     @property
     def file(self) -> str:
@@ -547,6 +557,33 @@ def _check_channels(kind: str, data: dict[str, np.ndarray], cols: dict, where: s
                                    "one value in at most half of the rows")
 
 
+def spread_equal_times(t: np.ndarray) -> tuple[np.ndarray, int]:
+    """Times of a logger that stamps with a finite resolution: non-decreasing ``t`` with runs of
+    equal stamps. Each run of k rows at one stamp is spread evenly from that stamp towards the
+    next (row i of the run at ``i / k`` of the way), the last run over k median row spacings.
+    Returns (strictly increasing times, rows that shared a stamp with the row before); ``t``
+    itself when no stamp repeats."""
+    t = np.asarray(t, dtype=float)
+    new_run = np.empty(t.size, dtype=bool)
+    new_run[0] = True
+    np.greater(t[1:], t[:-1], out=new_run[1:])
+    shared = int(t.size - np.count_nonzero(new_run))
+    if shared == 0:
+        return t, 0
+    starts = np.flatnonzero(new_run)
+    lengths = np.diff(np.append(starts, t.size))
+    stamps = t[starts]
+    if starts.size > 1:
+        row_spacing = float(np.median(np.diff(stamps) / lengths[:-1]))
+        ends = np.append(stamps[1:], stamps[-1] + lengths[-1] * row_spacing)
+    else:
+        ends = stamps + 1.0  # one stamp: the record spans no time (refused by the checks)
+    run = np.cumsum(new_run) - 1
+    within = np.arange(t.size) - starts[run]
+    out = stamps[run] + within / lengths[run] * (ends - stamps)[run]
+    return out, shared
+
+
 def read_measurement(csv_path: str | Path) -> Measurement:
     """Read and validate ``NAME.csv`` and its sidecar ``NAME.toml``.
 
@@ -609,14 +646,19 @@ def read_measurement(csv_path: str | Path) -> Measurement:
                                f"only {t.size} rows hold all of them ({rows} rows read, {dropped} with a drop-out): "
                                "too few to fit", f">= {MIN_SAMPLES} rows")
     _check_channels(kind, data, cols, where)
-    step_ok = np.diff(t) > 0
+    step_ok = np.diff(t) >= 0
     if not step_ok.all():
         i = int(np.flatnonzero(~step_ok)[0])
         row = int(np.flatnonzero(~bad_rows)[i + 1]) + 1 if dropped else i + 2
         raise MeasurementError(f"{where}: column {cols['time'][2]}",
-                               f"not increasing at data row {row} ({t[i + 1]} after {t[i]})",
-                               "rows in time order, strictly increasing time")
+                               f"goes back in time at data row {row} ({t[i + 1]} after {t[i]})",
+                               "rows in time order (equal consecutive times are taken as the logger's resolution)")
     del step_ok, bad_rows
+    t, shared = spread_equal_times(t)
+    if shared:
+        data["time"] = t
+        notes.append(f"{shared} rows share their time stamp with the row before (the logger's time resolution): "
+                     "each run of equal stamps is spread evenly up to the next stamp")
     temperature = data.get("temperature")
     if temperature is not None:
         good = np.isfinite(temperature)

@@ -136,7 +136,49 @@ def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[floa
         count += kept.size
     if count == 0:
         return float("nan"), 0
-    return float(MAD_TO_SIGMA * np.median(magnitudes[:count], overwrite_input=True)), count
+    magnitudes = magnitudes[:count]
+    level = float(MAD_TO_SIGMA * np.median(magnitudes))
+    q = reading_quantum(y)
+    # a sensor's step (a dial's division, an encoder's count) is a visible fraction of what it
+    # reads; a step of a millionth of the range is the number format of the file, below any noise
+    if q / math.sqrt(12.0) > 0.5 * level and q >= 1e-6 * float(np.ptp(y)):
+        # a coarse quantiser: most runs read a staircase, and the median of the contrasts (a
+        # discrete distribution) no longer measures their spread. For a signal that sweeps across
+        # the levels the reading error is uniform, q^2/12, plus the noise underneath: the
+        # contrasts' (trimmed) rms holds both; q / sqrt(12) is the least it can be.
+        level = max(trimmed_rms(magnitudes), q / math.sqrt(12.0))
+    return level, count
+
+
+#: E[c^2 | |c| <= its 99 % quantile] / sigma^2 for Gaussian c: the bias of a 1 % trimmed mean square
+_TRIM_99 = 0.9247625
+
+
+def trimmed_rms(magnitudes: np.ndarray) -> float:
+    """rms of |contrasts| below their 99th percentile (the kinks and reversals of the signal left
+    out), scaled to sigma for Gaussian contrasts. Sorts ``magnitudes`` in place."""
+    m = np.asarray(magnitudes)
+    cut = int(0.99 * m.size)
+    m.partition(cut)
+    return float(math.sqrt(np.mean(np.square(m[:cut])) / _TRIM_99))
+
+
+def reading_quantum(y: np.ndarray) -> float:
+    """The resolution the channel was read or written with: the smallest step between distinct
+    readings, when at least 99 % of readings sit on that grid within 1 % of a step; else 0."""
+    values = np.unique(np.asarray(y, dtype=float))
+    if values.size < 3:
+        return 0.0
+    steps = np.diff(values)
+    steps = steps[steps > 1e-12 * (values[-1] - values[0])]  # (a float's last digit is no step)
+    if steps.size == 0:
+        return 0.0
+    q = float(steps.min())
+    off = (values - values[0]) / q
+    on_grid = np.abs(off - np.round(off)) <= 0.01
+    if on_grid.mean() < 0.99:
+        return 0.0
+    return q
 
 
 def noise_of_signal(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> NoiseEstimate:
@@ -223,3 +265,50 @@ def with_stiffness(noise: NoiseEstimate, stiffness: np.ndarray, source: str) -> 
                          method=("third divided differences along time of torque and of rotation, 1.4826 x median; "
                                  f"rotation noise carried into torque by {source}"),
                          channels=dict(noise.channels))
+
+
+def spike_threshold(samples: int, false_per_record: float = 0.05) -> float:
+    """Deviation (in noise levels) that white Gaussian noise exceeds about ``false_per_record``
+    times in a record of ``samples``: two-sided, ``Phi^-1(1 - false / (2 n))``."""
+    from scipy.special import ndtri
+    return float(ndtri(1.0 - false_per_record / (2.0 * max(samples, 1))))
+
+
+def isolated_spikes(t: np.ndarray, y: np.ndarray, sigma: float, gap_ratio: float = 4.0,
+                    passes: int = 3) -> np.ndarray:
+    """Samples (bool, (n,)) that jump away from their neighbours: a logger's or probe's glitch.
+
+    A sample i is a spike when the straight lines through its two neighbours on each side, each
+    extrapolated to it, both miss it on the same side by more than the noise allows
+    (:func:`spike_threshold` x sqrt(6) sigma, the spread of ``y_i - (2 y_(i-1) - y_(i-2))`` for
+    white noise) and by more than four times the change between those neighbours. A reversal or
+    a kink of the signal makes the two extrapolations straddle it or miss by about one step; a
+    step of the signal is missed from one side only; so neither is taken for a spike. Samples
+    whose neighbours span a drop-out (``gap_ratio`` x the median spacing) are not judged. Spikes
+    next to each other hide each other; ``passes`` rounds, each on the samples not yet rejected,
+    find them too."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    n = t.size
+    spikes = np.zeros(n, dtype=bool)
+    if n < 5 or not sigma > 0:
+        return spikes
+    limit = spike_threshold(n) * math.sqrt(6.0) * sigma
+    spacing = float(np.median(np.diff(t)))
+    for _ in range(passes):
+        keep = np.flatnonzero(~spikes)
+        ts, ys = t[keep], y[keep]
+        if ts.size < 5:
+            break
+        i = np.arange(2, ts.size - 2)
+        left = ys[i - 1] + (ys[i - 1] - ys[i - 2]) * (ts[i] - ts[i - 1]) / (ts[i - 1] - ts[i - 2])
+        right = ys[i + 1] + (ys[i + 1] - ys[i + 2]) * (ts[i + 1] - ts[i]) / (ts[i + 2] - ts[i + 1])
+        d_left, d_right = ys[i] - left, ys[i] - right
+        steps = np.maximum(np.abs(ys[i - 1] - ys[i - 2]), np.abs(ys[i + 2] - ys[i + 1]))
+        near = (ts[i + 2] - ts[i - 2]) <= 4 * gap_ratio * spacing
+        miss = np.minimum(np.abs(d_left), np.abs(d_right))
+        found = near & (np.sign(d_left) == np.sign(d_right)) & (miss > limit) & (miss > 4.0 * steps)
+        if not found.any():
+            break
+        spikes[keep[i[found]]] = True
+    return spikes

@@ -41,7 +41,8 @@ from geargen.fit.effects import PARAMETER_COUNT
 from geargen.fit.measurement import Measurement, MeasurementError
 from geargen.fit import model as model_module
 from geargen.fit.model import ModelFit, make_model
-from geargen.fit.noise import NoiseEstimate, noise_of_signal, noise_of_torque_residual, with_stiffness
+from geargen.fit.noise import (NoiseEstimate, isolated_spikes, noise_of_signal, noise_of_torque_residual,
+                               with_stiffness)
 
 
 @dataclass(frozen=True)
@@ -117,6 +118,7 @@ class Diagnosis:
     tests: tuple[ResidualTest, ...]
     unexplained: bool
     rule: SelectionRule = field(default_factory=SelectionRule)
+    rejected: tuple[dict, ...] = ()  # isolated spikes left out of the record (reject_spikes)
 
     def stage(self, residual: np.ndarray | None) -> dict | None:
         if residual is None:
@@ -138,6 +140,8 @@ class Diagnosis:
             "units": self.measurement.units,
             "noise_rms": _round(self.noise.rms),
             "noise_channels": self.noise_channels(),
+            "rejected_samples": {"count": len(self.rejected),
+                                 "samples": [_round_entry(e) for e in self.rejected[:100]]},
             "stages": {
                 "nominal": self.stage(self.nominal_residual),
                 "declared": self.stage(self.declared.residual),
@@ -169,8 +173,9 @@ def estimate_noise(meas: Measurement) -> NoiseEstimate:
 
     Raises :class:`MeasurementError` naming the file and the column when a channel has no noise
     level (every selection statistic is measured against it): no run of four readings free of
-    a gap, or a level at the rounding error of the readings (a stuck, coarsely quantised or
-    computed signal, whose runs of four readings are mostly exactly smooth).
+    a gap, or a level at the rounding error of the readings (a computed signal, whose runs of four
+    readings are mostly exactly smooth; a quantised one -- a dial, an encoder -- is read as such,
+    its step's q / sqrt(12) counted as noise: geargen.fit.noise.level_of).
     """
     if meas.kind == "preload_trace":
         est = noise_of_signal(meas.time_s, meas.carriage_um)
@@ -190,7 +195,7 @@ def _require_level(meas: Measurement, channel: str, level: float, readings: np.n
     if not (math.isfinite(level) and level > floor):
         raise MeasurementError(meas.where(channel), f"no noise level can be estimated: {level:.3g} is rounding error; "
                                "most runs of four consecutive readings are exactly smooth in time (a quadratic or "
-                               "less), as the readings of a stuck, coarsely quantised or computed signal are",
+                               "less), as the readings of a computed signal are",
                                "a measured signal with its noise")
 
 
@@ -294,6 +299,9 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     """Fit the declared model, add the effects the data justify, and test what is left."""
     rule = rule or SelectionRule()
     noise = estimate_noise(meas)
+    meas, rejected = reject_spikes(meas, noise)
+    if rejected:
+        noise = estimate_noise(meas)
     model = make_model(meas, noise)
     declared = model.fit(())
     if meas.kind == "torque_deflection" and noise.channels["rotation"] > 0:
@@ -392,4 +400,32 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     nominal = model.nominal()  # (made last: it is one more array of the record's length)
     return Diagnosis(measurement=meas, noise=noise, model=model, nominal_residual=nominal, declared=declared,
                      extended=final, added=tuple(added), candidates=tuple(log), tests=tuple(tests),
-                     unexplained=unexplained, rule=rule)
+                     unexplained=unexplained, rule=rule, rejected=rejected)
+
+
+def reject_spikes(meas: Measurement, noise: NoiseEstimate) -> tuple[Measurement, tuple[dict, ...]]:
+    """The record without its isolated spikes (:func:`geargen.fit.noise.isolated_spikes`, on each
+    measured channel against that channel's own noise level), and the samples left out: each
+    ``{"time_s", "column", "value", "deviation"}`` (deviation in that channel's noise levels)."""
+    ch = noise.channels
+    if meas.kind == "preload_trace":
+        channels = [("carriage", meas.carriage_um, ch["signal"], 1.0)]
+    else:
+        channels = [("torque", meas.torque_Nm, ch["torque"], 1.0), ("rotation", meas.rotation_rad * 1e6, ch["rotation"], 1e-6)]
+    rows = np.zeros(meas.samples, dtype=bool)
+    found = []
+    for channel, values, sigma, _ in channels:
+        spikes = isolated_spikes(meas.time_s, values, sigma)
+        if spikes.any():
+            local = np.interp(meas.time_s[spikes], meas.time_s[~spikes], values[~spikes])
+            found += [{"time_s": float(t), "column": meas.column(channel), "value": float(v),
+                       "deviation": float((v - m) / sigma)}
+                      for t, v, m in zip(meas.time_s[spikes], values[spikes], local)]
+            rows |= spikes
+    if not found:
+        return meas, ()
+    found.sort(key=lambda e: e["time_s"])
+    note = (f"{int(rows.sum())} isolated spikes left out (samples that jump away from both neighbours by more "
+            "than the noise allows): " + ", ".join(f"{e['column']} at {e['time_s']:.6g} s" for e in found[:5])
+            + (", ..." if len(found) > 5 else ""))
+    return meas.without(rows, note), tuple(found)

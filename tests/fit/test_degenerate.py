@@ -66,8 +66,6 @@ CASES = {
     "output at one angle but one row": (PRELOAD_TOML, _preload_columns() | {"output_angle_deg": _all_but_one(10.0) +
                                                                             np.where(np.arange(N) == N // 3, 400.0, 0.0)},
                                         "column output_angle_deg", "cannot tell the declared orders"),
-    "carriage without noise": (PRELOAD_TOML, _preload_columns() | {"carriage_x_um": np.arange(N) // 10 * 1.0},
-                               "column carriage_x_um", "no noise level"),
     "carriage beyond double precision": (PRELOAD_TOML, _preload_columns() | {"carriage_x_um": _preload_columns()["carriage_x_um"] * 1e200},
                                          "column carriage_x_um", "magnitude"),
     "constant torque": (TORQUE_TOML, _torque_columns() | {"output_torque_Nm": np.full(N, 5.0)},

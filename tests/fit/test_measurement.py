@@ -75,8 +75,20 @@ def test_empty_cells_are_drop_outs(tmp_path):
 def test_time_must_increase(tmp_path):
     rows = _rows().splitlines()
     rows[7], rows[8] = rows[8], rows[7]
-    with pytest.raises(MeasurementError, match="time_s.*not increasing"):
+    with pytest.raises(MeasurementError, match="time_s.*goes back in time at data row 9 \\(0.7 after 0.8\\)"):
         read_measurement(_write(tmp_path, "time_s,output_angle_deg,carriage_x_um\n" + "\n".join(rows)))
+
+
+def test_equal_consecutive_times_are_the_loggers_resolution(tmp_path):
+    """A logger stamping to 0.5 s with rows every 0.1 s: runs of five equal stamps, spread evenly
+    to the next stamp (the last run over five median row spacings); a note says so."""
+    rows = [r.split(",") for r in _rows().splitlines()]
+    for r in rows:
+        r[0] = f"{np.floor(float(r[0]) / 0.5 + 1e-9) * 0.5:.1f}"
+    m = read_measurement(_write(tmp_path, "time_s,output_angle_deg,carriage_x_um\n" +
+                                "\n".join(",".join(r) for r in rows)))
+    assert m.time_s == pytest.approx(np.arange(60) * 0.1, abs=1e-12)
+    assert any("48 rows share their time stamp" in n for n in m.notes)
 
 
 def test_other_units_are_converted(tmp_path):

@@ -1,0 +1,136 @@
+"""Real-logger artefacts, each with and without an undeclared effect: time stamps of finite
+resolution (read from the CSV), isolated spikes, readings quantised by a dial or an encoder. The
+fit must see through each: the true effect found with its parameters, nothing invented, the
+residual at the noise actually injected, the spikes named."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from fit_cases import NOISE_TOL, RELATIVE_TOL, match
+from geargen.fit.measurement import read_measurement, write_measurement
+from geargen.fit.noise import isolated_spikes, reading_quantum
+from geargen.fit.selection import diagnose
+from geargen.fit.simulate import (PreloadSettings, PreloadTruth, TorqueSettings, TorqueTruth, simulate_preload_trace,
+                                  simulate_torque_deflection)
+
+EFFECTS = {"preload_trace": {"harmonics": ((2.0, 3.0, 40.0),)}, "torque_deflection": {"hysteresis_half_width": 1.0}}
+
+
+def _simulate(kind, with_effect, seed, **settings):
+    rng = np.random.default_rng(seed)
+    truth = EFFECTS[kind] if with_effect else {}
+    if kind == "preload_trace":
+        return simulate_preload_trace(PreloadTruth(**truth), rng, replace(PreloadSettings(), **settings))
+    return simulate_torque_deflection(TorqueTruth(**truth), rng, replace(TorqueSettings(), **settings))
+
+
+def _stamped(sim, tmp_path, resolution_s):
+    """The record through its CSV, the logger stamping time to ``resolution_s`` (floored)."""
+    csv = write_measurement(sim.measurement, tmp_path, "logged")
+    lines = csv.read_text().splitlines()
+    out = [lines[0]]
+    for line in lines[1:]:
+        t, rest = line.split(",", 1)
+        out.append(f"{np.floor(float(t) / resolution_s) * resolution_s:.3f},{rest}")
+    csv.write_text("\n".join(out) + "\n")
+    return read_measurement(csv)
+
+
+def _spiked(sim, count, size, seed):
+    """``count`` isolated spikes of +-``size`` noise levels on the record's main channel."""
+    m = sim.measurement
+    rng = np.random.default_rng(seed)
+    at = rng.choice(np.arange(10, m.samples - 10, 7), count, replace=False)  # never two side by side
+    kick = np.zeros(m.samples)
+    kick[at] = rng.choice([-1.0, 1.0], count) * size * sim.true_noise_rms
+    if m.kind == "preload_trace":
+        return replace(m, carriage_um=m.carriage_um + kick), at
+    return replace(m, torque_Nm=m.torque_Nm + kick), at
+
+
+def _check(report, sim, with_effect):
+    assert not report["unexplained"]
+    assert report["stages"]["extended"]["rms"] == pytest.approx(sim.true_noise_rms, rel=NOISE_TOL)
+    added = report["effects_added"]
+    if not with_effect:
+        assert added == []
+        return
+    assert len(added) == len(sim.expected) == 1
+    got, want = match(sim.expected[0], added), sim.expected[0]
+    for key in ("amplitude", "half_width"):
+        if key in want:
+            assert got[key] == pytest.approx(want[key], rel=RELATIVE_TOL)
+    if "order" in want:
+        assert got["order"] == pytest.approx(want["order"], abs=0.01)
+
+
+@pytest.mark.parametrize("with_effect", [False, True])
+@pytest.mark.parametrize("kind", ["preload_trace", "torque_deflection"])
+def test_time_stamps_of_finite_resolution(tmp_path, kind, with_effect):
+    """Rows every 37-110 ms, stamped to 0.5 s: about ten rows share each stamp."""
+    sim = _simulate(kind, with_effect, 201)
+    meas = _stamped(sim, tmp_path, 0.5)
+    assert any("share their time stamp" in n for n in meas.notes)
+    _check(diagnose(meas).to_json(), sim, with_effect)
+
+
+@pytest.mark.parametrize("with_effect", [False, True])
+@pytest.mark.parametrize("kind", ["preload_trace", "torque_deflection"])
+def test_isolated_spikes_are_left_out_and_named(kind, with_effect):
+    """25 glitches of 30 noise levels: each left out and reported by its time; the rest fits."""
+    sim = _simulate(kind, with_effect, 202)
+    meas, at = _spiked(sim, 25, 30.0, 7)
+    report = diagnose(meas).to_json()
+    rejected = report["rejected_samples"]
+    assert rejected["count"] == 25
+    assert sorted(e["time_s"] for e in rejected["samples"]) == pytest.approx(sorted(meas.time_s[at]), rel=1e-5)  # (6 digits)
+    assert all(abs(abs(e["deviation"]) - 30.0 * sim.true_noise_rms / report["noise_rms"]) < 8 for e in rejected["samples"])
+    _check(report, sim, with_effect)
+
+
+@pytest.mark.parametrize("with_effect", [False, True])
+@pytest.mark.parametrize("kind, settings", [
+    ("preload_trace", {"resolution_um": 1.0, "noise_um": 0.4}),   # a 1 um dial
+    ("torque_deflection", {"rotation_resolution_urad": 2.0}),     # an encoder's 2 urad counts, 0.05 urad noise
+])
+def test_quantised_readings(kind, settings, with_effect):
+    """A reading quantised coarser than its noise: the reading error (q^2/12 for a signal that
+    sweeps across the steps) is counted as noise, so nothing is invented and the fit holds."""
+    sim = _simulate(kind, with_effect, 203, **settings)
+    _check(diagnose(sim.measurement).to_json(), sim, with_effect)
+
+
+def test_spike_detector_leaves_kinks_steps_and_reversals_alone():
+    """A triangle wave (sharp reversals), a step of 50 noise levels, a sine: no spike; the same
+    with five glitches: exactly those."""
+    rng = np.random.default_rng(4)
+    t = np.cumsum(rng.uniform(0.5, 1.5, 4000))
+    clean = np.abs((t % 400) - 200) + np.sin(t / 30) + np.where(t > t[2500], 25.0, 0.0)
+    y = clean + 0.5 * rng.normal(size=t.size)
+    assert not isolated_spikes(t, y, 0.5).any()
+    glitches = np.array([100, 101 + 300, 1700, 2500, 3999 - 5])
+    y[glitches] += np.array([20.0, -15.0, 12.0, 30.0, -40.0])
+    assert np.flatnonzero(isolated_spikes(t, y, 0.5)).tolist() == sorted(glitches.tolist())
+
+
+@pytest.mark.parametrize("q", [0.01, 1.0, 2.5e-3])
+def test_reading_quantum(q):
+    rng = np.random.default_rng(5)
+    values = np.round(rng.normal(size=5000) * 50 / q) * q + 7 * q
+    assert reading_quantum(values) == pytest.approx(q, rel=1e-6)
+    assert reading_quantum(rng.normal(size=5000)) == 0.0  # continuous readings: no grid
+
+
+def test_a_noise_free_staircase_is_a_dial_reading():
+    """A carriage read by a 1 um dial that never flickers (no noise under the divisions): once
+    refused as having no noise, it is a quantised reading; its error, q / sqrt(12) = 0.2887 um for
+    a signal that sweeps the divisions, is the noise."""
+    from geargen.fit.noise import level_of
+    t = np.arange(4000) * 0.1
+    staircase = np.floor(30.0 * np.sin(t / 60.0))
+    level, _ = level_of(t, staircase)
+    assert level == pytest.approx(1 / np.sqrt(12), rel=1e-9)
+    # and the true reading error of the staircase is that
+    assert np.sqrt(np.mean((staircase + 0.5 - 30.0 * np.sin(t / 60.0)) ** 2)) == pytest.approx(1 / np.sqrt(12), rel=0.05)
