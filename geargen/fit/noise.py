@@ -47,6 +47,25 @@ class NoiseEstimate:
     windows: int
     method: str
     channels: dict
+    #: lag-one correlation of the residual's noise (0: white), and of each channel's
+    ar1: float = 0.0
+    ar1_channels: dict = None
+    ar1_scatter: float = 0.0  # standard error of ar1
+    ar1_scatters: dict = None  # of each channel's
+
+    @property
+    def independent_fraction(self) -> float:
+        """n_effective / n of AR(1) noise for a slowly varying fit: (1 - phi) / (1 + phi)."""
+        return (1.0 - self.ar1) / (1.0 + self.ar1)
+
+    def block_variance_factor(self, block: int, phi: float | None = None) -> float:
+        """Var(sum of ``block`` consecutive noise samples) / (block x variance) for AR(1) noise
+        (of lag-one correlation ``phi``, default :attr:`ar1`)."""
+        phi = self.ar1 if phi is None else phi
+        if phi == 0.0:
+            return 1.0
+        k = np.arange(1, block)
+        return float(1.0 + 2.0 * np.sum((block - k) * phi ** k) / block)
 
 
 #: runs of four samples handled at a time: the contrasts' temporaries stay this size at any length
@@ -123,20 +142,10 @@ def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[floa
     """(robust level, valid runs) of one channel: :func:`robust_level` of
     :func:`difference_contrasts`, made block by block into one array of |contrast| (the only
     full-length temporary), so its memory is one float per sample."""
-    t = np.asarray(t, dtype=float)
-    y = np.asarray(y, dtype=float)
-    n = t.size
-    if n < 4:
-        return float("nan"), 0
-    magnitudes = np.empty(n - 3)
-    count = 0
-    for _, c, v in _runs(t, y, gap_ratio):
-        kept = np.abs(c[v])
-        magnitudes[count:count + kept.size] = kept
-        count += kept.size
+    magnitudes = contrast_magnitudes(t, y, gap_ratio)
+    count = magnitudes.size
     if count == 0:
         return float("nan"), 0
-    magnitudes = magnitudes[:count]
     level = float(MAD_TO_SIGMA * np.median(magnitudes))
     q = reading_quantum(y)
     # a sensor's step (a dial's division, an encoder's count) is a visible fraction of what it
@@ -148,6 +157,23 @@ def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[floa
         # contrasts' (trimmed) rms holds both; q / sqrt(12) is the least it can be.
         level = max(trimmed_rms(magnitudes), q / math.sqrt(12.0))
     return level, count
+
+
+def contrast_magnitudes(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> np.ndarray:
+    """|contrast| of every valid run (:func:`difference_contrasts`), made block by block into one
+    array (the only full-length temporary: one float per sample)."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    n = t.size
+    if n < 4:
+        return np.zeros(0)
+    magnitudes = np.empty(n - 3)
+    count = 0
+    for _, c, v in _runs(t, y, gap_ratio):
+        kept = np.abs(c[v])
+        magnitudes[count:count + kept.size] = kept
+        count += kept.size
+    return magnitudes[:count]
 
 
 #: E[c^2 | |c| <= its 99 % quantile] / sigma^2 for Gaussian c: the bias of a 1 % trimmed mean square
@@ -181,15 +207,89 @@ def reading_quantum(y: np.ndarray) -> float:
     return q
 
 
+def contrast_variance(rho: float) -> float:
+    """Variance of a unit-norm third difference (weights (-1, 3, -3, 1) / sqrt 20) of unit AR(1)
+    noise whose samples ``rho`` apart in the run correlate by ``rho``: (1 - rho)(1 - rho/2 + rho^2/10)."""
+    return (1.0 - rho) * (1.0 - 0.5 * rho + 0.1 * rho * rho)
+
+
+#: |lag-one correlation| below this is taken as white (the estimate's own scatter is about 0.02)
+AR1_WHITE = 0.05
+AR1_RANGE = (-0.5, 0.95)
+
+
+def coloured_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[float, int, float]:
+    """(noise level, runs, lag-one correlation phi) of one channel, for white or AR(1) noise.
+
+    The third differences over runs of consecutive samples (``L1``) and over runs of every other
+    sample (``L2``, both interleaved halves) see AR(1) noise differently: their variances are
+    ``sigma^2 f(phi)`` and ``sigma^2 f(phi^2)`` (:func:`contrast_variance`), and
+    ``f(phi^2) / f(phi) = (L2 / L1)^2`` rises from 0.35 (phi -0.5) through 1 (white) to 2 (phi
+    -> 1), so it gives phi, and ``sigma = L1 / sqrt(f(phi))``. Exact for evenly spaced samples."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    l1, count = level_of(t, y, gap_ratio)
+    if y.size < 16 or not l1 > 0:
+        return l1, count, 0.0
+    # the ratio from the contrasts' trimmed rms (nearly the efficiency of the rms for Gaussian
+    # noise, where the median loses a third; the few kinks of the signal trimmed away)
+    stride1 = trimmed_rms(contrast_magnitudes(t, y, gap_ratio))
+    stride2 = trimmed_rms(np.concatenate([contrast_magnitudes(t[i::2], y[i::2], gap_ratio) for i in (0, 1)]))
+    if not (stride1 > 0 and stride2 > 0):
+        return l1, count, 0.0
+    ratio = (stride2 / stride1) ** 2
+
+    def excess(phi):
+        return contrast_variance(phi * phi) / contrast_variance(phi) - ratio
+
+    lo, hi = AR1_RANGE
+    if excess(lo) >= 0:
+        phi = lo
+    elif excess(hi) <= 0:
+        phi = hi
+    else:
+        for _ in range(60):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if excess(mid) < 0 else (lo, mid)
+        phi = 0.5 * (lo + hi)
+    if abs(phi) < AR1_WHITE:
+        return l1, count, 0.0
+    return l1 / math.sqrt(contrast_variance(phi)), count, phi
+
+
+def ar1_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> float:
+    """The lag-one correlation alone (:func:`coloured_level`)."""
+    return coloured_level(t, y, gap_ratio)[2]
+
+
+def ar1_scatter(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0, parts: int = 4) -> float:
+    """Standard error of the lag-one correlation of the whole record: the spread of its estimates
+    on ``parts`` consecutive parts, over sqrt(parts)."""
+    t = np.asarray(t, dtype=float)
+    y = np.asarray(y, dtype=float)
+    edges = np.linspace(0, t.size, parts + 1).astype(int)
+    values = [coloured_level(t[a:b], y[a:b], gap_ratio)[2] for a, b in zip(edges[:-1], edges[1:]) if b - a >= 64]
+    if len(values) < 2:
+        return 0.0
+    return float(np.std(values, ddof=1) / math.sqrt(len(values)))
+
+
 def noise_of_signal(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> NoiseEstimate:
-    """Stationary noise of one channel y(t) (the carriage reading of a preload trace).
+    """Stationary noise of one channel y(t) (the carriage reading of a preload trace), white or
+    AR(1) (:func:`coloured_level`).
 
     ``variance`` is a read-only broadcast of the one level (no memory per sample)."""
-    sigma, windows = level_of(t, y, gap_ratio)
+    sigma, windows, phi = coloured_level(t, y, gap_ratio)
     n = np.asarray(y).size
+    method = "third divided differences along time over 4-sample runs, 1.4826 x median"
+    scatter = 0.0
+    if phi:
+        scatter = ar1_scatter(t, y, gap_ratio)
+        method += (f"; lag-one correlation {phi:.3f} +- {scatter:.3f} from the differences over every other sample "
+                   "(AR(1)), the level corrected for it")
     return NoiseEstimate(rms=sigma, variance=np.broadcast_to(sigma * sigma, (n,)), windows=windows,
-                         method="third divided differences along time over 4-sample runs, 1.4826 x median",
-                         channels={"signal": sigma})
+                         method=method, channels={"signal": sigma}, ar1=phi, ar1_channels={"signal": phi},
+                         ar1_scatter=scatter)
 
 
 def local_slope(x: np.ndarray, y: np.ndarray, half_window: int = 12) -> np.ndarray:
@@ -244,27 +344,46 @@ def local_spacing(t: np.ndarray, half_window: int) -> np.ndarray:
 def noise_of_torque_residual(t: np.ndarray, torque: np.ndarray, rotation: np.ndarray,
                              gap_ratio: float = 4.0) -> NoiseEstimate:
     """Noise of ``torque - law(rotation)`` in torque units, from both channels (see module doc)."""
-    s_t, w_t = level_of(t, torque, gap_ratio)
-    s_r, w_r = level_of(t, rotation, gap_ratio)
+    s_t, w_t, phi_t = coloured_level(t, torque, gap_ratio)
+    s_r, w_r, phi_r = coloured_level(t, rotation, gap_ratio)
     k = stiffness_along_time(t, torque, rotation, s_r)
-    variance = s_t * s_t + (k * s_r) ** 2
-    return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=min(w_t, w_r),
-                         method=("third divided differences along time of torque and of rotation, 1.4826 x median; "
-                                 "rotation noise carried into torque by the local stiffness dT/dtheta of the data, "
-                                 "taken as (dT/dt) / (dtheta/dt) so that neither channel's noise biases it"),
-                         channels={"torque": s_t, "rotation": s_r})
+    scatter = {"torque": ar1_scatter(t, torque, gap_ratio) if phi_t else 0.0,
+               "rotation": ar1_scatter(t, rotation, gap_ratio) if phi_r else 0.0}
+    return _torque_noise(s_t, s_r, phi_t, phi_r, k, min(w_t, w_r),
+                         "the local stiffness dT/dtheta of the data, taken as (dT/dt) / (dtheta/dt) so that neither "
+                         "channel's noise biases it", scatter)
+
+
+def _torque_noise(s_t: float, s_r: float, phi_t: float, phi_r: float, k: np.ndarray, windows: int,
+                  source: str, scatter: dict | None = None) -> NoiseEstimate:
+    """The torque residual's noise from the channels' levels and lag-one correlations, the
+    rotation's carried by the stiffness ``k``: variance ``s_T^2 + k^2 s_theta^2``; the residual's
+    correlation the variance-weighted mean of the channels'."""
+    torque_part = s_t * s_t
+    rotation_part = (np.asarray(k, dtype=float) * s_r) ** 2
+    variance = torque_part + rotation_part
+    total = float(np.sum(variance))
+    share_t = torque_part * variance.size / total if total > 0 else 1.0
+    phi = float(phi_t * share_t + phi_r * (1.0 - share_t))
+    scatter = scatter or {}
+    phi_scatter = float(share_t * scatter.get("torque", 0.0) + (1.0 - share_t) * scatter.get("rotation", 0.0))
+    method = ("third divided differences along time of torque and of rotation, 1.4826 x median; rotation noise "
+              f"carried into torque by {source}")
+    if phi_t or phi_r:
+        method += f"; lag-one correlations {phi_t:.3f} (torque), {phi_r:.3f} (rotation): AR(1), levels corrected"
+    return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=windows, method=method,
+                         channels={"torque": s_t, "rotation": s_r}, ar1=phi,
+                         ar1_channels={"torque": phi_t, "rotation": phi_r}, ar1_scatter=phi_scatter,
+                         ar1_scatters=dict(scatter))
 
 
 def with_stiffness(noise: NoiseEstimate, stiffness: np.ndarray, source: str) -> NoiseEstimate:
     """``noise`` of a torque residual with the rotation channel's noise carried into torque by
     ``stiffness`` (n,) (dT/dtheta, torque units per rotation unit) instead: the effective variance
     ``s_T^2 + k^2 s_theta^2``. The channels' own levels stay the model-free ones."""
-    s_t, s_r = noise.channels["torque"], noise.channels["rotation"]
-    variance = s_t * s_t + (np.asarray(stiffness, dtype=float) * s_r) ** 2
-    return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=noise.windows,
-                         method=("third divided differences along time of torque and of rotation, 1.4826 x median; "
-                                 f"rotation noise carried into torque by {source}"),
-                         channels=dict(noise.channels))
+    ar = noise.ar1_channels or {}
+    return _torque_noise(noise.channels["torque"], noise.channels["rotation"], ar.get("torque", 0.0),
+                         ar.get("rotation", 0.0), stiffness, noise.windows, source, noise.ar1_scatters)
 
 
 def spike_threshold(samples: int, false_per_record: float = 0.05) -> float:

@@ -140,6 +140,7 @@ class Diagnosis:
             "units": self.measurement.units,
             "noise_rms": _round(self.noise.rms),
             "noise_channels": self.noise_channels(),
+            "noise_ar1": _round(self.noise.ar1),
             "rejected_samples": {"count": len(self.rejected),
                                  "samples": [_round_entry(e) for e in self.rejected[:100]]},
             "stages": {
@@ -199,6 +200,12 @@ def _require_level(meas: Measurement, channel: str, level: float, readings: np.n
                                "a measured signal with its noise")
 
 
+def _lag_one(r: np.ndarray) -> float:
+    """Lag-one autocorrelation of a residual (in record order)."""
+    r = r - r.mean()
+    return float(np.dot(r[1:], r[:-1]) / max(float(np.dot(r, r)), 1e-300))
+
+
 def bic_gain(rss_before: float, rss_after: float, n: int, k: int) -> float:
     """dBIC of adding k parameters that take the sum of squares from rss_before to rss_after."""
     if rss_after <= 0:
@@ -252,7 +259,10 @@ def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: Selec
     size = _rms(e)
     if size == 0:
         return math.inf, math.inf, math.inf
-    e_full = model.contribution_noise(fit, index)
+    # (AR(1) noise moves a fit more than white noise of its level: by the inverse of the
+    # independent fraction, for effects that vary slowly from sample to sample)
+    inflation = 1.0 / noise.independent_fraction
+    e_full = model.contribution_noise(fit, index) * inflation
     out, expected = [], []
     for mask in split_masks(n, split):
         try:
@@ -264,7 +274,7 @@ def held_out(model, fit: ModelFit, index: int, noise: NoiseEstimate, rule: Selec
         ep = part.contributions[index]
         out.append(_rms_centred_difference(ep, e) / size)
         del ep
-        e_part = model.contribution_noise(part, index)
+        e_part = model.contribution_noise(part, index) * inflation
         expected.append(math.inf if not math.isfinite(e_part - e_full) else math.sqrt(max(e_part - e_full, 0.0)) / size)
     return out[0], out[1], max(expected)
 
@@ -280,8 +290,14 @@ def residual_tests(fit: ModelFit, noise: NoiseEstimate, leftovers: list[Candidat
     b = rule.block
     nb = r.size // b
     if nb >= 4:
+        phi = noise.ar1
+        if phi:
+            # coloured noise: the model-free correlation is known to its scatter; within that band
+            # the residual's own lag-one correlation (far less scattered) says where it is. Beyond
+            # the band, structure the model left is not taken for the noise's colour.
+            phi = float(np.clip(_lag_one(r / np.sqrt(var)), phi - 3.0 * noise.ar1_scatter, phi + 3.0 * noise.ar1_scatter))
         rs = r[: nb * b].reshape(nb, b).sum(axis=1)
-        vs = var[: nb * b].reshape(nb, b).sum(axis=1)
+        vs = var[: nb * b].reshape(nb, b).sum(axis=1) * noise.block_variance_factor(b, phi)
         s = float(np.mean(rs ** 2 / np.maximum(vs, 1e-300)))
         limit = 1.0 + rule.structure_z * math.sqrt(2.0 / nb) + rule.structure_margin
         tests.append(ResidualTest("structure", s, limit, s <= limit,
@@ -314,7 +330,8 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         model = make_model(meas, noise)
         declared = model.fit(())
     current = declared
-    n = meas.samples
+    # AR(1) noise: its samples carry less independent evidence than white ones
+    n = max(int(round(meas.samples * noise.independent_fraction)), 2)
     added: list[AddedEffect] = []
     log: list[CandidateResult] = []
     last_round: list[CandidateResult] = []

@@ -16,6 +16,7 @@ should find (``expected``) in the contract's parameter names. Randomness comes o
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -54,6 +55,17 @@ class Sampling:
     temperature: bool = True
     temperature_rise_K: float = 2.0
     temperature_noise_K: float = 0.003
+
+
+def unit_noise(rng: np.random.Generator, n: int, ar1: float = 0.0) -> np.ndarray:
+    """(n,) Gaussian noise of unit variance: white, or AR(1) with lag-one correlation ``ar1``
+    (``e_i = ar1 e_(i-1) + sqrt(1 - ar1^2) w_i``, started in its stationary state)."""
+    w = rng.normal(size=n)
+    if ar1 == 0.0:
+        return w
+    from scipy.signal import lfilter
+    w[1:] *= math.sqrt(1.0 - ar1 * ar1)
+    return lfilter([1.0], [1.0, -ar1], w)
 
 
 def sample_times(s: Sampling, rng: np.random.Generator) -> np.ndarray:
@@ -124,6 +136,7 @@ class PreloadSettings:
     revolutions: float = 1.5
     return_trip: bool = True
     noise_um: float = 0.5
+    noise_ar1: float = 0.0  # lag-one correlation of the probe's noise (a logger's filter): 0 white
     resolution_um: float = 0.01
     speed_ripple: float = 0.08
 
@@ -189,7 +202,7 @@ def simulate_preload_trace(truth: PreloadTruth, rng: np.random.Generator,
     if truth.hysteresis_half_width:
         x = fx.play_operator(x, truth.hysteresis_half_width)
         expected.append({"effect": "hysteresis", "half_width": truth.hysteresis_half_width})
-    noise = st.noise_um * rng.normal(size=n)
+    noise = st.noise_um * unit_noise(rng, n, st.noise_ar1)
     if truth.burst:
         factor, start, length = truth.burst
         inside = (t >= start * sm.duration_s) & (t < (start + length) * sm.duration_s)
@@ -259,6 +272,7 @@ class TorqueSettings:
     cycles: int = 2
     max_torque_Nm: float = 80.0
     torque_noise_Nm: float = 0.1
+    noise_ar1: float = 0.0  # lag-one correlation of the torque cell's noise: 0 white
     torque_resolution_Nm: float = 0.001
     rotation_noise_urad: float = 0.05
     rotation_resolution_urad: float = 0.01
@@ -326,7 +340,7 @@ def simulate_torque_deflection(truth: TorqueTruth, rng: np.random.Generator,
         amp, period = truth.vibration
         reading += amp * np.sin(2 * np.pi * t / period)
         outside.append("vibration")
-    e_t = st.torque_noise_Nm * rng.normal(size=n)
+    e_t = st.torque_noise_Nm * unit_noise(rng, n, st.noise_ar1)
     if truth.burst:
         factor, start, length = truth.burst
         inside = (t >= start * sm.duration_s) & (t < (start + length) * sm.duration_s)

@@ -43,15 +43,18 @@ class Case:
     settings: dict = field(default_factory=dict)
 
 
-def _preload(name, seed, noise, expect, temperature=True, **truth):
-    return Case(name, PreloadTruth(**truth), seed, noise, expect, {"temperature": temperature})
+def _preload(name, seed, noise, expect, temperature=True, ar1=0.0, **truth):
+    """``ar1``: lag-one correlation of the probe's noise (0: white)."""
+    return Case(name, PreloadTruth(**truth), seed, noise, expect, {"temperature": temperature, "ar1": ar1})
 
 
-def _torque(name, seed, noise, expect, temperature=True, max_torque=80.0, cycles=2, rotation_noise=0.05, **truth):
-    """``noise``: on the torque channel (Nm); ``rotation_noise``: on the rotation probe (urad)."""
+def _torque(name, seed, noise, expect, temperature=True, max_torque=80.0, cycles=2, rotation_noise=0.05, ar1=0.0,
+            **truth):
+    """``noise``: on the torque channel (Nm), ``ar1`` its lag-one correlation; ``rotation_noise``:
+    on the rotation probe (urad)."""
     return Case(name, TorqueTruth(**truth), seed, noise, expect,
                 {"temperature": temperature, "max_torque": max_torque, "cycles": cycles,
-                 "rotation_noise": rotation_noise})
+                 "rotation_noise": rotation_noise, "ar1": ar1})
 
 
 CASES: list[Case] = [
@@ -70,10 +73,19 @@ CASES: list[Case] = [
     _preload("preload/drift per second", 22, 0.2, "effects", temperature=False, drift_per_second=0.004),
     _preload("preload/hysteresis", 31, 0.5, "effects", hysteresis_half_width=1.0),
     _preload("preload/hysteresis", 32, 0.2, "effects", hysteresis_half_width=0.5),
+    # coloured noise: a logger's filter correlates consecutive readings (AR(1), lag-one 0.3 and 0.6)
+    _preload("preload/none, AR(1) noise 0.3", 16, 0.5, "none", ar1=0.3),
+    _preload("preload/none, AR(1) noise 0.6", 17, 0.5, "none", ar1=0.6),
+    _preload("preload/harmonic 2 x output, AR(1) noise 0.6", 18, 0.5, "effects", ar1=0.6,
+             harmonics=((2.0, 3.0, 40.0),)),
+    _preload("preload/drift per kelvin, AR(1) noise 0.3", 19, 0.3, "effects", ar1=0.3, drift_per_kelvin=1.5),
     # preload traces: effects outside the library
     _preload("preload/outside: chirp", 41, 0.5, "unexplained", chirp=(1.5, 30.0, 60.0)),
     _preload("preload/outside: step", 42, 0.5, "unexplained", step=(2.0, 0.6)),
     _preload("preload/outside: noise burst", 43, 0.5, "unexplained", burst=(5.0, 0.3, 0.1)),
+    # ... and under coloured noise, which must not pass for them
+    _preload("preload/outside: step, AR(1) noise 0.5", 44, 0.5, "unexplained", ar1=0.5, step=(2.0, 0.6)),
+    _preload("preload/outside: chirp, AR(1) noise 0.5", 45, 0.5, "unexplained", ar1=0.5, chirp=(1.5, 30.0, 60.0)),
     # torque-deflection tests: no undeclared effect
     _torque("torque/none", 51, 0.1, "none"),
     _torque("torque/none", 52, 0.3, "none", temperature=False),
@@ -89,6 +101,8 @@ CASES: list[Case] = [
     _torque("torque/hysteresis, noise on rotation only", 105, 0.001, "effects", rotation_noise=2.0,
             hysteresis_half_width=1.0),
     _torque("torque/drift per kelvin, noise on both", 106, 0.1, "effects", rotation_noise=1.0, drift_per_kelvin=0.8),
+    _torque("torque/none, AR(1) noise 0.6", 107, 0.1, "none", ar1=0.6),
+    _torque("torque/hysteresis, AR(1) noise 0.5", 108, 0.1, "effects", ar1=0.5, hysteresis_half_width=0.8),
     # torque-deflection tests: each library effect undeclared
     _torque("torque/drift per second", 61, 0.1, "effects", temperature=False, drift_per_second=0.003),
     _torque("torque/drift per kelvin", 62, 0.2, "effects", drift_per_kelvin=0.8),
@@ -108,16 +122,20 @@ CASES: list[Case] = [
     _torque("torque/outside: torque cell slip (step)", 95, 0.1, "unexplained", step=(1.0, 0.55)),
     _torque("torque/outside: vibration", 96, 0.1, "unexplained", vibration=(0.5, 37.0)),
     _torque("torque/outside: noise burst", 97, 0.1, "unexplained", burst=(6.0, 0.6, 0.1)),
+    _torque("torque/outside: vibration, AR(1) noise 0.5", 98, 0.1, "unexplained", ar1=0.5, vibration=(0.5, 37.0)),
+    _torque("torque/outside: torque cell slip, AR(1) noise 0.5", 99, 0.1, "unexplained", ar1=0.5, step=(1.0, 0.55)),
 ]
 
 
 def simulate(case: Case):
     rng = np.random.default_rng(case.seed)
     if isinstance(case.truth, PreloadTruth):
-        st = PreloadSettings(noise_um=case.noise, sampling=replace(Sampling(), temperature=case.settings.get("temperature", True)))
+        st = PreloadSettings(noise_um=case.noise, noise_ar1=case.settings.get("ar1", 0.0),
+                             sampling=replace(Sampling(), temperature=case.settings.get("temperature", True)))
         return simulate_preload_trace(case.truth, rng, st, name=case.name.replace("/", "_"))
     base = TorqueSettings()
     st = replace(base, torque_noise_Nm=case.noise, rotation_noise_urad=case.settings.get("rotation_noise", 0.05),
+                 noise_ar1=case.settings.get("ar1", 0.0),
                  max_torque_Nm=case.settings.get("max_torque", 80.0),
                  cycles=case.settings.get("cycles", 2),
                  sampling=replace(base.sampling, temperature=case.settings.get("temperature", True)))

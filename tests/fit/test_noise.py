@@ -33,3 +33,36 @@ def test_torque_residual_noise_from_both_channels():
     assert est.channels["rotation"] == pytest.approx(np.hypot(0.1, 0.01 / np.sqrt(12)), rel=0.1)
     # the rotation noise reaches the residual through the local stiffness: 0.1 urad x 8e5 Nm/rad = 0.08 Nm
     assert est.rms == pytest.approx(sim.true_noise_rms, rel=0.1)
+
+
+def test_contrast_variance_of_ar1_noise_against_its_definition():
+    """(1 - rho)(1 - rho/2 + rho^2/10) is w' R w for the unit third difference w = (-1, 3, -3, 1)
+    / sqrt 20 and R_jk = rho^|j - k|."""
+    from geargen.fit.noise import contrast_variance
+    w = np.array([-1.0, 3.0, -3.0, 1.0]) / np.sqrt(20.0)
+    for rho in (-0.4, 0.0, 0.3, 0.6, 0.9):
+        R = rho ** np.abs(np.subtract.outer(np.arange(4), np.arange(4)))
+        assert contrast_variance(rho) == pytest.approx(w @ R @ w, rel=1e-12)
+
+
+@pytest.mark.parametrize("jitter, bias", [(0.0, 0.02), (0.5, 0.035)])
+@pytest.mark.parametrize("phi", [0.0, 0.3, 0.6])
+def test_coloured_noise_level_and_correlation_from_the_data(phi, jitter, bias):
+    """AR(1) noise of unit variance on a smooth signal, 16384 samples, 12 records: the level
+    within 3 % and the lag-one correlation within 0.02 on average for even spacing (the formula
+    is exact there); sample intervals varying +-50 % bias it by up to 0.035 low. Each record's
+    within four of its own stated scatter."""
+    from geargen.fit.noise import ar1_scatter, coloured_level
+    from geargen.fit.simulate import unit_noise
+    rng = np.random.default_rng(31)
+    levels, phis = [], []
+    for _ in range(12):
+        t = np.cumsum(rng.uniform(1 - jitter, 1 + jitter, 16384))
+        y = 20 * np.sin(t / 900.0) + unit_noise(rng, t.size, phi)
+        level, _, got = coloured_level(t, y)
+        levels.append(level)
+        phis.append(got)
+        if phi:
+            assert abs(got - phi) < 4 * max(ar1_scatter(t, y), 0.01) + bias
+    assert np.mean(levels) == pytest.approx(1.0, rel=0.03)
+    assert np.mean(phis) == pytest.approx(phi, abs=bias)
