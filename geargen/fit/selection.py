@@ -57,6 +57,9 @@ class SelectionRule:
     structure_z: float = 4.0
     structure_margin: float = 0.1
     max_effects: int = 6
+    #: two look-alike candidates closer than this in dBIC cannot be told apart ("strong" evidence
+    #: on the Kass-Raftery scale is a difference of 6 to 10)
+    ambiguity_margin: float = 10.0
 
     def text(self) -> str:
         return (f"An effect is added when dBIC = n ln(RSS_before/RSS_after) - k ln n >= {self.bic_threshold:g} "
@@ -119,6 +122,7 @@ class Diagnosis:
     unexplained: bool
     rule: SelectionRule = field(default_factory=SelectionRule)
     rejected: tuple[dict, ...] = ()  # isolated spikes left out of the record (reject_spikes)
+    ambiguous: tuple[dict, ...] = ()  # effects the data cannot tell apart or pin down: not added
 
     def stage(self, residual: np.ndarray | None) -> dict | None:
         if residual is None:
@@ -141,6 +145,9 @@ class Diagnosis:
             "noise_rms": _round(self.noise.rms),
             "noise_channels": self.noise_channels(),
             "noise_ar1": _round(self.noise.ar1),
+            "ambiguous": [{"candidates": a["candidates"], "why": a["why"],
+                           "fits": [_round_entry({k: v for k, v in e.items() if k != "evidence"}) for e in a["fits"]]}
+                          for a in self.ambiguous],
             "rejected_samples": {"count": len(self.rejected),
                                  "samples": [_round_entry(e) for e in self.rejected[:100]]},
             "stages": {
@@ -335,6 +342,8 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     added: list[AddedEffect] = []
     log: list[CandidateResult] = []
     last_round: list[CandidateResult] = []
+    ambiguous: list[dict] = []
+    tested = None  # the model the residual is tested with when an ambiguous effect explains it
     for rnd in range(1, rule.max_effects + 2):
         evaluated = []
         this_round: list[CandidateResult] = []
@@ -354,6 +363,7 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
             evaluated.append((dbic, cand, f))
         evaluated.sort(key=lambda e: -e[0])
         chosen = None
+        unconfirmed = []  # significant, but parts of the record cannot pin them down
         for dbic, cand, f in evaluated:
             if chosen is not None:
                 this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, "weaker than the effect added"))
@@ -381,6 +391,7 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
                     rnd, cand.term.label, cand.evidence, dbic,
                     f"not added: cannot be confirmed on part of the record (noise alone would move a fit to "
                     f"{SPLITS[split]} by {dn:.0%} of the effect)", (da, db)))
+                unconfirmed.append((dbic, cand, f, dn))
             elif max(da, db) <= limit:
                 chosen = (dbic, cand, f, (da, db), dn, split)
                 this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, "added", (da, db)))
@@ -392,7 +403,22 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
                     f"the {dn:.1%} noise alone would cause)", (da, db), True))
         log.extend(this_round)
         last_round = this_round
+        if chosen is not None:
+            rivals = look_alike_rivals(chosen[1].term.effect, chosen[0], evaluated, rule)
+            if rivals:
+                ambiguous.append(_ambiguity(chosen[1], chosen[0], rivals, model, chosen[2],
+                                            "the data fit each about as well: " + LOOK_ALIKE_EVIDENCE))
+                tested = chosen[2]
+                break
         if chosen is None:
+            if unconfirmed:
+                dbic, cand, f, dn = unconfirmed[0]
+                ambiguous.append(_ambiguity(cand, dbic, [], model, f,
+                                            f"significant (dBIC {dbic:.0f}) but the record cannot pin it down: noise "
+                                            f"alone would move a fit to part of it by {dn:.0%} of the effect, as when "
+                                            "the test does not load far enough beyond where a path unloads to tell it "
+                                            "from the declared law's stiffness there"))
+                tested = f
             break
         dbic, cand, f, ho, dn, split = chosen
         rms_before = current.rms
@@ -412,12 +438,34 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         fresh = model.entry(final, i)
         fresh.update({k: v for k, v in a.entry.items() if k in ("evidence", "delta_bic")})
         added[i] = AddedEffect(fresh, a.delta_bic, a.held_out, a.rms_before, a.rms_after)
-    tests = residual_tests(final, noise, last_round, rule, meas.units)
+    tests = residual_tests(final if tested is None else tested, noise, last_round, rule, meas.units)
     unexplained = not all(t.passed for t in tests)
     nominal = model.nominal()  # (made last: it is one more array of the record's length)
     return Diagnosis(measurement=meas, noise=noise, model=model, nominal_residual=nominal, declared=declared,
                      extended=final, added=tuple(added), candidates=tuple(log), tests=tuple(tests),
-                     unexplained=unexplained, rule=rule, rejected=rejected)
+                     unexplained=unexplained, rule=rule, rejected=rejected, ambiguous=tuple(ambiguous))
+
+
+#: effects that bend a torque-deflection curve alike, and what tells them apart physically
+LOOK_ALIKES = ({"stiffening", "dead_band", "hysteresis"},)
+LOOK_ALIKE_EVIDENCE = ("stiffening bends the curve over the whole load range, a dead band is a flat zone at zero "
+                       "torque, friction depends on the direction of loading; a test that loads further, or cycles "
+                       "more slowly through zero, separates them")
+
+
+def look_alike_rivals(effect: str, dbic: float, evaluated, rule: SelectionRule) -> list:
+    """The significant candidates of ``effect``'s look-alike group within the ambiguity margin of it."""
+    group = next((g for g in LOOK_ALIKES if effect in g), set())
+    return [(d, c, f) for d, c, f in evaluated if c.term.effect in group and c.term.effect != effect
+            and d >= rule.bic_threshold and d >= dbic - rule.ambiguity_margin]
+
+
+def _ambiguity(cand, dbic: float, rivals: list, model, fit, why: str) -> dict:
+    """A report entry for effects the data cannot tell apart or pin down."""
+    entries = [{**model.entry(fit, len(fit.terms) - 1), "delta_bic": dbic}]
+    for d, c, f in rivals:
+        entries.append({**model.entry(f, len(f.terms) - 1), "delta_bic": d})
+    return {"candidates": [e["effect"] for e in entries], "fits": entries, "why": why}
 
 
 def reject_spikes(meas: Measurement, noise: NoiseEstimate) -> tuple[Measurement, tuple[dict, ...]]:

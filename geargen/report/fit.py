@@ -286,6 +286,21 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
                     extra.append(f"{key}: {e[key]}")
             lines.append(f"{i}. **{e['effect']}**: {e.get('evidence', '')}" + (f" ({'; '.join(extra)})" if extra else ""))
         lines.append("")
+    if s.get("ambiguous"):
+        lines += ["## Ambiguous", "", "Effects the data cannot tell apart or pin down: reported, not added (the residual "
+                  "tests are made with the strongest of them in the model).", ""]
+        for a in s["ambiguous"]:
+            fits = "; ".join(f"{f['effect']} ({_params_text(f)}, dBIC {_fmt(f.get('delta_bic'), 5)})" for f in a["fits"])
+            lines.append(f"- {' or '.join(a['candidates'])}: {fits}. {a['why']}.")
+        lines.append("")
+    rejected = s.get("rejected_samples", {})
+    if rejected.get("count"):
+        lines += ["## Samples left out", "", f"{rejected['count']} isolated spikes (a sample that jumps away from its "
+                  "neighbours on both sides by more than the noise allows):", "",
+                  "| time (s) | column | value | deviation (noise levels) |", "|---|---|---|---|"]
+        lines += [f"| {_fmt(e['time_s'], 7)} | {e['column']} | {_fmt(e['value'])} | {_fmt(e['deviation'], 3)} |"
+                  for e in rejected["samples"][:20]]
+        lines.append("")
     lines += ["## Diagnosis", "", "Every candidate of every round, on the residual of the model as it stood then.", "",
               "| round | candidate | dBIC | outcome | evidence |", "|---|---|---|---|---|"]
     for c in inp.candidates:
