@@ -75,6 +75,12 @@ def run(args) -> int:
     print(f"{s['kind']}: {s['samples']} samples, noise {s['noise_rms']:.4g} {u} rms ({channels})", file=text)
     print(f"  rms nominal {nominal} / declared {st['declared']['rms']:.4g} / extended {st['extended']['rms']:.4g} {u}",
           file=text)
+    if s["budget"]["assembly"]:
+        print(f"  budget: {s['budget']['summary']}", file=text)
+    for a in s["ambiguous"]:
+        print(f"  ambiguous: {' or '.join(a['candidates'])} ({a['why']})", file=text)
+    if s["rejected_samples"]["count"]:
+        print(f"  {s['rejected_samples']['count']} isolated spikes left out", file=text)
     for e in s["effects_added"]:
         params = ", ".join(f"{k}={v:.5g}" if isinstance(v, float) else f"{k}={v}" for k, v in e.items()
                            if k not in ("effect", "evidence", "law", "phase_convention", "attribution", "delta_bic"))

@@ -147,6 +147,7 @@ class Measurement:
     notes: tuple[str, ...] = ()
     source: Path | None = None
     columns: dict = field(default_factory=dict)
+    assembly: Path | None = None  # the design file the sidecar names (its error budget is compared)
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -407,7 +408,7 @@ def _model_from_assembly(kind: str, design_path: Path, where: str, notes: list[s
     return values
 
 
-def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSpec | TorqueModelSpec]:
+def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSpec | TorqueModelSpec, Path | None]:
     """(kind, description, model spec) from a sidecar TOML; errors name the key."""
     where = path.name
     if not path.exists():
@@ -432,11 +433,13 @@ def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSp
     if model is None and assembly is None:
         raise MeasurementError(f"{where}: model", "missing", "a [model] table, or assembly = \"design.toml\"")
     table: dict[str, Any] = {}
+    design_path = None
     if assembly is not None:
         if not isinstance(assembly, str) or not assembly:
             raise MeasurementError(f"{where}: assembly", f"expected a path, got {assembly!r}")
+        design_path = (path.parent / assembly).resolve()
         try:
-            table.update(_model_from_assembly(kind, (path.parent / assembly).resolve(), f"{where}: ", notes))
+            table.update(_model_from_assembly(kind, design_path, f"{where}: ", notes))
         except MeasurementError:
             raise
         except DesignError as exc:
@@ -476,7 +479,8 @@ def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSp
         for d in declared:
             if d not in DECLARED_NAMES:
                 raise MeasurementError(f"{mw}.declared", f"{d!r} is not a declared-model term", ", ".join(map(repr, DECLARED_NAMES)))
-        return kind, description, PreloadModelSpec(teeth=tuple(teeth), declared=tuple(dict.fromkeys(declared)), drive_type=drive)
+        return (kind, description, PreloadModelSpec(teeth=tuple(teeth), declared=tuple(dict.fromkeys(declared)),
+                                                    drive_type=drive), design_path)
     if drive is None:
         raise MeasurementError(f"{mw}.drive", "missing", "'type1', 'type2'")
     values = {k: _number(table, k, mw) for k in MODEL_KEYS[kind][1:]}
@@ -490,7 +494,7 @@ def read_sidecar(path: Path, notes: list[str]) -> tuple[str, str, PreloadModelSp
                if values[k] is None]
     if missing:
         notes.append("no nominal values for " + ", ".join(missing) + ": the nominal stage is null and the fit starts from the data")
-    return kind, description, spec
+    return kind, description, spec, design_path
 
 
 # ----------------------------------------------------------------------------- reading
@@ -596,7 +600,7 @@ def read_measurement(csv_path: str | Path) -> Measurement:
         csv_path = csv_path.with_suffix(".csv")
     where = csv_path.name
     notes: list[str] = []
-    kind, description, model = read_sidecar(csv_path.with_suffix(".toml"), notes)
+    kind, description, model, assembly = read_sidecar(csv_path.with_suffix(".toml"), notes)
     found: dict = {}
 
     def select(header):
@@ -670,7 +674,7 @@ def read_measurement(csv_path: str | Path) -> Measurement:
             temperature = np.interp(t, t[good], temperature[good])
     common = dict(kind=kind, name=csv_path.stem, time_s=t, model=model, temperature_C=temperature,
                   description=description, notes=tuple(notes), source=csv_path.resolve(),
-                  columns={ch: name for ch, (_, _, name) in cols.items()})
+                  columns={ch: name for ch, (_, _, name) in cols.items()}, assembly=assembly)
     if kind == "preload_trace":
         return Measurement(angle_rad=data["angle"], carriage_um=data["carriage"], **common)
     return Measurement(torque_Nm=data["torque"], rotation_rad=data["rotation"], **common)

@@ -123,6 +123,8 @@ class Diagnosis:
     rule: SelectionRule = field(default_factory=SelectionRule)
     rejected: tuple[dict, ...] = ()  # isolated spikes left out of the record (reject_spikes)
     ambiguous: tuple[dict, ...] = ()  # effects the data cannot tell apart or pin down: not added
+    budget: tuple[dict, ...] = ()  # the measured errors beside the assembly's budget (geargen.fit.budget)
+    budget_note: str = ""
 
     def stage(self, residual: np.ndarray | None) -> dict | None:
         if residual is None:
@@ -145,6 +147,10 @@ class Diagnosis:
             "noise_rms": _round(self.noise.rms),
             "noise_channels": self.noise_channels(),
             "noise_ar1": _round(self.noise.ar1),
+            "budget": {"assembly": str(self.measurement.assembly.name) if self.measurement.assembly else None,
+                       "summary": self.budget_note,
+                       "terms": [_round_entry({k: v for k, v in r.items() if not isinstance(v, list) or k == "gears"})
+                                 for r in self.budget]},
             "ambiguous": [{"candidates": a["candidates"], "why": a["why"],
                            "fits": [_round_entry({k: v for k, v in e.items() if k != "evidence"}) for e in a["fits"]]}
                           for a in self.ambiguous],
@@ -440,10 +446,18 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         added[i] = AddedEffect(fresh, a.delta_bic, a.held_out, a.rms_before, a.rms_after)
     tests = residual_tests(final if tested is None else tested, noise, last_round, rule, meas.units)
     unexplained = not all(t.passed for t in tests)
+    budget, budget_note = (), ""
+    if meas.assembly is not None and meas.kind == "preload_trace":
+        from geargen.fit.budget import budget_of
+        # a fitted sinusoid's amplitude scatters by sigma sqrt(2 / n) (n independent samples)
+        amplitude_se = noise.rms * math.sqrt(2.0 / max(meas.samples * noise.independent_fraction, 1.0))
+        rows, budget_note = budget_of(meas.assembly, final.declared_values, amplitude_se)
+        budget = tuple(rows)
     nominal = model.nominal()  # (made last: it is one more array of the record's length)
     return Diagnosis(measurement=meas, noise=noise, model=model, nominal_residual=nominal, declared=declared,
                      extended=final, added=tuple(added), candidates=tuple(log), tests=tuple(tests),
-                     unexplained=unexplained, rule=rule, rejected=rejected, ambiguous=tuple(ambiguous))
+                     unexplained=unexplained, rule=rule, rejected=rejected, ambiguous=tuple(ambiguous),
+                     budget=budget, budget_note=budget_note)
 
 
 #: effects that bend a torque-deflection curve alike, and what tells them apart physically

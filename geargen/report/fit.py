@@ -286,6 +286,18 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
                     extra.append(f"{key}: {e[key]}")
             lines.append(f"{i}. **{e['effect']}**: {e.get('evidence', '')}" + (f" ({'; '.join(extra)})" if extra else ""))
         lines.append("")
+    budget = s.get("budget") or {}
+    if budget.get("assembly"):
+        lines += ["## Against the design's error budget", "", f"{budget['summary']}.", "",
+                  "| term | gears | order | carriage amplitude (um) | budget amplitude (um) | measured TIR (um) | "
+                  "budget TIR (um) | verdict |", "|---|---|---|---|---|---|---|---|"]
+        for r in budget["terms"]:
+            lines.append(f"| {r['term']} | {', '.join(r['gears'])} | {_fmt(r['order'], 5)} | {_fmt(r['amplitude_um'], 4)} | "
+                         f"{_fmt(r['budget_amplitude_um'], 4)} | {_fmt(r.get('measured_tir_um'), 4)} | "
+                         f"{_fmt(r.get('budget_tir_um'), 4)} | {r['verdict']} |")
+        lines += ["", "Measured TIR = 2 x amplitude / (carriage motion per unit of pitch-circle offset, from the "
+                  "design's exact loop geometry); a cluster's order is shared by four gears (the TIR each would "
+                  "carry in phase: a lower bound of the largest).", ""]
     if s.get("ambiguous"):
         lines += ["## Ambiguous", "", "Effects the data cannot tell apart or pin down: reported, not added (the residual "
                   "tests are made with the strongest of them in the model).", ""]

@@ -17,7 +17,7 @@ EFFECT_KEYS = {"harmonic": {"order", "amplitude", "phase_deg", "shaft", "multipl
 
 
 #: keys added to the contract since (adding is allowed, changing is not)
-ADDED_KEYS = {"noise_channels", "noise_ar1", "rejected_samples", "ambiguous"}
+ADDED_KEYS = {"noise_channels", "noise_ar1", "rejected_samples", "ambiguous", "budget"}
 
 
 def _check(j, kind, units):

@@ -44,7 +44,7 @@ def test_json_has_the_contract_keys():
     j = result["report"]
     contract = ["kind", "samples", "units", "noise_rms", "stages", "effects_added", "unexplained"]
     assert [k for k in j if k in contract] == contract
-    assert set(j) - set(contract) == {"noise_channels", "noise_ar1", "rejected_samples", "ambiguous"}
+    assert set(j) - set(contract) == {"noise_channels", "noise_ar1", "rejected_samples", "ambiguous", "budget"}
     assert j["noise_channels"]["carriage_x_um"] == pytest.approx(result["sim"].true_noise_rms, rel=0.1)
     assert set(j["stages"]) == {"nominal", "declared", "extended"}
     for stage in j["stages"].values():
