@@ -27,7 +27,8 @@ The rule (thresholds are fields of :class:`SelectionRule`):
    - structure: block sums of 32 consecutive residuals, each divided by its noise-predicted
      spread, have mean square ``<= 1 + 4 sqrt(2 / blocks) + 0.1`` (white noise gives 1);
    - leftovers: no candidate in the last round was significant but inconsistent between the
-     halves (structure that no library effect explains).
+     halves (structure that no library effect explains), unless it is smaller than 5 % of the
+     noise (rms): a long record makes such trifles significant.
 """
 
 from __future__ import annotations
@@ -60,6 +61,8 @@ class SelectionRule:
     #: two look-alike candidates closer than this in dBIC cannot be told apart ("strong" evidence
     #: on the Kass-Raftery scale is a difference of 6 to 10)
     ambiguity_margin: float = 10.0
+    #: a leftover smaller than this fraction of the noise (rms) does not make the record unexplained
+    leftover_floor: float = 0.05
 
     def text(self) -> str:
         return (f"An effect is added when dBIC = n ln(RSS_before/RSS_after) - k ln n >= {self.bic_threshold:g} "
@@ -70,7 +73,8 @@ class SelectionRule:
                 f"determine the effect). The final residual is noise when its rms is at most "
                 f"{self.level_limit:g} x the model-free noise level, its {self.block}-sample block sums are white "
                 f"(mean square <= 1 + {self.structure_z:g} sqrt(2/blocks) + {self.structure_margin:g}), and no significant "
-                f"candidate was left over that the halves disagree on; otherwise `unexplained` is true.")
+                f"candidate of at least {self.leftover_floor:.0%} of the noise (rms) was left over that the halves "
+                f"disagree on; otherwise `unexplained` is true.")
 
 
 @dataclass(frozen=True)
@@ -84,6 +88,7 @@ class CandidateResult:
     outcome: str
     held_out: tuple[float, float] | None = None
     inconsistent: bool = False
+    size: float = math.inf  # rms of its contribution over the noise level (where measured)
 
 
 @dataclass(frozen=True, eq=False)
@@ -315,7 +320,9 @@ def residual_tests(fit: ModelFit, noise: NoiseEstimate, leftovers: list[Candidat
         limit = 1.0 + rule.structure_z * math.sqrt(2.0 / nb) + rule.structure_margin
         tests.append(ResidualTest("structure", s, limit, s <= limit,
                                   f"mean square of {nb} normalised {b}-sample block sums is {s:.3f} (white noise: 1)"))
-    bad = [c for c in leftovers if c.inconsistent]
+    # a long record finds structure far below what matters (3 million samples make an effect of a
+    # few thousandths of the noise significant): such leftovers are listed, not held against it
+    bad = [c for c in leftovers if c.inconsistent and c.size >= rule.leftover_floor]
     tests.append(ResidualTest("leftovers", float(len(bad)), 0.0, not bad,
                               "no significant structure left that the library explains inconsistently" if not bad else
                               "significant but not a library effect: " + "; ".join(
@@ -402,11 +409,12 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
                 chosen = (dbic, cand, f, (da, db), dn, split)
                 this_round.append(CandidateResult(rnd, cand.term.label, cand.evidence, dbic, "added", (da, db)))
             else:
+                size = _rms(f.contributions[-1] - np.mean(f.contributions[-1])) / max(noise.rms, 1e-300)
                 this_round.append(CandidateResult(
                     rnd, cand.term.label, cand.evidence, dbic,
                     f"rejected: fits to {SPLITS[split]} alone disagree with the full-record effect by {da:.1%} / "
                     f"{db:.1%} (limit {limit:.1%}: the larger of {rule.held_out_limit:.0%} and {rule.noise_factor:g} x "
-                    f"the {dn:.1%} noise alone would cause)", (da, db), True))
+                    f"the {dn:.1%} noise alone would cause); its size {size:.3g} x the noise", (da, db), True, size))
         log.extend(this_round)
         last_round = this_round
         if chosen is not None:

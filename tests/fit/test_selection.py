@@ -59,3 +59,24 @@ def test_nominal_stage_is_null_without_nominal_values():
     result = run_case(next(c for c in CASES if c.name == "torque/none, no nominal values"))
     assert result["report"]["stages"]["nominal"] is None
     assert result["report"]["stages"]["declared"]["rms"] > 0
+
+
+def test_a_leftover_too_small_to_matter_does_not_make_the_record_unexplained():
+    """3 million samples make an inconsistent effect of a few thousandths of the noise significant
+    (the memory bench found a hysteresis of dBIC 26 that way): it is listed, not held against the
+    record; one of 5 % of the noise or more still is."""
+    import numpy as np
+    from geargen.fit.model import ModelFit
+    from geargen.fit.noise import NoiseEstimate
+    from geargen.fit.selection import CandidateResult, residual_tests
+
+    r = np.random.default_rng(3).normal(size=4096)
+    fit = ModelFit(terms=(), prediction=np.zeros_like(r), residual=r, rss=float(r @ r), n_fitted=r.size, n_params=1,
+                   contributions=(), values=(), declared_values={})
+    noise = NoiseEstimate(rms=1.0, variance=np.ones_like(r), windows=r.size, method="", channels={"signal": 1.0})
+
+    def leftovers_pass(size):
+        cand = CandidateResult(1, "hysteresis", "", 26.0, "rejected", (1.2, 1.3), True, size)
+        return next(t for t in residual_tests(fit, noise, [cand], SelectionRule(), "um") if t.name == "leftovers").passed
+    assert leftovers_pass(0.003) and leftovers_pass(0.049)
+    assert not leftovers_pass(0.05) and not leftovers_pass(0.4)
