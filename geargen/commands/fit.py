@@ -22,9 +22,13 @@ def add_arguments(p) -> None:
                    help="folder for the human report, report.md and plots "
                         "(default: NAME_fit/ beside the JSON, or beside the CSV with --json -)")
     p.add_argument("--no-plots", action="store_true", help="write the Markdown report without plots")
+    p.add_argument("--update-design", dest="update_design", default=None, metavar="OUT.toml",
+                   help="write a copy of the sidecar's assembly with the measured errors in place of the budgeted "
+                        "ones (and the effects found as a comment), and report the preload variation before and after")
 
 
-def fit_files(csv_path, json_path=None, report_dir=None, plots: bool = True, stdout=None) -> dict:
+def fit_files(csv_path, json_path=None, report_dir=None, plots: bool = True, stdout=None,
+              update_design=None) -> dict:
     """Read, fit, diagnose and report one measurement. Returns the JSON summary and timings.
 
     ``json_path`` ``"-"`` writes the JSON to ``stdout`` (default ``sys.stdout``) instead of a file.
@@ -43,15 +47,24 @@ def fit_files(csv_path, json_path=None, report_dir=None, plots: bool = True, std
     else:
         json_file = Path(json_path) if json_path else csv_path.with_name(f"{csv_path.stem}.fit.json")
         report_dir = Path(report_dir) if report_dir else json_file.with_name(f"{csv_path.stem}_fit")
+    if update_design is not None:
+        from geargen.outputs import check_file_target
+        check_file_target(update_design, "--update-design")
     t0, c0 = time.perf_counter(), time.process_time()
     meas = read_measurement(csv_path)
     t1, c1 = time.perf_counter(), time.process_time()
     dg = diagnose(meas)
     t2, c2 = time.perf_counter(), time.process_time()
     summary = dg.to_json()
+    update_text = None
+    if update_design is not None:
+        summary["design_update"], update_text = _design_update(meas, summary, csv_path, Path(update_design))
     if json_file is not None:
         write_json(json_file, summary)
     report = write_fit_report(report_dir, report_input(dg), plots=plots)
+    if update_text is not None:
+        from geargen.outputs import write_text
+        write_text(update_design, update_text, "--update-design")
     if to_stdout:  # the same text write_json puts in a file
         out = stdout or sys.stdout
         out.write(json.dumps(summary, indent=2, allow_nan=False) + "\n")
@@ -63,10 +76,26 @@ def fit_files(csv_path, json_path=None, report_dir=None, plots: bool = True, std
             "cpu_seconds": {"read": c1 - c0, "fit": c2 - c1, "report": c3 - c2, "total": c3 - c0}}
 
 
+def _design_update(meas, summary: dict, csv_path: Path, out: Path) -> tuple[dict, str]:
+    """The updated design's text and its JSON entry: what changed and the preload band before and after."""
+    from geargen.design.assembly import load_design
+    from geargen.errors import DesignError
+    from geargen.fit.design_update import design_from_text, preload_band, updated_design
+    if meas.assembly is None:
+        raise DesignError("--update-design", "the sidecar names no assembly to update",
+                          'assembly = "design.toml" in the sidecar')
+    text, changes = updated_design(meas.assembly, summary, csv_path.name)
+    before = preload_band(load_design(meas.assembly))
+    after = preload_band(design_from_text(text, out))
+    return {"assembly": meas.assembly.name, "written": str(out), "changes": changes,
+            "preload_variation": {"before": before, "after": after}}, text
+
+
 def run(args) -> int:
     to_stdout = args.json_path == STDOUT
     text = sys.stderr if to_stdout else sys.stdout  # standard output carries the JSON alone
-    out = fit_files(args.csv, args.json_path, args.report_dir, plots=not args.no_plots)
+    out = fit_files(args.csv, args.json_path, args.report_dir, plots=not args.no_plots,
+                    update_design=args.update_design)
     s = out["summary"]
     u = s["units"]
     st = s["stages"]
@@ -88,6 +117,13 @@ def run(args) -> int:
     if not s["effects_added"]:
         print("  no effect added", file=text)
     print(f"  unexplained: {'yes' if s['unexplained'] else 'no'}", file=text)
+    update = s.get("design_update")
+    if update:
+        print(f"  wrote {update['written']}: {len(update['changes'])} error values from the bench", file=text)
+        pv = update["preload_variation"]
+        if pv["before"] and pv["after"]:
+            print(f"  preload band ({pv['before']['label']}): {pv['before']['low_Nm']:.4g}-{pv['before']['high_Nm']:.4g} "
+                  f"N·m as designed, {pv['after']['low_Nm']:.4g}-{pv['after']['high_Nm']:.4g} N·m as measured", file=text)
     where = "standard output" if to_stdout else out["json"]
     print(f"  wrote {where} and {out['report']}", file=text)
     return 0

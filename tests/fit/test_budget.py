@@ -79,3 +79,41 @@ def test_a_drive_inside_its_budget_says_so(tmp_path):
     rows = {r["part"]: r for r in budget["terms"]}
     assert rows["output"]["measured_tir_um"] == pytest.approx(tir["output"] * 1e3, rel=0.02)
     assert budget["summary"].startswith("every measured error is inside")
+
+
+def test_update_design_writes_the_measured_errors_and_the_preload_band_before_and_after(tmp_path):
+    """``--update-design``: a copy of the robot joint with the output's measured eccentricity (the
+    bearing's as designed, the pitch-line one the rest), the design file untouched, and the preload
+    band the design predicts before and after: wider with the output 3 x out of round."""
+    import hashlib
+    from geargen.commands.fit import fit_files
+    from geargen.design.assembly import load_design
+
+    csv, tir = _bench_run(tmp_path, {"output": 3.0})
+    original = hashlib.sha256(ROBOT.read_bytes()).hexdigest()
+    out = tmp_path / "robot_joint_measured.toml"
+    summary = fit_files(csv, tmp_path / "fit.json", tmp_path / "report", plots=False, update_design=out)["summary"]
+    assert hashlib.sha256(ROBOT.read_bytes()).hexdigest() == original
+    updated = load_design(out)
+    errors = resolve(updated).synthesis.errors
+    e = errors[GEAR_ROLES.index("output")]
+    measured = next(r for r in summary["budget"]["terms"] if r["part"] == "output")["measured_tir_um"]
+    assert (e.bearing_eccentricity_tir + e.pitch_line_eccentricity_tir) * 1e3 == pytest.approx(measured, rel=1e-5)
+    designed = resolve(load_design(ROBOT)).synthesis.errors[GEAR_ROLES.index("output")]
+    assert e.bearing_eccentricity_tir == pytest.approx(designed.bearing_eccentricity_tir, rel=1e-9)
+    update = summary["design_update"]
+    assert "errors.output.pitch_line_eccentricity_tir" in {c["key"] for c in update["changes"]}
+    before, after = update["preload_variation"]["before"], update["preload_variation"]["after"]
+    assert after["range_Nm"] > before["range_Nm"]
+    assert out.read_text().startswith("# Updated by geargen fit robot_bench.csv")
+
+
+def test_update_design_needs_an_assembly_and_writes_nothing_without_one(tmp_path):
+    from geargen.commands.fit import fit_files
+    from geargen.errors import DesignError
+    csv, _ = _bench_run(tmp_path, {})
+    (tmp_path / "robot_bench.toml").write_text('kind = "preload_trace"\n[model]\nteeth = [16, 48, 21, 112]\n')
+    out = tmp_path / "never.toml"
+    with pytest.raises(DesignError, match="--update-design"):
+        fit_files(csv, tmp_path / "fit.json", tmp_path / "report", plots=False, update_design=out)
+    assert not out.exists() and not (tmp_path / "fit.json").exists()
