@@ -331,10 +331,15 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
 
 
 def write_fit_report(directory: str | Path, inp: FitReportInput, max_points: int = 10000, plots: bool = True) -> Path:
-    """Write ``report.md`` and its plots into ``directory``; returns the Markdown path."""
+    """Write ``report.md``, ``report.html`` (the same blocks, the figures linked as the PNG files
+    beside it) and the plots into ``directory``; returns the Markdown path."""
+    from geargen.report.review import from_markdown, to_html
     directory = Path(directory)
     directory.mkdir(parents=True, exist_ok=True)
     made = _plots(directory, inp, max_points) if plots else []
     path = directory / "report.md"
-    path.write_text(markdown(inp, made))
+    text = markdown(inp, made)
+    path.write_text(text)
+    status = "UNEXPLAINED" if inp.summary["unexplained"] else "explained"
+    (directory / "report.html").write_text(to_html(from_markdown(text, status)), encoding="utf-8")
     return path

@@ -51,6 +51,68 @@ class Review:
             self.blocks.append(("img", (caption, png)))
         return self
 
+    def figure(self, caption: str, file_name: str) -> "Review":
+        """A figure kept as its own file beside the page (linked, not embedded)."""
+        self.blocks.append(("figure", (caption, file_name)))
+        return self
+
+
+def from_markdown(text: str, status: str) -> Review:
+    """A :class:`Review` from Markdown of the subset the reports write: ``#``/``##``/``###``
+    headings, pipe tables, ``- `` lists, fenced blocks, ``![caption](file)`` figures (linked
+    files) and paragraphs (inline ``**``, ``*`` and backticks dropped)."""
+    lines = text.splitlines()
+    title = lines[0][2:].strip() if lines and lines[0].startswith("# ") else "report"
+    review = Review(title=title, status=status)
+
+    def plain(t: str) -> str:
+        return t.replace("**", "").replace("`", "").strip("*").replace("\\|", "|")
+    i = 1 if lines and lines[0].startswith("# ") else 0
+    while i < len(lines):
+        line = lines[i]
+        if not line.strip():
+            i += 1
+        elif line.startswith("#"):
+            review.h(plain(line.lstrip("#").strip()))
+            i += 1
+        elif line.startswith("```"):
+            j = next((k for k in range(i + 1, len(lines)) if lines[k].startswith("```")), len(lines))
+            review.pre("\n".join(lines[i + 1:j]))
+            i = j + 1
+        elif line.startswith("|") and i + 1 < len(lines) and lines[i + 1].startswith("|--"):
+            def cells(row):
+                parts, cell, k = [], "", 1
+                while k < len(row.rstrip()) - 1:
+                    if row[k] == "\\" and row[k + 1] == "|":
+                        cell, k = cell + "|", k + 2
+                        continue
+                    if row[k] == "|":
+                        parts.append(plain(cell.strip()))
+                        cell = ""
+                    else:
+                        cell += row[k]
+                    k += 1
+                return parts + [plain(cell.strip())]
+            j = i + 2
+            while j < len(lines) and lines[j].startswith("|"):
+                j += 1
+            review.table(cells(line), [cells(r) for r in lines[i + 2:j]])
+            i = j
+        elif line.startswith("- "):
+            j = i
+            while j < len(lines) and lines[j].startswith("- "):
+                j += 1
+            review.items([plain(x[2:]) for x in lines[i:j]])
+            i = j
+        elif line.startswith("!["):
+            caption, _, rest = line[2:].partition("](")
+            review.figure(caption, rest.rstrip(")"))
+            i += 1
+        else:
+            review.p(plain(line))
+            i += 1
+    return review
+
 
 def _b64(png: bytes) -> str:
     return "data:image/png;base64," + base64.b64encode(png).decode("ascii")
@@ -82,6 +144,9 @@ def to_markdown(review: Review) -> str:
         elif kind == "img":
             caption, png = payload
             out += [f"![{caption}]({_b64(png)})", "", f"*{caption}*", ""]
+        elif kind == "figure":
+            caption, name = payload
+            out += [f"![{caption}]({name})", ""]
     return "\n".join(out)
 
 
@@ -113,6 +178,10 @@ def to_html(review: Review) -> str:
         elif kind == "img":
             caption, png = payload
             out.append(f"<figure><img alt='{e(caption)}' src='{_b64(png)}'><figcaption>{e(caption)}</figcaption></figure>")
+        elif kind == "figure":
+            caption, name = payload
+            out.append(f"<figure><a href='{e(name)}'><img alt='{e(caption)}' src='{e(name)}'></a>"
+                       f"<figcaption>{e(caption)}</figcaption></figure>")
     out.append("</body></html>")
     return "\n".join(out)
 

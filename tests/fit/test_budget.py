@@ -106,6 +106,8 @@ def test_update_design_writes_the_measured_errors_and_the_preload_band_before_an
     before, after = update["preload_variation"]["before"], update["preload_variation"]["after"]
     assert after["range_Nm"] > before["range_Nm"]
     assert out.read_text().startswith("# Updated by geargen fit robot_bench.csv")
+    page = (tmp_path / "report" / "report.html").read_text()
+    assert "error budget" in page and "<td>exceeds</td>" in page
 
 
 def test_update_design_needs_an_assembly_and_writes_nothing_without_one(tmp_path):
