@@ -49,11 +49,11 @@ def _key_line(lines: list[str], span: tuple[int, int], key: str, role: str) -> t
     raise DesignError(f"errors.{role}.{key}", "missing", f"{key}_<unit> = value in [errors.{role}]")
 
 
-def _set(lines: list[str], span, key: str, role: str, value_mm: float, why: str) -> tuple[float, float, str]:
+def _set(lines: list[str], span, key: str, role: str, value_mm: float, why: str) -> float:
+    """Write ``key`` = ``value_mm`` (in the line's own unit, ``why`` as its comment); its old value, mm."""
     i, unit, old = _key_line(lines, span, key, role)
-    value = value_mm / LENGTH_SUFFIXES[unit]
-    lines[i] = f"{key}_{unit} = {value:.6g}  # {why}"
-    return old, value_mm, unit
+    lines[i] = f"{key}_{unit} = {value_mm / LENGTH_SUFFIXES[unit]:.6g}  # {why}"
+    return old
 
 
 def updated_design(design_path: Path, report: dict, source: str) -> tuple[str, list[dict]]:
@@ -76,25 +76,24 @@ def updated_design(design_path: Path, report: dict, source: str) -> tuple[str, l
             (role,) = row["gears"]
             span = _section(lines, role)
             measured = row["measured_tir_um"] * 1e-3
-            _, unit, bearing = _key_line(lines, span, "bearing_eccentricity_tir", role)
-            new_bearing = min(bearing, measured)
-            old, new, _ = _set(lines, span, "bearing_eccentricity_tir", role, new_bearing,
-                               f"{why} (with the pitch-line one: {measured * 1e3:.4g} um in all)")
-            record(role, "bearing_eccentricity_tir", old, new, why)
-            old, new, _ = _set(lines, span, "pitch_line_eccentricity_tir", role, measured - new_bearing,
-                               f"{why}: total eccentricity {measured * 1e3:.4g} um, the bearing's as designed")
-            record(role, "pitch_line_eccentricity_tir", old, new, why)
+            bearing = min(_key_line(lines, span, "bearing_eccentricity_tir", role)[2], measured)
+            old = _set(lines, span, "bearing_eccentricity_tir", role, bearing,
+                       f"{why} (with the pitch-line one: {measured * 1e3:.4g} um in all)")
+            record(role, "bearing_eccentricity_tir", old, bearing, why)
+            old = _set(lines, span, "pitch_line_eccentricity_tir", role, measured - bearing,
+                       f"{why}: total eccentricity {measured * 1e3:.4g} um, the bearing's as designed")
+            record(role, "pitch_line_eccentricity_tir", old, measured - bearing, why)
         elif row["verdict"] == "exceeds":
             scale = row["amplitude_um"] / row["budget_amplitude_um"]
             keys = ECCENTRICITY_KEYS if row["term"] == "eccentricity" else ("tooth_to_tooth_tir",)
             for role in row["gears"]:
                 span = _section(lines, role)
                 for key in keys:
-                    _, _, value = _key_line(lines, span, key, role)
+                    value = _key_line(lines, span, key, role)[2]
                     text = (f"{why}: x {scale:.3g}, the measured over the budgeted amplitude at order "
                             f"{row['order']:.4g} (shared by {', '.join(row['gears'])})")
-                    old, new, _ = _set(lines, span, key, role, value * scale, text)
-                    record(role, key, old, new, text)
+                    old = _set(lines, span, key, role, value * scale, text)
+                    record(role, key, old, value * scale, text)
     found = [f"#   {e['effect']}: " + ", ".join(f"{k} = {v:.5g}" if isinstance(v, float) else f"{k} = {v}"
                                                  for k, v in e.items() if k in ("order", "amplitude", "phase_deg",
                                                                                  "per_kelvin", "per_second",

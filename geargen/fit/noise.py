@@ -143,9 +143,15 @@ def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[floa
     :func:`difference_contrasts`, made block by block into one array of |contrast| (the only
     full-length temporary), so its memory is one float per sample."""
     magnitudes = contrast_magnitudes(t, y, gap_ratio)
-    count = magnitudes.size
-    if count == 0:
-        return float("nan"), 0
+    return level_of_contrasts(magnitudes, y), magnitudes.size
+
+
+def level_of_contrasts(magnitudes: np.ndarray, y: np.ndarray) -> float:
+    """The noise level of the readings ``y`` from their |contrasts| (:func:`contrast_magnitudes`):
+    1.4826 x their median, or, for a coarsely quantised reading, what its step implies. NaN
+    without contrasts. Reorders ``magnitudes`` in place."""
+    if magnitudes.size == 0:
+        return float("nan")
     level = float(MAD_TO_SIGMA * np.median(magnitudes))
     q = reading_quantum(y)
     # a sensor's step (a dial's division, an encoder's count) is a visible fraction of what it
@@ -156,7 +162,7 @@ def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[floa
         # the levels the reading error is uniform, q^2/12, plus the noise underneath: the
         # contrasts' (trimmed) rms holds both; q / sqrt(12) is the least it can be.
         level = max(trimmed_rms(magnitudes), q / math.sqrt(12.0))
-    return level, count
+    return level
 
 
 def contrast_magnitudes(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> np.ndarray:
@@ -228,12 +234,14 @@ def coloured_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tupl
     -> 1), so it gives phi, and ``sigma = L1 / sqrt(f(phi))``. Exact for evenly spaced samples."""
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
-    l1, count = level_of(t, y, gap_ratio)
+    magnitudes = contrast_magnitudes(t, y, gap_ratio)
+    count = magnitudes.size
+    l1 = level_of_contrasts(magnitudes, y)
     if y.size < 16 or not l1 > 0:
         return l1, count, 0.0
     # the ratio from the contrasts' trimmed rms (nearly the efficiency of the rms for Gaussian
     # noise, where the median loses a third; the few kinks of the signal trimmed away)
-    stride1 = trimmed_rms(contrast_magnitudes(t, y, gap_ratio))
+    stride1 = trimmed_rms(magnitudes)
     stride2 = trimmed_rms(np.concatenate([contrast_magnitudes(t[i::2], y[i::2], gap_ratio) for i in (0, 1)]))
     if not (stride1 > 0 and stride2 > 0):
         return l1, count, 0.0
@@ -255,11 +263,6 @@ def coloured_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tupl
     if abs(phi) < AR1_WHITE:
         return l1, count, 0.0
     return l1 / math.sqrt(contrast_variance(phi)), count, phi
-
-
-def ar1_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> float:
-    """The lag-one correlation alone (:func:`coloured_level`)."""
-    return coloured_level(t, y, gap_ratio)[2]
 
 
 def ar1_scatter(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0, parts: int = 4) -> float:

@@ -420,14 +420,14 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         if chosen is not None:
             rivals = look_alike_rivals(chosen[1].term.effect, chosen[0], evaluated, rule)
             if rivals:
-                ambiguous.append(_ambiguity(chosen[1], chosen[0], rivals, model, chosen[2],
+                ambiguous.append(_ambiguity(chosen[0], rivals, model, chosen[2],
                                             "the data fit each about as well: " + LOOK_ALIKE_EVIDENCE))
                 tested = chosen[2]
                 break
         if chosen is None:
             if unconfirmed:
                 dbic, cand, f, dn = unconfirmed[0]
-                ambiguous.append(_ambiguity(cand, dbic, [], model, f,
+                ambiguous.append(_ambiguity(dbic, [], model, f,
                                             f"significant (dBIC {dbic:.0f}) but the record cannot pin it down: noise "
                                             f"alone would move a fit to part of it by {dn:.0%} of the effect, as when "
                                             "the test does not load far enough beyond where a path unloads to tell it "
@@ -458,7 +458,7 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     if meas.assembly is not None and meas.kind == "preload_trace":
         from geargen.fit.budget import budget_of
         # a fitted sinusoid's amplitude scatters by sigma sqrt(2 / n) (n independent samples)
-        amplitude_se = noise.rms * math.sqrt(2.0 / max(meas.samples * noise.independent_fraction, 1.0))
+        amplitude_se = noise.rms * math.sqrt(2.0 / n)
         rows, budget_note = budget_of(meas.assembly, final.declared_values, amplitude_se)
         budget = tuple(rows)
     nominal = model.nominal()  # (made last: it is one more array of the record's length)
@@ -482,8 +482,9 @@ def look_alike_rivals(effect: str, dbic: float, evaluated, rule: SelectionRule) 
             and d >= rule.bic_threshold and d >= dbic - rule.ambiguity_margin]
 
 
-def _ambiguity(cand, dbic: float, rivals: list, model, fit, why: str) -> dict:
-    """A report entry for effects the data cannot tell apart or pin down."""
+def _ambiguity(dbic: float, rivals: list, model, fit, why: str) -> dict:
+    """A report entry for effects the data cannot tell apart or pin down: ``fit``'s last term
+    (of ``dbic``) and each rival's."""
     entries = [{**model.entry(fit, len(fit.terms) - 1), "delta_bic": dbic}]
     for d, c, f in rivals:
         entries.append({**model.entry(f, len(f.terms) - 1), "delta_bic": d})
@@ -496,12 +497,12 @@ def reject_spikes(meas: Measurement, noise: NoiseEstimate) -> tuple[Measurement,
     ``{"time_s", "column", "value", "deviation"}`` (deviation in that channel's noise levels)."""
     ch = noise.channels
     if meas.kind == "preload_trace":
-        channels = [("carriage", meas.carriage_um, ch["signal"], 1.0)]
+        channels = [("carriage", meas.carriage_um, ch["signal"])]
     else:
-        channels = [("torque", meas.torque_Nm, ch["torque"], 1.0), ("rotation", meas.rotation_rad * 1e6, ch["rotation"], 1e-6)]
+        channels = [("torque", meas.torque_Nm, ch["torque"]), ("rotation", meas.rotation_rad * 1e6, ch["rotation"])]
     rows = np.zeros(meas.samples, dtype=bool)
     found = []
-    for channel, values, sigma, _ in channels:
+    for channel, values, sigma in channels:
         spikes = isolated_spikes(meas.time_s, values, sigma)
         if spikes.any():
             local = np.interp(meas.time_s[spikes], meas.time_s[~spikes], values[~spikes])
