@@ -30,6 +30,7 @@ COMMANDS = {
     "fit": "fit a bench measurement, diagnose and report what the model missed",
     "pair": "gear-pair calculator: centre distance, pressure angle, contact ratio, backlash, shifts",
     "new": "write a commented starter design file that builds (dual_pinion, split_pinion)",
+    "train": "inertia, stiffness and lost motion per stage, the servo view, strategy and alternatives",
 }
 
 EXIT_OK = 0

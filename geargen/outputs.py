@@ -131,6 +131,22 @@ def write_text(target, text: str, flag: str) -> Path | None:
     return path
 
 
+def json_default(value):
+    """``json.dumps``' ``default`` for numpy scalars (what the commands' JSON may hold)."""
+    if hasattr(value, "item"):
+        return value.item()
+    raise TypeError(f"not JSON serialisable: {type(value).__name__}")
+
+
+def plot_folder(args, design, suffix: str, generator: str):
+    """The :class:`OutputFolder` of a command's plots: ``--out`` or ``exports/<design file name>-<suffix>``
+    (beside the build's folder, never in it), owned by ``generator`` for the design file."""
+    source = str(Path(design.path or args.design).resolve())
+    target = Path(args.out) if args.out else Path("exports") / f"{Path(args.design).stem}-{suffix}"
+    return OutputFolder(target, generator, source, f"the design file {source}",
+                        overwrite=args.overwrite, flag="--out" if args.out else "output folder")
+
+
 def _nearest_existing(path: Path) -> Path:
     path = Path(os.path.abspath(path))
     while not path.exists() and path != path.parent:

@@ -13,7 +13,8 @@ MM_PER_IN = 25.4
 #: factor that turns a value in the suffix's unit into mm
 LENGTH_SUFFIXES: dict[str, float] = {"mm": 1.0, "in": MM_PER_IN, "um": 1e-3, "m": 1e3}
 #: factor that turns a value in the suffix's unit into rad
-ANGLE_SUFFIXES: dict[str, float] = {"deg": math.pi / 180.0, "rad": 1.0, "urad": 1e-6, "arcsec": math.pi / 648000.0}
+ANGLE_SUFFIXES: dict[str, float] = {"deg": math.pi / 180.0, "rad": 1.0, "urad": 1e-6, "arcsec": math.pi / 648000.0,
+                                   "arcmin": math.pi / 10800.0}
 
 #: design length units a file may declare (the unit exports and reports use)
 LENGTH_UNITS = ("mm", "in")

@@ -180,12 +180,7 @@ def run(args) -> int:
                                                       "centre_distance", "thinning")}
     print(format_pair(data), file=sys.stderr if args.json == "-" else sys.stdout)
     if args.json:
-        from geargen.outputs import write_text
-        write_text(args.json, json.dumps(data, indent=2, allow_nan=False, default=_json_default) + "\n", "--json")
+        from geargen.outputs import json_default, write_text
+        write_text(args.json, json.dumps(data, indent=2, allow_nan=False, default=json_default) + "\n", "--json")
     return 0
 
-
-def _json_default(value):
-    if hasattr(value, "item"):
-        return value.item()
-    raise TypeError(f"not JSON serialisable: {type(value).__name__}")

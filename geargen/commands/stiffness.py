@@ -38,18 +38,10 @@ def add_arguments(p) -> None:
     p.add_argument("--no-plots", action="store_true", help="skip the plots")
 
 
-def default_out_dir(design_path) -> Path:
-    """``exports/<design file name>-stiffness``: beside the build's ``exports/<design file name>``, never in it."""
-    return Path("exports") / f"{Path(design_path).stem}-stiffness"
-
-
 def output_folder(args, design):
     """The :class:`geargen.outputs.OutputFolder` of the plots."""
-    from geargen.outputs import OutputFolder
-    source = str(Path(design.path or args.design).resolve())
-    target = Path(args.out) if args.out else default_out_dir(args.design)
-    return OutputFolder(target, "geargen stiffness", source, f"the design file {source}",
-                        overwrite=args.overwrite, flag="--out" if args.out else "output folder")
+    from geargen.outputs import plot_folder
+    return plot_folder(args, design, "stiffness", "geargen stiffness")
 
 
 def run(args) -> int:
@@ -92,12 +84,7 @@ def _run(args, design, output) -> int:
         data["plots"] = {k: str(v) for k, v in plots.items()}
         print("\nPlots: " + ", ".join(str(p) for p in plots.values()), file=text_out)
     if args.json:
-        from geargen.outputs import write_text
-        write_text(args.json, json.dumps(data, indent=2, default=_json_default) + "\n", "--json")
+        from geargen.outputs import json_default, write_text
+        write_text(args.json, json.dumps(data, indent=2, default=json_default) + "\n", "--json")
     return 0
 
-
-def _json_default(value):
-    if hasattr(value, "item"):
-        return value.item()
-    raise TypeError(f"not JSON serialisable: {type(value).__name__}")

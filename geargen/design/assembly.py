@@ -59,6 +59,8 @@ SECTIONS: dict[str, str] = {
     "stages": "gear stages between the motor and the anti-backlash loop (geargen.design.stages)",
     "layout": "placement of the gears in the build (geargen.design.layout)",
     "export": "export settings: STL tolerances, rendered view (geargen.design.export)",
+    "train": "materials, motor, load and position loop of the train analysis (geargen.design.train)",
+    "dual_motor": "a drive of two motors on one output gear, Fig. 1 (geargen.design.train)",
 }
 
 TOP_KEYS = ("name", "description", "length_unit")

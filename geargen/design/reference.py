@@ -41,7 +41,9 @@ _QUANTITY_DEFAULTS = {("stiffness",): StiffnessSpec, ("preload",): PreloadSpec, 
                       ("stiffness", "components", "NAME"): ComponentSpec}
 
 _FAMILY_NAMES = {"force": "force", "torque": "torque", "linear_stiffness": "linear stiffness",
-                 "torsional_stiffness": "torsional stiffness", "stress": "stress"}
+                 "torsional_stiffness": "torsional stiffness", "stress": "stress",
+                 "inertia": "moment of inertia", "rotary_damping": "rotary damping",
+                 "torque_constant": "torque constant", "frequency": "frequency"}
 
 
 @dataclass(frozen=True)
@@ -170,6 +172,17 @@ TABLES: tuple[Table, ...] = (
           context={"layout": {"kind": "split_pinion"}}),
     Table("[export]", ("export",), "Tolerances of the exported files and the rendered view. Every key is optional.",
           Example("robot_joint.toml", ("export",)), sections=("export",)),
+    Table("[train]", ("train",),
+          "What `geargen train` needs beyond the drive: the rotating parts' material (sub-tables "
+          "[train.materials], density in kg/m^3 per material name, and [train.part_materials], part name to "
+          "material), mesh friction, the lost motion the output may have, the motor's data sheet, the load and "
+          "the position loop (a bandwidth with a damping ratio, or the gains at the motor), and what a "
+          "[layout] upstream_stages entry (teeth only) has for backlash and stiffness. Every key is optional.",
+          Example("robot_joint.toml", ("train",)), sections=("train",)),
+    Table("[dual_motor]", ("dual_motor",),
+          "Two motors, each with its own pinion on one output gear, and their coordination (Fig. 1): a constant "
+          "bias or unidirectional torques. The two meshes and their centre distances are [checks] meshes.",
+          Example("dual_motor.toml", ("dual_motor",)), sections=("dual_motor",)),
 )
 
 

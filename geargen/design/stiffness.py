@@ -71,13 +71,20 @@ QUANTITY_SUFFIXES: dict[str, dict[str, float]] = {
                             "Nm_per_deg": 1e3 * 180.0 / math.pi, "Nm_per_arcmin": 1e3 * 10800.0 / math.pi,
                             "in_lbf_per_rad": LBF * IN},
     "stress": {"MPa": 1.0, "GPa": 1e3, "Pa": 1e-6, "kPa": 1e-3, "psi": PSI, "ksi": PSI * 1e3, "Mpsi": PSI * 1e6},
+    # the servo's quantities ([train]) stay in SI: a motor data sheet's units
+    "inertia": {"kg_m2": 1.0, "kg_cm2": 1e-4, "g_cm2": 1e-7, "kg_mm2": 1e-6, "lb_in2": 0.45359237 * 0.0254 ** 2,
+                "oz_in_s2": LBF / 16 * 0.0254},
+    "rotary_damping": {"Nm_s_per_rad": 1.0, "Nmm_s_per_rad": 1e-3},
+    "torque_constant": {"Nm_per_A": 1.0},
+    "frequency": {"Hz": 1.0},
 }
 
 _ALL_SUFFIXES = set(LENGTH_SUFFIXES) | set(ANGLE_SUFFIXES) | {s for t in QUANTITY_SUFFIXES.values() for s in t}
 
 #: the internal unit of each family, for messages and reports
 INTERNAL_UNITS = {"force": "N", "torque": "N·mm", "linear_stiffness": "N/mm",
-                  "torsional_stiffness": "N·mm/rad", "stress": "MPa"}
+                  "torsional_stiffness": "N·mm/rad", "stress": "MPa", "inertia": "kg·m²",
+                  "rotary_damping": "N·m·s/rad", "torque_constant": "N·m/A", "frequency": "Hz"}
 
 
 def convert_quantity(value: float, family: str, suffix: str) -> float:

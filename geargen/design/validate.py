@@ -18,6 +18,8 @@ section            read and checked by
 [layout]           .layout.layout_settings, check_layout
 [parts]            .parts.parts_settings, check_parts
 [export]           .export.export_settings
+[train]            .train.train_settings
+[dual_motor]       .train.dual_motor_spec ([checks] meshes declare its pairs)
 =================  ==============================================================================
 
 Whether each gear's tooth can be cut is checked where the gear tables are read
@@ -52,6 +54,8 @@ from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT
                                       preload_spec_from_table, spring_spec_from_table, stiffness_spec_from_table)
 from geargen.design.synthesis import (ERROR_FIELDS, GEAR_ROLES, MONTE_CARLO_FIELDS, SYNTHESIS_FIELDS,
                                       error_budget_inputs, monte_carlo_settings, synthesis_inputs)
+from geargen.design.train import (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, TRAIN_FIELDS, TRAIN_QUANTITIES,
+                                  dual_motor_spec, train_settings)
 from geargen.errors import DesignError
 
 #: sections that need the drive type (the stiffness step reads it)
@@ -122,6 +126,10 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
             run(check_parts, design, settings)
     if "export" in sections:
         run(export_settings, design)
+    if "train" in sections:
+        run(train_settings, design)
+    if "dual_motor" in sections and gears_complete:
+        run(dual_motor_spec, design)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -142,6 +150,8 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
     "engagement": (_ENGAGEMENT_FIELDS, []),
     "layout": (LAYOUT_FIELDS, []),
     "export": (EXPORT_FIELDS, []),
+    "train": (TRAIN_FIELDS, TRAIN_QUANTITIES),
+    "dual_motor": (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES),
 }
 
 #: the top-level keys and [drive], as fields (all optional)

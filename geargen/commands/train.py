@@ -1,0 +1,98 @@
+"""``geargen train DESIGN.toml [--json FILE|-] [--out DIR] [--overwrite] [--no-plots]``: the drive
+as its servo sees it.
+
+Builds the assembly's solids (as ``geargen build`` does, without writing them), takes every
+rotating part's mass and moment of inertia about its own axis from its solid (densities from
+``[train]``), and prints per part its ratio to the motor and its inertia reflected there, per stage
+its stiffness and lost motion at the output, the totals, the position loop against a direct drive
+(with a motor and a loop in ``[train]``), the paper's strategy advice and the alternatives on the
+same load. A ``[dual_motor]`` design gets the Fig. 1 analysis instead. Plots and a
+``manifest.json`` go to ``exports/<design file name>-train/`` (or DIR), under the policy of
+:mod:`geargen.outputs`, written atomically.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+from geargen.design.assembly import load_design
+from geargen.errors import DesignError
+
+
+def add_arguments(p) -> None:
+    p.add_argument("design", help="design file (TOML): a dual or split pinion drive, or a [dual_motor] drive")
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="folder for the plots (default: exports/<design file name>-train); must not exist, be empty, "
+                        "or hold an earlier train output of the same design file, which is replaced")
+    p.add_argument("--overwrite", action="store_true",
+                   help="also replace an earlier train output of another design file (never a folder holding files "
+                        "geargen did not write)")
+    p.add_argument("--json", metavar="FILE", default=None, help="write the analysis as JSON ('-' for standard output)")
+    p.add_argument("--no-plots", action="store_true", help="skip the plots (and the output folder)")
+
+
+def output_folder(args, design):
+    """The :class:`geargen.outputs.OutputFolder` of the plots."""
+    from geargen.outputs import plot_folder
+    return plot_folder(args, design, "train", "geargen train")
+
+
+def run(args) -> int:
+    design = load_design(args.design)
+    output = None if args.no_plots else output_folder(args, design)
+    if output is not None:
+        output.prepare()
+    try:
+        return _run(args, design, output)
+    except BaseException:
+        if output is not None:
+            output.discard()
+        raise
+
+
+def analysis(design):
+    """``(kind, analysis)``: the train of a drive (:func:`geargen.model.train.analyse`) or the
+    dual-motor drive (:func:`geargen.model.train.dual_motor_analysis`), from the built solids."""
+    from geargen import pipeline
+    if design.section("dual_motor"):
+        from geargen.model.train import dual_motor_analysis
+        return "dual_motor", dual_motor_analysis(design, pipeline.declared_gear_parts(design))
+    from geargen.model import is_drive
+    if not is_drive(design):
+        raise DesignError("layout", "missing: geargen train needs a drive ([layout] or [synthesis]) or a [dual_motor]",
+                          "see assemblies/robot_joint.toml or assemblies/dual_motor.toml")
+    layout = pipeline.place(design)
+    summary = pipeline.stiffness(layout)
+    if summary is None:
+        raise DesignError("stiffness", "missing: geargen train needs [stiffness] and [preload] sections",
+                          "see assemblies/robot_joint.toml")
+    parts = pipeline.other_parts(layout, pipeline.gear_solids(layout), summary)
+    from geargen.model.train import analyse
+    return "drive", analyse(layout, summary, pipeline.rotating_parts(layout, parts))
+
+
+def _run(args, design, output) -> int:
+    from geargen.report import train as report
+    kind, result = analysis(design)
+    data = report.train_dict(result) if kind == "drive" else report.dual_motor_dict(result)
+    text_out = sys.stderr if args.json == "-" else sys.stdout
+    print(report.format_train(data) if kind == "drive" else report.format_dual_motor(data), file=text_out)
+    if output is not None:
+        from geargen import __version__
+        from geargen.outputs import manifest_files, write_text
+        written = (report.write_train_plots(result, output.work) if kind == "drive"
+                   else report.write_dual_motor_plots(result, output.work))
+        manifest = {"generator": "geargen train", "source": output.source, "version": __version__,
+                    "design": {"name": design.name, "file": output.source, "sha256": design.sha256},
+                    "files": manifest_files(output.work)}
+        write_text(output.work / "manifest.json", json.dumps(manifest, indent=2) + "\n", "--out")
+        target = output.commit()
+        data["plots"] = {k: str(target / Path(v).name) for k, v in written.items()}
+        print("\nPlots: " + ", ".join(data["plots"].values()), file=text_out)
+    if args.json:
+        from geargen.outputs import json_default, write_text
+        write_text(args.json, json.dumps(data, indent=2, default=json_default) + "\n", "--json")
+    return 0
+
