@@ -138,6 +138,18 @@ def json_default(value):
     raise TypeError(f"not JSON serialisable: {type(value).__name__}")
 
 
+def add_plot_arguments(p, suffix: str) -> None:
+    """``--out``, ``--overwrite`` and ``--no-plots`` of a command whose plots go to
+    ``exports/<design file name>-<suffix>`` (:func:`plot_folder`)."""
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help=f"folder for the PNG plots (default: exports/<design file name>-{suffix}); must not exist, "
+                        f"be empty, or hold an earlier {suffix} output of the same design file, which is replaced")
+    p.add_argument("--overwrite", action="store_true",
+                   help=f"also replace an earlier {suffix} output of another design file (never a folder holding "
+                        "files geargen did not write)")
+    p.add_argument("--no-plots", action="store_true", help="skip the plots (and the output folder)")
+
+
 def plot_folder(args, design, suffix: str, generator: str):
     """The :class:`OutputFolder` of a command's plots: ``--out`` or ``exports/<design file name>-<suffix>``
     (beside the build's folder, never in it), owned by ``generator`` for the design file."""

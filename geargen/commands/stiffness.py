@@ -27,15 +27,10 @@ from geargen.model.analysis import stiffness
 
 
 def add_arguments(p) -> None:
+    from geargen.outputs import add_plot_arguments
     p.add_argument("design", help="design file (TOML) with [stiffness] and [preload] sections")
-    p.add_argument("--out", metavar="DIR", default=None,
-                   help="folder for the PNG plots (default: exports/<design file name>-stiffness); must not exist, "
-                        "be empty, or hold an earlier stiffness output of the same design file, which is replaced")
-    p.add_argument("--overwrite", action="store_true",
-                   help="also replace an earlier stiffness output of another design file (never a folder holding "
-                        "files geargen did not write)")
+    add_plot_arguments(p, "stiffness")
     p.add_argument("--json", metavar="FILE", default=None, help="write the summary as JSON ('-' for standard output)")
-    p.add_argument("--no-plots", action="store_true", help="skip the plots")
 
 
 def output_folder(args, design):

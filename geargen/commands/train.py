@@ -22,15 +22,10 @@ from geargen.errors import DesignError
 
 
 def add_arguments(p) -> None:
+    from geargen.outputs import add_plot_arguments
     p.add_argument("design", help="design file (TOML): a dual or split pinion drive, or a [dual_motor] drive")
-    p.add_argument("--out", metavar="DIR", default=None,
-                   help="folder for the plots (default: exports/<design file name>-train); must not exist, be empty, "
-                        "or hold an earlier train output of the same design file, which is replaced")
-    p.add_argument("--overwrite", action="store_true",
-                   help="also replace an earlier train output of another design file (never a folder holding files "
-                        "geargen did not write)")
+    add_plot_arguments(p, "train")
     p.add_argument("--json", metavar="FILE", default=None, help="write the analysis as JSON ('-' for standard output)")
-    p.add_argument("--no-plots", action="store_true", help="skip the plots (and the output folder)")
 
 
 def output_folder(args, design):

@@ -46,6 +46,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Mapping
 
+from geargen.design.layout import layout_settings
 from geargen.design.schema import Field
 from geargen.design.stiffness import Quantity, _read_section, _value
 from geargen.errors import DesignError
@@ -105,9 +106,12 @@ class TrainSettings:
     upstream_backlash: tuple[float, ...] = ()  # rad at each upstream stage's driven shaft
     upstream_stiffness: tuple[float, ...] = ()  # N·m/rad at each upstream stage's driven shaft
 
+    def material_of(self, part: str) -> str:
+        return self.part_materials.get(part, self.material)
+
     def density(self, part: str) -> float:
         """kg/m^3 of ``part``."""
-        return self.densities[self.part_materials.get(part, self.material)]
+        return self.densities[self.material_of(part)]
 
     @property
     def has_servo(self) -> bool:
@@ -144,8 +148,7 @@ def train_settings(design) -> TrainSettings:
         where = f"train.part_materials.{part}" if part else "train.material"
         if material not in densities:
             raise DesignError(where, f"{material!r} is not a known material", ", ".join(sorted(densities)))
-    upstream = ("upstream_stages" in design.section("layout")) and design.section("layout")["upstream_stages"]
-    count = len(upstream) if upstream else 0
+    count = len(layout_settings(design)["upstream_stages"]) if design.section("layout") else 0
     lists = {}
     for key, scale in (("upstream_backlash_arcmin", math.pi / 10800.0),
                        ("upstream_stiffness_Nm_per_arcmin", 10800.0 / math.pi)):

@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 
 from geargen.core.servo import TwoMass, chain_modes, closed_loop, gains_for, mesh_loss_factor
+from geargen.core.stiffness import series
 from geargen.design.train import TrainSettings, train_settings
 from geargen.errors import DesignError
 
@@ -120,8 +121,8 @@ class TrainAnalysis:
     @property
     def stiffness_at_output(self) -> float:
         """N·mm/rad: the modelled stages in series (and the preload spring's share)."""
-        c = sum(1.0 / s.stiffness for s in self.stages if s.stiffness is not None) + self.loop_spring_compliance
-        return math.inf if c == 0 else 1.0 / c
+        spring = 1.0 / self.loop_spring_compliance if self.loop_spring_compliance else None
+        return _series([s.stiffness for s in self.stages] + [spring])
 
     @property
     def lost_motion(self) -> float:
@@ -241,10 +242,8 @@ class TrainAnalysis:
             left -= s.lost_motion or 0.0
         met = left <= allowed * (1 + 1e-12)
         friction = sum(2 * preload * s.loss_factor for s in chosen)
-        single = [s.single_path_stiffness for s in self.stages]
-        stiff_single = (1.0 / sum(1.0 / k for k in single if k)) if any(single) else math.inf
-        stiff_advised = 1.0 / sum(1.0 / self._stage_stiffness(s, s in chosen) for s in self.stages
-                                  if s.single_path_stiffness) if any(single) else math.inf
+        stiff_single = _series(s.single_path_stiffness for s in self.stages)
+        stiff_advised = _series(self._stage_stiffness(s, s in chosen) for s in self.stages if s.single_path_stiffness)
         design = [s.name for s in self.stages if s.preloaded]
         return {"allowed_lost_motion_urad": allowed * 1e6, "preload": [s.name for s in chosen],
                 "met": met, "lost_motion_left_urad": left * 1e6,
@@ -274,13 +273,8 @@ class TrainAnalysis:
         rest = [s for s in self.stages if not s.preloaded]
         if not loop:
             return []
-
-        def series(stiffnesses):
-            ks = [k for k in stiffnesses if k]
-            return 1.0 / sum(1.0 / k for k in ks) if ks else math.inf
-
         rest_lost = sum(s.lost_motion or 0.0 for s in rest)
-        single = series([s.single_path_stiffness for s in self.stages])
+        single = _series(s.single_path_stiffness for s in self.stages)
         loss_loop = sum(s.loss_factor for s in loop)
         loss_all = sum(s.loss_factor for s in self.stages)
         rows = []
@@ -295,11 +289,11 @@ class TrainAnalysis:
         row(f"{'Type 2' if kind == 'type2' else 'Type 1'}: this design", self.stiffness_at_output, self.lost_motion,
             f_design, (T + f_design) / R, f"preload {self.summary.drive.preload / NM:.4g} N·m in both paths")
         f1 = 2 * T * loss_loop
-        row("Type 1 (preload = maximum load)", series([s.stiffness for s in self.stages]), self.lost_motion, f1,
+        row("Type 1 (preload = maximum load)", _series(s.stiffness for s in self.stages), self.lost_motion, f1,
             (T + f1) / R, "the same paths; the paper: Type 1 needs a preload equal to the maximum load")
         if kind == "type1":
             f2 = 2 * (T / 2) * loss_loop
-            row("Type 2 (preload = half the maximum load)", series([s.stiffness for s in self.stages]), self.lost_motion,
+            row("Type 2 (preload = half the maximum load)", _series(s.stiffness for s in self.stages), self.lost_motion,
                 f2, (T + f2) / R, "the same paths with a preload spring at the common input")
         fc = T * loss_all
         row("constant force", single, 0.0, fc, (2 * T + fc) / R,
@@ -322,9 +316,9 @@ class TrainAnalysis:
             fsum += s.loss_factor * 2 * flank * s.driven_base_radius * s.driven_speed
             comp.append(f"{s.name} {spring:.4g} N")
         # one path whose loop meshes carry on both flanks: their mesh compliance halves
-        compliant = series([1.0 / (1.0 / s.single_path_stiffness - (s.single_path_mesh_compliance / 2 if s.preloaded
-                                                                     else 0.0))
-                            for s in self.stages if s.single_path_stiffness])
+        compliant = _series(1.0 / (1.0 / s.single_path_stiffness - (s.single_path_mesh_compliance / 2 if s.preloaded
+                                                                    else 0.0))
+                            for s in self.stages if s.single_path_stiffness)
         row("crowded centres, compliant", compliant, rest_lost, fsum, (T + fsum) / R,
             "one path, each loop mesh pushed into mesh by a spring (both flanks carry): " + ", ".join(comp))
         fb = 2 * (T / 2) * loss_all
@@ -371,24 +365,13 @@ def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
             raise DesignError("train", f"part {bp.name}: its centre of mass is {bp.off_axis:.4g} mm off its own axis, "
                               f"{bp.off_axis / gyration:.0%} of its radius of gyration",
                               "rotating parts built about their local z axis (within 10 %)")
-        density = settings.density(bp.name)
-        material = settings.part_materials.get(bp.name, settings.material)
-        inertias.append(PartInertia(bp.name, material, density * bp.volume * 1e-9, density * bp.axial_moment * 1e-15,
-                                    speed, motor_speed / speed, turns_with))
+        inertias.append(_part_inertia(bp, settings, speed, motor_speed, turns_with))
 
-    # --- stages, motor first
-    stages = _stages(layout, summary, train, settings, motor_speed, warnings)
-    # the preload spring's share of the loop's drive compliance (unequal type 2 paths only)
+    # --- stages, motor first; the preload spring's share of the loop's drive compliance (unequal
+    # type 2 paths only) is what the paths' shares of the stages leave of it
+    stages, paths_c = _stages(layout, summary, train, settings, motor_speed, warnings)
     loop_c = 1.0 / summary.drive.drive_stiffness
-    shares = _path_shares(summary)
-    loop_stage_c = 0.0
-    for c in summary.path1.components:
-        if c.scope in ("each_path", "path1"):
-            loop_stage_c += shares[0] ** 2 / c.at_output
-    for c in summary.path2.components:
-        if c.scope in ("each_path", "path2"):
-            loop_stage_c += shares[1] ** 2 / c.at_output
-    spring = max(loop_c - loop_stage_c, 0.0)
+    spring = max(loop_c - paths_c, 0.0)
     if spring > 1e-9 * loop_c:
         notes.append(f"the preload spring stores {spring / loop_c:.1%} of the loop's drive compliance (unequal paths)")
     if settings.motor_rotor_inertia is None:
@@ -397,26 +380,34 @@ def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
                          loop_spring_compliance=spring, warnings=tuple(warnings), notes=tuple(notes))
 
 
+def _part_inertia(bp: BodyPart, settings: TrainSettings, speed: float, motor_speed: float,
+                  turns_with: str) -> PartInertia:
+    """``bp`` in its material (kg, kg·m² from mm^3, mm^5 and kg/m^3), turning ``speed`` times the output."""
+    density = settings.density(bp.name)
+    return PartInertia(bp.name, settings.material_of(bp.name), density * bp.volume * 1e-9,
+                       density * bp.axial_moment * 1e-15, speed, motor_speed / speed, turns_with)
+
+
+def _series(stiffnesses) -> float:
+    """The known (non-None, non-zero) stiffnesses in series; ``inf`` when there are none."""
+    known = [k for k in stiffnesses if k]
+    return series(*known) if known else math.inf
+
+
 def _path_shares(summary) -> tuple[float, float]:
     """The share of a drive torque each path carries while both are loaded."""
     g1, g2 = summary.drive.path_force_rates
     return g1 / (g1 + g2), g2 / (g1 + g2)
 
 
-def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float, warnings: list) -> list[TrainStage]:
-    from geargen.design.gear import GearSpec
+def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
+            warnings: list) -> tuple[list[TrainStage], float]:
+    """The stages, motor first, and the compliance the two paths' shares give the loop's stages."""
     from geargen.design.stages import stages as design_stages
     design = layout.design
     mu = settings.mesh_friction_coefficient
     shares = _path_shares(summary)
     out: list[dict] = []
-
-    def mesh_backlash(mesh) -> tuple[float, float, float]:
-        """(modelled, max) backlash as output angles, and the driver's speed."""
-        g1: GearSpec = mesh.gear1
-        s1 = train.gear_ratio(g1.name)
-        r1 = g1.reference_radius
-        return mesh.modelled_backlash / r1 / s1, mesh.backlash_max / r1 / s1, s1
 
     def runout(*names) -> float | None:
         from geargen.design.checks import gear_errors
@@ -428,19 +419,24 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
             total += e.bearing_eccentricity_tir + e.pitch_line_eccentricity_tir + e.tooth_to_tooth_tir
         return total
 
+    def mesh_stage(mesh, name: str, driven_speed: float, preloaded: bool, source: str) -> dict:
+        """A stage that is a placed mesh: backlash from its modelled teeth, as output angles."""
+        a, b = mesh.gear1, mesh.gear2
+        speed = train.gear_ratio(a.name)
+        at_output = 1.0 / (a.reference_radius * speed)
+        return dict(name=name, driver=a.name, driven=b.name, ratio=b.teeth / a.teeth, speed=speed,
+                    driven_speed=driven_speed, preloaded=preloaded, lost_motion=mesh.modelled_backlash * at_output,
+                    lost_motion_max=mesh.backlash_max * at_output, loss_factor=mesh_loss_factor(mu, a.teeth, b.teeth),
+                    pressure_angle=a.transverse_pressure_angle, driven_base_radius=b.base_radius,
+                    runout_tir=runout(a.name, b.name), source=source)
+
     # upstream stages
     st_list = design_stages(design)
     if st_list:
         for st in st_list:
-            mesh = layout.mesh(f"stage_{st.name}")
-            lost, lost_max, s1 = mesh_backlash(mesh)
-            a, b = design.gear(st.driver), design.gear(st.driven)
-            out.append(dict(name=f"stage {st.name} ({st.driver}-{st.driven})", driver=st.driver, driven=st.driven,
-                            ratio=b.teeth / a.teeth, speed=s1, driven_speed=train.gear_ratio(st.driven),
-                            preloaded=False, lost_motion=lost, lost_motion_max=lost_max,
-                            loss_factor=mesh_loss_factor(mu, a.teeth, b.teeth), pressure_angle=a.transverse_pressure_angle,
-                            driven_base_radius=b.base_radius, runout_tir=runout(st.driver, st.driven),
-                            source="backlash: the modelled teeth at the placed centres"))
+            out.append(mesh_stage(layout.mesh(f"stage_{st.name}"), f"stage {st.name} ({st.driver}-{st.driven})",
+                                  train.gear_ratio(st.driven), False,
+                                  "backlash: the modelled teeth at the placed centres"))
     else:
         pairs = list(layout.settings.get("upstream_stages", ()))
         speed = motor_speed
@@ -467,24 +463,14 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
     # the loop (preloaded)
     if layout.kind == "split_pinion":
         mesh = layout.meshes[0]
-        lost, lost_max, s1 = mesh_backlash(mesh)
-        a, b = mesh.gear1, mesh.gear2
         pinions = ", ".join(m.gear1.name for m in layout.meshes)
-        out.append(dict(name=f"split pinion ({pinions} - {b.name})", driver=a.name, driven=b.name,
-                        ratio=b.teeth / a.teeth, speed=s1, driven_speed=1.0, preloaded=True, lost_motion=lost,
-                        lost_motion_max=lost_max, loss_factor=mesh_loss_factor(mu, a.teeth, b.teeth),
-                        pressure_angle=a.transverse_pressure_angle, driven_base_radius=b.base_radius,
-                        runout_tir=runout(a.name, b.name), source="loop: both pinions preloaded"))
+        out.append(mesh_stage(mesh, f"split pinion ({pinions} - {mesh.gear2.name})", 1.0, True,
+                              "loop: both pinions preloaded"))
     else:
         for label in ("mesh1", "mesh2"):
             mesh = next(m for m in layout.meshes if m.name.startswith(label) and m.engaged)
-            lost, lost_max, s1 = mesh_backlash(mesh)
-            a, b = mesh.gear1, mesh.gear2
-            out.append(dict(name=f"{label[:-1]} {label[-1]} ({a.name}-{b.name})", driver=a.name, driven=b.name,
-                            ratio=b.teeth / a.teeth, speed=s1, driven_speed=train.gear_ratio(b.name), preloaded=True,
-                            lost_motion=lost, lost_motion_max=lost_max, loss_factor=mesh_loss_factor(mu, a.teeth, b.teeth),
-                            pressure_angle=a.transverse_pressure_angle, driven_base_radius=b.base_radius,
-                            runout_tir=runout(a.name, b.name), source="loop: preloaded"))
+            out.append(mesh_stage(mesh, f"{label[:-1]} {label[-1]} ({mesh.gear1.name}-{mesh.gear2.name})",
+                                  train.gear_ratio(mesh.gear2.name), True, "loop: preloaded"))
 
     # components to stages: a stage holds the components on its driven shaft (same speed)
     speeds = [d["driven_speed"] for d in out]
@@ -493,6 +479,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
     mesh_single = [0.0] * len(out)
     members: list[list[str]] = [[] for _ in out]
     seen = set()
+    paths_c = 0.0
     for path, share in ((summary.path1, shares[0]), (summary.path2, shares[1]), (summary.common, None)):
         for c in path.components:
             i = max((k for k in range(len(out)) if math.isclose(speeds[k], c.ratio, rel_tol=1e-9)), default=None)
@@ -507,6 +494,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
                 single[i] += 1.0 / c.at_output
             else:
                 compliance[i] += share ** 2 / c.at_output
+                paths_c += share ** 2 / c.at_output
                 if path is summary.path1:
                     single[i] += 1.0 / c.at_output
                     if c.kind == "mesh":
@@ -525,7 +513,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
             warnings.append(f"{d['name']}: no [stiffness.components] on it, so the drive stiffness leaves it out")
         stages.append(TrainStage(stiffness=stiffness, single_path_stiffness=1.0 / c1 if c1 > 0 else None,
                                  single_path_mesh_compliance=cm, components=tuple(names), **d))
-    return stages
+    return stages, paths_c
 
 
 def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | None:
@@ -616,13 +604,7 @@ def dual_motor_analysis(design, parts: list[BodyPart]) -> DualMotorAnalysis:
     backlash = tuple(modelled_backlash(design.gear(p), out, c) / out.reference_radius
                      for p, c in zip(sp.pinions, sp.centre_distances))
     speeds = {sp.pinions[0]: mesh_ratio, sp.pinions[1]: mesh_ratio, sp.output: 1.0}
-    inertias = []
-    for bp in parts:
-        density = settings.density(bp.name)
-        speed = speeds[bp.name]
-        inertias.append(PartInertia(bp.name, settings.part_materials.get(bp.name, settings.material),
-                                    density * bp.volume * 1e-9, density * bp.axial_moment * 1e-15, speed,
-                                    motor_speed / speed, bp.name))
+    inertias = [_part_inertia(bp, settings, speeds[bp.name], motor_speed, bp.name) for bp in parts]
     return DualMotorAnalysis(design.name, sp, motor_speed, mesh_ratio, tuple(comps), backlash, tuple(inertias),
                              settings, mesh_loss_factor(settings.mesh_friction_coefficient, pin.teeth, out.teeth))
 

@@ -21,6 +21,13 @@ def _nm(k):
     return None if k is None or not math.isfinite(k) else k / NM
 
 
+def _parts(parts) -> list[dict[str, Any]]:
+    return [{"name": p.name, "material": p.material, "mass_kg": p.mass_kg,
+             "inertia_own_axis_kg_m2": p.inertia_own_axis_kg_m2, "speed_over_output": p.speed,
+             "ratio_to_motor": p.ratio_to_motor, "reflected_to_motor_kg_m2": p.reflected_to_motor_kg_m2,
+             "turns_with": p.turns_with} for p in parts]
+
+
 def train_dict(a) -> dict[str, Any]:
     """The JSON of a :class:`geargen.model.train.TrainAnalysis` (keys of issue 16; SI and µrad)."""
     total_lost = a.lost_motion_without_preload
@@ -39,10 +46,7 @@ def train_dict(a) -> dict[str, Any]:
     dominant = a.dominant_stage()
     out = {
         "design": a.name, "motor_speed_over_output": a.motor_speed,
-        "parts": [{"name": p.name, "material": p.material, "mass_kg": p.mass_kg,
-                   "inertia_own_axis_kg_m2": p.inertia_own_axis_kg_m2, "speed_over_output": p.speed,
-                   "ratio_to_motor": p.ratio_to_motor, "reflected_to_motor_kg_m2": p.reflected_to_motor_kg_m2,
-                   "turns_with": p.turns_with} for p in a.parts],
+        "parts": _parts(a.parts),
         "stages": stages,
         "totals": {"inertia_at_motor_kg_m2": a.inertia_at_motor,
                    "parts_inertia_at_motor_kg_m2": a.parts_inertia_at_motor,
@@ -212,16 +216,15 @@ def dual_motor_dict(a) -> dict[str, Any]:
     sp = a.spec
     d = a.drive()
     return {"design": a.name, "kind": "dual_motor", "control": sp.control, "motor_speed_over_output": a.motor_speed,
-            "parts": [{"name": p.name, "material": p.material, "mass_kg": p.mass_kg,
-                       "inertia_own_axis_kg_m2": p.inertia_own_axis_kg_m2, "speed_over_output": p.speed,
-                       "ratio_to_motor": p.ratio_to_motor, "reflected_to_motor_kg_m2": p.reflected_to_motor_kg_m2}
-                      for p in a.parts],
+            "parts": _parts(a.parts),
             "path": {"components": [{"name": n, "stiffness_at_output_Nm_per_rad": k} for n, k in a.path_components],
                      "stiffness_at_output_Nm_per_rad": a.path_stiffness,
                      "backlash_at_output_urad": [b * 1e6 for b in a.backlash]},
             "bias_Nm": d.bias, "motor_peak_at_output_Nm": d.peak, "max_output_torque_Nm": sp.max_output_torque / NM,
             "zones": d.zones(), "capacity_Nm": d.capacity, "reversal_command_Nm": d.reversal_command,
             "bias_needed_for_load_Nm": d.bias_for(sp.max_output_torque / NM),
+            # at each motor: its rotor, its own pinion and half the output and load (both parts of the
+            # pair reflected, halved, is one pinion and half the output)
             "totals": {"inertia_at_motor_kg_m2": sum(p.reflected_to_motor_kg_m2 for p in a.parts) / 2
                        + (a.settings.motor_rotor_inertia or 0.0)
                        + a.settings.load_inertia / a.motor_speed ** 2 / 2,
