@@ -210,6 +210,20 @@ def _legacy_source(generator: str, data: dict) -> str | None:
     return None
 
 
+def _unlisted_below(target: Path, folder: str, listed: set[str]) -> list[str]:
+    """Entries under ``target/folder`` (paths relative to ``target``) that the manifest does not list
+    as plain files: unknown files, symbolic links and folders holding nothing listed."""
+    out = []
+    for root, dirs, names in os.walk(target / folder):
+        rel = Path(root).relative_to(target).as_posix()
+        for d in list(dirs):
+            if (Path(root) / d).is_symlink() or not any(f.startswith(f"{rel}/{d}/") for f in listed):
+                out.append(f"{rel}/{d}")
+                dirs.remove(d)
+        out += [f"{rel}/{n}" for n in names if f"{rel}/{n}" not in listed or (Path(root) / n).is_symlink()]
+    return sorted(out)
+
+
 def inspect_folder(target: Path) -> FolderState:
     """The state of ``target`` (which must not be a plain file)."""
     if not os.path.lexists(target):
@@ -225,7 +239,14 @@ def inspect_folder(target: Path) -> FolderState:
         return FolderState("foreign", unknown=entries)
     files = data["files"]
     listed = set(files) | {MANIFEST}
-    unknown = [n for n in entries if n not in listed or not (target / n).is_file() or (target / n).is_symlink()]
+    unknown = []
+    for n in entries:
+        if n in listed and (target / n).is_file() and not (target / n).is_symlink():
+            continue
+        if (target / n).is_dir() and not (target / n).is_symlink() and any(f.startswith(n + "/") for f in listed):
+            unknown += _unlisted_below(target, n, listed)  # a folder of listed files (figures/)
+            continue
+        unknown.append(n)
     changed = []
     for name, info in files.items():
         size = info.get("bytes") if isinstance(info, dict) else None

@@ -364,10 +364,10 @@ def export_config(design: Design) -> dict[str, Any]:
 # ============================================================================ report
 
 
-def layout_drawing(layout: Layout, checks: CheckOutcome | None = None) -> bytes:
-    """The 2-D layout drawing (PNG bytes) of ``layout`` (``geargen.report.layout``)."""
+def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
+    """The 2-D layout drawing (a matplotlib ``Figure``) of ``layout`` (``geargen.report.layout``)."""
     from geargen.profile import tooth_profile
-    from geargen.report.layout import LayoutGear, LayoutMesh, plot_layout
+    from geargen.report.layout import LayoutGear, LayoutMesh, layout_figure
     import warnings
     gears, names = [], {}
     for g in layout.gears:
@@ -394,12 +394,12 @@ def layout_drawing(layout: Layout, checks: CheckOutcome | None = None) -> bytes:
     carriage = None
     if layout.carriage_x is not None and layout.carriage_travel:
         carriage = ((layout.carriage_x, 0.0), layout.carriage_travel)
-    return plot_layout(gears, meshes, None, layout.design.length_unit, layout.design.name, carriage,
-                       symmetry_line=layout.kind == "dual_pinion")
+    return layout_figure(gears, meshes, layout.design.length_unit, layout.design.name, carriage,
+                         symmetry_line=layout.kind == "dual_pinion")
 
 
-def render(parts, design: Design, settings: dict | None = None, folder: Path | None = None) -> bytes:
-    """A rendered view (PNG bytes) of all parts (``geargen.cad.render``); with ``folder``, the
+def render(parts, design: Design, settings: dict | None = None, folder: Path | None = None):
+    """A rendered view (``geargen.cad.render.RenderedView``) of all parts; with ``folder``, the
     parts' exported STL files there are drawn instead of tessellating again."""
     from geargen.cad.export import read_stl
     from geargen.cad.render import render_parts
@@ -412,15 +412,15 @@ def render(parts, design: Design, settings: dict | None = None, folder: Path | N
             stl = Path(folder) / f"{p.name}.stl"
             if stl.exists():
                 meshes[p.name] = read_stl(stl)
-    return render_parts(parts.parts, None, view=view, size=size, title=design.name, meshes=meshes)
+    return render_parts(parts.parts, view=view, size=size, title=design.name, meshes=meshes)
 
 
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:
-    """Step 8: rendered view, layout drawing, stiffness plots, report.md and report.html."""
+    """Step 8: rendered view, layout drawing, stiffness plots (``figures/*.png|svg``), report.md and report.html."""
     from geargen.report.review import write_build_review
-    if result.render_png is None:
-        result.render_png = render(result.parts, result.design)
-    return write_build_review(result, Path(folder), result.render_png, layout_drawing(result.layout, result.checks))
+    if result.render_view is None:
+        result.render_view = render(result.parts, result.design)
+    return write_build_review(result, Path(folder), result.render_view, layout_drawing(result.layout, result.checks))
 
 
 # ============================================================================ the whole build
@@ -440,7 +440,7 @@ class BuildResult:
     out_dir: Path | None = None
     timings: dict[str, float] = field(default_factory=dict)
     forced: bool = False
-    render_png: bytes | None = None
+    render_view: Any = None  # geargen.cad.render.RenderedView
 
     @property
     def ok(self) -> bool:
@@ -520,12 +520,12 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                 checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             # the view first: its coarse tessellation is refined by the STL export (not the reverse)
-            render_png = progress.run("render", render, parts, design)
+            render_view = progress.run("render", render, parts, design)
             files = progress.run("export", export, layout, parts, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, alongside, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
-            result.render_png, result.files = render_png, files
+            result.render_view, result.files = render_view, files
             result.timings = dict(progress.timings)
             progress.run("report", _report_and_manifest, result, work)
             target = output.commit()
@@ -705,14 +705,17 @@ def _report_and_manifest(result: BuildResult, folder: Path) -> None:
 
 
 def manifest(result: BuildResult, folder: Path, report_files: dict[str, Path] | None = None) -> Path:
-    """manifest.json: files, units, tolerances, the design's sha256, versions, check status."""
+    """manifest.json: files, units, tolerances, the design's sha256, versions, check status, the
+    report's key numbers."""
     from geargen.cad.export import write_json
+    from geargen.report.review import key_numbers
     design = result.design
     entries = {}
     for name, rec in result.files.get("records", {}).items():
         entries[name] = rec
     for key, p in (report_files or {}).items():
-        entries[Path(p).name] = {"format": Path(p).suffix.lstrip("."), "role": key, "bytes": Path(p).stat().st_size}
+        entries[Path(p).relative_to(folder).as_posix()] = {"format": Path(p).suffix.lstrip("."), "role": key,
+                                                           "bytes": Path(p).stat().st_size}
     status = "ok" if result.ok else "failing"
     data = {
         "generator": "geargen build",
@@ -731,6 +734,7 @@ def manifest(result: BuildResult, folder: Path, report_files: dict[str, Path] | 
         "files": entries,
         "versions": versions(),
         "timings_s": {k: round(v, 4) for k, v in result.timings.items()},
+        "key_numbers": key_numbers(result),
     }
     path = Path(folder) / "manifest.json"
     write_json(path, _jsonable(data))

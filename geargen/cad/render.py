@@ -1,20 +1,30 @@
-"""A rendered view of an assembly as PNG, headless: tessellate each part, project, shade, paint.
+"""A rendered view of an assembly, headless: tessellate each part, project, rasterise with a depth buffer.
 
 No display and no OpenGL: every part is tessellated by the kernel (or its exported STL is
 reused), the triangles are projected orthographically onto the view plane, shaded by the angle
-between their normal and a light from the viewer's upper left, sorted back to front (painter's
-algorithm) and drawn as one matplotlib ``PolyCollection`` on an Agg canvas. Transparent parts
-(reference bodies) are drawn with their alpha.
+between their normal and a light from the viewer's upper left, and rasterised in numpy with a
+depth buffer: each pixel shows the nearest opaque surface, and the translucent parts (reference
+bodies) in front of it are blended over it nearest last. A depth buffer decides per pixel; a
+painter's algorithm (whole triangles sorted by their centroid's depth, as this module did) cannot
+draw a triangle that passes through another surface, e.g. a bearing's outer cylinder standing in
+a gear's bore: the half of the cylinder's triangles whose centroid lies above the gear's face
+were drawn whole, over the face, as a ring of spikes.
+
+The result is plain data (:class:`RenderedView`: the image, which part each pixel shows, the
+view's frame and scale); :mod:`geargen.report.view` draws it with labels, a scale bar and an
+axis triad. matplotlib is not needed here.
 """
 
 from __future__ import annotations
 
-import io
 import math
-from pathlib import Path
+from dataclasses import dataclass
 from typing import Iterable
 
 import numpy as np
+
+BACKGROUND = (1.0, 1.0, 1.0)
+_FRAGMENTS_PER_CHUNK = 3_000_000  # bounds the rasteriser's memory (~0.3 GB of temporaries)
 
 
 def view_basis(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
@@ -28,11 +38,39 @@ def view_basis(azimuth_deg: float, elevation_deg: float) -> np.ndarray:
     return np.vstack([right, up, towards])
 
 
-def render_parts(parts: Iterable, path: str | Path | None = None, view=(-60.0, 30.0), size=(9.0, 6.5),
-                 dpi: int = 110, title: str = "", detail: float = 400.0,
-                 meshes: dict[str, np.ndarray] | None = None) -> bytes:
-    """Render placed parts (``PlacedPart`` of :mod:`geargen.cad.assembly`) to PNG; returns the bytes
-    (and writes ``path`` if given).
+@dataclass
+class RenderedView:
+    """A rasterised view.
+
+    ``image`` ``(h, w, 3)`` float RGB in [0, 1], row 0 at the top; ``part_index`` ``(h, w)`` int:
+    the part (index into ``names``) seen at each pixel: the nearest opaque surface, else the
+    nearest translucent one, -1 for the background;
+    ``extent`` ``(left, right, bottom, top)``: the image's edges in view coordinates (mm, along the
+    view's right and up vectors); ``basis`` the view's right/up/towards rows (:func:`view_basis`);
+    ``colours`` the parts' RGBA."""
+
+    image: np.ndarray
+    part_index: np.ndarray
+    names: list[str]
+    colours: list[tuple[float, float, float, float]]
+    extent: tuple[float, float, float, float]
+    basis: np.ndarray
+    title: str = ""
+
+    @property
+    def mm_per_pixel(self) -> float:
+        return (self.extent[1] - self.extent[0]) / self.image.shape[1]
+
+    def to_view(self, rows: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        """View coordinates ``(k, 2)`` mm of pixel centres (``rows``, ``cols``)."""
+        s = self.mm_per_pixel
+        return np.column_stack([self.extent[0] + (np.asarray(cols) + 0.5) * s,
+                                self.extent[3] - (np.asarray(rows) + 0.5) * s])
+
+
+def render_parts(parts: Iterable, view=(-60.0, 30.0), size=(9.0, 6.5), dpi: int = 110, title: str = "",
+                 detail: float = 400.0, meshes: dict[str, np.ndarray] | None = None) -> RenderedView:
+    """Rasterise placed parts (``PlacedPart`` of :mod:`geargen.cad.assembly`) at ``size`` inches x ``dpi``.
 
     ``meshes`` (part name -> ``(n, 3, 3)`` triangles in the assembly frame, mm), e.g. the
     exported STL files, are drawn instead of tessellating those parts again; other parts are
@@ -41,7 +79,6 @@ def render_parts(parts: Iterable, path: str | Path | None = None, view=(-60.0, 3
     """
     parts = list(parts)
     meshes = meshes or {}
-    items = []
     extent = 1.0
     todo = [p for p in parts if p.name not in meshes]
     if todo:
@@ -50,12 +87,13 @@ def render_parts(parts: Iterable, path: str | Path | None = None, view=(-60.0, 3
         mins = np.array([lo for lo, _ in boxes])
         maxs = np.array([hi for _, hi in boxes])
         extent = float(np.max(maxs.max(axis=0) - mins.min(axis=0)))
+    items = []
     for p in parts:
         tri = meshes.get(p.name)
         if tri is None:
             tri = part_triangles(p, extent / detail)
-        items.append((tri, p.colour))
-    return render_triangles(items, path, view, size, dpi, title)
+        items.append((p.name, tri, p.colour))
+    return rasterise(items, view, (round(size[0] * dpi), round(size[1] * dpi)), title)
 
 
 def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5) -> np.ndarray:
@@ -72,58 +110,151 @@ def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5) -> np
     return solid_triangles(source, tolerance, angular_tolerance, transform=part.matrix, skip_unmeshed=True)[0]
 
 
-def render_triangles(items, path: str | Path | None = None, view=(-60.0, 30.0), size=(9.0, 6.5), dpi: int = 110,
-                     title: str = "") -> bytes:
-    """Render ``items`` (``(triangles (n, 3, 3) mm, (r, g, b, alpha))``) to PNG bytes."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.collections import PolyCollection
-    from matplotlib.figure import Figure
+def _shaded(tri: np.ndarray, rgba, basis: np.ndarray, light: np.ndarray):
+    """Non-degenerate triangles of one part (back faces dropped when opaque) and their flat RGB."""
+    r, g, b, a = rgba
+    n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    norm = np.linalg.norm(n, axis=1)
+    keep = norm > 0
+    tri, n = tri[keep], n[keep] / norm[keep, None]
+    if a >= 0.99:  # opaque: back faces are hidden by the front ones
+        sel = n @ basis[2] > 1e-9
+        tri, n = tri[sel], n[sel]
+    shade = 0.35 + 0.65 * np.abs(n @ light)
+    return tri, np.clip(np.outer(shade, [r, g, b]), 0, 1)
 
+
+def _fragments(xy: np.ndarray, depth: np.ndarray, width: int, height: int):
+    """Yield ``(triangle, pixel, depth)`` arrays of the pixel centres inside each projected
+    triangle, in chunks. ``xy`` ``(n, 3, 2)`` pixel coordinates (x right, y down), ``depth``
+    ``(n, 3)`` (larger is nearer). Scanlines: each triangle's pixel rows, on each row the
+    columns between its edges; depth from the triangle's plane. A pixel on an edge shared by two
+    triangles belongs to both (the depth test or the blend decides), so no gap opens."""
+    a, b, c = xy[:, 0], xy[:, 1], xy[:, 2]
+    area = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    row_lo = np.clip(np.ceil(xy[:, :, 1].min(axis=1) - 0.5), 0, height).astype(np.int64)
+    row_hi = np.clip(np.floor(xy[:, :, 1].max(axis=1) - 0.5), -1, height - 1).astype(np.int64)
+    rows = np.maximum(row_hi - row_lo + 1, 0)
+    live = np.flatnonzero((rows > 0) & (np.abs(area) > 1e-9))
+    xy, depth, area, row_lo, rows = xy[live], depth[live], area[live], row_lo[live], rows[live]
+    # depth plane z = gx x + gy y + z0 of each triangle
+    a, b, c = xy[:, 0], xy[:, 1], xy[:, 2]
+    za, zb, zc = depth[:, 0], depth[:, 1], depth[:, 2]
+    gx = ((zb - za) * (c[:, 1] - a[:, 1]) - (zc - za) * (b[:, 1] - a[:, 1])) / area
+    gy = ((zc - za) * (b[:, 0] - a[:, 0]) - (zb - za) * (c[:, 0] - a[:, 0])) / area
+    z0 = za - gx * a[:, 0] - gy * a[:, 1]
+    ends = np.cumsum(rows)
+    start = 0
+    while start < live.size:
+        # a chunk of triangles holding about as many rows as a chunk of fragments allows
+        budget = _FRAGMENTS_PER_CHUNK // 64
+        stop = max(int(np.searchsorted(ends, (ends[start - 1] if start else 0) + budget, side="right")), start + 1)
+        k = np.arange(start, stop)
+        t = np.repeat(k, rows[k])
+        y = row_lo[t] + (np.arange(t.size) - np.repeat(np.cumsum(rows[k]) - rows[k], rows[k])) + 0.5
+        lo = np.full(t.size, np.inf)
+        hi = np.full(t.size, -np.inf)
+        for i, j in ((0, 1), (1, 2), (2, 0)):
+            p, q = xy[t, i], xy[t, j]
+            dy = q[:, 1] - p[:, 1]
+            crosses = (np.minimum(p[:, 1], q[:, 1]) <= y) & (y <= np.maximum(p[:, 1], q[:, 1])) & (dy != 0)
+            x = p[:, 0] + (y - p[:, 1]) * (q[:, 0] - p[:, 0]) / np.where(dy != 0, dy, 1.0)
+            lo = np.where(crosses, np.minimum(lo, x), lo)
+            hi = np.where(crosses, np.maximum(hi, x), hi)
+        c_lo = np.clip(np.ceil(lo - 0.5 - 1e-9), 0, width).astype(np.int64)
+        c_hi = np.clip(np.floor(hi - 0.5 + 1e-9), -1, width - 1).astype(np.int64)
+        n = np.maximum(c_hi - c_lo + 1, 0)
+        f_t = np.repeat(t, n)
+        col = np.repeat(c_lo, n) + (np.arange(f_t.size) - np.repeat(np.cumsum(n) - n, n))
+        f_y = np.repeat(y, n)
+        z = gx[f_t] * (col + 0.5) + gy[f_t] * f_y + z0[f_t]
+        yield live[f_t], (f_y - 0.5).astype(np.int64) * width + col, z
+        start = stop
+
+
+def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", margin: int = 12) -> RenderedView:
+    """Rasterise ``items`` (``(name, triangles (n, 3, 3) mm, (r, g, b, alpha))``) into a
+    :class:`RenderedView` of ``pixels`` (width, height), the model fitted inside ``margin`` pixels."""
+    width, height = pixels
     basis = view_basis(*view)
     light = basis.T @ np.array([-0.35, 0.45, 1.0])  # from the viewer's upper left
     light /= np.linalg.norm(light)
-    polys, colours, depth = [], [], []
-    for tri, (r, g, b, a) in items:
+    names, colours, tris, rgbs, owner, alphas = [], [], [], [], [], []
+    for name, tri, rgba in items:
+        names.append(name)
+        colours.append(tuple(rgba))
+        tri = np.asarray(tri, dtype=float).reshape(-1, 3, 3)
         if tri.size == 0:
             continue
-        n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
-        norm = np.linalg.norm(n, axis=1)
-        keep = norm > 0
-        tri, n = tri[keep], n[keep] / norm[keep, None]
-        facing = n @ basis[2]
-        if a >= 0.99:  # opaque: back faces are hidden by the front ones
-            sel = facing > 1e-9
-            tri, n = tri[sel], n[sel]
-        shade = 0.35 + 0.65 * np.abs(n @ light)
-        rgb = np.clip(np.outer(shade, [r, g, b]), 0, 1)
-        proj = tri @ basis.T  # (n, 3, 3): right, up, towards the viewer
-        polys.append(proj[:, :, :2])
-        colours.append(np.column_stack([rgb, np.full(len(rgb), a)]))
-        depth.append(proj[:, :, 2].mean(axis=1))
-    fig = Figure(figsize=size, dpi=dpi)
-    FigureCanvasAgg(fig)
-    ax = fig.add_axes((0, 0, 1, 0.94 if title else 1))
-    if polys:
-        P = np.concatenate(polys)
-        C = np.concatenate(colours)
-        D = np.concatenate(depth)
-        order = np.argsort(D)
-        ax.add_collection(PolyCollection(P[order], facecolors=C[order], edgecolors="none", antialiased=False))
-        xy = P.reshape(-1, 2)
-        lo, hi = xy.min(axis=0), xy.max(axis=0)
-        pad = 0.03 * float(np.max(hi - lo))
-        ax.set_xlim(lo[0] - pad, hi[0] + pad)
-        ax.set_ylim(lo[1] - pad, hi[1] + pad)
-    ax.set_aspect("equal")
-    ax.axis("off")
-    if title:
-        fig.suptitle(title, fontsize=11)
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, facecolor="white")
-    data = buf.getvalue()
-    if path is not None:
-        Path(path).write_bytes(data)
-    return data
+        tri, rgb = _shaded(tri, rgba, basis, light)
+        tris.append(tri @ basis.T)  # right, up, towards the viewer
+        rgbs.append(rgb)
+        owner.append(np.full(len(tri), len(names) - 1))
+        alphas.append(np.full(len(tri), float(rgba[3])))
+    image = np.empty((height * width, 3))
+    image[:] = BACKGROUND
+    part_index = np.full(height * width, -1)
+    if not tris:
+        return RenderedView(image.reshape(height, width, 3), part_index.reshape(height, width), names, colours,
+                            (0.0, float(width), 0.0, float(height)), basis, title)
+    proj = np.concatenate(tris)
+    rgb = np.concatenate(rgbs)
+    part = np.concatenate(owner)
+    alpha = np.concatenate(alphas)
+    xy_lo, xy_hi = proj[:, :, :2].reshape(-1, 2).min(axis=0), proj[:, :, :2].reshape(-1, 2).max(axis=0)
+    scale = min((width - 2 * margin) / max(xy_hi[0] - xy_lo[0], 1e-12),
+                (height - 2 * margin) / max(xy_hi[1] - xy_lo[1], 1e-12))  # pixels per mm
+    centre = (xy_lo + xy_hi) / 2
+    left, top = centre[0] - width / 2 / scale, centre[1] + height / 2 / scale
+    pix = np.empty(proj.shape[:2] + (2,))
+    pix[..., 0] = (proj[..., 0] - left) * scale
+    pix[..., 1] = (top - proj[..., 1]) * scale
+    depth = proj[..., 2]
+
+    opaque = alpha >= 0.99
+    zbuf = np.full(height * width, -np.inf)
+    front = np.full(height * width, -1)  # the opaque triangle seen at each pixel
+    ids = np.flatnonzero(opaque)
+    for t, p, z in _fragments(pix[ids], depth[ids], width, height):
+        np.maximum.at(zbuf, p, z)
+        win = z >= zbuf[p]  # the nearest fragment of each pixel so far (ties: either)
+        front[p[win]] = ids[t[win]]
+    seen = front >= 0
+    image[seen] = rgb[front[seen]]
+    part_index[seen] = part[front[seen]]
+
+    ids = np.flatnonzero(~opaque)
+    if ids.size:
+        chunks = [(ids[t], p, z) for t, p, z in _fragments(pix[ids], depth[ids], width, height)]
+        t = np.concatenate([c[0] for c in chunks])
+        p = np.concatenate([c[1] for c in chunks])
+        z = np.concatenate([c[2] for c in chunks])
+        visible = z > zbuf[p]
+        t, p, z = t[visible], p[visible], z[visible]
+        span = max(float(z.max() - z.min()), 1e-12)
+        order = np.argsort(p + 0.5 * (z.max() - z) / span)  # by pixel, nearest first (one float key)
+        t, p = t[order], p[order]
+        # "over" from far to near, in closed form: each layer weighs alpha times the
+        # transmittance of the layers in front of it; the background keeps the product of all
+        log_keep = np.log1p(-alpha[t])
+        run = np.cumsum(log_keep)
+        head = np.ones(p.size, bool)
+        head[1:] = p[1:] != p[:-1]
+        group_start = np.maximum.accumulate(np.where(head, np.arange(p.size), 0))
+        before = run - log_keep - np.where(group_start > 0, run[group_start - 1], 0.0)
+        weight = alpha[t] * np.exp(before)
+        pixels_hit = p[head]
+        total_keep = np.exp(np.add.reduceat(log_keep, np.flatnonzero(head)))
+        blended = np.column_stack([np.bincount(p, rgb[t, k] * weight, minlength=height * width)[pixels_hit]
+                                   for k in range(3)])
+        image[pixels_hit] = image[pixels_hit] * total_keep[:, None] + blended
+        nearest_translucent = head  # sorted nearest first: each pixel's first fragment
+        ahead = part_index[p[nearest_translucent]] < 0
+        part_index[p[nearest_translucent][ahead]] = part[t[nearest_translucent][ahead]]
+    right = left + width / scale
+    bottom = top - height / scale
+    return RenderedView(image.reshape(height, width, 3), part_index.reshape(height, width), names, colours,
+                        (float(left), float(right), float(bottom), float(top)), basis, title)
 
 
-__all__ = ["view_basis", "part_triangles", "render_parts", "render_triangles"]
+__all__ = ["view_basis", "part_triangles", "render_parts", "rasterise", "RenderedView"]

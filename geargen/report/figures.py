@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+FIGURE_FORMATS = ("png", "svg")
+
 
 def save_png(fig, path, dpi: int = 110) -> Path:
     """Save ``fig`` as PNG at ``path`` (folders created) and close it, so long runs do not leak figures."""
@@ -14,3 +16,22 @@ def save_png(fig, path, dpi: int = 110) -> Path:
     fig.savefig(path, dpi=dpi)
     plt.close(fig)
     return path
+
+
+def save_figure(fig, folder, name: str, dpi: int = 110) -> dict[str, Path]:
+    """Save ``fig`` (a matplotlib ``Figure`` on its own canvas, no pyplot) as ``folder/name.png``
+    and ``folder/name.svg`` (folder created), white background; returns ``{format: path}``.
+
+    The SVG keeps lines and text as vectors (a reviewer can reuse or restyle them); raster
+    content of the figure (a rendered view) is embedded in it as an image."""
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    out = {}
+    for fmt in FIGURE_FORMATS:
+        path = folder / f"{name}.{fmt}"
+        fig.savefig(path, format=fmt, dpi=dpi, facecolor="white")
+        out[fmt] = path
+    return out
+
+
+__all__ = ["FIGURE_FORMATS", "save_png", "save_figure"]

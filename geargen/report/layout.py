@@ -1,5 +1,6 @@
 """The 2-D layout drawing of an assembly: gear circles, centres, lines of action, the symmetry
-line and the preload carriage's travel, as PNG (matplotlib, Agg canvas, no pyplot).
+line and the preload carriage's travel (matplotlib, Agg canvas, no pyplot), labels placed clear of
+each other and of the drawing (:mod:`geargen.report.labels`).
 
 Input is plain data (:class:`LayoutGear`, :class:`LayoutMesh`), in mm in the output gear's
 frame (+x the symmetry line towards the input); the drawing is labelled in the design's unit.
@@ -75,41 +76,47 @@ def working_side(c1, rb1: float, c2, rb2: float, flank: str) -> int:
     return 0
 
 
-def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | Path | None = None,
-                length_unit: str = "mm", title: str = "", carriage: tuple[tuple[float, float], float] | None = None,
-                symmetry_line: bool = True, notes: list[str] = ()) -> bytes:
-    """Draw the layout; returns the PNG bytes (and writes ``path`` if given).
+def layout_figure(gears: list[LayoutGear], meshes: list[LayoutMesh], length_unit: str = "mm", title: str = "",
+                  carriage: tuple[tuple[float, float], float] | None = None, symmetry_line: bool = True,
+                  notes: list[str] = ()):
+    """The layout drawing as a matplotlib ``Figure`` (Agg canvas, no pyplot).
 
     ``carriage``: ``((x, y), travel)``: the preload carriage's position (the input gear's centre)
-    and its travel either way along the symmetry line (mm), drawn as a double arrow.
+    and its travel either way along the symmetry line (mm), drawn as a double arrow. The labels
+    are placed by :func:`geargen.report.labels.place_labels`, clear of each other, of every
+    circle and of every drawn line.
     """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
     from matplotlib.patches import Circle, FancyArrowPatch
+
+    from geargen.report.labels import Obstacles, place_labels
 
     scale = LENGTH_SUFFIXES[length_unit]
     fig = Figure(figsize=(9, 7.5), dpi=110)
     FigureCanvasAgg(fig)
     ax = fig.add_subplot(1, 1, 1)
     by = {g.name: g for g in gears}
+    obstacles = Obstacles()
     seen = set()
-    labels: dict[tuple, list[str]] = {}
+    names_at: dict[tuple, list[str]] = {}
     for g in gears:
         x, y = (v / scale for v in g.centre)
-        labels.setdefault((round(x, 9), round(y, 9)), []).append(f"{g.name} {g.teeth} T")
-    for (x, y), text in labels.items():
+        names_at.setdefault((round(x, 9), round(y, 9)), []).append(f"{g.name} {g.teeth} T")
+    for (x, y) in names_at:
         ax.plot([x], [y], "+", color="k", ms=9)
-        ax.annotate("\n".join(text), (x, y), xytext=(4, 4), textcoords="offset points", fontsize=7)
     for g in gears:
         x, y = (v / scale for v in g.centre)
         key = (round(x, 9), round(y, 9), g.reference_radius)
         if key in seen:
             continue
         seen.add(key)
-        ax.add_patch(Circle((x, y), g.tip_radius / scale, fill=False, lw=0.9, color="0.35"))
-        ax.add_patch(Circle((x, y), g.reference_radius / scale, fill=False, lw=0.8, ls="-.", color="tab:blue"))
-        ax.add_patch(Circle((x, y), g.base_radius / scale, fill=False, lw=0.6, ls=":", color="tab:green"))
-        ax.add_patch(Circle((x, y), g.root_radius / scale, fill=False, lw=0.5, color="0.6"))
+        for radius, style in ((g.tip_radius, dict(lw=0.9, color="0.35")),
+                              (g.reference_radius, dict(lw=0.8, ls="-.", color="tab:blue")),
+                              (g.base_radius, dict(lw=0.6, ls=":", color="tab:green")),
+                              (g.root_radius, dict(lw=0.5, color="0.6"))):
+            ax.add_patch(Circle((x, y), radius / scale, fill=False, **style))
+            obstacles.circles.append((x, y, radius / scale))
     for m in meshes:
         g1, g2 = by[m.gear1], by[m.gear2]
         side = m.side or (working_side(g1.centre, g1.base_radius, g2.centre, g2.base_radius, m.working)
@@ -118,24 +125,29 @@ def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | P
         for side in ((m.side,) if m.side else (1, -1)):
             seg = line_of_action(g1.centre, g1.base_radius, g2.centre, g2.base_radius, side) / scale
             ax.plot(seg[:, 0], seg[:, 1], color="tab:red", lw=1.2 if m.side else 0.8, ls="-" if m.side else "--")
-        ax.plot([g1.centre[0] / scale, g2.centre[0] / scale], [g1.centre[1] / scale, g2.centre[1] / scale],
-                color="0.5", lw=0.5, ls=(0, (2, 3)))
+            obstacles.segments.append((tuple(seg[0]), tuple(seg[1])))
+        centres = ((g1.centre[0] / scale, g1.centre[1] / scale), (g2.centre[0] / scale, g2.centre[1] / scale))
+        ax.plot([centres[0][0], centres[1][0]], [centres[0][1], centres[1][1]], color="0.5", lw=0.5, ls=(0, (2, 3)))
+        obstacles.segments.append(centres)
     xs = [g.centre[0] / scale for g in gears]
     rs = [g.tip_radius / scale for g in gears]
     lo_x = min(x - r for x, r in zip(xs, rs))
     hi_x = max(x + r for x, r in zip(xs, rs))
+    labels = [("\n".join(text), (x, y), dict(fontsize=7)) for (x, y), text in names_at.items()]
     if symmetry_line:
         ax.axhline(0.0, color="tab:purple", lw=0.8, ls=(0, (8, 3, 2, 3)))
-        ax.annotate("symmetry line", (hi_x, 0), xytext=(-60, 4), textcoords="offset points", fontsize=7,
-                    color="tab:purple")
+        # anchored inside the output gear (at the origin), where the drawing leaves room
+        labels.append(("symmetry line", (0.5 * lo_x, 0.0), dict(fontsize=7, color="tab:purple")))
     if carriage is not None:
         (cx, cy), travel = carriage
         cx, cy, t = cx / scale, cy / scale, travel / scale
         span = max(t, 0.04 * (hi_x - lo_x))  # drawn at least visibly long; the label gives the number
-        ax.add_patch(FancyArrowPatch((cx - span, cy - 0.12 * (hi_x - lo_x)), (cx + span, cy - 0.12 * (hi_x - lo_x)),
+        y_arrow = cy - 0.12 * (hi_x - lo_x)
+        ax.add_patch(FancyArrowPatch((cx - span, y_arrow), (cx + span, y_arrow),
                                      arrowstyle="<->", mutation_scale=10, color="tab:orange"))
-        ax.annotate(f"carriage travel ±{t:.4g} {length_unit}", (cx, cy - 0.12 * (hi_x - lo_x)),
-                    xytext=(0, -12), textcoords="offset points", ha="center", fontsize=7, color="tab:orange")
+        obstacles.segments.append(((cx - span, y_arrow), (cx + span, y_arrow)))
+        labels.append((f"carriage travel ±{t:.4g} {length_unit}", (cx, y_arrow),
+                       dict(fontsize=7, color="tab:orange")))
     ax.set_aspect("equal")
     ax.autoscale_view()
     ax.set_xlabel(f"x ({length_unit}), output gear centre at the origin")
@@ -146,6 +158,22 @@ def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | P
     ax.set_title((title + "\n" if title else "") + legend, fontsize=7)
     for i, n in enumerate(notes):
         fig.text(0.01, 0.01 + 0.025 * i, n, fontsize=7)
+    if symmetry_line:
+        x0, x1 = ax.get_xlim()
+        obstacles.segments.append(((x0, 0.0), (x1, 0.0)))
+    fig.canvas.draw()  # the axes' limits and aspect are final: the labels are placed in display space
+    ax.set_xlim(ax.get_xlim())
+    ax.set_ylim(ax.get_ylim())
+    ax.set_autoscale_on(False)
+    place_labels(ax, labels, obstacles)
+    return fig
+
+
+def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | Path | None = None,
+                length_unit: str = "mm", title: str = "", carriage: tuple[tuple[float, float], float] | None = None,
+                symmetry_line: bool = True, notes: list[str] = ()) -> bytes:
+    """:func:`layout_figure` as PNG bytes (and written to ``path`` if given)."""
+    fig = layout_figure(gears, meshes, length_unit, title, carriage, symmetry_line, notes)
     buf = io.BytesIO()
     fig.savefig(buf, format="png", facecolor="white")
     data = buf.getvalue()
@@ -154,4 +182,4 @@ def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | P
     return data
 
 
-__all__ = ["LayoutGear", "LayoutMesh", "line_of_action", "working_side", "plot_layout"]
+__all__ = ["LayoutGear", "LayoutMesh", "line_of_action", "working_side", "layout_figure", "plot_layout"]

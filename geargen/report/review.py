@@ -1,15 +1,17 @@
-"""The design-review report of a build: ``report.md`` and ``report.html`` with the figures embedded.
+"""The design-review report of a build: ``report.md`` and ``report.html``, each figure beside
+them as its own PNG and SVG file (``figures/<name>.png|svg``), linked by relative paths.
 
-The report is a list of blocks (heading, paragraph, list, table, preformatted text, image)
-written once and rendered twice, to Markdown and to a self-contained HTML page (images as
-base64 ``data:`` URIs in both). It takes plain data (:class:`Review`), put together by the
-pipeline; this module imports neither the CAD kernel nor the checker. Files are written
-plainly: the build writes into a temporary folder that replaces the export folder at the end.
+The report is a list of blocks (heading, paragraph, list, table, preformatted text, figure)
+written once and rendered twice, to Markdown and to an HTML page. It opens with the key numbers
+(:func:`key_numbers`, also recorded in the manifest): read from the same stiffness summary and
+check results as the rest of the report, never recomputed. It takes plain data
+(:class:`Review`), put together by the pipeline; this module imports neither the CAD kernel nor
+the checker. Files are written plainly: the build writes into a temporary folder that replaces
+the export folder at the end.
 """
 
 from __future__ import annotations
 
-import base64
 import html
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,9 +20,9 @@ from typing import Any
 
 @dataclass
 class Review:
-    """What the report shows. ``blocks`` are ``(kind, payload)``: ``("h2", text)``,
+    """What the report shows. ``blocks`` are ``(kind, payload)``: ``("h2", text)``, ``("h3", text)``,
     ``("p", text)``, ``("list", [text])``, ``("table", (header, rows))``, ``("pre", text)``,
-    ``("img", (caption, png_bytes))``."""
+    ``("figure", (caption, relative file name))``."""
 
     title: str
     status: str  # "PASS" or "FAILING"
@@ -28,6 +30,10 @@ class Review:
 
     def h(self, text: str) -> "Review":
         self.blocks.append(("h2", text))
+        return self
+
+    def h3(self, text: str) -> "Review":
+        self.blocks.append(("h3", text))
         return self
 
     def p(self, text: str) -> "Review":
@@ -44,11 +50,6 @@ class Review:
 
     def pre(self, text: str) -> "Review":
         self.blocks.append(("pre", text))
-        return self
-
-    def img(self, caption: str, png: bytes | None) -> "Review":
-        if png:
-            self.blocks.append(("img", (caption, png)))
         return self
 
     def figure(self, caption: str, file_name: str) -> "Review":
@@ -114,10 +115,6 @@ def from_markdown(text: str, status: str) -> Review:
     return review
 
 
-def _b64(png: bytes) -> str:
-    return "data:image/png;base64," + base64.b64encode(png).decode("ascii")
-
-
 def _cell(v: Any) -> str:
     if isinstance(v, float):
         return f"{v:.6g}"
@@ -129,6 +126,8 @@ def to_markdown(review: Review) -> str:
     for kind, payload in review.blocks:
         if kind == "h2":
             out += [f"## {payload}", ""]
+        elif kind == "h3":
+            out += [f"### {payload}", ""]
         elif kind == "p":
             out += [payload, ""]
         elif kind == "list":
@@ -141,9 +140,6 @@ def to_markdown(review: Review) -> str:
             out.append("")
         elif kind == "pre":
             out += ["```", payload.rstrip("\n"), "```", ""]
-        elif kind == "img":
-            caption, png = payload
-            out += [f"![{caption}]({_b64(png)})", "", f"*{caption}*", ""]
         elif kind == "figure":
             caption, name = payload
             out += [f"![{caption}]({name})", ""]
@@ -164,6 +160,8 @@ def to_html(review: Review) -> str:
     for kind, payload in review.blocks:
         if kind == "h2":
             out.append(f"<h2>{e(payload)}</h2>")
+        elif kind == "h3":
+            out.append(f"<h3>{e(payload)}</h3>")
         elif kind == "p":
             out.append(f"<p>{e(payload)}</p>")
         elif kind == "list":
@@ -175,9 +173,6 @@ def to_html(review: Review) -> str:
             out.append("</table>")
         elif kind == "pre":
             out.append(f"<pre>{e(payload)}</pre>")
-        elif kind == "img":
-            caption, png = payload
-            out.append(f"<figure><img alt='{e(caption)}' src='{_b64(png)}'><figcaption>{e(caption)}</figcaption></figure>")
         elif kind == "figure":
             caption, name = payload
             out.append(f"<figure><a href='{e(name)}'><img alt='{e(caption)}' src='{e(name)}'></a>"
@@ -196,15 +191,10 @@ def write_review(review: Review, folder: str | Path) -> dict[str, Path]:
     return {"report_md": md, "report_html": page}
 
 
-def figure_png(fig, dpi: int = 110) -> bytes:
-    """A matplotlib figure (Agg canvas) as PNG bytes."""
-    import io
-    buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=dpi, facecolor="white")
-    return buf.getvalue()
+__all__ = ["Review", "to_markdown", "to_html", "write_review", "compose", "key_numbers", "key_numbers_table",
+           "write_build_review", "FIGURE_FOLDER"]
 
-
-__all__ = ["Review", "to_markdown", "to_html", "write_review", "figure_png", "compose", "write_build_review"]
+FIGURE_FOLDER = "figures"
 
 
 # ---------------------------------------------------------------- the review of a build
@@ -216,8 +206,75 @@ def _len(v_mm: float | None, scale: float, digits: int = 5) -> str:
     return f"{v_mm / scale:.{digits}g}"
 
 
-def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | None = None) -> Review:
-    """The review of a build result (``geargen.pipeline.BuildResult``, read by attribute)."""
+def key_numbers(result: Any) -> dict[str, Any]:
+    """The numbers a reviewer reads first, for the report's opening block and the manifest:
+    the ratio, the drive and loop stiffness, the preload and its variation (the headline budget),
+    the minimum backlash of each mesh (worst case over the error budget where the design has one,
+    else as built), the warnings and failures counted. Lengths in the design's unit.
+
+    Read from the objects the rest of the report uses: the stiffness summary's own
+    :meth:`to_dict` (what ``geargen stiffness --json`` prints), the check results' ``to_dict``
+    (what ``geargen check --json`` prints) and the build's warnings."""
+    from geargen.units import LENGTH_SUFFIXES
+
+    unit = result.design.length_unit
+    scale = LENGTH_SUFFIXES[unit]
+    ratio = result.layout.ratio
+    out: dict[str, Any] = {"length_unit": unit,
+                           "ratio": ratio["text"] if ratio else None,
+                           "ratio_ok": ratio["ok"] if ratio else None,
+                           "drive_stiffness_Nm_per_rad": None, "loop_stiffness_Nm_per_rad": None, "preload_Nm": None,
+                           "preload_variation": None,
+                           "warnings": len(result.warnings), "failures": len(result.checks.failures)}
+    if result.stiffness is not None:
+        st = result.stiffness.to_dict()
+        out.update(drive_stiffness_Nm_per_rad=st["drive"]["stiffness_Nm_per_rad"],
+                   loop_stiffness_Nm_per_rad=st["loop"]["stiffness_Nm_per_rad"], preload_Nm=st["preload_Nm"])
+        head = next((v for v in st["preload_variation"] if v["label"] == st["headline_budget"]), None)
+        if head is not None:
+            out["preload_variation"] = {"budget": head["label"], "range_Nm": head["range_Nm"],
+                                        "relative": head["relative"]}
+    dc = getattr(result.checks, "design_check", None)
+    tolerances = {t.mesh: t.to_dict(unit) for t in (dc.tolerances if dc is not None else [])}
+    meshes = []
+    for m in result.checks.meshes:
+        if m.get("status") == "disengaged":
+            continue
+        t = tolerances.get(m["mesh"])
+        meshes.append({"mesh": m["mesh"], "min_backlash": m["backlash_min"] / scale,
+                       "worst_case_min_backlash": None if t is None else t["worst_case_min_backlash"]})
+    out["meshes"] = meshes
+    return out
+
+
+def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str]]]:
+    """:func:`key_numbers` as a two-column table (quantity, value)."""
+    unit = numbers["length_unit"]
+
+    def g(v, digits=5):
+        return "-" if v is None else f"{v:.{digits}g}"
+    rows = [["ratio", "-" if numbers["ratio"] is None else
+             f"{numbers['ratio']}" + ("" if numbers["ratio_ok"] else " (NOT an allowed ratio)")],
+            ["drive stiffness k_D (N·m/rad)", g(numbers["drive_stiffness_Nm_per_rad"])],
+            ["loop stiffness k_L (N·m/rad)", g(numbers["loop_stiffness_Nm_per_rad"])],
+            ["preload (N·m)", g(numbers["preload_Nm"])]]
+    v = numbers["preload_variation"]
+    rows.append(["preload variation, p-p (N·m)", "-" if v is None else
+                 f"{v['range_Nm']:.4g} ({100 * v['relative']:.2f} %, {v['budget']} budget)"])
+    for m in numbers["meshes"]:
+        worst = m["worst_case_min_backlash"]
+        rows.append([f"backlash {m['mesh']}, minimum ({unit})",
+                     f"{g(m['min_backlash'])} as built" + ("" if worst is None else f"; {g(worst)} worst case")])
+    rows.append(["warnings", str(numbers["warnings"])])
+    rows.append(["failures", str(numbers["failures"])])
+    return ["quantity", "value"], rows
+
+
+def compose(result: Any, figures: dict[str, str] | None = None) -> Review:
+    """The review of a build result (``geargen.pipeline.BuildResult``, read by attribute);
+    ``figures``: figure key (``"render"``, ``"layout"``, ``"preload_diagram"``) -> the PNG's
+    path relative to the report."""
+    figures = figures or {}
     import math
 
     from geargen.units import LENGTH_SUFFIXES
@@ -228,6 +285,8 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
     scale = LENGTH_SUFFIXES[unit]
     status = "PASS" if result.ok else "FAILING"
     r = Review(f"{design.name}: design review", status)
+    r.h("Key numbers")
+    r.table(*key_numbers_table(key_numbers(result)))
     r.p(design.description or design.name)
     r.p(f"Design file {design.path.name if design.path else '-'}, sha256 {design.sha256}. Lengths in {unit} "
         f"unless marked; the model frame has the output gear's centre at the origin, +x along the symmetry line "
@@ -244,8 +303,10 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
         r.table(["key", "value", "why"], [[d.key, d.value, d.why] for d in design.defaulted])
 
     r.h("Assembly")
-    r.img("Rendered view of the assembly (reference bodies translucent)", render_png)
-    r.img("Layout: gear circles, centres, lines of action, symmetry line, carriage travel", layout_png)
+    if "render" in figures:
+        r.figure("Rendered view of the assembly (reference bodies translucent)", figures["render"])
+    if "layout" in figures:
+        r.figure("Layout: gear circles, centres, lines of action, symmetry line, carriage travel", figures["layout"])
     if layout.ratio:
         ok = "exact and allowed" if layout.ratio["ok"] else "NOT one of the required ratios"
         req = ", ".join(f"{x}:1" for x in layout.ratio["required"]) or "none given"
@@ -268,9 +329,12 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
 
     run = layout.synthesis
     if run is not None:
-        from geargen.report.synthesis import appendix_table
+        from geargen.report.synthesis import appendix_sections
         r.h("Centre synthesis and error budget (Appendix layout)")
-        r.pre(appendix_table(run))
+        title, tables = appendix_sections(run)
+        r.p(title)
+        for header, rows in tables:
+            r.table(header, rows)
 
     r.h("Mesh checks")
     from geargen.model import BACKLASH_KIND
@@ -319,13 +383,16 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
 
     s = result.stiffness
     if s is not None:
-        from geargen.report.stiffness import format_summary, preload_diagram_figure
+        from geargen.report.stiffness import summary_tables
         r.h("Stiffness and preload")
-        r.pre(format_summary(s))
-        try:
-            r.img("Preload diagram (Fig. 6)", figure_png(preload_diagram_figure(s)))
-        except Exception as exc:  # the plot is an aid; the numbers are above
-            r.p(f"preload diagram not drawn: {exc}")
+        for title, header, rows in summary_tables(s):
+            r.h3(title)
+            if header:
+                r.table(header, rows)
+            else:
+                r.items([row[0] for row in rows])
+        if "preload_diagram" in figures:
+            r.figure("Preload diagram (Fig. 6)", figures["preload_diagram"])
 
     parts = getattr(result.parts, "parts", [])
     r.h("Parts")
@@ -336,7 +403,33 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
     return r
 
 
-def write_build_review(result: Any, folder: str | Path, render_png: bytes | None = None,
-                       layout_png: bytes | None = None) -> dict[str, Path]:
-    """Compose the review of a build and write report.md and report.html into ``folder``."""
-    return write_review(compose(result, render_png, layout_png), folder)
+def write_build_review(result: Any, folder: str | Path, view: Any = None, layout_figure: Any = None) -> dict[str, Path]:
+    """Write the build's figures (the rendered ``view``, a ``geargen.cad.render.RenderedView``; the
+    ``layout_figure``; the preload diagram) as ``figures/<name>.png`` and ``.svg``, then report.md
+    and report.html linking them, into ``folder``; returns ``{role: path}`` of every file written."""
+    from geargen.report.figures import save_figure
+    folder = Path(folder)
+    made = {}
+    if view is not None:
+        from geargen.report.view import view_figure
+        made["render"] = view_figure(view, result.design.length_unit)
+    if layout_figure is not None:
+        made["layout"] = layout_figure
+    notes = []
+    if result.stiffness is not None:
+        from geargen.report.stiffness import preload_diagram_figure
+        try:
+            made["preload_diagram"] = preload_diagram_figure(result.stiffness)
+        except Exception as exc:  # the plot is an aid; the numbers are in the tables
+            notes.append(f"preload diagram not drawn: {exc}")
+    files: dict[str, Path] = {}
+    links = {}
+    for name, fig in made.items():
+        for fmt, path in save_figure(fig, folder / FIGURE_FOLDER, name).items():
+            files[f"figure_{name}_{fmt}"] = path
+        links[name] = f"{FIGURE_FOLDER}/{name}.png"
+    review = compose(result, links)
+    for n in notes:
+        review.p(n)
+    files.update(write_review(review, folder))
+    return files

@@ -171,6 +171,90 @@ def format_summary(s: StiffnessSummary, loop_error_note: str = "") -> str:
     return "\n".join(lines)
 
 
+def summary_tables(s: StiffnessSummary) -> list[tuple[str, list[str] | None, list[list[str]]]]:
+    """The numbers of :func:`format_summary` as report tables: ``(title, header, rows)``; a
+    section without a ``header`` is a list of its lines (the hardware sections and the warnings,
+    taken from :func:`format_summary` itself so no number is formatted twice)."""
+    r = s.location_ratio
+    where = LOCATION_NAMES[s.location]
+    unit = s.length_unit
+    per_unit = LENGTH_SUFFIXES[unit]
+    d = s.drive_at()
+    out = []
+    rows = []
+    same = [c.name for c in s.path1.components] == [c.name for c in s.path2.components]
+    for p in ((s.path1,) if same else (s.path1, s.path2)) + ((s.common,) if s.common.components else ()):
+        title = "path 1 = path 2" if same and p is s.path1 else p.name
+        if p is s.common:
+            title = "common (in series with the drive)"
+        rows.append([title, "", _g(p.stiffness * NM / r ** 2, 6), ""])
+        shares = p.compliance_shares()
+        for c in p.components:
+            local = f"{_g(c.local, 5)} {c.local_unit}" + (f" at r={c.radius:.4g} mm" if c.radius else "")
+            rows.append([c.name, local, _g(c.at_output * NM / r ** 2, 6), f"{100 * shares[c.name]:.1f} %"])
+    out.append((f"Paths (components in series; N·m/rad as {where}"
+                + ("" if r == 1 else f", ratio {r:.6g} to the output") + ")",
+                ["component", "local stiffness", "N·m/rad", "share of compliance"], rows))
+    eq = "Eq. 5" if s.drive_type == "type2" else "Eq. 2"
+    t_lo, t_hi = d.unloading_torques
+    r_lo, r_hi = d.unloading_rotations
+    beyond = "the loaded path alone" if s.drive_type == "type1" else "the loaded path in series with k3"
+    rows = [[f"k_D ({eq}, both paths loaded)", f"{_g(d.drive_stiffness * NM, 6)} N·m/rad"]]
+    if s.common.components:
+        rows.append(["with the common parts in series", f"{_g(s.drive_stiffness_with_common * NM / r ** 2, 6)} N·m/rad"])
+    rows += [["a path unloads at", f"{_g(t_lo * NM)} / +{_g(t_hi * NM)} N·m ({_g(r_lo * URAD)} / +{_g(r_hi * URAD)} µrad)"],
+             [f"beyond it ({beyond})", f"{_g(d.stiffness_beyond(-1) * NM)} / {_g(d.stiffness_beyond(+1) * NM)} N·m/rad"]]
+    out.append((f"Drive ({s.drive_type}, {s.preload_method or 'no'} preload)", ["quantity", "value"], rows))
+    rows = []
+    if s.preload_spring is not None:
+        ps = s.preload_spring
+        parts = ", ".join(f"{n} {_g(k)} N/mm" for n, k in ps.linear_parts)
+        parts += "".join(f", {n} {_g(k * NM)} N·m/rad" for n, k in ps.torsional_parts)
+        rows.append(["k3, preload spring", f"{_g(d.k3 * NM, 5)} N·m/rad"
+                     + (f" = {_g(ps.linear_stiffness)} N/mm at the carriage ({parts})" if s.lever else f" ({parts})")])
+        if s.lever:
+            rows.append(["preload lever", f"{_g(s.lever * 1e3, 5)} mrad of output rotation of each path per mm of carriage"])
+    eq = "Eq. 6" if s.drive_type == "type2" else "Eq. 3"
+    ratio_eq = "Eq. 4" if s.drive_type != "type2" else "Eq. 5 / Eq. 6"
+    rows += [[f"k_L ({eq})", f"{_g(d.loop_stiffness * NM, 5)} N·m/rad"],
+             [f"k_D / k_L ({ratio_eq})", _g(d.stiffness_ratio, 5)]]
+    out.append(("Loop", ["quantity", "value"], rows))
+    rule = "half the maximum load" if s.drive_type == "type2" else "the maximum load"
+    ok = "meets the recommendation" if s.preload_ok else "BELOW the recommendation"
+    rows = [["maximum drive torque", f"{_g(s.max_output_torque * NM)} N·m"],
+            [f"required (paper: {rule})", f"{_g(s.required_preload * NM)} N·m"],
+            ["required (two-path model)", f"{_g(s.preload_to_carry * NM)} N·m"],
+            ["set", f"{_g(s.drive.preload * NM)} N·m from {s.preload_source}: {ok}"]]
+    if s.carriage_force is not None:
+        rows.append(["carriage force", f"{_g(s.carriage_force)} N"])
+    out.append(("Preload (torque each path carries at zero drive torque, at the output)", ["quantity", "value"], rows))
+    if s.variations:
+        rows = []
+        for v in s.variations:
+            travel = "-" if v.carriage_travel is None else f"{v.carriage_travel / per_unit:.5g} {unit} ({v.carriage_travel * 1e3:.4g} µm)"
+            force = "-" if s.lever is None else f"±{float(carriage_force(v.range, s.lever)) / 2:.3g} N"
+            mark = " (headline)" if v.label == s.headline_budget and len(s.variations) > 1 else ""
+            rows.append([v.label + mark, travel, f"{v.loop_error * URAD:.4g}", f"{v.low * NM:.4g} .. {v.high * NM:.4g}",
+                         f"{100 * v.relative:.2f} %", force])
+        out.append(("Preload variation from loop errors (peak-to-peak)",
+                    ["budget", "carriage travel", "loop error (µrad)", "preload band (N·m)", "change p-p",
+                     "carriage force"], rows))
+    else:
+        out.append(("Preload variation from loop errors (peak-to-peak)", None, [["no loop error given"]]))
+    # the hardware sections and the warnings: the text summary's own paragraphs after the variation's
+    paragraphs = format_summary(s).split("\n\n")
+    start = next(i for i, par in enumerate(paragraphs) if par.startswith("Preload variation")) + 1
+    for par in paragraphs[start:]:
+        lines = [ln.strip().removeprefix("- ") for ln in par.splitlines() if ln.strip()]
+        if not lines:
+            continue
+        if lines[0] == "Warnings" or lines[0] == "No warnings.":
+            out.append(("Warnings", None, [[ln] for ln in lines[1:]] or [["none"]]))
+        else:
+            out.append((lines[0].split(":")[0], None, [[ln] for ln in lines]))
+    return out
+
+
 # ----------------------------------------------------------------------------------------------
 # Plots
 
@@ -377,6 +461,6 @@ def write_stiffness_plots(s: StiffnessSummary, out_dir: str | Path) -> dict[str,
     return written
 
 
-__all__ = ["format_summary", "preload_diagram_figure", "torque_deflection_figure", "preload_band_figure",
+__all__ = ["format_summary", "summary_tables", "preload_diagram_figure", "torque_deflection_figure", "preload_band_figure",
            "plot_preload_diagram", "plot_torque_deflection", "plot_preload_band",
            "write_stiffness_plots"]

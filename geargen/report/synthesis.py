@@ -45,69 +45,90 @@ def fixed(value: float, decimals: int) -> str:
 _LABEL, _UNIT, _CELL = 20, 16, 11
 
 
+def _cells(label: str, unit: str, cells=()) -> tuple[str, ...]:
+    return (label, unit, *cells)
+
+
 def _row(label: str, unit: str, cells=()) -> str:
     return (f"{label:<{_LABEL}}{unit:<{_UNIT}}" + "".join(f"{c:>{_CELL}}" for c in cells)).rstrip()
 
 
-def appendix_table(run: SynthesisRun) -> str:
-    """The Appendix's "Error Analysis and Center Location Program", for any dual-pinion design."""
+def appendix_sections(run: SynthesisRun) -> tuple[str, list[tuple[list[str], list[list[str]]]]]:
+    """The Appendix's "Error Analysis and Center Location Program", for any dual-pinion design:
+    its title and its two tables (gears; meshes and the synthesis), each ``(header, rows)``. A
+    row is ``[description, symbol/unit, value...]``; a row of one cell is a caption inside the
+    table (the Appendix's sub-headings and notes)."""
     u = run.length_unit
     inp, s, b = run.inputs, run.synthesis, run.budget
     L = run.length
-    lines = [f"Error Analysis and Center Location Program: {run.design_name} (lengths in {u})", "",
-             _row("Description", "Symbol/Unit", ["Gear 1", "Gear 2", "Gear 3", "Gear 4"]),
-             "General Information",
-             _row("No. of Teeth", "N", [str(z) for z in inp.teeth])]
+    title = f"Error Analysis and Center Location Program: {run.design_name} (lengths in {u})"
+    lines = ["General Information",
+             _cells("No. of Teeth", "N", [str(z) for z in inp.teeth])]
     modules = (inp.module_mesh1, inp.module_mesh1, inp.module_mesh2, inp.module_mesh2)
     alphas = (inp.pressure_angle_mesh1,) * 2 + (inp.pressure_angle_mesh2,) * 2
     if u == "in":
-        lines.append(_row("Diametral Pitch", "P", [f"{MM_PER_IN / m:.6g}" for m in modules]))
+        lines.append(_cells("Diametral Pitch", "P", [f"{MM_PER_IN / m:.6g}" for m in modules]))
     else:
-        lines.append(_row("Module", "m (mm)", [f"{m:.6g}" for m in modules]))
-    lines.append(_row("Pressure Angle", "Ø (deg)", [f"{math.degrees(a):.6g}" for a in alphas]))
-    lines.append(_row("Pitch Circle Dia.", f"D ({u})", [f"{L(2 * inp.reference_radius(k)):.6g}" for k in (1, 2, 3, 4)]))
+        lines.append(_cells("Module", "m (mm)", [f"{m:.6g}" for m in modules]))
+    lines.append(_cells("Pressure Angle", "Ø (deg)", [f"{math.degrees(a):.6g}" for a in alphas]))
+    lines.append(_cells("Pitch Circle Dia.", f"D ({u})", [f"{L(2 * inp.reference_radius(k)):.6g}" for k in (1, 2, 3, 4)]))
     if run.errors is not None and b is not None:
         lines.append("Error Information")
         for label, kind in zip(("Bearing Eccentr.", "Pitch Line Eccen", "Tooth To Tooth"), ERROR_KINDS):
-            lines.append(_row(label, f"({u} t.i.r.)", [fixed(L(getattr(e, kind)), 4) for e in run.errors]))
-        lines.append(_row("Total Error", f"({u} t.i.r.)", [fixed(L(t), 4) for t in b.total_tir]))
+            lines.append(_cells(label, f"({u} t.i.r.)", [fixed(L(getattr(e, kind)), 4) for e in run.errors]))
+        lines.append(_cells("Total Error", f"({u} t.i.r.)", [fixed(L(t), 4) for t in b.total_tir]))
         lines += ["Variation in x1 to accommodate errors.",
-                  _row("Δx1", f"({u})", [fixed(L(d), 4) for d in b.dx1]),
-                  _row("% of Sum", "", [fixed(p, 0) for p in b.percent_of_sum]),
-                  _row("% of RSS", "", [fixed(p, 0) for p in b.percent_of_rss]),
-                  _row("", "", ["Δx1", "ΔC1"]),
-                  _row("Sum", f"({u})", [fixed(L(b.dx1_sum), 4), fixed(L(b.dC1_sum), 4)]),
-                  _row("RSS", f"({u})", [fixed(L(b.dx1_rss), 4), fixed(L(b.dC1_rss), 4)]),
-                  _row("(Sum + RSS)/2", f"({u})", [fixed(L(b.dx1_mean), 4), fixed(L(b.dC1_mean), 4)])]
+                  _cells("Δx1", f"({u})", [fixed(L(d), 4) for d in b.dx1]),
+                  _cells("% of Sum", "", [fixed(p, 0) for p in b.percent_of_sum]),
+                  _cells("% of RSS", "", [fixed(p, 0) for p in b.percent_of_rss]),
+                  _cells("", "", ["Δx1", "ΔC1"]),
+                  _cells("Sum", f"({u})", [fixed(L(b.dx1_sum), 4), fixed(L(b.dC1_sum), 4)]),
+                  _cells("RSS", f"({u})", [fixed(L(b.dx1_rss), 4), fixed(L(b.dC1_rss), 4)]),
+                  _cells("(Sum + RSS)/2", f"({u})", [fixed(L(b.dx1_mean), 4), fixed(L(b.dC1_mean), 4)])]
     else:
         lines.append("Error Information: none (the design has no [errors.*] tables)")
-    lines += ["", _row("Description", "Symbol/Unit", ["Mesh 1", "Mesh 2"]), "Mesh Information",
-              _row("Center Distance", f"Cnom ({u})", [fixed(L(inp.centre_distance(m)), 4) for m in (1, 2)]),
-              _row("Backlash", f"Bmax ({u})", [fixed(L(inp.backlash(m, "max")), 4) for m in (1, 2)]),
-              _row("", f"Bmin ({u})", [fixed(L(inp.backlash(m, "min")), 4) for m in (1, 2)]),
-              _row("Ang. Backlash", "Ba.max (rad)", [fixed(s.angular_backlash(m, "max"), 4) for m in (1, 2)]),
-              _row("", "Ba.min (rad)", [fixed(s.angular_backlash(m, "min"), 4) for m in (1, 2)]),
-              _row("Mesh Ratio", "R", [fixed(s.ratio_mesh1, 4), fixed(s.ratio_mesh2, 4)]),
+    gears = lines
+    lines = ["Mesh Information",
+              _cells("Center Distance", f"Cnom ({u})", [fixed(L(inp.centre_distance(m)), 4) for m in (1, 2)]),
+              _cells("Backlash", f"Bmax ({u})", [fixed(L(inp.backlash(m, "max")), 4) for m in (1, 2)]),
+              _cells("", f"Bmin ({u})", [fixed(L(inp.backlash(m, "min")), 4) for m in (1, 2)]),
+              _cells("Ang. Backlash", "Ba.max (rad)", [fixed(s.angular_backlash(m, "max"), 4) for m in (1, 2)]),
+              _cells("", "Ba.min (rad)", [fixed(s.angular_backlash(m, "min"), 4) for m in (1, 2)]),
+              _cells("Mesh Ratio", "R", [fixed(s.ratio_mesh1, 4), fixed(s.ratio_mesh2, 4)]),
               "Synthesis of Gear Centers",
               "Calculate A2 and N for maximum backlash given A1 and center distances.",
-              _row("A1", "(rad)", [fixed(s.nominal_A1, 4)]),
-              _row("A2", "(rad)", [fixed(s.nominal_A2, 4)]),
-              _row("N", "", [fixed(s.nominal_teeth_count, 4)]),
+              _cells("A1", "(rad)", [fixed(s.nominal_A1, 4)]),
+              _cells("A2", "(rad)", [fixed(s.nominal_A2, 4)]),
+              _cells("N", "", [fixed(s.nominal_teeth_count, 4)]),
               f"Solve for A1 and A2 given N rounded ({inp.rounding}: i = {s.increments} half teeth).",
-              _row("N", "rounded", [f"{s.teeth_count:g}"]),
-              _row("A1", "(rad, deg)", [fixed(s.A1, 4), fixed(math.degrees(s.A1), 4)]),
-              _row("A2", "(rad, deg)", [fixed(s.A2, 4), fixed(math.degrees(s.A2), 4)]),
-              _row("error", "", [fixed(s.eq7_residual, 4)]),
+              _cells("N", "rounded", [f"{s.teeth_count:g}"]),
+              _cells("A1", "(rad, deg)", [fixed(s.A1, 4), fixed(math.degrees(s.A1), 4)]),
+              _cells("A2", "(rad, deg)", [fixed(s.A2, 4), fixed(math.degrees(s.A2), 4)]),
+              _cells("error", "", [fixed(s.eq7_residual, 4)]),
               "Center distance components",
-              _row("x1", f"({u})", [fixed(L(s.x1), 4)]),
-              _row("y1", f"({u})", [fixed(L(s.y1), 4)]),
-              _row("x2", f"({u})", [fixed(L(s.x2), 4)]),
-              _row("y2", f"({u})", [fixed(L(s.y2), 4)]),
+              _cells("x1", f"({u})", [fixed(L(s.x1), 4)]),
+              _cells("y1", f"({u})", [fixed(L(s.y1), 4)]),
+              _cells("x2", f"({u})", [fixed(L(s.x2), 4)]),
+              _cells("y2", f"({u})", [fixed(L(s.y2), 4)]),
               "Allow x1 to change to accommodate minimum backlash.",
-              _row("A1", "(rad, deg)", [fixed(s.min_backlash_A1, 4), fixed(math.degrees(s.min_backlash_A1), 4)]),
-              _row("C1", f"({u})", [fixed(L(s.min_backlash_C1), 4)]),
-              _row("x1", f"({u})", [fixed(L(s.min_backlash_x1), 4)]),
-              _row("Δx1", f"({u})", [fixed(L(s.min_backlash_dx1), 4)])]
+              _cells("A1", "(rad, deg)", [fixed(s.min_backlash_A1, 4), fixed(math.degrees(s.min_backlash_A1), 4)]),
+              _cells("C1", f"({u})", [fixed(L(s.min_backlash_C1), 4)]),
+              _cells("x1", f"({u})", [fixed(L(s.min_backlash_x1), 4)]),
+              _cells("Δx1", f"({u})", [fixed(L(s.min_backlash_dx1), 4)])]
+
+    def rows(items):
+        return [list(item) if isinstance(item, tuple) else [item] for item in items]
+    return title, [(["Description", "Symbol/Unit", "Gear 1", "Gear 2", "Gear 3", "Gear 4"], rows(gears)),
+                   (["Description", "Symbol/Unit", "Mesh 1", "Mesh 2"], rows(lines))]
+
+
+def appendix_table(run: SynthesisRun) -> str:
+    """:func:`appendix_sections` as the Appendix's fixed-width text."""
+    title, tables = appendix_sections(run)
+    lines = [title]
+    for header, rows in tables:
+        lines += ["", _row(header[0], header[1], header[2:])]
+        lines += [_row(r[0], r[1], r[2:]) if len(r) > 1 else r[0] for r in rows]
     return "\n".join(lines)
 
 
@@ -361,5 +382,5 @@ def histogram_png(run: SynthesisRun, path: str | Path, bins: int = 80) -> Path:
     return save_png(fig, path)
 
 
-__all__ = ["SynthesisRun", "fixed", "appendix_table", "beyond_table", "monte_carlo_table", "sensitivity_tables",
+__all__ = ["SynthesisRun", "fixed", "appendix_sections", "appendix_table", "beyond_table", "monte_carlo_table", "sensitivity_tables",
            "text_report", "synthesis_json", "write_json", "histogram_png", "PHASE_CONVENTION", "SCHEMA"]

@@ -1,0 +1,184 @@
+"""Placing annotation labels without overlap: the one placement step of the report's figures.
+
+Each label is tried at candidate positions around its anchor (nearest first, in rings of
+growing radius); a candidate's box is the text's drawn extent (matplotlib's renderer,
+``get_window_extent``), and the first candidate wins whose box stays inside the axes and meets
+no box placed before it and no obstacle: a circle outline crossing the box, a line segment
+crossing it, or a region it should not cover. When no candidate is free the one with the
+fewest conflicts is kept (text overlaps and circle crossings count before the rest). A label
+moved away from its anchor gets a leader line.
+
+Obstacles are given in data coordinates and tested in display pixels, after the axes' limits
+are final (the caller sets them before placing).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+PAD_PX = 2.0  # clearance kept around every text box
+RINGS_PT = (5, 14, 26, 40, 58, 80, 105, 135, 170)
+DIRECTIONS = 16
+
+
+@dataclass
+class Obstacles:
+    """What labels must keep clear of, in data coordinates: circle outlines ``(x, y, r)``, line
+    segments ``((x0, y0), (x1, y1))`` and boxes ``(x0, y0, x1, y1)`` (e.g. the picture of a part)."""
+
+    circles: list[tuple[float, float, float]] = field(default_factory=list)
+    segments: list[tuple[tuple[float, float], tuple[float, float]]] = field(default_factory=list)
+    boxes: list[tuple[float, float, float, float]] = field(default_factory=list)
+
+
+def circle_crosses_box(centre, radius: float, box) -> bool:
+    """Whether the circle outline of ``radius`` about ``centre`` passes through ``box``
+    ``(x0, y0, x1, y1)``: the box's nearest point lies inside the circle and its farthest outside."""
+    x0, y0, x1, y1 = box
+    cx, cy = centre
+    near = math.hypot(min(max(cx, x0), x1) - cx, min(max(cy, y0), y1) - cy)
+    far = max(math.hypot(x - cx, y - cy) for x in (x0, x1) for y in (y0, y1))
+    return near <= radius <= far
+
+
+def segment_crosses_box(p, q, box) -> bool:
+    """Whether the segment ``p``-``q`` meets ``box`` ``(x0, y0, x1, y1)`` (Liang-Barsky clipping)."""
+    x0, y0, x1, y1 = box
+    t0, t1 = 0.0, 1.0
+    dx, dy = q[0] - p[0], q[1] - p[1]
+    for d, lo, hi, s in ((dx, x0, x1, p[0]), (dy, y0, y1, p[1])):
+        if abs(d) < 1e-12:
+            if s < lo or s > hi:
+                return False
+            continue
+        a, b = (lo - s) / d, (hi - s) / d
+        a, b = min(a, b), max(a, b)
+        t0, t1 = max(t0, a), min(t1, b)
+        if t0 > t1:
+            return False
+    return True
+
+
+def boxes_overlap(a, b) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+def _display_box(extent) -> tuple[float, float, float, float]:
+    return (extent.x0 - PAD_PX, extent.y0 - PAD_PX, extent.x1 + PAD_PX, extent.y1 + PAD_PX)
+
+
+def _candidates():
+    yield 0.0, 0.0, 0
+    for ring, radius in enumerate(RINGS_PT):
+        for k in range(DIRECTIONS):
+            angle = 2 * math.pi * k / DIRECTIONS + math.pi / 4  # up-right first
+            yield radius * math.cos(angle), radius * math.sin(angle), ring + 1
+
+
+def _alignment(dx: float, dy: float) -> tuple[str, str]:
+    ha = "left" if dx > 1e-9 else "right" if dx < -1e-9 else "center"
+    va = "bottom" if dy > 1e-9 else "top" if dy < -1e-9 else "center"
+    return ha, va
+
+
+def _box_at(anchor_px, size, dx_px: float, dy_px: float) -> tuple[float, float, float, float]:
+    """The display box of a text of ``size`` (w, h) set at ``anchor_px`` + offset, aligned as
+    :func:`_alignment` aligns it, with :data:`PAD_PX` around it."""
+    w, h = size
+    ha, va = _alignment(dx_px, dy_px)
+    x = anchor_px[0] + dx_px
+    y = anchor_px[1] + dy_px
+    x0 = x if ha == "left" else x - w if ha == "right" else x - w / 2
+    y0 = y if va == "bottom" else y - h if va == "top" else y - h / 2
+    return (x0 - PAD_PX, y0 - PAD_PX, x0 + w + PAD_PX, y0 + h + PAD_PX)
+
+
+def _overlaps_any(box, boxes: np.ndarray) -> int:
+    if not len(boxes):
+        return 0
+    return int(np.count_nonzero((boxes[:, 0] < box[2]) & (box[0] < boxes[:, 2]) &
+                                (boxes[:, 1] < box[3]) & (box[1] < boxes[:, 3])))
+
+
+def _circles_crossing(box, circles: np.ndarray) -> int:
+    if not len(circles):
+        return 0
+    cx, cy, r = circles[:, 0], circles[:, 1], circles[:, 2]
+    near = np.hypot(np.clip(cx, box[0], box[2]) - cx, np.clip(cy, box[1], box[3]) - cy)
+    far = np.max([np.hypot(x - cx, y - cy) for x in (box[0], box[2]) for y in (box[1], box[3])], axis=0)
+    return int(np.count_nonzero((near <= r) & (r <= far)))
+
+
+def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | None = None,
+                 leader_from_ring: int = 2, leader_colour: str = "0.35") -> list:
+    """Add ``labels`` (``(text, (x, y) anchor in data coordinates, text keyword arguments)``) to
+    ``ax``, each at its first free candidate position; returns the text artists.
+
+    Each text is drawn once to measure it; its box at every candidate follows from that size.
+    ``placed``: display boxes ``(x0, y0, x1, y1)`` already taken (e.g. other text); the boxes of
+    the labels placed here are appended. A label set at the ``leader_from_ring``-th ring or
+    farther gets a leader line to its anchor.
+    """
+    fig = ax.figure
+    renderer = fig.canvas.get_renderer()
+    obstacles = obstacles or Obstacles()
+    to_px = ax.transData.transform
+    px_per_pt = fig.dpi / 72.0
+    circles = np.array([(*to_px((x, y)), abs(to_px((x + r, y))[0] - to_px((x, y))[0]))
+                        for x, y, r in obstacles.circles]).reshape(-1, 3)
+    segments = [(tuple(to_px(p)), tuple(to_px(q))) for p, q in obstacles.segments]
+    regions = []
+    for x0, y0, x1, y1 in obstacles.boxes:
+        (a, b), (c, d) = to_px((x0, y0)), to_px((x1, y1))
+        regions.append((min(a, c), min(b, d), max(a, c), max(b, d)))
+    regions = np.array(regions).reshape(-1, 4)
+    frame = ax.get_window_extent(renderer)
+    placed = placed if placed is not None else []
+    artists = []
+    for text, anchor, style in labels:
+        probe = ax.annotate(text, anchor, ha="center", va="center", annotation_clip=False, **style)
+        extent = probe.get_window_extent(renderer)
+        probe.remove()
+        size = (extent.width, extent.height)
+        anchor_px = to_px(anchor)
+        taken = np.array(placed).reshape(-1, 4)
+        best = None
+        for dx, dy, ring in _candidates():
+            box = _box_at(anchor_px, size, dx * px_per_pt, dy * px_per_pt)
+            outside = not (box[0] >= frame.x0 and box[1] >= frame.y0 and box[2] <= frame.x1 and box[3] <= frame.y1)
+            hard = _overlaps_any(box, taken) + _circles_crossing(box, circles) + outside
+            soft = sum(segment_crosses_box(p, q, box) for p, q in segments) + _overlaps_any(box, regions)
+            score = (hard, soft, ring)
+            if best is None or score < best[0]:
+                best = (score, box, dx, dy, ring)
+            if score[:2] == (0, 0):
+                break
+        score, box, dx, dy, ring = best
+        ha, va = _alignment(dx, dy)
+        leader = dict(arrowprops=dict(arrowstyle="-", color=leader_colour, lw=0.6, shrinkA=1, shrinkB=0)) \
+            if ring >= leader_from_ring else {}
+        artist = ax.annotate(text, anchor, xytext=(dx, dy), textcoords="offset points", ha=ha, va=va,
+                             annotation_clip=False, **leader, **style)
+        placed.append(box)
+        artists.append(artist)
+    return artists
+
+
+def text_boxes(fig) -> list[tuple[str, tuple[float, float, float, float]]]:
+    """Every visible, non-empty text of ``fig`` with its drawn display box ``(x0, y0, x1, y1)``
+    (for tests and for callers that place around existing text)."""
+    renderer = fig.canvas.get_renderer()
+    out = []
+    for t in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "get_window_extent")):
+        if not t.get_visible() or not t.get_text().strip():
+            continue
+        e = t.get_window_extent(renderer)
+        if e.width > 0 and e.height > 0 and np.all(np.isfinite([e.x0, e.y0, e.x1, e.y1])):
+            out.append((t.get_text(), (e.x0, e.y0, e.x1, e.y1)))
+    return out
+
+
+__all__ = ["Obstacles", "place_labels", "text_boxes", "circle_crosses_box", "segment_crosses_box", "boxes_overlap"]

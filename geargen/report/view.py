@@ -1,0 +1,108 @@
+"""The rendered view of an assembly as a figure: the rasterised picture, part labels on leader
+lines, a scale bar in the design's length unit and an axis triad.
+
+Input is a rasterised view read by attribute (``geargen.cad.render.RenderedView``: image, which
+part each pixel shows, the view's extent in mm and its basis); this module only draws it
+(matplotlib, Agg canvas, no pyplot), so the report layer never loads the CAD kernel.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from geargen.units import LENGTH_SUFFIXES
+
+MIN_LABEL_PIXELS = 150  # parts showing fewer pixels than this are too small to point at
+
+
+def nice_length(limit: float) -> float:
+    """The largest 1, 2 or 5 times a power of ten not above ``limit`` (> 0)."""
+    power = 10.0 ** math.floor(math.log10(limit))
+    return max(m * power for m in (1.0, 2.0, 5.0) if m * power <= limit * (1 + 1e-12))
+
+
+def part_anchors(view, min_pixels: int = MIN_LABEL_PIXELS) -> list[tuple[str, tuple[float, float]]]:
+    """One anchor per part name shown on at least ``min_pixels`` pixels, in view coordinates (mm):
+    the visible pixel of that part nearest the centroid of its visible pixels (on the part even
+    when the part is a ring)."""
+    index = view.part_index
+    out = []
+    for k, name in enumerate(view.names):
+        rows, cols = np.nonzero(index == k)
+        if rows.size < min_pixels:
+            continue
+        r0, c0 = rows.mean(), cols.mean()
+        i = int(np.argmin((rows - r0) ** 2 + (cols - c0) ** 2))
+        x, y = view.to_view(rows[i:i + 1], cols[i:i + 1])[0]
+        out.append((name, (float(x), float(y))))
+    return out
+
+
+def view_figure(view, length_unit: str = "mm", labels: list[tuple[str, str]] | None = None, dpi: int = 110):
+    """The figure of ``view`` (``RenderedView``). ``labels``: ``(part name, text)`` of the parts to
+    label (default: every part large enough, by its name); each label sits on a leader line from
+    a visible pixel of its part, placed by :func:`geargen.report.labels.place_labels` clear of
+    the other labels and, where it can, of the picture."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    from geargen.report.labels import Obstacles, place_labels
+
+    h, w = view.image.shape[:2]
+    fig = Figure(figsize=(w / dpi, h / dpi + (0.3 if view.title else 0.0)), dpi=dpi)
+    FigureCanvasAgg(fig)
+    ax = fig.add_axes((0, 0, 1, h / (h + (0.3 * dpi if view.title else 0.0))))
+    left, right, bottom, top = view.extent
+    ax.imshow(view.image, extent=view.extent, interpolation="nearest", origin="upper")
+    ax.set_xlim(left, right)
+    ax.set_ylim(bottom, top)
+    ax.set_aspect("equal")
+    ax.axis("off")
+    if view.title:
+        fig.suptitle(view.title, fontsize=11)
+    width_mm = right - left
+    scale = LENGTH_SUFFIXES[length_unit]
+    # scale bar: a round length near a fifth of the picture, bottom left
+    bar = nice_length(0.2 * width_mm / scale)
+    x0, y0 = left + 0.03 * width_mm, bottom + 0.04 * (top - bottom)
+    ax.plot([x0, x0 + bar * scale], [y0, y0], color="k", lw=2.5, solid_capstyle="butt")
+    ax.text(x0 + bar * scale / 2, y0 + 0.012 * width_mm, f"{bar:g} {length_unit}", ha="center", va="bottom",
+            fontsize=8)
+    # axis triad: the model's x, y, z seen along the view, bottom right
+    origin = np.array([right - 0.07 * width_mm, bottom + 0.09 * (top - bottom)])
+    arm = 0.045 * width_mm
+    for axis, colour, name in ((0, "tab:red", "x"), (1, "tab:green", "y"), (2, "tab:blue", "z")):
+        d = view.basis[:2, axis] * arm  # the model axis' components along the view's right and up
+        ax.annotate("", origin + d, origin, arrowprops=dict(arrowstyle="-|>", color=colour, lw=1.2, shrinkA=0,
+                                                             shrinkB=0))
+        ax.text(*(origin + 1.25 * d), name, color=colour, fontsize=8, ha="center", va="center")
+    fig.canvas.draw()
+    taken = [(e.x0, e.y0, e.x1, e.y1) for e in (t.get_window_extent() for t in ax.texts)]
+    anchors = dict(part_anchors(view))
+    wanted = labels if labels is not None else [(n, n) for n in anchors]
+    todo = [(text, anchors[name], dict(fontsize=7, color="0.1",
+                                       bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="0.6", lw=0.4, alpha=0.85)))
+            for name, text in wanted if name in anchors]
+    covered = view.part_index >= 0
+    obstacles = Obstacles(boxes=_picture_boxes(view, covered))
+    place_labels(ax, todo, obstacles, placed=taken, leader_from_ring=1)
+    return fig
+
+
+def _picture_boxes(view, covered: np.ndarray, cells: int = 24) -> list[tuple[float, float, float, float]]:
+    """The picture's footprint as boxes (mm) of a coarse grid: cells mostly covered by parts."""
+    h, w = covered.shape
+    s = view.mm_per_pixel
+    left, top = view.extent[0], view.extent[3]
+    step = max(h, w) // cells or 1
+    out = []
+    for r in range(0, h, step):
+        for c in range(0, w, step):
+            if covered[r:r + step, c:c + step].mean() > 0.5:
+                out.append((left + c * s, top - (r + step) * s, left + (c + step) * s, top - r * s))
+    return out
+
+
+__all__ = ["view_figure", "part_anchors", "nice_length"]
