@@ -64,7 +64,8 @@ def test_build_writes_everything_with_a_manifest(built_assemblies, name):
         for f in info["files"]:
             assert f in m["files"] and (folder / f).exists()
     html = (folder / "report.html").read_text()
-    assert html.count("data:image/png;base64,") >= 3  # render, layout, preload diagram
+    for figure in ("render", "layout", "preload_diagram"):  # linked files, listed in the manifest
+        assert f"src='figures/{figure}.png'" in html and f"figures/{figure}.svg" in m["files"]
     assert not list(folder.parent.glob(".*"))  # the temporary build folder is gone
 
 

@@ -18,7 +18,7 @@ axis triad. matplotlib is not needed here.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Iterable
 
 import numpy as np
@@ -56,6 +56,7 @@ class RenderedView:
     extent: tuple[float, float, float, float]
     basis: np.ndarray
     title: str = ""
+    kinds: list[str] = field(default_factory=list)  # each part's kind (its colour key), when known
 
     @property
     def mm_per_pixel(self) -> float:
@@ -93,7 +94,9 @@ def render_parts(parts: Iterable, view=(-60.0, 30.0), size=(9.0, 6.5), dpi: int 
         if tri is None:
             tri = part_triangles(p, extent / detail)
         items.append((p.name, tri, p.colour))
-    return rasterise(items, view, (round(size[0] * dpi), round(size[1] * dpi)), title)
+    out = rasterise(items, view, (round(size[0] * dpi), round(size[1] * dpi)), title)
+    out.kinds = [p.kind for p in parts]
+    return out
 
 
 def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5) -> np.ndarray:

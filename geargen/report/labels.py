@@ -140,7 +140,7 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
     artists = []
     for text, anchor, style in labels:
         probe = ax.annotate(text, anchor, ha="center", va="center", annotation_clip=False, **style)
-        extent = probe.get_window_extent(renderer)
+        extent = text_extent(probe, renderer)
         probe.remove()
         size = (extent.width, extent.height)
         anchor_px = to_px(anchor)
@@ -167,18 +167,26 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
     return artists
 
 
+def text_extent(text, renderer=None):
+    """The drawn extent of a text artist's text alone (an annotation's own extent includes its
+    leader line)."""
+    from matplotlib.text import Text
+    return Text.get_window_extent(text, renderer or text.figure.canvas.get_renderer())
+
+
 def text_boxes(fig) -> list[tuple[str, tuple[float, float, float, float]]]:
     """Every visible, non-empty text of ``fig`` with its drawn display box ``(x0, y0, x1, y1)``
     (for tests and for callers that place around existing text)."""
+    from matplotlib.text import Text
     renderer = fig.canvas.get_renderer()
     out = []
-    for t in fig.findobj(lambda a: hasattr(a, "get_text") and hasattr(a, "get_window_extent")):
+    for t in fig.findobj(lambda a: isinstance(a, Text)):
         if not t.get_visible() or not t.get_text().strip():
             continue
-        e = t.get_window_extent(renderer)
+        e = text_extent(t, renderer)
         if e.width > 0 and e.height > 0 and np.all(np.isfinite([e.x0, e.y0, e.x1, e.y1])):
             out.append((t.get_text(), (e.x0, e.y0, e.x1, e.y1)))
     return out
 
 
-__all__ = ["Obstacles", "place_labels", "text_boxes", "circle_crosses_box", "segment_crosses_box", "boxes_overlap"]
+__all__ = ["Obstacles", "place_labels", "text_boxes", "text_extent", "circle_crosses_box", "segment_crosses_box", "boxes_overlap"]

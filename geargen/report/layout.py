@@ -166,7 +166,21 @@ def layout_figure(gears: list[LayoutGear], meshes: list[LayoutMesh], length_unit
     ax.set_ylim(ax.get_ylim())
     ax.set_autoscale_on(False)
     place_labels(ax, labels, obstacles)
+    _hide_colliding_ticks(ax)
     return fig
+
+
+def _hide_colliding_ticks(ax) -> None:
+    """Hide an x tick label that runs into a y tick label (at the axes' lower left corner when
+    both axes start at a tick)."""
+    from geargen.report.labels import boxes_overlap, text_extent
+    y_boxes = [(e.x0, e.y0, e.x1, e.y1) for e in (text_extent(t) for t in ax.get_yticklabels()
+                                                  if t.get_visible() and t.get_text())]
+    for t in ax.get_xticklabels():
+        if t.get_visible() and t.get_text():
+            e = text_extent(t)
+            if any(boxes_overlap((e.x0, e.y0, e.x1, e.y1), b) for b in y_boxes):
+                t.set_visible(False)
 
 
 def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | Path | None = None,

@@ -251,7 +251,8 @@ def summary_tables(s: StiffnessSummary) -> list[tuple[str, list[str] | None, lis
         if lines[0] == "Warnings" or lines[0] == "No warnings.":
             out.append(("Warnings", None, [[ln] for ln in lines[1:]] or [["none"]]))
         else:
-            out.append((lines[0].split(":")[0], None, [[ln] for ln in lines]))
+            title = lines[0].split(":")[0]
+            out.append((title, None, [[ln] for ln in (lines[1:] if title == lines[0] else lines)]))
     return out
 
 

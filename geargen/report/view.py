@@ -15,6 +15,7 @@ import numpy as np
 from geargen.units import LENGTH_SUFFIXES
 
 MIN_LABEL_PIXELS = 150  # parts showing fewer pixels than this are too small to point at
+UNLABELLED_KINDS = ("bearing", "shaft")  # many alike and named in the parts table: labels would crowd the view
 
 
 def nice_length(limit: float) -> float:
@@ -44,11 +45,12 @@ def view_figure(view, length_unit: str = "mm", labels: list[tuple[str, str]] | N
     """The figure of ``view`` (``RenderedView``). ``labels``: ``(part name, text)`` of the parts to
     label (default: every part large enough, by its name); each label sits on a leader line from
     a visible pixel of its part, placed by :func:`geargen.report.labels.place_labels` clear of
-    the other labels and, where it can, of the picture."""
+    the other labels and, where it can, of the picture. By default every part large enough is
+    labelled, except the kinds in :data:`UNLABELLED_KINDS`."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    from geargen.report.labels import Obstacles, place_labels
+    from geargen.report.labels import Obstacles, place_labels, text_boxes
 
     h, w = view.image.shape[:2]
     fig = Figure(figsize=(w / dpi, h / dpi + (0.3 if view.title else 0.0)), dpi=dpi)
@@ -79,9 +81,10 @@ def view_figure(view, length_unit: str = "mm", labels: list[tuple[str, str]] | N
                                                              shrinkB=0))
         ax.text(*(origin + 1.25 * d), name, color=colour, fontsize=8, ha="center", va="center")
     fig.canvas.draw()
-    taken = [(e.x0, e.y0, e.x1, e.y1) for e in (t.get_window_extent() for t in ax.texts)]
+    taken = [box for _, box in text_boxes(fig)]
     anchors = dict(part_anchors(view))
-    wanted = labels if labels is not None else [(n, n) for n in anchors]
+    kinds = dict(zip(view.names, view.kinds))
+    wanted = labels if labels is not None else [(n, n) for n in anchors if kinds.get(n) not in UNLABELLED_KINDS]
     todo = [(text, anchors[name], dict(fontsize=7, color="0.1",
                                        bbox=dict(boxstyle="round,pad=0.15", fc="white", ec="0.6", lw=0.4, alpha=0.85)))
             for name, text in wanted if name in anchors]

@@ -1,0 +1,276 @@
+"""The build's report a reviewer can reuse: figures as their own PNG and SVG files listed in the
+manifest, key numbers that are the commands' numbers, tables instead of text dumps, labels that
+overlap nothing, and a render that shows no part through another part's face."""
+
+import contextlib
+import io
+import json
+import re
+import shutil
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from geargen import pipeline as pl
+from geargen.cli import main
+from geargen.outputs import inspect_folder
+from geargen.report.labels import boxes_overlap, circle_crosses_box, text_boxes, text_extent
+
+ROOT = Path(__file__).resolve().parents[2]
+# the shipped assemblies `geargen build` makes (dual_motor.toml is a drive for `geargen train`, no layout)
+SHIPPED = [ROOT / "assemblies" / f"{n}.toml" for n in ("robot_joint", "c_axis", "split_pinion", "split_pinion_inch",
+                                                      "metric_dual_pinion")]
+
+
+# ---------------------------------------------------------------- labels of the layout drawing
+
+
+@pytest.mark.parametrize("design", SHIPPED, ids=lambda p: p.stem)
+def test_layout_drawing_texts_do_not_overlap_and_no_circle_crosses_a_label(design):
+    """Every drawn text box (labels, ticks, axis labels, title) against every other, and every
+    label box against every drawn circle outline, measured on the drawn figure itself (its
+    Circle patches and its renderer's text extents), not on the placement's own bookkeeping.
+    The drawing before the placement step failed both (robot joint: "symmetry line" over
+    "input 16 T"; "carriage travel" crossed by the cluster gears' circles)."""
+    from matplotlib.patches import Circle
+
+    fig = pl.layout_drawing(pl.place(pl.load(design)))
+    fig.canvas.draw()
+    boxes = text_boxes(fig)
+    assert len(boxes) >= 8
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            assert not boxes_overlap(boxes[i][1], boxes[j][1]), f"{boxes[i][0]!r} overlaps {boxes[j][0]!r}"
+    ax = fig.axes[0]
+    labels = [(t.get_text(), text_extent(t)) for t in ax.texts]
+    assert any("T" in text for text, _ in labels)
+    for patch in ax.patches:
+        if not isinstance(patch, Circle):
+            continue
+        centre = ax.transData.transform(patch.center)
+        radius = ax.transData.transform((patch.center[0] + patch.radius, patch.center[1]))[0] - centre[0]
+        for text, e in labels:
+            assert not circle_crosses_box(centre, radius, (e.x0, e.y0, e.x1, e.y1)), \
+                f"a circle of radius {patch.radius:.4g} crosses {text!r}"
+
+
+# ---------------------------------------------------------------- the render's depth order
+
+
+def _cylinder(radius, z0, z1, segments=24, centre=(0.0, 0.0)):
+    """Side triangles (outward normals) and top cap of a cylinder, ``(n, 3, 3)`` mm."""
+    a = np.linspace(0, 2 * np.pi, segments + 1)
+    ring = np.column_stack([centre[0] + radius * np.cos(a), centre[1] + radius * np.sin(a)])
+    tris = []
+    for k in range(segments):
+        p, q = ring[k], ring[k + 1]
+        lo_p, lo_q, hi_p, hi_q = (*p, z0), (*q, z0), (*p, z1), (*q, z1)
+        tris += [(lo_p, lo_q, hi_q), (lo_p, hi_q, hi_p)]
+        tris.append(((*centre, z1), hi_p, hi_q))
+    return np.array(tris, dtype=float)
+
+
+def _annulus(radii, z, segments=24):
+    """An annular face at height ``z`` facing +z, fanned between each pair of successive circles
+    of ``radii`` like a gear's end face around its bore, ``(n, 3, 3)`` mm."""
+    a = np.linspace(0, 2 * np.pi, segments + 1)
+    tris = []
+    for inner, outer in zip(radii[:-1], radii[1:]):
+        for k in range(segments):
+            i0, i1 = ((inner * np.cos(t), inner * np.sin(t), z) for t in a[k:k + 2])
+            o0, o1 = ((outer * np.cos(t), outer * np.sin(t), z) for t in a[k:k + 2])
+            tris += [(i0, o0, o1), (i0, o1, i1)]
+    return np.array(tris, dtype=float)
+
+
+def _upper_part_pixels(view, part, rim_z, top_z, radius, centre=(0.0, 0.0)):
+    """For ``part``, a cylinder about ``centre`` standing in another body up to ``rim_z``: the
+    pixels showing it, those of them outside the projection of its part between ``rim_z`` and
+    ``top_z`` (nothing below ``rim_z`` can be seen from above), and the pixels inside that
+    projection that do not show it (it hides everything behind it). 1.5 pixels of tolerance."""
+    from scipy.spatial import ConvexHull
+    a = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+    rim = np.array([(centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t), z) for z in (rim_z, top_z)
+                    for t in a])
+    hull = ConvexHull(rim @ view.basis[:2].T)
+    rows, cols = np.indices(view.part_index.shape)
+    signed = (view.to_view(rows.ravel(), cols.ravel()) @ hull.equations[:, :2].T + hull.equations[:, 2]).max(axis=1)
+    tol = 1.5 * view.mm_per_pixel
+    shows = view.part_index.ravel() == view.names.index(part)
+    return int(shows.sum()), int(np.count_nonzero(shows & (signed > tol))), int(np.count_nonzero(~shows & (signed < -tol)))
+
+
+def test_render_hides_the_part_of_a_cylinder_below_the_face_it_stands_in():
+    """A cylinder standing in the bore of an opaque annular face (a bearing in a gear), seen from
+    above: its part below the face cannot be seen, its part above hides what is behind it.
+    Drawing whole triangles sorted by their centroids (the render before) showed the side
+    triangles with two corners above the face over the face (a ring of spikes) and hid the
+    others' upper halves."""
+    from geargen.cad.render import rasterise
+    # a narrow first ring of small triangles round the bore, as a gear's end face has
+    face = _annulus((10.0, 13.0, 60.0), 0.0)
+    cylinder = _cylinder(10.0, -5.0, 15.0)
+    view = rasterise([("face", face, (0.3, 0.4, 0.8, 1.0)), ("cylinder", cylinder, (0.8, 0.2, 0.2, 1.0))],
+                     (-60.0, 30.0), (600, 450))
+    seen, outside, missing = _upper_part_pixels(view, "cylinder", 0.0, 15.0, 10.0)
+    assert seen > 2000
+    assert (outside, missing) == (0, 0)
+
+
+def test_render_blends_a_translucent_part_over_what_is_behind_it():
+    """A translucent plate (alpha 0.35) over an opaque one: the blend is the "over" operator
+    (0.35 of the front colour, 0.65 of the one behind), and the opaque colour is what the
+    pixels' part index reports."""
+    from geargen.cad.render import rasterise
+    square = np.array([[(-50, -50, 0), (50, -50, 0), (50, 50, 0)], [(-50, -50, 0), (50, 50, 0), (-50, 50, 0)]], float)
+    view = rasterise([("back", square, (1.0, 0.0, 0.0, 1.0)), ("glass", square + [0, 0, 10], (0.0, 0.0, 1.0, 0.35))],
+                     (0.0, 90.0 - 1e-6), (200, 200))
+    inner = view.image[60:140, 60:140].reshape(-1, 3)
+    shade = 0.35 + 0.65 * abs(np.array([0, 0, 1.0]) @ (view.basis.T @ np.array([-0.35, 0.45, 1.0])) /
+                               np.linalg.norm([-0.35, 0.45, 1.0]))
+    np.testing.assert_allclose(inner, np.tile([0.65 * shade, 0.0, 0.35 * shade], (len(inner), 1)), atol=1e-9)
+    assert np.all(view.part_index[60:140, 60:140] == 0)
+
+
+@pytest.mark.slow
+def test_render_of_the_split_pinion_shows_no_bearing_through_the_output_gear(built_assemblies):
+    """The artefact the issue reported, on the shipped design's exported meshes: the output
+    gear's upper bearing stands in the gear's bore; pixels showing it lie within the projection
+    of its part above the gear's top face."""
+    from geargen.cad.export import read_stl
+    from geargen.cad.render import rasterise
+    folder = built_assemblies["split_pinion"]
+    gear, bearing = read_stl(folder / "output.stl"), read_stl(folder / "output_bearing_upper.stl")
+    top = float(gear[:, :, 2].max())
+    points = bearing.reshape(-1, 3)
+    centre = points[:, :2].mean(axis=0)
+    radius = float(np.max(np.hypot(*(points[:, :2] - centre).T)))
+    assert points[:, 2].min() < top - 1.0 < top + 1.0 < points[:, 2].max()  # it does pass through the face
+    view = rasterise([("output", gear, (0.55, 0.6, 0.7, 1.0)), ("bearing", bearing, (0.2, 0.45, 0.3, 1.0))],
+                     (-60.0, 30.0), (990, 715))
+    seen, outside, missing = _upper_part_pixels(view, "bearing", top, float(points[:, 2].max()), radius, centre)
+    assert seen > 2000
+    assert (outside, missing) == (0, 0)
+
+
+def test_render_figure_has_labels_clear_of_each_other_a_scale_bar_and_a_triad():
+    """The view's figure: a label per part (bearings and shafts left to the parts table), no two
+    text boxes overlapping, the scale bar a round length in the design's unit drawn at its length."""
+    from geargen.cad.render import rasterise
+    from geargen.report.view import view_figure
+    plate = np.array([[(-60, -60, 0), (60, -60, 0), (60, 60, 0)], [(-60, -60, 0), (60, 60, 0), (-60, 60, 0)]], float)
+    view = rasterise([("plate", plate, (0.3, 0.4, 0.8, 1.0)), ("pin", _cylinder(10.0, -30.0, 15.0), (0.8, 0.2, 0.2, 1.0)),
+                      ("pin_bearing", _cylinder(14.0, 0.0, 4.0), (0.2, 0.45, 0.3, 1.0))], (-60.0, 30.0), (700, 500))
+    view.kinds = ["housing", "gear", "bearing"]
+    fig = view_figure(view, "in")
+    fig.canvas.draw()
+    texts = [t for t, _ in text_boxes(fig)]
+    assert "plate" in texts and "pin" in texts and "pin_bearing" not in texts
+    assert {"x", "y", "z"} <= set(texts)
+    boxes = text_boxes(fig)
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            assert not boxes_overlap(boxes[i][1], boxes[j][1]), (boxes[i][0], boxes[j][0])
+    bar = next(t for t in texts if t.endswith(" in"))
+    length_in = float(bar.split()[0])
+    ax = fig.axes[0]
+    line = next(ln for ln in ax.lines if ln.get_linewidth() == 2.5)
+    assert np.ptp(line.get_xdata()) == pytest.approx(length_in * 25.4)
+    assert length_in in (0.5, 1.0, 2.0)  # a round length near a fifth of the ~150 mm wide picture
+
+
+# ---------------------------------------------------------------- files, manifest, key numbers, tables
+
+
+@pytest.mark.slow
+def test_figures_are_files_linked_from_the_report_and_listed_in_the_manifest(built_assemblies, tmp_path):
+    folder = built_assemblies["robot_joint"]
+    manifest = json.loads((folder / "manifest.json").read_text())
+    html = (folder / "report.html").read_text()
+    md = (folder / "report.md").read_text()
+    assert "data:image" not in html and "data:image" not in md
+    assert (folder / "report.html").stat().st_size < 60_000  # was ~530 KB with the figures inside
+    for name in ("render", "layout", "preload_diagram"):
+        for fmt in ("png", "svg"):
+            rel = f"figures/{name}.{fmt}"
+            path = folder / rel
+            assert manifest["files"][rel]["bytes"] == path.stat().st_size > 10_000
+        assert f"src='figures/{name}.png'" in html and f"(figures/{name}.png)" in md
+        assert (folder / f"figures/{name}.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert ET.parse(folder / f"figures/{name}.svg").getroot().tag.endswith("svg")
+    state = inspect_folder(folder)
+    assert (state.kind, state.generator, state.unknown, state.changed) == ("output", "geargen build", [], [])
+    # a reviewer's change inside figures/ is seen like one at the top
+    copy = tmp_path / "copy"
+    shutil.copytree(folder, copy)
+    (copy / "figures/layout.svg").write_text("<svg xmlns='http://www.w3.org/2000/svg'/>")
+    (copy / "figures/mine.png").write_bytes(b"x")
+    (copy / "figures/notes").mkdir()
+    state = inspect_folder(copy)
+    assert state.changed == ["figures/layout.svg"]
+    assert state.unknown == ["figures/mine.png", "figures/notes"]
+
+
+def _run(argv) -> dict:
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(io.StringIO()):
+        assert main(argv) == 0
+    return json.loads(out.getvalue())
+
+
+@pytest.mark.slow
+def test_key_numbers_are_the_stiffness_and_check_commands_numbers(built_assemblies):
+    design = ROOT / "assemblies/robot_joint.toml"
+    folder = built_assemblies["robot_joint"]
+    numbers = json.loads((folder / "manifest.json").read_text())["key_numbers"]
+    stiffness = _run(["stiffness", str(design), "--json", "-", "--no-plots"])
+    check = _run(["check", str(design), "--json", "-"])
+    assert numbers["drive_stiffness_Nm_per_rad"] == pytest.approx(stiffness["drive"]["stiffness_Nm_per_rad"], rel=1e-12)
+    assert numbers["loop_stiffness_Nm_per_rad"] == pytest.approx(stiffness["loop"]["stiffness_Nm_per_rad"], rel=1e-12)
+    assert numbers["preload_Nm"] == pytest.approx(stiffness["preload"]["preload_Nm"], rel=1e-12)
+    head = next(v for v in stiffness["preload_variation"] if v["label"] == stiffness["headline_budget"])
+    assert numbers["preload_variation"]["range_Nm"] == pytest.approx(head["range_Nm"], rel=1e-12)
+    assert numbers["preload_variation"]["relative"] == pytest.approx(head["relative"], rel=1e-12)
+    worst = {t["mesh"]: t["worst_case_min_backlash"] for t in check["tolerances"]}
+    built = {b["mesh"]: b["min"] for b in check["backlash"]}
+    assert check["length_unit"] == numbers["length_unit"] == "in"
+    assert [m["mesh"] for m in numbers["meshes"]] == [b["mesh"] for b in check["backlash"] if b["engaged"]]
+    for m in numbers["meshes"]:
+        assert m["worst_case_min_backlash"] == pytest.approx(worst[m["mesh"]], rel=1e-9)
+        assert m["min_backlash"] == pytest.approx(built[m["mesh"]], rel=1e-12)
+    assert numbers["ratio"] == "30/15 x 16 = 32" or "32" in numbers["ratio"]
+    md = (folder / "report.md").read_text()
+    block = md.split("## Key numbers", 1)[1].split("\n## ", 1)[0]
+    assert f"| drive stiffness k_D (N·m/rad) | {numbers['drive_stiffness_Nm_per_rad']:.5g} |" in block
+    assert f"| loop stiffness k_L (N·m/rad) | {numbers['loop_stiffness_Nm_per_rad']:.5g} |" in block
+    assert f"| preload (N·m) | {numbers['preload_Nm']:.5g} |" in block
+    assert f"{head['range_Nm']:.4g} ({100 * head['relative']:.2f} %" in block
+    for m in numbers["meshes"]:
+        assert f"{worst[m['mesh']]:.5g} worst case" in block
+    assert f"| warnings | {numbers['warnings']} |" in block
+    assert md.index("## Key numbers") < md.index("## Warnings")
+
+
+_NUMBER = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+
+
+@pytest.mark.slow
+def test_synthesis_and_stiffness_are_tables_with_every_number_of_the_text(built_assemblies):
+    """Each number the text summaries print (``geargen stiffness``' summary and the Appendix
+    table of ``geargen synth``) is in the report, now in pipe tables, not fenced text."""
+    from geargen.report.stiffness import format_summary
+    from geargen.report.synthesis import appendix_table
+    design = ROOT / "assemblies/robot_joint.toml"
+    md = (built_assemblies["robot_joint"] / "report.md").read_text()
+    html = (built_assemblies["robot_joint"] / "report.html").read_text()
+    assert "```" not in md and "<pre>" not in html
+    assert "| Description | Symbol/Unit | Gear 1 | Gear 2 | Gear 3 | Gear 4 |" in md
+    assert "| component | local stiffness | N·m/rad | share of compliance |" in md
+    assert "<th>Symbol/Unit</th>" in html and "<th>share of compliance</th>" in html
+    layout = pl.place(pl.load(design))
+    in_report = set(_NUMBER.findall(md))
+    for text in (format_summary(pl.stiffness(layout)), appendix_table(layout.synthesis)):
+        missing = sorted(set(_NUMBER.findall(text)) - in_report)
+        assert not missing, missing
