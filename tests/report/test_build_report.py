@@ -85,21 +85,27 @@ def _annulus(radii, z, segments=24):
     return np.array(tris, dtype=float)
 
 
-def _upper_part_pixels(view, part, rim_z, top_z, radius, centre=(0.0, 0.0)):
-    """For ``part``, a cylinder about ``centre`` standing in another body up to ``rim_z``: the
-    pixels showing it, those of them outside the projection of its part between ``rim_z`` and
-    ``top_z`` (nothing below ``rim_z`` can be seen from above), and the pixels inside that
-    projection that do not show it (it hides everything behind it). 1.5 pixels of tolerance."""
+def _upper_part_pixels(view, part, rim_z, top_z, radius, centre=(0.0, 0.0), bore=0.0):
+    """For ``part``, a cylinder (or a ring of inner radius ``bore``) about ``centre`` standing in
+    or on another body up to ``rim_z``: the pixels showing it, those of them outside the
+    projection of its part between ``rim_z`` and ``top_z`` (nothing below ``rim_z`` can be seen
+    from above), and the pixels inside that projection, outside its bore's, that do not show it
+    (it hides everything behind it). 1.5 pixels of tolerance."""
     from scipy.spatial import ConvexHull
-    a = np.linspace(0, 2 * np.pi, 720, endpoint=False)
-    rim = np.array([(centre[0] + radius * np.cos(t), centre[1] + radius * np.sin(t), z) for z in (rim_z, top_z)
-                    for t in a])
-    hull = ConvexHull(rim @ view.basis[:2].T)
     rows, cols = np.indices(view.part_index.shape)
-    signed = (view.to_view(rows.ravel(), cols.ravel()) @ hull.equations[:, :2].T + hull.equations[:, 2]).max(axis=1)
+    at = view.to_view(rows.ravel(), cols.ravel())
+    a = np.linspace(0, 2 * np.pi, 720, endpoint=False)
+
+    def signed_distance(r):  # to the projection of the cylinder of radius r between rim_z and top_z
+        rim = np.array([(centre[0] + r * np.cos(t), centre[1] + r * np.sin(t), z) for z in (rim_z, top_z) for t in a])
+        hull = ConvexHull(rim @ view.basis[:2].T)
+        return (at @ hull.equations[:, :2].T + hull.equations[:, 2]).max(axis=1)
     tol = 1.5 * view.mm_per_pixel
+    outer = signed_distance(radius)
+    inner = signed_distance(bore) if bore > 0 else np.full(outer.shape, np.inf)
     shows = view.part_index.ravel() == view.names.index(part)
-    return int(shows.sum()), int(np.count_nonzero(shows & (signed > tol))), int(np.count_nonzero(~shows & (signed < -tol)))
+    return (int(shows.sum()), int(np.count_nonzero(shows & (outer > tol))),
+            int(np.count_nonzero(~shows & (outer < -tol) & (inner > tol))))
 
 
 def test_render_hides_the_part_of_a_cylinder_below_the_face_it_stands_in():
@@ -135,22 +141,25 @@ def test_render_blends_a_translucent_part_over_what_is_behind_it():
 
 
 @pytest.mark.slow
-def test_render_of_the_split_pinion_shows_no_bearing_through_the_output_gear(built_assemblies):
+def test_render_of_the_split_pinion_shows_its_output_bearing_whole(built_assemblies):
     """The artefact the issue reported, on the shipped design's exported meshes: the output
-    gear's upper bearing stands in the gear's bore; pixels showing it lie within the projection
-    of its part above the gear's top face."""
+    gear's upper bearing stands just above the gear's face, so all of it is seen and nothing
+    outside it is. Drawing whole triangles sorted by their centroids (the render before) painted
+    the face's small triangles round the bore over the lower halves of the bearing's side
+    triangles whose centroids lay lower: a ring of spikes."""
     from geargen.cad.export import read_stl
     from geargen.cad.render import rasterise
     folder = built_assemblies["split_pinion"]
     gear, bearing = read_stl(folder / "output.stl"), read_stl(folder / "output_bearing_upper.stl")
-    top = float(gear[:, :, 2].max())
     points = bearing.reshape(-1, 3)
+    bottom, top = float(points[:, 2].min()), float(points[:, 2].max())
+    assert 0 < bottom - float(gear[:, :, 2].max()) < 1.0  # standing just above the face
     centre = points[:, :2].mean(axis=0)
-    radius = float(np.max(np.hypot(*(points[:, :2] - centre).T)))
-    assert points[:, 2].min() < top - 1.0 < top + 1.0 < points[:, 2].max()  # it does pass through the face
+    radial = np.hypot(*(points[:, :2] - centre).T)
+    radius, bore = float(radial.max()), float(radial.min())
     view = rasterise([("output", gear, (0.55, 0.6, 0.7, 1.0)), ("bearing", bearing, (0.2, 0.45, 0.3, 1.0))],
                      (-60.0, 30.0), (990, 715))
-    seen, outside, missing = _upper_part_pixels(view, "bearing", top, float(points[:, 2].max()), radius, centre)
+    seen, outside, missing = _upper_part_pixels(view, "bearing", bottom, top, radius, centre, bore)
     assert seen > 2000
     assert (outside, missing) == (0, 0)
 
