@@ -251,9 +251,9 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         blended = np.column_stack([np.bincount(p, rgb[t, k] * weight, minlength=height * width)[pixels_hit]
                                    for k in range(3)])
         image[pixels_hit] = image[pixels_hit] * total_keep[:, None] + blended
-        nearest_translucent = head  # sorted nearest first: each pixel's first fragment
-        ahead = part_index[p[nearest_translucent]] < 0
-        part_index[p[nearest_translucent][ahead]] = part[t[nearest_translucent][ahead]]
+        # where no opaque part is seen, the pixel shows its nearest translucent one (sorted first)
+        bare = part_index[pixels_hit] < 0
+        part_index[pixels_hit[bare]] = part[t[head][bare]]
     right = left + width / scale
     bottom = top - height / scale
     return RenderedView(image.reshape(height, width, 3), part_index.reshape(height, width), names, colours,

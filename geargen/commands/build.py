@@ -3,7 +3,8 @@
 Builds the whole assembly (gears placed by the synthesis, the other parts, the mesh checks, the
 stiffness summary) and writes ``exports/<design file name>/`` (or DIR) atomically:
 ``assembly.step``, one STEP and one STL per part, ``manifest.json``, ``report.md`` and
-``report.html``.
+``report.html`` (key numbers first), and each of the report's figures (the rendered view, the
+layout drawing, the preload diagram) as ``figures/<name>.png`` and ``.svg``.
 
 The output folder must be new, empty, or an earlier build of the same design file (replaced
 whole); ``--overwrite`` also replaces an earlier build of another design file or one whose files

@@ -24,13 +24,17 @@ def save_figure(fig, folder, name: str, dpi: int = 110) -> dict[str, Path]:
 
     The SVG keeps lines and text as vectors (a reviewer can reuse or restyle them); raster
     content of the figure (a rendered view) is embedded in it as an image."""
+    import matplotlib
+
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     out = {}
-    for fmt in FIGURE_FORMATS:
-        path = folder / f"{name}.{fmt}"
-        fig.savefig(path, format=fmt, dpi=dpi, facecolor="white")
-        out[fmt] = path
+    # SVG text stays text (editable, searchable); a fixed salt keeps the SVG's ids the same run to run
+    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen"}):
+        for fmt in FIGURE_FORMATS:
+            path = folder / f"{name}.{fmt}"
+            fig.savefig(path, format=fmt, dpi=dpi, facecolor="white")
+            out[fmt] = path
     return out
 
 

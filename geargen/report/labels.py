@@ -37,11 +37,7 @@ class Obstacles:
 def circle_crosses_box(centre, radius: float, box) -> bool:
     """Whether the circle outline of ``radius`` about ``centre`` passes through ``box``
     ``(x0, y0, x1, y1)``: the box's nearest point lies inside the circle and its farthest outside."""
-    x0, y0, x1, y1 = box
-    cx, cy = centre
-    near = math.hypot(min(max(cx, x0), x1) - cx, min(max(cy, y0), y1) - cy)
-    far = max(math.hypot(x - cx, y - cy) for x in (x0, x1) for y in (y0, y1))
-    return near <= radius <= far
+    return _circles_crossing(box, np.array([[centre[0], centre[1], radius]])) > 0
 
 
 def segment_crosses_box(p, q, box) -> bool:
@@ -64,10 +60,6 @@ def segment_crosses_box(p, q, box) -> bool:
 
 def boxes_overlap(a, b) -> bool:
     return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
-
-
-def _display_box(extent) -> tuple[float, float, float, float]:
-    return (extent.x0 - PAD_PX, extent.y0 - PAD_PX, extent.x1 + PAD_PX, extent.y1 + PAD_PX)
 
 
 def _candidates():
@@ -104,6 +96,7 @@ def _overlaps_any(box, boxes: np.ndarray) -> int:
 
 
 def _circles_crossing(box, circles: np.ndarray) -> int:
+    """How many of ``circles`` ``(k, 3)`` (x, y, r) have their outline through ``box``."""
     if not len(circles):
         return 0
     cx, cy, r = circles[:, 0], circles[:, 1], circles[:, 2]
@@ -189,4 +182,5 @@ def text_boxes(fig) -> list[tuple[str, tuple[float, float, float, float]]]:
     return out
 
 
-__all__ = ["Obstacles", "place_labels", "text_boxes", "text_extent", "circle_crosses_box", "segment_crosses_box", "boxes_overlap"]
+__all__ = ["Obstacles", "place_labels", "text_boxes", "text_extent", "circle_crosses_box", "segment_crosses_box",
+           "boxes_overlap"]

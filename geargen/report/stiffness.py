@@ -201,9 +201,12 @@ def summary_tables(s: StiffnessSummary) -> list[tuple[str, list[str] | None, lis
     beyond = "the loaded path alone" if s.drive_type == "type1" else "the loaded path in series with k3"
     rows = [[f"k_D ({eq}, both paths loaded)", f"{_g(d.drive_stiffness * NM, 6)} N·m/rad"]]
     if s.common.components:
-        rows.append(["with the common parts in series", f"{_g(s.drive_stiffness_with_common * NM / r ** 2, 6)} N·m/rad"])
-    rows += [["a path unloads at", f"{_g(t_lo * NM)} / +{_g(t_hi * NM)} N·m ({_g(r_lo * URAD)} / +{_g(r_hi * URAD)} µrad)"],
-             [f"beyond it ({beyond})", f"{_g(d.stiffness_beyond(-1) * NM)} / {_g(d.stiffness_beyond(+1) * NM)} N·m/rad"]]
+        rows.append(["with the common parts in series",
+                     f"{_g(s.drive_stiffness_with_common * NM / r ** 2, 6)} N·m/rad"])
+    rows += [["a path unloads at",
+              f"{_g(t_lo * NM)} / +{_g(t_hi * NM)} N·m ({_g(r_lo * URAD)} / +{_g(r_hi * URAD)} µrad)"],
+             [f"beyond it ({beyond})",
+              f"{_g(d.stiffness_beyond(-1) * NM)} / {_g(d.stiffness_beyond(+1) * NM)} N·m/rad"]]
     out.append((f"Drive ({s.drive_type}, {s.preload_method or 'no'} preload)", ["quantity", "value"], rows))
     rows = []
     if s.preload_spring is not None:
@@ -213,7 +216,8 @@ def summary_tables(s: StiffnessSummary) -> list[tuple[str, list[str] | None, lis
         rows.append(["k3, preload spring", f"{_g(d.k3 * NM, 5)} N·m/rad"
                      + (f" = {_g(ps.linear_stiffness)} N/mm at the carriage ({parts})" if s.lever else f" ({parts})")])
         if s.lever:
-            rows.append(["preload lever", f"{_g(s.lever * 1e3, 5)} mrad of output rotation of each path per mm of carriage"])
+            rows.append(["preload lever",
+                         f"{_g(s.lever * 1e3, 5)} mrad of output rotation of each path per mm of carriage"])
     eq = "Eq. 6" if s.drive_type == "type2" else "Eq. 3"
     ratio_eq = "Eq. 4" if s.drive_type != "type2" else "Eq. 5 / Eq. 6"
     rows += [[f"k_L ({eq})", f"{_g(d.loop_stiffness * NM, 5)} N·m/rad"],
@@ -231,7 +235,8 @@ def summary_tables(s: StiffnessSummary) -> list[tuple[str, list[str] | None, lis
     if s.variations:
         rows = []
         for v in s.variations:
-            travel = "-" if v.carriage_travel is None else f"{v.carriage_travel / per_unit:.5g} {unit} ({v.carriage_travel * 1e3:.4g} µm)"
+            travel = "-" if v.carriage_travel is None else \
+                f"{v.carriage_travel / per_unit:.5g} {unit} ({v.carriage_travel * 1e3:.4g} µm)"
             force = "-" if s.lever is None else f"±{float(carriage_force(v.range, s.lever)) / 2:.3g} N"
             mark = " (headline)" if v.label == s.headline_budget and len(s.variations) > 1 else ""
             rows.append([v.label + mark, travel, f"{v.loop_error * URAD:.4g}", f"{v.low * NM:.4g} .. {v.high * NM:.4g}",

@@ -170,7 +170,8 @@ def test_render_figure_has_labels_clear_of_each_other_a_scale_bar_and_a_triad():
     from geargen.cad.render import rasterise
     from geargen.report.view import view_figure
     plate = np.array([[(-60, -60, 0), (60, -60, 0), (60, 60, 0)], [(-60, -60, 0), (60, 60, 0), (-60, 60, 0)]], float)
-    view = rasterise([("plate", plate, (0.3, 0.4, 0.8, 1.0)), ("pin", _cylinder(10.0, -30.0, 15.0), (0.8, 0.2, 0.2, 1.0)),
+    view = rasterise([("plate", plate, (0.3, 0.4, 0.8, 1.0)),
+                      ("pin", _cylinder(10.0, -30.0, 15.0), (0.8, 0.2, 0.2, 1.0)),
                       ("pin_bearing", _cylinder(14.0, 0.0, 4.0), (0.2, 0.45, 0.3, 1.0))], (-60.0, 30.0), (700, 500))
     view.kinds = ["housing", "gear", "bearing"]
     fig = view_figure(view, "in")
