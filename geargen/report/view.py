@@ -28,16 +28,19 @@ def part_anchors(view, min_pixels: int = MIN_LABEL_PIXELS) -> list[tuple[str, tu
     """One anchor per part name shown on at least ``min_pixels`` pixels, in view coordinates (mm):
     the visible pixel of that part nearest the centroid of its visible pixels (on the part even
     when the part is a ring)."""
-    index = view.part_index
+    index = view.part_index.ravel()
+    shown = np.flatnonzero(index >= 0)
+    shown = shown[np.argsort(index[shown], kind="stable")]  # pixels grouped by part, one pass over the image
+    parts, starts, counts = np.unique(index[shown], return_index=True, return_counts=True)
+    width = view.part_index.shape[1]
     out = []
-    for k, name in enumerate(view.names):
-        rows, cols = np.nonzero(index == k)
-        if rows.size < min_pixels:
+    for k, start, count in zip(parts, starts, counts):
+        if count < min_pixels:
             continue
-        r0, c0 = rows.mean(), cols.mean()
-        i = int(np.argmin((rows - r0) ** 2 + (cols - c0) ** 2))
+        rows, cols = np.divmod(shown[start:start + count], width)
+        i = int(np.argmin((rows - rows.mean()) ** 2 + (cols - cols.mean()) ** 2))
         x, y = view.to_view(rows[i:i + 1], cols[i:i + 1])[0]
-        out.append((name, (float(x), float(y))))
+        out.append((view.names[k], (float(x), float(y))))
     return out
 
 
