@@ -56,6 +56,22 @@ def test_layout_drawing_texts_do_not_overlap_and_no_circle_crosses_a_label(desig
                 f"a circle of radius {patch.radius:.4g} crosses {text!r}"
 
 
+@pytest.mark.parametrize("design", SHIPPED, ids=lambda p: p.stem)
+def test_preload_diagram_texts_do_not_overlap(design):
+    """The report's other annotated figure: its texts (labels, legend, ticks) overlap nothing."""
+    from geargen.report.stiffness import preload_diagram_figure
+    summary = pl.stiffness(pl.place(pl.load(design)))
+    if summary is None:
+        pytest.skip("no stiffness summary")
+    fig = preload_diagram_figure(summary)
+    fig.canvas.draw()
+    boxes = text_boxes(fig)
+    assert len(boxes) >= 6
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            assert not boxes_overlap(boxes[i][1], boxes[j][1]), f"{boxes[i][0]!r} overlaps {boxes[j][0]!r}"
+
+
 # ---------------------------------------------------------------- the render's depth order
 
 
