@@ -232,7 +232,9 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         t = np.concatenate([c[0] for c in chunks])
         p = np.concatenate([c[1] for c in chunks])
         z = np.concatenate([c[2] for c in chunks])
-        visible = z > zbuf[p]
+        # a translucent surface lying on an opaque one (a housing's bore round its bearing) is
+        # behind it: without half a pixel of margin, rounding would show it on scattered pixels
+        visible = z > zbuf[p] + 0.5 / scale
         t, p, z = t[visible], p[visible], z[visible]
         span = max(float(z.max() - z.min()), 1e-12)
         order = np.argsort(p + 0.5 * (z.max() - z) / span)  # by pixel, nearest first (one float key)
