@@ -46,7 +46,7 @@ import tempfile
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 from geargen.errors import EnvironmentProblem, OutputRefused
 
@@ -210,6 +210,27 @@ def _legacy_source(generator: str, data: dict) -> str | None:
     return None
 
 
+def _unlisted(target: Path, listed: set[str]) -> list[str]:
+    """The entries of ``target`` that ``listed`` (file paths relative to it, ``/``-separated) does
+    not account for: a file not listed, a symbolic link, a folder holding no listed file (not
+    looked into). A folder holding listed files (the build's ``review/``) is looked into."""
+    folders = {parent.as_posix() for name in listed for parent in PurePosixPath(name).parents} - {"."}
+    unknown = []
+    for root, dirs, names in os.walk(target):
+        here = Path(root).relative_to(target)
+        kept = []
+        for name in sorted(dirs + names):
+            rel = (here / name).as_posix()
+            path = target / rel
+            if path.is_symlink() or (path.is_dir() and rel not in folders) or (path.is_file() and rel not in listed) \
+                    or not (path.is_dir() or path.is_file()):
+                unknown.append(rel)
+            elif path.is_dir():
+                kept.append(name)
+        dirs[:] = [d for d in dirs if d in kept]
+    return unknown
+
+
 def inspect_folder(target: Path) -> FolderState:
     """The state of ``target`` (which must not be a plain file)."""
     if not os.path.lexists(target):
@@ -224,8 +245,7 @@ def inspect_folder(target: Path) -> FolderState:
     if not isinstance(data, dict) or not isinstance(data.get("files"), dict):
         return FolderState("foreign", unknown=entries)
     files = data["files"]
-    listed = set(files) | {MANIFEST}
-    unknown = [n for n in entries if n not in listed or not (target / n).is_file() or (target / n).is_symlink()]
+    unknown = _unlisted(target, set(files) | {MANIFEST})
     changed = []
     for name, info in files.items():
         size = info.get("bytes") if isinstance(info, dict) else None

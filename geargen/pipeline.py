@@ -416,11 +416,23 @@ def render(parts, design: Design, settings: dict | None = None, folder: Path | N
 
 
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:
-    """Step 8: rendered view, layout drawing, stiffness plots, report.md and report.html."""
-    from geargen.report.review import write_build_review
+    """Step 8: rendered view, layout drawing, stiffness plots, report.md and report.html, and the
+    browser design review (:func:`review_page`)."""
+    from geargen.report.review import compose, write_review
     if result.render_png is None:
         result.render_png = render(result.parts, result.design)
-    return write_build_review(result, Path(folder), result.render_png, layout_drawing(result.layout, result.checks))
+    review = compose(result, result.render_png, layout_drawing(result.layout, result.checks))
+    return write_review(review, Path(folder)) | review_page(result, Path(folder), review)
+
+
+def review_page(result: "BuildResult", folder: Path, review) -> dict[str, Path]:
+    """``review/``: the browser design review (:mod:`geargen.report.review_page`) of the built parts
+    as a GLB made from their STL files in ``folder`` (tessellated only where there are none), with
+    the mesh checks as the manifest records them and the sections of ``review`` (the report)."""
+    from geargen.cad.gltf import assembly_glb
+    from geargen.report.review_page import page_data, write_review_page
+    glb = assembly_glb(result.design.name, result.parts.parts, folder)
+    return write_review_page(folder / "review", glb, page_data(result, _jsonable(_checks_summary(result)), review))
 
 
 # ============================================================================ the whole build
@@ -712,7 +724,8 @@ def manifest(result: BuildResult, folder: Path, report_files: dict[str, Path] | 
     for name, rec in result.files.get("records", {}).items():
         entries[name] = rec
     for key, p in (report_files or {}).items():
-        entries[Path(p).name] = {"format": Path(p).suffix.lstrip("."), "role": key, "bytes": Path(p).stat().st_size}
+        entries[Path(p).relative_to(Path(folder)).as_posix()] = {"format": Path(p).suffix.lstrip("."), "role": key,
+                                                           "bytes": Path(p).stat().st_size}
     status = "ok" if result.ok else "failing"
     data = {
         "generator": "geargen build",
@@ -755,6 +768,8 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
                   "axial_clearance", "failures"):
             if k in m:
                 e[k] = m[k]
+        if "path1" in m:
+            e.update(min_tip_clearance=m["path1"].min_clearance, interference_depth_max=m["path1"].max_interference_depth)
         meshes.append(e)
     ov = result.checks.overlaps
     overlaps = None if ov is None else {

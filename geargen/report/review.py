@@ -204,7 +204,7 @@ def figure_png(fig, dpi: int = 110) -> bytes:
     return buf.getvalue()
 
 
-__all__ = ["Review", "to_markdown", "to_html", "write_review", "figure_png", "compose", "write_build_review"]
+__all__ = ["Review", "to_markdown", "to_html", "write_review", "figure_png", "compose"]
 
 
 # ---------------------------------------------------------------- the review of a build
@@ -334,9 +334,3 @@ def compose(result: Any, render_png: bytes | None = None, layout_png: bytes | No
     r.h("Files")
     r.p(f"{len(files)} files besides this report; see manifest.json for units, tolerances and versions.")
     return r
-
-
-def write_build_review(result: Any, folder: str | Path, render_png: bytes | None = None,
-                       layout_png: bytes | None = None) -> dict[str, Path]:
-    """Compose the review of a build and write report.md and report.html into ``folder``."""
-    return write_review(compose(result, render_png, layout_png), folder)
