@@ -3,8 +3,9 @@
 The meshes are the exported STL files' triangles when they exist (the same shapes and
 placements as the STEP/STL exports, and no second tessellation); a part without one is
 tessellated here at a view's tolerance. Tree: the assembly's root node (which turns geargen's
-mm, z up into glTF's metres, y up), one node per group, one node per part (named as the part,
-``extras`` holding its name, group and kind) with one indexed triangle primitive. No normals are
+mm, z up into glTF's metres, y up), one node per group (``<group>_assembly``, as in the assembly
+STEP), one node per part (named as the part, ``extras`` holding its name, group and kind) with
+one indexed triangle primitive. No normals are
 written: a viewer shades the facets flat, which keeps the file small and the tooth flanks crisp.
 Colours are the assembly STEP's (:data:`geargen.cad.assembly.COLOURS`, sRGB), written as glTF's
 linear base colour; translucent parts (reference bodies, housings) are alpha-blended.
@@ -80,7 +81,7 @@ def glb(name: str, parts: Iterable[tuple[str, str, str, tuple[float, float, floa
         if group not in groups:
             groups[group] = len(nodes)
             nodes[0]["children"].append(len(nodes))
-            nodes.append({"name": group, "children": [], "extras": {"group": group}})
+            nodes.append({"name": f"{group}_assembly", "children": [], "extras": {"group": group}})
         node = {"name": part, "extras": {"part": part, "group": group, "kind": kind}}
         vertices, indices = indexed(triangles)
         if len(indices):
