@@ -134,13 +134,14 @@ def chromium() -> str:
     pytest.skip("no Chromium (install the chromium package, or run as root to have it installed)")
 
 
-def _run_chromium(chromium: str, page: Path, profile: Path, *args: str) -> subprocess.CompletedProcess:
+def _run_chromium(chromium: str, page: Path, profile: Path, *args: str,
+                  fragment: str = "") -> subprocess.CompletedProcess:
     """Chromium headless on ``page`` (file://): software WebGL (SwiftShader), no network services,
     a fresh profile; virtual time lets the page's scripts and the model's decoding finish."""
     cmd = [chromium, "--headless", "--no-sandbox", "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
            "--disable-quic", "--no-first-run", "--disable-background-networking", "--disable-component-update",
            "--disable-sync", "--disable-default-apps", "--disable-extensions", f"--user-data-dir={profile}",
-           "--virtual-time-budget=30000", *args, page.resolve().as_uri()]
+           "--virtual-time-budget=30000", *args, page.resolve().as_uri() + fragment]
     return subprocess.run(cmd, capture_output=True, text=True, timeout=180)
 
 
@@ -163,6 +164,42 @@ def test_the_page_loads_the_model_offline_in_chromium(built_assemblies, chromium
     # the part tree and the mesh list were built from the data
     assert done.stdout.count('class="part"') == len(_manifest(folder)["parts"])
     assert done.stdout.count('class="meshrow') == len(_manifest(folder)["checks"]["meshes"])
+
+
+def test_a_mesh_shows_the_manifests_numbers_and_the_section_its_position(built_assemblies, chromium, tmp_path):
+    """What a click on a mesh shows (index.html#mesh=NAME selects it as a click does): the
+    manifest's numbers in the design's unit, to the page's five digits; and a section plane."""
+    import html
+    import re
+    folder = built_assemblies["robot_joint"]
+    manifest = _manifest(folder)
+    mesh = manifest["checks"]["meshes"][0]
+    tolerance = next(t for t in manifest["checks"]["tolerances"] if t["mesh"] == mesh["mesh"])
+    page = folder / "review" / "index.html"
+    done = _run_chromium(chromium, page, tmp_path / "profile", "--dump-dom",
+                         fragment=f"#mesh={mesh['mesh']}&section=z&at=0.25")
+    info = re.search(r'<div id="info">(.*?)</div>', done.stdout, re.S)
+    assert info, done.stdout[-3000:]
+    cells = dict(re.findall(r"<tr><th>(.*?)</th><td>(.*?)</td></tr>", html.unescape(info.group(1))))
+    unit = manifest["design"]["length_unit"]
+
+    def shown(mm):  # JavaScript's Number(x.toPrecision(5)).toString() for these magnitudes
+        return f"{float(f'{mm / MM_PER[unit]:.5g}'):.10g}"
+    assert cells["mesh"] == f"{mesh['mesh']} ({mesh['gear1']} / {mesh['gear2']})"
+    assert cells["verdict"] == "ok"
+    assert cells[f"backlash, exact outlines ({unit})"] == f"{shown(mesh['backlash_min'])} to {shown(mesh['backlash_max'])}"
+    assert cells[f"design backlash ({unit})"] == f"{shown(mesh['design_min'])} to {shown(mesh['design_max'])}"
+    assert cells[f"min tip clearance ({unit})"] == shown(mesh["min_tip_clearance"])
+    assert cells[f"worst-case min backlash ({unit})"] == shown(tolerance["worst_case_min_backlash"])
+    # both gears of the mesh selected in the part tree
+    selected = re.findall(r'class="part selected" data-part="([^"]+)"', done.stdout)
+    assert sorted(selected) == sorted([mesh["gear1"], mesh["gear2"]])
+    # a quarter of the way up the model's height (GLB bounds: the STL files')
+    label = re.search(r'<div id="section-value">z = ([-\d.e]+) ' + unit + "</div>", done.stdout)
+    assert label, done.stdout[-3000:]
+    import trimesh
+    z = trimesh.load(folder / "review" / "assembly.glb", force="scene").bounds[:, 1] * 1000 / MM_PER[unit]
+    assert float(label.group(1)) == pytest.approx(z[0] + 0.25 * (z[1] - z[0]), rel=1e-4)
 
 
 def test_the_screenshot_shows_the_model(built_assemblies, chromium, tmp_path):

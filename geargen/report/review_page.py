@@ -28,18 +28,20 @@ VIEWER = Path(__file__).parent / "viewer"
 #: the page's files copied from the package, by manifest role
 VIEWER_FILES = {"review_library": "three-bundle.min.js", "review_library_licence": "three-LICENSE.txt",
                 "review_script": "review.js", "review_style": "review.css"}
-#: report sections shown unfolded: the checks, the synthesis and the stiffness
-_OPEN = re.compile(r"check|backlash|synthesis|stiffness", re.IGNORECASE)
+#: the report's key sections, shown first and unfolded, in this order
+_KEY = [re.compile(r"check|backlash", re.IGNORECASE), re.compile(r"stiffness", re.IGNORECASE),
+        re.compile(r"synthesis", re.IGNORECASE)]
 
 
 def sections(review: Review) -> list[dict[str, Any]]:
     """The report's blocks without its images, grouped under their headings: ``[{"title", "open",
     "blocks": [{"kind": "table", "header", "rows"} | {"kind": "pre"|"p", "text"} | {"kind": "list",
-    "items"}]}]``; table cells as the report prints them."""
+    "items"}]}]``; table cells as the report prints them. The report's opening paragraphs come
+    first, then its checks, stiffness and synthesis (unfolded), then the rest in its order."""
     out: list[dict[str, Any]] = [{"title": "Summary", "open": True, "blocks": []}]
     for kind, payload in review.blocks:
         if kind == "h2":
-            out.append({"title": payload, "open": bool(_OPEN.search(payload)), "blocks": []})
+            out.append({"title": payload, "open": any(k.search(payload) for k in _KEY), "blocks": []})
         elif kind == "table":
             header, rows = payload
             out[-1]["blocks"].append({"kind": "table", "header": [str(h) for h in header],
@@ -48,7 +50,9 @@ def sections(review: Review) -> list[dict[str, Any]]:
             out[-1]["blocks"].append({"kind": "list", "items": [str(i) for i in payload]})
         elif kind in ("p", "pre"):
             out[-1]["blocks"].append({"kind": kind, "text": str(payload)})
-    return [s for s in out if s["blocks"]]
+    rank = [next((i for i, k in enumerate(_KEY) if k.search(s["title"])), len(_KEY)) for s in out[1:]]
+    ordered = [out[0]] + [s for _, s in sorted(zip(rank, out[1:]), key=lambda pair: pair[0])]
+    return [s for s in ordered if s["blocks"]]
 
 
 def page_data(result: Any, checks: dict[str, Any], review: Review) -> dict[str, Any]:
@@ -89,9 +93,8 @@ def index_html(title: str, status: str) -> str:
 <label><input id="section-flip" type="checkbox"> keep the other side</label>
 <div id="section-value"></div>
 </div>
-<div id="info"></div>
 </section>
-<section id="centre"><div id="viewport"></div><div id="tooltip" hidden></div></section>
+<section id="centre"><div id="viewport"></div><div id="info"></div><div id="tooltip" hidden></div></section>
 <section id="right"><div id="tables"></div></section>
 </main>
 <script src="three-bundle.min.js"></script>

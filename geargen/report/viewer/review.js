@@ -203,7 +203,7 @@
   function refreshHighlights() {
     Object.keys(parts).forEach(function (n) { setHighlight(parts[n], 0x000000); });
     if (hovered) setHighlight(hovered, 0x2a2a2a);
-    selected.forEach(function (n) { setHighlight(parts[n], 0x7a4a00); });
+    selected.forEach(function (n) { setHighlight(parts[n], 0xc06a00); });
     document.querySelectorAll("#tree .part").forEach(function (row) {
       row.classList.toggle("selected", selected.indexOf(row.getAttribute("data-part")) >= 0);
     });
@@ -378,6 +378,33 @@
     if (name) select([name], partInfo(name)); else select([], null);
   });
 
+  // ------------------------------------------------------------------ a view named in the address
+
+  // index.html#part=NAME, #mesh=NAME, #isolate=NAME,NAME, #section=x|y|z&at=0..1 (a link to a view)
+  function fromAddress() {
+    var args = {};
+    location.hash.replace(/^#/, "").split("&").forEach(function (kv) {
+      var i = kv.indexOf("=");
+      if (i > 0) args[decodeURIComponent(kv.slice(0, i))] = decodeURIComponent(kv.slice(i + 1));
+    });
+    if (args.isolate) isolate(args.isolate.split(",").filter(function (n) { return parts[n]; }));
+    if (args.part && parts[args.part]) select([args.part], partInfo(args.part));
+    var m = data.meshes.filter(function (x) { return x.mesh === args.mesh; })[0];
+    if (m) {
+      var box = el("div");
+      box.appendChild(meshTable(m));
+      select([m.gear1, m.gear2], box);
+    }
+    if (AXES[args.section]) {
+      document.getElementById("section-axis").value = args.section;
+      section();
+      if (args.at !== undefined) {
+        document.getElementById("section-pos").value = Math.round(1000 * Math.min(1, Math.max(0, Number(args.at))));
+        section();
+      }
+    }
+  }
+
   // ------------------------------------------------------------------ loading
 
   function base64Bytes(text) {
@@ -417,6 +444,7 @@
     window.addEventListener("resize", resize);
     resize();
     frame();
+    fromAddress();
     body.setAttribute("data-parts", String(Object.keys(parts).length));
     body.setAttribute("data-loaded", "true");
   }, function (err) {
