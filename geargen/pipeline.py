@@ -769,7 +769,8 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
             if k in m:
                 e[k] = m[k]
         if "path1" in m:
-            e.update(min_tip_clearance=m["path1"].min_clearance, interference_depth_max=m["path1"].max_interference_depth)
+            path1 = m["path1"]
+            e.update(min_tip_clearance=path1.min_clearance, interference_depth_max=path1.max_interference_depth)
         meshes.append(e)
     ov = result.checks.overlaps
     overlaps = None if ov is None else {

@@ -187,7 +187,8 @@ def test_a_mesh_shows_the_manifests_numbers_and_the_section_its_position(built_a
         return f"{float(f'{mm / MM_PER[unit]:.5g}'):.10g}"
     assert cells["mesh"] == f"{mesh['mesh']} ({mesh['gear1']} / {mesh['gear2']})"
     assert cells["verdict"] == "ok"
-    assert cells[f"backlash, exact outlines ({unit})"] == f"{shown(mesh['backlash_min'])} to {shown(mesh['backlash_max'])}"
+    assert cells[f"backlash, exact outlines ({unit})"] == \
+        f"{shown(mesh['backlash_min'])} to {shown(mesh['backlash_max'])}"
     assert cells[f"design backlash ({unit})"] == f"{shown(mesh['design_min'])} to {shown(mesh['design_max'])}"
     assert cells[f"min tip clearance ({unit})"] == shown(mesh["min_tip_clearance"])
     assert cells[f"worst-case min backlash ({unit})"] == shown(tolerance["worst_case_min_backlash"])
