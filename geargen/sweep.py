@@ -209,10 +209,14 @@ def check_parameters(design_path: Path, data: dict[str, Any], spec: SweepSpec) -
             design_from_dict(apply_values(data, {p.path: p.example()}), path=design_path, validate=True)
         except DesignError as exc:
             for e in getattr(exc, "errors", [exc]):
-                unknown = e.problem.startswith("unknown") and (p.path == e.field or p.path.startswith(e.field + "."))
-                if unknown or (added is not None and (e.field == added or e.field.startswith(added + "."))):
-                    raise DesignError(f'parameters."{p.path}"', f"names no key of the design file: {e}",
-                                      "a key the design file may hold (docs/design-files.md)") from None
+                where = f'parameters."{p.path}"'
+                if e.problem.startswith("unknown") and (p.path == e.field or p.path.startswith(e.field + ".")):
+                    raise DesignError(where, f"names no key a design file may hold ({e.field}: {e.problem})",
+                                      e.allowed) from None
+                if added is not None and (e.field == added or e.field.startswith(added + ".")):
+                    raise DesignError(where, f"the design file has no [{added}], and this key alone does not make "
+                                      f"one ({e.field}: {e.problem})", "a key of a table the design file has "
+                                      "(docs/design-files.md)") from None
 
 
 # ---------------------------------------------------------------- running on Dask
@@ -237,7 +241,7 @@ def dask_client(workers: int | None = None, scheduler: str | None = None):
             client.close()
         return
     cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                           dashboard_address=None, silence_logs=logging.ERROR)
+                           dashboard_address=":0", silence_logs=logging.ERROR)
     try:
         with Client(cluster) as client:
             yield client
@@ -265,21 +269,32 @@ class SweepResult:
         return out
 
 
-def run_sweep(design_path: str | Path, spec: SweepSpec, client, progress: Callable[[int, int], None] | None = None
-              ) -> SweepResult:
-    """Every design of ``spec`` on ``client``; the table comes back in design order."""
-    from distributed import as_completed
-
+def check_sweep(design_path: str | Path, spec: SweepSpec) -> dict[str, Any]:
+    """What can be refused before any work: a bad base design (the user's error, not a rejected
+    design), a parameter naming no key (:func:`check_parameters`), a Monte Carlo without an error
+    budget. Returns the parsed design file the designs are made from."""
     from geargen.design.assembly import load_design
     from geargen.design.schema import load_toml
-    t0 = time.perf_counter()
     design_path = Path(design_path).resolve()
-    base = load_design(design_path)  # a bad base design is the user's error, not a rejected design
+    base = load_design(design_path)
     data = load_toml(design_path)
     check_parameters(design_path, data, spec)
     if spec.monte_carlo is not None and not base.section("errors"):
         raise DesignError("monte_carlo", f"the design {design_path.name} has no error budget ([errors.*]) to simulate",
                           "a design with [synthesis] and [errors.*], or no [monte_carlo] in the sweep file")
+    return data
+
+
+def run_sweep(design_path: str | Path, spec: SweepSpec, client, progress: Callable[[int, int], None] | None = None,
+              data: dict[str, Any] | None = None) -> SweepResult:
+    """Every design of ``spec`` on ``client``; the table comes back in design order. ``data``:
+    the result of :func:`check_sweep` when the caller already ran it."""
+    from distributed import as_completed
+
+    t0 = time.perf_counter()
+    design_path = Path(design_path).resolve()
+    if data is None:
+        data = check_sweep(design_path, spec)
     values = spec.designs()
     designs = [client.submit(evaluate_design, str(design_path), data, v, i, pure=False) for i, v in enumerate(values)]
     chunks: list[list] = []
@@ -386,5 +401,5 @@ def print_summary(result: SweepResult, stream=None) -> None:
 
 
 __all__ = ["TABLE", "PLOT", "MonteCarloInput", "DesignOutcome", "evaluate_design", "monte_carlo_chunk",
-           "monte_carlo_columns", "check_parameters", "dask_client", "SweepResult", "run_sweep", "pareto_front",
+           "monte_carlo_columns", "check_parameters", "check_sweep", "dask_client", "SweepResult", "run_sweep", "pareto_front",
            "preferred_axes", "write_outputs", "print_summary"]

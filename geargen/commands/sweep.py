@@ -62,6 +62,7 @@ def _options(args) -> None:
 def run(args) -> int:
     from geargen.design.assembly import load_design
     from geargen.design.sweep import load_sweep
+    from geargen.sweep import check_sweep
 
     _options(args)
     sweep_path = Path(args.sweep).expanduser()
@@ -70,16 +71,17 @@ def run(args) -> int:
                                  "is a folder, not a sweep file", "give the sweep .toml file")
     design = load_design(args.design)
     spec = load_sweep(sweep_path)
+    data = check_sweep(design.path, spec)
     output = output_folder(args, design.path, sweep_path.resolve())
     output.prepare()  # refused or unwritable: said before any work
     try:
-        return _run(args, design, spec, output)
+        return _run(args, design, spec, data, output)
     except BaseException:
         output.discard()
         raise
 
 
-def _run(args, design, spec, output) -> int:
+def _run(args, design, spec, data, output) -> int:
     from geargen import __version__
     from geargen.outputs import manifest_files, write_text
     from geargen.sweep import dask_client, print_summary, run_sweep, write_outputs
@@ -94,7 +96,7 @@ def _run(args, design, spec, output) -> int:
         print(f"geargen sweep: {spec.size} designs ({spec.grid_points} grid points x {spec.count} draws) on {where}",
               file=sys.stderr, flush=True)
     with dask_client(args.workers, args.scheduler) as client:
-        result = run_sweep(design.path, spec, client, progress)
+        result = run_sweep(design.path, spec, client, progress, data)
     files = write_outputs(result, output.work, design.name)
     manifest = {"generator": "geargen sweep", "source": output.source, "version": __version__,
                 "design": {"name": design.name, "file": str(design.path), "sha256": design.sha256},
