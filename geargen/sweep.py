@@ -94,7 +94,8 @@ def evaluate_design(design_path: str, data: dict[str, Any], values: dict[str, An
 
     path = Path(design_path)
     try:
-        digest = hashlib.sha256(path.read_bytes() + json.dumps(values, sort_keys=True, default=str).encode()).hexdigest()
+        # from the parsed file, not the file: a worker of a remote scheduler need not see it
+        digest = hashlib.sha256(json.dumps([data, values], sort_keys=True, default=str).encode()).hexdigest()
         design = design_from_dict(apply_values(data, values), path=path, sha256=digest, validate=True)
     except DesignError as exc:
         fields = [e.field for e in getattr(exc, "errors", [exc])]

@@ -268,3 +268,23 @@ def test_pareto_front():
     variation = np.array([1.0, 1.0, 2.0, 0.5, 2.0, 0.1, 0.4])
     # 0 beaten by 3 (stiffer, steadier); 1 beaten by 3; 2 and 4 tie (neither beats the other); 5 has no stiffness
     assert pareto_front(stiffness, variation).tolist() == [False, False, True, True, True, False, True]
+
+
+@pytest.mark.slow
+def test_output_folder_policy(cluster, tmp_path, capsys):
+    """Its own earlier sweep is replaced; another sweep file's needs --overwrite; a user's file is never deleted."""
+    a, b = tmp_path / "a.toml", tmp_path / "b.toml"
+    a.write_text('[parameters]\n"flexures.thickness_in" = [-0.001]\n')  # rejected at once: a cheap sweep
+    b.write_text('[parameters]\n"flexures.thickness_in" = [-0.002]\n')
+    out = tmp_path / "out"
+    run = ["--out", str(out), "--quiet", "--scheduler", cluster.scheduler_address]
+    assert main(["sweep", str(ROBOT), str(a), *run]) == 0
+    assert main(["sweep", str(ROBOT), str(a), *run]) == 0
+    assert main(["sweep", str(ROBOT), str(b), *run]) == 3
+    assert "--overwrite replaces it" in capsys.readouterr().err
+    assert main(["sweep", str(ROBOT), str(b), *run, "--overwrite"]) == 0
+    import pandas as pd
+    assert pd.read_parquet(out / "sweep.parquet")["flexures.thickness_in"].tolist() == [-0.002]
+    (out / "notes.txt").write_text("mine")
+    assert main(["sweep", str(ROBOT), str(b), *run, "--overwrite"]) == 3
+    assert (out / "notes.txt").read_text() == "mine"
