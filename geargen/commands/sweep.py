@@ -26,14 +26,14 @@ MAX_WORKERS = 1024
 
 def add_arguments(p) -> None:
     p.add_argument("design", help="the design file (TOML) the sweep starts from")
-    p.add_argument("sweep", help="the sweep file (TOML): [parameters], [random], [monte_carlo]")
+    p.add_argument("sweep", help="the sweep file (TOML): [parameters], [random], [monte_carlo] (docs/sweep-files.md)")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="output folder (default: exports/<design file name>-sweep); must not exist, be empty, or "
                         "hold an earlier sweep of the same design and sweep files, which is replaced")
     p.add_argument("--overwrite", action="store_true",
                    help="also replace an earlier sweep of other files (never a folder holding files geargen did "
                         "not write)")
-    p.add_argument("--workers", type=int, default=None,
+    p.add_argument("--workers", type=int, default=None, metavar="N",
                    help="process workers of the local cluster (default: every core)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run on an existing dask.distributed scheduler (tcp://host:8786) instead of a local cluster")
