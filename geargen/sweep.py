@@ -113,12 +113,9 @@ def evaluate_design(design_path: str, data: dict[str, Any], values: dict[str, An
 def _evaluate(design, row: dict[str, Any], rejected: Callable) -> DesignOutcome:
     from geargen.checks.verdict import verify
     from geargen.design.synthesis import monte_carlo_settings
-    from geargen.model import is_drive, resolve
+    from geargen.model import resolve
     from geargen.model.analysis import loop_error_travels, stiffness
 
-    if not is_drive(design):
-        raise DesignError("layout", "geargen sweep needs a drive: [synthesis] or [layout]",
-                          "a design file that geargen synth, check and build can place")
     try:
         layout = resolve(design)
     except GeometryError as exc:
@@ -272,12 +269,16 @@ class SweepResult:
 
 def check_sweep(design_path: str | Path, spec: SweepSpec) -> dict[str, Any]:
     """What can be refused before any work: a bad base design (the user's error, not a rejected
-    design), a parameter naming no key (:func:`check_parameters`), a Monte Carlo without an error
-    budget. Returns the parsed design file the designs are made from."""
+    design) or one that is no drive, a parameter naming no key (:func:`check_parameters`), a Monte
+    Carlo without an error budget. Returns the parsed design file the designs are made from."""
     from geargen.design.assembly import load_design
     from geargen.design.schema import load_toml
+    from geargen.model import is_drive
     design_path = Path(design_path).resolve()
     base = load_design(design_path)
+    if not is_drive(base):
+        raise DesignError("layout", f"the design {design_path.name} is no drive: geargen sweep places each design",
+                          "a design with [synthesis] or [layout], as geargen synth, check and build take")
     data = load_toml(design_path)
     check_parameters(design_path, data, spec)
     if spec.monte_carlo is not None and not base.section("errors"):

@@ -259,6 +259,8 @@ def test_bad_options_are_refused_before_any_work(tmp_path, capsys):
                          'seed = 1\n')
     assert main(["sweep", str(ROOT / "assemblies/split_pinion.toml"), str(no_budget), "--out", out]) == 2
     assert "monte_carlo: the design split_pinion.toml has no error budget" in capsys.readouterr().err
+    assert main(["sweep", str(ROOT / "assemblies/dual_motor.toml"), str(sweep), "--out", out]) == 2
+    assert "layout: the design dual_motor.toml is no drive" in capsys.readouterr().err
     assert not Path(out).exists()
 
 
