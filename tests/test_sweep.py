@@ -40,23 +40,22 @@ seed = 1994
 
 
 @pytest.fixture(scope="module")
-def cluster():
-    from distributed import LocalCluster
-    import logging
-    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
-                      silence_logs=logging.ERROR) as c:
-        yield c
+def scheduler():
+    """The address of a local cluster of two process workers, as geargen starts one."""
+    from geargen.sweep import dask_client
+    with dask_client(2) as client:
+        yield client.scheduler.address
 
 
 @pytest.fixture(scope="module")
-def sweeps(tmp_path_factory, cluster):
+def sweeps(tmp_path_factory, scheduler):
     """The small sweep through the command on 1 worker and on the 2-worker cluster: (tables, folders)."""
     import pandas as pd
     root = tmp_path_factory.mktemp("sweep")
     sweep = root / "small.toml"
     sweep.write_text(SMALL_SWEEP)
     out = {}
-    for name, how in (("one", ["--workers", "1"]), ("two", ["--scheduler", cluster.scheduler_address])):
+    for name, how in (("one", ["--workers", "1"]), ("two", ["--scheduler", scheduler])):
         folder = root / name
         assert main(["sweep", str(ROBOT), str(sweep), "--out", str(folder), "--quiet", *how]) == 0
         out[name] = (pd.read_parquet(folder / "sweep.parquet"), folder)
@@ -273,13 +272,13 @@ def test_pareto_front():
 
 
 @pytest.mark.slow
-def test_output_folder_policy(cluster, tmp_path, capsys):
+def test_output_folder_policy(scheduler, tmp_path, capsys):
     """Its own earlier sweep is replaced; another sweep file's needs --overwrite; a user's file is never deleted."""
     a, b = tmp_path / "a.toml", tmp_path / "b.toml"
     a.write_text('[parameters]\n"flexures.thickness_in" = [-0.001]\n')  # rejected at once: a cheap sweep
     b.write_text('[parameters]\n"flexures.thickness_in" = [-0.002]\n')
     out = tmp_path / "out"
-    run = ["--out", str(out), "--quiet", "--scheduler", cluster.scheduler_address]
+    run = ["--out", str(out), "--quiet", "--scheduler", scheduler]
     assert main(["sweep", str(ROBOT), str(a), *run]) == 0
     assert main(["sweep", str(ROBOT), str(a), *run]) == 0
     assert main(["sweep", str(ROBOT), str(b), *run]) == 3
