@@ -31,6 +31,7 @@ COMMANDS = {
     "pair": "gear-pair calculator: centre distance, pressure angle, contact ratio, backlash, shifts",
     "new": "write a commented starter design file that builds (dual_pinion, split_pinion)",
     "train": "inertia, stiffness and lost motion per stage, the servo view, strategy and alternatives",
+    "sweep": "a grid or random designs through synthesis, checks, stiffness and Monte Carlo on Dask (Parquet)",
 }
 
 EXIT_OK = 0
@@ -53,7 +54,7 @@ DEBUG_VARIABLE = "GEARGEN_DEBUG"
 
 def _epilog() -> str:
     lines = ["exit status:"] + [f"  {code}  {text}" for code, text in EXIT_STATUS.items()]
-    lines += ["", "'-' as the file of --json writes to standard output. build, gear and stiffness write only into a",
+    lines += ["", "'-' as the file of --json writes to standard output. build, gear, stiffness and sweep write only into a",
               "new or empty folder or over their own earlier output, never over other files (README: Output folders)."]
     return "\n".join(lines)
 

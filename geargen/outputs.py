@@ -46,7 +46,7 @@ import tempfile
 import time
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 from geargen.errors import EnvironmentProblem, OutputRefused
 
@@ -210,18 +210,25 @@ def _legacy_source(generator: str, data: dict) -> str | None:
     return None
 
 
-def _unlisted_below(target: Path, folder: str, listed: set[str]) -> list[str]:
-    """Entries under ``target/folder`` (paths relative to ``target``) that the manifest does not list
-    as plain files: unknown files, symbolic links and folders holding nothing listed."""
-    out = []
-    for root, dirs, names in os.walk(target / folder):
-        rel = Path(root).relative_to(target).as_posix()
-        for d in list(dirs):
-            if (Path(root) / d).is_symlink() or not any(f.startswith(f"{rel}/{d}/") for f in listed):
-                out.append(f"{rel}/{d}")
-                dirs.remove(d)
-        out += [f"{rel}/{n}" for n in names if f"{rel}/{n}" not in listed or (Path(root) / n).is_symlink()]
-    return sorted(out)
+def _unlisted(target: Path, listed: set[str]) -> list[str]:
+    """The entries of ``target`` that ``listed`` (file paths relative to it, ``/``-separated) does
+    not account for: a file not listed, a symbolic link, a folder holding no listed file (not
+    looked into). A folder holding listed files (the build's ``review/``) is looked into."""
+    folders = {parent.as_posix() for name in listed for parent in PurePosixPath(name).parents} - {"."}
+    unknown = []
+    for root, dirs, names in os.walk(target):
+        here = Path(root).relative_to(target)
+        kept = []
+        for name in sorted(dirs + names):
+            rel = (here / name).as_posix()
+            path = target / rel
+            if path.is_symlink() or (path.is_dir() and rel not in folders) or (path.is_file() and rel not in listed) \
+                    or not (path.is_dir() or path.is_file()):
+                unknown.append(rel)
+            elif path.is_dir():
+                kept.append(name)
+        dirs[:] = [d for d in dirs if d in kept]
+    return unknown
 
 
 def inspect_folder(target: Path) -> FolderState:
@@ -238,15 +245,7 @@ def inspect_folder(target: Path) -> FolderState:
     if not isinstance(data, dict) or not isinstance(data.get("files"), dict):
         return FolderState("foreign", unknown=entries)
     files = data["files"]
-    listed = set(files) | {MANIFEST}
-    unknown = []
-    for n in entries:
-        if n in listed and (target / n).is_file() and not (target / n).is_symlink():
-            continue
-        if (target / n).is_dir() and not (target / n).is_symlink() and any(f.startswith(n + "/") for f in listed):
-            unknown += _unlisted_below(target, n, listed)  # a folder of listed files (figures/)
-            continue
-        unknown.append(n)
+    unknown = _unlisted(target, set(files) | {MANIFEST})
     changed = []
     for name, info in files.items():
         size = info.get("bytes") if isinstance(info, dict) else None

@@ -416,11 +416,26 @@ def render(parts, design: Design, settings: dict | None = None, folder: Path | N
 
 
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:
-    """Step 8: rendered view, layout drawing, stiffness plots (``figures/*.png|svg``), report.md and report.html."""
-    from geargen.report.review import write_build_review
+    """Step 8: the figures (rendered view, layout drawing, preload diagram) as ``figures/*.png|svg``,
+    report.md and report.html, and the browser design review (:func:`review_page`)."""
+    from geargen.report.review import compose, write_figures, write_review
     if result.render_view is None:
         result.render_view = render(result.parts, result.design)
-    return write_build_review(result, Path(folder), result.render_view, layout_drawing(result.layout, result.checks))
+    folder = Path(folder)
+    figures, links, notes = write_figures(result, folder, result.render_view,
+                                          layout_drawing(result.layout, result.checks))
+    review = compose(result, links, notes)
+    return figures | write_review(review, folder) | review_page(result, folder, review)
+
+
+def review_page(result: "BuildResult", folder: Path, review) -> dict[str, Path]:
+    """``review/``: the browser design review (:mod:`geargen.report.review_page`) of the built parts
+    as a GLB made from their STL files in ``folder`` (tessellated only where there are none), with
+    the mesh checks as the manifest records them and the sections of ``review`` (the report)."""
+    from geargen.cad.gltf import assembly_glb
+    from geargen.report.review_page import page_data, write_review_page
+    glb = assembly_glb(result.design.name, result.parts.parts, folder)
+    return write_review_page(folder / "review", glb, page_data(result, _jsonable(_checks_summary(result)), review))
 
 
 # ============================================================================ the whole build
@@ -714,7 +729,7 @@ def manifest(result: BuildResult, folder: Path, report_files: dict[str, Path] | 
     for name, rec in result.files.get("records", {}).items():
         entries[name] = rec
     for key, p in (report_files or {}).items():
-        entries[Path(p).relative_to(folder).as_posix()] = {"format": Path(p).suffix.lstrip("."), "role": key,
+        entries[Path(p).relative_to(Path(folder)).as_posix()] = {"format": Path(p).suffix.lstrip("."), "role": key,
                                                            "bytes": Path(p).stat().st_size}
     status = "ok" if result.ok else "failing"
     data = {
@@ -759,6 +774,9 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
                   "axial_clearance", "failures"):
             if k in m:
                 e[k] = m[k]
+        if "path1" in m:
+            path1 = m["path1"]
+            e.update(min_tip_clearance=path1.min_clearance, interference_depth_max=path1.max_interference_depth)
         meshes.append(e)
     ov = result.checks.overlaps
     overlaps = None if ov is None else {

@@ -377,7 +377,7 @@ def _snapshot(folder: Path):
     if not folder.exists():
         return None
     text = (folder / "manifest.json").read_text()
-    files = {p.name: p.stat().st_size for p in folder.iterdir()}
+    files = {p.relative_to(folder).as_posix(): p.stat().st_size for p in folder.rglob("*") if p.is_file()}
     listed = json.loads(text)["files"]
     assert set(files) == set(listed) | {"manifest.json"}
     assert all(files[n] == e["bytes"] for n, e in listed.items())
@@ -430,7 +430,18 @@ def test_rebuild_replaces_its_own_build_and_keeps_the_stiffness_plots(tmp_path, 
     os.umask(mask)
     folder = tmp_path / "exports" / "X"
     assert folder.stat().st_mode & 0o777 == 0o777 & ~mask
-    assert {p.stat().st_mode & 0o777 for p in folder.iterdir()} == {0o666 & ~mask}
+    assert {p.stat().st_mode & 0o777 for p in folder.rglob("*") if p.is_file()} == {0o666 & ~mask}
+    assert (folder / "review").stat().st_mode & 0o777 == 0o777 & ~mask
+    # the review page's sub-folder is covered by the policy like the rest: a changed file there
+    # needs --overwrite, a user's file there stops even --overwrite
+    (folder / "review" / "data.js").write_text("changed")
+    assert main(["build", "X.toml", "--quiet"]) == 3
+    assert "review/data.js" in capsys.readouterr().err
+    (folder / "review" / "notes.txt").write_text("mine")
+    assert main(["build", "X.toml", "--quiet", "--overwrite"]) == 3
+    assert "review/notes.txt" in capsys.readouterr().err
+    (folder / "review" / "notes.txt").unlink()
+    assert main(["build", "X.toml", "--quiet", "--overwrite"]) == 0
     (folder / "mine.txt").write_text("mine")
     assert main(["build", "X.toml", "--quiet", "--overwrite"]) == 3
     assert "mine.txt" in capsys.readouterr().err and (folder / "mine.txt").read_text() == "mine"

@@ -10,10 +10,11 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[1] / "geargen"
 
 # each layer may import only itself and the layers listed after it
-LAYERS = ["cli", "commands", "pipeline", "cad", "checks", "fit", "report", "model", "profile", "core", "design"]
+LAYERS = ["cli", "commands", "sweep", "pipeline", "cad", "checks", "fit", "report", "model", "profile", "core", "design"]
 ALLOWED = {
     "cli": set(LAYERS),
     "commands": set(LAYERS) - {"cli"},
+    "sweep": {"pipeline", "cad", "checks", "fit", "report", "model", "profile", "core", "design"},
     "pipeline": {"cad", "checks", "fit", "report", "model", "profile", "core", "design"},
     "cad": {"cad", "model", "profile", "core", "design"},
     "checks": {"checks", "cad", "model", "profile", "core", "design"},

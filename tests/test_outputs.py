@@ -26,6 +26,7 @@ def _earlier_output(folder: Path, source: str, generator: str = BUILD, files=Non
     folder.mkdir(parents=True, exist_ok=True)
     files = files or {"assembly.step": b"ISO-10303-21;\n", "report.md": b"# report\n"}
     for name, data in files.items():
+        (folder / name).parent.mkdir(exist_ok=True)
         (folder / name).write_bytes(data)
     manifest = {"generator": generator, "source": source,
                 "files": {n: {"bytes": len(d)} for n, d in files.items()}}
@@ -68,6 +69,31 @@ def test_an_earlier_build_with_a_user_file_is_refused_even_with_overwrite(tmp_pa
     for overwrite in (False, True):
         with pytest.raises(OutputRefused, match="manifest does not list \\(my_notes.txt\\)"):
             check_output_folder(folder, BUILD, "/d/X.toml", "X", overwrite=overwrite)
+
+
+def test_a_sub_folder_the_manifest_lists_is_looked_into(tmp_path):
+    """The build's review/ page: listed files in a sub-folder are the build's; a user's file or
+    folder in it, an unlisted folder, a link, or a changed file there are treated as at the top."""
+    page = {"review/index.html": b"<html>", "review/data.js": b"window.X = 1;"}
+    folder = _earlier_output(tmp_path / "out", "/d/X.toml", files={"report.md": b"# report\n", **page})
+    assert check_output_folder(folder, BUILD, "/d/X.toml", "X") == "replace"
+    (folder / "review" / "data.js").write_text("window.X = 2; // mine")
+    with pytest.raises(OutputRefused, match=r"changed since geargen wrote them \(review/data.js\)"):
+        check_output_folder(folder, BUILD, "/d/X.toml", "X")
+    assert check_output_folder(folder, BUILD, "/d/X.toml", "X", overwrite=True) == "replace"
+    for extra in ("review/notes.txt", "review/mine/a.txt", "other/a.txt"):
+        (folder / extra).parent.mkdir(parents=True, exist_ok=True)
+        (folder / extra).write_text("mine")
+        shown = extra if extra.startswith("review/n") else extra.rsplit("/", 1)[0]
+        for overwrite in (False, True):
+            with pytest.raises(OutputRefused, match=f"manifest does not list \\({shown}\\)"):
+                check_output_folder(folder, BUILD, "/d/X.toml", "X", overwrite=overwrite)
+        (folder / extra).unlink()
+        if extra != "review/notes.txt":
+            (folder / extra).parent.rmdir()
+    (folder / "review" / "link.js").symlink_to(folder / "report.md")
+    with pytest.raises(OutputRefused, match=r"manifest does not list \(review/link.js\)"):
+        check_output_folder(folder, BUILD, "/d/X.toml", "X", overwrite=True)
 
 
 def test_an_earlier_build_of_another_design_file_needs_overwrite(tmp_path):

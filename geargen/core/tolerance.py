@@ -377,21 +377,39 @@ def monte_carlo(synthesis: CentreSynthesis, errors: tuple[GearErrors, ...], samp
             x = sol.carriage_x - synthesis.input_x
             failed += int(np.count_nonzero(~sol.converged))
         travel[start:start + n] = x
-    ok = failed == 0
+    if spring_rate is not None and not (math.isfinite(spring_rate) and spring_rate >= 0):
+        raise ValueError(f"spring_rate must be >= 0 N/mm, got {spring_rate!r}")
+    return _summarised(MonteCarloResult(success=False, message="", model=model, error_shape=error_shape,
+                                        samples=samples, travel=travel, bound_low=bound_low, bound_high=bound_high,
+                                        rss=rss, percentiles={}, spring_rate=spring_rate, preload=preload,
+                                        failed=failed))
+
+
+def _summarised(raw: MonteCarloResult) -> MonteCarloResult:
+    """``raw`` (its travel and failure count) with success, message, percentiles and spring force."""
+    ok = raw.failed == 0
+    travel, preload, spring_rate = raw.travel, raw.preload, raw.spring_rate
     pct = dict(zip(PERCENTILES, (float(v) for v in np.percentile(travel, PERCENTILES)))) if ok else {}
     force = None
     force_pct: dict[float, float] = {}
     if spring_rate is not None:
-        if not (math.isfinite(spring_rate) and spring_rate >= 0):
-            raise ValueError(f"spring_rate must be >= 0 N/mm, got {spring_rate!r}")
         force = preload + spring_rate * travel
         if ok:
             force_pct = {p: preload + spring_rate * v for p, v in pct.items()}
-    msg = "done" if ok else f"{failed} of {samples} samples did not close the loop"
-    return MonteCarloResult(success=ok, message=msg, model=model, error_shape=error_shape, samples=samples,
-                            travel=travel, bound_low=bound_low, bound_high=bound_high, rss=rss, percentiles=pct,
-                            spring_rate=spring_rate, preload=preload, force=force, force_percentiles=force_pct,
-                            failed=failed)
+    msg = "done" if ok else f"{raw.failed} of {raw.samples} samples did not close the loop"
+    return replace(raw, success=ok, message=msg, percentiles=pct, force=force, force_percentiles=force_pct)
+
+
+def combine_monte_carlo(parts: list[MonteCarloResult]) -> MonteCarloResult:
+    """One result of a simulation run in chunks (:func:`monte_carlo` on the same drive and settings,
+    each chunk with its own generator), given in chunk order: the samples concatenated and the
+    statistics taken over all of them, so the result depends on the chunks and their seeds only,
+    not on where or in which order they ran."""
+    if not parts:
+        raise ValueError("no Monte Carlo chunks to combine")
+    travel = np.concatenate([p.travel for p in parts])
+    return _summarised(replace(parts[0], samples=int(travel.size), travel=travel,
+                               failed=sum(p.failed for p in parts)))
 
 
 # --- sensitivities ------------------------------------------------------------------------------
@@ -477,5 +495,5 @@ def tolerance_sensitivities(budget: ErrorBudget, exact: ExactErrorBudget) -> Sen
 
 
 __all__ = ["ErrorBudget", "appendix_factors", "appendix_error_budget", "ExactErrorBudget", "exact_gradients",
-           "exact_error_budget", "MonteCarloResult", "monte_carlo", "SensitivityTable", "geometry_sensitivities",
+           "exact_error_budget", "MonteCarloResult", "monte_carlo", "combine_monte_carlo", "SensitivityTable", "geometry_sensitivities",
            "tolerance_sensitivities", "PERCENTILES", "GEOMETRY_INPUTS", "GEOMETRY_OUTPUTS", "TOLERANCE_OUTPUTS"]

@@ -192,7 +192,7 @@ def write_review(review: Review, folder: str | Path) -> dict[str, Path]:
 
 
 __all__ = ["Review", "to_markdown", "to_html", "write_review", "compose", "key_numbers", "key_numbers_table",
-           "write_build_review", "FIGURE_FOLDER"]
+           "write_figures", "FIGURE_FOLDER"]
 
 FIGURE_FOLDER = "figures"
 
@@ -270,10 +270,10 @@ def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str
     return ["quantity", "value"], rows
 
 
-def compose(result: Any, figures: dict[str, str] | None = None) -> Review:
+def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str] = ()) -> Review:
     """The review of a build result (``geargen.pipeline.BuildResult``, read by attribute);
     ``figures``: figure key (``"render"``, ``"layout"``, ``"preload_diagram"``) -> the PNG's
-    path relative to the report."""
+    path relative to the report (:func:`write_figures`); ``notes`` on figures not drawn."""
     figures = figures or {}
     import math
 
@@ -393,6 +393,8 @@ def compose(result: Any, figures: dict[str, str] | None = None) -> Review:
                 r.items([row[0] for row in rows])
         if "preload_diagram" in figures:
             r.figure("Preload diagram (Fig. 6)", figures["preload_diagram"])
+    for n in notes:
+        r.p(n)
 
     parts = getattr(result.parts, "parts", [])
     r.h("Parts")
@@ -401,12 +403,12 @@ def compose(result: Any, figures: dict[str, str] | None = None) -> Review:
     r.h("Files")
     r.p(f"{len(files)} files besides this report; see manifest.json for units, tolerances and versions.")
     return r
-
-
-def write_build_review(result: Any, folder: str | Path, view: Any = None, layout_figure: Any = None) -> dict[str, Path]:
+def write_figures(result: Any, folder: str | Path, view: Any = None, layout_figure: Any = None
+                  ) -> tuple[dict[str, Path], dict[str, str], list[str]]:
     """Write the build's figures (the rendered ``view``, a ``geargen.cad.render.RenderedView``; the
-    ``layout_figure``; the preload diagram) as ``figures/<name>.png`` and ``.svg``, then report.md
-    and report.html linking them, into ``folder``; returns ``{role: path}`` of every file written."""
+    ``layout_figure``; the preload diagram) as ``figures/<name>.png`` and ``.svg`` into ``folder``.
+    Returns the files written (by role), each figure's PNG path relative to ``folder`` (for
+    :func:`compose`) and notes on figures that could not be drawn."""
     from geargen.report.figures import save_figure
     folder = Path(folder)
     made = {}
@@ -428,8 +430,4 @@ def write_build_review(result: Any, folder: str | Path, view: Any = None, layout
         for fmt, path in save_figure(fig, folder / FIGURE_FOLDER, name).items():
             files[f"figure_{name}_{fmt}"] = path
         links[name] = f"{FIGURE_FOLDER}/{name}.png"
-    review = compose(result, links)
-    for n in notes:
-        review.p(n)
-    files.update(write_review(review, folder))
-    return files
+    return files, links, notes

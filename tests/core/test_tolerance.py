@@ -12,8 +12,8 @@ from scipy.stats import norm
 
 from geargen.cli import main
 from geargen.core.synthesis import appendix_carriage_travel, solve_loop, synthesize_centres
-from geargen.core.tolerance import (PERCENTILES, appendix_error_budget, exact_error_budget, exact_gradients,
-                                    geometry_sensitivities, monte_carlo, tolerance_sensitivities)
+from geargen.core.tolerance import (PERCENTILES, appendix_error_budget, combine_monte_carlo, exact_error_budget,
+                                    exact_gradients, geometry_sensitivities, monte_carlo, tolerance_sensitivities)
 from geargen.design.assembly import load_design
 from geargen.design.synthesis import GearErrors, error_budget_inputs, synthesis_inputs
 
@@ -94,6 +94,22 @@ def test_monte_carlo_is_reproducible_from_its_seed(robot):
     b = monte_carlo(s, errors, 2000, np.random.default_rng(11))
     c = monte_carlo(s, errors, 2000, 12)
     assert np.array_equal(a.travel, b.travel) and not np.array_equal(a.travel, c.travel)
+
+
+def test_chunks_combine_into_the_statistics_of_all_their_samples(robot):
+    s, errors = robot
+    seeds = np.random.SeedSequence(5).spawn(3)
+    parts = [monte_carlo(s, errors, n, np.random.default_rng(q), spring_rate=2.0, preload=10.0)
+             for n, q in zip((700, 700, 300), seeds)]
+    whole = combine_monte_carlo(parts)
+    travel = np.concatenate([p.travel for p in parts])
+    assert whole.success and whole.samples == 1700 and np.array_equal(whole.travel, travel)
+    assert whole.percentiles == dict(zip(PERCENTILES, np.percentile(travel, PERCENTILES)))
+    assert whole.force_percentiles[50.0] == 10.0 + 2.0 * np.median(travel)
+    assert (whole.bound_low, whole.bound_high) == (parts[0].bound_low, parts[0].bound_high)
+    assert whole.minimum >= whole.bound_low and whole.maximum <= whole.bound_high
+    with pytest.raises(ValueError):
+        combine_monte_carlo([])
 
 
 @pytest.mark.parametrize("model, shape", [("appendix", "physical"), ("appendix", "uniform"), ("appendix", "normal3"),
