@@ -31,7 +31,8 @@ TARGET_S = {"robot_joint": 10.0}
 PRELOAD = ["geargen.pipeline", "geargen.cli", "geargen.cad.assembly", "geargen.cad.parts", "geargen.cad.export",
            "geargen.cad.render", "geargen.cad.gear_solid", "geargen.cad.measure", "geargen.checks.mesh2d",
            "geargen.checks.solids", "geargen.core.synthesis", "geargen.core.stiffness", "geargen.report.review",
-           "geargen.report.layout", "geargen.report.stiffness", "geargen.report.synthesis", "scipy.optimize",
+           "geargen.report.layout", "geargen.report.stiffness", "geargen.report.synthesis", "geargen.report.view",
+           "geargen.report.labels", "geargen.report.figures", "scipy.optimize",
            "scipy.spatial", "matplotlib.figure", "matplotlib.backends.backend_agg", "multiprocessing"]
 
 IN_PROCESS = """

@@ -270,6 +270,11 @@ def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str
     return ["quantity", "value"], rows
 
 
+def _with_vector(caption: str, png: str) -> str:
+    """A figure's caption naming its SVG beside the PNG (what a reviewer reuses in a document)."""
+    return f"{caption} (vector: {png.removesuffix('.png')}.svg)"
+
+
 def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str] = ()) -> Review:
     """The review of a build result (``geargen.pipeline.BuildResult``, read by attribute);
     ``figures``: figure key (``"render"``, ``"layout"``, ``"preload_diagram"``) -> the PNG's
@@ -304,9 +309,11 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
 
     r.h("Assembly")
     if "render" in figures:
-        r.figure("Rendered view of the assembly (reference bodies translucent)", figures["render"])
+        r.figure(_with_vector("Rendered view of the assembly (reference bodies translucent)", figures["render"]),
+                 figures["render"])
     if "layout" in figures:
-        r.figure("Layout: gear circles, centres, lines of action, symmetry line, carriage travel", figures["layout"])
+        r.figure(_with_vector("Layout: gear circles, centres, lines of action, symmetry line, carriage travel",
+                              figures["layout"]), figures["layout"])
     if layout.ratio:
         ok = "exact and allowed" if layout.ratio["ok"] else "NOT one of the required ratios"
         req = ", ".join(f"{x}:1" for x in layout.ratio["required"]) or "none given"
@@ -392,7 +399,7 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
             else:
                 r.items([row[0] for row in rows])
         if "preload_diagram" in figures:
-            r.figure("Preload diagram (Fig. 6)", figures["preload_diagram"])
+            r.figure(_with_vector("Preload diagram (Fig. 6)", figures["preload_diagram"]), figures["preload_diagram"])
     for n in notes:
         r.p(n)
 

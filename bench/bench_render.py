@@ -1,0 +1,61 @@
+"""Time of the build's rendered view, step by step, for each assembly.
+
+Run by hand: ``.venv/bin/python bench/bench_render.py [--repeat N] [NAME ...]``. Each run is a
+fresh interpreter that builds the parts (not timed), then times
+
+- ``render``: the build's render step (:func:`geargen.pipeline.render`: tessellation and the
+  depth-buffer rasteriser, no matplotlib);
+- ``figure``: the figure with its labels, scale bar and axis triad
+  (:func:`geargen.report.view.view_figure`);
+- ``save``: writing it as PNG and SVG (:func:`geargen.report.figures.save_figure`);
+
+with matplotlib imported before the clock starts (its import, ~0.3-1 s, is paid once by the
+report step whatever it draws). Medians of N runs, best in brackets.
+"""
+
+import statistics
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+ASSEMBLIES = ["robot_joint", "c_axis", "split_pinion"]
+
+ONE_RUN = """
+import sys, tempfile, time
+import matplotlib.figure, matplotlib.backends.backend_agg  # noqa: F401  (imports outside the clock)
+from geargen import pipeline as P
+from geargen.report.figures import save_figure
+from geargen.report.view import view_figure
+design = P.load(sys.argv[1])
+layout = P.place(design)
+parts = P.other_parts(layout, P.gear_solids(layout), P.stiffness(layout))
+t0 = time.perf_counter()
+view = P.render(parts, design)
+t1 = time.perf_counter()
+fig = view_figure(view, design.length_unit)
+t2 = time.perf_counter()
+save_figure(fig, tempfile.mkdtemp(), "render")
+t3 = time.perf_counter()
+print(f"{t1 - t0:.3f} {t2 - t1:.3f} {t3 - t2:.3f}")
+"""
+
+
+def main(argv: list[str]) -> None:
+    repeat = 3
+    if argv[:1] == ["--repeat"]:
+        repeat, argv = int(argv[1]), argv[2:]
+    names = argv or ASSEMBLIES
+    print(f"{'assembly':<14}{'render':>16}{'figure':>16}{'save':>16}")
+    for name in names:
+        runs = []
+        for _ in range(repeat):
+            done = subprocess.run([sys.executable, "-c", ONE_RUN, str(ROOT / "assemblies" / f"{name}.toml")],
+                                  capture_output=True, text=True, cwd=ROOT, check=True)
+            runs.append([float(v) for v in done.stdout.split()])
+        cells = [f"{statistics.median(c):.3f} [{min(c):.3f}]" for c in zip(*runs)]
+        print(f"{name:<14}" + "".join(f"{c:>16}" for c in cells))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
