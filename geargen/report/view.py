@@ -83,7 +83,7 @@ def view_figure(view, length_unit: str = "mm", labels: list[tuple[str, str]] | N
         ax.annotate("", origin + d, origin, arrowprops=dict(arrowstyle="-|>", color=colour, lw=1.2, shrinkA=0,
                                                              shrinkB=0))
         ax.text(*(origin + 1.25 * d), name, color=colour, fontsize=8, ha="center", va="center")
-    fig.canvas.draw()
+    ax.apply_aspect()  # the axes' final box: text extents and data-to-pixel transforms are exact from here
     taken = [box for _, box in text_boxes(fig)]
     anchors = dict(part_anchors(view))
     kinds = dict(zip(view.names, view.kinds))
