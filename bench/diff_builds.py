@@ -9,7 +9,10 @@ or two folders holding such folders by design name). Compares, and prints every 
 - report.md, with its timings lines left out, its text and its figures (PNG bytes) exactly;
 - every STL file byte for byte (STEP files carry a timestamp: their size is compared in the manifest).
 
-Exit status 0 if all are identical, 1 otherwise.
+``--rel TOL``: numbers in the JSON files that differ by at most TOL relative are listed apart (a
+change that moves a root by a few ulps), not counted as differences.
+
+Exit status 0 if all are identical (within ``--rel``), 1 otherwise.
 """
 
 import json
@@ -19,19 +22,24 @@ from pathlib import Path
 IGNORED_MANIFEST_KEYS = ("timings_s", "versions")
 
 
+def _relative(a, b) -> float:
+    return abs(a - b) / max(abs(a), abs(b))
+
+
 def _differences(a, b, where: str = ""):
-    """Paths at which two JSON values differ (floats compared exactly)."""
+    """(path, relative difference or None) where two JSON values differ (floats compared exactly)."""
     if isinstance(a, dict) and isinstance(b, dict):
         for key in sorted(set(a) | set(b)):
             if key not in a or key not in b:
-                yield f"{where}/{key}: only in {'after' if key in b else 'before'}"
+                yield f"{where}/{key}: only in {'after' if key in b else 'before'}", None
             else:
                 yield from _differences(a[key], b[key], f"{where}/{key}")
     elif isinstance(a, list) and isinstance(b, list) and len(a) == len(b):
         for i, (x, y) in enumerate(zip(a, b)):
             yield from _differences(x, y, f"{where}[{i}]")
     elif a != b:
-        yield f"{where}: {a!r} != {b!r}"
+        numbers = all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in (a, b))
+        yield f"{where}: {a!r} != {b!r}", _relative(a, b) if numbers else None
 
 
 def _report_lines(folder: Path) -> list[str]:
@@ -40,8 +48,9 @@ def _report_lines(folder: Path) -> list[str]:
             and " s |" not in line]
 
 
-def diff_build(before: Path, after: Path) -> list[str]:
-    out = []
+def diff_build(before: Path, after: Path, rel: float = 0.0) -> tuple[list[str], list[float]]:
+    """The differences, and the relative differences of the numbers within ``rel``."""
+    out, close = [], []
     m1, m2 = (json.loads((f / "manifest.json").read_text()) for f in (before, after))
     for m in (m1, m2):
         for key in IGNORED_MANIFEST_KEYS:
@@ -50,28 +59,37 @@ def diff_build(before: Path, after: Path) -> list[str]:
     for m in (m1, m2):
         for name in ("report.md", "report.html"):
             m["files"].get(name, {}).pop("bytes", None)
-    out += [f"manifest.json{d}" for d in _differences(m1, m2)]
     r1, r2 = (json.loads((f / "resolved.json").read_text()) for f in (before, after))
-    out += [f"resolved.json{d}" for d in _differences(r1, r2)]
+    for name, x, y in (("manifest.json", m1, m2), ("resolved.json", r1, r2)):
+        for text, r in _differences(x, y):
+            if r is not None and r <= rel:
+                close.append(r)
+            else:
+                out.append(name + text)
     l1, l2 = _report_lines(before), _report_lines(after)
     if l1 != l2:
         changed = [i for i, (x, y) in enumerate(zip(l1, l2)) if x != y]
-        out.append(f"report.md: {len(l1)} vs {len(l2)} lines, first differing line {changed[:1] or 'beyond the shorter'}")
+        out.append(f"report.md: {len(l1)} vs {len(l2)} lines, {len(changed)} differ, the first: "
+                   f"{l1[changed[0]] if changed else 'beyond the shorter'!r}")
     for stl in sorted(before.glob("*.stl")):
         other = after / stl.name
         if not other.exists() or stl.read_bytes() != other.read_bytes():
             out.append(f"{stl.name}: differs")
-    return out
+    return out, close
 
 
 def main(argv) -> int:
+    rel = 0.0
+    if argv[:1] == ["--rel"]:
+        rel, argv = float(argv[1]), argv[2:]
     before, after = map(Path, argv)
     pairs = [(before, after)] if (before / "manifest.json").exists() else \
         [(f, after / f.name) for f in sorted(before.iterdir()) if (f / "manifest.json").exists()]
     bad = 0
     for a, b in pairs:
-        found = diff_build(a, b)
-        print(f"{a.name}: {'identical' if not found else f'{len(found)} differences'}")
+        found, close = diff_build(a, b, rel)
+        within = f" ({len(close)} numbers within {rel:g} relative, the largest {max(close):.2g})" if close else ""
+        print(f"{a.name}: {'identical' if not found else f'{len(found)} differences'}{within}")
         for line in found[:40]:
             print(f"  {line}")
         bad += bool(found)
