@@ -23,6 +23,7 @@ first call imports it (about a second).
 from __future__ import annotations
 
 import argparse
+import re
 from pathlib import Path
 from typing import Sequence
 
@@ -37,8 +38,16 @@ def _keyword_errors(fn, *args):
     except DesignError as exc:
         if not exc.field.startswith("--"):
             raise
-        raise DesignError(exc.field[2:].replace("-", "_"), exc.problem,
-                          exc.allowed and exc.allowed.replace("--", "").replace("-", "_")) from None
+        raise DesignError(_keyword(exc.field), _OPTION.sub(lambda m: _keyword(m[0]), exc.problem),
+                          exc.allowed and _OPTION.sub(lambda m: _keyword(m[0]), exc.allowed)) from None
+
+
+#: a command-line option in a message (``--face-width-mm``), not a negative number
+_OPTION = re.compile(r"--[a-z][a-z-]*")
+
+
+def _keyword(option: str) -> str:
+    return option[2:].replace("-", "_")
 
 
 def gear(teeth: int | None = None, *, module: float | None = None, diametral_pitch: float | None = None,

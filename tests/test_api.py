@@ -88,6 +88,9 @@ def test_errors_name_the_keyword():
         api.gear(teeth=2, module=1, face_width=5)
     assert err.value.field == "teeth" and "[4, 2000]" in str(err.value)
     with pytest.raises(DesignError) as err:
+        api.gear(teeth=12, module=1, face_width=5, profile_shift=-3)
+    assert err.value.field == "profile_shift" and "-" in err.value.allowed  # a negative bound stays one
+    with pytest.raises(DesignError) as err:
         api.pair(teeth=(12, 24), module=3, face_width=10, centre_distance=10)
     assert err.value.field == "centre_distance"
     with pytest.raises(DesignError) as err:
