@@ -17,7 +17,14 @@ import sys
 import threading
 from pathlib import Path
 
-from geargen import __version__
+# Set before numpy loads OpenBLAS. The numerics here are many tiny matrix operations (L-BFGS-B on
+# ~20 variables in the tolerance search): OpenBLAS's worker threads add only their wake-ups there
+# (the search ran 70x slower on a busy 2-core machine), and a build already checks its meshes in a
+# second process. The builds of the shipped designs are identical either way (bench/diff_builds.py).
+# A user's own setting is kept.
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
+
+from geargen import __version__  # noqa: E402 - after the setting above
 from geargen.errors import EnvironmentProblem, GeargenError, Interrupted, OutputRefused
 
 #: subcommand -> one-line help; the module geargen.commands.<name> provides add_arguments(p) and run(args)

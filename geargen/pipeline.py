@@ -566,10 +566,11 @@ def _checked(result: BuildResult, force: bool, progress: Progress) -> BuildResul
     return result
 
 
-def _all_checks(layout: Layout, gears, parts, meshes: CheckOutcome | None = None) -> CheckOutcome:
-    """The mesh checks (``meshes`` if already made), the parts' overlaps and the exact ratio."""
+def _all_checks(layout: Layout, gears, parts, meshes: CheckOutcome | None = None, overlaps=None) -> CheckOutcome:
+    """The mesh checks (``meshes`` if already made), the parts' overlaps (``overlaps`` if already
+    checked) and the exact ratio."""
     outcome = meshes if meshes is not None else mesh_checks(layout, gears)
-    outcome.overlaps = overlap_check(parts, layout)
+    outcome.overlaps = overlaps if overlaps is not None else overlap_check(parts, layout)
     ov = outcome.overlaps
     for o in ov.unintended:
         outcome.failures.append(f"parts overlap: {o.part1} and {o.part2} share {o.volume:.4g} mm^3")
@@ -599,18 +600,22 @@ def structure_check(parts, layout: Layout):
 
 def _collect_checks(alongside: "Alongside", layout: Layout, gears, parts) -> tuple[CheckOutcome, float, str]:
     """The mesh checks from the second process (or made here if it delivered nothing), completed by
-    :func:`_all_checks`; returns (outcome, seconds of checking, a note for the progress line)."""
+    :func:`_all_checks`; returns (outcome, seconds of checking, a note for the progress line).
+    The parts' overlaps are checked here while the second process may still be busy."""
+    t0 = time.perf_counter()
+    overlaps = overlap_check(parts, layout)
+    own = time.perf_counter() - t0
     t0 = time.perf_counter()
     got = alongside.result()
     waited = time.perf_counter() - t0
     if got is None:
         t0 = time.perf_counter()
-        outcome = _all_checks(layout, gears, parts)
-        return outcome, time.perf_counter() - t0, "(the second process delivered nothing: checked here)"
+        outcome = _all_checks(layout, gears, parts, overlaps=overlaps)
+        return outcome, own + time.perf_counter() - t0, "(the second process delivered nothing: checked here)"
     busy, meshes = got
     t0 = time.perf_counter()
-    outcome = _all_checks(layout, gears, parts, meshes)
-    busy += time.perf_counter() - t0
+    outcome = _all_checks(layout, gears, parts, meshes, overlaps)
+    busy += own + time.perf_counter() - t0
     return outcome, busy, f"(meshes checked in a second process alongside stiffness to export; waited {waited:.2f} s)"
 
 

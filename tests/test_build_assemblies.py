@@ -215,6 +215,38 @@ def test_a_second_process_that_delivers_nothing_leaves_the_work_to_the_caller():
     assert pl.Alongside.start(_raise).result() is None  # raised: the caller's own run raises it
 
 
+class _DeliversNothing:
+    """A second process that died: its result is None."""
+
+    def result(self):
+        return None
+
+
+def test_collected_checks_are_those_of_the_build_in_order():
+    """The parts' overlaps are checked while the second process checks the meshes; the collected
+    outcome is the in-order one, from the second process or made here when it delivers nothing."""
+    layout = pl.place(pl.load(DESIGNS["split_pinion"]))
+    gears = pl.gear_solids(layout)
+    parts = pl.other_parts(layout, gears, pl.stiffness(layout))
+    in_order = pl._all_checks(layout, gears, parts)
+
+    def summary(outcome):
+        ov = outcome.overlaps
+        return (outcome.failures, outcome.warnings, ov.pairs_checked, [(o.part1, o.part2, o.volume) for o in ov.overlaps],
+                ov.missing_contacts, outcome.structure.to_dict(),
+                [(m["mesh"], m.get("backlash_min"), m.get("backlash_max"), m.get("path2_backlash_min"))
+                 for m in outcome.meshes])
+
+    here, seconds, note = pl._collect_checks(_DeliversNothing(), layout, gears, parts)
+    assert "checked here" in note and seconds > 0
+    assert summary(here) == summary(in_order)
+    alongside = pl.Alongside.start(pl.mesh_checks, layout, gears)
+    if alongside is not None:
+        there, _, note = pl._collect_checks(alongside, layout, gears, parts)
+        assert "second process" in note
+        assert summary(there) == summary(in_order)
+
+
 @pytest.mark.parametrize("parallel", [True, False], ids=["checks-alongside", "checks-in-order"])
 def test_failing_build_writes_nothing_unless_forced(tmp_path, parallel):
     """With the mesh checks in a second process the exports are written meanwhile: they must go too."""

@@ -103,6 +103,9 @@ class PlacedPart:
     description: str = ""
     solid: Any = None  # the GearSolid of a gear (profile, spec), for the checks
     notes: tuple[str, ...] = ()  # what building it reported (an undercut, ...), for the build's report
+    # a simple solid holding the part (own frame): the overlap check's first, cheap test (a helical
+    # spring's tube); gears have theirs from ``solid`` (:func:`part_envelope`)
+    envelope: TopoDS_Shape | None = None
     _world: TopoDS_Shape | None = field(default=None, repr=False)
 
     @property
@@ -210,8 +213,8 @@ class _Parts:
             self._shapes[key] = builder(*args)
         return self._shapes[key]
 
-    def add(self, name, shape, matrix, group, kind, role="part", description=""):
-        self.parts.append(PlacedPart(name, shape, matrix, group, kind, role, description))
+    def add(self, name, shape, matrix, group, kind, role="part", description="", envelope=None):
+        self.parts.append(PlacedPart(name, shape, matrix, group, kind, role, description, envelope=envelope))
         return name
 
     def touch(self, a: str, b: str, why: str):
@@ -372,15 +375,18 @@ def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
 
     # --- two compression springs between the carriage's wall and the link's end wall
     coils = spring_total_coils(sp.active_coils, sp.end_type)
+    tube = P.coil_envelope(sp.wire_diameter, sp.mean_coil_diameter, sp.installed_length)
     if s["spring_model"] == "helix":
-        spring_shape = P.compression_spring(sp.wire_diameter, sp.mean_coil_diameter, sp.installed_length, coils)
+        # the wire lies within the tube (its section, normal to the helix, stays within d/2 radially)
+        spring_shape, spring_envelope = P.compression_spring(sp.wire_diameter, sp.mean_coil_diameter,
+                                                             sp.installed_length, coils), tube
     else:
-        spring_shape = P.coil_envelope(sp.wire_diameter, sp.mean_coil_diameter, sp.installed_length)
+        spring_shape, spring_envelope = tube, None
     z_spring = (z_plate_bot + z_wall_top) / 2
     for i, y in enumerate((s["spring_y_offset"], -s["spring_y_offset"]), start=1):
         sp_name = out.add(f"preload_spring_{i}", spring_shape, _along_x(x_wall1, y, z_spring), "preload", "spring",
                           description=f"d {sp.wire_diameter:.4g} mm wire, D {sp.mean_coil_diameter:.4g} mm, "
-                                      f"{coils:g} coils at {sp.installed_length:.4g} mm")
+                                      f"{coils:g} coils at {sp.installed_length:.4g} mm", envelope=spring_envelope)
         out.touch(sp_name, carriage, "spring seat on the carriage")
         out.touch(sp_name, "link", "spring seat on the link's end wall")
 
@@ -1133,12 +1139,12 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
     return P.compound(pieces).Moved(location(part.matrix))
 
 
-def gear_envelope(part: PlacedPart) -> TopoDS_Shape | None:
-    """The tip cylinders (with hubs and spacer) of a gear part in its own frame: a cheap proxy
-    that contains the gear, or None for a part that is not a gear."""
+def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
+    """A cheap solid that contains the part, in the assembly frame: a gear's tip cylinders (with
+    hubs and spacer), another part's ``envelope``; None if the part has none."""
     solid = part.solid
     if solid is None:
-        return None
+        return None if part.envelope is None else part.envelope.Moved(location(part.matrix))
     spec = solid.spec
     pieces = []
 
@@ -1166,8 +1172,9 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
     Pairs listed in ``intended`` (part, part, why) are meant to touch: with ``skip_intended``
     they are not intersected (their contact is by construction, a shaft in its bore). Pairs in
     ``delegated`` (meshing gears) are checked elsewhere, by the geometric mesh checker, and
-    skipped here. A gear is first tested through its tip-cylinder envelope; only when that
-    shares volume with the other part are the exact solids intersected. Any other pair sharing
+    skipped here. A gear is first tested through its tip-cylinder envelope (a helical spring
+    through its tube: :func:`part_envelope`); only when that shares volume with the other part
+    are the exact solids intersected. Any other pair sharing
     more than ``tolerance`` mm^3 is an overlap.
 
     Every intended contact is verified: its two solids must come within ``contact_tolerance``
@@ -1178,7 +1185,7 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
     wanted = {frozenset((a, b)): why for a, b, why in intended}
     skip = {frozenset((a, b)) for a, b, _ in delegated}
     boxes = [_bbox(p.world()) for p in parts]
-    envelopes = [gear_envelope(p) for p in parts]
+    envelopes = [part_envelope(p) for p in parts]
     overlaps: list[Overlap] = []
     checked = 0
     for i in range(len(parts)):
@@ -1209,6 +1216,12 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
         if gap > contact_tolerance:
             missing.append((a, b, gap, why))
         elif skip_intended:
+            # a spring seated on a wall: its tube only touches the wall, so the helix cannot
+            # run into it (the exact helix is intersected only when the tube shares volume)
+            tubes = [part_envelope(by_name[n]) if by_name[n].envelope is not None else None for n in (a, b)]
+            if any(t is not None for t in tubes) and intersection_volume(
+                    *(t if t is not None else by_name[n].world() for t, n in zip(tubes, (a, b)))) <= tolerance:
+                continue
             # a gear is represented by its core (bore to root circle): exact for what comes in
             # through the bore, and milliseconds instead of a boolean with every tooth
             core_a, core_b = gear_core(by_name[a]), gear_core(by_name[b])

@@ -106,6 +106,30 @@ def test_intended_contacts_are_verified_not_assumed():
     assert o.volume == pytest.approx(math.pi * 5.0 ** 2 * 20.0, rel=1e-6)
 
 
+def test_spring_tube_screens_only_what_cannot_overlap():
+    """A helical spring is first tested through its tube (:func:`geargen.cad.assembly.part_envelope`):
+    seated on its wall it passes without intersecting the helix; pushed 0.5 mm into the wall it is
+    interpenetrating with the helix's own shared volume, as without the tube."""
+    import numpy as np
+
+    from geargen.cad.assembly import PlacedPart, pairwise_overlaps
+
+    d, mean, length = 1.143, 11.43, 8.89
+    helix, tube = P.compression_spring(d, mean, length, 6.0), P.coil_envelope(d, mean, length)
+    wall = PlacedPart("wall", P.box_between((-10, -10, -5), (10, 10, 0)), np.eye(4), "g", "carriage")
+
+    def checked(dz, envelope):
+        m = np.eye(4)
+        m[2, 3] = dz
+        spring = PlacedPart("spring", helix, m, "g", "spring", envelope=envelope)
+        return pairwise_overlaps([wall, spring], [("wall", "spring", "spring on its seat")])
+
+    assert checked(0.0, tube).ok and checked(0.0, None).ok
+    pushed, plain = checked(-0.5, tube), checked(-0.5, None)
+    assert not pushed.ok
+    assert pushed.interpenetrating[0].volume == plain.interpenetrating[0].volume > 0
+
+
 def test_link_cover_volume_matches_formula():
     seats = [(0.0, 0.0, 38.1, 0.0, 31.75), (47.07, 23.89, 15.875, 0.58, 11.1125), (47.07, -23.89, 15.875, 0.58, 11.1125)]
     args = (50.8, 3.048, 64.0, 3.81, seats)
