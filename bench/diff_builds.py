@@ -6,7 +6,8 @@ or two folders holding such folders by design name). Compares, and prints every 
 - manifest.json without ``timings_s`` and ``versions`` (checks, parts, volumes, placements, files
   and their sizes: a STEP file's timestamp has a fixed length);
 - resolved.json;
-- report.md, with its timings lines left out, its text and its figures (PNG bytes) exactly;
+- report.md, with its timings lines left out, its text exactly, and its figures' PNG files
+  (``figures/*.png``) byte for byte;
 - every STL file byte for byte (STEP files carry a timestamp: their size is compared in the manifest).
 
 ``--rel TOL``: numbers in the JSON files that differ by at most TOL relative are listed apart (a
@@ -71,6 +72,10 @@ def diff_build(before: Path, after: Path, rel: float = 0.0) -> tuple[list[str], 
         changed = [i for i, (x, y) in enumerate(zip(l1, l2)) if x != y]
         out.append(f"report.md: {len(l1)} vs {len(l2)} lines, {len(changed)} differ, the first: "
                    f"{l1[changed[0]] if changed else 'beyond the shorter'!r}")
+    for png in sorted(before.glob("figures/*.png")):
+        other = after / "figures" / png.name
+        if not other.exists() or png.read_bytes() != other.read_bytes():
+            out.append(f"figures/{png.name}: differs")
     for stl in sorted(before.glob("*.stl")):
         other = after / stl.name
         if not other.exists() or stl.read_bytes() != other.read_bytes():

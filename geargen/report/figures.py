@@ -29,11 +29,11 @@ def save_figure(fig, folder, name: str, dpi: int = 110) -> dict[str, Path]:
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     out = {}
-    # SVG text stays text (editable, searchable); a fixed salt keeps the SVG's ids the same run to run
+    # SVG text stays text (editable, searchable); a fixed salt and no date keep the SVG the same run to run
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen"}):
         for fmt in FIGURE_FORMATS:
             path = folder / f"{name}.{fmt}"
-            fig.savefig(path, format=fmt, dpi=dpi, facecolor="white")
+            fig.savefig(path, format=fmt, dpi=dpi, facecolor="white", metadata={"Date": None} if fmt == "svg" else None)
             out[fmt] = path
     return out
 
