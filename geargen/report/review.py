@@ -223,12 +223,15 @@ def key_numbers(result: Any) -> dict[str, Any]:
     out: dict[str, Any] = {"length_unit": unit,
                            "ratio": ratio["text"] if ratio else None,
                            "ratio_ok": ratio["ok"] if ratio else None,
-                           "drive_stiffness_Nm_per_rad": None, "loop_stiffness_Nm_per_rad": None, "preload_Nm": None,
+                           "drive_stiffness_Nm_per_rad": None, "drive_stiffness_with_common_Nm_per_rad": None,
+                           "loop_stiffness_Nm_per_rad": None, "preload_Nm": None,
                            "preload_variation": None,
                            "warnings": len(result.warnings), "failures": len(result.checks.failures)}
     if result.stiffness is not None:
         st = result.stiffness.to_dict()
+        # k_D is the paper's (the two paths); with the common parts (shafts, bearings) is what the servo sees
         out.update(drive_stiffness_Nm_per_rad=st["drive"]["stiffness_Nm_per_rad"],
+                   drive_stiffness_with_common_Nm_per_rad=st["drive"]["stiffness_with_common_Nm_per_rad"],
                    loop_stiffness_Nm_per_rad=st["loop"]["stiffness_Nm_per_rad"], preload_Nm=st["preload_Nm"])
         head = next((v for v in st["preload_variation"] if v["label"] == st["headline_budget"]), None)
         if head is not None:
@@ -256,6 +259,7 @@ def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str
     rows = [["ratio", "-" if numbers["ratio"] is None else
              f"{numbers['ratio']}" + ("" if numbers["ratio_ok"] else " (NOT an allowed ratio)")],
             ["drive stiffness k_D (N·m/rad)", g(numbers["drive_stiffness_Nm_per_rad"])],
+            ["drive stiffness with common parts (N·m/rad)", g(numbers["drive_stiffness_with_common_Nm_per_rad"])],
             ["loop stiffness k_L (N·m/rad)", g(numbers["loop_stiffness_Nm_per_rad"])],
             ["preload (N·m)", g(numbers["preload_Nm"])]]
     v = numbers["preload_variation"]

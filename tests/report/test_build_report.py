@@ -254,6 +254,9 @@ def test_key_numbers_are_the_stiffness_and_check_commands_numbers(built_assembli
     stiffness = _run(["stiffness", str(design), "--json", "-", "--no-plots"])
     check = _run(["check", str(design), "--json", "-"])
     assert numbers["drive_stiffness_Nm_per_rad"] == pytest.approx(stiffness["drive"]["stiffness_Nm_per_rad"], rel=1e-12)
+    assert numbers["drive_stiffness_with_common_Nm_per_rad"] == pytest.approx(
+        stiffness["drive"]["stiffness_with_common_Nm_per_rad"], rel=1e-12)
+    assert numbers["drive_stiffness_with_common_Nm_per_rad"] < numbers["drive_stiffness_Nm_per_rad"]
     assert numbers["loop_stiffness_Nm_per_rad"] == pytest.approx(stiffness["loop"]["stiffness_Nm_per_rad"], rel=1e-12)
     assert numbers["preload_Nm"] == pytest.approx(stiffness["preload"]["preload_Nm"], rel=1e-12)
     head = next(v for v in stiffness["preload_variation"] if v["label"] == stiffness["headline_budget"])
@@ -270,6 +273,8 @@ def test_key_numbers_are_the_stiffness_and_check_commands_numbers(built_assembli
     md = (folder / "report.md").read_text()
     block = md.split("## Key numbers", 1)[1].split("\n## ", 1)[0]
     assert f"| drive stiffness k_D (N·m/rad) | {numbers['drive_stiffness_Nm_per_rad']:.5g} |" in block
+    assert (f"| drive stiffness with common parts (N·m/rad) | {numbers['drive_stiffness_with_common_Nm_per_rad']:.5g} |"
+            in block)
     assert f"| loop stiffness k_L (N·m/rad) | {numbers['loop_stiffness_Nm_per_rad']:.5g} |" in block
     assert f"| preload (N·m) | {numbers['preload_Nm']:.5g} |" in block
     assert f"{head['range_Nm']:.4g} ({100 * head['relative']:.2f} %" in block
