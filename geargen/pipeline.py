@@ -43,7 +43,7 @@ from geargen.errors import DesignError, GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement, resolve
 from geargen.units import LENGTH_SUFFIXES
 
-STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "report")
+STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "figures", "report")
 
 
 class BuildFailed(GeargenError):
@@ -415,15 +415,27 @@ def render(parts, design: Design, settings: dict | None = None, folder: Path | N
     return render_parts(parts.parts, view=view, size=size, title=design.name, meshes=meshes)
 
 
+def check_free_figures(design: Design, summary, view, folder: Path) -> tuple[dict[str, Path], dict[str, str], list[str]]:
+    """The figures that need no check result (the rendered ``view``, the preload diagram of the
+    stiffness ``summary``) written into ``folder`` (:func:`geargen.report.review.write_figures`)."""
+    from geargen.report.review import write_figures
+    return write_figures(design.length_unit, summary, Path(folder), view)
+
+
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:
-    """Step 8: the figures (rendered view, layout drawing, preload diagram) as ``figures/*.png|svg``,
-    report.md and report.html, and the browser design review (:func:`review_page`)."""
+    """The last step: the figures (rendered view, layout drawing, preload diagram) as
+    ``figures/*.png|svg`` (those of :func:`check_free_figures` as ``result.figures`` if drawn
+    already), report.md and report.html, and the browser design review (:func:`review_page`)."""
     from geargen.report.review import compose, write_figures, write_review
-    if result.render_view is None:
-        result.render_view = render(result.parts, result.design)
     folder = Path(folder)
-    figures, links, notes = write_figures(result, folder, result.render_view,
-                                          layout_drawing(result.layout, result.checks))
+    if result.figures is None:
+        if result.render_view is None:
+            result.render_view = render(result.parts, result.design)
+        result.figures = check_free_figures(result.design, result.stiffness, result.render_view, folder)
+    early_files, early_links, early_notes = result.figures
+    figures, links, notes = write_figures(result.design.length_unit, None, folder,
+                                          layout_figure=layout_drawing(result.layout, result.checks))
+    figures, links, notes = early_files | figures, early_links | links, early_notes + notes
     review = compose(result, links, notes)
     return figures | write_review(review, folder) | review_page(result, folder, review)
 
@@ -456,6 +468,7 @@ class BuildResult:
     timings: dict[str, float] = field(default_factory=dict)
     forced: bool = False
     render_view: Any = None  # geargen.cad.render.RenderedView
+    figures: tuple | None = None  # what check_free_figures wrote: (files, links, notes)
 
     @property
     def ok(self) -> bool:
@@ -537,10 +550,12 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             # the view first: its coarse tessellation is refined by the STL export (not the reverse)
             render_view = progress.run("render", render, parts, design)
             files = progress.run("export", export, layout, parts, work)
+            # the figures that do not depend on the checks, drawn while the second process checks
+            drawn = progress.run("figures", check_free_figures, design, summary, render_view, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, alongside, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
-            result.render_view, result.files = render_view, files
+            result.render_view, result.files, result.figures = render_view, files, drawn
             result.timings = dict(progress.timings)
             progress.run("report", _report_and_manifest, result, work)
             target = output.commit()
@@ -817,6 +832,6 @@ def _jsonable(value):
 
 
 __all__ = ["STEPS", "Progress", "GearPlacement", "MeshPlacement", "Layout", "CheckOutcome", "BuildResult",
-           "BuildFailed", "load", "place", "gear_solids", "other_parts", "mesh_checks", "overlap_check",
+           "check_free_figures", "BuildFailed", "load", "place", "gear_solids", "other_parts", "mesh_checks", "overlap_check",
            "stiffness", "export", "report", "manifest", "build", "export_config", "versions",
            "section_check", "contact_region", "Alongside"]

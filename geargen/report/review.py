@@ -414,25 +414,26 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     r.h("Files")
     r.p(f"{len(files)} files besides this report; see manifest.json for units, tolerances and versions.")
     return r
-def write_figures(result: Any, folder: str | Path, view: Any = None, layout_figure: Any = None
+def write_figures(length_unit: str, stiffness: Any, folder: str | Path, view: Any = None, layout_figure: Any = None
                   ) -> tuple[dict[str, Path], dict[str, str], list[str]]:
     """Write the build's figures (the rendered ``view``, a ``geargen.cad.render.RenderedView``; the
-    ``layout_figure``; the preload diagram) as ``figures/<name>.png`` and ``.svg`` into ``folder``.
-    Returns the files written (by role), each figure's PNG path relative to ``folder`` (for
-    :func:`compose`) and notes on figures that could not be drawn."""
+    ``layout_figure``; the preload diagram of the ``stiffness`` summary), each that is given, as
+    ``figures/<name>.png`` and ``.svg`` into ``folder``. Returns the files written (by role), each
+    figure's PNG path relative to ``folder`` (for :func:`compose`) and notes on figures that could
+    not be drawn."""
     from geargen.report.figures import save_figure
     folder = Path(folder)
     made = {}
     if view is not None:
         from geargen.report.view import view_figure
-        made["render"] = view_figure(view, result.design.length_unit)
+        made["render"] = view_figure(view, length_unit)
     if layout_figure is not None:
         made["layout"] = layout_figure
     notes = []
-    if result.stiffness is not None:
+    if stiffness is not None:
         from geargen.report.stiffness import preload_diagram_figure
         try:
-            made["preload_diagram"] = preload_diagram_figure(result.stiffness)
+            made["preload_diagram"] = preload_diagram_figure(stiffness)
         except Exception as exc:  # the plot is an aid; the numbers are in the tables
             notes.append(f"preload diagram not drawn: {exc}")
     files: dict[str, Path] = {}
