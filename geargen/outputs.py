@@ -150,12 +150,15 @@ def add_plot_arguments(p, suffix: str) -> None:
     p.add_argument("--no-plots", action="store_true", help="skip the plots (and the output folder)")
 
 
-def plot_folder(args, design, suffix: str, generator: str):
+def plot_folder(args, design, suffix: str, generator: str, source: str | None = None, source_text: str | None = None):
     """The :class:`OutputFolder` of a command's plots: ``--out`` or ``exports/<design file name>-<suffix>``
-    (beside the build's folder, never in it), owned by ``generator`` for the design file."""
-    source = str(Path(design.path or args.design).resolve())
+    (beside the build's folder, never in it), owned by ``generator`` for the design file (or for
+    ``source``, said as ``source_text``, where the output is of more than the design file)."""
+    if source is None:
+        source = str(Path(design.path or args.design).resolve())
+        source_text = f"the design file {source}"
     target = Path(args.out) if args.out else Path("exports") / f"{Path(args.design).stem}-{suffix}"
-    return OutputFolder(target, generator, source, f"the design file {source}",
+    return OutputFolder(target, generator, source, source_text,
                         overwrite=args.overwrite, flag="--out" if args.out else "output folder")
 
 
@@ -553,6 +556,16 @@ class OutputFolder:
         self.temporary = None
         self._made = []
         return self.target
+
+    def commit_with_manifest(self, design, design_file: str, extra: dict | None = None) -> Path:
+        """Write the folder's manifest.json (the generator, the source it is recognised by, the
+        version, the design, ``extra``, every file written) and :meth:`commit`; the target."""
+        from geargen import __version__
+        manifest = {"generator": self.generator, "source": self.source, "version": __version__,
+                    "design": {"name": design.name, "file": design_file, "sha256": design.sha256},
+                    **(extra or {}), "files": manifest_files(self.work)}
+        write_text(self.work / MANIFEST, json.dumps(manifest, indent=2) + "\n", "--out")
+        return self.commit()
 
     def discard(self) -> None:
         """Remove the temporary folder and any folder :meth:`prepare` created above the target."""

@@ -67,14 +67,8 @@ def _run(args, design, output) -> int:
     data = summary.to_dict()
     data["loop_error_source"] = note
     if output is not None:
-        from geargen import __version__
-        from geargen.outputs import manifest_files, write_text
         written = write_stiffness_plots(summary, output.work)
-        manifest = {"generator": "geargen stiffness", "source": output.source, "version": __version__,
-                    "design": {"name": design.name, "file": output.source, "sha256": design.sha256},
-                    "files": manifest_files(output.work)}
-        write_text(output.work / "manifest.json", json.dumps(manifest, indent=2) + "\n", "--out")
-        target = output.commit()
+        target = output.commit_with_manifest(design, output.source)
         plots = {k: target / Path(v).name for k, v in written.items()}
         data["plots"] = {k: str(v) for k, v in plots.items()}
         print("\nPlots: " + ", ".join(str(p) for p in plots.values()), file=text_out)

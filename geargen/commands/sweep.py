@@ -14,7 +14,6 @@ exit status is 0 unless the input is bad (2) or the folder cannot be written (3)
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from pathlib import Path
@@ -42,11 +41,9 @@ def add_arguments(p) -> None:
 
 def output_folder(args, design_path: Path, sweep_path: Path):
     """The :class:`geargen.outputs.OutputFolder` of the sweep: its source is the pair of files."""
-    from geargen.outputs import OutputFolder
-    source = f"{design_path} + {sweep_path}"
-    target = Path(args.out) if args.out else Path("exports") / f"{Path(args.design).stem}-sweep"
-    return OutputFolder(target, "geargen sweep", source, f"the design file {design_path} with the sweep file "
-                        f"{sweep_path}", overwrite=args.overwrite, flag="--out" if args.out else "output folder")
+    from geargen.outputs import plot_folder
+    return plot_folder(args, None, "sweep", "geargen sweep", f"{design_path} + {sweep_path}",
+                       f"the design file {design_path} with the sweep file {sweep_path}")
 
 
 def _options(args) -> None:
@@ -82,8 +79,6 @@ def run(args) -> int:
 
 
 def _run(args, design, spec, data, output) -> int:
-    from geargen import __version__
-    from geargen.outputs import manifest_files, write_text
     from geargen.sweep import dask_client, print_summary, run_sweep, write_outputs
 
     def progress(done: int, total: int) -> None:
@@ -98,17 +93,12 @@ def _run(args, design, spec, data, output) -> int:
     with dask_client(args.workers, args.scheduler) as client:
         result = run_sweep(design.path, spec, client, progress, data)
     files = write_outputs(result, output.work, design.name)
-    manifest = {"generator": "geargen sweep", "source": output.source, "version": __version__,
-                "design": {"name": design.name, "file": str(design.path), "sha256": design.sha256},
-                "sweep": {"file": str(spec.path), "designs": spec.size, "grid_points": spec.grid_points,
-                          "draws": spec.count, "seed": spec.seed,
-                          "monte_carlo": None if spec.monte_carlo is None else {
-                              "samples": spec.monte_carlo.samples, "chunk_size": spec.monte_carlo.chunk_size,
-                              "seed": spec.monte_carlo.seed}},
-                "counts": result.counts, "seconds": round(result.seconds, 3), "workers": result.workers,
-                "files": manifest_files(output.work)}
-    write_text(output.work / "manifest.json", json.dumps(manifest, indent=2) + "\n", "--out")
-    target = output.commit()
+    mc = spec.monte_carlo
+    target = output.commit_with_manifest(design, str(design.path), {
+        "sweep": {"file": str(spec.path), "designs": spec.size, "grid_points": spec.grid_points, "draws": spec.count,
+                  "seed": spec.seed, "monte_carlo": None if mc is None else {
+                      "samples": mc.samples, "chunk_size": mc.chunk_size, "seed": mc.seed}},
+        "counts": result.counts, "seconds": round(result.seconds, 3), "workers": result.workers})
     print_summary(result)
     print("\nWritten: " + ", ".join(str(target / Path(p).name) for p in files.values()))
     return 0

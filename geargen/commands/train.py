@@ -75,15 +75,9 @@ def _run(args, design, output) -> int:
     text_out = sys.stderr if args.json == "-" else sys.stdout
     print(report.format_train(data) if kind == "drive" else report.format_dual_motor(data), file=text_out)
     if output is not None:
-        from geargen import __version__
-        from geargen.outputs import manifest_files, write_text
         written = (report.write_train_plots(result, output.work) if kind == "drive"
                    else report.write_dual_motor_plots(result, output.work))
-        manifest = {"generator": "geargen train", "source": output.source, "version": __version__,
-                    "design": {"name": design.name, "file": output.source, "sha256": design.sha256},
-                    "files": manifest_files(output.work)}
-        write_text(output.work / "manifest.json", json.dumps(manifest, indent=2) + "\n", "--out")
-        target = output.commit()
+        target = output.commit_with_manifest(design, output.source)
         data["plots"] = {k: str(target / Path(v).name) for k, v in written.items()}
         print("\nPlots: " + ", ".join(data["plots"].values()), file=text_out)
     if args.json:
