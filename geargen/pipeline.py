@@ -401,17 +401,12 @@ def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
 def render(parts, design: Design, settings: dict | None = None, folder: Path | None = None):
     """A rendered view (``geargen.cad.render.RenderedView``) of all parts; with ``folder``, the
     parts' exported STL files there are drawn instead of tessellating again."""
-    from geargen.cad.export import read_stl
+    from geargen.cad.export import exported_triangles
     from geargen.cad.render import render_parts
     settings = settings or export_config(design)
     view = tuple(settings["render_view"] or (-60.0, 30.0))
     size = tuple(settings["render_size"] or (9.0, 6.5))
-    meshes = {}
-    if folder is not None:
-        for p in parts.parts:
-            stl = Path(folder) / f"{p.name}.stl"
-            if stl.exists():
-                meshes[p.name] = read_stl(stl)
+    meshes = exported_triangles(parts.parts, folder)
     return render_parts(parts.parts, view=view, size=size, title=design.name, meshes=meshes)
 
 

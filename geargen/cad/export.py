@@ -328,5 +328,14 @@ def read_stl(path):
     return np.array(pts, dtype=float).reshape(-1, 3, 3)
 
 
+def exported_triangles(parts, folder) -> dict:
+    """Part name -> triangles of its exported ``folder/<name>.stl``, for each of ``parts`` (placed
+    parts) that has one; none with no ``folder``."""
+    if folder is None:
+        return {}
+    stls = {p.name: Path(folder) / f"{p.name}.stl" for p in parts}
+    return {name: read_stl(path) for name, path in stls.items() if path.is_file()}
+
+
 __all__ = ["export_step", "export_stl", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
-           "read_step", "read_stl", "StepContents", "STEP_UNITS", "MANIFEST"]
+           "read_step", "read_stl", "exported_triangles", "StepContents", "STEP_UNITS", "MANIFEST"]

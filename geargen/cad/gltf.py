@@ -120,10 +120,9 @@ def assembly_glb(name: str, parts: Iterable, folder: Path | None = None, detail:
     """The GLB of placed parts (:class:`geargen.cad.assembly.PlacedPart`): each part's triangles from
     ``folder/<part>.stl`` (the export) when it exists, else tessellated here within the model's
     largest size over ``detail`` (:func:`geargen.cad.render.part_triangles`, the rendered view's)."""
-    from geargen.cad.export import read_stl
+    from geargen.cad.export import exported_triangles
     parts = list(parts)
-    meshes = {p.name: read_stl(Path(folder) / f"{p.name}.stl") for p in parts
-              if folder is not None and (Path(folder) / f"{p.name}.stl").is_file()}
+    meshes = exported_triangles(parts, folder)
     todo = [p for p in parts if p.name not in meshes]
     if todo:
         from geargen.cad.parts import bounding_box
