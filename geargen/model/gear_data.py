@@ -1,0 +1,64 @@
+"""A gear's data as `geargen gear` writes it to ``<name>.json`` (see ../shared/contracts/gear-data.md).
+
+One function serves every writer of gear data (the gear command, the build's drawings), so a
+number on a drawing is the number in the JSON. Lengths in the gear's ``length_unit``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from geargen.design.gear import GearSpec
+from geargen.errors import GeargenError
+from geargen.units import from_mm
+
+
+def gear_data(spec: GearSpec, profile) -> dict:
+    """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit."""
+    from geargen.core import geometry
+    from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness
+
+    u = spec.length_unit
+
+    def L(v):
+        return None if v is None else float(from_mm(v, u))
+
+    out = {
+        "name": spec.name, "length_unit": u, "teeth": spec.teeth,
+        "normal_module_mm": spec.module, "transverse_module_mm": spec.transverse_module,
+        "normal_pressure_angle_deg": math.degrees(spec.pressure_angle),
+        "transverse_pressure_angle_deg": math.degrees(spec.transverse_pressure_angle),
+        "helix_angle_deg": math.degrees(spec.helix_angle), "hand": spec.hand if spec.is_helical else None,
+        "base_helix_angle_deg": math.degrees(spec.base_helix_angle),
+        "lead": L(spec.lead) if spec.is_helical else None,
+        "profile_shift_normal": spec.profile_shift,
+        "face_width": L(spec.face_width), "bore_diameter": L(spec.hub.bore_diameter),
+        "reference_radius": L(profile.reference_radius), "base_radius": L(profile.base_radius),
+        "tip_radius": L(profile.tip_radius), "root_radius": L(profile.root_radius),
+        "reference_tooth_thickness_transverse": L(reference_tooth_thickness(spec)),
+        "thinning_circumferential": L(spec.thinning),
+        "tip_land_transverse": L(profile.tip_land), "pointed_tip_radius": L(pointed_tip_radius(spec)),
+        "undercut": profile.undercut, "involute_start_radius": L(profile.involute_start_radius),
+        "warnings": list(profile.warnings),
+    }
+    try:
+        uc = geometry.undercut(spec)
+        out["minimum_teeth_without_undercut"] = uc.minimum_teeth
+        out["minimum_profile_shift_without_undercut"] = uc.minimum_profile_shift
+    except GeargenError as exc:
+        out["warnings"].append(str(exc))
+    try:
+        span = geometry.span_measurement(spec)
+        out["span"] = {"teeth_spanned": span.teeth_spanned, "span_normal": L(span.span),
+                       "span_transverse": L(span.transverse_span), "contact_radius": L(span.contact_radius)}
+    except GeargenError as exc:
+        out["span"] = None
+        out["warnings"].append(f"span: {exc}")
+    try:
+        pins = geometry.over_pins_measurement(spec)
+        out["over_pins"] = {"kind": pins.kind, "diameter": L(pins.pin_diameter), "dimension": L(pins.dimension),
+                            "centre_radius": L(pins.centre_radius), "contact_radius": L(pins.contact_radius)}
+    except GeargenError as exc:
+        out["over_pins"] = None
+        out["warnings"].append(f"over pins: {exc}")
+    return out
