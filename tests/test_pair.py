@@ -280,6 +280,9 @@ ROWS = [  # printed label, the JSON value(s) it shows, whether they are lengths
     ("normal to the flanks", lambda d: [d["backlash"]["normal"]], True),
     ("angular, the other gear held (arcmin)", lambda d: d["backlash"]["angular_arcmin"], False),
     ("x1 + x2 for zero backlash at a'", lambda d: [d["shift_sum_for_zero_backlash"]], False),
+    ("per face width c_gamma_alpha | E/11", lambda d: [d["iso6336"]["mesh_stiffness_N_per_mm_um"],
+                                                       d["eq1"]["stiffness_per_face_width_N_per_mm_um"]], False),
+    ("single stiffness c'", lambda d: [d["iso6336"]["single_stiffness_N_per_mm_um"]], False),
 ]
 
 
@@ -317,6 +320,56 @@ def test_json_to_standard_output_moves_the_table_to_standard_error(capsys):
 
 
 # ---------------------------------------------------------------------------------------------
+# Mesh stiffness per ISO 6336-1:2019 method B, beside Eq. 1
+# ---------------------------------------------------------------------------------------------
+
+TR_6336_30_EXAMPLE_1 = ["--teeth", "17", "103", "--module", "8", "--pressure-angle", "20", "--helix-angle", "15.8",
+                        "--profile-shift", "0.145", "0", "--face-width", "100", "--centre-distance", "500",
+                        "--dedendum-coefficient", "1.4", "--elastic-modulus", "206"]
+
+
+def test_iso6336_block_of_the_tr_6336_30_example_1(capsys):
+    # ISO/TR 6336-30:2017 Annex A example 1 (basic rack h_fP 1.4 m_n, steel E_st 206 GPa): the published
+    # c' 12.37047 and c_gamma_alpha 17.46485 N/(mm um), as tabulated in the "Reference" column of
+    # MATISO_6336.example_01 in github.com/gfsReboucas/Drivetrain; its load (1273 N/mm) needs no correction
+    data, table = pair(capsys, *TR_6336_30_EXAMPLE_1)
+    block = data["iso6336"]
+    assert block["method"] == "ISO 6336-1:2019 method B"
+    assert block["single_stiffness_N_per_mm_um"] == pytest.approx(12.37047, rel=1e-3)
+    assert block["mesh_stiffness_N_per_mm_um"] == pytest.approx(17.46485, rel=1e-2)
+    assert block["mesh_stiffness_beta_N_per_mm_um"] == pytest.approx(14.84512, rel=1e-2)
+    # one truth: eps_alpha is the pair's reported contact ratio; the whole mesh is c_gamma_alpha b
+    assert block["transverse_contact_ratio"] == data["contact_ratio"]["transverse"]
+    assert block["mesh_stiffness_whole_N_per_um"] == pytest.approx(block["mesh_stiffness_N_per_mm_um"] * 100, rel=1e-15)
+    assert block["load_factor"] == 1.0 and block["specific_load_N_per_mm"] is None
+    # Eq. 1 beside it for the same face: E / 11 per mm of face, E b / 11 for the mesh (N/um)
+    assert data["eq1"]["stiffness_per_face_width_N_per_mm_um"] == pytest.approx(206.0 / 11, rel=1e-15)
+    assert data["eq1"]["stiffness_whole_N_per_um"] == pytest.approx(206.0 * 100 / 11, rel=1e-15)
+    line = next(l for l in table.splitlines() if l.startswith("whole mesh c_gamma_alpha b | E b/11"))
+    assert line.split()[-2:] == [f"{block['mesh_stiffness_whole_N_per_um']:.2f}", f"{206.0 * 100 / 11:.2f}"]
+
+
+def test_a_light_load_lowers_c_prime_by_the_fourth_root(capsys):
+    # 2000 N over 100 mm: 20 N/mm < 100 N/mm, c' times (20/100)^0.25 (ISO 6336-1 method B)
+    full, _ = pair(capsys, *TR_6336_30_EXAMPLE_1)
+    light, _ = pair(capsys, *TR_6336_30_EXAMPLE_1, "--load", "2000")
+    ratio = light["iso6336"]["single_stiffness_N_per_mm_um"] / full["iso6336"]["single_stiffness_N_per_mm_um"]
+    assert ratio == pytest.approx(0.2 ** 0.25, rel=1e-14)
+    assert light["iso6336"]["specific_load_N_per_mm"] == pytest.approx(20.0, rel=1e-15)
+    # a heavy one changes nothing
+    heavy, _ = pair(capsys, *TR_6336_30_EXAMPLE_1, "--load", "127352")
+    assert heavy["iso6336"]["single_stiffness_N_per_mm_um"] == full["iso6336"]["single_stiffness_N_per_mm_um"]
+
+
+def test_default_material_is_geargens_steel_for_both_methods(capsys):
+    # no --elastic-modulus: geargen's steel (207 GPa, the [stiffness] default) in Eq. 1 and as E / E_st
+    data, _ = pair(capsys, "--teeth", "20", "40", "--module", "2")
+    assert data["eq1"]["elastic_modulus_MPa"] == 207e3
+    assert data["iso6336"]["material_factor_E_over_E_st"] == pytest.approx(207 / 206, rel=1e-15)
+    assert data["eq1"]["stiffness_whole_N_per_um"] is None and data["iso6336"]["mesh_stiffness_whole_N_per_um"] is None
+
+
+# ---------------------------------------------------------------------------------------------
 # Bad input: exit status 2, naming the option and what it allows
 # ---------------------------------------------------------------------------------------------
 
@@ -341,6 +394,10 @@ def test_json_to_standard_output_moves_the_table_to_standard_error(capsys):
     (["--teeth", "12", "24"], "--module", "--diametral-pitch"),
     (["--teeth", "12", "24", "--module", "3", "--diametral-pitch", "8"], "--diametral-pitch", "--module"),
     (["--teeth", "12", "--module", "3"], "--teeth", "2 arguments"),
+    (["--teeth", "12", "24", "--module", "3", "--load", "500"], "--load", "--load with --face-width"),
+    (["--teeth", "12", "24", "--module", "3", "--face-width", "10", "--load", "-5"], "--load", "> 0 N"),
+    (["--teeth", "12", "24", "--module", "3", "--elastic-modulus", "0"], "--elastic-modulus", "> 0 GPa"),
+    (["--teeth", "12", "24", "--module", "3", "--dedendum-coefficient", "3"], "--dedendum-coefficient", "[0.5, 2]"),
 ])
 def test_bad_input_names_the_option(capsys, options, flag, allowed):
     err = refused(capsys, *options)

@@ -9,8 +9,9 @@ diameters of each gear (reference, base, tip, root, working pitch), the standard
 operating centre distances, the working pressure angle (transverse, and normal for helical
 pairs), the contact ratios, the backlash of each kind, undercut and the minimum shift without
 it, the tip land, span and over-pins/balls measurements, and a recommended split of the sum
-of profile shifts (the rule is printed). ``--json FILE|-`` writes the same numbers
-(:func:`geargen.report.pair.pair_data`).
+of profile shifts (the rule is printed), and the mesh stiffness per ISO 6336-1:2019 method B
+(single stiffness c' and mesh stiffness c_gamma with their factors) beside Eq. 1's ``E w / 11``.
+``--json FILE|-`` writes the same numbers (:func:`geargen.report.pair.pair_data`).
 
 ``--centre-distance``: the shift sum for zero backlash there (the inverse) is always reported.
 With ``--profile-shift`` the pair is taken as given and its backlash at that centre distance is
@@ -59,15 +60,27 @@ def add_arguments(p) -> None:
     p.add_argument("--thinning", type=float, nargs=2, default=None, metavar=("T1", "T2"),
                    help="tooth thinning for backlash, circumferential (transverse arc) at the reference circle, "
                         "in the design's unit (default 0 0)")
+    p.add_argument("--dedendum-coefficient", type=float, default=None, metavar="H",
+                   help="basic rack dedendum over the normal module, both gears (default 1.25); also ISO 6336's "
+                        "basic rack factor C_B")
+    p.add_argument("--elastic-modulus", type=float, default=None, metavar="GPA",
+                   help="Young's modulus of both gears in GPa, for Eq. 1 (E w / 11) and ISO 6336's material factor "
+                        "E / E_st (default: geargen's steel, as [stiffness] elastic_modulus)")
+    p.add_argument("--load", type=float, default=None, metavar="N",
+                   help="F_t K_A: transverse tangential load at the reference circle times the application factor, "
+                        "N (needs --face-width); below 100 N/mm of face ISO 6336 lowers c' (default: no load "
+                        "correction)")
     p.add_argument("--json", metavar="FILE", default=None, help="write the numbers as JSON ('-' for standard output)")
 
 
 #: gear-table key (without a unit suffix) -> the option that sets it
 _FLAGS = {"teeth": "--teeth", "module_mm": "--module", "diametral_pitch_per_in": "--diametral-pitch",
           "pressure_angle_deg": "--pressure-angle", "helix_angle_deg": "--helix-angle", "hand": "--hand",
-          "profile_shift": "--profile-shift", "face_width": "--face-width", "thinning_circumferential": "--thinning"}
+          "profile_shift": "--profile-shift", "face_width": "--face-width", "thinning_circumferential": "--thinning",
+          "dedendum_coefficient": "--dedendum-coefficient"}
 #: options given once for both gears: their messages need not say which gear
-_COMMON = {"--module", "--diametral-pitch", "--pressure-angle", "--helix-angle", "--face-width"}
+_COMMON = {"--module", "--diametral-pitch", "--pressure-angle", "--helix-angle", "--face-width",
+           "--dedendum-coefficient"}
 
 
 def _flag(key: str) -> str:
@@ -95,6 +108,8 @@ def gears_from_args(args) -> tuple[GearSpec, GearSpec, str]:
         table = {"teeth": args.teeth[i], "pressure_angle_deg": args.pressure_angle,
                  "helix_angle_deg": args.helix_angle, "hand": hands[i], "profile_shift": shifts[i],
                  f"thinning_circumferential_{unit}": thinning[i]}
+        if args.dedendum_coefficient is not None:
+            table["dedendum_coefficient"] = args.dedendum_coefficient
         if args.module is not None:
             table["module_mm"] = args.module
         else:
@@ -153,11 +168,28 @@ def check_centre_distance(args, gear1: GearSpec, gear2: GearSpec, unit: str) -> 
     return value
 
 
+def stiffness_inputs(args) -> tuple[float | None, float | None]:
+    """``--elastic-modulus`` in MPa and ``--load`` in N, refused where out of range (the load needs
+    ``--face-width``: ISO 6336's load correction is per unit face width)."""
+    modulus = None
+    if args.elastic_modulus is not None:
+        if not (math.isfinite(args.elastic_modulus) and args.elastic_modulus > 0):
+            raise DesignError("--elastic-modulus", f"{args.elastic_modulus!r} GPa is out of range", "> 0 GPa")
+        modulus = args.elastic_modulus * 1e3
+    if args.load is not None:
+        if not (math.isfinite(args.load) and args.load > 0):
+            raise DesignError("--load", f"{args.load!r} N is out of range", "> 0 N")
+        if args.face_width is None:
+            raise DesignError("--load", "a load needs the face width it is spread over", "--load with --face-width")
+    return modulus, args.load
+
+
 def run(args) -> int:
     from geargen.report.pair import format_pair, pair_data
 
     gear1, gear2, unit = gears_from_args(args)
     centre_distance = check_centre_distance(args, gear1, gear2, unit)
+    modulus, load = stiffness_inputs(args)
     if args.profile_shift is not None:
         source = "given"
     else:
@@ -165,11 +197,12 @@ def run(args) -> int:
     try:
         data = pair_data(gear1, gear2, shift_source=source, centre_distance=centre_distance,
                          face_width=None if args.face_width is None else to_mm(args.face_width, unit),
-                         diametral_pitch=args.diametral_pitch)
+                         diametral_pitch=args.diametral_pitch, elastic_modulus=modulus, load=load)
     except DesignError as exc:
         # the core names its own fields; say which option they came from
         flag = {"shift_sum": "--centre-distance" if source == "centre_distance" else "--profile-shift",
-                "profile_shift": "--profile-shift", "centre_distance": "--centre-distance"}.get(exc.field)
+                "profile_shift": "--profile-shift", "centre_distance": "--centre-distance",
+                "specific_load": "--load", "elastic_modulus": "--elastic-modulus"}.get(exc.field)
         if flag is None:
             raise
         raise DesignError(flag, exc.problem, exc.allowed) from None
@@ -177,7 +210,8 @@ def run(args) -> int:
     data = {"generator": "geargen pair", "version": __version__, **data}
     data["options"] = {k: getattr(args, k) for k in ("teeth", "module", "diametral_pitch", "pressure_angle",
                                                       "helix_angle", "hand", "profile_shift", "face_width",
-                                                      "centre_distance", "thinning")}
+                                                      "centre_distance", "thinning", "dedendum_coefficient",
+                                                      "elastic_modulus", "load")}
     print(format_pair(data), file=sys.stderr if args.json == "-" else sys.stdout)
     if args.json:
         from geargen.outputs import json_default, write_text

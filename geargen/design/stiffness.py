@@ -58,6 +58,8 @@ from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
 LBF = 4.4482216152605  # N per pound-force
+#: geargen's steel, MPa: the default Young's modulus of gears and shafts (Eq. 1's E)
+STEEL_ELASTIC_MODULUS = 207e3
 IN = 25.4  # mm per inch
 PSI = LBF / IN ** 2  # MPa per psi
 
@@ -351,7 +353,7 @@ class ComponentSpec:
 class StiffnessSpec:
     """``[stiffness]``: materials, gear roles of the dual-pinion train, where to reduce, components."""
 
-    elastic_modulus: float = 207e3  # MPa, steel
+    elastic_modulus: float = STEEL_ELASTIC_MODULUS
     shear_modulus: float = 79.3e3  # MPa
     reduce_to: str = "output"
     train: str = "dual_pinion"

@@ -42,7 +42,8 @@ ARCMIN_PER_RAD = 180 * 60 / math.pi
 
 
 def pair_data(gear1: GearSpec, gear2: GearSpec, *, shift_source: str = "given", centre_distance: float | None = None,
-              face_width: float | None = None, diametral_pitch: float | None = None) -> dict:
+              face_width: float | None = None, diametral_pitch: float | None = None,
+              elastic_modulus: float | None = None, load: float | None = None) -> dict:
     """Everything ``geargen pair`` reports about two external gears in mesh, as a JSON-ready dict.
 
     Parameters
@@ -63,6 +64,12 @@ def pair_data(gear1: GearSpec, gear2: GearSpec, *, shift_source: str = "given", 
         total contact ratios are None (a spur pair's overlap ratio is 0 whatever the width).
     diametral_pitch : float, optional
         Normal diametral pitch (1/in) of an inch design, echoed in the result.
+    elastic_modulus : float, optional
+        Young's modulus of both gears (MPa) for Eq. 1 and ISO 6336's material factor; default
+        geargen's steel (:data:`geargen.design.stiffness.STEEL_ELASTIC_MODULUS`).
+    load : float, optional
+        F_t K_A (N), spread over ``face_width`` (then required): ISO 6336's load correction of c'
+        below 100 N/mm. Default: none (the contract's "no load correction").
     """
     if shift_source not in SHIFT_SOURCES:
         raise ValueError(f"shift_source must be one of {sorted(SHIFT_SOURCES)}")
@@ -123,6 +130,9 @@ def pair_data(gear1: GearSpec, gear2: GearSpec, *, shift_source: str = "given", 
         g["tip_diameter_constant_clearance"] = None if clearance_mesh is None else L(2 * clearance_mesh.tip_radii[i])
     _pair_warnings(mesh, backlash, overlap_known, warnings, L, unit)
 
+    stiffness = _stiffness_data(pair, operating, face_width, elastic_modulus, load)
+    warnings += [f"ISO 6336 stiffness: {w}" for w in stiffness["iso6336"]["warnings"]]
+
     recommended = _split_data(split, pair.shift_sum, split_problem)
     if not recommended["success"]:
         warnings.append(f"recommended profile shift: {recommended['message']}")
@@ -181,10 +191,31 @@ def pair_data(gear1: GearSpec, gear2: GearSpec, *, shift_source: str = "given", 
             },
         },
         "recommended_profile_shift": recommended,
+        **stiffness,
         "gears": gears,
         "warnings": warnings,
     }
     return data
+
+
+def _stiffness_data(pair, operating: float, face_width: float | None, elastic_modulus: float | None,
+                    load: float | None) -> dict:
+    """The contract's ``iso6336`` block (c', c_gamma and their factors at the operating centre
+    distance) and Eq. 1 beside it, both per unit face width and, with a face width, for the mesh."""
+    from geargen.core.iso6336 import pair_stiffness
+    from geargen.core.stiffness import mesh_stiffness
+    from geargen.design.stiffness import STEEL_ELASTIC_MODULUS
+
+    e = STEEL_ELASTIC_MODULUS if elastic_modulus is None else float(elastic_modulus)
+    if load is not None and face_width is None:
+        raise ValueError("a load needs the face width it is spread over")
+    iso = pair_stiffness(pair, operating, face_width, e, None if load is None else load / face_width)
+    per_width = float(mesh_stiffness(e, 1.0)) * 1e-3  # N/mm per mm of face -> N/(mm·µm)
+    return {"iso6336": {**iso.to_dict(), "applied_load_N": load},
+            "eq1": {"method": "Eq. 1 of the paper: k = E w / 11 along the line of action", "elastic_modulus_MPa": e,
+                    "stiffness_per_face_width_N_per_mm_um": per_width,
+                    "stiffness_whole_N_per_um": None if face_width is None else per_width * face_width,
+                    "face_width_mm": face_width}}
 
 
 def _split_data(split, shift_sum: float, problem: str | None) -> dict:
@@ -378,6 +409,8 @@ def format_pair(data: dict) -> str:
     lines.append(_row(f"normal to the flanks ({u})", _fixed(bl["normal"], n)))
     lines.append(_row("angular, the other gear held (arcmin)", *(_fixed(v, 3) for v in bl["angular_arcmin"])))
 
+    _stiffness_lines(lines, data)
+
     rec = data["recommended_profile_shift"]
     lines += ["", f"Recommended profile shifts for the sum {_fixed(rec['shift_sum'], 5)}"]
     if rec["profile_shift"] is not None:
@@ -388,6 +421,32 @@ def format_pair(data: dict) -> str:
     if data["warnings"]:
         lines += ["", "Warnings"] + [f"- {w}" for w in data["warnings"]]
     return "\n".join(lines)
+
+
+def _stiffness_lines(lines: list[str], data: dict) -> None:
+    """ISO 6336's c_gamma beside Eq. 1's E / 11, per unit face width and for the mesh, then c' and its factors."""
+    iso, eq1 = data["iso6336"], data["eq1"]
+    lines += ["", f"Mesh stiffness: {iso['method']} beside Eq. 1 (E w / 11), E = "
+                  f"{_compact(eq1['elastic_modulus_MPa'] * 1e-3)} GPa, {iso['load_correction']}"]
+    lines.append(_row("", "ISO 6336", "Eq. 1"))
+    lines.append(_row("per face width c_gamma_alpha | E/11, N/(mm um)", _fixed(iso["mesh_stiffness_N_per_mm_um"], 4),
+                      _fixed(eq1["stiffness_per_face_width_N_per_mm_um"], 4)))
+    if eq1["stiffness_whole_N_per_um"] is not None:
+        lines.append(_row("whole mesh c_gamma_alpha b | E b/11, N/um",
+                          _fixed(iso["mesh_stiffness_whole_N_per_um"], 2), _fixed(eq1["stiffness_whole_N_per_um"], 2)))
+    lines.append(_row("single stiffness c', N/(mm um)", _fixed(iso["single_stiffness_N_per_mm_um"], 4)))
+    lines.append(_row("mesh stiffness c_gamma_beta, N/(mm um)", _fixed(iso["mesh_stiffness_beta_N_per_mm_um"], 4)))
+    lines.append(_row("theoretical single stiffness c'_th, N/(mm um)",
+                      _fixed(iso["theoretical_single_stiffness_N_per_mm_um"], 4)))
+    lines.append(_row("flexibility q', mm um/N", _fixed(iso["flexibility_q_prime_mm_um_per_N"], 6)))
+    lines.append(_row(f"virtual teeth z_n (pinion = {iso['pinion']}, wheel)",
+                      *(_fixed(v, 3) for v in iso["virtual_teeth_pinion_wheel"])))
+    lines.append(_row("factors C_M, C_R, C_B", *(_fixed(iso[k], 4) for k in
+                                                 ("correction_factor_C_M", "gear_blank_factor_C_R",
+                                                  "basic_rack_factor_C_B"))))
+    lines.append(_row("cos(beta), E/E_st, load factor", *(_fixed(iso[k], 4) for k in
+                                                         ("helix_factor_cos_beta", "material_factor_E_over_E_st",
+                                                          "load_factor"))))
 
 
 def _compact(value: float) -> str:
