@@ -54,6 +54,31 @@ def mesh_stiffness(elastic_modulus, face_width):
     return np.asarray(elastic_modulus, dtype=float) * np.asarray(face_width, dtype=float) / MESH_DIVISOR
 
 
+def gear_mesh_stiffness(gear_a, gear_b, face_width: float, elastic_modulus: float, method: str = "eq1",
+                        where: str = "stiffness") -> tuple[float, str, tuple[str, ...]]:
+    """A tooth mesh of two gears along its (transverse) line of action, N/mm, by ``method``
+    (``[stiffness] mesh_stiffness``): "eq1", ``E w / 11``; "iso6336", ISO 6336-1:2019 method B,
+    ``c_gamma_alpha w`` (:func:`geargen.core.iso6336.pair_stiffness`: the gears' teeth, shifts,
+    module, helix and basic rack; eps_alpha at the working centre distance of their shifts; solid
+    blanks; no load correction; ``E`` of both gears). Returns (stiffness, detail text, warnings).
+    ``where`` is the design key errors name."""
+    if method == "eq1":
+        return float(mesh_stiffness(elastic_modulus, face_width)), f"Eq. 1: E w / 11, w={face_width:.4g} mm", ()
+    if method != "iso6336":
+        raise DesignError("stiffness.mesh_stiffness", f"{method!r} is not a valid choice", "'eq1', 'iso6336'")
+    from geargen.core.geometry import GearPair
+    from geargen.core.iso6336 import METHOD, pair_stiffness
+
+    try:
+        result = pair_stiffness(GearPair(gear_a, gear_b), face_width=face_width, elastic_modulus=elastic_modulus)
+    except DesignError as exc:  # the gears do not make a pair ISO 6336 can rate: say which entry named them
+        raise DesignError(where, f"ISO 6336 mesh stiffness: {exc.field}: {exc.problem}", exc.allowed) from None
+    detail = (f"{METHOD}: c_gamma_alpha w, {result.mesh_stiffness:.4g} N/(mm um) x w={face_width:.4g} mm (c' "
+              f"{result.single_stiffness:.4g}, eps_alpha {result.transverse_contact_ratio:.4f}, E/E_st "
+              f"{result.material_factor:.4g})")
+    return result.line_of_action_stiffness, detail, result.warnings
+
+
 def shaft_torsional_stiffness(shear_modulus: float, diameter: float, length: float, bore: float = 0.0) -> float:
     """Torsional stiffness of a round (hollow) shaft, N·mm/rad: ``G J / L``, ``J = pi (d^4 - di^4)/32``."""
     j = math.pi * (diameter ** 4 - bore ** 4) / 32.0
@@ -321,6 +346,7 @@ class ComponentStiffness:
     radius: float | None
     at_output: float
     detail: str = ""
+    warnings: tuple[str, ...] = ()  # of its formula's range (ISO 6336 meshes)
 
 
 def _component_location(spec: ComponentSpec, train: DualPinionTrain | SplitPinionTrain | None, gear: str | None,
@@ -365,6 +391,7 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
     e = spec.elastic_modulus or stiffness.elastic_modulus
     g = spec.shear_modulus or stiffness.shear_modulus
     radius = None
+    notes: tuple[str, ...] = ()
     if spec.kind == "torsion":
         local, unit, detail = spec.stiffness, "N·mm/rad", "given torsional stiffness"
         ratio = _component_location(spec, train, spec.gear, where)
@@ -401,8 +428,9 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
             if gname not in design.gears:
                 raise DesignError(f"{where}.gears", f"no gear named {gname!r} in the design", ", ".join(design.gears))
         w = spec.face_width or min(design.gears[a].face_width, design.gears[b].face_width)
-        local = float(mesh_stiffness(e, w))
-        unit, detail = "N/mm", f"Eq. 1: E w / 11, w={w:.4g} mm"
+        local, detail, notes = gear_mesh_stiffness(design.gears[a], design.gears[b], w, e, stiffness.mesh_stiffness,
+                                                   f"{where}.gears")
+        unit = "N/mm"
         radius = design.gears[b].base_radius
         ratio = _component_location(spec, train, b, where)
     else:  # pragma: no cover - the spec validates kinds
@@ -413,22 +441,25 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
     torsional = local if radius is None else float(torsional_from_linear(local, radius))
     return ComponentStiffness(name=spec.name, kind=spec.kind, scope=spec.scope, local=float(local), local_unit=unit,
                               ratio=float(ratio), radius=radius, at_output=float(reflect(torsional, ratio)),
-                              detail=detail)
+                              detail=detail, warnings=notes)
 
 
-def train_mesh_components(train: DualPinionTrain, elastic_modulus: float) -> list[ComponentStiffness]:
-    """The two meshes of each path of a dual-pinion train (Eq. 1), reduced to the output."""
+def train_mesh_components(train: DualPinionTrain, elastic_modulus: float,
+                          method: str = "eq1") -> list[ComponentStiffness]:
+    """The two meshes of each path of a dual-pinion train (Eq. 1, or ISO 6336 by ``method``:
+    :func:`gear_mesh_stiffness`), reduced to the output."""
     n = train.names
     out = []
     for label, (a, b), w, shaft in (("mesh 1", ("input", "cluster_large"), train.mesh1_face_width, "cluster"),
                                     ("mesh 2", ("cluster_small", "output"), train.mesh2_face_width, "output")):
-        k = float(mesh_stiffness(elastic_modulus, w))
+        k, detail, notes = gear_mesh_stiffness(train.gears[a], train.gears[b], w, elastic_modulus, method,
+                                               f"stiffness.{a}_gear")
         rb = train.gears[b].base_radius
         ratio = train.shaft_ratio(shaft)
         out.append(ComponentStiffness(
             name=f"{label} ({n[a]}-{n[b]})", kind="mesh", scope="each_path", local=k, local_unit="N/mm",
             ratio=ratio, radius=rb, at_output=float(reflect(torsional_from_linear(k, rb), ratio)),
-            detail=f"Eq. 1: E w / 11, w={w:.4g} mm, at base radius {rb:.4g} mm of {n[b]}"))
+            detail=f"{detail}, at base radius {rb:.4g} mm of {n[b]}", warnings=notes))
     return out
 
 
@@ -864,9 +895,10 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     train = drive_train(design, spec)
     comps: list[ComponentStiffness] = []
     if isinstance(train, DualPinionTrain):
-        comps += train_mesh_components(train, spec.elastic_modulus)
+        comps += train_mesh_components(train, spec.elastic_modulus, spec.mesh_stiffness)
     comps += [component_stiffness(c, design, spec, train) for c in (spec.components if components is None
                                                                     else components)]
+    warnings += [f"{c.name}: {w}" for c in comps for w in c.warnings]
     path1, path2, common = split_paths(comps)
     for p in (path1, path2):
         if not p.components:
@@ -1105,7 +1137,7 @@ def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):
 
 
 __all__ = [
-    "MESH_DIVISOR", "mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness",
+    "MESH_DIVISOR", "mesh_stiffness", "gear_mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness",
     "supported_shaft_compliance", "series", "parallel",
     "reflect", "torsional_from_linear", "linear_from_torsional", "DualPinionTrain", "train_from_design",
     "SplitPinionTrain", "split_pinion_train", "drive_train",

@@ -110,7 +110,8 @@ TABLES: tuple[Table, ...] = (
     Table("[stiffness]", ("stiffness",),
           "Materials and the train whose path stiffnesses, drive stiffness (Eqs. 2, 5) and loop stiffness "
           "(Eqs. 3, 6) `geargen stiffness` computes. The meshes of a dual-pinion train come from the gears "
-          "(Eq. 1); further components are tables [stiffness.components.NAME]. In a dual or split pinion "
+          "(Eq. 1, or ISO 6336-1 method B with mesh_stiffness = \"iso6336\"); further components are tables "
+          "[stiffness.components.NAME]. In a dual or split pinion "
           "each component's speed comes from the teeth of the shaft or gear it names; only a custom train "
           "types ratios.",
           Example("robot_joint.toml", ("stiffness",)), sections=("stiffness",)),

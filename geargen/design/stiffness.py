@@ -21,6 +21,7 @@ Example (the robot joint, abridged)::
 
     [stiffness]
     elastic_modulus_GPa = 207          # gear and shaft material (Eq. 1: k_mesh = E w / 11)
+    mesh_stiffness = "eq1"             # or "iso6336": ISO 6336-1 method B, c_gamma_alpha w
     shear_modulus_GPa = 79.3
     reduce_to = "output"               # where path stiffnesses are shown: "output", "cluster", "input"
     train = "dual_pinion"              # the two meshes of each path come from the gears (the default;
@@ -212,6 +213,9 @@ TRAIN_SHAFTS = {"dual_pinion": SHAFTS, "split_pinion": ("input", "output"), "cus
 SCOPES = ("each_path", "path1", "path2", "common")
 COMPONENT_KINDS = ("torsion", "linear", "shaft_torsion", "shaft_bending", "shaft_support", "mesh")
 SUPPORTS = ("simple", "fixed", "cantilever")
+#: how a tooth mesh's stiffness is computed: Eq. 1 of the paper (E w / 11) or ISO 6336-1:2019 method B
+#: (c_gamma_alpha w, geargen.core.iso6336)
+MESH_METHODS = ("eq1", "iso6336")
 
 #: keys each component kind uses besides kind, scope, count, shaft and ratio; anything else is an error
 _KIND_KEYS = {
@@ -248,8 +252,9 @@ class ComponentSpec:
         radial ``stiffness`` (N/mm per bearing) through the lever of its distance to the gear; a
         support that is itself on another placed shaft (a clamp collar on a hollow shaft) adds
         that shaft's compliance there, on its bearings of the same ``stiffness``;
-      * ``mesh``: a tooth mesh of the two ``gears`` (Eq. 1, ``E w / 11`` along the line of action,
-        ``w`` the smaller face width unless ``face_width`` is given), acting at the second gear.
+      * ``mesh``: a tooth mesh of the two ``gears`` (Eq. 1, ``E w / 11`` along the line of action, or
+        ISO 6336's ``c_gamma_alpha w`` with ``[stiffness] mesh_stiffness = "iso6336"``; ``w`` the
+        smaller face width unless ``face_width`` is given), acting at the second gear.
 
     ``count`` identical components act in parallel. ``scope`` puts it in each path, in one
     path only (type 1 compliant path), or in series with the whole drive (``common``).
@@ -362,9 +367,13 @@ class StiffnessSpec:
     cluster_small_gear: str = "cluster_small"
     output_gear: str = "output"
     components: tuple[ComponentSpec, ...] = ()
+    mesh_stiffness: str = "eq1"
 
     def __post_init__(self):
         _positive("stiffness.elastic_modulus", self.elastic_modulus)
+        if self.mesh_stiffness not in MESH_METHODS:
+            raise DesignError("stiffness.mesh_stiffness", f"{self.mesh_stiffness!r} is not a valid choice",
+                              ", ".join(map(repr, MESH_METHODS)))
         _positive("stiffness.shear_modulus", self.shear_modulus)
         if self.reduce_to not in LOCATIONS:
             raise DesignError("stiffness.reduce_to", f"{self.reduce_to!r} is not a valid choice", ", ".join(map(repr, LOCATIONS)))
@@ -400,6 +409,10 @@ _STIFFNESS_FIELDS = [
           help="dual_pinion (the default): each path's two meshes come from the gears; split_pinion (the default, "
                "and the only train, of a [layout] kind = 'split_pinion'): the pinions and output that [layout] "
                "names, the pinions' shaft 'input'; custom: list every component (meshes too) with its ratio"),
+    Field("mesh_stiffness", "string", required=False, default="eq1", choices=MESH_METHODS,
+          help="every tooth mesh's stiffness: eq1, the paper's E w / 11; iso6336, ISO 6336-1:2019 method B, "
+               "c_gamma_alpha w from the gears' teeth, shifts, module, helix, basic rack (dedendum) and E / E_st "
+               "(solid blanks, no load correction); w the narrower face either way"),
     Field("input_gear", "string", required=False, default="input",
           help="dual-pinion train: the gear table of the input (gear 1)"),
     Field("cluster_large_gear", "string", required=False, default="cluster_large",
@@ -508,7 +521,8 @@ def stiffness_spec_from_table(data: Mapping[str, Any], split_pinion: bool = Fals
         if not isinstance(table, Mapping):
             raise DesignError(f"stiffness.components.{cname}", "expected a table")
         components.append(component_from_table(cname, table))
-    kwargs = {k: v[k] for k in ("reduce_to", "train", "input_gear", "cluster_large_gear", "cluster_small_gear", "output_gear")}
+    kwargs = {k: v[k] for k in ("reduce_to", "train", "input_gear", "cluster_large_gear", "cluster_small_gear", "output_gear",
+                                "mesh_stiffness")}
     for q in ("elastic_modulus", "shear_modulus"):
         if v[q] is not None:
             kwargs[q] = v[q][0]
