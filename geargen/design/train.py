@@ -191,6 +191,9 @@ DUAL_MOTOR_FIELDS = [
           help="each pinion's shaft, twisting between the gearhead (or motor) and the pinion"),
     Field("pinion_shaft_length", "length", minimum=0.0, exclusive_minimum=True,
           help="twisting length of each pinion's shaft"),
+    Field("mesh_stiffness", "string", required=False, default="eq1", choices=("eq1", "iso6336"),
+          help="each pinion's mesh: eq1, the paper's E w / 11; iso6336, ISO 6336-1:2019 method B, c_gamma_alpha w "
+               "(as [stiffness] mesh_stiffness)"),
 ]
 DUAL_MOTOR_QUANTITIES = [
     Quantity("bias_torque", ("torque",), required=True, help="bias between the motors, at the output"),
@@ -219,6 +222,7 @@ class DualMotorSpec:
     elastic_modulus: float
     shear_modulus: float
     centre_distances: tuple[float, float]  # from [checks] meshes
+    mesh_stiffness: str = "eq1"  # "eq1" or "iso6336" (geargen.core.stiffness.gear_mesh_stiffness)
 
 
 def dual_motor_spec(design) -> DualMotorSpec:
@@ -259,7 +263,8 @@ def dual_motor_spec(design) -> DualMotorSpec:
                          upstream_ratio=v["upstream_ratio"], pinion_shaft_diameter=v["pinion_shaft_diameter"],
                          pinion_shaft_length=v["pinion_shaft_length"], upstream_stiffness=_value(v["upstream_stiffness"]),
                          elastic_modulus=_value(v["elastic_modulus"]) or 207e3,
-                         shear_modulus=_value(v["shear_modulus"]) or 79.3e3, centre_distances=tuple(centres))
+                         shear_modulus=_value(v["shear_modulus"]) or 79.3e3, centre_distances=tuple(centres),
+                         mesh_stiffness=v["mesh_stiffness"])
 
 
 __all__ = ["DENSITIES", "TRAIN_FIELDS", "TRAIN_QUANTITIES", "TrainSettings", "train_settings", "DUAL_MOTOR_FIELDS",

@@ -586,7 +586,7 @@ class DualMotorAnalysis:
 
 def dual_motor_analysis(design, parts: list[BodyPart]) -> DualMotorAnalysis:
     """The ``[dual_motor]`` drive of ``design`` with its gears' solids ``parts``."""
-    from geargen.core.stiffness import mesh_stiffness, shaft_torsional_stiffness
+    from geargen.core.stiffness import gear_mesh_stiffness, shaft_torsional_stiffness
     from geargen.core.synthesis import modelled_backlash
     from geargen.design.train import dual_motor_spec
     sp = dual_motor_spec(design)
@@ -596,7 +596,9 @@ def dual_motor_analysis(design, parts: list[BodyPart]) -> DualMotorAnalysis:
     mesh_ratio = out.teeth / pin.teeth
     motor_speed = sp.upstream_ratio * mesh_ratio
     w = min(pin.face_width, out.face_width)
-    comps = [("mesh (Eq. 1)", float(mesh_stiffness(sp.elastic_modulus, w)) * out.base_radius ** 2 / NM),
+    k_mesh = gear_mesh_stiffness(pin, out, w, sp.elastic_modulus, sp.mesh_stiffness, "dual_motor.pinions")[0]
+    label = "mesh (Eq. 1)" if sp.mesh_stiffness == "eq1" else "mesh (ISO 6336-1 method B)"
+    comps = [(label, k_mesh * out.base_radius ** 2 / NM),
              ("pinion shaft", shaft_torsional_stiffness(sp.shear_modulus, sp.pinion_shaft_diameter,
                                                         sp.pinion_shaft_length) * mesh_ratio ** 2 / NM)]
     if sp.upstream_stiffness is not None:

@@ -116,3 +116,22 @@ def test_a_bad_option_value_names_the_key():
     with pytest.raises(GeargenError) as info:
         _split_pinion("ISO 6336")
     assert "stiffness.mesh_stiffness" in str(info.value) and "iso6336" in str(info.value)
+
+
+def test_dual_motor_mesh_follows_its_option():
+    # [dual_motor] mesh_stiffness: the pinion's mesh (18/144 teeth, m 2 mm, spur, unshifted, the output's
+    # 20 mm face) at the output's base radius, by hand both ways; the other components unchanged
+    from geargen.model.train import dual_motor_analysis
+
+    path = ROBOT.parent / "dual_motor.toml"
+    analyses = {}
+    for method in ("eq1", "iso6336"):
+        data = tomllib.loads(path.read_text())
+        data["dual_motor"]["mesh_stiffness"] = method
+        analyses[method] = dual_motor_analysis(design_from_dict(data, path=path, validate=True), [])
+    rb = 144 * 2.0 / 2 * math.cos(20 * DEG)
+    eq1, iso = (dict(analyses[m].path_components) for m in ("eq1", "iso6336"))
+    assert eq1["mesh (Eq. 1)"] == pytest.approx(E * 20 / 11 * rb ** 2 * 1e-3, rel=1e-12)  # N·m/rad
+    assert iso["mesh (ISO 6336-1 method B)"] == pytest.approx(iso_mesh_by_hand(18, 144, 2.0, 20.0) * rb ** 2 * 1e-3,
+                                                               rel=1e-12)
+    assert eq1["pinion shaft"] == iso["pinion shaft"] and eq1["gearhead"] == iso["gearhead"]
