@@ -59,12 +59,12 @@ ROUNDING_BANDS = ((10.0, "1"), (5.0, "0.5"), (0.0, "0.1"))
 def iso1328_round(value_um: float) -> float:
     """``value_um`` rounded as ISO 1328-1:2013 5.2.3 rounds a tolerance (halves away from zero).
 
-    Decimal arithmetic on the shortest decimal form of the float, so that 9.75 rounds to 10.0 and
-    not to 9.5 through its binary representation.
+    Decimal arithmetic on the value first rounded to 1e-9 um, so that a formula landing on a tie
+    (5.75 um) rounds up whatever the last bit of its floating-point sum (5.7499999999999991).
     """
     if not (math.isfinite(value_um) and value_um >= 0):
         raise ValueError(f"a tolerance is >= 0 um, got {value_um!r}")
-    v = Decimal(repr(value_um))
+    v = Decimal(repr(round(value_um, 9)))
     for lower, step in ROUNDING_BANDS:
         # 10 um itself is in the 0.5 um band ("from 5 to 10"), 5 um in it too
         if (v > Decimal(lower)) if lower == 10.0 else (v >= Decimal(lower)):
