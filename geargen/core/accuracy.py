@@ -46,7 +46,8 @@ from dataclasses import dataclass
 from decimal import ROUND_HALF_UP, Decimal
 
 from geargen.design.gear import ISO_1328, ISO_1328_SCOPE, GearSpec, iso1328_scope_problem, iso1328_scope_text
-from geargen.design.synthesis import ERROR_KINDS, GEAR_ROLES, GearErrors, error_table, error_tables
+from geargen.design.synthesis import (ERROR_KINDS, GEAR_ROLES, GRADE_SET_KINDS, GearErrors, error_table,
+                                      error_tables)
 from geargen.errors import DesignError
 
 UM = 1e-3  # mm per um
@@ -175,7 +176,7 @@ def grade_for_budget(reference_diameter: float, normal_module: float, face_width
 #: one tooth to the next; the edition's tolerance of that is the single pitch tolerance f_pT (the
 #: difference between adjacent teeth's positions, |f_p| <= f_pT, so a band t = f_pT). Its single-
 #: flank tooth-to-tooth composite f_isT would also fit but needs the design's transmission error.
-GRADED_ROWS = {"pitch_line_eccentricity_tir": ("runout", "F_rT"), "tooth_to_tooth_tir": ("single_pitch", "f_pT")}
+GRADED_ROWS = dict(zip(GRADE_SET_KINDS, (("runout", "F_rT"), ("single_pitch", "f_pT"))))
 
 
 def graded_errors(spec: GearSpec, entered: dict[str, float]) -> GearErrors:

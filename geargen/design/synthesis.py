@@ -64,6 +64,9 @@ GEAR_ROLES = ("input", "cluster_large", "cluster_small", "output")
 ROUNDING_RULES = ("whole_down", "whole_nearest", "half_down", "half_nearest")
 
 ERROR_KINDS = ("bearing_eccentricity_tir", "pitch_line_eccentricity_tir", "tooth_to_tooth_tir")
+#: the rows a gear's accuracy_grade sets (with which tolerance: geargen.core.accuracy.GRADED_ROWS); the
+#: bearing eccentricity is the seat's, not the gear's, and stays entered
+GRADE_SET_KINDS = ("pitch_line_eccentricity_tir", "tooth_to_tooth_tir")
 
 MONTE_CARLO_MODELS = ("exact", "appendix")
 ERROR_SHAPES = ("physical", "uniform", "normal3")
@@ -319,13 +322,11 @@ def synthesis_inputs(design: Design) -> SynthesisInputs:
 
 
 def _graded_kinds(design: Design, gear: str) -> tuple[str, ...]:
-    """The rows of ``gear``'s budget its accuracy grade sets (none without a grade). Which rows is
-    geargen.core.accuracy's choice; the design layer only needs to know that the grade sets
-    pitch-line eccentricity and tooth-to-tooth, so that a table giving them is refused."""
+    """The rows of ``gear``'s budget its accuracy grade sets (none without a grade)."""
     spec = design.gears.get(gear)
     if spec is None or spec.accuracy_grade is None:
         return ()
-    return ("pitch_line_eccentricity_tir", "tooth_to_tooth_tir")
+    return GRADE_SET_KINDS
 
 
 def error_tables(design: Design) -> dict | None:
