@@ -22,7 +22,8 @@ sys.path.insert(0, str(ROOT))
 from geargen.core.synthesis import place_gears, synthesize_centres  # noqa: E402
 from geargen.core.tolerance import appendix_error_budget, exact_error_budget, monte_carlo  # noqa: E402
 from geargen.design.assembly import load_design  # noqa: E402
-from geargen.design.synthesis import error_budget_inputs, synthesis_inputs  # noqa: E402
+from geargen.core.accuracy import error_budget_inputs  # noqa: E402
+from geargen.design.synthesis import synthesis_inputs  # noqa: E402
 
 BUDGET_S = 5.0
 DESIGN = ROOT / "assemblies" / "robot_joint.toml"

@@ -22,8 +22,9 @@ import numpy as np
 
 from geargen.checks.mesh2d import CheckSettings, MeshSetup, check_mesh
 from geargen.checks.results import DesignCheck, Failure
+from geargen.core.accuracy import gear_errors
 from geargen.design.assembly import Design
-from geargen.design.checks import ChecksSettings, checks_settings, gear_errors
+from geargen.design.checks import ChecksSettings, checks_settings
 from geargen.errors import DesignError
 from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive, resolve
 from geargen.units import LENGTH_SUFFIXES

@@ -57,6 +57,8 @@ def add_arguments(p) -> None:
     g.add_argument("--thinning", type=float, metavar="LEN", default=None,
                    help="tooth thinning for backlash: circumferential (transverse arc at the reference circle), "
                         "in the unit of the pitch system (default 0)")
+    g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
+                   help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances")
     g.add_argument("--name", default=None, help="part name (default: the design's, or gear_<teeth>)")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="output folder (default: exports/<name>); must not exist, be empty, or hold an earlier "
@@ -78,7 +80,8 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
                 "hand": ("--hand", "right"), "profile_shift": ("--profile-shift", 0.0),
                 "face_width": ("--face-width", None), "face_width_mm": ("--face-width-mm", None),
                 "face_width_in": ("--face-width-in", None), "bore": ("--bore", None), "bore_mm": ("--bore-mm", None),
-                "bore_in": ("--bore-in", None), "thinning": ("--thinning", None)}
+                "bore_in": ("--bore-in", None), "thinning": ("--thinning", None),
+                "accuracy_grade": ("--accuracy-grade", None)}
 
 
 def _given(args) -> list[str]:
@@ -95,7 +98,8 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
     """The flag that set the gear-table key ``key`` (``face_width_mm`` -> the face-width flag used)."""
     base = {"teeth": "--teeth", "module_mm": "--module", "diametral_pitch_per_in": "--diametral-pitch",
             "pitch_system": "--pitch-system", "pressure_angle_deg": "--pressure-angle",
-            "helix_angle_deg": "--helix-angle", "hand": "--hand", "profile_shift": "--profile-shift"}
+            "helix_angle_deg": "--helix-angle", "hand": "--hand", "profile_shift": "--profile-shift",
+            "accuracy_grade": "--accuracy-grade"}
     if key in base:
         return base[key]
     for stem, flag in (("face_width", "--face-width"), ("bore_diameter", "--bore"),
@@ -151,6 +155,8 @@ def spec_from_args(args) -> tuple[GearSpec, str | None]:
         raise DesignError("--face-width", "missing", "--face-width, --face-width-mm or --face-width-in")
     if args.thinning:
         table[f"thinning_circumferential_{unit}"] = args.thinning
+    if args.accuracy_grade is not None:
+        table["accuracy_grade"] = args.accuracy_grade
     name = args.name or f"gear_{args.teeth}"
     try:
         return gear_from_table(table, where="options", name=name, length_unit=unit), None

@@ -28,7 +28,8 @@ Every key is optional::
 Gear names in ``meshes`` are ``[gears.NAME]`` tables; the first of a pair is the one turned.
 Error budgets of declared pairs are read from ``[errors.NAME]`` tables (same keys as the
 synthesis error budget: ``bearing_eccentricity_tir_*``, ``pitch_line_eccentricity_tir_*``,
-``tooth_to_tooth_tir_*``); a gear without one has no errors.
+``tooth_to_tooth_tir_*``, each optional, default 0; a gear's accuracy grade sets the last two),
+by :func:`geargen.core.accuracy.gear_errors`; a gear without one has no errors.
 """
 
 from __future__ import annotations
@@ -40,7 +41,6 @@ from typing import Any
 from geargen.design.assembly import Design
 from geargen.design.gear import _with_field_prefix
 from geargen.design.schema import Field, check_range, read_table
-from geargen.design.synthesis import ERROR_FIELDS, ERROR_KINDS, GearErrors
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
@@ -179,15 +179,4 @@ def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) ->
     return tuple(out)
 
 
-def gear_errors(design: Design, gear: str) -> GearErrors | None:
-    """The ``[errors.GEAR]`` budget of one gear (TIR, mm), or None when the design has none."""
-    raw = design.section("errors").get(gear)
-    if raw is None:
-        return None
-    where = f"errors.{gear}"
-    fields = [Field(f.name, f.kind, required=False, default=0.0, minimum=0.0) for f in ERROR_FIELDS]
-    v = read_table(raw, fields, where)
-    return _with_field_prefix(where + ".", lambda: GearErrors(*(v[k] for k in ERROR_KINDS)), v["_units"])
-
-
-__all__ = ["ChecksSettings", "DeclaredMesh", "CHECKS_FIELDS", "checks_settings", "gear_errors"]
+__all__ = ["ChecksSettings", "DeclaredMesh", "CHECKS_FIELDS", "checks_settings"]

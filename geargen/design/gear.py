@@ -17,6 +17,8 @@ Design-file table (``[gear]`` or an entry of ``[gears.*]``)::
     thinning_circumferential_in = 0.0  # tooth thinning: transverse arc at the reference circle
     # or thinning_normal_in            #   ... or normal tooth thickness at the reference cylinder
     bore_diameter_mm = 10
+    accuracy_grade = 6                 # optional: ISO 1328-1:2013 flank tolerance class 1..11
+    accuracy_standard = "ISO 1328-1:2013"   # optional; the only standard implemented
 """
 
 from __future__ import annotations
@@ -32,6 +34,30 @@ from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitc
 DEG = math.pi / 180.0
 
 HANDS = ("right", "left")
+
+#: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
+#: its formulas and rounding could not be established from a citable source; inch designs use ISO)
+ISO_1328 = "ISO 1328-1:2013"
+ACCURACY_STANDARDS = (ISO_1328,)
+
+#: ISO 1328-1:2013, clause 1 (scope): the tolerance formulas hold only in these ranges and must not be
+#: extrapolated beyond them. Quantity -> (lowest, highest, unit); read by geargen.core.accuracy too.
+ISO_1328_SCOPE = {"grade": (1, 11, ""), "teeth": (5, 1000, ""), "normal_module": (0.5, 70.0, "mm"),
+                  "reference_diameter": (5.0, 15000.0, "mm"), "face_width": (4.0, 1200.0, "mm")}
+
+
+def iso1328_scope_problem(quantity: str, value: float) -> str | None:
+    """Why ``value`` of ``quantity`` (a key of :data:`ISO_1328_SCOPE`, internal units) is outside
+    ISO 1328-1:2013's scope, or None when it is inside."""
+    lo, hi, unit = ISO_1328_SCOPE[quantity]
+    if isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value) and lo <= value <= hi:
+        return None
+    return f"{value!r}{' ' + unit if unit else ''} is outside {ISO_1328}'s range"
+
+
+def iso1328_scope_text(quantity: str) -> str:
+    lo, hi, unit = ISO_1328_SCOPE[quantity]
+    return f"[{lo:g}, {hi:g}]{' ' + unit if unit else ''}"
 
 
 @dataclass(frozen=True)
@@ -87,6 +113,8 @@ class GearSpec:
     hub: Hub = field(default_factory=Hub)
     name: str = "gear"
     length_unit: str = "mm"  # the unit the design was written in; reports and exports use it
+    accuracy_grade: int | None = None  # flank tolerance class of accuracy_standard; None: not specified
+    accuracy_standard: str | None = None  # None with a grade: ISO 1328-1:2013
 
     def __post_init__(self):
         _check("teeth", self.teeth, 4, 2000, "")
@@ -109,11 +137,39 @@ class GearSpec:
         _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
+        self._check_accuracy()
         # a root at or below the axis is the profile's "negative_root" error, not a bore problem
         if (self.hub.bore_diameter > 0 and self.root_radius_standard > 0
                 and self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98):
             raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
                               f"< {2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth:.4g} mm")
+
+    def _check_accuracy(self) -> None:
+        """A grade is a whole number of the standard's classes, and the gear lies in the standard's
+        scope (the formulas must not be extrapolated); a standard needs a grade."""
+        if self.accuracy_grade is None:
+            if self.accuracy_standard is not None:
+                raise DesignError("accuracy_standard", "names a standard without accuracy_grade",
+                                  "accuracy_grade = 1..11 with it, or neither")
+            return
+        if self.accuracy_standard is None:
+            object.__setattr__(self, "accuracy_standard", ISO_1328)
+        if self.accuracy_standard not in ACCURACY_STANDARDS:
+            raise DesignError("accuracy_standard", f"{self.accuracy_standard!r} is not a valid choice",
+                              ", ".join(map(repr, ACCURACY_STANDARDS)))
+        grade = self.accuracy_grade
+        if isinstance(grade, bool) or not isinstance(grade, int) or iso1328_scope_problem("grade", grade):
+            raise DesignError("accuracy_grade", f"{grade!r} is not a flank tolerance class of {ISO_1328}",
+                              f"a whole number in {iso1328_scope_text('grade')}")
+        for quantity, value, what in (("teeth", self.teeth, "teeth"), ("normal_module", self.module, "normal module"),
+                                      ("reference_diameter", 2 * self.reference_radius, "reference diameter"),
+                                      ("face_width", self.face_width, "face width")):
+            if iso1328_scope_problem(quantity, value):
+                lo, hi, unit = ISO_1328_SCOPE[quantity]
+                shown = f"{value:.6g}{' ' + unit if unit else ''}"
+                raise DesignError("accuracy_grade", f"the gear's {what} {shown} is outside the range of {ISO_1328}, "
+                                  "whose formulas must not be extrapolated",
+                                  f"a gear with {what} in {iso1328_scope_text(quantity)}, or no accuracy_grade")
 
     # --- closed-form basics; the full involute geometry lives in geargen.core ---
     @property
@@ -236,6 +292,11 @@ GEAR_FIELDS: list[Field] = [
           help="hub diameter (0: no hub; needs a length)"),
     Field("hub_length", "length", required=False, default=0.0, minimum=0.0,
           help="how far the hub stands out beyond one face"),
+    Field("accuracy_grade", "integer", required=False, default=None, minimum=1, maximum=11,
+          help="flank tolerance class of ISO 1328-1:2013 (1 finest .. 11); sets the gear's tolerances and, in "
+               "[errors.NAME], its pitch-line eccentricity and tooth-to-tooth TIRs"),
+    Field("accuracy_standard", "string", required=False, default=None, choices=ACCURACY_STANDARDS,
+          help="the standard of accuracy_grade (default and only choice: ISO 1328-1:2013, inch designs too)"),
 ]
 
 
@@ -287,7 +348,8 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   helix_angle=beta, hand=v["hand"], profile_shift=shift_n,
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear",
-                  length_unit=length_unit or unit)
+                  length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
+                  accuracy_standard=v["accuracy_standard"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
@@ -328,4 +390,5 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]
+__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
+           "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

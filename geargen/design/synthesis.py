@@ -23,6 +23,9 @@ Layout::
     pitch_line_eccentricity_tir_in = 0.0008
     tooth_to_tooth_tir_in = 0.0005
 
+    [errors.output]                                   # a gear with accuracy_grade: its grade sets
+    bearing_eccentricity_tir_in = 0.0002              # the other two (geargen.core.accuracy)
+
     [monte_carlo]                                     # optional; every key has a default
     samples = 1000000
     seed = 1994
@@ -43,7 +46,7 @@ teeth the tolerances allow, ``min`` with the thickest.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from geargen.design.assembly import Design
 from geargen.design.gear import _with_field_prefix
@@ -61,6 +64,9 @@ GEAR_ROLES = ("input", "cluster_large", "cluster_small", "output")
 ROUNDING_RULES = ("whole_down", "whole_nearest", "half_down", "half_nearest")
 
 ERROR_KINDS = ("bearing_eccentricity_tir", "pitch_line_eccentricity_tir", "tooth_to_tooth_tir")
+#: the rows a gear's accuracy_grade sets (with which tolerance: geargen.core.accuracy.GRADED_ROWS); the
+#: bearing eccentricity is the seat's, not the gear's, and stays entered
+GRADE_SET_KINDS = ("pitch_line_eccentricity_tir", "tooth_to_tooth_tir")
 
 MONTE_CARLO_MODELS = ("exact", "appendix")
 ERROR_SHAPES = ("physical", "uniform", "normal3")
@@ -181,11 +187,16 @@ class SynthesisInputs:
 
 @dataclass(frozen=True)
 class GearErrors:
-    """One gear's error budget, each a total indicator reading (peak to peak), mm."""
+    """One gear's error budget, each a total indicator reading (peak to peak), mm.
+
+    ``sources`` says, per row of ERROR_KINDS, where a derived value came from ("" for a value
+    the design file gives); it takes no part in comparisons.
+    """
 
     bearing_eccentricity_tir: float = 0.0
     pitch_line_eccentricity_tir: float = 0.0
     tooth_to_tooth_tir: float = 0.0
+    sources: tuple[str, str, str] = field(default=("", "", ""), compare=False)
 
     def __post_init__(self):
         for name in ERROR_KINDS:
@@ -251,8 +262,11 @@ ERROR_FIELDS: list[Field] = [
     Field("bearing_eccentricity_tir", "length", minimum=0.0,
           help="runout of the gear's bearing seat (total indicator reading)"),
     Field("pitch_line_eccentricity_tir", "length", minimum=0.0,
-          help="runout of the pitch circle about the bore (total indicator reading)"),
-    Field("tooth_to_tooth_tir", "length", minimum=0.0, help="tooth-to-tooth composite error (total indicator reading)"),
+          help="runout of the pitch circle about the bore (total indicator reading); a gear with accuracy_grade "
+               "takes its grade's runout tolerance instead (give one of the two)"),
+    Field("tooth_to_tooth_tir", "length", minimum=0.0,
+          help="tooth-to-tooth composite error (total indicator reading); a gear with accuracy_grade takes its "
+               "grade's single pitch tolerance instead (give one of the two)"),
 ]
 
 MONTE_CARLO_FIELDS: list[Field] = [
@@ -307,22 +321,64 @@ def synthesis_inputs(design: Design) -> SynthesisInputs:
     return _with_field_prefix("synthesis.", lambda: SynthesisInputs(**kwargs), v["_units"])
 
 
-def error_budget_inputs(design: Design) -> tuple[GearErrors, GearErrors, GearErrors, GearErrors] | None:
-    """Read ``[errors.input]`` ... ``[errors.output]``; None when the design has no ``[errors]``."""
+def _graded_kinds(design: Design, gear: str) -> tuple[str, ...]:
+    """The rows of ``gear``'s budget its accuracy grade sets (none without a grade)."""
+    spec = design.gears.get(gear)
+    if spec is None or spec.accuracy_grade is None:
+        return ()
+    return GRADE_SET_KINDS
+
+
+def error_tables(design: Design) -> dict | None:
+    """The raw ``[errors]`` section with its gear names checked against the synthesis' four
+    (each must have a table); None when the design has none."""
     raw = design.section("errors")
     if not raw:
         return None
     unknown = [k for k in raw if k not in GEAR_ROLES]
     if unknown:
         raise DesignError(f"errors.{unknown[0]}", "unknown gear", ", ".join(GEAR_ROLES))
-    out = []
     for role in GEAR_ROLES:
         if role not in raw:
             raise DesignError(f"errors.{role}", "missing", "a table with " + ", ".join(f"{k}_in" for k in ERROR_KINDS))
-        where = f"errors.{role}"
-        v = read_table(raw[role], ERROR_FIELDS, where)
-        out.append(_with_field_prefix(where + ".", lambda v=v: GearErrors(*(v[k] for k in ERROR_KINDS)), v["_units"]))
-    return tuple(out)
+    return raw
+
+
+def error_table(design: Design, gear: str, required: bool) -> dict[str, float] | None:
+    """The TIRs (mm) ``[errors.GEAR]`` gives, kind -> value; None when the design has no such table.
+
+    ``required``: every row the gear's grade does not set must be given (the synthesis); else a
+    row not given is 0 (a pair check). A row that the gear's ``accuracy_grade`` sets is refused
+    when the table gives it too, naming both keys (one number, one source). The values of the
+    graded rows are geargen.core.accuracy's (:func:`geargen.core.accuracy.gear_error_budget`).
+    """
+    raw = design.section("errors").get(gear)
+    if raw is None:
+        return None
+    where = f"errors.{gear}"
+    graded = _graded_kinds(design, gear)
+    for kind in graded:
+        given = [k for k in raw if k.startswith(kind + "_")]
+        if given:
+            spec = design.gear(gear)
+            raise DesignError(f"{where}.{given[0]}", f"is set by gears.{gear}.accuracy_grade = {spec.accuracy_grade} "
+                              f"({spec.accuracy_standard}); give one of the two",
+                              f"gears.{gear}.accuracy_grade or {where}.{given[0]}, not both")
+    fields = [f for f in ERROR_FIELDS if f.name not in graded]
+    if not required:
+        fields = [Field(f.name, f.kind, required=False, default=0.0, minimum=0.0) for f in fields]
+    v = read_table(raw, fields, where)
+    entered = {f.name: v[f.name] for f in fields}
+    # the range rule of GearErrors, with the key as written
+    _with_field_prefix(where + ".", lambda: GearErrors(**entered), v["_units"])
+    return entered
+
+
+def validate_error_budget(design: Design) -> None:
+    """Read and check the synthesis' ``[errors.*]`` tables (what load_design runs)."""
+    if error_tables(design) is not None:
+        for role in GEAR_ROLES:
+            error_table(design, role, required=True)
 
 
 def monte_carlo_settings(design: Design) -> MonteCarloSettings:
@@ -333,4 +389,4 @@ def monte_carlo_settings(design: Design) -> MonteCarloSettings:
 
 
 __all__ = ["GEAR_ROLES", "ROUNDING_RULES", "ERROR_KINDS", "SynthesisInputs", "GearErrors", "MonteCarloSettings",
-           "synthesis_inputs", "error_budget_inputs", "monte_carlo_settings"]
+           "synthesis_inputs", "error_tables", "error_table", "validate_error_budget", "monte_carlo_settings"]

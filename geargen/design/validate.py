@@ -9,7 +9,7 @@ the hardware can be made:
 section            read and checked by
 =================  ==============================================================================
 [synthesis]        geargen.design.synthesis.synthesis_inputs (the four gears, Eq. 8 solvable)
-[errors.*]         .synthesis.error_budget_inputs, or .checks.gear_errors without [synthesis]
+[errors.*]         .synthesis.validate_error_budget, or .synthesis.error_table without [synthesis]
 [monte_carlo]      .synthesis.monte_carlo_settings
 [checks]           .checks.checks_settings (declared meshes name gears of the file)
 [stiffness] ...    .stiffness: components, preload, flexures (stress at the travel), springs
@@ -39,7 +39,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any, Mapping
 
-from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings, gear_errors
+from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings
 from geargen.design.export import EXPORT_FIELDS, export_settings
 from geargen.design.gear import GEAR_FIELDS
 from geargen.design.layout import LAYOUT_FIELDS, check_layout, is_split_pinion, layout_settings
@@ -53,7 +53,7 @@ from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT
                                       check_stiffness_gears, engagement_spec_from_table, flexure_spec_from_table,
                                       preload_spec_from_table, spring_spec_from_table, stiffness_spec_from_table)
 from geargen.design.synthesis import (ERROR_FIELDS, GEAR_ROLES, MONTE_CARLO_FIELDS, SYNTHESIS_FIELDS,
-                                      error_budget_inputs, monte_carlo_settings, synthesis_inputs)
+                                      error_table, monte_carlo_settings, synthesis_inputs, validate_error_budget)
 from geargen.design.train import (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, TRAIN_FIELDS, TRAIN_QUANTITIES,
                                   dual_motor_spec, train_settings)
 from geargen.errors import DesignError
@@ -77,7 +77,7 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
         run(synthesis_inputs, design)
     if "errors" in sections:
         if "synthesis" in sections:
-            run(error_budget_inputs, design)
+            run(validate_error_budget, design)
         else:
             for gear in sections["errors"]:
                 if gear not in names:
@@ -85,7 +85,7 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
                 elif not isinstance(sections["errors"][gear], Mapping):
                     problems.add(DesignError(f"errors.{gear}", "expected a table"))
                 else:
-                    run(gear_errors, design, gear)
+                    run(error_table, design, gear, False)
     if "monte_carlo" in sections:
         run(monte_carlo_settings, design)
     if "checks" in sections and gears_complete:

@@ -14,8 +14,10 @@ from geargen.units import from_mm
 
 
 def gear_data(spec: GearSpec, profile) -> dict:
-    """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit."""
+    """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit, and
+    the ``accuracy`` block of its grade's tolerances (um) when it has one."""
     from geargen.core import geometry
+    from geargen.core.accuracy import gear_tolerances
     from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness
 
     u = spec.length_unit
@@ -41,6 +43,9 @@ def gear_data(spec: GearSpec, profile) -> dict:
         "undercut": profile.undercut, "involute_start_radius": L(profile.involute_start_radius),
         "warnings": list(profile.warnings),
     }
+    tolerances = gear_tolerances(spec)
+    if tolerances is not None:
+        out["accuracy"] = tolerances.to_dict()
     try:
         uc = geometry.undercut(spec)
         out["minimum_teeth_without_undercut"] = uc.minimum_teeth

@@ -255,7 +255,8 @@ def resolve(design: Design, position: str | None = None) -> Layout:
 def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
     from geargen.core.synthesis import place_gears, solve_loop, synthesize_centres
     from geargen.core.tolerance import appendix_error_budget, exact_error_budget
-    from geargen.design.synthesis import error_budget_inputs, synthesis_inputs
+    from geargen.core.accuracy import error_budget_inputs
+    from geargen.design.synthesis import synthesis_inputs
     from geargen.model.synthesis import SynthesisRun
 
     inputs = synthesis_inputs(design)

@@ -410,7 +410,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
     out: list[dict] = []
 
     def runout(*names) -> float | None:
-        from geargen.design.checks import gear_errors
+        from geargen.core.accuracy import gear_errors
         total = 0.0
         for n in names:
             e = gear_errors(design, n) if design.section("errors").get(n) else None

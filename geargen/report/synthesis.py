@@ -31,6 +31,16 @@ PHASE_CONVENTION = (
     "cluster is one part with a tooth of its large and of its small gear centred on the same radial line, "
     "so both carry the cluster's rotation.")
 
+_ERROR_LABELS = ("Bearing Eccentr.", "Pitch Line Eccen", "Tooth To Tooth")
+
+
+def error_sources(errors) -> list[str]:
+    """One line per budget row that was derived, not entered (a gear's accuracy grade), saying
+    where it came from; none for a budget typed in (the Appendix table as before)."""
+    return [f"{label.strip()} of gear {k} ({GEAR_ROLES[k - 1]}): {src}"
+            for i, label in enumerate(_ERROR_LABELS)
+            for k, e in enumerate(errors, start=1) if (src := e.sources[i])]
+
 
 def fixed(value: float, decimals: int) -> str:
     """``value`` rounded half-up (ties away from zero) to ``decimals``, without a negative zero."""
@@ -74,9 +84,10 @@ def appendix_sections(run: SynthesisRun) -> tuple[str, list[tuple[list[str], lis
     lines.append(_cells("Pitch Circle Dia.", f"D ({u})", [f"{L(2 * inp.reference_radius(k)):.6g}" for k in (1, 2, 3, 4)]))
     if run.errors is not None and b is not None:
         lines.append("Error Information")
-        for label, kind in zip(("Bearing Eccentr.", "Pitch Line Eccen", "Tooth To Tooth"), ERROR_KINDS):
+        for label, kind in zip(_ERROR_LABELS, ERROR_KINDS):
             lines.append(_cells(label, f"({u} t.i.r.)", [fixed(L(getattr(e, kind)), 4) for e in run.errors]))
         lines.append(_cells("Total Error", f"({u} t.i.r.)", [fixed(L(t), 4) for t in b.total_tir]))
+        lines += error_sources(run.errors)
         lines += ["Variation in x1 to accommodate errors.",
                   _cells("Δx1", f"({u})", [fixed(L(d), 4) for d in b.dx1]),
                   _cells("% of Sum", "", [fixed(p, 0) for p in b.percent_of_sum]),
@@ -301,6 +312,9 @@ def synthesis_json(run: SynthesisRun) -> dict:
             "factors": list(b.factors), "dC1_per_dx1": b.centre_distance_factor,
             **{kind: [L(getattr(e, kind)) for e in run.errors] for kind in ERROR_KINDS},
         }
+        if any(any(e.sources) for e in run.errors):  # rows an accuracy grade set: where each came from
+            out["error_budget"]["sources"] = {kind: [e.sources[i] for e in run.errors]
+                                              for i, kind in enumerate(ERROR_KINDS)}
     e = run.exact_budget
     if e is not None:
         out["exact_error_budget"] = {"success": e.success, "dx1_linear": [L(v) for v in e.dx1_linear],

@@ -116,7 +116,7 @@ def test_robot_joint_loop_tolerance(joint):
     from geargen.core.tolerance import exact_error_budget
     from geargen.design.synthesis import GEAR_ROLES
 
-    from geargen.design.checks import gear_errors
+    from geargen.core.accuracy import gear_errors
 
     design, setups, layout = joint
     errors = {r: gear_errors(design, r) for r in GEAR_ROLES}

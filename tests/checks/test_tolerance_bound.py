@@ -54,7 +54,7 @@ def _loop(designs, name):
         from types import SimpleNamespace
 
         from geargen.checks.verdict import mesh_setup
-        from geargen.design.checks import gear_errors
+        from geargen.core.accuracy import gear_errors
         from geargen.design.synthesis import GEAR_ROLES
         from geargen.model import resolve
 

@@ -14,7 +14,8 @@ from geargen.cli import main
 from geargen.commands.synth import compute
 from geargen.core.synthesis import place_gears, round_increments, synthesize_centres
 from geargen.design.assembly import design_from_dict
-from geargen.design.synthesis import (GearErrors, MonteCarloSettings, error_budget_inputs, monte_carlo_settings,
+from geargen.core.accuracy import error_budget_inputs
+from geargen.design.synthesis import (GearErrors, MonteCarloSettings, monte_carlo_settings,
                                       synthesis_inputs)
 from geargen.errors import DesignError, GeometryError
 

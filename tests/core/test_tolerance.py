@@ -15,7 +15,8 @@ from geargen.core.synthesis import appendix_carriage_travel, solve_loop, synthes
 from geargen.core.tolerance import (PERCENTILES, appendix_error_budget, combine_monte_carlo, exact_error_budget,
                                     exact_gradients, geometry_sensitivities, monte_carlo, tolerance_sensitivities)
 from geargen.design.assembly import load_design
-from geargen.design.synthesis import GearErrors, error_budget_inputs, synthesis_inputs
+from geargen.core.accuracy import error_budget_inputs
+from geargen.design.synthesis import GearErrors, synthesis_inputs
 
 ROBOT = Path(__file__).resolve().parents[2] / "assemblies" / "robot_joint.toml"
 
