@@ -398,10 +398,10 @@ def _view_title(sheet, box, text):
     sheet.text((box[0] + box[2]) / 2, box[3] + 2.5, text, MIN_FONT_PT, ha="center", va="bottom", weight="bold")
 
 
-def _full_view(sheet, profile, unit_mm: float, scale: float) -> None:
+def _full_view(sheet, profile, scale: float) -> None:
     box = FULL_VIEW
     cx, cy = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
-    k = scale / unit_mm  # sheet mm per gear mm (the scale is between the sheet and the gear's unit)
+    k = scale  # sheet mm per gear mm
     to = lambda p: (cx + p[:, 0] * k, cy + p[:, 1] * k)  # noqa: E731
     pts = _outline_points(profile, 0.05 / k)
     sheet.line(*to(pts), lw=0.5)
@@ -415,11 +415,11 @@ def _full_view(sheet, profile, unit_mm: float, scale: float) -> None:
     _view_title(sheet, box, f"Transverse section ({scale_text(scale)})")
 
 
-def _section_view(sheet, profile, unit: str, unit_mm: float, scale: float) -> None:
+def _section_view(sheet, profile, unit: str, scale: float) -> None:
     """Axial section: the face width, tip, root and bore diameters dimensioned (gear's unit)."""
     spec = profile.spec
     box = SECTION_VIEW
-    k = scale / unit_mm
+    k = scale
     b = spec.face_width * k
     ra, rf = profile.tip_radius * k, profile.root_radius * k
     hub = spec.hub
@@ -476,17 +476,16 @@ def _dimension(sheet, p, q, text, vertical: bool) -> None:
         sheet.text(mx, my - 1.0, text, MIN_FONT_PT, ha="center", va="top")
 
 
-def _detail_view(sheet, profile, unit: str, unit_mm: float, scale: float) -> None:
+def _detail_view(sheet, profile, unit: str, scale: float) -> None:
     """Two teeth around the +y axis, enlarged, with the four circles named."""
     from matplotlib.patches import Rectangle
 
     from geargen.report.labels import Obstacles, place_labels
 
     box = DETAIL_VIEW
-    k = scale / unit_mm
+    k = scale
     cx = (box[0] + box[2]) / 2
-    r_mid = 0.5 * (profile.tip_radius + profile.root_radius)
-    cy = (box[1] + box[3]) / 2 - r_mid * k  # the gear centre, below the window
+    cy = box[3] - 12.0 - profile.tip_radius * k  # the gear centre, below the window
     turn = math.pi / 2 - profile.pitch_angle / 2  # the gap between two teeth on +y
     clip = Rectangle((box[0], box[1]), box[2] - box[0], box[3] - box[1], transform=sheet.ax.transData,
                      facecolor="none", edgecolor="black", lw=0.35 / MM_PER_PT)
@@ -526,24 +525,24 @@ def _detail_view(sheet, profile, unit: str, unit_mm: float, scale: float) -> Non
     sub.set_ylim(box[1], box[3])
     sub.set_axis_off()
     place_labels(sub, labels, obstacles, leader_from_ring=1)
-    _view_title(sheet, box, f"Detail: two teeth ({scale_text(scale)})")
+    _view_title(sheet, box, f"Detail: tooth form ({scale_text(scale)})")
 
 
 def _axes_rect(box):
     return (box[0] / SHEET_MM[0], box[1] / SHEET_MM[1], (box[2] - box[0]) / SHEET_MM[0], (box[3] - box[1]) / SHEET_MM[1])
 
 
-def drawing_scales(profile, unit_mm: float) -> tuple[float, float, float]:
-    """The scales of the whole gear, the axial section and the detail: ISO 5455 scales
-    at which the gear fits its views (lengths taken in the gear's unit, as the sheet gives them)."""
+def drawing_scales(profile) -> tuple[float, float, float]:
+    """The scales of the whole gear, the axial section and the detail: the ISO 5455 scales at
+    which the gear fits its views (a scale is paper length over true length, whatever the unit)."""
     spec = profile.spec
-    d_a = 2 * profile.tip_radius / unit_mm
-    length = (spec.face_width + spec.hub.hub_length) / unit_mm
+    d_a = 2 * profile.tip_radius
+    length = spec.face_width + spec.hub.hub_length
     full = preferred_scale(d_a, min(FULL_VIEW[2] - FULL_VIEW[0], FULL_VIEW[3] - FULL_VIEW[1]) - 10)
     section = min(preferred_scale(d_a, SECTION_VIEW[3] - SECTION_VIEW[1] - 20),
                   preferred_scale(length, SECTION_VIEW[2] - SECTION_VIEW[0] - 34 - 6))
     tooth = max(2.6 * 2 * math.pi * profile.reference_radius / spec.teeth,
-                1.5 * (profile.tip_radius - profile.root_radius)) / unit_mm
+                1.5 * (profile.tip_radius - profile.root_radius))
     detail = preferred_scale(tooth, min(DETAIL_VIEW[2] - DETAIL_VIEW[0], 1.4 * (DETAIL_VIEW[3] - DETAIL_VIEW[1])))
     return full, section, max(detail, full)
 
@@ -553,15 +552,14 @@ def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
     import matplotlib
 
     unit = data["length_unit"]
-    unit_mm = LENGTH_SUFFIXES[unit]
-    full, section, detail = drawing_scales(profile, unit_mm)
+    full, section, detail = drawing_scales(profile)
     scale = f"{scale_text(full)} (section {scale_text(section)}, detail {scale_text(detail)})"
     with matplotlib.rc_context({"hatch.linewidth": 0.18 / MM_PER_PT, "hatch.color": "0.35"}):
         sheet = _Sheet()
         _frame(sheet)
-        _full_view(sheet, profile, unit_mm, full)
-        _section_view(sheet, profile, unit, unit_mm, section)
-        _detail_view(sheet, profile, unit, unit_mm, detail)
+        _full_view(sheet, profile, full)
+        _section_view(sheet, profile, unit, section)
+        _detail_view(sheet, profile, unit, detail)
         _data_block(sheet, data_rows(data, scale, version, source))
         _title_block(sheet, data["name"], design_file, unit, scale, version)
     return sheet.fig
@@ -592,4 +590,17 @@ def write_drawing(data: dict, profile, folder, name: str, source: str, design_fi
 
 __all__ = ["SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
-           "drawing_scales", "draw_gear", "write_drawing"]
+           "drawing_scales", "draw_gear", "write_drawing", "gear_drawings"]
+
+
+def gear_drawings(data: dict, profile, folder, name: str, source: str, design_file: str) -> dict[str, Path]:
+    """Every drawing file of one gear into ``folder``: ``name-drawing.svg``/``.pdf`` and the
+    profile DXF ``name.dxf``; records their names in ``data["drawing"]`` (the gear data contract's
+    key) before drawing, so the sheet and the JSON agree. Returns ``{"svg"|"pdf"|"dxf": path}``."""
+    from geargen.report.dxf import write_profile_dxf
+
+    folder = Path(folder)
+    data["drawing"] = {"svg": f"{name}-drawing.svg", "pdf": f"{name}-drawing.pdf", "dxf": f"{name}.dxf"}
+    out = write_drawing(data, profile, folder, name, source, design_file)
+    out["dxf"] = write_profile_dxf(profile, folder / data["drawing"]["dxf"]).path
+    return out
