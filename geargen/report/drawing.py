@@ -517,8 +517,11 @@ def _detail_view(sheet, profile, unit: str, scale: float) -> None:
                                dict(fontsize=MIN_FONT_PT, family=FONT, color="0.15")))
                 break
         obstacles.circles.append((cx, cy, r * k))
-    obstacles.segments += list(zip(zip(cx + pts[:-1, 0] * k, cy + pts[:-1, 1] * k),
-                                   zip(cx + pts[1:, 0] * k, cy + pts[1:, 1] * k)))[::4]
+    # the outline as an obstacle: 2 mm chords on the sheet, those inside the window
+    coarse = sample_outline(segs, 2.0 / k) * k + np.array([cx, cy])
+    inside = (coarse[:, 0] > box[0]) & (coarse[:, 0] < box[2]) & (coarse[:, 1] > box[1]) & (coarse[:, 1] < box[3])
+    keep = inside[:-1] | inside[1:]
+    obstacles.segments += [(tuple(a), tuple(b)) for a, b, ok in zip(coarse[:-1], coarse[1:], keep) if ok]
     # the labels go into the window's right part, clear of each other (hard) and of the outline (soft)
     sub = sheet.fig.add_axes(_axes_rect(box), facecolor="none")
     sub.set_xlim(box[0], box[2])
