@@ -43,7 +43,10 @@ from geargen.errors import DesignError, GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement, resolve
 from geargen.units import LENGTH_SUFFIXES
 
-STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "figures", "report")
+#: the build folder's sub-folder of the gears' drawings, DXF profiles and gear data
+DRAWING_FOLDER = "drawings"
+STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "figures", "drawings",
+         "report")
 
 
 class BuildFailed(GeargenError):
@@ -417,6 +420,36 @@ def check_free_figures(design: Design, summary, view, folder: Path) -> tuple[dic
     return write_figures(design.length_unit, summary, Path(folder), view)
 
 
+def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
+    """``drawings/``: for every gear of the resolved drive its manufacturing drawing
+    (``NAME-drawing.svg``/``.pdf``), the DXF of its exact transverse profile (``NAME.dxf``) and its
+    gear data (``NAME.json``, as ``geargen gear`` writes it, with the mating gears and working
+    centre distances of the resolved drive). Needs no check result: the build draws them while the
+    second process checks the meshes. Returns ``{"drawing:NAME:svg"|...: path}``."""
+    from geargen.cad.export import write_json
+    from geargen.model.gear_data import gear_data
+    from geargen.profile.tooth import tooth_profile
+    from geargen.report.drawing import gear_drawings, mates_from_layout
+
+    design = layout.design
+    out_folder = Path(folder) / DRAWING_FOLDER
+    source = design_source(design)
+    files = {}
+    for placed in layout.gears:
+        for spec in placed.gears:
+            profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
+            data = gear_data(spec, profile)
+            if placed.name in layout.thinning:
+                data["thinning_source"] = layout.thinning[placed.name].get("source", "design")
+            data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]
+            made = gear_drawings(data, profile, out_folder, spec.name, f"gear {spec.name} of {source}",
+                                 str(design.path) if design.path else design.name)
+            made["json"] = out_folder / f"{spec.name}.json"
+            write_json(made["json"], _jsonable(data))
+            files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
+    return files
+
+
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:
     """The last step: the figures (rendered view, layout drawing, preload diagram) as
     ``figures/*.png|svg`` (those of :func:`check_free_figures` as ``result.figures`` if drawn
@@ -464,6 +497,7 @@ class BuildResult:
     forced: bool = False
     render_view: Any = None  # geargen.cad.render.RenderedView
     figures: tuple | None = None  # what check_free_figures wrote: (files, links, notes)
+    drawings: dict[str, Path] | None = None  # what drawings() wrote
 
     @property
     def ok(self) -> bool:
@@ -547,10 +581,12 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             files = progress.run("export", export, layout, parts, work)
             # the figures that do not depend on the checks, drawn while the second process checks
             drawn = progress.run("figures", check_free_figures, design, summary, render_view, work)
+            sheets = progress.run("drawings", drawings, layout, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, alongside, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             result.render_view, result.files, result.figures = render_view, files, drawn
+            result.drawings = sheets
             result.timings = dict(progress.timings)
             progress.run("report", _report_and_manifest, result, work)
             target = output.commit()
@@ -729,7 +765,9 @@ class Alongside:
 
 
 def _report_and_manifest(result: BuildResult, folder: Path) -> None:
-    files = report(result, folder)
+    if result.drawings is None:
+        result.drawings = drawings(result.layout, folder)
+    files = report(result, folder) | result.drawings
     files["resolved"] = write_resolved(result.layout, folder)
     manifest(result, folder, files)
 

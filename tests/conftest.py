@@ -2,6 +2,9 @@
 
 import contextlib
 import io
+import os
+import shutil
+import subprocess
 from pathlib import Path
 
 import pytest
@@ -60,3 +63,39 @@ class BuiltAssemblies:
 def built_assemblies(tmp_path_factory) -> BuiltAssemblies:
     """The shipped assemblies built once per session (:class:`BuiltAssemblies`)."""
     return BuiltAssemblies(tmp_path_factory.mktemp("assemblies"))
+
+
+def debian_tool(executable: str, package: str) -> str:
+    """The path of ``executable``; when missing and running as root with apt-get, the Debian
+    ``package`` is installed first. Else the test is skipped, except in CI (``CI`` set), where it fails."""
+    found = next((p for p in (f"/usr/bin/{executable}", shutil.which(executable)) if p and os.access(p, os.X_OK)), None)
+    if found:
+        return found
+    if os.geteuid() == 0 and shutil.which("apt-get"):
+        env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+        for cmd in (["apt-get", "update"], ["apt-get", "install", "-y", "--no-install-recommends", package]):
+            done = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
+            if done.returncode != 0:
+                pytest.fail(f"{' '.join(cmd)} failed:\n{done.stderr[-2000:]}")
+        if os.access(f"/usr/bin/{executable}", os.X_OK):
+            return f"/usr/bin/{executable}"
+        pytest.fail(f"apt-get installed {package} but /usr/bin/{executable} is missing")
+    if os.environ.get("CI"):
+        pytest.fail(f"no {executable}, and it cannot be installed here (not root or no apt-get); CI must have it")
+    pytest.skip(f"no {executable} (install the {package} package, or run as root to have it installed)")
+
+
+@pytest.fixture(scope="session")
+def chromium() -> str:
+    """The Chromium executable (installed from the Debian packages when running as root)."""
+    for name in ("chromium", "chromium-browser"):
+        path = shutil.which(name)
+        if path and os.access(path, os.X_OK):
+            return path
+    return debian_tool("chromium", "chromium")
+
+
+@pytest.fixture(scope="session")
+def poppler() -> dict[str, str]:
+    """``pdftoppm`` and ``pdftotext`` (poppler-utils, installed when running as root)."""
+    return {tool: debian_tool(tool, "poppler-utils") for tool in ("pdftoppm", "pdftotext")}

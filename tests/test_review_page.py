@@ -14,8 +14,6 @@ installed; else the browser tests are skipped, except in CI (``CI`` set), where 
 import base64
 import io
 import json
-import os
-import shutil
 import subprocess
 from pathlib import Path
 
@@ -110,28 +108,6 @@ def test_the_glb_holds_every_part_as_exported(built_assemblies, name):
 
 
 # ---------------------------------------------------------------- the page in headless Chromium
-
-
-@pytest.fixture(scope="session")
-def chromium() -> str:
-    """The Chromium executable (installed from the Debian packages when running as root)."""
-    found = next((p for p in ("/usr/bin/chromium", shutil.which("chromium"), shutil.which("chromium-browser"))
-                  if p and os.access(p, os.X_OK)), None)
-    if found:
-        return found
-    in_ci = bool(os.environ.get("CI"))
-    if os.geteuid() == 0 and shutil.which("apt-get"):
-        env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
-        for cmd in (["apt-get", "update"], ["apt-get", "install", "-y", "--no-install-recommends", "chromium"]):
-            done = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=900)
-            if done.returncode != 0:
-                pytest.fail(f"{' '.join(cmd)} failed:\n{done.stderr[-2000:]}")
-        if os.access("/usr/bin/chromium", os.X_OK):
-            return "/usr/bin/chromium"
-        pytest.fail("apt-get installed chromium but /usr/bin/chromium is missing")
-    if in_ci:
-        pytest.fail("no Chromium, and it cannot be installed here (not root or no apt-get); CI must have it")
-    pytest.skip("no Chromium (install the chromium package, or run as root to have it installed)")
 
 
 def _run_chromium(chromium: str, page: Path, profile: Path, *args: str,

@@ -55,7 +55,9 @@ from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_S
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.errors import BuildError
+from geargen.profile.hermite import hermite_knots as _hermite_knots
 from geargen.profile.hermite import hermite_nodes
+from geargen.profile.hermite import hermite_poles as _hermite_poles
 from geargen.profile.segments import Segment
 from geargen.profile.tessellate import cluster_layers, gear_layers
 from geargen.profile.tooth import ToothProfile, tooth_profile, twist_rate
@@ -223,25 +225,6 @@ def _joints(profile: ToothProfile, pieces: list[_Piece]) -> np.ndarray:
 
 _Z_AXIS = gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
 _ORIGIN_2D = gp_Pnt2d(0, 0)
-
-
-def _hermite_poles(values: np.ndarray, derivs: np.ndarray, tau: np.ndarray) -> np.ndarray:
-    """C1 cubic B-spline poles (along axis 0) of the Hermite interpolant: ``(2n + 2, ...)``
-    for ``n + 1`` nodes. Knots: ``tau`` with end multiplicity 4 and interior multiplicity 2."""
-    h = np.diff(tau).reshape((-1,) + (1,) * (values.ndim - 1))
-    after = values[:-1] + h * derivs[:-1] / 3.0
-    before = values[1:] - h * derivs[1:] / 3.0
-    out = np.empty((2 * len(tau),) + values.shape[1:])
-    out[0] = values[0]
-    out[1:-1:2] = after
-    out[2:-1:2] = before
-    out[-1] = values[-1]
-    return out
-
-
-def _hermite_knots(tau: np.ndarray):
-    """Knots of :func:`_hermite_poles`: ``tau`` with multiplicity 4 at the ends, 2 inside."""
-    return tau, [4] + [2] * (len(tau) - 2) + [4]
 
 
 def _occ_knots(knots):

@@ -8,7 +8,11 @@ or from options::
 
 Writes ``DIR/NAME.step`` (in the design's length unit), ``DIR/NAME.stl`` (mm, chordal tolerance
 ``--stl-tolerance`` mm), ``DIR/NAME.json`` (radii, thicknesses, tip land, undercut, span and
-over-pins/balls, in the design's length unit; angles in degrees) and ``DIR/manifest.json``.
+over-pins/balls, in the design's length unit; angles in degrees), the manufacturing drawing
+``DIR/NAME-drawing.svg`` and ``.pdf`` (:mod:`geargen.report.drawing`) and the exact transverse
+profile ``DIR/NAME.dxf`` for wire EDM (:mod:`geargen.report.dxf`), unless ``--no-drawing``, and
+``DIR/manifest.json``. A gear of an assembly's drive (``--gear``) is drawn with its mating gears
+and working centre distances from the resolved drive.
 
 DIR (default ``exports/NAME``) follows the folder policy of :mod:`geargen.outputs`: it must not
 exist, be empty, or hold an earlier ``geargen gear`` output of the same gear (same name, from the
@@ -69,6 +73,8 @@ def add_arguments(p) -> None:
     p.add_argument("--stl-tolerance", type=float, default=1e-3, metavar="MM",
                    help="STL chordal tolerance in mm (default 0.001 = 1 um)")
     p.add_argument("--no-stl", action="store_true", help="skip the STL")
+    p.add_argument("--no-drawing", action="store_true",
+                   help="skip the manufacturing drawing (NAME-drawing.svg/.pdf) and the profile DXF (NAME.dxf)")
     p.add_argument("--measure", action="store_true",
                    help="also section the solid and report the measured flank deviation, span and over-pins size")
 
@@ -206,6 +212,8 @@ def run(args) -> int:
         output.discard()
         raise
     names = [f"{spec.name}.step"] + ([] if args.no_stl else [f"{spec.name}.stl"]) + [f"{spec.name}.json"]
+    if not args.no_drawing:
+        names += [f"{spec.name}-drawing.svg", f"{spec.name}-drawing.pdf", f"{spec.name}.dxf"]
     for name in names:
         print(target / name)
     return 0
@@ -237,17 +245,36 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output) -> Pa
     data["files"] = [r.path.name for r in records]
     if args.measure:
         data["measured"] = _measure(solid, data)
+    drawn = {}
+    if not args.no_drawing:
+        from geargen.report.drawing import gear_drawings
+        data["mating_gears"] = [m.to_dict() for m in _mates(args, spec)]
+        drawn = gear_drawings(data, solid.profile, out, spec.name, output.source,
+                              str(Path(args.design).resolve()) if args.design else "command-line options")
     data_file = out / f"{spec.name}.json"
     write_json(data_file, data)
     update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",
                                          "source": output.source, "version": __version__})
-    # the data file is listed too, so a later run recognises every file here as its own
+    # the data file and drawings are listed too, so a later run recognises every file here as its own
     manifest_path = out / "manifest.json"
     manifest = json.loads(manifest_path.read_text())
-    manifest["files"][data_file.name] = {"format": "json", "length_unit": spec.length_unit,
-                                         "bytes": data_file.stat().st_size}
+    for path in [data_file] + list(drawn.values()):
+        manifest["files"][path.name] = {"format": path.suffix.lstrip("."), "length_unit": spec.length_unit,
+                                        "bytes": path.stat().st_size}
     write_json(manifest_path, manifest)
     return output.commit()
+
+
+def _mates(args, spec: GearSpec) -> list:
+    """The gears ``spec`` meshes with (:class:`geargen.report.drawing.Mate`): in an assembly's
+    drive (``--gear``), from its resolved layout; none for a gear file or options."""
+    if not args.gear:
+        return []
+    from geargen.design.assembly import load_design
+    from geargen.model import is_drive, resolve
+    from geargen.report.drawing import mates_from_layout
+    design = load_design(args.design)
+    return mates_from_layout(resolve(design), spec.name, spec.length_unit) if is_drive(design) else []
 
 
 def _measure(solid, data) -> dict:

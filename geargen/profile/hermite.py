@@ -63,3 +63,38 @@ def hermite_nodes(segment, tolerance: float, min_intervals: int = 2, max_nodes: 
         if len(params) > max_nodes:
             raise ValueError(f"{segment.kind} segment needs more than {max_nodes} Hermite nodes "
                              f"for {tolerance:g} mm")
+
+
+def hermite_poles(values: np.ndarray, derivs: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    """C1 cubic B-spline poles (along axis 0) of the Hermite interpolant of ``values`` with
+    derivatives ``derivs`` at the increasing parameters ``tau`` ``(n + 1,)``: ``(2n + 2, ...)``.
+
+    Each interval's Bezier inner poles are ``p +/- h d / 3``; with the knots of
+    :func:`hermite_knots` (interior multiplicity 2) the spline is exactly the Hermite cubic."""
+    h = np.diff(tau).reshape((-1,) + (1,) * (values.ndim - 1))
+    after = values[:-1] + h * derivs[:-1] / 3.0
+    before = values[1:] - h * derivs[1:] / 3.0
+    out = np.empty((2 * len(tau),) + values.shape[1:])
+    out[0] = values[0]
+    out[1:-1:2] = after
+    out[2:-1:2] = before
+    out[-1] = values[-1]
+    return out
+
+
+def hermite_knots(tau: np.ndarray):
+    """Knots of :func:`hermite_poles`: ``(values, multiplicities)``, ``tau`` with multiplicity 4
+    at the ends and 2 inside."""
+    return tau, [4] + [2] * (len(tau) - 2) + [4]
+
+
+def segment_spline(segment, tolerance: float) -> tuple[np.ndarray, np.ndarray]:
+    """A C1 cubic B-spline within ``tolerance`` mm of ``segment`` (traversal order): poles
+    ``(2n + 2, 2)`` (mm) and the full knot vector ``(2n + 6,)`` (parameter distance from the start).
+    The first and last poles are the segment's exact end points."""
+    params = hermite_nodes(segment, tolerance)
+    sign = 1.0 if segment.t1 >= segment.t0 else -1.0
+    tau = np.abs(params - params[0])
+    poles = hermite_poles(segment.point(params), segment.derivative(params) * sign, tau)
+    values, mults = hermite_knots(tau)
+    return poles, np.repeat(values, mults)

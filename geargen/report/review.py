@@ -13,6 +13,7 @@ the export folder at the end.
 from __future__ import annotations
 
 import html
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -152,6 +153,18 @@ th{background:#eee}pre{background:#f6f6f6;padding:0.6em;overflow-x:auto;font-siz
 img{max-width:100%}.PASS{color:#1a7f37}.FAILING{color:#c62828}figcaption{font-style:italic;font-size:0.9em}"""
 
 
+_LINK = re.compile(r"^\[([^\]]+)\]\(([^)\s]+)\)$")
+
+
+def _html_cell(value: Any) -> str:
+    """A table cell as HTML: a cell that is one Markdown link ``[text](href)`` becomes a link."""
+    text = _cell(value)
+    link = _LINK.match(text)
+    if link:
+        return f"<a href='{html.escape(link.group(2))}'>{html.escape(link.group(1))}</a>"
+    return html.escape(text)
+
+
 def to_html(review: Review) -> str:
     e = html.escape
     out = ["<!DOCTYPE html>", "<html><head><meta charset='utf-8'>", f"<title>{e(review.title)}</title>",
@@ -169,7 +182,7 @@ def to_html(review: Review) -> str:
         elif kind == "table":
             header, rows = payload
             out.append("<table><tr>" + "".join(f"<th>{e(h)}</th>" for h in header) + "</tr>")
-            out += ["<tr>" + "".join(f"<td>{e(_cell(c))}</td>" for c in r) + "</tr>" for r in rows]
+            out += ["<tr>" + "".join(f"<td>{_html_cell(c)}</td>" for c in r) + "</tr>" for r in rows]
             out.append("</table>")
         elif kind == "pre":
             out.append(f"<pre>{e(payload)}</pre>")
@@ -407,6 +420,19 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     for n in notes:
         r.p(n)
 
+    sheets = getattr(result, "drawings", None) or {}
+    if sheets:
+        r.h("Drawings")
+        r.p("Per gear: the manufacturing drawing with the gear data block of ISO 1340 (SVG, PDF), the exact "
+            "transverse profile for wire EDM (DXF, arcs and splines within 0.01 um) and the gear data (JSON).")
+        base = Path(next(iter(sheets.values()))).parent.parent
+        rows = {}
+        for key, path in sheets.items():
+            _, gear, kind = key.split(":")
+            rel = Path(path).relative_to(base).as_posix()
+            rows.setdefault(gear, {})[kind] = f"[{Path(path).name}]({rel})"
+        r.table(["gear", "drawing (SVG)", "drawing (PDF)", "profile (DXF)", "gear data (JSON)"],
+                [[g, *(k.get(kind, "-") for kind in ("svg", "pdf", "dxf", "json"))] for g, k in rows.items()])
     parts = getattr(result.parts, "parts", [])
     r.h("Parts")
     r.table(["part", "group", "kind", "description"], [[p.name, p.group, p.kind, p.description] for p in parts])

@@ -1,0 +1,609 @@
+"""The manufacturing drawing of one gear: an A3 landscape sheet as SVG and PDF (matplotlib).
+
+What the sheet shows (420 x 297 mm, ISO 5457 frame: 20 mm filing margin on the left, 10 mm
+elsewhere; every length on it in the gear's length unit):
+
+- the transverse section (z = 0, tooth 0 on +x) of the whole gear at a preferred scale of
+  ISO 5455 (:data:`PREFERRED_SCALES`), with the reference circle as a chain line and the bore;
+- an enlarged detail of two teeth (turned so a tooth points up) with the tip, reference, base
+  and root circles named (labels placed clear of each other by :mod:`geargen.report.labels`);
+- the axial section with the tip, root and bore diameters and the face width dimensioned;
+- the gear data block in the order of ISO 1340:1976 (what the purchaser states on a cylindrical
+  gear drawing: teeth, module or diametral pitch - the design's own first -, basic rack,
+  pressure angle, helix angle and hand, profile shift, diameters, accuracy grade, tooth
+  thickness with its allowances, span and over-balls dimensions with limits, mating gear and
+  centre distance), then the drawing's unit, scale, generator and source;
+- a title block with the gear's name, the design file and the length unit.
+
+Every value comes from the gear data dict (:func:`geargen.model.gear_data.gear_data`, with the
+keys of ``../shared/contracts/gear-data.md``) through :func:`data_rows`; a key the gear lacks
+(no accuracy grade, no allowance, no mating gear) reads "not specified", never a made-up value.
+The block is laid out deterministically: every text is measured with the renderer and wrapped
+to its column, and rows stack downwards from their measured heights, so long values cannot
+run into each other. Fonts are at least :data:`MIN_FONT_PT` (3.5 mm body, 2.5 mm capitals, the
+smallest lettering of ISO 3098 for A3). Two builds give the same bytes (no dates, fixed salt).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from geargen.units import LENGTH_SUFFIXES, from_mm
+
+SHEET = "A3"
+SHEET_MM = (420.0, 297.0)
+FRAME_MM = (20.0, 10.0, 410.0, 287.0)  # left, bottom, right, top
+MM_PER_PT = 25.4 / 72.0
+#: the smallest font on the sheet (pt): 10 pt = 3.5 mm em, DejaVu Sans capitals 2.5 mm high
+MIN_FONT_PT = 10.0
+TITLE_FONT_PT = 14.0
+FONT = "DejaVu Sans"
+#: ISO 5455 scales (enlargement > 1), tried largest first
+PREFERRED_SCALES = (50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02)
+#: decimals a length is given to, per unit (0.1 um and 0.25 um)
+DECIMALS = {"mm": 4, "in": 5}
+NOT_SPECIFIED = "not specified"
+PAD_MM = 1.2  # clearance between a text and its cell's side
+ROW_PAD_MM = 0.6  # and its cell's top and bottom
+
+# the sheet's areas (mm): data block and title block on the right, views on the left
+DATA_BLOCK = (230.0, 52.0, 410.0, 287.0)
+TITLE_BLOCK = (230.0, 10.0, 410.0, 50.0)
+COLUMNS_MM = (74.0, 24.0, 82.0)  # name | symbol | value
+FULL_VIEW = (25.0, 120.0, 135.0, 270.0)  # drawing box of the whole gear (without its title)
+SECTION_VIEW = (140.0, 120.0, 225.0, 270.0)
+DETAIL_VIEW = (30.0, 18.0, 222.0, 102.0)
+
+
+def scale_text(scale: float) -> str:
+    """``5:1``, ``1:1``, ``1:2``."""
+    return f"{scale:g}:1" if scale >= 1 else f"1:{1 / scale:g}"
+
+
+def preferred_scale(size_mm: float, room_mm: float) -> float:
+    """The largest :data:`PREFERRED_SCALES` scale at which ``size_mm`` fits in ``room_mm``."""
+    for s in PREFERRED_SCALES:
+        if size_mm * s <= room_mm:
+            return s
+    return PREFERRED_SCALES[-1]
+
+
+def format_number(value, unit: str) -> str:
+    """A length in the gear's unit to the sheet's decimals, without the unit (``12.3456``): the
+    dimensions of the views (the title block states the unit)."""
+    return f"{value:.{DECIMALS[unit]}f}"
+
+
+def format_length(value, unit: str) -> str:
+    """A length in the gear's unit as the data block writes it (``12.3456 mm``); None: not specified."""
+    if value is None:
+        return NOT_SPECIFIED
+    return f"{format_number(value, unit)} {unit}"
+
+
+def format_um(value_um, unit: str, signed: bool = False) -> str:
+    """A deviation or tolerance given in um, in the gear's unit (with the um value beside it)."""
+    if value_um is None:
+        return NOT_SPECIFIED
+    v = from_mm(value_um * 1e-3, unit)
+    sign = "+" if signed else ""
+    return f"{v:{sign}.{DECIMALS[unit] + (0 if unit == 'mm' else 1)}f} {unit} ({value_um:{sign}.1f} µm)"
+
+
+def format_limits(limits, unit: str) -> str:
+    """``[smallest, largest]`` measurement as ``max / min`` (the order a shop reads it)."""
+    if not limits:
+        return NOT_SPECIFIED
+    lo, hi = limits
+    return f"{hi:.{DECIMALS[unit]}f} / {lo:.{DECIMALS[unit]}f} {unit} (max / min)"
+
+
+def _diameter(data: dict, key: str):
+    r = data.get(key)
+    return None if r is None else 2.0 * r
+
+
+@dataclass(frozen=True)
+class Mate:
+    """A gear this one meshes with: its name and teeth, the working centre distance (gear's unit)
+    and its tolerance ``(lower, upper)`` deviation when the design gives one."""
+
+    name: str
+    teeth: int
+    centre_distance: float | None
+    centre_distance_tolerance: tuple[float, float] | None = None
+
+    def to_dict(self) -> dict:
+        return {"name": self.name, "teeth": self.teeth, "centre_distance": self.centre_distance,
+                "centre_distance_tolerance": None if self.centre_distance_tolerance is None
+                else list(self.centre_distance_tolerance)}
+
+
+def mates_from_layout(layout, gear_name: str, unit: str) -> list[Mate]:
+    """The gears ``gear_name`` meshes with in the resolved drive (engaged meshes), each with the
+    centre distance of the placed centres (where the mesh runs), in ``unit``."""
+    out = []
+    for m in layout.meshes:
+        if not m.engaged:
+            continue
+        for me, other in ((m.gear1, m.gear2), (m.gear2, m.gear1)):
+            if me.name == gear_name and all(o.name != other.name for o in out):
+                a = m.centre_distance
+                out.append(Mate(other.name, other.teeth, None if not math.isfinite(a) else float(from_mm(a, unit))))
+    return out
+
+
+def mates_of(data: dict) -> list[Mate]:
+    """The :class:`Mate` s a gear data dict records (``"mating_gears"``; none when absent)."""
+    out = []
+    for m in data.get("mating_gears") or []:
+        tol = m.get("centre_distance_tolerance")
+        out.append(Mate(m["name"], m["teeth"], m.get("centre_distance"), None if tol is None else tuple(tol)))
+    return out
+
+
+def _rack_text(data: dict) -> str:
+    rack = data.get("basic_rack")
+    if not rack:
+        return NOT_SPECIFIED
+    ha, hf, rho = rack["addendum_coefficient"], rack["dedendum_coefficient"], rack["tip_radius_coefficient"]
+    text = f"h_aP {ha:.3g} m_n, h_fP {hf:.3g} m_n, ρ_fP {rho:.3g} m_n"
+    # ISO 53:1998 profile A: 1, 1.25, 0.38
+    if (round(ha, 9), round(hf, 9), round(rho, 9)) == (1.0, 1.25, 0.38):
+        text = "ISO 53 profile A: " + text
+    return text
+
+
+def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[str, str, str]]:
+    """The gear data block as ``(name, symbol, value)`` rows, in the order of ISO 1340.
+
+    ``data``: the gear data dict (lengths in ``data["length_unit"]``), with ``mating_gears``
+    when the gear meshes with others; ``scale``, ``version``, ``source``: the drawing's."""
+    u = data["length_unit"]
+    L = lambda v: format_length(v, u)  # noqa: E731 - one formatter for every length on the sheet
+    m_n = data["normal_module_mm"]
+    module = ("Normal module", "m_n", f"{m_n:.6g} mm")
+    pitch = ("Normal diametral pitch", "P_n", f"{LENGTH_SUFFIXES['in'] / m_n:.6g} 1/in")
+    rows = [("Number of teeth", "z", f"{data['teeth']}")]
+    rows += [pitch, module] if u == "in" else [module, pitch]
+    helical = data.get("hand") is not None
+    rows += [
+        ("Basic rack tooth proportions", "", _rack_text(data)),
+        ("Normal pressure angle", "α_n", f"{data['normal_pressure_angle_deg']:.4f}°"),
+        ("Helix angle and hand", "β", f"{data['helix_angle_deg']:.4f}° {data['hand']} hand" if helical
+         else "0° (spur)"),
+        ("Profile shift coefficient", "x_n", f"{data['profile_shift_normal']:+.4f}"),
+        ("Reference diameter", "d", L(_diameter(data, "reference_radius"))),
+        ("Tip diameter", "d_a", L(_diameter(data, "tip_radius"))),
+        ("Root diameter", "d_f", L(_diameter(data, "root_radius"))),
+        ("Base diameter", "d_b", L(_diameter(data, "base_radius"))),
+        ("Face width", "b", L(data.get("face_width"))),
+        ("Lead", "p_z", L(data.get("lead")) if helical else "- (spur)"),
+    ]
+    acc = data.get("accuracy")
+    if acc:
+        rows.append(("Accuracy grade", "", f"{acc['standard']} grade {acc['grade']}"))
+    else:
+        rows.append(("Accuracy grade", "", NOT_SPECIFIED))
+    for name, symbol, key in (("Single pitch tolerance", "f_pT", "single_pitch_um"),
+                              ("Cumulative pitch tolerance", "F_pT", "cumulative_pitch_um"),
+                              ("Total profile tolerance", "F_αT", "profile_total_um"),
+                              ("Total helix tolerance", "F_βT", "helix_total_um"),
+                              ("Runout tolerance", "F_rT", "runout_um")):
+        rows.append((name, symbol, format_um(acc.get(key), u) if acc else "-"))
+    allowance = data.get("thickness_allowance")
+    rows += [
+        ("Tooth thickness allowance, upper", "A_sne",
+         format_um(allowance["upper_um"], u, signed=True) if allowance else NOT_SPECIFIED),
+        ("Tooth thickness allowance, lower", "A_sni",
+         format_um(allowance["lower_um"], u, signed=True) if allowance else NOT_SPECIFIED),
+        ("Allowance method", "", allowance.get("method") or NOT_SPECIFIED if allowance else "-"),
+        ("Thinning in the model (circumferential)", "", L(data.get("thinning_circumferential"))),
+    ]
+    span = data.get("span")
+    rows += [
+        (f"Span over k = {span['teeth_spanned']} teeth" if span else "Span over k teeth", "W_k",
+         L(span["span_normal"]) if span else NOT_SPECIFIED),
+        ("Span limits", "W_k", format_limits(span.get("limits"), u) if span else "-"),
+    ]
+    pins = data.get("over_pins")
+    kind = (pins or {}).get("kind", "balls")
+    rows += [
+        (f"{kind[:-1].capitalize()} diameter", "D_M", L(pins["diameter"]) if pins else NOT_SPECIFIED),
+        (f"Dimension over {kind}", "M_dK", L(pins["dimension"]) if pins else NOT_SPECIFIED),
+        (f"Over-{kind} limits", "M_dK", format_limits(pins.get("limits"), u) if pins else "-"),
+    ]
+    mates = mates_of(data)
+    if not mates:
+        rows += [("Mating gear", "", NOT_SPECIFIED), ("Centre distance", "a", NOT_SPECIFIED)]
+    for m in mates:
+        rows.append(("Mating gear", "z_2", f"{m.name} ({m.teeth} teeth)"))
+        a = L(m.centre_distance)
+        if m.centre_distance is not None:
+            if m.centre_distance_tolerance is None:
+                a += ", tolerance not specified"
+            else:
+                lo, hi = m.centre_distance_tolerance
+                a += f" {hi:+.{DECIMALS[u]}f} / {lo:+.{DECIMALS[u]}f}"
+        rows.append((f"Centre distance to {m.name}", "a", a))
+    rows += [
+        ("Drawing units", "", f"{u} (angles in degrees)"),
+        ("Drawing scale", "", scale),
+        ("Generator", "", f"geargen {version}"),
+        ("Source", "", source),
+    ]
+    return rows
+
+
+# ---------------------------------------------------------------- measuring and wrapping text
+
+
+class _Sheet:
+    """The figure (A3, 72 dpi: 1 px = 1 pt) and one axes spanning it in sheet mm."""
+
+    def __init__(self):
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        from matplotlib.figure import Figure
+
+        self.fig = Figure(figsize=(SHEET_MM[0] / 25.4, SHEET_MM[1] / 25.4), dpi=72)
+        FigureCanvasAgg(self.fig)
+        self.ax = self.fig.add_axes((0, 0, 1, 1))
+        self.ax.set_xlim(0, SHEET_MM[0])
+        self.ax.set_ylim(0, SHEET_MM[1])
+        self.ax.set_axis_off()
+        self.renderer = self.fig.canvas.get_renderer()
+
+    def width_mm(self, text: str, size: float, weight: str = "normal") -> float:
+        t = self.ax.text(0, 0, text, fontsize=size, family=FONT, weight=weight)
+        w = t.get_window_extent(self.renderer).width * MM_PER_PT
+        t.remove()
+        return w
+
+    def text(self, x, y, s, size=MIN_FONT_PT, **kw):
+        kw.setdefault("family", FONT)
+        return self.ax.text(x, y, s, fontsize=size, **kw)
+
+    def line(self, xs, ys, lw=0.35, **kw):
+        # line widths given in mm on the sheet (ISO 128: 0.35 thick, 0.18 thin)
+        return self.ax.plot(xs, ys, lw=lw / MM_PER_PT, color=kw.pop("color", "black"), solid_capstyle="butt", **kw)[0]
+
+    def wrap(self, text: str, width_mm: float, size: float) -> list[str]:
+        """``text`` broken into lines no wider than ``width_mm`` (at spaces, else after ``/``,
+        else anywhere)."""
+        if self.width_mm(text, size) <= width_mm:
+            return [text]
+        tokens = []
+        for word in text.split(" "):
+            parts = word.split("/")
+            tokens += [p + "/" for p in parts[:-1]] + [parts[-1]]
+            tokens[-1] += " "
+        tokens[-1] = tokens[-1].rstrip(" ")
+        lines, current = [], ""
+        for tok in tokens:
+            trial = current + tok
+            if current and self.width_mm(trial.rstrip(" "), size) > width_mm:
+                lines.append(current.rstrip(" "))
+                current = tok
+            else:
+                current = trial
+            while self.width_mm(current.rstrip(" "), size) > width_mm and len(current) > 1:
+                # a token wider than the column: cut it where it fits
+                n = len(current)
+                while n > 1 and self.width_mm(current[:n], size) > width_mm:
+                    n -= 1
+                lines.append(current[:n])
+                current = current[n:]
+        if current.strip():
+            lines.append(current.rstrip(" "))
+        return lines
+
+
+# ---------------------------------------------------------------- the sheet
+
+
+def _frame(sheet: _Sheet) -> None:
+    w, h = SHEET_MM
+    sheet.line([0, w, w, 0, 0], [0, 0, h, h, 0], lw=0.18, color="0.6")  # trimmed sheet edge
+    x0, y0, x1, y1 = FRAME_MM
+    sheet.line([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], lw=0.7)
+
+
+def _box(sheet, box, lw=0.35):
+    x0, y0, x1, y1 = box
+    sheet.line([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], lw=lw)
+
+
+def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT) -> list[float]:
+    """Draw ``rows`` as a table in ``box`` (from its top); returns the bottom of each row (mm).
+    Raises ValueError when the rows do not fit the box."""
+    x0, y0, x1, y1 = box
+    line_h = size * 1.2 * MM_PER_PT
+    cols = np.cumsum((x0,) + COLUMNS_MM)
+    assert abs(cols[-1] - x1) < 1e-9
+    header = [("Gear data (ISO 1340)", "Symbol", "Value")]
+    y = y1
+    bottoms = []
+    for i, row in enumerate(header + list(rows)):
+        weight = "bold" if i == 0 else "normal"
+        cells = [sheet.wrap(text, COLUMNS_MM[j] - 2 * PAD_MM, size) for j, text in enumerate(row)]
+        n = max(len(c) for c in cells)
+        height = n * line_h + 2 * ROW_PAD_MM
+        if y - height < y0:
+            raise ValueError(f"the gear data block needs more than {y1 - y0:g} mm")
+        for j, lines in enumerate(cells):
+            for k, text in enumerate(lines):
+                sheet.text(cols[j] + PAD_MM, y - ROW_PAD_MM - (k + 0.5) * line_h, text, size,
+                           va="center_baseline", weight=weight)
+        y -= height
+        sheet.line([x0, x1], [y, y], lw=0.35 if i == 0 else 0.18)
+        bottoms.append(y)
+    for c in cols[1:-1]:
+        sheet.line([c, c], [y, y1], lw=0.18)
+    _box(sheet, (x0, y, x1, y1))
+    return bottoms
+
+
+def _title_block(sheet: _Sheet, name: str, design_file: str, unit: str, scale: str, version: str) -> None:
+    x0, y0, x1, y1 = TITLE_BLOCK
+    _box(sheet, TITLE_BLOCK, lw=0.7)
+    ym = y0 + 0.55 * (y1 - y0)
+    sheet.line([x0, x1], [ym, ym], lw=0.35)
+    xm = x0 + 110
+    sheet.line([xm, xm], [y0, ym], lw=0.35)
+    sheet.text(x0 + 3, y1 - 3, "Gear", MIN_FONT_PT, va="top", color="0.3")
+    for k, line in enumerate(sheet.wrap(name, x1 - x0 - 6, TITLE_FONT_PT)[:2]):
+        sheet.text(x0 + 3, y1 - 8.5 - k * 6, line, TITLE_FONT_PT, va="top", weight="bold")
+    cells = [((x0 + 2, ym - 2), "Design file", design_file, xm - x0 - 4),
+             ((xm + 2, ym - 2), "Length unit", unit, x1 - xm - 4)]
+    for (x, y), label, value, width in cells:
+        sheet.text(x, y, label, MIN_FONT_PT, va="top", color="0.3")
+        for k, line in enumerate(sheet.wrap(value, width, MIN_FONT_PT)[:3]):
+            sheet.text(x, y - 5 - k * 4.4, line, MIN_FONT_PT, va="top")
+    for k, line in enumerate(sheet.wrap(f"Scale {scale}, sheet {SHEET}", x1 - xm - 4, MIN_FONT_PT)[:2][::-1]):
+        sheet.text(xm + 2, y0 + 2 + k * 4.4, line, MIN_FONT_PT, va="bottom")
+
+
+def _outline_points(profile, step_mm: float) -> np.ndarray:
+    from geargen.profile.segments import sample_outline
+    pts = sample_outline(profile.outline(), step_mm)
+    return np.vstack([pts, pts[:1]])
+
+
+def _bore_points(hub, n: int = 361) -> np.ndarray | None:
+    if hub.bore_diameter <= 0:
+        return None
+    rb = hub.bore_diameter / 2
+    if hub.keyway_width <= 0:
+        t = np.linspace(0, 2 * np.pi, n)
+        return rb * np.column_stack([np.cos(t), np.sin(t)])
+    w2 = hub.keyway_width / 2
+    a = math.asin(w2 / rb)
+    xk, xf = math.sqrt(rb * rb - w2 * w2), rb + hub.keyway_depth
+    t = np.linspace(a, 2 * np.pi - a, n)
+    arc = rb * np.column_stack([np.cos(t), np.sin(t)])
+    return np.vstack([arc, [(xk, -w2), (xf, -w2), (xf, w2), (xk, w2)]])
+
+
+def _centre_cross(sheet, cx, cy, half):
+    dash = dict(lw=0.18, linestyle=(0, (12, 2, 1.5, 2)), color="0.25")
+    sheet.line([cx - half, cx + half], [cy, cy], **dash)
+    sheet.line([cx, cx], [cy - half, cy + half], **dash)
+
+
+def _view_title(sheet, box, text):
+    sheet.text((box[0] + box[2]) / 2, box[3] + 2.5, text, MIN_FONT_PT, ha="center", va="bottom", weight="bold")
+
+
+def _full_view(sheet, profile, scale: float) -> None:
+    box = FULL_VIEW
+    cx, cy = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
+    k = scale  # sheet mm per gear mm
+    to = lambda p: (cx + p[:, 0] * k, cy + p[:, 1] * k)  # noqa: E731
+    pts = _outline_points(profile, 0.05 / k)
+    sheet.line(*to(pts), lw=0.5)
+    bore = _bore_points(profile.spec.hub)
+    if bore is not None:
+        sheet.line(*to(np.vstack([bore, bore[:1]])), lw=0.5)
+    r = profile.reference_radius * k
+    t = np.linspace(0, 2 * np.pi, 721)
+    sheet.line(cx + r * np.cos(t), cy + r * np.sin(t), lw=0.18, linestyle=(0, (12, 2, 1.5, 2)), color="0.25")
+    _centre_cross(sheet, cx, cy, profile.tip_radius * k + 4)
+    _view_title(sheet, box, f"Transverse section ({scale_text(scale)})")
+
+
+def _section_view(sheet, profile, unit: str, scale: float) -> None:
+    """Axial section: the face width, tip, root and bore diameters dimensioned (gear's unit)."""
+    spec = profile.spec
+    box = SECTION_VIEW
+    k = scale
+    b = spec.face_width * k
+    ra, rf = profile.tip_radius * k, profile.root_radius * k
+    hub = spec.hub
+    rbore = hub.bore_diameter / 2 * k
+    hub_len, rhub = hub.hub_length * k, hub.hub_diameter / 2 * k
+    width = b + hub_len
+    cx = box[0] + 34 + hub_len + (box[2] - box[0] - 34 - width) / 2
+    cy = (box[1] + box[3]) / 2
+    x0, x1 = cx, cx + b
+    thick, thin = 0.5, 0.18
+    # body between bore and root circle hatched (teeth are drawn unsectioned, ISO 2203)
+    for sign in (1, -1):
+        sheet.ax.fill([x0, x1, x1, x0], [cy + sign * rbore, cy + sign * rbore, cy + sign * rf, cy + sign * rf],
+                      facecolor="none", edgecolor="none", hatch="////", linewidth=0)
+        sheet.line([x0, x1, x1, x0, x0], [cy + sign * rbore, cy + sign * rbore, cy + sign * ra, cy + sign * ra,
+                                          cy + sign * rbore], lw=thick)
+        sheet.line([x0, x1], [cy + sign * rf, cy + sign * rf], lw=thin)
+        rr = profile.reference_radius * k
+        sheet.line([x0 - 2, x1 + 2], [cy + sign * rr, cy + sign * rr], lw=thin, linestyle=(0, (12, 2, 1.5, 2)))
+        if hub_len > 0:
+            sheet.line([x0, x0 - hub_len, x0 - hub_len, x0], [cy + sign * rhub, cy + sign * rhub,
+                                                              cy + sign * rbore, cy + sign * rbore], lw=thick)
+            sheet.ax.fill([x0 - hub_len, x0, x0, x0 - hub_len],
+                          [cy + sign * rbore, cy + sign * rbore, cy + sign * rhub, cy + sign * rhub],
+                          facecolor="none", edgecolor="none", hatch="////", linewidth=0)
+    sheet.line([x0 - hub_len - 4, x1 + 4], [cy, cy], lw=thin, linestyle=(0, (12, 2, 1.5, 2)))
+    N = lambda v: format_number(from_mm(v, unit), unit)  # noqa: E731
+    left = x0 - hub_len
+    dims = [(2 * profile.tip_radius, ra), (2 * profile.root_radius, rf)]
+    if rbore > 0:
+        dims.append((hub.bore_diameter, rbore))
+    # the smallest diameter nearest the section, so no extension line crosses a smaller one's text
+    for i, (value_mm, half) in enumerate(sorted(dims, key=lambda d: d[1])):
+        x = left - 8 - 9 * i
+        _dimension(sheet, (x, cy - half), (x, cy + half), f"⌀{N(value_mm)}", vertical=True)
+        for sign in (1, -1):  # extension lines
+            sheet.line([x - 1.5, left - 1 if half > (rhub if hub_len else 0) or not hub_len else x0 - hub_len - 1],
+                       [cy + sign * half, cy + sign * half], lw=thin)
+    y = cy - ra - 6
+    _dimension(sheet, (x0, y), (x1, y), N(spec.face_width), vertical=False)
+    for x in (x0, x1):
+        sheet.line([x, x], [y - 1.5, cy - ra - 1], lw=thin)
+    _view_title(sheet, box, f"Axial section ({scale_text(scale)})")
+
+
+def _dimension(sheet, p, q, text, vertical: bool) -> None:
+    """A dimension line from ``p`` to ``q`` with arrows at both ends and its text beside it."""
+    sheet.ax.annotate("", xy=p, xytext=q, arrowprops=dict(arrowstyle="<|-|>", lw=0.18 / MM_PER_PT, color="black",
+                                                          shrinkA=0, shrinkB=0, mutation_scale=7))
+    mx, my = (p[0] + q[0]) / 2, (p[1] + q[1]) / 2
+    if vertical:
+        sheet.text(mx - 1.0, my, text, MIN_FONT_PT, rotation=90, ha="center", va="bottom", rotation_mode="anchor")
+    else:
+        sheet.text(mx, my - 1.0, text, MIN_FONT_PT, ha="center", va="top")
+
+
+def _detail_view(sheet, profile, unit: str, scale: float) -> None:
+    """Two teeth around the +y axis, enlarged, with the four circles named."""
+    from matplotlib.patches import Rectangle
+
+    from geargen.report.labels import Obstacles, place_labels
+
+    box = DETAIL_VIEW
+    k = scale
+    cx = (box[0] + box[2]) / 2
+    cy = box[3] - 12.0 - profile.tip_radius * k  # the gear centre, below the window
+    turn = math.pi / 2 - profile.pitch_angle / 2  # the gap between two teeth on +y
+    clip = Rectangle((box[0], box[1]), box[2] - box[0], box[3] - box[1], transform=sheet.ax.transData,
+                     facecolor="none", edgecolor="black", lw=0.35 / MM_PER_PT)
+    sheet.ax.add_patch(clip)
+    half = (box[2] - box[0]) / 2 / k  # gear mm across half the window
+    n = int(math.ceil(2 * math.asin(min(1.0, half / profile.root_radius)) / profile.pitch_angle)) + 2
+    from geargen.profile.segments import sample_outline
+    segs = [s.rotated(turn + j * profile.pitch_angle) for j in range(-n // 2 - 1, n // 2 + 2)
+            for s in profile.pitch_segments()]
+    pts = sample_outline(segs, 0.05 / k)
+    line = sheet.line(cx + pts[:, 0] * k, cy + pts[:, 1] * k, lw=0.5)
+    line.set_clip_path(clip)
+    circles = [("d_a", profile.tip_radius, dict(lw=0.18)),
+               ("d", profile.reference_radius, dict(lw=0.18, linestyle=(0, (12, 2, 1.5, 2)))),
+               ("d_b", profile.base_radius, dict(lw=0.18, linestyle=(0, (3, 1.5)))),
+               ("d_f", profile.root_radius, dict(lw=0.18, linestyle=(0, (1, 1))))]
+    width_angle = (box[2] - box[0]) / (profile.root_radius * k)
+    t = np.linspace(math.pi / 2 - width_angle, math.pi / 2 + width_angle, 721)
+    labels, obstacles = [], Obstacles(boxes=[])
+    for sym, r, style in circles:
+        c = sheet.line(cx + r * k * np.cos(t), cy + r * k * np.sin(t), color="0.25", **style)
+        c.set_clip_path(clip)
+        # anchor: the circle's point farthest right that is well inside the window
+        for frac in (0.7, 0.55, 0.4, 0.25, 0.1):
+            x_label = cx + frac * (box[2] - box[0]) / 2
+            y = cy + math.sqrt(max((r * k) ** 2 - (x_label - cx) ** 2, 0.0))
+            if box[1] + 4 < y < box[3] - 4:
+                labels.append((f"{sym} ⌀{format_number(from_mm(2 * r, unit), unit)}", (x_label, y),
+                               dict(fontsize=MIN_FONT_PT, family=FONT, color="0.15")))
+                break
+        obstacles.circles.append((cx, cy, r * k))
+    # the outline as an obstacle: 2 mm chords on the sheet, those inside the window
+    coarse = sample_outline(segs, 2.0 / k) * k + np.array([cx, cy])
+    inside = (coarse[:, 0] > box[0]) & (coarse[:, 0] < box[2]) & (coarse[:, 1] > box[1]) & (coarse[:, 1] < box[3])
+    keep = inside[:-1] | inside[1:]
+    obstacles.segments += [(tuple(a), tuple(b)) for a, b, ok in zip(coarse[:-1], coarse[1:], keep) if ok]
+    # the labels go into the window's right part, clear of each other (hard) and of the outline (soft)
+    sub = sheet.fig.add_axes(_axes_rect(box), facecolor="none")
+    sub.set_xlim(box[0], box[2])
+    sub.set_ylim(box[1], box[3])
+    sub.set_axis_off()
+    place_labels(sub, labels, obstacles, leader_from_ring=1)
+    _view_title(sheet, box, f"Detail: tooth form ({scale_text(scale)})")
+
+
+def _axes_rect(box):
+    return (box[0] / SHEET_MM[0], box[1] / SHEET_MM[1], (box[2] - box[0]) / SHEET_MM[0], (box[3] - box[1]) / SHEET_MM[1])
+
+
+def drawing_scales(profile) -> tuple[float, float, float]:
+    """The scales of the whole gear, the axial section and the detail: the ISO 5455 scales at
+    which the gear fits its views (a scale is paper length over true length, whatever the unit)."""
+    spec = profile.spec
+    d_a = 2 * profile.tip_radius
+    length = spec.face_width + spec.hub.hub_length
+    full = preferred_scale(d_a, min(FULL_VIEW[2] - FULL_VIEW[0], FULL_VIEW[3] - FULL_VIEW[1]) - 10)
+    section = min(preferred_scale(d_a, SECTION_VIEW[3] - SECTION_VIEW[1] - 20),
+                  preferred_scale(length, SECTION_VIEW[2] - SECTION_VIEW[0] - 34 - 6))
+    tooth = max(2.6 * 2 * math.pi * profile.reference_radius / spec.teeth,
+                1.5 * (profile.tip_radius - profile.root_radius))
+    detail = preferred_scale(tooth, min(DETAIL_VIEW[2] - DETAIL_VIEW[0], 1.4 * (DETAIL_VIEW[3] - DETAIL_VIEW[1])))
+    return full, section, max(detail, full)
+
+
+def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
+    """The drawing (a matplotlib ``Figure``) of the gear of ``profile`` with the data ``data``."""
+    import matplotlib
+
+    unit = data["length_unit"]
+    full, section, detail = drawing_scales(profile)
+    scale = f"{scale_text(full)} (section {scale_text(section)}, detail {scale_text(detail)})"
+    with matplotlib.rc_context({"hatch.linewidth": 0.18 / MM_PER_PT, "hatch.color": "0.35"}):
+        sheet = _Sheet()
+        _frame(sheet)
+        _full_view(sheet, profile, full)
+        _section_view(sheet, profile, unit, section)
+        _detail_view(sheet, profile, unit, detail)
+        _data_block(sheet, data_rows(data, scale, version, source))
+        _title_block(sheet, data["name"], design_file, unit, scale, version)
+    return sheet.fig
+
+
+def write_drawing(data: dict, profile, folder, name: str, source: str, design_file: str,
+                  version: str | None = None) -> dict[str, Path]:
+    """Draw the gear and write ``folder/name-drawing.svg`` and ``.pdf`` (atomically, folder
+    created) from the same figure; returns ``{"svg": path, "pdf": path}``."""
+    import matplotlib
+
+    from geargen import __version__
+    from geargen.outputs import atomic_path
+
+    fig = draw_gear(data, profile, source, design_file, version or __version__)
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    out = {}
+    # SVG text stays text; TrueType in the PDF keeps its text extractable; no dates: same bytes twice
+    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen", "pdf.fonttype": 42}):
+        for fmt, meta in (("svg", {"Date": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
+            path = folder / f"{name}-drawing.{fmt}"
+            with atomic_path(path) as tmp:
+                fig.savefig(tmp, format=fmt, facecolor="white", metadata=meta)
+            out[fmt] = path
+    return out
+
+
+__all__ = ["SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
+           "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
+           "drawing_scales", "draw_gear", "write_drawing", "gear_drawings"]
+
+
+def gear_drawings(data: dict, profile, folder, name: str, source: str, design_file: str) -> dict[str, Path]:
+    """Every drawing file of one gear into ``folder``: ``name-drawing.svg``/``.pdf`` and the
+    profile DXF ``name.dxf``; records their names in ``data["drawing"]`` (the gear data contract's
+    key) before drawing, so the sheet and the JSON agree. Returns ``{"svg"|"pdf"|"dxf": path}``."""
+    from geargen.report.dxf import write_profile_dxf
+
+    folder = Path(folder)
+    data["drawing"] = {"svg": f"{name}-drawing.svg", "pdf": f"{name}-drawing.pdf", "dxf": f"{name}.dxf"}
+    out = write_drawing(data, profile, folder, name, source, design_file)
+    out["dxf"] = write_profile_dxf(profile, folder / data["drawing"]["dxf"]).path
+    return out
