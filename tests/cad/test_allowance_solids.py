@@ -50,3 +50,44 @@ def test_span_and_over_balls_limits_on_the_extreme_solids(case):
     # the solids differ by the tolerance: the test would see the limits swapped or one deviation ignored
     assert measured_span[1] - measured_span[0] == pytest.approx(
         (allowance.upper - allowance.lower) * math.cos(spec.pressure_angle), abs=0.1 * UM)
+
+
+def test_gear_command_writes_the_allowance_and_limits(tmp_path):
+    """``geargen gear --thickness-allowance`` and an assembly gear of a drive (allowance from its backlash)
+    write the contract's keys (gear-data.md), the limits the same numbers as core.allowance gives."""
+    import json
+
+    from geargen.cli import main
+    from geargen.units import MM_PER_IN
+
+    out = tmp_path / "g"
+    assert main(["gear", "--teeth", "23", "--diametral-pitch", "24", "--profile-shift", "0.1", "--face-width", "0.16",
+                 "--thickness-allowance", "-15", "-55", "--out", str(out), "--no-stl"]) == 0
+    data = json.loads((out / "gear_23.json").read_text())
+    assert data["thickness_allowance"] == {"method": "entered (--thickness-allowance)", "upper_um": -15.0,
+                                           "lower_um": -55.0}
+    spec, allowance = CASES["spur inch"]
+    expected = span_limits(spec, allowance, data["span"]["teeth_spanned"])
+    assert data["span"]["limits"] == pytest.approx([v / MM_PER_IN for v in expected], abs=1e-12)
+    expected = over_pins_limits(spec, allowance, data["over_pins"]["diameter"] * MM_PER_IN)
+    assert data["over_pins"]["limits"] == pytest.approx([v / MM_PER_IN for v in expected], abs=1e-12)
+    root = __import__("pathlib").Path(__file__).resolve().parents[2]
+    out2 = tmp_path / "o"
+    assert main(["gear", str(root / "assemblies" / "robot_joint.toml"), "--gear", "output", "--out", str(out2),
+                 "--no-stl"]) == 0
+    data = json.loads((out2 / "output.json").read_text())
+    # mesh 2: 0.0008 to 0.0042 in at standard centres, unshifted spur: 0.0004 to 0.0021 in of thinning per
+    # gear = 10.16 to 53.34 um; the modelled 0.00125 in lies inside, so the nominal span lies between
+    assert (data["thickness_allowance"]["upper_um"], data["thickness_allowance"]["lower_um"]) == pytest.approx(
+        (-10.16, -53.34), abs=1e-9)
+    assert data["thickness_allowance"]["method"].startswith("centre-distance-tolerance route")
+    assert data["span"]["limits"][0] < data["span"]["span_normal"] < data["span"]["limits"][1]
+
+
+def test_bad_allowance_option_names_it(tmp_path, capsys):
+    from geargen.cli import main
+    assert main(["gear", "--teeth", "21", "--module", "1", "--face-width", "5", "--thickness-allowance", "-30", "-10",
+                 "--out", str(tmp_path / "x")]) == 2
+    err = capsys.readouterr().err
+    assert "--thickness-allowance" in err and "upper >= lower" in err
+    assert not (tmp_path / "x").exists()
