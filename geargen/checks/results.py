@@ -56,6 +56,10 @@ FAILURE_KINDS: dict[str, str] = {
     "paths_disagree": "the exact 2-D check and the section check of the exported solid disagree beyond "
                       "the stated tolerance",
     "backlash_out_of_range": "the backlash of the mesh as modelled and placed is outside the design range",
+    "allowance_range_disagrees": "the backlash range from the tooth-thickness allowances and the centre-distance "
+                                 "tolerance differs from the one measured on the thinnest and thickest teeth",
+    "allowance_range_outside_design": "the backlash range from the tooth-thickness allowances and the "
+                                      "centre-distance tolerance leaves the design range",
     "disengaged_overlap": "a pinion slid out of mesh still overlaps its mate axially",
     "ratio_mismatch": "the exact ratio of the train is not one the design requires",
 }
@@ -378,6 +382,15 @@ _AGREEMENT_LENGTHS = ("normal_backlash_difference_max", "normal_backlash_differe
 _BACKLASH_LENGTHS = ("centre_distance", "modelled", "design_min", "design_max", "min", "max", "axial_clearance")
 
 
+#: keys of a backlash-range record (DesignCheck.backlash_range) that are lengths or pairs of lengths
+_RANGE_LENGTHS = ("centre_distance", "centre_distance_tolerance", "analytic", "measured", "difference",
+                  "agreement_tolerance", "design")
+
+
+def _scaled(v, s):
+    return [_num(x * s) for x in v] if isinstance(v, (list, tuple)) else _num(v * s)
+
+
 @dataclass
 class DesignCheck:
     """Every mesh of a design checked: per-mesh results, tolerance results, design-level failures."""
@@ -392,6 +405,9 @@ class DesignCheck:
     # per mesh, in the resolved model's kind (geargen.model.BACKLASH_KIND, mm): min/max measured on
     # path 1, the modelled value, the design range, the centre distance where the mesh runs
     backlash: list[dict[str, Any]] = field(default_factory=list)
+    # per mesh with thickness allowances (geargen.checks.allowance, mm): the range they give with the
+    # centre-distance tolerance, analytic and measured on the thinnest and thickest teeth
+    backlash_range: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def all_failures(self) -> list[Failure]:
@@ -419,6 +435,8 @@ class DesignCheck:
             "notes": list(self.notes),
             "backlash": [{key: (_num(v * s) if key in _BACKLASH_LENGTHS and v is not None else v)
                           for key, v in b.items()} for b in self.backlash],
+            "backlash_range": [{key: (_scaled(v, s) if key in _RANGE_LENGTHS else v) for key, v in r.items()}
+                               for r in self.backlash_range],
         }
 
 

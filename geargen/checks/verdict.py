@@ -3,7 +3,8 @@ gates on (the build adds only what needs its solids: sections of the gear solids
 overlaps).
 
 For every mesh of the resolved model (:func:`geargen.model.resolve`): path 1 (exact 2-D) at the
-placed centres and phases, the design range of the backlash, the axial clearance of a
+placed centres and phases, the design range of the backlash, the range the tooth-thickness
+allowances give, analytic against measured (:mod:`geargen.checks.allowance`), the axial clearance of a
 disengaged mesh, the exact ratio the design requires, and the error budget (worst case and
 Monte Carlo, :mod:`geargen.checks.tolerance`). A design with neither ``[layout]`` nor
 ``[synthesis]`` names its pairs in ``[checks] meshes``; they are checked centred in their play.
@@ -113,6 +114,17 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
                 f"{mesh.backlash_min / k:.6g} to {mesh.backlash_max / k:.6g} {unit}",
                 "circumferential_backlash", lo if lo < mesh.backlash_min else hi,
                 mesh.backlash_min if lo < mesh.backlash_min else mesh.backlash_max))
+    from geargen.checks.allowance import backlash_ranges
+    try:
+        ranges, range_failures, range_notes = backlash_ranges(layout, settings.centre_distance_tolerance,
+                                                              RANGE_TOLERANCE)
+    except DesignError as exc:  # no allowance meets a range: reported (naming the key), the rest still checked
+        ranges, range_notes = [], []
+        range_failures = [Failure("allowance_range_outside_design", "", f"no tooth-thickness allowance meets the "
+                                  f"backlash range: {exc}")]
+    result.backlash_range = ranges
+    result.failures += range_failures
+    result.notes += range_notes
     if layout.ratio and not layout.ratio["ok"]:
         result.failures.append(Failure("ratio_mismatch", "",
                                        f"ratio {layout.ratio['what']} is {layout.ratio['total']}, not one of "

@@ -164,6 +164,18 @@ def table(result: DesignCheck) -> str:
                          f"{_fmt(b.get('min'), u):>12}{_fmt(b.get('max'), u):>12}{_fmt(b.get('design_min'), u):>12}"
                          f"{_fmt(b.get('design_max'), u):>12}")
         lines.append("")
+    if result.backlash_range:
+        f_a = result.backlash_range[0]["centre_distance_tolerance"]
+        lines += [f"backlash range from the tooth-thickness allowances, centre distance +-{_fmt(f_a, u)} {u}: "
+                  "analytic, and measured on the thickest (min) and thinnest (max) teeth"]
+        head = (f"{'mesh':<24}{'analytic min':>14}{'max':>12}{'measured min':>14}{'max':>12}{'difference':>12}"
+                f"  verdict")
+        lines += [head, "-" * len(head)]
+        for r in result.backlash_range:
+            lines.append(f"{r['mesh']:<24}{_fmt(r['analytic'][0], u):>14}{_fmt(r['analytic'][1], u):>12}"
+                         f"{_fmt(r['measured'][0], u):>14}{_fmt(r['measured'][1], u):>12}"
+                         f"{r['difference'] / LENGTH_SUFFIXES[u]:>12.1e}  {'ok' if r['ok'] else 'FAIL'}")
+        lines.append("")
     lines += ["geometric checks (normal backlash: between the non-working flanks, normal to the teeth; "
               "clearance: tip to mate root)"]
     head = f"{'mesh':<24}{'path':<10}{'normal min':>12}{'clearance':>12}{'contact':>9}  failure"

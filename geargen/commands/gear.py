@@ -8,7 +8,8 @@ or from options::
 
 Writes ``DIR/NAME.step`` (in the design's length unit), ``DIR/NAME.stl`` (mm, chordal tolerance
 ``--stl-tolerance`` mm), ``DIR/NAME.json`` (radii, thicknesses, tip land, undercut, span and
-over-pins/balls, in the design's length unit; angles in degrees), the manufacturing drawing
+over-pins/balls, in the design's length unit; angles in degrees; with a thickness allowance,
+``--thickness-allowance`` or the design's, its span and over-pins limits), the manufacturing drawing
 ``DIR/NAME-drawing.svg`` and ``.pdf`` (:mod:`geargen.report.drawing`) and the exact transverse
 profile ``DIR/NAME.dxf`` for wire EDM (:mod:`geargen.report.dxf`), unless ``--no-drawing``, and
 ``DIR/manifest.json``. A gear of an assembly's drive (``--gear``) is drawn with its mating gears
@@ -64,6 +65,11 @@ def add_arguments(p) -> None:
     g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
                    help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances")
     g.add_argument("--name", default=None, help="part name (default: the design's, or gear_<teeth>)")
+    p.add_argument("--thickness-allowance", type=float, nargs=2, metavar=("UPPER", "LOWER"), default=None,
+                   help="tooth-thickness allowance in um: upper and lower deviation of the normal tooth thickness "
+                        "from the zero-backlash tooth (both <= 0, UPPER >= LOWER); the JSON gains the span and "
+                        "over-pins limits. Default: the gear table's thickness_*_deviation_*, or for a gear of a "
+                        "drive (--gear) the allowance chosen from its meshes' backlash ranges")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="output folder (default: exports/<name>); must not exist, be empty, or hold an earlier "
                         "geargen gear output of the same gear, which is replaced")
@@ -199,15 +205,44 @@ def gear_source(args, spec: GearSpec) -> str:
     return f"gear {spec.name} from {origin}"
 
 
+def gear_allowance(args, spec: GearSpec):
+    """The gear's thickness allowance (:class:`geargen.core.allowance.ThicknessAllowance`) or None:
+    ``--thickness-allowance`` (refused when the gear table enters one too), the table's
+    ``thickness_*_deviation_*``, or for an assembly gear of a drive the one
+    :func:`geargen.model.allowance.drive_allowances` chooses from its backlash ranges."""
+    from geargen.core.allowance import ThicknessAllowance
+    from geargen.model.allowance import drive_allowances, entered_allowance
+
+    given = getattr(args, "thickness_allowance", None)
+    if given is not None:
+        if spec.thickness_deviations is not None:
+            raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
+                              f"gear {spec.name}", "the option or the design keys, not both")
+        upper, lower = given
+        return ThicknessAllowance(upper * 1e-3, lower * 1e-3, "entered (--thickness-allowance)",
+                                  "--thickness-allowance")
+    if spec.thickness_deviations is not None:
+        return entered_allowance(spec, f"gears.{spec.name}.thickness_upper_deviation_um")
+    if args.design and args.gear:
+        from geargen.design.assembly import load_design
+        from geargen.design.checks import checks_settings
+        from geargen.model import is_drive, resolve
+        design = load_design(args.design)
+        if is_drive(design):
+            return drive_allowances(resolve(design), checks_settings(design).centre_distance_tolerance).get(spec.name)
+    return None
+
+
 def run(args) -> int:
     spec, thinning_source = spec_from_args(args)
+    allowance = gear_allowance(args, spec)
     from geargen.outputs import OutputFolder
     source = gear_source(args, spec)
     output = OutputFolder(Path(args.out) if args.out else Path("exports") / spec.name, "geargen gear", source,
                           overwrite=args.overwrite, flag="--out" if args.out else "output folder")
     output.prepare()  # refused or unwritable: said before the gear is built
     try:
-        target = _write_gear(args, spec, thinning_source, output)
+        target = _write_gear(args, spec, thinning_source, output, allowance)
     except BaseException:
         output.discard()
         raise
@@ -219,7 +254,7 @@ def run(args) -> int:
     return 0
 
 
-def _write_gear(args, spec: GearSpec, thinning_source: str | None, output) -> Path:
+def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allowance=None) -> Path:
     """Build the gear and write its files into ``output``'s folder; returns the target, committed."""
     from geargen import __version__
     from geargen.cad.export import export_step, export_stl, update_manifest, write_json
@@ -238,7 +273,7 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output) -> Pa
     if not args.no_stl:
         records.append(export_stl(solid, out / f"{spec.name}.stl", args.stl_tolerance))
     from geargen.model.gear_data import gear_data
-    data = gear_data(spec, solid.profile)
+    data = gear_data(spec, solid.profile, allowance)
     if thinning_source is not None:
         data["thinning_source"] = thinning_source
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}

@@ -17,6 +17,8 @@ Every key is optional::
     sections_planes = 3
     stl_chordal_tolerance_mm = 0.001
     carriage_travel_limit_in = 0.02 # preload carriage: largest travel either way from nominal
+    centre_distance_tolerance_um = 10  # +-f_a of every mesh's centre distance: the allowance route and
+                                    # each mesh's backlash range (geargen.core.allowance); default 0
     structure = "fail"              # build: how the parts hold together (geargen.checks.structure);
                                     # "report" lists its findings as warnings instead
 
@@ -75,6 +77,7 @@ class ChecksSettings:
     sections_planes: int = 3
     stl_chordal_tolerance: float = 1e-3
     carriage_travel_limit: float | None = None
+    centre_distance_tolerance: float = 0.0
     structure: str = "fail"
     meshes: tuple[DeclaredMesh, ...] = field(default=())
 
@@ -88,6 +91,8 @@ class ChecksSettings:
             raise DesignError("revolutions", f"{self.revolutions!r} is out of range", "> 0")
         if not (isinstance(self.seed, int) and self.seed >= 0):
             raise DesignError("seed", f"{self.seed!r} is out of range", ">= 0")
+        if not (math.isfinite(self.centre_distance_tolerance) and self.centre_distance_tolerance >= 0):
+            raise DesignError("centre_distance_tolerance", f"{self.centre_distance_tolerance!r} is out of range", ">= 0 mm")
         if not (math.isfinite(self.stl_chordal_tolerance) and self.stl_chordal_tolerance > 0):
             raise DesignError("stl_chordal_tolerance", f"{self.stl_chordal_tolerance!r} is out of range", "> 0 mm")
 
@@ -119,6 +124,9 @@ CHECKS_FIELDS: list[Field] = [
           help="chordal tolerance of the meshes sectioned by path 2"),
     Field("carriage_travel_limit", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="largest preload-carriage travel either way from nominal the error budget may need"),
+    Field("centre_distance_tolerance", "length", required=False, default=0.0, minimum=0.0,
+          help="+- tolerance f_a of every mesh's centre distance: the thickness allowances chosen from the backlash "
+               "ranges (thickest teeth at a - f_a, thinnest at a + f_a) and the backlash range checked"),
     Field("structure", "string", required=False, default="fail", choices=("fail", "report"),
           help="build: every part grounded through contacts, rotating parts on stationary ones only through "
                "bearings, every bearing seated on both sides; fail the build, or report the findings as warnings"),
@@ -140,7 +148,7 @@ def checks_settings(design: Design) -> ChecksSettings:
     kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
                                 "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",
                                 "seed", "sections", "sections_planes", "stl_chordal_tolerance",
-                                "carriage_travel_limit", "structure")}
+                                "carriage_travel_limit", "centre_distance_tolerance", "structure")}
     return _with_field_prefix("checks.", lambda: ChecksSettings(meshes=meshes, **kwargs), v["_units"])
 
 

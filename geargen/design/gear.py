@@ -16,6 +16,8 @@ Design-file table (``[gear]`` or an entry of ``[gears.*]``)::
     profile_shift = 0.0                # x, in the pitch system given
     thinning_circumferential_in = 0.0  # tooth thinning: transverse arc at the reference circle
     # or thinning_normal_in            #   ... or normal tooth thickness at the reference cylinder
+    thickness_upper_deviation_um = -20 # tooth-thickness allowance E_sns, E_sni (normal, <= 0); without
+    thickness_lower_deviation_um = -45 #   them a drive chooses it from its backlash (geargen.core.allowance)
     bore_diameter_mm = 10
     accuracy_grade = 6                 # optional: ISO 1328-1:2013 flank tolerance class 1..11
     accuracy_standard = "ISO 1328-1:2013"   # optional; the only standard implemented
@@ -111,6 +113,9 @@ class GearSpec:
     rack_tip_radius_coefficient: float | None = None  # None: min(0.38, largest that fits)
     thinning: float = 0.0
     hub: Hub = field(default_factory=Hub)
+    # entered tooth-thickness allowance (E_sns, E_sni): normal deviations at the reference cylinder,
+    # mm, <= 0; None: none entered (a drive chooses one from its backlash, geargen.core.allowance)
+    thickness_deviations: tuple[float, float] | None = None
     name: str = "gear"
     length_unit: str = "mm"  # the unit the design was written in; reports and exports use it
     accuracy_grade: int | None = None  # flank tolerance class of accuracy_standard; None: not specified
@@ -135,6 +140,11 @@ class GearSpec:
             object.__setattr__(self, "rack_tip_radius_coefficient", min(0.38, rho_max))
         _check("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
         _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
+        if self.thickness_deviations is not None:
+            upper, lower = self.thickness_deviations
+            if not (math.isfinite(upper) and math.isfinite(lower) and lower <= upper <= 0):
+                raise DesignError("thickness_upper_deviation", f"({upper!r}, {lower!r}) mm is out of range",
+                                  "lower <= upper <= 0")
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
         self._check_accuracy()
@@ -282,6 +292,11 @@ GEAR_FIELDS: list[Field] = [
     Field("thinning_normal", "length", required=False, default=None, minimum=0.0,
           help="tooth thinning for backlash, as normal tooth thickness at the reference cylinder (give at most one "
                "thinning)"),
+    Field("thickness_upper_deviation", "length", required=False, default=None, maximum=0.0,
+          help="tooth-thickness allowance: upper deviation E_sns of the normal tooth thickness from the zero-backlash "
+               "tooth (<= 0; give both deviations, or neither to let a drive choose them from its backlash range)"),
+    Field("thickness_lower_deviation", "length", required=False, default=None, maximum=0.0,
+          help="tooth-thickness allowance: lower deviation E_sni (<= the upper deviation)"),
     Field("bore_diameter", "length", required=False, default=0.0, minimum=0.0,
           help="bore of the gear blank (0: none); must clear the tooth root"),
     Field("keyway_width", "length", required=False, default=0.0, minimum=0.0,
@@ -342,12 +357,26 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
         scale = LENGTH_SUFFIXES[unit_t]
         raise DesignError(f"{p}{kind}_{unit_t}", f"{thinning * factor / scale:.6g} {unit_t} is out of range",
                           f"[0, {most * factor / scale:.6g}] {unit_t} (a quarter of the circular pitch)")
+    deviations = None
+    if (v["thickness_upper_deviation"] is None) != (v["thickness_lower_deviation"] is None):
+        given = "upper" if v["thickness_upper_deviation"] is not None else "lower"
+        missing = "lower" if given == "upper" else "upper"
+        raise DesignError(f"{p}thickness_{missing}_deviation_um", f"missing: the {given} deviation is given",
+                          "both thickness_upper_deviation_* and thickness_lower_deviation_*, or neither")
+    if v["thickness_upper_deviation"] is not None:
+        upper, lower = v["thickness_upper_deviation"], v["thickness_lower_deviation"]
+        if upper < lower:
+            unit_d = v["_units"]["thickness_lower_deviation"]
+            scale = LENGTH_SUFFIXES[unit_d]
+            raise DesignError(f"{p}thickness_lower_deviation_{unit_d}", f"{lower / scale:.6g} {unit_d} is above the "
+                              "upper deviation", f"<= {upper / scale:.6g} {unit_d}")
+        deviations = (upper, lower)
     hub = _with_field_prefix(p, lambda: Hub(v["bore_diameter"], v["keyway_width"], v["keyway_depth"],
                                             v["hub_diameter"], v["hub_length"]), v["_units"])
     kwargs = dict(teeth=v["teeth"], module=module_n, pressure_angle=alpha_n, face_width=v["face_width"],
                   helix_angle=beta, hand=v["hand"], profile_shift=shift_n,
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
-                  thinning=thinning, hub=hub, name=v["name"] or name or "gear",
+                  thinning=thinning, hub=hub, name=v["name"] or name or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
                   accuracy_standard=v["accuracy_standard"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]

@@ -13,9 +13,14 @@ from geargen.errors import GeargenError
 from geargen.units import from_mm
 
 
-def gear_data(spec: GearSpec, profile) -> dict:
+def gear_data(spec: GearSpec, profile, allowance=None) -> dict:
     """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit, and
-    the ``accuracy`` block of its grade's tolerances (um) when it has one."""
+    the ``accuracy`` block of its grade's tolerances (um) when it has one.
+
+    ``allowance`` (:class:`geargen.core.allowance.ThicknessAllowance`, e.g. from
+    :func:`geargen.model.allowance.drive_allowances`): adds ``thickness_allowance`` and the
+    ``limits`` [smallest, largest] of the span and over-pins dimension (thinnest and thickest
+    tooth, the same k and pin diameter as the nominal values)."""
     from geargen.core import geometry
     from geargen.core.accuracy import gear_tolerances
     from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness
@@ -69,4 +74,24 @@ def gear_data(spec: GearSpec, profile) -> dict:
     except GeargenError as exc:
         out["over_pins"] = None
         out["warnings"].append(f"over pins: {exc}")
+    if allowance is not None:
+        _add_limits(out, spec, allowance, L)
     return out
+
+
+def _add_limits(out: dict, spec: GearSpec, allowance, L) -> None:
+    """The allowance and the span and over-pins limits it gives (contract: gear-data.md)."""
+    from geargen.core.allowance import over_pins_limits, span_limits
+    from geargen.units import to_mm
+
+    out["thickness_allowance"] = {"method": allowance.method, "upper_um": allowance.upper_um,
+                                  "lower_um": allowance.lower_um}
+    for key, limits, size in (("span", span_limits, "teeth_spanned"), ("over_pins", over_pins_limits, "diameter")):
+        if not out.get(key):
+            continue
+        value = out[key][size] if key == "span" else to_mm(out[key][size], spec.length_unit)
+        try:
+            out[key]["limits"] = [L(v) for v in limits(spec, allowance, value)]
+        except GeargenError as exc:  # e.g. the thinnest tooth's anvils leave the involute
+            out[key]["limits"] = None
+            out["warnings"].append(f"{key} limits: {exc}")
