@@ -431,14 +431,22 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     from geargen.profile.tooth import tooth_profile
     from geargen.report.drawing import gear_drawings, mates_from_layout
 
+    from geargen.design.checks import checks_settings
+    from geargen.model.allowance import drive_allowances
+
     design = layout.design
     out_folder = Path(folder) / DRAWING_FOLDER
     source = design_source(design)
+    allowances = drive_allowances(layout, checks_settings(design).centre_distance_tolerance)
     files = {}
+    drawn = set()
     for placed in layout.gears:
         for spec in placed.gears:
+            if spec.name in drawn:  # the second of two identical clusters: the same gear, one drawing
+                continue
+            drawn.add(spec.name)
             profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
-            data = gear_data(spec, profile)
+            data = gear_data(spec, profile, allowances.get(spec.name), _budget_of(design, spec.name))
             if placed.name in layout.thinning:
                 data["thinning_source"] = layout.thinning[placed.name].get("source", "design")
             data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]
@@ -448,6 +456,12 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
             write_json(made["json"], _jsonable(data))
             files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
     return files
+
+
+def _budget_of(design, gear: str):
+    """The gear's error budget ([errors.GEAR]), or None when the design gives none."""
+    from geargen.core.accuracy import gear_errors
+    return gear_errors(design, gear)
 
 
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:

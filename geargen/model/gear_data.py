@@ -13,14 +13,19 @@ from geargen.errors import GeargenError
 from geargen.units import from_mm
 
 
-def gear_data(spec: GearSpec, profile, allowance=None) -> dict:
+def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
     """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit, and
     the ``accuracy`` block of its grade's tolerances (um) when it has one.
 
     ``allowance`` (:class:`geargen.core.allowance.ThicknessAllowance`, e.g. from
     :func:`geargen.model.allowance.drive_allowances`): adds ``thickness_allowance`` and the
     ``limits`` [smallest, largest] of the span and over-pins dimension (thinnest and thickest
-    tooth, the same k and pin diameter as the nominal values)."""
+    tooth, the same k and pin diameter as the nominal values).
+
+    ``errors`` (:class:`geargen.design.synthesis.GearErrors`, the gear's entered error budget): a
+    gear without an accuracy grade gets the ``accuracy`` block of the coarsest grade that holds its
+    budget's pitch-line eccentricity and tooth-to-tooth TIRs (what the shop must make it to), with
+    ``grade_source`` saying so; a budget finer than grade 1 is a warning, not a made-up grade."""
     from geargen.core import geometry
     from geargen.core.accuracy import gear_tolerances
     from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness
@@ -53,7 +58,9 @@ def gear_data(spec: GearSpec, profile, allowance=None) -> dict:
     }
     tolerances = gear_tolerances(spec)
     if tolerances is not None:
-        out["accuracy"] = tolerances.to_dict()
+        out["accuracy"] = tolerances.to_dict() | {"grade_source": "the design's accuracy_grade"}
+    elif errors is not None:
+        _add_budget_grade(out, spec, errors)
     try:
         uc = geometry.undercut(spec)
         out["minimum_teeth_without_undercut"] = uc.minimum_teeth
@@ -95,3 +102,20 @@ def _add_limits(out: dict, spec: GearSpec, allowance, L) -> None:
         except GeargenError as exc:  # e.g. the thinnest tooth's anvils leave the involute
             out[key]["limits"] = None
             out["warnings"].append(f"{key} limits: {exc}")
+
+
+def _add_budget_grade(out: dict, spec: GearSpec, errors) -> None:
+    """The accuracy block of the coarsest ISO 1328-1:2013 grade within the gear's error budget."""
+    from geargen.core.accuracy import grade_for_budget, iso1328_tolerances
+    d, m_n, b = 2 * spec.reference_radius, spec.module, spec.face_width
+    try:
+        grade = grade_for_budget(d, m_n, b, errors.pitch_line_eccentricity_tir, errors.tooth_to_tooth_tir)
+    except GeargenError as exc:  # outside the standard's scope (e.g. m_n < 0.5 mm)
+        out["warnings"].append(f"accuracy: no ISO 1328-1:2013 grade for the error budget: {exc}")
+        return
+    if grade is None:
+        out["warnings"].append("accuracy: the error budget's TIRs are finer than ISO 1328-1:2013 grade 1")
+        return
+    out["accuracy"] = iso1328_tolerances(grade, d, m_n, b).to_dict() | {
+        "grade_source": "the coarsest grade within the design's error budget (pitch-line eccentricity and "
+                        "tooth-to-tooth TIRs)"}

@@ -125,7 +125,12 @@ class Mate:
 
 def mates_from_layout(layout, gear_name: str, unit: str) -> list[Mate]:
     """The gears ``gear_name`` meshes with in the resolved drive (engaged meshes), each with the
-    centre distance of the placed centres (where the mesh runs), in ``unit``."""
+    centre distance of the placed centres (where the mesh runs) and the design's centre-distance
+    tolerance (``[checks] centre_distance_tolerance_*``, when given), in ``unit``."""
+    from geargen.design.checks import checks_settings
+
+    f_a = checks_settings(layout.design).centre_distance_tolerance  # [checks], 0 when the design gives none
+    tolerance = (float(from_mm(-f_a, unit)), float(from_mm(f_a, unit))) if f_a > 0 else None
     out = []
     for m in layout.meshes:
         if not m.engaged:
@@ -133,7 +138,8 @@ def mates_from_layout(layout, gear_name: str, unit: str) -> list[Mate]:
         for me, other in ((m.gear1, m.gear2), (m.gear2, m.gear1)):
             if me.name == gear_name and all(o.name != other.name for o in out):
                 a = m.centre_distance
-                out.append(Mate(other.name, other.teeth, None if not math.isfinite(a) else float(from_mm(a, unit))))
+                out.append(Mate(other.name, other.teeth, None if not math.isfinite(a) else float(from_mm(a, unit)),
+                                tolerance))
     return out
 
 
@@ -144,6 +150,15 @@ def mates_of(data: dict) -> list[Mate]:
         tol = m.get("centre_distance_tolerance")
         out.append(Mate(m["name"], m["teeth"], m.get("centre_distance"), None if tol is None else tuple(tol)))
     return out
+
+
+def _method_text(method: str | None) -> str:
+    """The allowance's method as the sheet states it: its name and centre-distance tolerance (the
+    JSON keeps the whole rule)."""
+    if not method:
+        return NOT_SPECIFIED
+    name = method.split(":")[0]
+    return name + (f"; {method[method.index('f_a ='):]}" if "f_a =" in method else "")
 
 
 def _rack_text(data: dict) -> str:
@@ -186,7 +201,8 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
     ]
     acc = data.get("accuracy")
     if acc:
-        rows.append(("Accuracy grade", "", f"{acc['standard']} grade {acc['grade']}"))
+        held = " (coarsest within the error budget)" if "budget" in acc.get("grade_source", "") else ""
+        rows.append(("Accuracy grade", "", f"{acc['standard']} grade {acc['grade']}{held}"))
     else:
         rows.append(("Accuracy grade", "", NOT_SPECIFIED))
     for name, symbol, key in (("Single pitch tolerance", "f_pT", "single_pitch_um"),
@@ -201,7 +217,7 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
          format_um(allowance["upper_um"], u, signed=True) if allowance else NOT_SPECIFIED),
         ("Tooth thickness allowance, lower", "A_sni",
          format_um(allowance["lower_um"], u, signed=True) if allowance else NOT_SPECIFIED),
-        ("Allowance method", "", allowance.get("method") or NOT_SPECIFIED if allowance else "-"),
+        ("Allowance method", "", _method_text(allowance.get("method")) if allowance else "-"),
         ("Thinning in the model (circumferential)", "", L(data.get("thinning_circumferential"))),
     ]
     span = data.get("span")
@@ -256,12 +272,18 @@ class _Sheet:
         self.ax.set_ylim(0, SHEET_MM[1])
         self.ax.set_axis_off()
         self.renderer = self.fig.canvas.get_renderer()
+        self._widths: dict[tuple[str, float, str], float] = {}
 
     def width_mm(self, text: str, size: float, weight: str = "normal") -> float:
-        t = self.ax.text(0, 0, text, fontsize=size, family=FONT, weight=weight)
-        w = t.get_window_extent(self.renderer).width * MM_PER_PT
-        t.remove()
-        return w
+        # the renderer's own metrics (what a drawn Text measures), without making an artist per trial;
+        # wrapping asks for the same prefixes again and again
+        key = (text, size, weight)
+        if key not in self._widths:
+            from matplotlib.font_manager import FontProperties
+            prop = FontProperties(family=FONT, size=size, weight=weight)
+            w_px = self.renderer.get_text_width_height_descent(text, prop, ismath=False)[0]
+            self._widths[key] = w_px * 72.0 / self.fig.dpi * MM_PER_PT
+        return self._widths[key]
 
     def text(self, x, y, s, size=MIN_FONT_PT, **kw):
         kw.setdefault("family", FONT)
@@ -581,8 +603,9 @@ def write_drawing(data: dict, profile, folder, name: str, source: str, design_fi
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     out = {}
-    # SVG text stays text; TrueType in the PDF keeps its text extractable; no dates: same bytes twice
-    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen", "pdf.fonttype": 42}):
+    # SVG text stays text; the PDF's Type 3 fonts keep the text extractable (pdftotext reads every
+    # field) at a third of the TrueType subsetting's time; no dates: same bytes twice
+    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen", "pdf.fonttype": 3}):
         for fmt, meta in (("svg", {"Date": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
             path = folder / f"{name}-drawing.{fmt}"
             with atomic_path(path) as tmp:

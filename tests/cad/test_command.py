@@ -14,8 +14,10 @@ def test_gear_from_options(tmp_path, capsys):
     rc = main(["gear", "--teeth", "21", "--diametral-pitch", "32", "--helix-angle", "20", "--hand", "left",
                "--face-width", "0.5", "--bore", "0.125", "--out", str(out), "--name", "pinion"])
     assert rc == 0
-    assert {p.name for p in out.iterdir()} == {"pinion.step", "pinion.stl", "pinion.json", "manifest.json"}
+    assert {p.name for p in out.iterdir()} == {"pinion.step", "pinion.stl", "pinion.json", "manifest.json",
+                                               "pinion-drawing.svg", "pinion-drawing.pdf", "pinion.dxf"}
     data = json.loads((out / "pinion.json").read_text())
+    assert data["drawing"] == {"svg": "pinion-drawing.svg", "pdf": "pinion-drawing.pdf", "dxf": "pinion.dxf"}
     assert data["length_unit"] == "in"
     assert data["teeth"] == 21 and data["hand"] == "left"
     assert data["face_width"] == pytest.approx(0.5)

@@ -138,3 +138,24 @@ def test_gear_data_has_no_accuracy_block_without_a_grade():
     graded = gear_from_table({**table, "accuracy_grade": 8})
     assert "accuracy" not in gear_data(plain, tooth_profile(plain))
     assert gear_data(graded, tooth_profile(graded))["accuracy"]["single_pitch_um"] == 19.0
+
+
+def test_a_drive_with_typed_tirs_states_the_grade_its_budget_holds():
+    """The build's gear data (and drawing) of a gear with TIRs and no grade names the coarsest
+    grade within its budget. Robot joint output (d 88.9 mm; pitch-line TIR 0.0012 in = 30.48 um,
+    tooth-to-tooth 0.0005 in = 12.7 um): grade 6 F_rT 23 um, f_pT 7.5 um (table above) fit; grade 7
+    F_rT = 22.807 x sqrt2 = 32.25 -> 32 um > 30.48 does not: grade 6. cluster_small (d 16.669 mm;
+    pitch-line 0.0016 in = 40.64 um, tooth-to-tooth 12.7 um): f_pT at grade 5 = 0.016669 + 0.3175
+    + 5 = 5.334 um, grade 7 x2 = 10.67 -> 11 um fits, grade 8 x2.828 = 15.09 -> 15 um does not;
+    F_rT grade 7 = 18.881 x sqrt2 = 26.70 -> 27 um fits: grade 7, set by the tooth-to-tooth TIR."""
+    from geargen.model.gear_data import gear_data
+    from geargen.profile.tooth import tooth_profile
+
+    design = load_design(ROBOT)
+    for name, grade in (("output", 6), ("cluster_small", 7)):
+        spec = design.gear(name)
+        data = gear_data(spec, tooth_profile(spec, warn=False), errors=gear_errors(design, name))
+        assert data["accuracy"]["grade"] == grade, name
+        assert "budget" in data["accuracy"]["grade_source"]
+    spec = design.gear("output")
+    assert "accuracy" not in gear_data(spec, tooth_profile(spec, warn=False))  # no budget given: no grade made up
