@@ -39,10 +39,10 @@ from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
-from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Circle, Geom_Plane
-from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Line
+from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Circle, Geom_CylindricalSurface, Geom_Plane
+from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Circle, Geom2d_Line
 from OCP.GProp import GProp_GProps
-from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
+from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax2d, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array1OfPnt2d, TColgp_Array2OfPnt
 from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
@@ -55,10 +55,7 @@ from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_S
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.errors import BuildError
-from geargen.profile.hermite import hermite_knots as _hermite_knots
-from geargen.profile.hermite import hermite_nodes
-from geargen.profile.hermite import hermite_poles as _hermite_poles
-from geargen.profile.segments import Segment
+from geargen.profile.bspline_fit import SplineFit, fit_rotation, fit_segment, greville
 from geargen.profile.tessellate import cluster_layers, gear_layers
 from geargen.profile.tooth import ToothProfile, tooth_profile, twist_rate
 
@@ -84,6 +81,7 @@ class GearSolid:
     tolerance: float
     length_unit: str
     layers: list = field(default_factory=list)  # geargen.profile.tessellate layers, for STL
+    faces: tuple = ()  # ToothFace per face of one tooth's pitch sector, in outline order (not for clusters)
 
     def volume(self) -> float:
         return solid_volume(self.shape)
@@ -97,91 +95,61 @@ class GearSolid:
         return cq.Solid(self.shape)
 
 
-# ---------------------------------------------------------------- discretised profile pieces
+# ---------------------------------------------------------------- tooth 0's curves, the axial basis
 
 
-@dataclass
-class _Piece:
-    """One edge of the outline for the kernel: a chain of analytic segments (``parts``), each
-    given by knots ``tau`` (increasing from 0), exact points and derivatives d/dtau (``(n, 2)``);
-    or an exact circle (``radius`` > 0, polar ``angles``). The spline is C1 inside a segment
-    (knot multiplicity 2) and C0 at the joints between segments (multiplicity 3)."""
+@dataclass(frozen=True)
+class ToothFace:
+    """One face of tooth 0's pitch sector (every tooth has the same faces, turned):
+    ``kind`` ``involute``/``fillet`` (a B-spline surface), ``tip_arc``/``root_arc`` (a cylinder);
+    ``side`` ``upper``/``lower`` for flanks and fillets; ``poles`` (along the profile, along the
+    axis), 0 for a cylinder; ``max_error`` (mm) the measured distance of the profile spline from
+    the exact curve at the same parameter (0 for a cylinder)."""
 
-    parts: list
+    kind: str
+    side: str
+    poles: tuple[int, int]
+    max_error: float
+
+
+@dataclass(frozen=True)
+class _Curve:
+    """One segment of tooth 0's pitch sector for the kernel: a fitted B-spline (``fit``) for a
+    flank or fillet, parameter 0 .. fit.length; or an exact circle of ``radius`` for a land,
+    parameter = polar angle, ``angles`` increasing."""
+
+    kind: str
+    side: str
+    end: np.ndarray
+    fit: SplineFit | None = None
     radius: float = 0.0
     angles: tuple[float, float] = (0.0, 0.0)
 
     @property
-    def start(self) -> np.ndarray:
-        return self.parts[0][1][0]
+    def range(self) -> tuple[float, float]:
+        return (0.0, self.fit.length) if self.fit is not None else self.angles
 
-    @property
-    def end(self) -> np.ndarray:
-        return self.parts[-1][1][-1]
 
-    @property
-    def length(self) -> float:
-        return float(sum(p[0][-1] for p in self.parts))
+@dataclass(frozen=True)
+class _Axial:
+    """The z direction of the side surfaces: a B-spline basis (``degree``, ``knots``, ``mults``)
+    and per pole the approximate rotation ``(c, s)`` and height ``z``, so that a profile pole p
+    becomes the row ``(c p_x - s p_y, s p_x + c p_y, z)``. Spur: degree 1, no rotation.
+    ``error`` bounds ``|R_approx(z) - R(z)|`` (unitless) over the face."""
 
-    def rotated(self, angle: float) -> "_Piece":
-        c, s = math.cos(angle), math.sin(angle)
-        rot = np.array([[c, s], [-s, c]])
-        return _Piece([(t, x @ rot, d @ rot) for t, x, d in self.parts], self.radius,
-                      (self.angles[0] + angle, self.angles[1] + angle))
+    degree: int
+    knots: np.ndarray
+    mults: tuple[int, ...]
+    c: np.ndarray
+    s: np.ndarray
+    z: np.ndarray
+    error: float
 
-    def _smooth_joints(self) -> list[bool]:
-        """Per joint between consecutive parts: is the chain tangent-continuous there?"""
-        out = []
-        for (_, _, d0), (_, _, d1) in zip(self.parts[:-1], self.parts[1:]):
-            a, b = d0[-1], d1[0]
-            cross = abs(a[0] * b[1] - a[1] * b[0])
-            out.append(float(a @ b) > 0 and cross <= 1e-9 * float(np.linalg.norm(a) * np.linalg.norm(b)))
-        return out
-
-    def knots(self):
-        values, mults, offset = [0.0], [4], 0.0
-        for (tau, _, _), smooth in zip(self.parts, self._smooth_joints() + [False]):
-            values.extend((offset + tau[1:]).tolist())
-            mults.extend([2] * (len(tau) - 2) + [2 if smooth else 3])
-            offset += tau[-1]
-        mults[-1] = 4
-        return np.array(values), mults
-
-    def poles(self, transform=None) -> np.ndarray:
-        """Cubic B-spline poles along the chain (axis 0) of ``transform(points, derivs)`` (values
-        and d/dtau of any trailing shape; default: the planar points themselves)."""
-        out = []
-        smooth = [False] + self._smooth_joints()
-        for i, (tau, x, d) in enumerate(self.parts):
-            v, dv = (x, d) if transform is None else transform(x, d)
-            hp = _hermite_poles(v, dv, tau)
-            if i > 0:
-                hp = hp[1:]
-                if smooth[i]:  # C1 joint (knot multiplicity 2): the joint point is implied
-                    out[-1] = out[-1][:-1]
-            out.append(hp)
-        return np.concatenate(out)
-
-    def split_at_corners(self) -> list["_Piece"]:
-        """The chain cut where it is not tangent-continuous (an undercut's corner): every edge
-        (and face) is then at least C1, which the kernel's integrators need to be accurate."""
-        out, current = [], [self.parts[0]]
-        for part, smooth in zip(self.parts[1:], self._smooth_joints()):
-            if not smooth:
-                out.append(_Piece(current))
-                current = []
-            current.append(part)
-        return out + [_Piece(current)]
-
-    def c1_scaled(self) -> "_Piece":
-        """The same chain with each part's parameter scaled so that the derivative is continuous
-        across tangent-continuous joints (so those joints can be C1 knots)."""
-        parts = [self.parts[0]]
-        for tau, x, d in self.parts[1:]:
-            prev = parts[-1][2][-1]
-            scale = float(np.linalg.norm(d[0]) / np.linalg.norm(prev)) if np.linalg.norm(prev) > 0 else 1.0
-            parts.append((tau * scale, x, d / scale))
-        return _Piece(parts, self.radius, self.angles)
+    def rows(self, points: np.ndarray) -> np.ndarray:
+        """``(n, m, 3)`` poles: profile points ``(n, 2)`` turned and lifted per axial pole."""
+        x, y = points[:, 0:1], points[:, 1:2]
+        px, py = self.c * x - self.s * y, self.s * x + self.c * y
+        return np.stack([px, py, np.broadcast_to(self.z, px.shape)], axis=-1)
 
 
 def default_tolerance(spec: GearSpec) -> float:
@@ -190,34 +158,38 @@ def default_tolerance(spec: GearSpec) -> float:
     return DEFAULT_TOLERANCE * min(1.0, spec.module)
 
 
-def _part(segment: Segment, tolerance: float):
-    params = hermite_nodes(segment, tolerance)
-    sign = 1.0 if segment.t1 >= segment.t0 else -1.0
-    return (np.abs(params - params[0]), segment.point(params), segment.derivative(params) * sign)
+def _tooth_curves(profile: ToothProfile, tolerance: float) -> list[_Curve]:
+    """Tooth 0's pitch sector, counter-clockwise: lower fillet, lower flank, tip land, upper
+    flank, upper fillet[, root land to tooth 1]; one curve (and face) each. Fitted neighbours
+    share their joint point bit for bit."""
+    out: list[_Curve] = []
+    for s in profile.pitch_segments():
+        if s.kind in ("tip_arc", "root_arc"):
+            out.append(_Curve(s.kind, s.side, s.end, radius=s.curve.radius, angles=(s.t0, s.t1)))
+        else:
+            try:
+                fit = fit_segment(s, tolerance)
+            except ValueError as exc:
+                raise BuildError(f"{profile.spec.name}: {s.side} {s.kind}: {exc}") from exc
+            out.append(_Curve(s.kind, s.side, fit.poles[-1], fit=fit))
+    for prev, cur in zip(out[:-1], out[1:]):
+        if prev.fit is not None and cur.fit is not None:
+            cur.fit.poles[0] = prev.fit.poles[-1]
+    return out
 
 
-def _tooth_pieces(profile: ToothProfile, tolerance: float, exact_arcs: bool) -> list[_Piece]:
-    """Tooth 0's edges, counter-clockwise: the tip arc (an exact circle with ``exact_arcs``) and
-    the chain through the gap to tooth 1 (upper flank, upper fillet, root arc, tooth 1's lower
-    fillet and lower flank), cut where it has a corner (undercut). The gear is these pieces
-    turned by whole pitches; joints inside the tooth are made bit-identical."""
-    segs = profile.pitch_segments()  # lower fillet, lower flank, tip, upper flank, upper fillet[, root]
-    parts = [_part(s, tolerance) for s in segs]
-    i_tip = [s.kind for s in segs].index("tip_arc")
-    tip = segs[i_tip]
-    lower, upper = _Piece(parts[:i_tip]), _Piece(parts[i_tip + 1:])
-    tip_piece = _Piece([parts[i_tip]], tip.curve.radius if exact_arcs else 0.0, (tip.t0, tip.t1))
-    gap = _Piece(upper.parts + lower.rotated(profile.pitch_angle).parts)
-    pieces = [tip_piece] + [p.c1_scaled() for p in gap.split_at_corners()]
-    flat = [part for piece in pieces for part in piece.parts]
-    for i in range(1, len(flat)):
-        flat[i][1][0] = flat[i - 1][1][-1]
-    return pieces
+def _axial(spec: GearSpec, tolerance: float) -> _Axial:
+    """The axial basis: degree 1 for a spur gear; for a helical gear the rotation fitted over the
+    face to ``tolerance`` (unitless, see :func:`geargen.profile.bspline_fit.fit_rotation`)."""
+    length = spec.face_width
+    if not spec.is_helical:
+        return _Axial(1, np.array([0.0, length]), (2, 2), np.ones(2), np.zeros(2), np.array([0.0, length]), 0.0)
+    fit = fit_rotation(twist_rate(spec), length, tolerance)
+    return _Axial(fit.degree, fit.knots, fit.mults, fit.poles[:, 0], fit.poles[:, 1], greville(fit), fit.max_error)
 
 
-def _joints(profile: ToothProfile, pieces: list[_Piece]) -> np.ndarray:
-    """End points ``(z * n, 2)`` of every piece of the whole gear, in outline order."""
-    ends = np.array([p.end for p in pieces])
+def _joints(profile: ToothProfile, ends: np.ndarray) -> np.ndarray:
+    """End points ``(z * n, 2)`` of every curve of the whole gear, in outline order."""
     a = profile.pitch_angle * np.arange(profile.teeth)
     c, s = np.cos(a)[:, None], np.sin(a)[:, None]
     return np.stack([c * ends[:, 0] - s * ends[:, 1], s * ends[:, 0] + c * ends[:, 1]], axis=-1).reshape(-1, 2)
@@ -227,39 +199,49 @@ _Z_AXIS = gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
 _ORIGIN_2D = gp_Pnt2d(0, 0)
 
 
-def _occ_knots(knots):
-    values, mults = knots
-    k = TColStd_Array1OfReal(1, len(values))
-    m = TColStd_Array1OfInteger(1, len(values))
-    for i, (t, mult) in enumerate(zip(values, mults)):
+def _occ_knots(knots, mults):
+    k = TColStd_Array1OfReal(1, len(knots))
+    m = TColStd_Array1OfInteger(1, len(knots))
+    for i, (t, mult) in enumerate(zip(knots, mults)):
         k.SetValue(i + 1, float(t))
         m.SetValue(i + 1, int(mult))
     return k, m
 
 
-def _bspline3d(poles: np.ndarray, knots) -> Geom_BSplineCurve:
+def _bspline3d(poles: np.ndarray, knots, mults, degree: int) -> Geom_BSplineCurve:
     arr = TColgp_Array1OfPnt(1, len(poles))
     for i, (x, y, z) in enumerate(poles.tolist()):
         arr.SetValue(i + 1, gp_Pnt(x, y, z))
-    return Geom_BSplineCurve(arr, *_occ_knots(knots), 3)
+    return Geom_BSplineCurve(arr, *_occ_knots(knots, mults), degree)
 
 
-def _bspline2d(poles: np.ndarray, knots) -> Geom2d_BSplineCurve:
+def _bspline2d(poles: np.ndarray, knots, mults, degree: int) -> Geom2d_BSplineCurve:
     arr = TColgp_Array1OfPnt2d(1, len(poles))
     for i, (x, y) in enumerate(poles.tolist()):
         arr.SetValue(i + 1, gp_Pnt2d(x, y))
-    return Geom2d_BSplineCurve(arr, *_occ_knots(knots), 3)
+    return Geom2d_BSplineCurve(arr, *_occ_knots(knots, mults), degree)
 
 
-def _bspline_surface(poles: np.ndarray, knots_u, knots_v) -> Geom_BSplineSurface:
+def _bspline_surface(poles: np.ndarray, fit: SplineFit, axial: _Axial) -> Geom_BSplineSurface:
     nu, nv = poles.shape[:2]
     arr = TColgp_Array2OfPnt(1, nu, 1, nv)
     for i, row in enumerate(poles.tolist()):
         for j, (x, y, z) in enumerate(row):
             arr.SetValue(i + 1, j + 1, gp_Pnt(x, y, z))
-    ku, mu = _occ_knots(knots_u)
-    kv, mv = _occ_knots(knots_v)
-    return Geom_BSplineSurface(arr, ku, kv, mu, mv, 3, 3)
+    ku, mu = _occ_knots(fit.knots, fit.mults)
+    kv, mv = _occ_knots(axial.knots, axial.mults)
+    return Geom_BSplineSurface(arr, ku, kv, mu, mv, fit.degree, axial.degree)
+
+
+def _line2d(u: float, v: float, du: float, dv: float) -> Geom2d_Line:
+    """A unit-speed pcurve line from (u, v) along the unit vector (du, dv)."""
+    return Geom2d_Line(gp_Pnt2d(u, v), gp_Dir2d(du, dv))
+
+
+def _helix_pcurve(angle: float, twist: float, length: float) -> Geom2d_BSplineCurve:
+    """The pcurve (u = angle + twist z / length, v = z) of a helix on a cylinder, parameter z."""
+    poles = np.array([[angle, 0.0], [angle + twist, length]])
+    return _bspline2d(poles, [0.0, length], [2, 2], 1)
 
 
 # ---------------------------------------------------------------- edges, wires, faces
@@ -278,28 +260,6 @@ def _edge(builder: BRep_Builder, curve, v0, v1, p0: float, p1: float) -> TopoDS_
     builder.Add(e, v1.Oriented(TopAbs_REVERSED))
     builder.Range(e, p0, p1)
     return e
-
-
-def _planar_edges(builder: BRep_Builder, profile: ToothProfile, pieces: list[_Piece]) -> list[TopoDS_Edge]:
-    """The closed outline at z = 0 as edges (tooth 0's curves built once, turned per tooth)."""
-    joints = _joints(profile, pieces)
-    verts = [_vertex(builder, x, y, 0.0) for x, y in joints]
-    curves = []
-    for p in pieces:
-        if p.radius > 0:
-            curves.append((Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), p.radius),
-                           p.angles[0], p.angles[1]))
-        else:
-            poles = p.poles()
-            curves.append((_bspline3d(np.column_stack([poles, np.zeros(len(poles))]), p.knots()), 0.0, p.length))
-    edges = []
-    for k in range(profile.teeth):
-        angle = k * profile.pitch_angle
-        for j, (curve, t0, t1) in enumerate(curves):
-            i = k * len(pieces) + j
-            c = curve.Rotated(_Z_AXIS, angle) if k else curve
-            edges.append(_edge(builder, c, verts[i - 1], verts[i], t0, t1))
-    return edges
 
 
 def _wire(builder: BRep_Builder, edges, orientations=None) -> TopoDS_Wire:
@@ -342,103 +302,92 @@ def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
     return BRepBuilderAPI_Transform(shape, trsf, False).Shape()
 
 
-# ---------------------------------------------------------------- spur and helical bodies
+# ---------------------------------------------------------------- the toothed body
 
 
-def _spur_body(spec: GearSpec, profile: ToothProfile, tolerance: float) -> TopoDS_Shape:
-    builder = BRep_Builder()
-    pieces = _tooth_pieces(profile, tolerance, exact_arcs=True)
-    outer = _wire(builder, _planar_edges(builder, profile, pieces))
-    mk = BRepBuilderAPI_MakeFace(Geom_Plane(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), outer, True)
-    bore = _bore_wire(spec)
-    if bore is not None:
-        mk.Add(bore)
-    if not mk.IsDone():
-        raise BuildError(f"{spec.name}: planar face of the outline failed")
-    prism = BRepPrimAPI_MakePrism(mk.Face(), gp_Vec(0, 0, spec.face_width), True)
-    return prism.Shape()
+def _canonical(curve: _Curve, axial: _Axial, length: float):
+    """Tooth 0's geometry of one curve: (side surface, bottom and top 3-D curves, pcurve on the
+    end planes, pcurves on the side surface of the bottom, top, start and end edges)."""
+    twist = math.atan2(axial.s[-1], axial.c[-1])
+    if curve.fit is not None:
+        fit = curve.fit
+        poles = axial.rows(fit.poles)
+        zero = np.column_stack([fit.poles, np.zeros(len(fit.poles))])
+        surf = _bspline_surface(poles, fit, axial)
+        bottom = _bspline3d(zero, fit.knots, fit.mults, fit.degree)
+        top = _bspline3d(poles[:, -1, :], fit.knots, fit.mults, fit.degree)
+        cap = _bspline2d(fit.poles, fit.knots, fit.mults, fit.degree)
+        u0, u1 = curve.range
+        pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(0.0, length, 1.0, 0.0),
+                   _line2d(u0, 0.0, 0.0, 1.0), _line2d(u1, 0.0, 0.0, 1.0))
+        return surf, bottom, top, cap, pcurves
+    # a land: the exact cylinder, circles at both ends, helices (lines u = angle + twist z / L)
+    r = curve.radius
+    x_top = gp_Dir(float(axial.c[-1]), float(axial.s[-1]), 0.0)
+    surf = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
+    bottom = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
+    top = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), x_top), r)
+    cap = Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), r)
+    a0, a1 = curve.angles
+    pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(twist, length, 1.0, 0.0),
+               _helix_pcurve(a0, twist, length), _helix_pcurve(a1, twist, length))
+    return surf, bottom, top, cap, pcurves
 
 
-def _helical_body(spec: GearSpec, profile: ToothProfile, tolerance: float) -> TopoDS_Shape:
+def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float) -> tuple[TopoDS_Shape, list[ToothFace]]:
+    """The gear body (teeth, bore, keyway; no hub) put together face by face, and tooth 0's faces.
+
+    Side faces: one per curve of :func:`_tooth_curves` per tooth; a flank or fillet is the
+    profile spline's poles turned row by row by the axial basis (:class:`_Axial`), a land an
+    exact cylinder. 90 % of ``tolerance`` goes to the profile fit; the rotation's share (at most
+    1 nm, so helices stay on the land cylinders well inside the edge tolerance) the rest.
+    """
     builder = BRep_Builder()
     length = spec.face_width
-    k = twist_rate(spec)  # rad/mm; the helicoid closure below reads it
-    pieces = _tooth_pieces(profile, tolerance / 2, exact_arcs=False)
-    # z nodes: Hermite of a rotation about the axis, error ~ R (k h)^4 / 384 at the tip radius
-    ztol = tolerance / 2
-    step = (384.0 * ztol / profile.tip_radius) ** 0.25 / abs(k)
-    nz = max(1, int(math.ceil(length / step)))
-    zeta = np.linspace(0.0, length, nz + 1)
-    angles = k * zeta
-    cz, sz = np.cos(angles), np.sin(angles)
+    curves = _tooth_curves(profile, 0.9 * tolerance)
+    reach = max(float(np.max(np.hypot(*c.fit.poles.T))) for c in curves if c.fit is not None)
+    reach = max(reach, profile.tip_radius)
+    axial = _axial(spec, min(0.1 * tolerance, 1e-9) / reach)
+    c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
+    n = len(curves)
+    joints = _joints(profile, np.array([c.end for c in curves]))
 
-    def helicoid(points: np.ndarray, derivs: np.ndarray):
-        """P, P_u, P_z, P_uz on the grid (nodes x z-nodes x 3) for planar points/derivs at z=0."""
-        x, y = points[:, 0:1], points[:, 1:2]
-        dx, dy = derivs[:, 0:1], derivs[:, 1:2]
-        px, py = cz * x - sz * y, sz * x + cz * y
-        ux, uy = cz * dx - sz * dy, sz * dx + cz * dy
-        shape = px.shape
-        p = np.stack([px, py, np.broadcast_to(zeta, shape)], axis=-1)
-        pu = np.stack([ux, uy, np.zeros(shape)], axis=-1)
-        pz = np.stack([-k * py, k * px, np.ones(shape)], axis=-1)
-        puz = np.stack([-k * uy, k * ux, np.zeros(shape)], axis=-1)
-        return p, pu, pz, puz
-
-    npc = len(pieces)
-    zknots = _hermite_knots(zeta)
-    joints = _joints(profile, pieces)
-    # joints j (end of piece j of the whole outline): bottom and top vertex and the helix edge;
-    # the helix edges of tooth 0 are built, the others turned copies
+    # vertices at both ends of every joint and the joint's helix (straight line on a spur gear):
+    # tooth 0's built once, the others turned copies
+    helices = [_bspline3d(axial.rows(c.end[None, :])[0], axial.knots, axial.mults, axial.degree) for c in curves]
     bottom_v, top_v, helix_e = [], [], []
-    helices = []
-    for p in pieces:
-        pts, _, dz, _ = helicoid(p.end[None, :], np.zeros((1, 2)))
-        helices.append(_bspline3d(_hermite_poles(pts[0], dz[0], zeta), zknots))
-    turn_top = gp_Trsf()
-    turn_top.SetRotation(_Z_AXIS, angles[-1])
     for i, (x, y) in enumerate(joints):
-        tooth, j = divmod(i, npc)
+        tooth, j = divmod(i, n)
         vb = _vertex(builder, x, y, 0.0)
-        top = gp_Pnt(x, y, length).Transformed(turn_top)
-        vt = _vertex(builder, top.X(), top.Y(), top.Z())
+        vt = _vertex(builder, c_top * x - s_top * y, s_top * x + c_top * y, length)
         curve = helices[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else helices[j]
         bottom_v.append(vb)
         top_v.append(vt)
         helix_e.append(_edge(builder, curve, vb, vt, 0.0, length))
 
-    top_plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), gp_Dir(cz[-1], sz[-1], 0)))
+    top_plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0)))
     bottom_plane = Geom_Plane(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
     loc = TopLoc_Location()
     tol = KERNEL_TOLERANCE
-    # tooth 0's side surfaces, bottom and top curves and plane pcurves, built once
-    canon = []
-    for p in pieces:
-        uknots = p.knots()
-        q = p.poles(lambda x, d: helicoid(x, d)[0:2])
-        qz = p.poles(lambda x, d: helicoid(x, d)[2:4])
-        poles = _hermite_poles(np.swapaxes(q, 0, 1), np.swapaxes(qz, 0, 1), zeta)
-        planar = p.poles()
-        canon.append((_bspline_surface(np.swapaxes(poles, 0, 1), uknots, zknots),
-                      _bspline3d(np.column_stack([planar, np.zeros(len(planar))]), uknots),
-                      _bspline3d(q[:, -1, :], uknots), _bspline2d(planar, uknots), p.length))
+    canon = [_canonical(c, axial, length) for c in curves]
     faces, bottom_edges, top_edges = [], [], []
     for i in range(len(joints)):
-        tooth, j = divmod(i, npc)
-        surf, bottom, top, c2d, u1 = canon[j]
+        tooth, j = divmod(i, n)
+        surf, bottom, top, cap, (pc_bottom, pc_top, pc_start, pc_end) = canon[j]
+        u0, u1 = curves[j].range
         if tooth:
             angle = tooth * profile.pitch_angle
             surf, bottom, top = (g.Rotated(_Z_AXIS, angle) for g in (surf, bottom, top))
-            c2d = c2d.Rotated(_ORIGIN_2D, angle)
-        eb = _edge(builder, bottom, bottom_v[i - 1], bottom_v[i], 0.0, u1)
-        et = _edge(builder, top, top_v[i - 1], top_v[i], 0.0, u1)
-        builder.UpdateEdge(eb, Geom2d_Line(gp_Pnt2d(0, 0), gp_Dir2d(1, 0)), surf, loc, tol)
-        builder.UpdateEdge(eb, c2d, bottom_plane, loc, tol)
-        builder.UpdateEdge(et, Geom2d_Line(gp_Pnt2d(0, length), gp_Dir2d(1, 0)), surf, loc, tol)
-        builder.UpdateEdge(et, c2d, top_plane, loc, tol)
-        # the helix edges: pcurves u = u1 on this face (end) and u = 0 on the next one (start)
-        builder.UpdateEdge(helix_e[i], Geom2d_Line(gp_Pnt2d(u1, 0), gp_Dir2d(0, 1)), surf, loc, tol)
-        builder.UpdateEdge(helix_e[i - 1], Geom2d_Line(gp_Pnt2d(0, 0), gp_Dir2d(0, 1)), surf, loc, tol)
+            cap = cap.Rotated(_ORIGIN_2D, angle)
+        eb = _edge(builder, bottom, bottom_v[i - 1], bottom_v[i], u0, u1)
+        et = _edge(builder, top, top_v[i - 1], top_v[i], u0, u1)
+        builder.UpdateEdge(eb, pc_bottom, surf, loc, tol)
+        builder.UpdateEdge(eb, cap, bottom_plane, loc, tol)
+        builder.UpdateEdge(et, pc_top, surf, loc, tol)
+        builder.UpdateEdge(et, cap, top_plane, loc, tol)
+        # the joint helices: this face's end and the next face's start
+        builder.UpdateEdge(helix_e[i], pc_end, surf, loc, tol)
+        builder.UpdateEdge(helix_e[i - 1], pc_start, surf, loc, tol)
         face = TopoDS_Face()
         builder.MakeFace(face, surf, loc, tol)
         builder.Add(face, _wire(builder, [eb, helix_e[i], et, helix_e[i - 1]],
@@ -478,7 +427,9 @@ def _helical_body(spec: GearSpec, profile: ToothProfile, tolerance: float) -> To
     solid = TopoDS_Solid()
     builder.MakeSolid(solid)
     builder.Add(solid, shell)
-    return solid
+    info = [ToothFace(c.kind, c.side, (len(c.fit.poles), len(axial.z)) if c.fit is not None else (0, 0),
+                      c.fit.max_error if c.fit is not None else 0.0) for c in curves]
+    return solid, info
 
 
 def _hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:
@@ -559,13 +510,20 @@ def build_body(spec: GearSpec, tolerance: float | None = None, profile: ToothPro
     """The solid of one gear (with bore, keyway and hub) as an OCCT shape; see the module docstring."""
     if tolerance is None:
         tolerance = default_tolerance(spec)
+    return _body_and_faces(spec, tolerance, profile, hub_side)[0]
+
+
+def _body_and_faces(spec: GearSpec, tolerance: float | None, profile: ToothProfile | None,
+                    hub_side: str) -> tuple[TopoDS_Shape, list[ToothFace]]:
+    if tolerance is None:
+        tolerance = default_tolerance(spec)
     if profile is None:
         profile = tooth_profile(spec)
-    body = _helical_body(spec, profile, tolerance) if spec.is_helical else _spur_body(spec, profile, tolerance)
+    body, faces = _toothed_body(spec, profile, tolerance)
     hub = _hub_body(spec, hub_side)
     if hub is not None:
         body = _fuse([body, hub])
-    return body
+    return body, faces
 
 
 def build_gear(spec: GearSpec, tolerance: float | None = None, check: bool = False,
@@ -582,13 +540,13 @@ def build_gear(spec: GearSpec, tolerance: float | None = None, check: bool = Fal
     if tolerance is None:
         tolerance = default_tolerance(spec)
     profile = tooth_profile(spec)
-    shape = build_body(spec, tolerance, profile, hub_side)
+    shape, faces = _body_and_faces(spec, tolerance, profile, hub_side)
     if check:
         problem = check_solid(shape)
         if problem:
             raise BuildError(f"{spec.name}: {problem}")
     return GearSolid(shape, spec.name, spec, profile, tolerance, spec.length_unit,
-                     gear_layers(spec, profile, hub_side))
+                     gear_layers(spec, profile, hub_side), tuple(faces))
 
 
 def build_cluster(cluster: ClusterSpec, tolerance: float | None = None, check: bool = False) -> GearSolid:
@@ -627,5 +585,5 @@ def build_cluster(cluster: ClusterSpec, tolerance: float | None = None, check: b
                      cluster_layers(cluster, large_profile, small_profile))
 
 
-__all__ = ["GearSolid", "build_gear", "build_body", "build_cluster", "check_solid", "solid_volume",
+__all__ = ["GearSolid", "ToothFace", "build_gear", "build_body", "build_cluster", "check_solid", "solid_volume",
            "default_tolerance", "DEFAULT_TOLERANCE"]
