@@ -168,7 +168,7 @@ def _tooth_curves(profile: ToothProfile, tolerance: float) -> list[_Curve]:
             out.append(_Curve(s.kind, s.side, s.end, radius=s.curve.radius, angles=(s.t0, s.t1)))
         else:
             try:
-                fit = fit_segment(s, tolerance)
+                fit = fit_segment(s, tolerance, by_length=True)
             except ValueError as exc:
                 raise BuildError(f"{profile.spec.name}: {s.side} {s.kind}: {exc}") from exc
             out.append(_Curve(s.kind, s.side, fit.poles[-1], fit=fit))

@@ -27,6 +27,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import BSpline
 
+from geargen.profile.segments import InvoluteCurve
+
 #: default B-spline degree of the fitted flank and fillet curves (see bench/bench_gear.py)
 FIT_DEGREE = 7
 #: fitted points per span (the least-squares problem), and check points per span
@@ -41,7 +43,7 @@ class SplineFit:
     ``knots`` distinct knot values (0 .. ``length``), ``mults`` their multiplicities, ``poles``
     ``(n, d)``; ``max_error`` the largest distance (mm) to the exact curve at the same
     parameter over the check points; ``native`` the exact curve's parameter at s = 0 and at
-    s = ``length`` (linear in between).
+    s = ``length``, linear in between unless ``by_length`` (then s is the arc length).
     """
 
     degree: int
@@ -51,6 +53,7 @@ class SplineFit:
     max_error: float
     length: float
     native: tuple[float, float]
+    by_length: bool = False
 
     @property
     def spans(self) -> int:
@@ -62,11 +65,6 @@ class SplineFit:
     def evaluate(self, s) -> np.ndarray:
         """Spline points ``(n, d)`` at parameters ``s`` (0 .. length)."""
         return BSpline(self.full_knots(), self.poles, self.degree)(np.ravel(s))
-
-    def native_parameter(self, s) -> np.ndarray:
-        """The exact curve's parameter at spline parameters ``s``."""
-        t0, t1 = self.native
-        return t0 + (t1 - t0) * np.asarray(s, dtype=float) / self.length
 
 
 def _fit(point, deriv, length: float, tolerance: float, degree: int, max_spans: int):
@@ -110,24 +108,91 @@ def _length(segment) -> float:
     return float(np.sum(np.linalg.norm(np.diff(p, axis=0), axis=1)))
 
 
-def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: int = 64) -> SplineFit:
+def _arc_length_map(segment, order: int = 24):
+    """A smooth map s -> t (spline parameter by arc length -> the segment's parameter) and its
+    derivative: the segment's arc length on a Gauss-Legendre grid, inverted by a Chebyshev fit of
+    t(s). Only the parametrisation depends on it (every point C(t(s)) lies on the exact curve);
+    returns None if the fitted map is not monotone (then the caller keeps the own parameter)."""
+    t0, t1 = segment.t0, segment.t1
+    if isinstance(segment.curve, InvoluteCurve):
+        return _involute_length_map(segment)
+    # arc length at the ends of 64 pieces, 8-point Gauss-Legendre on each (~1e-15 relative)
+    edges = np.linspace(t0, t1, 65)
+    x, w = np.polynomial.legendre.leggauss(8)
+    half = 0.5 * np.diff(edges)
+    nodes = (0.5 * (edges[:-1] + edges[1:]))[:, None] + half[:, None] * x[None, :]
+    speed = np.linalg.norm(segment.derivative(nodes.ravel()), axis=1).reshape(nodes.shape)
+    arc = np.concatenate([[0.0], np.cumsum(np.abs(half) * (speed @ w))])
+    tt = edges
+    length = float(arc[-1])
+    cheb = np.polynomial.chebyshev.Chebyshev.fit(arc, tt, order, domain=[0.0, length])
+    dcheb = cheb.deriv()
+    probe = dcheb(np.linspace(0.0, length, 1001)) * (1.0 if t1 >= t0 else -1.0)
+    if not np.all(probe > 0):
+        return None
+    # pin the ends exactly (the fit is good to ~1e-12 of the range; the ends must be the joints)
+    e0, e1 = float(cheb(0.0)) - t0, float(cheb(length)) - t1
+
+    def t_of(s):
+        s = np.asarray(s, dtype=float)
+        return cheb(s) - e0 - (e1 - e0) * s / length
+
+    def dt_ds(s):
+        return dcheb(np.asarray(s, dtype=float)) - (e1 - e0) / length
+
+    return length, t_of, dt_ds
+
+
+def _involute_length_map(segment):
+    """The involute's own arc length: s = r_b |t^2 - t0^2| / 2 from roll angle t0, so
+    t(s) = sqrt(t0^2 +- 2 s / r_b) in closed form. None when the flank starts too near the base
+    circle (t -> 0 makes dt/ds unbounded and the fit slow to converge): the roll angle is kept."""
+    t0, t1 = segment.t0, segment.t1
+    if min(t0, t1) < 0.1 * max(t0, t1):
+        return None
+    rb = segment.curve.base_radius
+    sign = 1.0 if t1 >= t0 else -1.0
+    length = rb * abs(t1 * t1 - t0 * t0) / 2
+
+    def t_of(s):
+        return np.sqrt(t0 * t0 + sign * 2.0 * np.asarray(s, dtype=float) / rb)
+
+    def dt_ds(s):
+        return sign / (rb * t_of(s))
+
+    return length, t_of, dt_ds
+
+
+def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: int = 64,
+                by_length: bool = False) -> SplineFit:
     """Fit a :class:`geargen.profile.segments.Segment` in its direction of traversal (t0 -> t1).
 
-    The spline parameter s runs from 0 to the segment's length, linear in the segment's own
-    parameter. Raises ValueError if ``max_spans`` uniform spans do not reach ``tolerance`` mm.
+    The spline parameter s runs from 0 to the segment's length: linear in the segment's own
+    parameter, or (``by_length``) the arc length itself (unit speed, within ~1e-6). Raises
+    ValueError if ``max_spans`` uniform spans do not reach ``tolerance`` mm.
     """
-    length = _length(segment)
     t0, t1 = segment.t0, segment.t1
-    scale = (t1 - t0) / length
+    mapped = _arc_length_map(segment) if by_length else None
+    if mapped is None:
+        length = _length(segment)
+        scale = (t1 - t0) / length
+
+        def t_of(s):
+            return t0 + scale * np.asarray(s, dtype=float)
+
+        def dt_ds(s):
+            return np.full(np.shape(s), scale)
+    else:
+        length, t_of, dt_ds = mapped
 
     def point(s):
-        return segment.point(t0 + scale * s)
+        return segment.point(t_of(s))
 
     def deriv(s):
-        return segment.derivative(t0 + scale * s) * scale
+        return segment.derivative(t_of(s)) * dt_ds(s)[:, None]
 
     poles, knots, mults, err = _fit(point, deriv, length, tolerance, degree, max_spans)
-    return SplineFit(degree, knots, mults, poles, err, length, (t0, t1))
+    return SplineFit(degree, knots, mults, poles, err, length, (t0, t1), mapped is not None)
 
 
 def fit_rotation(rate: float, length: float, tolerance: float, degree: int = FIT_DEGREE,
