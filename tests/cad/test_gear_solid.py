@@ -253,3 +253,16 @@ def test_a_flank_face_picked_by_type_and_position_lies_on_the_involute(name, req
             worst = max(worst, float(np.max(np.abs(involute_deviation(p, float(z), pts[sel, :2])))))
     assert flanks == 2 * g.spec.teeth
     assert worst <= 2e-5
+
+
+def test_step_read_back_keeps_the_faces_and_the_volume(helical21, tmp_path):
+    """What a CAM station gets: the STEP read back has the same faces (4 B-spline, 2 cylinder per
+    tooth, two planes) and OCCT's default volume of it is still within 1e-6 of the exact one."""
+    from geargen.cad.export import export_step, read_step
+    export_step(helical21, tmp_path / "pinion.step", "mm")
+    shape = read_step(tmp_path / "pinion.step").shape
+    z = helical21.spec.teeth
+    kinds = [BRepAdaptor_Surface(f).GetType() for f in faces_of(shape)]
+    assert (kinds.count(GeomAbs_BSplineSurface), kinds.count(GeomAbs_Cylinder), kinds.count(GeomAbs_Plane)) == \
+        (4 * z, 2 * z, 2)
+    assert default_volume(shape) == pytest.approx(expected_volume(helical21.spec, helical21.profile), rel=1e-6)
