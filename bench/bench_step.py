@@ -9,8 +9,9 @@ helix, 12.7 mm face, no bore. geargen writes it here; each peer writes it in its
     python3.11 -m venv /tmp/geargen-peers && /tmp/geargen-peers/bin/pip install -r bench/peers/requirements.txt
 
 never the project's own; without ``--peers`` only geargen is measured). ``--before DIR``
-adds STEP files written by an older geargen (e.g. ``bench/bench_gear.py --out DIR`` run on the
-commit before) as extra rows.
+adds STEP files written by an older geargen (``helical21.step`` and ``spur112.step`` of
+``bench/bench_gear.py --out DIR`` run on the commit before) as extra rows; the 112-tooth spur
+gear of bench_gear.py gets rows of its own (geargen only).
 
 Every STEP is then read and re-tessellated by the same kind of process: a fresh interpreter of
 this project's python (OCCT 7.9 from cadquery-ocp), ``STEPControl_Reader`` then
@@ -145,6 +146,14 @@ def main(argv=None) -> int:
     files["geargen"] = out / "geargen.step"
     if args.before:
         files["geargen before"] = Path(args.before) / "helical21.step"
+    # the 112-tooth spur gear of bench_gear.py too (geargen only; no flank column: another gear)
+    from geargen.design.gear import GearSpec, Hub
+    spur = GearSpec(teeth=112, module=MODULE, pressure_angle=PRESSURE_DEG * DEG, face_width=6.35,
+                    hub=Hub(bore_diameter=10.0), name="spur112", length_unit="in")
+    export_step(build_gear(spur), out / "geargen-spur112.step", "in")
+    extra = {"geargen spur 112T": out / "geargen-spur112.step"}
+    if args.before:
+        extra["geargen before spur 112T"] = Path(args.before) / "spur112.step"
     if args.peers:
         for peer in ("bd_warehouse", "py_gearworks"):
             target = out / f"{peer}.step"
@@ -174,6 +183,10 @@ def main(argv=None) -> int:
             dev = (f"n/a ({type(exc).__name__})", "")
         print(" | ".join([name, f"{path.stat().st_size / 1e6:.2f}", str(m["faces"]), f"{m['read_s']:.3f}",
                           f"{m['mesh_s']:.3f}", str(m["triangles"]), *dev]))
+    for name, path in extra.items():
+        m = measure(path, args.deflection, args.angle, args.repeat)
+        print(" | ".join([name, f"{path.stat().st_size / 1e6:.2f}", str(m["faces"]), f"{m['read_s']:.3f}",
+                          f"{m['mesh_s']:.3f}", str(m["triangles"]), "", ""]))
     return 0
 
 
