@@ -1,15 +1,21 @@
 """Few-pole B-spline fits of the exact outline's segments (numpy/scipy only).
 
 The CAD layer gives every flank and fillet of a gear its own face; each face's curve is one
-B-spline of degree ``degree`` (default 7) on uniform knots, parametrised evenly: by the
-segment's own parameter scaled to its length (roll angle for an involute, the rack-tip angle
-for a fillet), so the parametric speed varies only as much as the curve's own. The end points
-and end tangents are exact (neighbouring faces meet in the exact joint with the exact tangent);
-the poles in between are a least-squares fit to dense exact points, and the number of uniform
-spans grows until the distance between the spline and the exact curve at the same parameter -
-an upper bound on the geometric distance - is within ``tolerance`` at every check point (eight
-per span more than were fitted, offset from them). A high degree on few spans is what keeps the
-pole count low: an involute is analytic, so the error falls like ``h^(degree + 1)``.
+clamped B-spline of degree ``degree`` (default 7) on uniform knots. The end points and end
+tangents are exact (neighbouring faces meet in the exact joint with the exact tangent); the
+poles in between are a least-squares fit to exact points (24 per span, Chebyshev-spaced), and
+the number of spans grows until the distance between the spline and the exact curve at the
+same parameter - an upper bound on the geometric distance - is within ``tolerance`` at every
+check point (32 per span, evenly spaced, none a fit point). A high degree on few spans keeps
+the pole count low: the curves are analytic, so the error falls like ``h^(degree + 1)``
+(degree 3 needs 3-4x the poles of degree 7 for a fillet at 1 nm; degrees 5-9 differ little).
+
+Parametrisation (``by_length``): by arc length, so the parameter runs evenly - for the
+involute in closed form (s = r_b (t^2 - t0^2) / 2 in the roll angle t), for the fillet through
+a Chebyshev fit of the inverse of its Gauss-Legendre arc length. OCCT's mesher follows the
+parameter: on the 112-tooth spur gear an arc-length fillet face tessellates at 1 um into ~24
+triangles, a roll-angle one into ~4300. Without ``by_length`` the segment's own parameter
+(roll angle, rack-tip angle) scaled to the length is used.
 
 :func:`fit_rotation` fits the unit circle ``(cos(k z), sin(k z))`` over a helical gear's face
 the same way; turning a profile spline's poles by that approximate rotation, row by row, gives
@@ -21,7 +27,6 @@ multiplicities, clamped (end multiplicity ``degree + 1``), parameter from 0 to `
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +34,7 @@ from scipy.interpolate import BSpline
 
 from geargen.profile.segments import InvoluteCurve
 
-#: default B-spline degree of the fitted flank and fillet curves (see bench/bench_gear.py)
+#: default B-spline degree of the fitted curves (fewest poles at the gear tolerances, module docstring)
 FIT_DEGREE = 7
 #: fitted points per span (the least-squares problem), and check points per span
 _FIT_PER_SPAN = 24
@@ -55,16 +60,8 @@ class SplineFit:
     native: tuple[float, float]
     by_length: bool = False
 
-    @property
-    def spans(self) -> int:
-        return len(self.knots) - 1
-
     def full_knots(self) -> np.ndarray:
         return np.repeat(self.knots, self.mults)
-
-    def evaluate(self, s) -> np.ndarray:
-        """Spline points ``(n, d)`` at parameters ``s`` (0 .. length)."""
-        return BSpline(self.full_knots(), self.poles, self.degree)(np.ravel(s))
 
 
 def _fit(point, deriv, length: float, tolerance: float, degree: int, max_spans: int):
@@ -219,10 +216,4 @@ def greville(fit: SplineFit) -> np.ndarray:
     return np.array([t[i + 1:i + p + 1].mean() for i in range(len(t) - p - 1)])
 
 
-def parameter_speed_ratio(segment, samples: int = 257) -> float:
-    """max/min of |dC/dt| over the segment: how unevenly its own parameter runs (1 = by arc length)."""
-    d = np.linalg.norm(segment.derivative(segment.parameters(samples)), axis=1)
-    return float(np.max(d) / max(np.min(d), 1e-300)) if math.isfinite(float(np.min(d))) else math.inf
-
-
-__all__ = ["SplineFit", "fit_segment", "fit_rotation", "greville", "parameter_speed_ratio", "FIT_DEGREE"]
+__all__ = ["SplineFit", "fit_segment", "fit_rotation", "greville", "FIT_DEGREE"]
