@@ -79,7 +79,8 @@ def main(argv=None) -> int:
         exact = (solid.profile.area() - math.pi * spec.hub.bore_diameter ** 2 / 4) * spec.face_width
         props = GProp_GProps()
         BRepGProp.VolumeProperties_s(solid.shape, props)
-        poles = " ".join(f"{f.kind[:4]} {f.poles[0]}x{f.poles[1]}" for f in solid.faces if f.side != "lower")
+        poles = ", ".join(f"{f.kind} {f.poles[0]}x{f.poles[1]}" if f.poles[0] else f"{f.kind} cylinder"
+                          for f in solid.faces if f.side != "lower")
         rows.append((label, problem or "valid", (b_best, b_med, target["build"]), (s_best, s_med, target["step"]),
                      (l_best, l_med, target["stl"]), step.bytes, stl.bytes, stl.triangles, (dev, target["flank_um"]),
                      props.Mass() / exact - 1, poles))
