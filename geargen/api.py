@@ -110,7 +110,9 @@ def pair(teeth: Sequence[int], *, module: float | None = None, diametral_pitch: 
              "diametral_pitch": diametral_pitch, "face_width": face_width, "pressure_angle": pressure_angle,
              "helix_angle": helix_angle, "hand": hand, "centre_distance": centre_distance,
              "profile_shift": None if profile_shift is None else list(profile_shift),
-             "thinning": None if thinning is None else list(thinning)}
+             "thinning": None if thinning is None else list(thinning),
+             # geargen pair's options a CAD pair does not take: the standard basic rack, no stiffness inputs
+             "dedendum_coefficient": None, "elastic_modulus": None, "load": None}
     if not isinstance(teeth, (list, tuple)) or len(teeth) != 2:
         raise DesignError("teeth", f"{teeth!r} is not two tooth counts", "(Z1, Z2)")
     if (module is None) == (diametral_pitch is None):
