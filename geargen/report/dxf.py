@@ -6,7 +6,9 @@ What the file holds, in the z = 0 transverse section (tooth 0 centred on +x, as
 - layer ``GEAR_OUTLINE``: the closed outline of the whole gear, counter-clockwise, tooth by
   tooth: tip and root circles as ARCs (exact), each involute flank and each trochoidal fillet as
   one cubic SPLINE - the C1 Hermite B-spline of :func:`geargen.profile.hermite.segment_spline`
-  interpolating exact points and tangents, within :data:`SPLINE_TOLERANCE_MM` of the exact curve;
+  interpolating exact points and tangents, within :data:`SPLINE_TOLERANCE_MM` of the exact curve
+  (cubic, not the solids' degree-7 fit of :mod:`geargen.profile.bspline_fit`: wire-EDM and 2-D CAM
+  readers take degree-3 SPLINEs, many nothing higher);
 - layer ``BORE``: the bore as a CIRCLE, or with a keyway (centred on +x, as the solids have it)
   as an ARC (counter-clockwise, as every DXF arc) and the keyway's three LINEs.
 
