@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from geargen import pipeline as pl
+from geargen.cad.gear_solid import default_tolerance
 from geargen.checks.verdict import design_backlash
 
 pytestmark = pytest.mark.slow
@@ -143,10 +144,16 @@ def test_backlash_measured_on_the_exported_solids_is_in_the_design_range(built_a
         # STEP keeps the geometry to ~1e-15 relative: the exported teeth are the checked ones (1 nm)
         assert lo == pytest.approx(built[mesh.name]["path2_backlash_min"], abs=1e-6), mesh.name
         assert hi == pytest.approx(built[mesh.name]["path2_backlash_max"], abs=1e-6), mesh.name
-        # and the exact path 1's: a section of the wrong gear (a one-piece cluster's large gear
-        # where its small one meshes) lands far from it
-        assert lo == pytest.approx(built[mesh.name]["backlash_min"], abs=tol + 1e-6), mesh.name
-        assert hi == pytest.approx(built[mesh.name]["backlash_max"], abs=tol + 1e-6), mesh.name
+        # and the exact path 1's, to the chords' tolerance plus the solids' own: each gear's flank
+        # spline lies within [export] gear_solid_tolerance of the exact surface (normal to it), so
+        # the two flanks move the circumferential play by up to twice that / cos(alpha_t). A
+        # section of the wrong gear (a one-piece cluster's large gear where its small one meshes)
+        # lands far from it
+        spline = pl.export_config(layout.design)["gear_solid_tolerance"] or min(
+            default_tolerance(g) for g in (mesh.gear1, mesh.gear2))
+        solids = 2 * spline / math.cos(mesh.gear1.transverse_pressure_angle)
+        assert lo == pytest.approx(built[mesh.name]["backlash_min"], abs=tol + solids + 1e-6), mesh.name
+        assert hi == pytest.approx(built[mesh.name]["backlash_max"], abs=tol + solids + 1e-6), mesh.name
         checked += 1
     assert checked == len([x for x in layout.meshes if x.engaged]) >= 2
 
