@@ -57,11 +57,11 @@ def main() -> int:
 
     # path 2: one mesh of the robot joint, placed by the synthesis
     from geargen.checks.solids import check_mesh_sections, section_planes, sections_from_stl
-    from geargen.commands.check import mesh_setups
-    from geargen.design.checks import checks_settings
+    from geargen.checks.verdict import mesh_setup
+    from geargen.model import resolve
 
-    setups, loop, _ = mesh_setups(design, checks_settings(design))
-    su = setups[0]
+    layout = resolve(design)
+    su = mesh_setup(layout, next(m for m in layout.meshes if m.engaged))
     planes = section_planes(su, 3)
     chordal = 1e-3
     with tempfile.TemporaryDirectory() as tmp:
@@ -82,7 +82,9 @@ def main() -> int:
 
         def path2():
             s1 = sections_from_stl(su.gear1, Path(tmp) / f"{su.gear1.name}.stl", planes, chordal, spline)
-            s2 = sections_from_stl(su.gear2, Path(tmp) / f"{su.gear2.name}.stl", planes, chordal, spline)
+            # gear 2 in its own face coordinates (the narrower gear stands off gear 1's faces)
+            s2 = sections_from_stl(su.gear2, Path(tmp) / f"{su.gear2.name}.stl", planes - su.face_offset2, chordal,
+                                   spline)
             return check_mesh_sections(su, s1, s2, settings, pos)
 
         t, c = best_of(path2)
