@@ -427,17 +427,13 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     centre distances of the resolved drive). Needs no check result: the build draws them while the
     second process checks the meshes. Returns ``{"drawing:NAME:svg"|...: path}``."""
     from geargen.cad.export import write_json
-    from geargen.model.gear_data import gear_data
     from geargen.profile.tooth import tooth_profile
-    from geargen.report.drawing import gear_drawings, mates_from_layout
-
-    from geargen.design.checks import checks_settings
-    from geargen.model.allowance import drive_allowances
+    from geargen.report.drawing import gear_drawings
 
     design = layout.design
     out_folder = Path(folder) / DRAWING_FOLDER
     source = design_source(design)
-    allowances = drive_allowances(layout, checks_settings(design).centre_distance_tolerance)
+    allowances = drive_allowances_of(layout)
     files = {}
     drawn = set()
     for placed in layout.gears:
@@ -446,10 +442,7 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
                 continue
             drawn.add(spec.name)
             profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
-            data = gear_data(spec, profile, allowances.get(spec.name), _budget_of(design, spec.name))
-            if placed.name in layout.thinning:
-                data["thinning_source"] = layout.thinning[placed.name].get("source", "design")
-            data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]
+            data = drive_gear_data(layout, spec, profile, allowances.get(spec.name))
             made = gear_drawings(data, profile, out_folder, spec.name, f"gear {spec.name} of {source}",
                                  str(design.path) if design.path else design.name)
             made["json"] = out_folder / f"{spec.name}.json"
@@ -458,10 +451,26 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     return files
 
 
-def _budget_of(design, gear: str):
-    """The gear's error budget ([errors.GEAR]), or None when the design gives none."""
+def drive_allowances_of(layout: Layout) -> dict:
+    """Every gear's thickness allowance in the resolved drive (entered, or chosen from its meshes'
+    backlash ranges at the design's ``[checks] centre_distance_tolerance``)."""
+    from geargen.model.allowance import drive_allowances
+    return drive_allowances(layout, checks_settings(layout.design).centre_distance_tolerance)
+
+
+def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
+    """The gear data of one gear of the resolved drive, as the build's drawings and ``geargen gear
+    --gear`` write it: its ``allowance``, the grade its error budget holds when it has no grade of
+    its own, where its thinning comes from, and its mating gears with the working centre distances."""
     from geargen.core.accuracy import gear_errors
-    return gear_errors(design, gear)
+    from geargen.model.gear_data import gear_data
+    from geargen.report.drawing import mates_from_layout
+
+    data = gear_data(spec, profile, allowance, gear_errors(layout.design, spec.name))
+    data["thinning_source"] = next((layout.thinning.get(p.name, {}).get("source", "design")
+                                    for p in layout.gears if any(g.name == spec.name for g in p.gears)), "design")
+    data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]
+    return data
 
 
 def report(result: "BuildResult", folder: Path) -> dict[str, Path]:

@@ -122,9 +122,10 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
     return f"--{key.replace('_', '-')}"
 
 
-def spec_from_args(args) -> tuple[GearSpec, str | None]:
+def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
     """The GearSpec the command line describes (through the design-file validation), and where an
-    assembly gear's thinning comes from (None for a gear file or options: as given).
+    assembly gear's thinning comes from (None for a gear file or options: as given). ``layout``:
+    the drive of ``--gear`` already resolved (:func:`drive_layout`), so it is resolved once.
 
     A design file and gear options exclude each other: an option given with a design file is
     an error naming it (it would otherwise be ignored). Errors in the options name the option."""
@@ -139,7 +140,7 @@ def spec_from_args(args) -> tuple[GearSpec, str | None]:
         data = load_toml(args.design)
         if args.gear:
             from geargen.design.assembly import load_design
-            return assembly_gear(load_design(args.design), args.gear)
+            return assembly_gear(load_design(args.design), args.gear, layout)
         if "gear" not in data:
             raise DesignError(str(args.design), "no [gear] table (use --gear NAME for an assembly file)")
         unknown = [k for k in data if k != "gear"]
@@ -178,21 +179,32 @@ def spec_from_args(args) -> tuple[GearSpec, str | None]:
         raise DesignError(_flag_of_key(exc.field.split(".", 1)[1], table, flags_given), exc.problem, exc.allowed) from None
 
 
-def assembly_gear(design, name: str) -> tuple[GearSpec, str]:
+def assembly_gear(design, name: str, layout=None) -> tuple[GearSpec, str]:
     """``[gears.NAME]`` of an assembly as the assembly builds it, and where its thinning comes from:
-    in a drive the resolved one (:func:`geargen.model.resolve`: the thinning the design states, or
-    the one derived for its backlash), else the table as written."""
+    in a drive the resolved one (``layout``, or :func:`geargen.model.resolve`: the thinning the
+    design states, or the one derived for its backlash), else the table as written."""
     from geargen.model import is_drive, resolve
 
     spec = design.gear(name)  # names the key when there is no such gear
     if not is_drive(design):
         return spec, "design"
-    layout = resolve(design)
+    layout = resolve(design) if layout is None else layout
     for placed in layout.gears:
         for g in placed.gears:
             if g.name == name:
                 return g, layout.thinning.get(placed.name, {}).get("source", "design")
     return spec, "design"
+
+
+def drive_layout(args):
+    """The resolved drive of ``geargen gear FILE --gear NAME`` (None for a gear file, options, or an
+    assembly that is no drive): resolved once for the gear, its allowance and its mates."""
+    if not (args.design and args.gear) or _given(args):
+        return None  # spec_from_args says what is wrong
+    from geargen.design.assembly import load_design
+    from geargen.model import is_drive, resolve
+    design = load_design(args.design)
+    return resolve(design) if is_drive(design) else None
 
 
 def gear_source(args, spec: GearSpec) -> str:
@@ -206,12 +218,11 @@ def gear_source(args, spec: GearSpec) -> str:
 
 
 def gear_allowance(args, spec: GearSpec):
-    """The gear's thickness allowance (:class:`geargen.core.allowance.ThicknessAllowance`) or None:
-    ``--thickness-allowance`` (refused when the gear table enters one too), the table's
-    ``thickness_*_deviation_*``, or for an assembly gear of a drive the one
-    :func:`geargen.model.allowance.drive_allowances` chooses from its backlash ranges."""
+    """The allowance ``--thickness-allowance`` or the gear table enters
+    (:class:`geargen.core.allowance.ThicknessAllowance`), or None; the option is refused when the
+    gear table enters one too. A drive's gear without either takes the drive's (see :func:`run`)."""
     from geargen.core.allowance import ThicknessAllowance
-    from geargen.model.allowance import drive_allowances, entered_allowance
+    from geargen.model.allowance import entered_allowance
 
     given = getattr(args, "thickness_allowance", None)
     if given is not None:
@@ -223,26 +234,23 @@ def gear_allowance(args, spec: GearSpec):
                                   "--thickness-allowance")
     if spec.thickness_deviations is not None:
         return entered_allowance(spec, f"gears.{spec.name}.thickness_upper_deviation_um")
-    if args.design and args.gear:
-        from geargen.design.assembly import load_design
-        from geargen.design.checks import checks_settings
-        from geargen.model import is_drive, resolve
-        design = load_design(args.design)
-        if is_drive(design):
-            return drive_allowances(resolve(design), checks_settings(design).centre_distance_tolerance).get(spec.name)
     return None
 
 
 def run(args) -> int:
-    spec, thinning_source = spec_from_args(args)
+    layout = drive_layout(args)
+    spec, thinning_source = spec_from_args(args, layout)
     allowance = gear_allowance(args, spec)
+    if allowance is None and layout is not None:
+        from geargen.pipeline import drive_allowances_of
+        allowance = drive_allowances_of(layout).get(spec.name)
     from geargen.outputs import OutputFolder
     source = gear_source(args, spec)
     output = OutputFolder(Path(args.out) if args.out else Path("exports") / spec.name, "geargen gear", source,
                           overwrite=args.overwrite, flag="--out" if args.out else "output folder")
     output.prepare()  # refused or unwritable: said before the gear is built
     try:
-        target = _write_gear(args, spec, thinning_source, output, allowance)
+        target = _write_gear(args, spec, thinning_source, output, allowance, layout)
     except BaseException:
         output.discard()
         raise
@@ -254,8 +262,9 @@ def run(args) -> int:
     return 0
 
 
-def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allowance=None) -> Path:
-    """Build the gear and write its files into ``output``'s folder; returns the target, committed."""
+def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allowance=None, layout=None) -> Path:
+    """Build the gear and write its files into ``output``'s folder; returns the target, committed.
+    A gear of a resolved drive (``layout``) gets the drive's gear data, as the build's drawings."""
     from geargen import __version__
     from geargen.cad.export import export_step, export_stl, update_manifest, write_json
     from geargen.cad.gear_solid import build_gear
@@ -272,10 +281,14 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allow
     records = [export_step(solid, out / f"{spec.name}.step", spec.length_unit)]
     if not args.no_stl:
         records.append(export_stl(solid, out / f"{spec.name}.stl", args.stl_tolerance))
-    from geargen.model.gear_data import gear_data
-    data = gear_data(spec, solid.profile, allowance)
-    if thinning_source is not None:
-        data["thinning_source"] = thinning_source
+    if layout is not None:
+        from geargen.pipeline import drive_gear_data
+        data = drive_gear_data(layout, spec, solid.profile, allowance)
+    else:
+        from geargen.model.gear_data import gear_data
+        data = gear_data(spec, solid.profile, allowance)
+        if thinning_source is not None:
+            data["thinning_source"] = thinning_source
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]
     if args.measure:
@@ -283,7 +296,7 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allow
     drawn = {}
     if not args.no_drawing:
         from geargen.report.drawing import gear_drawings
-        data["mating_gears"] = [m.to_dict() for m in _mates(args, spec)]
+        data.setdefault("mating_gears", [])  # a drive's gear has its mates already
         drawn = gear_drawings(data, solid.profile, out, spec.name, output.source,
                               str(Path(args.design).resolve()) if args.design else "command-line options")
     data_file = out / f"{spec.name}.json"
@@ -298,18 +311,6 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allow
                                         "bytes": path.stat().st_size}
     write_json(manifest_path, manifest)
     return output.commit()
-
-
-def _mates(args, spec: GearSpec) -> list:
-    """The gears ``spec`` meshes with (:class:`geargen.report.drawing.Mate`): in an assembly's
-    drive (``--gear``), from its resolved layout; none for a gear file or options."""
-    if not args.gear:
-        return []
-    from geargen.design.assembly import load_design
-    from geargen.model import is_drive, resolve
-    from geargen.report.drawing import mates_from_layout
-    design = load_design(args.design)
-    return mates_from_layout(resolve(design), spec.name, spec.length_unit) if is_drive(design) else []
 
 
 def _measure(solid, data) -> dict:
