@@ -24,6 +24,13 @@ SHIPPED = [ROOT / "assemblies" / f"{n}.toml" for n in ("robot_joint", "c_axis", 
                                                       "metric_dual_pinion")]
 
 
+def assert_apart(boxes) -> None:
+    """No two ``(text, box)`` of ``boxes`` overlap; the message names both texts."""
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            assert not boxes_overlap(boxes[i][1], boxes[j][1]), f"{boxes[i][0]!r} overlaps {boxes[j][0]!r}"
+
+
 # ---------------------------------------------------------------- labels of the layout drawing
 
 
@@ -40,9 +47,7 @@ def test_layout_drawing_texts_do_not_overlap_and_no_circle_crosses_a_label(desig
     fig.canvas.draw()
     boxes = text_boxes(fig)
     assert len(boxes) >= 8
-    for i in range(len(boxes)):
-        for j in range(i + 1, len(boxes)):
-            assert not boxes_overlap(boxes[i][1], boxes[j][1]), f"{boxes[i][0]!r} overlaps {boxes[j][0]!r}"
+    assert_apart(boxes)
     ax = fig.axes[0]
     labels = [(t.get_text(), text_extent(t)) for t in ax.texts]
     assert any("T" in text for text, _ in labels)
@@ -67,9 +72,7 @@ def test_preload_diagram_texts_do_not_overlap(design):
     fig.canvas.draw()
     boxes = text_boxes(fig)
     assert len(boxes) >= 6
-    for i in range(len(boxes)):
-        for j in range(i + 1, len(boxes)):
-            assert not boxes_overlap(boxes[i][1], boxes[j][1]), f"{boxes[i][0]!r} overlaps {boxes[j][0]!r}"
+    assert_apart(boxes)
 
 
 # ---------------------------------------------------------------- the render's depth order
@@ -196,9 +199,7 @@ def test_render_figure_has_labels_clear_of_each_other_a_scale_bar_and_a_triad():
     assert "plate" in texts and "pin" in texts and "pin_bearing" not in texts
     assert {"x", "y", "z"} <= set(texts)
     boxes = text_boxes(fig)
-    for i in range(len(boxes)):
-        for j in range(i + 1, len(boxes)):
-            assert not boxes_overlap(boxes[i][1], boxes[j][1]), (boxes[i][0], boxes[j][0])
+    assert_apart(boxes)
     bar = next(t for t in texts if t.endswith(" in"))
     length_in = float(bar.split()[0])
     ax = fig.axes[0]
