@@ -13,20 +13,16 @@ More by hand: ``GEARGEN_SWEEP_COUNT=2000 GEARGEN_SWEEP_SEED=7 pytest tests/test_
 from __future__ import annotations
 
 import math
-import multiprocessing as mp
 import os
-import time
 import traceback
 from collections import Counter
-from multiprocessing.connection import wait
 
 import numpy as np
 import pytest
+from sweep_support import run_sweep, summary
 
 COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "200"))
 SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261121"))
-TIMEOUT = float(os.environ.get("GEARGEN_SWEEP_TIMEOUT", "60"))
-WORKERS = int(os.environ.get("GEARGEN_SWEEP_WORKERS", "2"))
 #: tooth counts are drawn log-uniformly from [4, MAX_TEETH] (big gears cost time, not coverage:
 #: the bench gears' tests build a 112-tooth one)
 MAX_TEETH = int(os.environ.get("GEARGEN_SWEEP_MAX_TEETH", "40"))
@@ -129,72 +125,13 @@ def check_one(p: dict) -> tuple[str, str]:
     return "ok", ""
 
 
-def _worker(conn):
-    while True:
-        task = conn.recv()
-        if task is None:
-            return
-        conn.send(check_one(task))
-
-
-def run_sweep(params: list[dict], timeout: float = TIMEOUT, workers: int = WORKERS) -> list[tuple[str, str, float]]:
-    """(tag, detail, seconds) per parameter set; each build in a worker, killed after ``timeout``."""
-    ctx = mp.get_context("spawn")  # the parent may hold kernel threads: do not fork it
-    results: list = [None] * len(params)
-    todo = list(range(len(params)))[::-1]
-    slots = []
-
-    def start():
-        parent, child = ctx.Pipe()
-        proc = ctx.Process(target=_worker, args=(child,), daemon=True)
-        proc.start()
-        return {"proc": proc, "conn": parent, "task": None, "t0": 0.0}
-
-    def give(slot):
-        if todo:
-            i = todo.pop()
-            slot["task"], slot["t0"] = i, time.perf_counter()
-            slot["conn"].send(params[i])
-        else:
-            slot["task"] = None
-
-    for _ in range(min(workers, len(params))):
-        slots.append(start())
-        give(slots[-1])
-    while any(s["task"] is not None for s in slots):
-        busy = [s for s in slots if s["task"] is not None]
-        ready = wait([s["conn"] for s in busy], timeout=0.5)
-        now = time.perf_counter()
-        for s in busy:
-            if s["conn"] in ready:
-                try:
-                    tag, detail = s["conn"].recv()
-                except EOFError:  # the worker died (segfault in the kernel)
-                    tag, detail = "crash:worker_died", f"exit code {s['proc'].exitcode}"
-                    s.update(start())
-                results[s["task"]] = (tag, detail, now - s["t0"])
-                give(s)
-            elif now - s["t0"] > timeout:
-                s["proc"].kill()
-                results[s["task"]] = ("timeout", f"> {timeout} s", now - s["t0"])
-                s.update(start())
-                give(s)
-    for s in slots:
-        if s["proc"].is_alive():
-            s["conn"].send(None)
-            s["proc"].join(5)
-    return results
-
-
 @pytest.mark.slow
 def test_random_gears_build_or_are_refused_clearly():
     rng = np.random.default_rng(SEED)
     params = [random_parameters(rng) for _ in range(COUNT)]
-    results = run_sweep(params)
+    results = run_sweep(params, f"{__file__}:check_one")
     tags = Counter(r[0] for r in results)
-    slowest = int(np.argmax([r[2] for r in results]))
-    print(f"\nsweep of {COUNT} gears (seed {SEED}): {dict(tags)}; "
-          f"total {sum(r[2] for r in results):.1f} s of builds; slowest {results[slowest][2]:.2f} s: {params[slowest]}")
+    print("\n" + summary("external gears", params, results, SEED))
     failures = [(p, r) for p, r in zip(params, results)
                 if not (r[0] in ("ok", "design_error")
                         or (r[0].startswith("geometry_error:") and r[0].split(":")[1] in EXPECTED_GEOMETRY_KINDS))]

@@ -32,7 +32,7 @@ import time
 import warnings
 from pathlib import Path
 
-from geargen.design.gear import GearSpec, gear_from_table
+from geargen.design.gear import CYLINDRICAL_KINDS, FAMILY_READERS, GearSpec, gear_from_table, gear_kinds
 from geargen.errors import DesignError
 from geargen.units import from_mm, to_mm
 
@@ -41,6 +41,9 @@ def add_arguments(p) -> None:
     p.add_argument("design", nargs="?", help="design file (TOML) with a [gear] table, or an assembly file with --gear")
     p.add_argument("--gear", metavar="NAME", help="build [gears.NAME] of an assembly design file")
     g = p.add_argument_group("gear options (instead of a design file)")
+    g.add_argument("--kind", choices=gear_kinds(), default=None,
+                   help="the gear's kind (default external: spur or helical); a kind's own options are listed "
+                        "under it below")
     g.add_argument("--teeth", type=int, help="number of teeth")
     pitch = g.add_mutually_exclusive_group()
     pitch.add_argument("--module", type=float, metavar="MM", help="module in mm (metric design: lengths in mm)")
@@ -65,6 +68,8 @@ def add_arguments(p) -> None:
     g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
                    help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances")
     g.add_argument("--name", default=None, help="part name (default: the design's, or gear_<teeth>)")
+    for kinds, module in _kind_modules().items():
+        module.add_arguments(p.add_argument_group(f"--kind {' / '.join(kinds)} options"))
     p.add_argument("--thickness-allowance", type=float, nargs=2, metavar=("UPPER", "LOWER"), default=None,
                    help="tooth-thickness allowance in um: upper and lower deviation of the normal tooth thickness "
                         "from the zero-backlash tooth (both <= 0, UPPER >= LOWER); the JSON gains the span and "
@@ -96,9 +101,40 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
                 "accuracy_grade": ("--accuracy-grade", None)}
 
 
+#: gear kind -> the module (``geargen.commands.gear_<family>``) of that kind's own options. Such a
+#: module gives ``add_arguments(group)``, ``OPTIONS`` {argparse dest: (flag, design-table key stem,
+#: whether the value is a length in the pitch system's unit)} and ``COMMON``, the dests of
+#: :data:`GEAR_OPTIONS` the kind reads (a common option the kind does not read is refused).
+#: Options map to the kind's design-table keys, so a command line and a ``[gear]`` table are
+#: read by the same reader.
+KIND_OPTIONS: dict[str, str] = {}
+
+
+def _kind_modules() -> dict[tuple[str, ...], object]:
+    """Each kind-options module once, with the kinds it serves."""
+    import importlib
+    by_module: dict[str, list[str]] = {}
+    for kind, module in KIND_OPTIONS.items():
+        by_module.setdefault(module, []).append(kind)
+    return {tuple(kinds): importlib.import_module(m) for m, kinds in by_module.items()}
+
+
+def _kind_option_table() -> dict[str, tuple]:
+    """argparse dest -> (flag, key stem, is_length, kinds that take it) of every kind's own option."""
+    out: dict[str, tuple] = {}
+    for kinds, module in _kind_modules().items():
+        for dest, (flag, key, is_length) in module.OPTIONS.items():
+            out[dest] = (flag, key, is_length, out.get(dest, (None, None, None, ()))[3] + kinds)
+    return out
+
+
 def _given(args) -> list[str]:
-    """The flags of the gear options given on the command line."""
-    return [flag for dest, (flag, _) in GEAR_OPTIONS.items() if getattr(args, dest, None) is not None]
+    """The flags of the gear options given on the command line (the kind's own ones too)."""
+    given = [flag for dest, (flag, _) in GEAR_OPTIONS.items() if getattr(args, dest, None) is not None]
+    given += [row[0] for dest, row in _kind_option_table().items() if getattr(args, dest, None) is not None]
+    if getattr(args, "kind", None) is not None:
+        given.append("--kind")
+    return given
 
 
 def _option(args, dest):
@@ -114,6 +150,11 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
             "accuracy_grade": "--accuracy-grade"}
     if key in base:
         return base[key]
+    if key == "kind":
+        return "--kind"
+    for dest, (flag, stem, is_length, kinds) in _kind_option_table().items():
+        if key == stem or (is_length and key.rsplit("_", 1)[0] == stem):
+            return flag
     for stem, flag in (("face_width", "--face-width"), ("bore_diameter", "--bore"),
                        ("thinning_circumferential", "--thinning")):
         if key.startswith(stem):
@@ -147,16 +188,32 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
         if unknown:
             raise DesignError(unknown[0], "unknown key or section in a gear design file", "[gear]")
         return gear_from_table(data["gear"], where="gear", name=args.name or Path(args.design).stem), None
-    if args.teeth is None or (args.module is None and args.diametral_pitch is None):
+    kind = args.kind or "external"
+    table = _kind_table(args, kind, flags_given)
+    if args.module is None and args.diametral_pitch is None:
+        raise DesignError("--module", "give a design file, or --module or --diametral-pitch (and the gear's options)")
+    if kind in CYLINDRICAL_KINDS and args.teeth is None:
         raise DesignError("--teeth", "give a design file, or --teeth and --module or --diametral-pitch")
     unit = "mm" if args.module is not None else "in"
-    table = {"teeth": args.teeth, "pitch_system": _option(args, "pitch_system"),
-             "pressure_angle_deg": _option(args, "pressure_angle"), "helix_angle_deg": _option(args, "helix_angle"),
-             "hand": _option(args, "hand"), "profile_shift": _option(args, "profile_shift")}
+    if kind in CYLINDRICAL_KINDS:
+        table.update({"pitch_system": _option(args, "pitch_system"), "pressure_angle_deg": _option(args, "pressure_angle"),
+                      "helix_angle_deg": _option(args, "helix_angle"), "hand": _option(args, "hand"),
+                      "profile_shift": _option(args, "profile_shift")})
+    else:  # another family's reader takes only what was given, with its own defaults
+        for dest, key in (("pitch_system", "pitch_system"), ("pressure_angle", "pressure_angle_deg"),
+                          ("helix_angle", "helix_angle_deg"), ("hand", "hand"), ("profile_shift", "profile_shift")):
+            if getattr(args, dest) is not None:
+                table[key] = getattr(args, dest)
+    if args.teeth is not None:
+        table["teeth"] = args.teeth
     if args.module is not None:
         table["module_mm"] = args.module
     else:
         table["diametral_pitch_per_in"] = args.diametral_pitch
+    for dest, (flag, key, is_length, kinds) in _kind_option_table().items():
+        value = getattr(args, dest, None)
+        if value is not None:
+            table[f"{key}_{unit}" if is_length else key] = value
     for key, plain, mm, inch in (("face_width", args.face_width, args.face_width_mm, args.face_width_in),
                                  ("bore_diameter", args.bore, args.bore_mm, args.bore_in)):
         given = [(u, v) for u, v in ((unit, plain), ("mm", mm), ("in", inch)) if v is not None]
@@ -164,19 +221,35 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
             raise DesignError(f"--{key.replace('_', '-')}", "given more than once", "one of LEN, -mm, -in")
         if given:
             table[f"{key}_{given[0][0]}"] = given[0][1]
-    if "face_width_mm" not in table and "face_width_in" not in table:
+    if kind in CYLINDRICAL_KINDS and "face_width_mm" not in table and "face_width_in" not in table:
         raise DesignError("--face-width", "missing", "--face-width, --face-width-mm or --face-width-in")
     if args.thinning:
         table[f"thinning_circumferential_{unit}"] = args.thinning
     if args.accuracy_grade is not None:
         table["accuracy_grade"] = args.accuracy_grade
-    name = args.name or f"gear_{args.teeth}"
+    name = args.name or (f"gear_{args.teeth}" if kind == "external" else f"{kind}_{args.teeth}" if args.teeth else kind)
     try:
         return gear_from_table(table, where="options", name=name, length_unit=unit), None
     except DesignError as exc:
         if not exc.field.startswith("options."):
             raise
         raise DesignError(_flag_of_key(exc.field.split(".", 1)[1], table, flags_given), exc.problem, exc.allowed) from None
+
+
+def _kind_table(args, kind: str, flags_given: list[str]) -> dict:
+    """The start of the options' design table for ``kind``: its ``kind`` key, after refusing the
+    options that do not apply to it (another kind's own option, or a common option it does not read)."""
+    for dest, (flag, key, is_length, kinds) in _kind_option_table().items():
+        if getattr(args, dest, None) is not None and kind not in kinds:
+            raise DesignError(flag, f"does not apply to --kind {kind}", f"--kind {' or '.join(kinds)}")
+    if kind in FAMILY_READERS:
+        module = dict((k, m) for ks, m in _kind_modules().items() for k in ks).get(kind)
+        common = getattr(module, "COMMON", ())
+        for dest, (flag, _) in GEAR_OPTIONS.items():
+            if getattr(args, dest, None) is not None and dest not in common:
+                raise DesignError(flag, f"does not apply to --kind {kind}",
+                                  ", ".join(GEAR_OPTIONS[d][0] for d in common) or "the kind's own options")
+    return {} if kind == "external" else {"kind": kind}
 
 
 def assembly_gear(design, name: str, layout=None) -> tuple[GearSpec, str]:
@@ -250,30 +323,34 @@ def run(args) -> int:
                           overwrite=args.overwrite, flag="--out" if args.out else "output folder")
     output.prepare()  # refused or unwritable: said before the gear is built
     try:
-        target = _write_gear(args, spec, thinning_source, output, allowance, layout)
+        target, names = _write_gear(args, spec, thinning_source, output, allowance, layout)
     except BaseException:
         output.discard()
         raise
-    names = [f"{spec.name}.step"] + ([] if args.no_stl else [f"{spec.name}.stl"]) + [f"{spec.name}.json"]
-    if not args.no_drawing:
-        names += [f"{spec.name}-drawing.svg", f"{spec.name}-drawing.pdf", f"{spec.name}.dxf"]
     for name in names:
         print(target / name)
     return 0
 
 
-def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allowance=None, layout=None) -> Path:
-    """Build the gear and write its files into ``output``'s folder; returns the target, committed.
-    A gear of a resolved drive (``layout``) gets the drive's gear data, as the build's drawings."""
+def _drawn(spec) -> bool:
+    """Whether the manufacturing drawing and DXF are made for this gear's kind."""
+    return isinstance(spec, GearSpec) and spec.kind == "external"
+
+
+def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
+                layout=None) -> tuple[Path, list[str]]:
+    """Build the gear and write its files into ``output``'s folder; returns the target, committed,
+    and the names written. A gear of a resolved drive (``layout``) gets the drive's gear data, as the
+    build's drawings."""
     from geargen import __version__
     from geargen.cad.export import export_step, export_stl, update_manifest, write_json
-    from geargen.cad.gear_solid import build_gear
+    from geargen.cad.families import build_part
     from geargen.profile.tooth import UndercutWarning
 
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", UndercutWarning)
         t0 = time.perf_counter()
-        solid = build_gear(spec, check=True)
+        solid = build_part(spec, check=True)
         t_build = time.perf_counter() - t0
     for w in caught:
         print(f"geargen gear: warning: {w.message}", file=sys.stderr)
@@ -284,17 +361,23 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allow
     if layout is not None:
         from geargen.pipeline import drive_gear_data
         data = drive_gear_data(layout, spec, solid.profile, allowance)
-    else:
+    elif isinstance(spec, GearSpec):
         from geargen.model.gear_data import gear_data
         data = gear_data(spec, solid.profile, allowance)
         if thinning_source is not None:
             data["thinning_source"] = thinning_source
+    else:
+        from geargen.model.gear_data import family_data
+        data = family_data(spec, solid)
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]
     if args.measure:
+        if not _drawn(spec):
+            raise DesignError("--measure", f"measures external gears only, not --kind {getattr(spec, 'kind', '?')}",
+                              "an external gear")
         data["measured"] = _measure(solid, data)
     drawn = {}
-    if not args.no_drawing:
+    if not args.no_drawing and _drawn(spec):
         from geargen.report.drawing import gear_drawings
         data.setdefault("mating_gears", [])  # a drive's gear has its mates already
         drawn = gear_drawings(data, solid.profile, out, spec.name, output.source,
@@ -310,7 +393,7 @@ def _write_gear(args, spec: GearSpec, thinning_source: str | None, output, allow
         manifest["files"][path.name] = {"format": path.suffix.lstrip("."), "length_unit": spec.length_unit,
                                         "bytes": path.stat().st_size}
     write_json(manifest_path, manifest)
-    return output.commit()
+    return output.commit(), [r.path.name for r in records] + [data_file.name] + [p.name for p in drawn.values()]
 
 
 def _measure(solid, data) -> dict:

@@ -37,6 +37,13 @@ DEG = math.pi / 180.0
 
 HANDS = ("right", "left")
 
+#: gear kinds a :class:`GearSpec` describes (cylindrical involute gears); ``double_helical`` is two
+#: helical halves of opposite hand
+CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
+#: the other kinds a ``[gear]``/``[gears.NAME]`` table may name -> "module:function" reading the table
+#: into that family's spec (same signature as :func:`gear_from_table`); each family registers itself
+FAMILY_READERS: dict[str, str] = {}
+
 #: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
 #: its formulas and rounding could not be established from a citable source; inch designs use ISO)
 ISO_1328 = "ISO 1328-1:2013"
@@ -120,8 +127,11 @@ class GearSpec:
     length_unit: str = "mm"  # the unit the design was written in; reports and exports use it
     accuracy_grade: int | None = None  # flank tolerance class of accuracy_standard; None: not specified
     accuracy_standard: str | None = None  # None with a grade: ISO 1328-1:2013
+    kind: str = "external"  # one of CYLINDRICAL_KINDS
 
     def __post_init__(self):
+        if self.kind not in CYLINDRICAL_KINDS:
+            raise DesignError("kind", f"{self.kind!r} is not a cylindrical gear kind", ", ".join(map(repr, CYLINDRICAL_KINDS)))
         _check("teeth", self.teeth, 4, 2000, "")
         if not isinstance(self.teeth, int):
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
@@ -256,7 +266,15 @@ def _check(name: str, value, lo: float, hi: float, unit: str, exclusive_lo: bool
         raise DesignError(name, f"{value!r} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())
 
 
+def gear_kinds() -> tuple[str, ...]:
+    """Every gear kind a design table may name."""
+    return CYLINDRICAL_KINDS + tuple(FAMILY_READERS)
+
+
 GEAR_FIELDS: list[Field] = [
+    Field("kind", "string", required=False, default="external", choices=CYLINDRICAL_KINDS,
+          help="the gear's kind: external (spur or helical), internal (a ring), double_helical (two helical halves "
+               "of opposite hand); the other families have their own tables"),
     Field("name", "string", required=False, default=None,
           help="the gear's name in reports and exports (default: the table's name)"),
     Field("teeth", "integer", minimum=4, maximum=2000, help="number of teeth"),
@@ -378,7 +396,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
-                  accuracy_standard=v["accuracy_standard"])
+                  accuracy_standard=v["accuracy_standard"], kind=v["kind"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
@@ -419,5 +437,5 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
+__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

@@ -13,6 +13,24 @@ from geargen.errors import GeargenError
 from geargen.units import from_mm
 
 
+#: gear kind (of the families that are not a GearSpec) -> "module:function" taking ``(spec)`` and
+#: returning that gear's data as a dict in its length unit (the keys of the gear-data contract that
+#: apply, with the same meaning, and the family's own); each family registers itself
+FAMILY_DATA: dict[str, str] = {}
+
+
+def family_data(spec, solid=None) -> dict:
+    """The gear data of a spec of another family (rack, bevel, worm, ...), by its kind's function in
+    :data:`FAMILY_DATA`. ``solid`` (its built solid) is accepted so that a caller need not know
+    which families read it; the registered functions read the spec only."""
+    import importlib
+    kind = getattr(spec, "kind", None)
+    if kind not in FAMILY_DATA:
+        raise GeargenError(f"no gear data for kind {kind!r}")
+    module, function = FAMILY_DATA[kind].split(":")
+    return getattr(importlib.import_module(module), function)(spec)
+
+
 def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
     """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit, and
     the ``accuracy`` block of its grade's tolerances (um) when it has one.

@@ -1,0 +1,33 @@
+"""One entry point to build any gear kind's solid: :func:`build_part`.
+
+Cylindrical involute gears (:class:`geargen.design.gear.GearSpec`: external, and the kinds each
+family registers) and the other families' specs (racks, bevel gears, worms, worm wheels) each
+have their own builder module; :data:`BUILDERS` maps a kind to ``"module:function"`` taking
+``(spec, check=False)`` and returning an object with ``shape``, ``name``, ``spec`` and
+``length_unit`` (a :class:`geargen.cad.gear_solid.GearSolid` or the family's own).
+"""
+
+from __future__ import annotations
+
+import importlib
+
+#: kind -> "module:function" building that kind's solid
+BUILDERS: dict[str, str] = {
+    "external": "geargen.cad.gear_solid:build_gear",
+}
+
+
+def part_kind(spec) -> str:
+    """The kind of a gear spec: its ``kind`` attribute (every family spec has one)."""
+    return getattr(spec, "kind", "external")
+
+
+def build_part(spec, check: bool = False):
+    """Build ``spec``'s solid with its kind's builder; ``check`` validates it (BuildError if not one
+    valid closed solid)."""
+    kind = part_kind(spec)
+    if kind not in BUILDERS:
+        from geargen.errors import DesignError
+        raise DesignError("kind", f"{kind!r} has no solid builder", ", ".join(map(repr, BUILDERS)))
+    module, function = BUILDERS[kind].split(":")
+    return getattr(importlib.import_module(module), function)(spec, check=check)
