@@ -191,7 +191,14 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         from geargen.design.validate import validate_sections  # it reads the sections with their own modules
 
         for gname, spec in gears.items():
-            problems.run(_check_gear_tooth, gname, spec, gear_tables[gname], defaults, unit)
+            if isinstance(spec, GearSpec):  # the other families check their teeth in their readers
+                problems.run(_check_gear_tooth, gname, spec, gear_tables[gname], defaults, unit)
+        if design.section("layout") or design.section("synthesis"):
+            for gname, spec in gears.items():
+                if getattr(spec, "kind", "external") != "external":
+                    problems.add(DesignError(f"gears.{gname}.kind", f"{spec.kind!r}: the drives geargen places "
+                                             "([layout] dual_pinion, split_pinion) are of external gears",
+                                             "'external', or the gear in its own design file"))
         validate_sections(design, problems, len(gears) == len(gear_tables), tuple(gear_tables))
     problems.raise_any(path.name if path else None)
     return design

@@ -167,6 +167,11 @@ def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) ->
                 raise DesignError("checks.meshes", f"{g!r} is not a gear of this design", ", ".join(design.gears))
         if m[0] == m[1]:
             raise DesignError("checks.meshes", f"{m[0]!r} cannot mesh with itself", "two different gears")
+        for g in m:
+            kind = getattr(design.gears[g], "kind", "external")
+            if kind != "external":  # the declared-pair checker measures two external outlines
+                raise DesignError("checks.meshes", f"{g!r} is a gear of kind {kind!r}; declared pairs are of "
+                                  "external gears", "pairs of external gears")
     if len(centre_raw) != 1:
         raise DesignError("checks.centre_distance_mm", "missing" if not centre_raw else "given twice",
                           "one of " + ", ".join(_CENTRE_KEYS))
