@@ -31,7 +31,7 @@ from OCP.TopoDS import TopoDS_Shape
 
 from geargen.cad.gear_solid import _single_solid, check_solid, solid_volume
 from geargen.core.rack import RackOutline, rack_outline
-from geargen.design.rack import RackSpec
+from geargen.design.rack import ZERO_SEGMENT, RackSpec
 from geargen.errors import BuildError
 
 
@@ -61,6 +61,9 @@ def section_segments(spec: RackSpec, outline: RackOutline, first_space: int, las
     n = len(half) // 2
     left, right = half[:n], half[n:]  # left: tooth centre -> space centre; right: space centre -> tooth centre
     pitch = right + [_shift(seg, p) for seg in left]  # space centre -> next space centre
+    # a land or flank of zero length (a full-radius form, see RackSpec) has no edge
+    shortest = ZERO_SEGMENT * spec.module * 2
+    pitch = [seg for seg in pitch if seg[0] == "arc" or math.dist(seg[1], seg[2]) > shortest]
     out: list[tuple] = []
     for k in range(first_space, last_space):
         for seg in pitch:

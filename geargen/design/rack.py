@@ -44,6 +44,11 @@ from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitc
 #: cannot reach the pinion's generated (trochoidal) root: no trochoid interference by construction.
 TIP_ROUNDINGS = ("sharp", "generating")
 
+#: lands and flanks the arcs leave shorter than this (over the module) and longer than ZERO_SEGMENT
+#: are refused; up to ZERO_SEGMENT they are the full-radius form, built without them
+SHORTEST_SEGMENT = 1e-5
+ZERO_SEGMENT = 1e-9
+
 #: ISO 53:1998 basic rack profile A: root fillet radius 0.38 m (also the default generating tip radius)
 ISO53_FILLET = 0.38
 
@@ -123,9 +128,28 @@ class RackSpec:
                                min(ISO53_FILLET, self.max_root_fillet_coefficient(self.tip_radius_coefficient)))
         _check("root_fillet_coefficient", self.root_fillet_coefficient, 0.0,
                self.max_root_fillet_coefficient(self.tip_radius_coefficient), "")
+        self._check_short_segments()
         _check("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True)
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
+
+    def _check_short_segments(self) -> None:
+        """A land or flank that the arcs leave shorter than SHORTEST_SEGMENT modules but not zero
+        cannot be built (edges below the kernel's tolerance): refused, naming the radius. Zero
+        (within ZERO_SEGMENT modules) is the full-radius form and is built without that segment."""
+        t = corner_tangent_length(self.pressure_angle)
+        m = self.module
+        flank = (self.addendum + self.dedendum) / math.cos(self.pressure_angle)
+        for name, length, radius in (
+                ("root_fillet_coefficient", 2 * (self.root_space_half_width - self.root_fillet_radius * t),
+                 "root_fillet_coefficient"),
+                ("tip_radius_coefficient", 2 * (self.tip_land_half_width - self.tip_radius * t), "tip_radius_coefficient"),
+                ("root_fillet_coefficient", flank - (self.tip_radius + self.root_fillet_radius) * t, "")):
+            if ZERO_SEGMENT * m < length < SHORTEST_SEGMENT * m:
+                what = {"root_fillet_coefficient": "root land", "tip_radius_coefficient": "tip land"}.get(radius, "flank")
+                value = getattr(self, name)
+                raise DesignError(name, f"{value!r} leaves a {what} of {length:.3g} mm, too short to build",
+                                  f"a {what} of 0 (the largest radius) or of at least {SHORTEST_SEGMENT:g} modules")
 
     # --- closed-form basics (the pair geometry lives in geargen.core.rack)
     @property
