@@ -184,8 +184,12 @@ class RackPinionGeometry:
     ``path_of_contact``: length on the line of action (transverse), approach (rack tip side) plus
     recess (pinion tip side). ``interference``: named problems of the pair's closed form
     (``involute`` when the rack's straight flank reaches past the pinion's base-circle
-    tangent point - the pinion undercut the rack would cut - , ``pinion_tip_vs_rack_root``,
-    ``rack_tip_vs_pinion_root`` for a tip clearance below zero).
+    tangent point - the pinion undercut the rack would cut; the approach is then counted up to
+    that point only, an upper bound, as the undercut pinion's involute starts above it - ,
+    ``pinion_tip_vs_rack_root``, ``rack_tip_vs_pinion_root`` for a tip clearance below zero).
+    ``contact_ratio_transverse``: path of contact over the transverse base pitch, the rack's part
+    ending where its straight flank meets its tip arc; ``contact_ratio_overlap``:
+    ``b sin(beta) / (pi m_n)`` over the narrower face.
     """
 
     centre_offset: float

@@ -326,6 +326,13 @@ def rack_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                           "thinning_circumferential_* or thinning_normal_*")
     thinning = (v["thinning_normal"] / math.cos(beta) if v["thinning_normal"] is not None
                 else v["thinning_circumferential"] or 0.0)
+    most = pitch_t / 4  # RackSpec's limit: a quarter of the transverse pitch
+    if thinning > most:
+        kind = "thinning_normal" if v["thinning_normal"] is not None else "thinning_circumferential"
+        factor = math.cos(beta) if kind == "thinning_normal" else 1.0
+        scale = LENGTH_SUFFIXES[units[kind]]
+        raise DesignError(f"{p}{kind}_{units[kind]}", f"{thinning * factor / scale:.6g} {units[kind]} is out of range",
+                          f"[0, {most * factor / scale:.6g}] {units[kind]} (a quarter of the pitch)")
     if v["pitch_line_height"] is not None and v["back_height"] is not None:
         raise DesignError(p + "back_height", "give at most one of pitch_line_height and back_height",
                           "pitch_line_height_* or back_height_*")

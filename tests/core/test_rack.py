@@ -142,6 +142,9 @@ def test_table_reader_and_its_errors():
     with pytest.raises(DesignError) as e:
         rack_from_table({**t, "thinning_circumferential_mm": 2.0})
     assert e.value.field == "gear.thinning_circumferential_mm"
+    with pytest.raises(DesignError) as e:  # normal: a quarter of the normal pitch, pi m / 4 = 1.5708 mm at 0 deg
+        rack_from_table({**t, "thinning_normal_mm": 2.0, "helix_angle_deg": 30})
+    assert e.value.field == "gear.thinning_normal_mm" and e.value.allowed.startswith("[0, 1.5708]")
     with pytest.raises(DesignError) as e:
         rack_from_table({**t, "back_height_mm": 2, "pitch_line_height_mm": 9})
     assert e.value.field == "gear.back_height"
