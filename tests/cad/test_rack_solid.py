@@ -122,3 +122,53 @@ def test_rack_design_file_and_option_errors(tmp_path, capsys):
     assert main(["gear", "--kind", "rack", "--module", "2", "--teeth", "10", "--face-width", "5",
                  "--tip-radius-coefficient", "0.9", "--tip-rounding", "generating", "--out", str(tmp_path / "z")]) == 2
     assert "--tip-radius-coefficient" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("hand", ["right", "left"])
+def test_helical_rack_teeth_follow_the_pinion_of_its_hand(hand):
+    """The rack's hand is its pinion's: measured on the solid, a flank's crossing of the pitch line
+    moves along the rack between the sections z = 0.1 b and 0.9 b by exactly what the pinion of the
+    same hand (geargen.profile.section_rotation: its sections turn counter-clockwise for a right
+    hand) carries its lowest tooth's pitch point, r * rotation, so the rack rolls with the pinion
+    in every section. Crossing found by bisection on the section's flank points."""
+    from geargen.design.gear import GearSpec
+    from geargen.profile import section_rotation
+
+    beta = math.radians(25)
+    spec = RackSpec(teeth=6, module=2.0, pressure_angle=A20, face_width=16.0, pitch_line_height=9.0,
+                    helix_angle=beta, hand=hand)
+    pinion = GearSpec(teeth=15, module=2.0, pressure_angle=A20, face_width=16.0, helix_angle=beta, hand=hand)
+    rack = build_rack(spec)
+
+    def crossing(z):
+        """x where the right flank of the space nearest x = L/2 crosses the pitch line, at height z."""
+        cut = section(rack.shape, z, 64)
+        u = cut.points[:, 1] - spec.pitch_line_height
+        best = None
+        for e in set(cut.edge_index.tolist()):
+            rows = np.nonzero(cut.edge_index == e)[0]
+            pu = u[rows]
+            if pu.min() < 0 < pu.max() and np.ptp(cut.points[rows, 0]) < spec.transverse_pitch / 2:
+                lo, hi = cut.params[rows][np.argmin(pu)], cut.params[rows][np.argmax(pu)]
+                curve = cut.curves[e]
+                for _ in range(80):  # bisection on the face parameter for height = pitch line
+                    mid = 0.5 * (lo + hi)
+                    if curve.point(mid)[1] - spec.pitch_line_height < 0:
+                        lo = mid
+                    else:
+                        hi = mid
+                x = curve.point(0.5 * (lo + hi))[0]
+                # a right flank of a space leans outward going up: x grows with u
+                rising = (cut.points[rows[np.argmax(pu)], 0] - cut.points[rows[np.argmin(pu)], 0]) > 0
+                if rising and (best is None or abs(x - spec.length / 2) < abs(best - spec.length / 2)):
+                    best = x
+        return best
+
+    z0, z1 = 0.1 * spec.face_width, 0.9 * spec.face_width
+    moved = crossing(z1) - crossing(z0)
+    expected = pinion.reference_radius * (section_rotation(pinion, z1) - section_rotation(pinion, z0))
+    # the nearest space may be another one at z1: equal up to whole transverse pitches
+    pt = spec.transverse_pitch
+    assert abs((moved - expected) - pt * round((moved - expected) / pt)) < 1e-9
+    wrong = moved + expected  # what a rack of the other hand would give: not a whole number of pitches
+    assert abs(wrong - pt * round(wrong / pt)) > 0.1
