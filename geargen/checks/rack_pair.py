@@ -167,7 +167,7 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
     u_grid, k_grid = np.meshgrid(u1, pair.teeth.astype(float))
     ha = rack.addendum
     thetas = np.arange(positions) * outline.pitch / positions
-    cb, cab = math.cos(pinion.base_helix_angle), math.cos(rack.transverse_pressure_angle)
+    cos_bb, cos_at = math.cos(pinion.base_helix_angle), math.cos(rack.transverse_pressure_angle)
 
     tip_line = ha - 1e-9 * rack.module  # a point on the tip line touches it without blocking the travel
 
@@ -193,11 +193,11 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
         a, ka = _extreme(pair, theta, up, below_tips, u_grid, k_grid)
         b, kb = _extreme(pair, theta, down, below_tips, u_grid, k_grid)
         ca, _ = _extreme(pair, theta, up, conjugate, u_grid, k_grid)
-        cb_, _ = _extreme(pair, theta, down, conjugate, u_grid, k_grid)
+        cd, _ = _extreme(pair, theta, down, conjugate, u_grid, k_grid)
         full.append(a + b)
-        conj.append(ca + cb_)
+        conj.append(ca + cd)
         lims.append((ka, kb))
-        shift = 0.5 * (ca - cb_)  # the rack in the middle of its flanks' travel (its running position)
+        shift = 0.5 * (ca - cd)  # the rack in the middle of its flanks' travel (its running position)
 
         def gap(X, Y, shift=shift):
             return Y - pair.rack_top(X - shift)
@@ -212,7 +212,7 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
         c_rack.append(_extreme(pair, theta, gap, over_tip, u_grid, k_grid)[0])
     full, conj = np.array(full), np.array(conj)
     result = RackMeshCheck(mesh_position=thetas, circumferential_backlash=full, conjugate_backlash=conj,
-                           normal_backlash=full * cab * cb, tip_clearance_pinion=np.array(c_pin),
+                           normal_backlash=full * cos_at * cos_bb, tip_clearance_pinion=np.array(c_pin),
                            tip_clearance_rack=np.array(c_rack), limit=lims, geometry=geometry)
     result.failures = _failures(result, rack, pinion, min_backlash)
     return result
@@ -221,8 +221,8 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
 def _failures(res: RackMeshCheck, rack: RackSpec, pinion: GearSpec, min_backlash: float) -> list[Failure]:
     mesh = f"{pinion.name}-{rack.name}"
     out = []
-    for name, values, what in (("pinion", res.tip_clearance_pinion, "the pinion's tip reaches below the rack's root"),
-                               ("rack", res.tip_clearance_rack, "the rack's tip reaches into the pinion's root")):
+    for values, what in ((res.tip_clearance_pinion, "the pinion's tip reaches below the rack's root"),
+                         (res.tip_clearance_rack, "the rack's tip reaches into the pinion's root")):
         if values.min() < -TOLERANCE:
             i = int(np.argmin(values))
             out.append(Failure("tip_to_root_interference", mesh, f"{what} ({values[i] * 1e3:.4g} um)",

@@ -140,16 +140,14 @@ class RackSpec:
         t = corner_tangent_length(self.pressure_angle)
         m = self.module
         flank = (self.addendum + self.dedendum) / math.cos(self.pressure_angle)
-        for name, length, radius in (
-                ("root_fillet_coefficient", 2 * (self.root_space_half_width - self.root_fillet_radius * t),
-                 "root_fillet_coefficient"),
-                ("tip_radius_coefficient", 2 * (self.tip_land_half_width - self.tip_radius * t), "tip_radius_coefficient"),
-                ("root_fillet_coefficient", flank - (self.tip_radius + self.root_fillet_radius) * t, "")):
+        for name, what, length in (
+                ("root_fillet_coefficient", "root land", 2 * (self.root_space_half_width - self.root_fillet_radius * t)),
+                ("tip_radius_coefficient", "tip land", 2 * (self.tip_land_half_width - self.tip_radius * t)),
+                ("root_fillet_coefficient", "flank", flank - (self.tip_radius + self.root_fillet_radius) * t)):
             if ZERO_SEGMENT * m < length < SHORTEST_SEGMENT * m:
-                what = {"root_fillet_coefficient": "root land", "tip_radius_coefficient": "tip land"}.get(radius, "flank")
-                value = getattr(self, name)
-                raise DesignError(name, f"{value!r} leaves a {what} of {length:.3g} mm, too short to build",
-                                  f"a {what} of 0 (the largest radius) or of at least {SHORTEST_SEGMENT:g} modules")
+                raise DesignError(name, f"{getattr(self, name)!r} leaves a {what} of {length:.3g} mm, too short to "
+                                  "build", f"a {what} of 0 (the largest radius) or of at least {SHORTEST_SEGMENT:g} "
+                                  "modules")
 
     # --- closed-form basics (the pair geometry lives in geargen.core.rack)
     @property

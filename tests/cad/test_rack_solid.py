@@ -33,6 +33,8 @@ CASES = {
     "helical_left_generating": dict(helix_angle=math.radians(30), hand="left", tip_rounding="generating",
                                     root_fillet_coefficient=0.2, pressure_angle=math.radians(25)),
     "sharp_root": dict(root_fillet_coefficient=0.0, helix_angle=math.radians(10)),
+    # h_f* = 1.6: ISO 53's 0.38 m fillet does not fit; the default is the full radius (no root land)
+    "full_radius_root": dict(dedendum_coefficient=1.6, helix_angle=math.radians(15)),
 }
 
 
@@ -50,6 +52,9 @@ def bounds(shape) -> tuple[float, ...]:
 @pytest.mark.parametrize("case", list(CASES))
 def test_rack_is_one_valid_solid_of_the_closed_form_volume(case):
     spec = spec_of(case)
+    if case == "full_radius_root":
+        assert spec.root_fillet_coefficient == pytest.approx(spec.max_root_fillet_coefficient(0.0), rel=1e-15)
+        assert spec.root_fillet_coefficient < 0.38
     rack = build_part(spec, check=True)  # through the family registry
     assert check_solid(rack.shape) is None
     # the kernel's volume integration converges to ~1e-12; the closed form is exact

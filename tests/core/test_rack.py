@@ -151,5 +151,11 @@ def test_table_reader_and_its_errors():
     with pytest.raises(DesignError) as e:
         rack_from_table({**t, "pitch_line_height_mm": 2})  # below the root line
     assert e.value.field == "gear.pitch_line_height_mm"
+    full = rack()
+    largest = full.max_root_fillet_coefficient(0.0)
+    assert rack(root_fillet_coefficient=largest).root_fillet_coefficient == largest  # the full radius: no land
+    with pytest.raises(DesignError) as e:  # a land of ~1e-7 mm: below what the kernel can build
+        rack(root_fillet_coefficient=largest * (1 - 1e-7))
+    assert e.value.field == "root_fillet_coefficient" and "root land" in e.value.problem
     inch = rack_from_table({"kind": "rack", "diametral_pitch_per_in": 16, "teeth": 12, "face_width_in": 0.5})
     assert inch.length_unit == "in" and inch.module == pytest.approx(25.4 / 16)
