@@ -42,7 +42,22 @@ HANDS = ("right", "left")
 CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
 #: the other kinds a ``[gear]``/``[gears.NAME]`` table may name -> "module:function" reading the table
 #: into that family's spec (same signature as :func:`gear_from_table`); each family registers itself
-FAMILY_READERS: dict[str, str] = {}
+FAMILY_READERS: dict[str, str] = {
+    "rack": "geargen.design.rack:rack_from_table",
+}
+#: the same kinds -> "module:NAME" of the list of Fields their reader reads (validation, reference docs)
+FAMILY_FIELDS: dict[str, str] = {
+    "rack": "geargen.design.rack:RACK_FIELDS",
+}
+
+
+def family_fields(kind: str):
+    """The Fields of a registered family's table (:data:`FAMILY_FIELDS`), or None for a cylindrical kind."""
+    if kind not in FAMILY_FIELDS:
+        return None
+    import importlib
+    module, name = FAMILY_FIELDS[kind].split(":")
+    return getattr(importlib.import_module(module), name)
 
 #: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
 #: its formulas and rounding could not be established from a citable source; inch designs use ISO)
@@ -340,6 +355,11 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     ``length_unit`` is the design's unit for reports; by default inches for a diametral-pitch
     design and mm for a module design.
     """
+    if isinstance(data, Mapping) and data.get("kind") in FAMILY_READERS:  # another family's table
+        import importlib
+        module, function = FAMILY_READERS[data["kind"]].split(":")
+        return getattr(importlib.import_module(module), function)(data, where=where, name=name,
+                                                                  length_unit=length_unit)
     v = read_table(data, GEAR_FIELDS, where)
     p = f"{where}."
     if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
@@ -437,5 +457,6 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
+__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
+           "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

@@ -78,6 +78,19 @@ meshes = [["pinion", "wheel"]]
 centre_distance_mm = 25.5
 '''
 
+_RACK_EXAMPLE = '''[gears.slide_rack]
+kind = "rack"
+module_mm = 2
+pressure_angle_deg = 20
+helix_angle_deg = 20
+hand = "right"
+teeth = 60
+face_width_mm = 20
+pitch_line_height_mm = 20
+tip_rounding = "generating"
+thinning_circumferential_mm = 0.02
+'''
+
 TABLES: tuple[Table, ...] = (
     Table("Top-level keys", (), "Keys before the first table. Everything is optional.",
           Example("robot_joint.toml", ("",))),
@@ -91,6 +104,12 @@ TABLES: tuple[Table, ...] = (
           "names its gears `input`, `cluster_large`, `cluster_small` and `output` (the paper's gears 1 to 4); "
           "a split pinion `pinion_stiff`, `pinion_compliant` and `output` (or the names its [layout] gives).",
           Example("c_axis.toml", ("gear_defaults", "gears.input")), sections=("gears", "gear_defaults")),
+    Table("[gear] or [gears.NAME] with kind = \"rack\"", ("gears", "NAME"),
+          "A spur or helical gear rack (`geargen gear --kind rack`): straight flanks at the normal pressure angle, "
+          "tip and root lands, root fillets and optionally the generating tip rounding; its length is a whole "
+          "number of transverse pitches. Give exactly one of `module_mm` and `diametral_pitch_per_in`, and one of "
+          "`teeth` and `length_<unit>`.",
+          example_text=_RACK_EXAMPLE, context={"gears": {"NAME": {"kind": "rack"}}}),
     Table("[synthesis]", ("synthesis",),
           "Centre synthesis of a dual-pinion drive (the paper's Eqs. 7-8 and Appendix): where the clusters sit "
           "so that both paths mesh. Backlash B is circumferential, at the reference pitch circles "

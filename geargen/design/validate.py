@@ -41,7 +41,7 @@ from typing import Any, Mapping
 
 from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings
 from geargen.design.export import EXPORT_FIELDS, export_settings
-from geargen.design.gear import GEAR_FIELDS
+from geargen.design.gear import GEAR_FIELDS, family_fields
 from geargen.design.layout import LAYOUT_FIELDS, check_layout, is_split_pinion, layout_settings
 from geargen.design.parts import HARDWARE_FIELDS, check_parts, hardware_of, parts_settings
 from geargen.design.schema import Field, Problems
@@ -179,7 +179,10 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
         return DRIVE_FIELDS, []
     if head in ("gears", "gear_defaults") and len(path) == (2 if head == "gears" else 1):
         # a gear table is read merged with [gear_defaults]: a key is required when neither gives it
-        return GEAR_FIELDS, []
+        table = data.get(head, {}).get(path[1], {}) if head == "gears" else data.get(head, {})
+        kind = table.get("kind") if isinstance(table, Mapping) else None
+        family = family_fields(kind) if isinstance(kind, str) else None  # another family's own table
+        return (family if family is not None else GEAR_FIELDS), []
     if head == "errors" and len(path) == 2:
         required = "synthesis" in data
         return [replace(f, required=required, default=0.0) for f in ERROR_FIELDS], []
