@@ -112,10 +112,14 @@ def free_play(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalPr
     """The pinion's free rotation both ways at mesh position ``phase`` on the exact outlines
     (bisection on the contact, to 1e-13 rad). Raises GeargenError when the pinion already overlaps
     the ring there."""
-    step = step or 2e-4 * pair.pinion.module
+    # 1e-3 m_n apart: between samples the gap to a touching flank is below h^2 / (8 rho), < 0.1 nm
+    step = step or 1e-3 * pair.pinion.module
     material = material or RingMaterial(ring)
     pts = pinion_points(pinion, step)
     z1, z2, a = pair.pinion.teeth, pair.ring.teeth, pair.centre_distance
+    # only the points that a turn of up to one pitch can bring to the ring's teeth
+    reach = np.hypot(*_placed(pts, (a, 0.0), phase).T)
+    pts = pts[reach > ring.tip_radius - pinion.tip_radius * pinion.pitch_angle]
     if _max_depth(material, pts, a, z1, z2, phase, 0.0) >= 0:
         raise GeargenError(f"the pinion overlaps the ring at mesh position {phase!r} rad")
     limits = []
@@ -170,7 +174,8 @@ class InternalCheck:
         return not self.failures
 
     def to_dict(self) -> dict:
-        return {"geometry": self.geometry.to_dict(), "margins": dict(self.margins),
+        margins = {k: (v if math.isfinite(v) else None) for k, v in self.margins.items()}  # None: cannot meet
+        return {"geometry": self.geometry.to_dict(), "margins": margins,
                 "failures": [f.to_dict() for f in self.failures],
                 "tooth_difference": self.geometry.tooth_difference,
                 "minimum_tooth_difference": self.minimum_tooth_difference, "notes": list(self.notes)}

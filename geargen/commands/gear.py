@@ -107,7 +107,9 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
 #: :data:`GEAR_OPTIONS` the kind reads (a common option the kind does not read is refused).
 #: Options map to the kind's design-table keys, so a command line and a ``[gear]`` table are
 #: read by the same reader.
-KIND_OPTIONS: dict[str, str] = {}
+KIND_OPTIONS: dict[str, str] = {
+    "internal": "geargen.commands.gear_internal",
+}
 
 
 def _kind_modules() -> dict[tuple[str, ...], object]:
