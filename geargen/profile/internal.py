@@ -200,7 +200,8 @@ def internal_profile(spec: GearSpec, cutter: int | None = None) -> InternalProfi
     """The exact outline of the ring ``spec`` (kind ``internal``) cut by a shaper cutter of
     ``cutter`` teeth (default: see :func:`cutter_teeth`); raises :class:`GeometryError`.
 
-    Error kinds: ``tip_inside_base`` (the ring's tip circle is inside its base circle: no involute
+    Error kinds: ``cutter_too_thick`` (a standard cutter's tooth does not fit the ring's space),
+    ``thin_rim`` (the rim leaves less than 0.5 m_n outside the cut root circle), ``tip_inside_base`` (the ring's tip circle is inside its base circle: no involute
     there; ISO 21771 requires d_a2 > d_b2), ``cutter_too_large`` (cutter not smaller than the ring by
     2 teeth), ``pointed_cutter`` (the cutter's tip rounding leaves no tip land: lower the rounding
     or the dedendum), ``cutter_interference`` (the cutter's involute cannot reach the ring's tip
@@ -218,7 +219,7 @@ def internal_profile(spec: GearSpec, cutter: int | None = None) -> InternalProfi
         try:
             return _cut_by(spec, z0)
         except GeometryError as exc:
-            if exc.kind not in ("pointed_cutter", "cutter_interference"):
+            if exc.kind not in ("pointed_cutter", "cutter_interference", "cutter_too_thick"):
                 raise
             first_error = first_error or exc
     raise first_error or GeometryError("cutter_too_large", f"no shaper cutter fits a {spec.teeth}-tooth ring")
@@ -246,6 +247,10 @@ def _cut_by(spec: GearSpec, z0: int) -> InternalProfile:
     rb0 = r0 * math.cos(alpha_t)
     s0 = math.pi * m_t / 2
     inv_w = involute(alpha_t) + (e2 - s0) / (2 * (r2 - r0))
+    if inv_w <= 0:
+        raise GeometryError("cutter_too_thick", f"the {z0}-tooth standard cutter's tooth is thicker than the ring's "
+                            f"space ({e2:.4g} mm at the reference circle) at any centre distance: raise the profile "
+                            "shift or the thinning")
     alpha_w = inverse_involute(inv_w)
     a0 = (rb2 - rb0) / math.cos(alpha_w)
     rw0, rw2 = rb0 / math.cos(alpha_w), rb2 / math.cos(alpha_w)
