@@ -221,3 +221,21 @@ def test_pair_command_internal(capsys):
     assert "all checks pass" in out and "tooth difference 10" in out
     assert main(["pair", "--internal", "--teeth", "24", "40", "--module", "1"]) == 1
     assert "involute_interference" in capsys.readouterr().out
+
+
+def test_helical_pair_backlash_on_the_transverse_outlines():
+    """Helical pair (same hand): inv a_wt = inv a_t + 2 tan(a_n) (x2 - x1) / (z2 - z1) with normal
+    shifts, and the play of the transverse outlines equals the closed-form backlash."""
+    beta = math.radians(15)
+    p = pinion(30, 0.1, helix_angle=beta, hand="left")
+    r = ring(42, 0.6, helix_angle=beta, hand="left")
+    g0 = internal_pair_geometry(p, r)
+    alpha_t = p.transverse_pressure_angle
+    assert involute(g0.working_pressure_angle) == pytest.approx(
+        involute(alpha_t) + 2 * math.tan(A20) * 0.5 / 12, rel=1e-12)
+    with pytest.raises(DesignError, match="hand"):
+        internal_pair_geometry(p, ring(42, 0.6, helix_angle=beta, hand="right"))
+    g = internal_pair_geometry(p, r, g0.centre_distance - 0.03)
+    play = free_play(g, tooth_profile(p, warn=False), internal_profile(r), 0.02)
+    assert play.transverse == pytest.approx(g.backlash_transverse, abs=2e-7)
+    assert g.backlash_normal == pytest.approx(g.backlash_transverse * math.cos(p.base_helix_angle))

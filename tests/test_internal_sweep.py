@@ -24,7 +24,7 @@ from sweep_support import run_sweep, summary
 
 COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "100"))
 SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261124"))
-#: teeth log-uniform in [12, MAX_TEETH]: the solid's cost grows with the teeth, the coverage does not
+#: teeth log-uniform in [16, MAX_TEETH]: the solid's cost grows with the teeth, the coverage does not
 MAX_TEETH = int(os.environ.get("GEARGEN_SWEEP_MAX_TEETH", "36"))
 
 #: refusals that are the right answer for rings that cannot be cut (geargen.profile.internal)
@@ -35,9 +35,9 @@ EXPECTED_GEOMETRY_KINDS = {"tip_inside_base", "cutter_too_large", "pointed_cutte
 def random_parameters(rng: np.random.Generator) -> dict:
     helical = rng.random() < 0.5
     return {
-        "teeth": int(round(math.exp(rng.uniform(math.log(12), math.log(MAX_TEETH))))),
+        "teeth": int(round(math.exp(rng.uniform(math.log(16), math.log(MAX_TEETH))))),
         "module": float(math.exp(rng.uniform(math.log(0.1), math.log(8.0)))),
-        "pressure_angle_deg": float(rng.uniform(14.5, 28.0)),
+        "pressure_angle_deg": float(rng.uniform(14.5, 25.0)),
         "helix_angle_deg": float(rng.uniform(5.0, 35.0)) if helical else 0.0,
         "hand": str(rng.choice(["right", "left"])),
         # rings below ~34 teeth need x > h_a* - z (1 - cos a) / 2 to keep the tip outside the base
@@ -45,7 +45,7 @@ def random_parameters(rng: np.random.Generator) -> dict:
         "profile_shift": float(rng.uniform(-0.3, 1.2)),
         "addendum_coefficient": float(rng.uniform(0.6, 1.0)),
         "dedendum_coefficient": float(rng.uniform(1.0, 1.5)),
-        "cutter_tip_fraction": None if rng.random() < 0.5 else float(rng.uniform(0.0, 0.7)),
+        "cutter_tip_fraction": None if rng.random() < 0.5 else float(rng.uniform(0.0, 0.5)),
         "thinning_modules": float(rng.uniform(0.0, 0.05)) if rng.random() < 0.3 else 0.0,
         "face_modules": float(rng.uniform(1.0, 3.0)),
         "rim_modules": None if rng.random() < 0.5 else float(rng.uniform(0.3, 6.0)),
