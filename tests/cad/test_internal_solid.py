@@ -74,3 +74,18 @@ def test_gear_command_writes_a_ring(tmp_path):
     assert data["between_pins"]["dimension"] > 0
     assert main(["gear", "--kind", "internal", "--teeth", "30", "--module", "1", "--face-width", "3",
                  "--bore", "5", "--out", str(tmp_path / "bad")]) != 0
+
+
+def test_gear_design_file_of_a_ring(tmp_path):
+    """``[gear] kind = "internal"`` in a gear design file: the same table keys as an external gear."""
+    import json
+
+    from geargen.cli import main
+    design = tmp_path / "ring.toml"
+    design.write_text('[gear]\nkind = "internal"\nteeth = 36\nmodule_mm = 0.5\npressure_angle_deg = 20\n'
+                      'helix_angle_deg = 12\nhand = "left"\nprofile_shift = 0.4\nface_width_mm = 2\n'
+                      'rim_diameter_mm = 24\n')
+    assert main(["gear", str(design), "--out", str(tmp_path / "out"), "--no-stl"]) == 0
+    data = json.loads((tmp_path / "out" / "ring.json").read_text())
+    assert data["kind"] == "internal" and data["hand"] == "left" and data["rim_diameter"] == 24.0
+    assert "between_pins" not in data  # a helical ring: between-balls is not implemented
