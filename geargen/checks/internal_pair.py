@@ -147,9 +147,10 @@ def free_play(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalPr
 
 def overlap_depth(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalProfile, phases,
                   step: float | None = None) -> np.ndarray:
-    """Deepest pinion outline point inside the ring (mm, negative: apart) at each mesh position,
-    with the pinion centred in its play (turned by half the closed-form backlash's angle off
-    position 0's symmetric phase)."""
+    """Deepest pinion outline point inside the ring (mm, negative: apart) at each mesh position
+    (position 0: pinion tooth 0 centred in ring space 0, so a pair with backlash sits mid-play
+    there; with zero backlash the flanks touch, depth ~0). Sampled ``step`` apart (default
+    2e-3 m_n): an overlap shallower than the sampling's sag can be missed, none is invented."""
     step = step or 2e-3 * pair.pinion.module
     material = RingMaterial(ring)
     pts = pinion_points(pinion, step)
