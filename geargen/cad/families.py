@@ -15,6 +15,7 @@ import importlib
 BUILDERS: dict[str, str] = {
     "external": "geargen.cad.gear_solid:build_gear",
     "rack": "geargen.cad.rack_solid:build_rack",
+    "internal": "geargen.cad.internal_solid:build_internal",
 }
 
 

@@ -62,6 +62,8 @@ FAILURE_KINDS: dict[str, str] = {
                                       "centre-distance tolerance leaves the design range",
     "disengaged_overlap": "a pinion slid out of mesh still overlaps its mate axially",
     "ratio_mismatch": "the exact ratio of the train is not one the design requires",
+    "trochoid_interference": "internal pair: leaving mesh, the pinion's tip corner cuts the ring's tip corner",
+    "radial_assembly_fouling": "internal pair: the pinion cannot be moved into mesh along the line of centres",
 }
 
 #: kinds that are interference (teeth overlapping), in the order they are reported

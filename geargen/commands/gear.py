@@ -109,6 +109,7 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
 #: read by the same reader.
 KIND_OPTIONS: dict[str, str] = {
     "rack": "geargen.commands.gear_rack",
+    "internal": "geargen.commands.gear_internal",
 }
 
 

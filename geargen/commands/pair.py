@@ -3,6 +3,12 @@
     geargen pair --teeth 12 24 --module 3 --profile-shift 0.6 0.36
     geargen pair --teeth 16 48 --diametral-pitch 32 --centre-distance 1.004 --profile-shift 0 0
     geargen pair --teeth 12 60 --module 3 --helix-angle 30 --hand right --face-width 20 --centre-distance 125
+    geargen pair --internal --teeth 16 24 --module 3 --profile-shift 0 0.516
+
+``--internal``: gear 2 is a ring (internal gear, same hand as gear 1) and the pinion meshes inside
+it: prints the internal pair's geometry (:mod:`geargen.core.internal`) and its named checks on the
+exact outlines (:mod:`geargen.checks.internal_pair`: involute, tip and trochoid interference,
+radial-assembly fouling, the minimum tooth difference).
 
 Prints, in the design's unit (mm with ``--module``, inches with ``--diametral-pitch``): the
 diameters of each gear (reference, base, tip, root, working pitch), the standard, working and
@@ -71,6 +77,8 @@ def add_arguments(p) -> None:
                         "N (needs --face-width); below 100 N/mm of face ISO 6336 lowers c' (default: no load "
                         "correction)")
     p.add_argument("--json", metavar="FILE", default=None, help="write the numbers as JSON ('-' for standard output)")
+    p.add_argument("--internal", action="store_true",
+                   help="gear 2 is an internal gear (a ring, same hand as gear 1): internal pair geometry and checks")
 
 
 #: gear-table key (without a unit suffix) -> the option that sets it
@@ -98,7 +106,11 @@ def gears_from_args(args) -> tuple[GearSpec, GearSpec, str]:
     if args.hand is not None and not helical:
         raise DesignError("--hand", "a spur pair has no hand", "--hand only with --helix-angle > 0")
     hand1 = args.hand or "right"
-    hands = (hand1, "left" if hand1 == "right" else "right") if helical else ("right", "right")
+    internal = getattr(args, "internal", False)
+    if internal:
+        hands = (hand1, hand1)  # a pinion and its ring have the same hand
+    else:
+        hands = (hand1, "left" if hand1 == "right" else "right") if helical else ("right", "right")
     shifts = args.profile_shift or (0.0, 0.0)
     thinning = args.thinning or (0.0, 0.0)
     if args.face_width is not None and not (math.isfinite(args.face_width) and args.face_width > 0):
@@ -108,6 +120,8 @@ def gears_from_args(args) -> tuple[GearSpec, GearSpec, str]:
         table = {"teeth": args.teeth[i], "pressure_angle_deg": args.pressure_angle,
                  "helix_angle_deg": args.helix_angle, "hand": hands[i], "profile_shift": shifts[i],
                  f"thinning_circumferential_{unit}": thinning[i]}
+        if internal and i == 1:
+            table["kind"] = "internal"
         if args.dedendum_coefficient is not None:
             table["dedendum_coefficient"] = args.dedendum_coefficient
         if args.module is not None:
@@ -184,10 +198,58 @@ def stiffness_inputs(args) -> tuple[float | None, float | None]:
     return modulus, args.load
 
 
+def run_internal(args, pinion: GearSpec, ring: GearSpec, unit: str) -> int:
+    """``--internal``: the internal pair's geometry and named checks, printed and as JSON."""
+    from geargen.checks.internal_pair import check_internal
+    from geargen.errors import GeometryError
+
+    if pinion.teeth >= ring.teeth:
+        raise DesignError("--teeth", f"the ring ({ring.teeth}) must have more teeth than the pinion ({pinion.teeth})",
+                          "Z1 < Z2")
+    centre = None
+    if args.centre_distance is not None:
+        centre = to_mm(args.centre_distance, unit)
+        least = ring.base_radius - pinion.base_radius
+        if not (math.isfinite(centre) and centre > least):
+            raise DesignError("--centre-distance", f"{args.centre_distance!r} {unit} does not reach the base circles",
+                              f"> {from_mm(least, unit):.6g} {unit}, rb2 - rb1")
+    try:
+        result = check_internal(pinion, ring, centre)
+    except GeometryError as exc:
+        raise DesignError("--profile-shift", f"the pair cannot be made: {exc}", "another shift or tooth count") from None
+    g = result.geometry
+    L = lambda v: from_mm(v, unit)  # noqa: E731
+    lines = [f"internal pair: pinion {pinion.teeth} teeth inside a {ring.teeth}-tooth ring "
+             f"(tooth difference {g.tooth_difference}, the smallest that meshes, assembled axially: {result.minimum_tooth_difference})",
+             f"  working pressure angle (transverse)  {math.degrees(g.working_pressure_angle):.4f} deg",
+             f"  centre distance                      {L(g.centre_distance):.6g} {unit} (zero backlash "
+             f"{L(g.zero_backlash_centre_distance):.6g}, reference {L(g.reference_centre_distance):.6g}, "
+             f"y = {g.centre_distance_modification:.4f})",
+             f"  working diameters                    {L(2 * g.working_radius_pinion):.6g} / "
+             f"{L(2 * g.working_radius_ring):.6g} {unit}",
+             f"  contact ratio                        {g.contact_ratio:.4f} transverse, {g.overlap_ratio:.4f} overlap",
+             f"  backlash                             {L(g.backlash_circumferential):.6g} {unit} circumferential, "
+             f"{L(g.backlash_normal):.6g} {unit} normal",
+             "  checks (margin, positive passes):"]
+    for key, value in result.margins.items():
+        lines.append(f"    {key:34s} {value:.6g}")
+    lines += [f"  FAIL {f.kind}: {f.message}" for f in result.failures] or ["  all checks pass"]
+    from geargen import __version__
+    data = {"generator": "geargen pair", "version": __version__, "kind": "internal", "length_unit": "mm",
+            **result.to_dict()}
+    print("\n".join(lines), file=sys.stderr if args.json == "-" else sys.stdout)
+    if args.json:
+        from geargen.outputs import json_default, write_text
+        write_text(args.json, json.dumps(data, indent=2, allow_nan=False, default=json_default) + "\n", "--json")
+    return 0 if result.ok else 1
+
+
 def run(args) -> int:
     from geargen.report.pair import format_pair, pair_data
 
     gear1, gear2, unit = gears_from_args(args)
+    if getattr(args, "internal", False):
+        return run_internal(args, gear1, gear2, unit)
     centre_distance = check_centre_distance(args, gear1, gear2, unit)
     modulus, load = stiffness_inputs(args)
     if args.profile_shift is not None:

@@ -143,10 +143,14 @@ class GearSpec:
     accuracy_grade: int | None = None  # flank tolerance class of accuracy_standard; None: not specified
     accuracy_standard: str | None = None  # None with a grade: ISO 1328-1:2013
     kind: str = "external"  # one of CYLINDRICAL_KINDS
+    # internal gears only: outer diameter of the ring blank (mm); None: internal_rim_diameter's rule
+    rim_diameter: float | None = None
 
     def __post_init__(self):
         if self.kind not in CYLINDRICAL_KINDS:
             raise DesignError("kind", f"{self.kind!r} is not a cylindrical gear kind", ", ".join(map(repr, CYLINDRICAL_KINDS)))
+        if self.kind != "internal" and self.rim_diameter is not None:
+            raise DesignError("rim_diameter", f"{self.kind} gears have no rim", "only with kind = 'internal'")
         _check("teeth", self.teeth, 4, 2000, "")
         if not isinstance(self.teeth, int):
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
@@ -161,8 +165,11 @@ class GearSpec:
         _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
         rho_max = self.max_rack_tip_radius_coefficient
         if self.rack_tip_radius_coefficient is None:
-            # ISO 53 profile A's 0.38, or the full-radius fillet when 0.38 does not fit the rack
-            object.__setattr__(self, "rack_tip_radius_coefficient", min(0.38, rho_max))
+            # ISO 53 profile A's 0.38, or the full-radius fillet when 0.38 does not fit the rack;
+            # an internal gear's is its shaper cutter's tip radius: 0.2, which leaves a tip land on
+            # cutters of 12 teeth and more (geargen.profile.internal)
+            default = INTERNAL_CUTTER_TIP_RADIUS if self.kind == "internal" else 0.38
+            object.__setattr__(self, "rack_tip_radius_coefficient", min(default, rho_max))
         _check("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
         _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
         if self.thickness_deviations is not None:
@@ -173,11 +180,23 @@ class GearSpec:
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
         self._check_accuracy()
+        if self.kind == "internal":
+            self._check_internal()
         # a root at or below the axis is the profile's "negative_root" error, not a bore problem
         if (self.hub.bore_diameter > 0 and self.root_radius_standard > 0
                 and self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98):
             raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
                               f"< {2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth:.4g} mm")
+
+    def _check_internal(self) -> None:
+        """A ring has no bore, keyway or hub; its rim must enclose the root circle with some wall."""
+        h = self.hub
+        if h.bore_diameter or h.hub_diameter or h.keyway_width:
+            raise DesignError("bore_diameter", "an internal gear has no bore, keyway or hub", "0 (use rim_diameter)")
+        least = 2 * self.root_radius_standard + 2 * MIN_RIM_WALL_MODULES * self.module
+        if self.rim_diameter is None:
+            object.__setattr__(self, "rim_diameter", internal_rim_diameter(self))
+        _check("rim_diameter", self.rim_diameter, least, 100000.0, "mm")
 
     def _check_accuracy(self) -> None:
         """A grade is a whole number of the standard's classes, and the gear lies in the standard's
@@ -249,12 +268,22 @@ class GearSpec:
         return 2 * math.pi * self.reference_radius / math.tan(self.helix_angle)
 
     @property
+    def is_internal(self) -> bool:
+        return self.kind == "internal"
+
+    @property
     def tip_radius(self) -> float:
+        """r + m_n (h_a* + x); internal gear (tips point inward, x > 0 moves the profile outward,
+        ISO 21771 / KHK convention): r - m_n (h_a* - x)."""
+        if self.kind == "internal":
+            return self.reference_radius - self.module * (self.addendum_coefficient - self.profile_shift)
         return self.reference_radius + self.module * (self.addendum_coefficient + self.profile_shift)
 
     @property
     def root_radius_standard(self) -> float:
-        """Root radius cut by the rack: r - m_n (h_f* - x)."""
+        """Root radius cut by the rack: r - m_n (h_f* - x); internal gear: r + m_n (h_f* + x)."""
+        if self.kind == "internal":
+            return self.reference_radius + self.module * (self.dedendum_coefficient + self.profile_shift)
         return self.reference_radius - self.module * (self.dedendum_coefficient - self.profile_shift)
 
     @property
@@ -272,6 +301,20 @@ class GearSpec:
     def thinning_normal(self) -> float:
         """Tooth thinning as normal thickness at the reference cylinder (mm)."""
         return self.thinning * math.cos(self.helix_angle)
+
+
+#: ISO 6336-3 (rim thickness factor Y_B): an internal gear's rim needs s_R >= 3.5 m_n for Y_B = 1
+INTERNAL_RIM_MODULES = 3.5
+#: default tip radius of an internal gear's shaper cutter over m_n
+INTERNAL_CUTTER_TIP_RADIUS = 0.2
+#: the thinnest rim accepted (a ring, not a membrane), in normal modules
+MIN_RIM_WALL_MODULES = 0.5
+
+
+def internal_rim_diameter(spec: GearSpec) -> float:
+    """Default ring blank diameter (mm): root diameter + 2 x 3.5 m_n, the rim thickness from which
+    ISO 6336-3 takes the rim thickness factor Y_B = 1 for internal gears."""
+    return 2 * spec.root_radius_standard + 2 * INTERNAL_RIM_MODULES * spec.module
 
 
 def _check(name: str, value, lo: float, hi: float, unit: str, exclusive_lo: bool = False) -> None:
@@ -340,6 +383,9 @@ GEAR_FIELDS: list[Field] = [
           help="hub diameter (0: no hub; needs a length)"),
     Field("hub_length", "length", required=False, default=0.0, minimum=0.0,
           help="how far the hub stands out beyond one face"),
+    Field("rim_diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="internal gears only: outer diameter of the ring blank (default: root diameter + 7 m_n, the rim "
+               "of ISO 6336-3's Y_B = 1; at least root diameter + 1 m_n)"),
     Field("accuracy_grade", "integer", required=False, default=None, minimum=1, maximum=11,
           help="flank tolerance class of ISO 1328-1:2013 (1 finest .. 11); sets the gear's tolerances and, in "
                "[errors.NAME], its pitch-line eccentricity and tooth-to-tooth TIRs"),
@@ -416,7 +462,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
-                  accuracy_standard=v["accuracy_standard"], kind=v["kind"])
+                  accuracy_standard=v["accuracy_standard"], kind=v["kind"], rim_diameter=v["rim_diameter"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
@@ -457,6 +503,6 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
+__all__ = ["internal_rim_diameter", "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
            "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

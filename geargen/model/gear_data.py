@@ -18,6 +18,7 @@ from geargen.units import from_mm
 #: apply, with the same meaning, and the family's own); each family registers itself
 FAMILY_DATA: dict[str, str] = {
     "rack": "geargen.model.rack_data:rack_data",
+    "internal": "geargen.model.internal_data:internal_gear_data",
 }
 
 
@@ -46,6 +47,8 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
     gear without an accuracy grade gets the ``accuracy`` block of the coarsest grade that holds its
     budget's pitch-line eccentricity and tooth-to-tooth TIRs (what the shop must make it to), with
     ``grade_source`` saying so; a budget finer than grade 1 is a warning, not a made-up grade."""
+    if getattr(spec, "kind", "external") in FAMILY_DATA:  # a GearSpec kind with its own data (a ring)
+        return family_data(spec, None)
     from geargen.core import geometry
     from geargen.core.accuracy import gear_tolerances
     from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness
