@@ -37,13 +37,14 @@ each library's own):
     worm wheel          40T for that worm, face 25
 
 Every build runs in a fresh process (geargen: this script with ``--worker``; a peer:
-make_peer_family.py in the peers' venv), ``--repeat`` times; ``build s`` is the median of the
-runs (the kernel and library import is measured apart: ``import s``, median too), ``STEP s`` the
-median STEP write. The geargen side reads the case's design table with the family's reader
-(geargen.design.gear.gear_from_table, or the reader a family registers in FAMILY_READERS) and
-builds it with geargen.cad.families.build_part, so a family's row works as soon as it registers;
-until then the row says "not in this geargen". ``--table CASE=FILE.toml`` replaces a case's
-table by FILE's ``[gear]`` table (a family whose keys differ from those guessed here).
+make_peer_family.py in the peers' venv), ``--repeat`` times (once when a build takes over
+``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import is
+measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
+reads the case's design table with the family's reader (geargen.design.gear.gear_from_table, or
+the reader a family registers in FAMILY_READERS) and builds it with
+geargen.cad.families.build_part, so a family's row works as soon as it registers; until then the
+row says "not in this geargen". ``--table CASE=FILE.toml`` replaces a case's table by FILE's
+``[gear]`` table (a family whose keys differ from those guessed here).
 
 The same checks for every STEP, in this process after the runs: the last run's file is read back
 (geargen.cad.export.read_step) and checked by geargen.cad.gear_solid.check_solid (one solid,
@@ -171,14 +172,17 @@ def run_json(cmd: list[str], timeout: float) -> dict:
     return json.loads(lines[-1])
 
 
-def repeated(cmd: list[str], repeat: int, timeout: float) -> dict:
-    """Medians over ``repeat`` fresh processes; a failure or refusal ends the series."""
+def repeated(cmd: list[str], repeat: int, timeout: float, slow: float) -> dict:
+    """Medians over ``repeat`` fresh processes; a failure or refusal ends the series, and so does a
+    build slower than ``slow`` seconds (one such run says enough)."""
     runs = []
     for _ in range(repeat):
         r = run_json(cmd, timeout)
         if "failed" in r or "refused" in r:
             return r
         runs.append(r)
+        if r["build_s"] > slow:
+            break
     out = dict(runs[-1])
     for key in ("import_s", "build_s", "step_s"):
         out[key] = statistics.median(r[key] for r in runs)
@@ -208,6 +212,7 @@ def main(argv=None) -> int:
     ap.add_argument("--table", action="append", default=[], metavar="CASE=FILE.toml",
                     help="take CASE's geargen table from FILE's [gear] table")
     ap.add_argument("--timeout", type=float, default=900.0, help="seconds per build process")
+    ap.add_argument("--slow", type=float, default=60.0, help="a build slower than this (s) is not repeated")
     ap.add_argument("--worker", nargs=2, default=None, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.worker:
@@ -237,11 +242,11 @@ def main(argv=None) -> int:
         else:
             target = out / f"{slug}-geargen.step"
             results["geargen"] = dict(repeated([sys.executable, __file__, "--worker", json.dumps(table), str(target)],
-                                               args.repeat, args.timeout), path=target)
+                                               args.repeat, args.timeout, args.slow), path=target)
         for peer in case.peers if args.peers else ():
             target = out / f"{slug}-{peer}.step"
             results[peer] = dict(repeated([args.peers, str(PEER_SCRIPT), case.name, peer, str(target)], args.repeat,
-                                          args.timeout), path=target)
+                                          args.timeout, args.slow), path=target)
         for source, r in results.items():
             if "failed" not in r and "refused" not in r:
                 r["valid"], r["volume"] = step_check(r["path"])

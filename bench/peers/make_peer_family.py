@@ -33,7 +33,8 @@ def bd_spur(teeth, module, face, **_):
 def bd_helical(teeth, module, face, helix_deg, **_):
     from bd_warehouse.gear import HelicalGear
     return HelicalGear(module=module, tooth_count=teeth, pressure_angle=20.0, helix_angle=helix_deg, thickness=face,
-                       module_system="normal", addendum=module, dedendum=1.25 * module, align=_bd_align()), "HelicalGear"
+                       module_system="normal", addendum=module, dedendum=1.25 * module,
+                       align=_bd_align()), "HelicalGear"
 
 
 def bd_rack(teeth, module, face, helix_deg=0.0, **_):
