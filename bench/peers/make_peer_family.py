@@ -78,11 +78,12 @@ def pgw_helical(teeth, module, face, helix_deg, herringbone=False, **_):
 def pgw_ring(teeth, module, face, helix_deg=0.0, **_):
     pgw = _pgw()
     # a ring's "addendum" is py_gearworks' depth outward of the pitch circle: 1.25 m space, 1 m tooth
-    # (checked: a 60T m1 ring's innermost vertex is at r - 1.0 m = 29 mm)
+    # (checked: a 60T m1 ring's innermost vertex is at r - 1.0 m = 29 mm); the rims are py_gearworks'
+    # (outer radius r + 2.5 m spur, r + 2 m_t helical, read off the STEP bounding boxes)
     if helix_deg:
         gear = pgw.HelicalRingGear(number_of_teeth=teeth, module=module, height=face, helix_angle=helix_deg * DEG,
                                    addendum_coefficient=1.25, dedendum_coefficient=1.0)
-        return gear.build_part(), "HelicalRingGear, rim r + 2.5 m"
+        return gear.build_part(), "HelicalRingGear, rim r + 2 m_t (no rim option)"
     gear = pgw.SpurRingGear(number_of_teeth=teeth, module=module, height=face, addendum_coefficient=1.25,
                             dedendum_coefficient=1.0)
     return gear.build_part(), "SpurRingGear, rim r + 2.5 m"
@@ -93,9 +94,9 @@ def pgw_rack(teeth, module, face, helix_deg=0.0, **_):
     if helix_deg:
         rack = pgw.HelicalRack(number_of_teeth=teeth, module=module, height=face, helix_angle=helix_deg * DEG,
                                dedendum_coefficient=1.25)
-        return rack.build_part(), "HelicalRack"
+        return rack.build_part(), "HelicalRack, 1 m below the root (its default)"
     return pgw.InvoluteRack(number_of_teeth=teeth, module=module, height=face,
-                            dedendum_coefficient=1.25).build_part(), "InvoluteRack"
+                            dedendum_coefficient=1.25).build_part(), "InvoluteRack, 1 m below the root (its default)"
 
 
 def pgw_bevel(teeth, mate_teeth, module, face, shaft_deg=90.0, **_):
