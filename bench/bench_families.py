@@ -8,7 +8,7 @@
     python3.11 -m venv /tmp/geargen-peers && /tmp/geargen-peers/bin/pip install -r bench/peers/requirements.txt
 
 never the project's own; without it only geargen is measured. Peer versions (pinned there):
-bd_warehouse 0.4.0 (build123d 0.13.0, OCP 7.9 / cadquery-ocp-novtk 8.0.1.1), py_gearworks 0.0.24,
+bd_warehouse 0.4.0 (build123d 0.13.0 on cadquery-ocp-novtk 8.0.1.1), py_gearworks 0.0.24,
 wormgear 0.0.8 (the last release for Python 3.11; 0.1+ needs 3.12). cq_gears (meadiode) is not on
 PyPI, so it is not a peer here. Which peer builds what (their docs and source):
 
