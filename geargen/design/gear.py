@@ -128,10 +128,14 @@ class GearSpec:
     accuracy_grade: int | None = None  # flank tolerance class of accuracy_standard; None: not specified
     accuracy_standard: str | None = None  # None with a grade: ISO 1328-1:2013
     kind: str = "external"  # one of CYLINDRICAL_KINDS
+    # double_helical only: axial gap between the two halves (mm), a relief groove at the root
+    # diameter; 0 is a herringbone whose flanks meet at the apex
+    centre_gap: float = 0.0
 
     def __post_init__(self):
         if self.kind not in CYLINDRICAL_KINDS:
             raise DesignError("kind", f"{self.kind!r} is not a cylindrical gear kind", ", ".join(map(repr, CYLINDRICAL_KINDS)))
+        self._check_double_helical()
         _check("teeth", self.teeth, 4, 2000, "")
         if not isinstance(self.teeth, int):
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
@@ -163,6 +167,35 @@ class GearSpec:
                 and self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98):
             raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
                               f"< {2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth:.4g} mm")
+
+    def _check_double_helical(self) -> None:
+        """A centre gap belongs to a double-helical gear and leaves both halves some face; a
+        double-helical gear needs a helix (with none it would be a spur gear in two pieces)."""
+        gap = self.centre_gap
+        if self.kind != "double_helical":
+            if gap != 0:
+                raise DesignError("centre_gap", f"{gap!r} mm: only a double_helical gear has a centre gap", "0")
+            return
+        if not (isinstance(gap, (int, float)) and math.isfinite(gap) and 0 <= gap < self.face_width):
+            raise DesignError("centre_gap", f"{gap!r} mm is out of range", f"[0, {self.face_width:.6g}) mm (below the face width)")
+        if not self.helix_angle > 0:
+            raise DesignError("helix_angle", "a double_helical gear needs a helix", "(0, 45] deg")
+
+    @property
+    def half_face_width(self) -> float:
+        """Face width of each helical half of a double-helical gear, (b - gap) / 2 (mm); the whole
+        face width for the other kinds."""
+        if self.kind != "double_helical":
+            return self.face_width
+        return (self.face_width - self.centre_gap) / 2
+
+    @property
+    def half_hands(self) -> tuple[str, ...]:
+        """Hand of each helical half from z = 0 up: a double-helical gear's first half has the
+        spec's hand, the second the other one."""
+        if self.kind != "double_helical":
+            return (self.hand,)
+        return (self.hand, "left" if self.hand == "right" else "right")
 
     def _check_accuracy(self) -> None:
         """A grade is a whole number of the standard's classes, and the gear lies in the standard's
@@ -295,6 +328,9 @@ GEAR_FIELDS: list[Field] = [
     Field("hand", "string", required=False, default="right", choices=HANDS, help="hand of the helix (helical gears)"),
     Field("face_width", "length", minimum=0.0, exclusive_minimum=True, maximum=5000.0,
           help="face width along the axis"),
+    Field("centre_gap", "length", required=False, default=0.0, minimum=0.0,
+          help="double_helical only: axial gap between the two helical halves, a relief groove at the root "
+               "diameter (0: a herringbone, the halves' flanks meeting at the apex; < face_width)"),
     Field("profile_shift", "number", required=False, default=0.0, minimum=-1.5, maximum=1.5,
           help="profile shift coefficient x (shift over the module), in the pitch system given"),
     Field("addendum_coefficient", "number", required=False, default=1.0, minimum=0.3, maximum=1.5,
@@ -396,7 +432,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
-                  accuracy_standard=v["accuracy_standard"], kind=v["kind"])
+                  accuracy_standard=v["accuracy_standard"], kind=v["kind"], centre_gap=v["centre_gap"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
