@@ -155,21 +155,22 @@ def test_gap_measured_on_the_solid(gapped, apex):
     assert plane_heights(apex.shape) == pytest.approx([-apex.spec.hub.hub_length, 0.0, apex.spec.face_width], abs=1e-9)
 
 
-def test_registered_builder_and_exports(gapped, tmp_path):
+def test_registered_builder_and_exports(tmp_path):
     from geargen.cad.export import export_step, export_stl, read_step, read_stl
     from geargen.profile.tessellate import mesh_volume
 
-    g = build_part(gapped.spec, check=True)
-    assert solid_volume(g.shape) == pytest.approx(solid_volume(gapped.shape), rel=1e-12)
+    spec = herringbone(gap=1.0, teeth=9, face=6.0)  # small: the export's time is not what is tested
+    g = build_part(spec, check=True)
+    assert solid_volume(g.shape) == pytest.approx(expected_volume(spec, g.profile), rel=1e-6)
     export_step([g], tmp_path / "dh.step")
     step = read_step(tmp_path / "dh.step")
     assert solid_volume(step.shape) == pytest.approx(solid_volume(g.shape), rel=1e-6)
-    record = export_stl(g, tmp_path / "dh.stl", chordal_tolerance=1e-3)
+    record = export_stl(g, tmp_path / "dh.stl", chordal_tolerance=5e-3)
     tri = read_stl(tmp_path / "dh.stl")
     props = GProp_GProps()
     BRepGProp.SurfaceProperties_s(g.shape, props)
-    # every triangle within 1 um of the surface: the volumes differ by at most area x 1 um
-    assert abs(mesh_volume(tri) - solid_volume(g.shape)) <= props.Mass() * 1e-3
+    # every triangle within 5 um of the surface: the volumes differ by at most area x 5 um
+    assert abs(mesh_volume(tri) - solid_volume(g.shape)) <= props.Mass() * 5e-3
     assert record.triangles == len(tri)
 
 
