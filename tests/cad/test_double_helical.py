@@ -186,3 +186,16 @@ def test_spec_refusals():
     assert err.value.field == "helix_angle"
     assert herringbone(gap=4.0).half_face_width == pytest.approx(5.0)
     assert herringbone(hand="left").half_hands == ("left", "right")
+
+
+def test_command_builds_a_double_helical_gear(tmp_path):
+    """geargen gear --kind double_helical ... --centre-gap: STEP and the gear data with gap and hands."""
+    import json
+
+    from geargen.cli import main
+    rc = main(["gear", "--kind", "double_helical", "--teeth", "9", "--module", "1", "--helix-angle", "30",
+               "--hand", "left", "--face-width", "6", "--centre-gap", "1", "--no-stl", "--out", str(tmp_path / "o")])
+    assert rc == 0
+    data = json.loads((tmp_path / "o" / "double_helical_9.json").read_text())
+    assert data["double_helical"] == {"centre_gap": 1.0, "half_face_width": 2.5, "half_hands": ["left", "right"]}
+    assert (tmp_path / "o" / "double_helical_9.step").stat().st_size > 0
