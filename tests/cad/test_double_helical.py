@@ -159,7 +159,7 @@ def test_registered_builder_and_exports(tmp_path):
     from geargen.cad.export import export_step, export_stl, read_step, read_stl
     from geargen.profile.tessellate import mesh_volume
 
-    spec = herringbone(gap=1.0, teeth=9, face=6.0)  # small: the export's time is not what is tested
+    spec = herringbone(gap=1.0, teeth=13, face=6.0)  # small: the export's time is not what is tested
     g = build_part(spec, check=True)
     assert solid_volume(g.shape) == pytest.approx(expected_volume(spec, g.profile), rel=1e-6)
     export_step([g], tmp_path / "dh.step")
@@ -193,9 +193,9 @@ def test_command_builds_a_double_helical_gear(tmp_path):
     import json
 
     from geargen.cli import main
-    rc = main(["gear", "--kind", "double_helical", "--teeth", "9", "--module", "1", "--helix-angle", "30",
+    rc = main(["gear", "--kind", "double_helical", "--teeth", "13", "--module", "1", "--helix-angle", "30",
                "--hand", "left", "--face-width", "6", "--centre-gap", "1", "--no-stl", "--out", str(tmp_path / "o")])
     assert rc == 0
-    data = json.loads((tmp_path / "o" / "double_helical_9.json").read_text())
+    data = json.loads((tmp_path / "o" / "double_helical_13.json").read_text())
     assert data["double_helical"] == {"centre_gap": 1.0, "half_face_width": 2.5, "half_hands": ["left", "right"]}
-    assert (tmp_path / "o" / "double_helical_9.step").stat().st_size > 0
+    assert (tmp_path / "o" / "double_helical_13.step").stat().st_size > 0
