@@ -16,6 +16,7 @@ BUILDERS: dict[str, str] = {
     "external": "geargen.cad.gear_solid:build_gear",
     "rack": "geargen.cad.rack_solid:build_rack",
     "internal": "geargen.cad.internal_solid:build_internal",
+    "double_helical": "geargen.cad.double_helical:build_double_helical",
 }
 
 

@@ -62,6 +62,9 @@ def add_arguments(p) -> None:
     g.add_argument("--bore", type=float, metavar="LEN", help="bore diameter in the unit of the pitch system (default: none)")
     g.add_argument("--bore-mm", type=float, metavar="MM", help="bore diameter in mm")
     g.add_argument("--bore-in", type=float, metavar="IN", help="bore diameter in inches")
+    g.add_argument("--centre-gap", type=float, metavar="LEN", default=None,
+                   help="--kind double_helical: axial gap between the two helical halves, a relief groove at the root "
+                        "diameter, in the unit of the pitch system (default 0: a herringbone)")
     g.add_argument("--thinning", type=float, metavar="LEN", default=None,
                    help="tooth thinning for backlash: circumferential (transverse arc at the reference circle), "
                         "in the unit of the pitch system (default 0)")
@@ -97,7 +100,7 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
                 "hand": ("--hand", "right"), "profile_shift": ("--profile-shift", 0.0),
                 "face_width": ("--face-width", None), "face_width_mm": ("--face-width-mm", None),
                 "face_width_in": ("--face-width-in", None), "bore": ("--bore", None), "bore_mm": ("--bore-mm", None),
-                "bore_in": ("--bore-in", None), "thinning": ("--thinning", None),
+                "bore_in": ("--bore-in", None), "thinning": ("--thinning", None), "centre_gap": ("--centre-gap", None),
                 "accuracy_grade": ("--accuracy-grade", None)}
 
 
@@ -158,7 +161,7 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
     for dest, (flag, stem, is_length, kinds) in _kind_option_table().items():
         if key == stem or (is_length and key.rsplit("_", 1)[0] == stem):
             return flag
-    for stem, flag in (("face_width", "--face-width"), ("bore_diameter", "--bore"),
+    for stem, flag in (("face_width", "--face-width"), ("bore_diameter", "--bore"), ("centre_gap", "--centre-gap"),
                        ("thinning_circumferential", "--thinning")):
         if key.startswith(stem):
             used = [f for f in given if f.startswith(flag)]
@@ -228,6 +231,8 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
         raise DesignError("--face-width", "missing", "--face-width, --face-width-mm or --face-width-in")
     if args.thinning:
         table[f"thinning_circumferential_{unit}"] = args.thinning
+    if args.centre_gap is not None:
+        table[f"centre_gap_{unit}"] = args.centre_gap
     if args.accuracy_grade is not None:
         table["accuracy_grade"] = args.accuracy_grade
     name = args.name or (f"gear_{args.teeth}" if kind == "external" else f"{kind}_{args.teeth}" if args.teeth else kind)

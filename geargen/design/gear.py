@@ -145,6 +145,9 @@ class GearSpec:
     kind: str = "external"  # one of CYLINDRICAL_KINDS
     # internal gears only: outer diameter of the ring blank (mm); None: internal_rim_diameter's rule
     rim_diameter: float | None = None
+    # double_helical only: axial gap between the two halves (mm), a relief groove at the root
+    # diameter; 0 is a herringbone whose flanks meet at the apex
+    centre_gap: float = 0.0
 
     def __post_init__(self):
         if self.kind not in CYLINDRICAL_KINDS:
@@ -158,6 +161,7 @@ class GearSpec:
         _check("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
         _check("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
         _check("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
+        self._check_double_helical()
         if self.hand not in HANDS:
             raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
         _check("profile_shift", self.profile_shift, -1.5, 1.5, "")
@@ -197,6 +201,35 @@ class GearSpec:
         if self.rim_diameter is None:
             object.__setattr__(self, "rim_diameter", internal_rim_diameter(self))
         _check("rim_diameter", self.rim_diameter, least, 100000.0, "mm")
+
+    def _check_double_helical(self) -> None:
+        """A centre gap belongs to a double-helical gear and leaves both halves some face; a
+        double-helical gear needs a helix (with none it would be a spur gear in two pieces)."""
+        gap = self.centre_gap
+        if self.kind != "double_helical":
+            if gap != 0:
+                raise DesignError("centre_gap", f"{gap!r} mm: only a double_helical gear has a centre gap", "0")
+            return
+        if not (isinstance(gap, (int, float)) and math.isfinite(gap) and 0 <= gap < self.face_width):
+            raise DesignError("centre_gap", f"{gap!r} mm is out of range", f"[0, {self.face_width:.6g}) mm (below the face width)")
+        if not self.helix_angle > 0:
+            raise DesignError("helix_angle", "a double_helical gear needs a helix", "(0, 45] deg")
+
+    @property
+    def half_face_width(self) -> float:
+        """Face width of each helical half of a double-helical gear, (b - gap) / 2 (mm); the whole
+        face width for the other kinds."""
+        if self.kind != "double_helical":
+            return self.face_width
+        return (self.face_width - self.centre_gap) / 2
+
+    @property
+    def half_hands(self) -> tuple[str, ...]:
+        """Hand of each helical half from z = 0 up: a double-helical gear's first half has the
+        spec's hand, the second the other one."""
+        if self.kind != "double_helical":
+            return (self.hand,)
+        return (self.hand, "left" if self.hand == "right" else "right")
 
     def _check_accuracy(self) -> None:
         """A grade is a whole number of the standard's classes, and the gear lies in the standard's
@@ -353,6 +386,9 @@ GEAR_FIELDS: list[Field] = [
     Field("hand", "string", required=False, default="right", choices=HANDS, help="hand of the helix (helical gears)"),
     Field("face_width", "length", minimum=0.0, exclusive_minimum=True, maximum=5000.0,
           help="face width along the axis"),
+    Field("centre_gap", "length", required=False, default=0.0, minimum=0.0,
+          help="double_helical only: axial gap between the two helical halves, a relief groove at the root "
+               "diameter (0: a herringbone, the halves' flanks meeting at the apex; < face_width)"),
     Field("profile_shift", "number", required=False, default=0.0, minimum=-1.5, maximum=1.5,
           help="profile shift coefficient x (shift over the module), in the pitch system given"),
     Field("addendum_coefficient", "number", required=False, default=1.0, minimum=0.3, maximum=1.5,
@@ -462,7 +498,8 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=v["name"] or name or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
-                  accuracy_standard=v["accuracy_standard"], kind=v["kind"], rim_diameter=v["rim_diameter"])
+                  accuracy_standard=v["accuracy_standard"], kind=v["kind"], rim_diameter=v["rim_diameter"],
+                  centre_gap=v["centre_gap"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key

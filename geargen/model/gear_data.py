@@ -79,6 +79,10 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
         "undercut": profile.undercut, "involute_start_radius": L(profile.involute_start_radius),
         "warnings": list(profile.warnings),
     }
+    if spec.kind == "double_helical":
+        # two helical halves of opposite hand from z = 0 up, the relief groove (root diameter) between
+        out["double_helical"] = {"centre_gap": L(spec.centre_gap), "half_face_width": L(spec.half_face_width),
+                                 "half_hands": list(spec.half_hands)}
     tolerances = gear_tolerances(spec)
     if tolerances is not None:
         out["accuracy"] = tolerances.to_dict() | {"grade_source": "the design's accuracy_grade"}
