@@ -42,7 +42,10 @@ HANDS = ("right", "left")
 CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
 #: the other kinds a ``[gear]``/``[gears.NAME]`` table may name -> "module:function" reading the table
 #: into that family's spec (same signature as :func:`gear_from_table`); each family registers itself
-FAMILY_READERS: dict[str, str] = {}
+FAMILY_READERS: dict[str, str] = {
+    "worm": "geargen.design.worm:worm_set_from_table",
+    "worm_wheel": "geargen.design.worm:worm_set_from_table",
+}
 
 #: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
 #: its formulas and rounding could not be established from a citable source; inch designs use ISO)
@@ -340,6 +343,11 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     ``length_unit`` is the design's unit for reports; by default inches for a diametral-pitch
     design and mm for a module design.
     """
+    family = data.get("kind") if isinstance(data, Mapping) else None
+    if family in FAMILY_READERS:  # another family's table: its own reader
+        import importlib
+        module, function = FAMILY_READERS[family].split(":")
+        return getattr(importlib.import_module(module), function)(data, where=where, name=name, length_unit=length_unit)
     v = read_table(data, GEAR_FIELDS, where)
     p = f"{where}."
     if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
