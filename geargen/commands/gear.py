@@ -107,7 +107,10 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
 #: :data:`GEAR_OPTIONS` the kind reads (a common option the kind does not read is refused).
 #: Options map to the kind's design-table keys, so a command line and a ``[gear]`` table are
 #: read by the same reader.
-KIND_OPTIONS: dict[str, str] = {}
+KIND_OPTIONS: dict[str, str] = {
+    "worm": "geargen.commands.gear_worm",
+    "worm_wheel": "geargen.commands.gear_worm",
+}
 
 
 def _kind_modules() -> dict[tuple[str, ...], object]:
@@ -298,6 +301,10 @@ def gear_allowance(args, spec: GearSpec):
     from geargen.model.allowance import entered_allowance
 
     given = getattr(args, "thickness_allowance", None)
+    if not isinstance(spec, GearSpec):  # another family's part: its thinning is in its own table
+        if given is not None:
+            raise DesignError("--thickness-allowance", f"does not apply to --kind {spec.kind}", "a cylindrical gear")
+        return None
     if given is not None:
         if spec.thickness_deviations is not None:
             raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "

@@ -16,7 +16,10 @@ from geargen.units import from_mm
 #: gear kind (of the families that are not a GearSpec) -> "module:function" taking ``(spec)`` and
 #: returning that gear's data as a dict in its length unit (the keys of the gear-data contract that
 #: apply, with the same meaning, and the family's own); each family registers itself
-FAMILY_DATA: dict[str, str] = {}
+FAMILY_DATA: dict[str, str] = {
+    "worm": "geargen.model.worm_data:worm_part_data",
+    "worm_wheel": "geargen.model.worm_data:worm_part_data",
+}
 
 
 def family_data(spec, solid=None) -> dict:
