@@ -60,6 +60,7 @@ class WormGeometry:
     wheel_outside_diameter: float
     hob_tip_radius: float
     worm_axial_thickness: float
+    hob_axial_thickness: float
     wheel_thinning: float
     ratio: float
 
@@ -87,6 +88,7 @@ def worm_geometry(s: WormGearSet) -> WormGeometry:
         worm_tip_diameter=d1 + 2 * ha, worm_root_diameter=d1 - 2 * hf, throat_diameter=da2,
         throat_radius=a - da2 / 2, wheel_root_diameter=df2, wheel_outside_diameter=dk2,
         hob_tip_radius=a - df2 / 2, worm_axial_thickness=math.pi * m / 2 - worm_thinning,
+        hob_axial_thickness=math.pi * m / 2,
         wheel_thinning=s.backlash if s.backlash_on == "wheel" else 0.0, ratio=z2 / z1)
 
 
@@ -118,7 +120,9 @@ def worm_flank_normal(s: WormGearSet, g: WormGeometry, side: int, r, theta):
 
 
 def contact_point(s: WormGearSet, g: WormGeometry, side: int, r, theta):
-    """Where and when the worm flank point (r, theta) touches the wheel: (fixed-frame point (..., 3),
+    """Where and when the hob's flank point (r, theta) touches the wheel it cuts (the hob is the
+    worm at its nominal thread thickness p_x/2: a worm thinned for backlash does not cut the wheel
+    thinner): (fixed-frame point (..., 3),
     worm angle phi1). With v_worm = e_X x (P - O1) = (0, -r sin th, r cos th) and
     v_wheel = k e_Z x P = k (-Y, X, 0), n . v_worm = -p r for every theta, so the meshing equation
     -p r + k (n_x Y - n_y X) = 0 with k = p / r2 gives X = r (Y - r2) / n_y."""
@@ -130,7 +134,7 @@ def contact_point(s: WormGearSet, g: WormGeometry, side: int, r, theta):
     if np.any(np.abs(n[..., 1]) < 1e-12 * r):
         raise GeometryError("worm_envelope", "the meshing equation is singular (n_y = 0) on the worm flank")
     x = r * (y - r2) / n[..., 1]
-    phi1 = (p * (theta - math.pi) + flank_axial_offset(g, side, r) - x) / p
+    phi1 = (p * (theta - math.pi) + flank_axial_offset(g, side, r, g.hob_axial_thickness) - x) / p
     return np.stack([x, y, r * np.sin(theta)], axis=-1), phi1
 
 

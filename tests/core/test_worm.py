@@ -43,8 +43,9 @@ def test_mid_plane_space_is_the_worm_thread_as_a_rack():
     thinned = wheel_section(khk_set(backlash=j), z=0.0, n_flank=4000)
     # the flank is turned by j / d2 each side: arc j at the reference circle
     assert space_width_at_radius(thinned, 45.0) - space_width_at_radius(sec, 45.0) == pytest.approx(j, abs=1e-9)
+    # a worm thinned for the backlash does not change the wheel: the wheel is cut by the nominal hob
     worm_thinned = wheel_section(khk_set(backlash=j, backlash_on="worm"), z=0.0, n_flank=4000)
-    assert space_width_at_radius(worm_thinned, 45.0) == pytest.approx(math.pi * 3 / 2 - j, abs=1e-7)
+    assert space_width_at_radius(worm_thinned, 45.0) == pytest.approx(math.pi * 3 / 2, abs=1e-7)
     # the root circle is the hob tip: d_f2 / 2
     assert sec.root_radius == pytest.approx(41.25)
     assert np.hypot(*sec.trochoid[1][-1]) == pytest.approx(41.25, abs=1e-9)
@@ -71,7 +72,7 @@ def test_wheel_flank_is_the_envelope_of_the_moving_worm(z, hand):
         for r in np.linspace(sec.worm_radii[5], sec.worm_radii[-5], 7):
             theta = math.pi - math.asin(z / r)
             y = g.centre_distance + r * math.cos(theta)
-            offset = side * (g.worm_axial_thickness / 2 - (r - 22.0) * math.tan(g.axial_pressure_angle))
+            offset = side * (g.hob_axial_thickness / 2 - (r - 22.0) * math.tan(g.axial_pressure_angle))
 
             def reach(phi1):  # how far (arc, mm) the worm point lies beyond the wheel flank, into the tooth
                 x = p * (theta - math.pi - phi1) + offset
