@@ -135,7 +135,7 @@ def build_worm(spec: WormSpec, check: bool = False, points_per_turn: int = 64) -
               for k in range(s.starts)]
     # the spaces end (their planar caps) inside a longer blank, then the face length is cut by two
     # planes across the threads: a cut whose caps lie outside the blank fails in OCCT (0 solids)
-    long_length = length + 2 * extra + 4 * g.lead
+    long_length = length + 2 * extra + 2 * g.axial_pitch + 2 * m  # the spaces reach +-(L/2 + extra + p_x)
     blank = cq.Solid.makeCylinder(ra, long_length, cq.Vector(0, 0, -long_length / 2))
     threaded = blank
     for space in spaces:  # one at a time: OCCT mis-cut two threads' spaces given together
