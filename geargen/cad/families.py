@@ -17,6 +17,7 @@ BUILDERS: dict[str, str] = {
     "rack": "geargen.cad.rack_solid:build_rack",
     "internal": "geargen.cad.internal_solid:build_internal",
     "double_helical": "geargen.cad.double_helical:build_double_helical",
+    "worm": "geargen.cad.worm_solid:build_worm",
 }
 
 

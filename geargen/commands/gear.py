@@ -113,6 +113,8 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
 KIND_OPTIONS: dict[str, str] = {
     "rack": "geargen.commands.gear_rack",
     "internal": "geargen.commands.gear_internal",
+    "worm": "geargen.commands.gear_worm",
+    "worm_wheel": "geargen.commands.gear_worm",
 }
 
 

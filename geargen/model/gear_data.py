@@ -19,6 +19,8 @@ from geargen.units import from_mm
 FAMILY_DATA: dict[str, str] = {
     "rack": "geargen.model.rack_data:rack_data",
     "internal": "geargen.model.internal_data:internal_gear_data",
+    "worm": "geargen.model.worm_data:worm_part_data",
+    "worm_wheel": "geargen.model.worm_data:worm_part_data",
 }
 
 

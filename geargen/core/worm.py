@@ -1,0 +1,245 @@
+"""Exact geometry of a ZA worm and of the wheel it generates (numpy only; mm and rad).
+
+Dimensions follow DIN 3975-1 / ISO/TR 10828 in the axial system (the relations of the KHK Gear
+Technical Reference, section 4.5, axial module system, Table 4.17):
+lead angle tan(gamma) = z1 m_x / d1 = z1 / q, lead p_z = pi m_x z1, d2 = z2 m_x,
+a = (d1 + d2)/2 + x2 m_x, worm tip d_a1 = d1 + 2 h_a, throat (wheel tip at the mid plane)
+d_a2 = d2 + 2 (h_a* + x2) m_x, throat radius r_i = a - d_a2/2 = d1/2 - h_a.
+
+Frames. Fixed frame: the wheel axis is Z; the worm axis is the line (t, a, 0), along +X. The worm
+rotates by phi1 about +X; the wheel by phi2 = k phi1 about +Z, with k = p / r2 (p = p_z / 2 pi,
+signed by the hand, r2 = d2 / 2): the thread's axial advance equals the wheel's pitch-circle arc.
+
+ZA flank (Archimedean helicoid) in the fixed frame at worm angle phi1, side s = +1 (the +X flank
+of the thread centred at X = 0 facing the wheel at phi1 = 0) or -1::
+
+    X = p (theta - pi - phi1) + s (t_x/2 - (r - r1) tan alpha_x),  Y = a + r cos theta,  Z = r sin theta
+
+with t_x the axial thread thickness at the reference cylinder r1 = d1/2. The helicoid is invariant
+under the worm's screw motion, so its normal at fixed (r, theta) does not depend on phi1 and the
+equation of meshing n . (v_worm - v_wheel) = 0 is linear in X: at (r, theta) the contact is at
+``X = r (Y - r2) / n_y`` (derived in :func:`contact_point`). The wheel flank in its transverse plane
+Z = z is therefore computed point by point in closed form (no iteration): theta = pi - asin(z / r)
+on the side facing the wheel, X from the meshing equation, and the point turned into the wheel frame
+by -phi2 of that instant. The wheel root and the flank's lower end come from the hob's tip edge
+(the worm's thread extended by the tip clearance), whose trajectory in the wheel frame is the
+trochoid joining the flank to the root circle.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from geargen.design.worm import WormGearSet
+from geargen.errors import GeometryError
+
+
+@dataclass(frozen=True)
+class WormGeometry:
+    """The derived dimensions of a worm-gear set (mm, rad); see the module docstring for the
+    relations. ``hob_tip_radius`` is the radius of the hob that cuts the wheel: the worm tip plus
+    the tip clearance, the minor radius of the wheel's toroidal root."""
+
+    lead_angle: float
+    lead: float
+    axial_pitch: float
+    axial_pressure_angle: float
+    normal_pressure_angle: float
+    normal_module: float
+    worm_reference_diameter: float
+    wheel_reference_diameter: float
+    centre_distance: float
+    worm_tip_diameter: float
+    worm_root_diameter: float
+    throat_diameter: float
+    throat_radius: float
+    wheel_root_diameter: float
+    wheel_outside_diameter: float
+    hob_tip_radius: float
+    worm_axial_thickness: float
+    hob_axial_thickness: float
+    wheel_thinning: float
+    ratio: float
+
+    @property
+    def screw_parameter(self) -> float:
+        """Signed lead per radian (right hand positive)."""
+        return self.lead / (2 * math.pi)
+
+
+def worm_geometry(s: WormGearSet) -> WormGeometry:
+    m, z1, z2, d1 = s.axial_module, s.starts, s.wheel_teeth, s.worm_reference_diameter
+    gamma = math.atan(z1 * m / d1)
+    alpha_x = math.atan(math.tan(s.pressure_angle) / math.cos(gamma))
+    d2 = z2 * m
+    a = (d1 + d2) / 2 + s.wheel_profile_shift * m
+    ha, hf = s.addendum_coefficient * m, s.dedendum_coefficient * m
+    da2 = d2 + 2 * (s.addendum_coefficient + s.wheel_profile_shift) * m
+    df2 = d2 - 2 * (s.dedendum_coefficient - s.wheel_profile_shift) * m
+    dk2 = s.wheel_outside_diameter if s.wheel_outside_diameter is not None else da2 + m
+    worm_thinning = s.backlash if s.backlash_on == "worm" else 0.0
+    return WormGeometry(
+        lead_angle=gamma, lead=math.pi * m * z1, axial_pitch=math.pi * m, axial_pressure_angle=alpha_x,
+        normal_pressure_angle=s.pressure_angle, normal_module=m * math.cos(gamma),
+        worm_reference_diameter=d1, wheel_reference_diameter=d2, centre_distance=a,
+        worm_tip_diameter=d1 + 2 * ha, worm_root_diameter=d1 - 2 * hf, throat_diameter=da2,
+        throat_radius=a - da2 / 2, wheel_root_diameter=df2, wheel_outside_diameter=dk2,
+        hob_tip_radius=a - df2 / 2, worm_axial_thickness=math.pi * m / 2 - worm_thinning,
+        hob_axial_thickness=math.pi * m / 2,
+        wheel_thinning=s.backlash if s.backlash_on == "wheel" else 0.0, ratio=z2 / z1)
+
+
+def _signed_p(s: WormGearSet, g: WormGeometry) -> float:
+    return s.hand_sign * g.screw_parameter
+
+
+def flank_axial_offset(g: WormGeometry, side: int, r, thickness: float | None = None):
+    """Axial position (X at theta = pi, phi1 = 0) of the thread flank ``side`` at radius ``r``:
+    s (t_x/2 - (r - r1) tan alpha_x) -- the straight ZA axial profile."""
+    t = g.worm_axial_thickness if thickness is None else thickness
+    return side * (t / 2 - (np.asarray(r, float) - g.worm_reference_diameter / 2) * math.tan(g.axial_pressure_angle))
+
+
+def worm_flank_point(s: WormGearSet, g: WormGeometry, side: int, r, theta, phi1=0.0):
+    """Fixed-frame points (..., 3) of the worm flank ``side`` at radius r, angle theta, worm angle phi1."""
+    p = _signed_p(s, g)
+    r, theta = np.broadcast_arrays(np.asarray(r, float), np.asarray(theta, float))
+    x = p * (theta - math.pi - phi1) + flank_axial_offset(g, side, r)
+    return np.stack([x, g.centre_distance + r * np.cos(theta), r * np.sin(theta)], axis=-1)
+
+
+def worm_flank_normal(s: WormGearSet, g: WormGeometry, side: int, r, theta):
+    """Normals (..., 3) (not unit) of the flank: d/dr x d/dtheta = (r, p sin th - h' r cos th, -h' r sin th - p cos th)."""
+    p = _signed_p(s, g)
+    dh = -side * math.tan(g.axial_pressure_angle)
+    r, theta = np.broadcast_arrays(np.asarray(r, float), np.asarray(theta, float))
+    return np.stack([r, p * np.sin(theta) - dh * r * np.cos(theta), -dh * r * np.sin(theta) - p * np.cos(theta)], axis=-1)
+
+
+def contact_point(s: WormGearSet, g: WormGeometry, side: int, r, theta):
+    """Where and when the hob's flank point (r, theta) touches the wheel it cuts (the hob is the
+    worm at its nominal thread thickness p_x/2: a worm thinned for backlash does not cut the wheel
+    thinner): (fixed-frame point (..., 3),
+    worm angle phi1). With v_worm = e_X x (P - O1) = (0, -r sin th, r cos th) and
+    v_wheel = k e_Z x P = k (-Y, X, 0), n . v_worm = -p r for every theta, so the meshing equation
+    -p r + k (n_x Y - n_y X) = 0 with k = p / r2 gives X = r (Y - r2) / n_y."""
+    p = _signed_p(s, g)
+    r2 = g.wheel_reference_diameter / 2
+    n = worm_flank_normal(s, g, side, r, theta)
+    r, theta = np.broadcast_arrays(np.asarray(r, float), np.asarray(theta, float))
+    y = g.centre_distance + r * np.cos(theta)
+    if np.any(np.abs(n[..., 1]) < 1e-12 * r):
+        raise GeometryError("worm_envelope", "the meshing equation is singular (n_y = 0) on the worm flank")
+    x = r * (y - r2) / n[..., 1]
+    phi1 = (p * (theta - math.pi) + flank_axial_offset(g, side, r, g.hob_axial_thickness) - x) / p
+    return np.stack([x, y, r * np.sin(theta)], axis=-1), phi1
+
+
+def wheel_angle(s: WormGearSet, g: WormGeometry, phi1):
+    """Wheel rotation phi2 = k phi1 with k = p / r2 (signed by the hand)."""
+    return _signed_p(s, g) / (g.wheel_reference_diameter / 2) * np.asarray(phi1, float)
+
+
+def to_wheel(points, phi2):
+    """Fixed-frame points (..., 3) at wheel angle phi2 -> wheel-frame points (rotate by -phi2 about Z)."""
+    c, sn = np.cos(phi2), np.sin(phi2)
+    x, y = points[..., 0], points[..., 1]
+    return np.stack([c * x + sn * y, -sn * x + c * y, points[..., 2]], axis=-1)
+
+
+def _rotate2(xy, angle):
+    c, sn = math.cos(angle), math.sin(angle)
+    return np.stack([c * xy[:, 0] - sn * xy[:, 1], sn * xy[:, 0] + c * xy[:, 1]], axis=-1)
+
+
+@dataclass(frozen=True)
+class WheelSection:
+    """The tooth space of the wheel centred on +Y in its transverse plane ``z`` (wheel frame, mm).
+
+    ``flank[side]`` (n, 2): the envelope, from outside the rim (index 0) to the flank's lower end;
+    ``trochoid[side]`` (m, 2): the hob tip edge's path from that end to the root circle (tangent);
+    ``root_radius``: the root circle in this plane. Side +1 is the +X side of the space."""
+
+    z: float
+    flank: dict
+    trochoid: dict
+    root_radius: float
+    worm_radii: np.ndarray  # the worm radii of the flank points
+
+
+def wheel_section(s: WormGearSet, g: WormGeometry | None = None, z: float = 0.0, outer_radius: float | None = None,
+                  n_flank: int = 60, n_trochoid: int = 25) -> WheelSection:
+    """The wheel's tooth space in plane ``z``, generated by the hob (the worm with its flank carried
+    on to the hob tip radius). ``outer_radius``: the flank starts outside this wheel radius (default
+    the rim's outside radius plus 0.3 m_x). The wheel's thinning turns each flank away from the
+    space's centre by thinning / d2 (a rigid turn of an envelope is the envelope of the turned worm).
+    Raises GeometryError ``worm_envelope`` (singular meshing) or ``wheel_undercut`` (the envelope
+    folds back: the hob's tip edge would cut the flank)."""
+    g = g or worm_geometry(s)
+    a, m = g.centre_distance, s.axial_module
+    rho = g.hob_tip_radius
+    if abs(z) >= 0.98 * rho:
+        raise GeometryError("worm_envelope", f"plane z = {z:.4g} mm is outside the hob's reach (|z| < {rho:.4g} mm)")
+    r_out = (outer_radius if outer_radius is not None else g.wheel_outside_diameter / 2 + 0.3 * m)
+    # the worm radius whose point at X = 0 lies at the wheel radius r_out in this plane
+    r_lo = math.hypot(max(a - r_out, 0.0), z)
+    r_lo = max(r_lo, abs(z) * 1.0005 + 1e-9)
+    flank, troch = {}, {}
+    radii = r_lo + (rho - r_lo) * (1 - np.cos(np.linspace(0, math.pi / 2, n_flank)))  # denser at the tip edge
+    for side in (1, -1):
+        theta = math.pi - np.arcsin(z / radii)
+        pts, phi1 = contact_point(s, g, side, radii, theta)
+        w = to_wheel(pts, wheel_angle(s, g, phi1))[:, :2]
+        if pts[0, 1] < r_out:  # the first point must be outside the rim for the cutter to clear it
+            w_r = np.hypot(w[0, 0], w[0, 1])
+            if w_r < r_out - 1e-9:
+                raise GeometryError("worm_envelope", f"the flank in plane z = {z:.4g} does not reach the rim")
+        # the hob tip edge (r = rho) from its contact instant to the line of centres (X = 0)
+        th_e = theta[-1]
+        p = _signed_p(s, g)
+        x_c = pts[-1, 0]
+        phi_c = phi1[-1]
+        phi_b = phi_c + x_c / p  # X(phi1) = x_c - p (phi1 - phi_c) reaches 0
+        phis = np.linspace(phi_c, phi_b, n_trochoid)
+        edge = np.stack([x_c - p * (phis - phi_c), np.full_like(phis, a + rho * math.cos(th_e)),
+                         np.full_like(phis, z)], axis=-1)
+        tr = to_wheel(edge, wheel_angle(s, g, phis))[:, :2]
+        turn = side * g.wheel_thinning / g.wheel_reference_diameter  # +X side turned further +X: clockwise
+        flank[side], troch[side] = _rotate2(w, -turn), _rotate2(tr, -turn)
+        _check_no_fold(flank[side], troch[side], side, z)
+    root = a - math.sqrt(rho * rho - z * z)
+    return WheelSection(z, flank, troch, root, radii)
+
+
+def _check_no_fold(flank, trochoid, side, z):
+    """The flank's radius must fall monotonically from the rim to its lower end, and the trochoid
+    must stay inside the space (on the space side of the flank's lower end), or it is undercut."""
+    rad = np.hypot(flank[:, 0], flank[:, 1])
+    if np.any(np.diff(rad) >= 0):
+        raise GeometryError("wheel_undercut", f"the wheel flank folds back in plane z = {z:.4g} mm")
+    # polar angle measured from +Y toward +X (the space centre is 0, side +1 positive)
+    ang = np.arctan2(trochoid[:, 0], trochoid[:, 1]) * side
+    if np.any(np.diff(ang) > 1e-12):
+        raise GeometryError("wheel_undercut", f"the hob tip edge cuts the flank in plane z = {z:.4g} mm")
+
+
+def space_width_at_radius(section: WheelSection, radius: float) -> float:
+    """Arc width of the tooth space at ``radius`` in the section (angle between the two flanks x radius)."""
+    angles = []
+    for side in (1, -1):
+        f = section.flank[side]
+        rad = np.hypot(f[:, 0], f[:, 1])
+        ang = np.arctan2(f[:, 0], f[:, 1])
+        i = np.searchsorted(-rad, -radius)  # rad decreasing
+        if i == 0 or i >= len(rad):
+            raise GeometryError("worm_envelope", f"radius {radius:.4g} is outside the flank's span")
+        t = (radius - rad[i - 1]) / (rad[i] - rad[i - 1])
+        angles.append(ang[i - 1] + t * (ang[i] - ang[i - 1]))
+    return (angles[0] - angles[1]) * radius
+
+
+__all__ = ["WormGeometry", "worm_geometry", "worm_flank_point", "worm_flank_normal", "contact_point",
+           "wheel_angle", "to_wheel", "WheelSection", "wheel_section", "space_width_at_radius", "flank_axial_offset"]
