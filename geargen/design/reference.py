@@ -91,6 +91,20 @@ tip_rounding = "generating"
 thinning_circumferential_mm = 0.02
 '''
 
+_WORM_EXAMPLE = '''[gears.wheel]
+kind = "worm_wheel"
+module_mm = 3
+starts = 2
+wheel_teeth = 30
+worm_reference_diameter_mm = 44
+pressure_angle_deg = 20
+hand = "right"
+worm_face_length_mm = 45
+wheel_face_width_mm = 28
+backlash_mm = 0.05
+backlash_on = "wheel"
+'''
+
 TABLES: tuple[Table, ...] = (
     Table("Top-level keys", (), "Keys before the first table. Everything is optional.",
           Example("robot_joint.toml", ("",))),
@@ -110,6 +124,11 @@ TABLES: tuple[Table, ...] = (
           "number of transverse pitches. Give exactly one of `module_mm` and `diametral_pitch_per_in`, and one of "
           "`teeth` and `length_<unit>`.",
           example_text=_RACK_EXAMPLE, context={"gears": {"NAME": {"kind": "rack"}}}),
+    Table("[gear] or [gears.NAME] with kind = \"worm\" or \"worm_wheel\"", ("gears", "NAME"),
+          "A ZA cylindrical worm (straight-sided axial profile, DIN 3975) and its throated wheel, defined together "
+          "as one set (`geargen gear --kind worm` / `--kind worm_wheel`); the wheel's flank is the envelope of the "
+          "worm's thread. The set is written in the worm's axial system: `module_mm` is the axial module m_x.",
+          example_text=_WORM_EXAMPLE, context={"gears": {"NAME": {"kind": "worm"}}}),
     Table("[synthesis]", ("synthesis",),
           "Centre synthesis of a dual-pinion drive (the paper's Eqs. 7-8 and Appendix): where the clusters sit "
           "so that both paths mesh. Backlash B is circumferential, at the reference pitch circles "
