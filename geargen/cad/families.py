@@ -14,6 +14,7 @@ import importlib
 #: kind -> "module:function" building that kind's solid
 BUILDERS: dict[str, str] = {
     "external": "geargen.cad.gear_solid:build_gear",
+    "bevel": "geargen.cad.bevel_solid:build_bevel",
 }
 
 

@@ -42,7 +42,9 @@ HANDS = ("right", "left")
 CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
 #: the other kinds a ``[gear]``/``[gears.NAME]`` table may name -> "module:function" reading the table
 #: into that family's spec (same signature as :func:`gear_from_table`); each family registers itself
-FAMILY_READERS: dict[str, str] = {}
+FAMILY_READERS: dict[str, str] = {
+    "bevel": "geargen.design.bevel:bevel_from_table",
+}
 
 #: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
 #: its formulas and rounding could not be established from a citable source; inch designs use ISO)
@@ -340,6 +342,10 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     ``length_unit`` is the design's unit for reports; by default inches for a diametral-pitch
     design and mm for a module design.
     """
+    if isinstance(data, Mapping) and data.get("kind") in FAMILY_READERS:
+        import importlib
+        module_name, function = FAMILY_READERS[data["kind"]].split(":")
+        return getattr(importlib.import_module(module_name), function)(data, where, name, length_unit)
     v = read_table(data, GEAR_FIELDS, where)
     p = f"{where}."
     if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
