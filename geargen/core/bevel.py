@@ -62,7 +62,7 @@ def spherical_involute_function(polar, base_cone: float):
 def spherical_involute_points(roll, base_cone: float, radius: float = 1.0) -> np.ndarray:
     """Points ``(n, 3)`` of the spherical involute starting at azimuth 0 on the base cone, at the
     rolling angles ``roll`` = t (about the axis), on the sphere of ``radius`` (the defining
-    parametrisation of the module docstring; the azimuth decreases as the point rises)."""
+    parametrisation of the module docstring; the azimuth grows with the polar angle: phi = inv_s(theta))."""
     t = np.atleast_1d(np.asarray(roll, dtype=float))
     sb, cb = math.sin(base_cone), math.cos(base_cone)
     psi = t * sb
