@@ -222,4 +222,51 @@ def bevel_volume(spec: BevelGearSpec) -> float:
     return vol
 
 
-__all__ = ["BevelSolid", "build_bevel", "bevel_volume"]
+__all__ = ["BevelSolid", "build_bevel", "bevel_volume", "flank_deviation"]
+
+
+def flank_deviation(shape, spec: BevelGearSpec, grid: int = 12) -> np.ndarray:
+    """Deviations (mm) of points sampled on the solid's flank faces from the spherical involute.
+
+    Each B-spline face is sampled on a ``grid`` x ``grid`` parameter grid (points inside the face
+    only); a point between the base (or root) and tip cones, at distance R from the apex, is
+    compared, on the sphere of radius R, with the flank of its tooth: the deviation is the arc of
+    the circle of latitude between the point and the flank, R sin(theta) (|phi - phi_k| - phi(theta)),
+    an upper bound of its distance from the flank surface. Points of the root faces (on the root
+    cone) are left out by their polar angle."""
+    from OCP.BRep import BRep_Tool
+    from OCP.BRepTools import BRepTools
+    from OCP.BRepTopAdaptor import BRepTopAdaptor_FClass2d
+    from OCP.gp import gp_Pnt2d
+    from OCP.TopAbs import TopAbs_FACE, TopAbs_IN
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    g = bevel_geometry(spec)
+    lo = max(g.base_cone_angle, g.root_cone_angle) + 0.02 * (g.tip_cone_angle - g.root_cone_angle)
+    hi = g.tip_cone_angle - 0.02 * (g.tip_cone_angle - g.root_cone_angle)
+    pitch = 2 * math.pi / spec.teeth
+    out = []
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        face = TopoDS.Face_s(exp.Current())
+        exp.Next()
+        surface = BRep_Tool.Surface_s(face)
+        if surface.DynamicType().Name() != "Geom_BSplineSurface":
+            continue
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        inside = BRepTopAdaptor_FClass2d(face, 1e-9)
+        for u in np.linspace(u0, u1, grid + 2)[1:-1]:
+            for v in np.linspace(v0, v1, grid + 2)[1:-1]:
+                if inside.Perform(gp_Pnt2d(u, v)) != TopAbs_IN:
+                    continue
+                p = surface.Value(u, v)
+                x, y, z = p.X(), p.Y(), p.Z()
+                r = math.sqrt(x * x + y * y + z * z)
+                theta = math.acos(z / r)
+                if not lo <= theta <= hi:
+                    continue
+                phi = math.atan2(y, x)
+                local = abs(phi - pitch * round(phi / pitch))  # from the nearest tooth's centre
+                out.append(r * math.sin(theta) * (local - tooth_half_angle(spec, theta)))
+    return np.asarray(out)

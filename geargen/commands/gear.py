@@ -107,7 +107,9 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
 #: :data:`GEAR_OPTIONS` the kind reads (a common option the kind does not read is refused).
 #: Options map to the kind's design-table keys, so a command line and a ``[gear]`` table are
 #: read by the same reader.
-KIND_OPTIONS: dict[str, str] = {}
+KIND_OPTIONS: dict[str, str] = {
+    "bevel": "geargen.commands.gear_bevel",
+}
 
 
 def _kind_modules() -> dict[tuple[str, ...], object]:
@@ -299,13 +301,13 @@ def gear_allowance(args, spec: GearSpec):
 
     given = getattr(args, "thickness_allowance", None)
     if given is not None:
-        if spec.thickness_deviations is not None:
+        if getattr(spec, "thickness_deviations", None) is not None:
             raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
                               f"gear {spec.name}", "the option or the design keys, not both")
         upper, lower = given
         return ThicknessAllowance(upper * 1e-3, lower * 1e-3, "entered (--thickness-allowance)",
                                   "--thickness-allowance")
-    if spec.thickness_deviations is not None:
+    if getattr(spec, "thickness_deviations", None) is not None:  # other families have no allowance
         return entered_allowance(spec, f"gears.{spec.name}.thickness_upper_deviation_um")
     return None
 

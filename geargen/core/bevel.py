@@ -168,21 +168,31 @@ def gear_solid_angle(spec: BevelGearSpec) -> float:
 
 def check_tooth(spec: BevelGearSpec) -> None:
     """GeometryError for a tooth that cannot be made: pointed at the tip cone (``pointed_tooth``),
-    no space left at the root (``no_tooth_space``), or undercut by the generating crown gear on
-    the back-cone equivalent spur gear (``undercut``: the generated root is not built, so such a
-    tooth is refused rather than made without its undercut)."""
+    no space left at the root (``no_tooth_space``), or ``interference``: on the back-cone equivalent
+    spur pair, the mate's tip (addendum (h_a* - x) m, the mate of a Gleason-style pair) passes the
+    point where the line of action touches this gear's base circle. Below the base cone the flank
+    is not generated (it continues along the meridian), so a gear whose mate would reach there is
+    refused rather than built without the undercut its generation would cut; a gear the generating
+    crown gear would undercut slightly but whose mate clears the base cone is built."""
     g = bevel_geometry(spec)
     tip = tooth_half_angle(spec, g.tip_cone_angle)
     if tip <= 0:
         raise GeometryError("pointed_tooth", f"{spec.name}: the flanks meet below the tip cone")
     if tooth_half_angle(spec, g.root_cone_angle) >= math.pi / spec.teeth * (1 - 1e-6):
         raise GeometryError("no_tooth_space", f"{spec.name}: neighbouring teeth touch at the root cone")
-    # undercut of the equivalent spur gear (z_v, standard rack): z_v sin^2(alpha) / 2 < h_a* - x
-    if spec.pitch_cone_angle < math.pi / 2 - 1e-9:
-        limit = 2 * (spec.addendum_coefficient - spec.profile_shift) / math.sin(spec.pressure_angle) ** 2
-        if g.virtual_teeth < limit * (1 - 1e-12):
-            raise GeometryError("undercut", f"{spec.name}: the back-cone equivalent gear (z_v = {g.virtual_teeth:.4g}) "
-                                f"is undercut below z_v = {limit:.4g}; the undercut root is not generated")
+    a = spec.pressure_angle
+    mate_addendum = (spec.addendum_coefficient - spec.profile_shift) * spec.module
+    rv1 = g.cone_distance * math.tan(g.pitch_cone_angle) if g.pitch_cone_angle < math.pi / 2 - 1e-9 else math.inf
+    if g.mate_pitch_cone_angle > math.radians(89.0):  # a crown-like mate: the rack's limit
+        reach, room = mate_addendum, rv1 * math.sin(a) ** 2
+    else:
+        rv2 = g.cone_distance * math.tan(g.mate_pitch_cone_angle)
+        reach = math.sqrt((rv2 + mate_addendum) ** 2 - (rv2 * math.cos(a)) ** 2) - rv2 * math.sin(a)
+        room = rv1 * math.sin(a)
+    if reach > room * (1 + 1e-12):
+        raise GeometryError("interference", f"{spec.name}: the mate's tip reaches {reach:.4g} mm along the line of "
+                            f"action of the back-cone equivalent pair, past this gear's base circle at {room:.4g} mm "
+                            "(its flank below the base cone is not generated)")
 
 
 def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:

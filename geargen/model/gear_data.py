@@ -16,7 +16,9 @@ from geargen.units import from_mm
 #: gear kind (of the families that are not a GearSpec) -> "module:function" taking ``(spec)`` and
 #: returning that gear's data as a dict in its length unit (the keys of the gear-data contract that
 #: apply, with the same meaning, and the family's own); each family registers itself
-FAMILY_DATA: dict[str, str] = {}
+FAMILY_DATA: dict[str, str] = {
+    "bevel": "geargen.model.bevel_data:bevel_gear_data",
+}
 
 
 def family_data(spec, solid=None) -> dict:

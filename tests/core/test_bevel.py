@@ -116,7 +116,10 @@ def test_refusals_are_named():
         gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 60})
     with pytest.raises(DesignError, match="shaft_angle"):  # the gear's cone beyond 90 deg: internal bevel
         BevelGearSpec(teeth=40, mate_teeth=10, module=1, face_width=3, shaft_angle=150 * DEG)
-    with pytest.raises(GeometryError, match="undercut"):  # z_v = 8.9 < 2 / sin^2(20 deg) = 17.1
+    # z1 = 8, z2 = 40: the equivalent pair's gear tip reaches past the pinion's interference point
+    with pytest.raises(GeometryError, match="interference"):
         check_tooth(BevelGearSpec(teeth=8, mate_teeth=40, module=1, face_width=3))
+    # 15 / 30 at 20 deg (z_v = 16.8, just under the rack's 17.1): the mate clears the base cone
+    check_tooth(BevelGearSpec(teeth=15, mate_teeth=30, module=1, face_width=3))
     spec = BevelGearSpec(teeth=20, mate_teeth=40, module=3, face_width=25)
     assert spec.warnings and "third" in spec.warnings[0]
