@@ -211,6 +211,36 @@ def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = Non
     return out / (math.pi * m * math.cos(a))
 
 
-__all__ = ["pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+def spherical_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:
+    """Contact ratio of the spherical-involute pair itself (no back-cone approximation): the arc of the
+    great circle of action (through the pitch-cone generator, at the pressure angle to the pitch
+    circles' tangent; it touches both base cones) between the two tip cones, over the base pitch
+    along it, 2 pi sin(delta_b1) / z1 (the circle rolls on base cone 1 without slipping)."""
+    from scipy.optimize import brentq
+    d1, d2 = spec.pitch_cone_angle, spec.mate_pitch_cone_angle
+    a, re, m = spec.pressure_angle, spec.cone_distance, spec.module
+    ha2 = (spec.addendum_coefficient - spec.profile_shift) * m if mate_addendum is None else mate_addendum
+    tip1 = d1 + spec.addendum_angle
+    tip2 = d2 + math.atan(ha2 / re)
+    c = np.array([math.sin(d1), 0.0, math.cos(d1)])
+    along = math.cos(a) * np.array([0.0, 1.0, 0.0]) + math.sin(a) * np.array([math.cos(d1), 0.0, -math.sin(d1)])
+    axis2 = np.array([math.sin(spec.shaft_angle), 0.0, math.cos(spec.shaft_angle)])
+
+    def point(t):
+        return math.cos(t) * c + math.sin(t) * along
+
+    def beyond_tip1(t):
+        return math.acos(min(1.0, point(t)[2])) - tip1
+
+    def beyond_tip2(t):
+        return math.acos(min(1.0, float(point(t) @ axis2))) - tip2
+
+    # along +t the point leaves gear 1's axis (p_z falls): its tip ends the path there, gear 2's on -t
+    ends = [brentq(beyond_tip1, 0.0, math.pi / 2, xtol=1e-15), brentq(beyond_tip2, -math.pi / 2, 0.0, xtol=1e-15)]
+    path = abs(ends[0] - ends[1])
+    return path / (2 * math.pi * math.sin(base_cone_angle(d1, a)) / spec.teeth)
+
+
+__all__ = ["spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
            "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
            "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from geargen.core.bevel import bevel_geometry, virtual_contact_ratio
+from geargen.core.bevel import bevel_geometry, spherical_contact_ratio, virtual_contact_ratio
 from geargen.design.bevel import BevelGearSpec
 from geargen.units import from_mm
 
@@ -43,5 +43,8 @@ def bevel_gear_data(spec: BevelGearSpec) -> dict:
         "virtual_teeth": g.virtual_teeth if math.isfinite(g.virtual_teeth) else None,
         "virtual_contact_ratio": (virtual_contact_ratio(spec) if max(g.pitch_cone_angle, g.mate_pitch_cone_angle)
                                   < math.radians(89.9) else None),
+        # the pair's own, on the great circle of action (mate: the same proportions with shift -x)
+        "spherical_contact_ratio": (spherical_contact_ratio(spec) if max(g.pitch_cone_angle, g.mate_pitch_cone_angle)
+                                    < math.radians(89.9) else None),
         "warnings": list(g.warnings),
     }
