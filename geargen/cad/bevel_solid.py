@@ -75,9 +75,9 @@ def _sph(polar, azimuth) -> np.ndarray:
 
 
 def _space_outline(spec: BevelGearSpec) -> list[np.ndarray]:
-    """Unit vectors of the tooth space centred on azimuth 0 (the space between the tooth at
-    -pi/z and the tooth at +pi/z... shifted later): [left flank rising, top, right flank
-    falling, root], each an ``(n, 3)`` array; consecutive pieces share their end points."""
+    """Unit vectors of the outline of the tooth space centred on azimuth 0 (between the teeth at
+    -pi/z and +pi/z): root, (meridian), right flank rising, top, left flank falling, (meridian);
+    each an ``(n, 3)`` array, consecutive pieces sharing their end points."""
     g = bevel_geometry(spec)
     depth = g.tip_cone_angle - g.root_cone_angle
     top = g.tip_cone_angle + 0.25 * depth  # past the tip cone: the blank ends the flank there
@@ -94,7 +94,11 @@ def _space_outline(spec: BevelGearSpec) -> list[np.ndarray]:
     if start > lo:
         pieces.append(_sph(np.array([lo, start]), np.full(2, width[0])))  # right meridian, rising
     pieces.append(_sph(th, width))  # right flank rising
-    pieces.append(_sph(th[::-1], -width[::-1]))  # left flank falling (a straight top joins the flanks)
+    # the top along the circle of latitude past the tip cone (a great-circle chord would dip towards the
+    # axis across a wide space and cut the teeth of gears with few teeth)
+    top_az = np.linspace(width[-1], -width[-1], ROOT_POINTS)
+    pieces.append(_sph(np.full_like(top_az, top), top_az))
+    pieces.append(_sph(th[::-1], -width[::-1]))  # left flank falling
     if start > lo:
         pieces.append(_sph(np.array([start, lo]), np.full(2, -width[0])))  # left meridian, falling
     return pieces
@@ -119,11 +123,8 @@ def _interp_edge(points: np.ndarray):
 def _outline_wire(pieces: list[np.ndarray], direction: np.ndarray, distance: float):
     mk = BRepBuilderAPI_MakeWire()
     projected = [_project(p, direction, distance) for p in pieces]
-    for i, pts in enumerate(projected):
+    for pts in projected:
         mk.Add(_interp_edge(pts) if len(pts) > 2 else BRepBuilderAPI_MakeEdge(gp_Pnt(*pts[0]), gp_Pnt(*pts[1])).Edge())
-        if len(pts) > 2 and i + 1 < len(projected) and len(projected[i + 1]) > 2 and i > 0:
-            # between the two flanks: the straight top, past the tip cone
-            mk.Add(BRepBuilderAPI_MakeEdge(gp_Pnt(*pts[-1]), gp_Pnt(*projected[i + 1][0])).Edge())
     if not mk.IsDone():
         raise BuildError("bevel cutter: outline wire not closed")
     return mk.Wire()
