@@ -223,7 +223,6 @@ def bevel_volume(spec: BevelGearSpec) -> float:
     return vol
 
 
-__all__ = ["BevelSolid", "build_bevel", "bevel_volume", "flank_deviation"]
 
 
 def flank_deviation(shape, spec: BevelGearSpec, grid: int = 12) -> np.ndarray:
@@ -271,3 +270,6 @@ def flank_deviation(shape, spec: BevelGearSpec, grid: int = 12) -> np.ndarray:
                 local = abs(phi - pitch * round(phi / pitch))  # from the nearest tooth's centre
                 out.append(r * math.sin(theta) * (local - tooth_half_angle(spec, theta)))
     return np.asarray(out)
+
+
+__all__ = ["BevelSolid", "build_bevel", "bevel_volume", "flank_deviation"]
