@@ -115,6 +115,7 @@ KIND_OPTIONS: dict[str, str] = {
     "internal": "geargen.commands.gear_internal",
     "worm": "geargen.commands.gear_worm",
     "worm_wheel": "geargen.commands.gear_worm",
+    "bevel": "geargen.commands.gear_bevel",
 }
 
 
@@ -314,13 +315,13 @@ def gear_allowance(args, spec: GearSpec):
                               "a cylindrical gear")
         return None
     if given is not None:
-        if spec.thickness_deviations is not None:
+        if getattr(spec, "thickness_deviations", None) is not None:
             raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
                               f"gear {spec.name}", "the option or the design keys, not both")
         upper, lower = given
         return ThicknessAllowance(upper * 1e-3, lower * 1e-3, "entered (--thickness-allowance)",
                                   "--thickness-allowance")
-    if spec.thickness_deviations is not None:
+    if getattr(spec, "thickness_deviations", None) is not None:  # other families have no allowance
         return entered_allowance(spec, f"gears.{spec.name}.thickness_upper_deviation_um")
     return None
 

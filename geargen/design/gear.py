@@ -46,12 +46,14 @@ FAMILY_READERS: dict[str, str] = {
     "rack": "geargen.design.rack:rack_from_table",
     "worm": "geargen.design.worm:worm_set_from_table",
     "worm_wheel": "geargen.design.worm:worm_set_from_table",
+    "bevel": "geargen.design.bevel:bevel_from_table",
 }
 #: the same kinds -> "module:NAME" of the list of Fields their reader reads (validation, reference docs)
 FAMILY_FIELDS: dict[str, str] = {
     "rack": "geargen.design.rack:RACK_FIELDS",
     "worm": "geargen.design.worm:WORM_FIELDS",
     "worm_wheel": "geargen.design.worm:WORM_FIELDS",
+    "bevel": "geargen.design.bevel:BEVEL_FIELDS",
 }
 
 

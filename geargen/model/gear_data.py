@@ -21,6 +21,7 @@ FAMILY_DATA: dict[str, str] = {
     "internal": "geargen.model.internal_data:internal_gear_data",
     "worm": "geargen.model.worm_data:worm_part_data",
     "worm_wheel": "geargen.model.worm_data:worm_part_data",
+    "bevel": "geargen.model.bevel_data:bevel_gear_data",
 }
 
 

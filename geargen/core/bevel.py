@@ -1,0 +1,246 @@
+"""Straight bevel gear geometry: cones, the back-cone (Tredgold) equivalent, the spherical involute.
+
+Frame: apex at the origin, gear axis +z. A point of the tooth is given by its distance R from
+the apex and, on the sphere of radius R, its polar angle theta (from +z) and azimuth phi.
+
+Spherical involute (the definition used): the curve a point of a great circle traces on the
+sphere when the great circle's plane rolls without slipping on the base cone of half angle
+delta_b, with sin delta_b = sin delta cos alpha (delta the pitch cone angle, alpha the pressure
+angle). Rolled through the angle t about the axis, the generating plane has turned the point
+through psi = t sin delta_b along its great circle, so
+
+    P(t) = R (cos psi g(t) - sin psi e(t)),   g = (sin delta_b cos t, sin delta_b sin t, cos delta_b),
+                                              e = (-sin t, cos t, 0),
+
+which gives cos theta = cos delta_b cos psi and phi = t - atan(tan psi / sin delta_b): the
+spherical involute function ``inv_s`` (phi at theta, the involute starting at phi = 0 on the base
+cone) tends to the plane involute as delta_b -> 0 at constant R sin delta_b.
+
+Every tooth surface is a cone through the apex (flanks over the spherical involute, tip and root
+cones), so a tooth's section on the sphere of radius R is the heel's scaled by R / R_e.
+Below the base cone (when the root cone is inside it) the flank continues along the meridian.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from geargen.design.bevel import BevelGearSpec
+from geargen.errors import GeometryError
+
+
+def pitch_cone_angles(teeth: int, mate_teeth: int, shaft_angle: float) -> tuple[float, float]:
+    """(delta1, delta2) of a pair: tan delta1 = sin Sigma / (z2/z1 + cos Sigma), delta2 = Sigma - delta1."""
+    d1 = math.atan2(math.sin(shaft_angle), mate_teeth / teeth + math.cos(shaft_angle))
+    return d1, shaft_angle - d1
+
+
+def base_cone_angle(pitch_cone: float, pressure_angle: float) -> float:
+    """delta_b with sin delta_b = sin delta cos alpha."""
+    return math.asin(math.sin(pitch_cone) * math.cos(pressure_angle))
+
+
+def spherical_involute_roll(polar, base_cone: float):
+    """psi (rad) at polar angle ``polar`` (>= base_cone): cos psi = cos theta / cos delta_b."""
+    th = np.asarray(polar, dtype=float)
+    out = np.arccos(np.clip(np.cos(th) / math.cos(base_cone), -1.0, 1.0))
+    return float(out) if out.ndim == 0 else out
+
+
+def spherical_involute_function(polar, base_cone: float):
+    """inv_s(theta) = psi / sin delta_b - atan(tan psi / sin delta_b): the azimuth the spherical
+    involute has turned back through at polar angle ``polar`` (0 on the base cone)."""
+    psi = np.asarray(spherical_involute_roll(polar, base_cone))
+    sb = math.sin(base_cone)
+    out = psi / sb - np.arctan2(np.sin(psi), np.cos(psi) * sb)
+    return float(out) if out.ndim == 0 else out
+
+
+def spherical_involute_points(roll, base_cone: float, radius: float = 1.0) -> np.ndarray:
+    """Points ``(n, 3)`` of the spherical involute starting at azimuth 0 on the base cone, at the
+    rolling angles ``roll`` = t (about the axis), on the sphere of ``radius`` (the defining
+    parametrisation of the module docstring; the azimuth grows with the polar angle: phi = inv_s(theta))."""
+    t = np.atleast_1d(np.asarray(roll, dtype=float))
+    sb, cb = math.sin(base_cone), math.cos(base_cone)
+    psi = t * sb
+    g = np.stack([sb * np.cos(t), sb * np.sin(t), np.full_like(t, cb)], axis=-1)
+    e = np.stack([-np.sin(t), np.cos(t), np.zeros_like(t)], axis=-1)
+    return radius * (np.cos(psi)[:, None] * g - np.sin(psi)[:, None] * e)
+
+
+def gleason_profile_shift(teeth: int, mate_teeth: int, shaft_angle: float) -> float:
+    """The profile shift x of the pinion (the mate gets -x) that gives Gleason's addendum rule for
+    straight bevel gears, h_a2 = 0.54 m + 0.46 m / (z2 cos d1 / (z1 cos d2)), h_a1 = 2 m - h_a2."""
+    d1, d2 = pitch_cone_angles(teeth, mate_teeth, shaft_angle)
+    ha2 = 0.54 + 0.46 / (mate_teeth * math.cos(d1) / (teeth * math.cos(d2)))
+    return (2 - ha2) - 1.0
+
+
+@dataclass(frozen=True)
+class BevelGeometry:
+    """One bevel gear's derived quantities (mm, rad). Diameters and mounting distances of the
+    standard (back-cone heel) definition: tip diameter d_a = d + 2 h_a cos delta, apex to crown
+    X = R_e cos delta - h_a sin delta. ``solid_*``: the same of the built solid, whose heel is the
+    sphere of radius R_e about the apex (its crown at R_e on the tip cone, its back at R_e on the axis)."""
+
+    pitch_cone_angle: float
+    mate_pitch_cone_angle: float
+    base_cone_angle: float
+    tip_cone_angle: float  # face angle delta_a = delta + theta_a
+    root_cone_angle: float  # delta_f = delta - theta_f
+    addendum_angle: float
+    dedendum_angle: float
+    cone_distance: float  # R_e (heel)
+    toe_cone_distance: float  # R_i = R_e - b
+    mean_cone_distance: float
+    reference_diameter: float
+    tip_diameter: float
+    root_diameter: float
+    apex_to_crown: float
+    axial_face_width: float  # X_b = b cos delta_a / cos theta_a
+    virtual_teeth: float  # z_v = z / cos delta (back cone)
+    virtual_reference_radius: float  # R_e tan delta
+    solid_tip_diameter: float
+    solid_apex_to_crown: float
+    solid_apex_to_back: float
+    solid_crown_to_back: float
+    warnings: tuple = field(default_factory=tuple)
+
+
+def bevel_geometry(spec: BevelGearSpec) -> BevelGeometry:
+    d = spec.pitch_cone_angle
+    re, b = spec.cone_distance, spec.face_width
+    ha, hf = spec.addendum, spec.dedendum
+    ta, tf = spec.addendum_angle, spec.dedendum_angle
+    da = d + ta
+    return BevelGeometry(
+        pitch_cone_angle=d, mate_pitch_cone_angle=spec.mate_pitch_cone_angle,
+        base_cone_angle=base_cone_angle(d, spec.pressure_angle), tip_cone_angle=da, root_cone_angle=d - tf,
+        addendum_angle=ta, dedendum_angle=tf, cone_distance=re, toe_cone_distance=re - b,
+        mean_cone_distance=re - b / 2, reference_diameter=spec.reference_diameter,
+        tip_diameter=spec.reference_diameter + 2 * ha * math.cos(d),
+        root_diameter=spec.reference_diameter - 2 * hf * math.cos(d),
+        apex_to_crown=re * math.cos(d) - ha * math.sin(d), axial_face_width=b * math.cos(da) / math.cos(ta),
+        virtual_teeth=spec.teeth / math.cos(d) if d < math.pi / 2 - 1e-12 else math.inf,
+        virtual_reference_radius=re * math.tan(d) if d < math.pi / 2 - 1e-12 else math.inf,
+        solid_tip_diameter=2 * re * math.sin(da), solid_apex_to_crown=re * math.cos(da), solid_apex_to_back=re,
+        solid_crown_to_back=re * (1 - math.cos(da)), warnings=tuple(spec.warnings))
+
+
+def tooth_half_angle(spec: BevelGearSpec, polar):
+    """Half the azimuth the tooth spans at polar angle ``polar`` (any R: the tooth is a cone).
+
+    phi(theta) = s / d + inv_s(delta) - inv_s(theta) with s = pi m / 2 + 2 x m tan alpha - thinning the
+    arc thickness on the heel pitch circle (d = z m its diameter); below the base cone the flank is
+    the meridian at phi(delta_b)."""
+    d = spec.pitch_cone_angle
+    db = base_cone_angle(d, spec.pressure_angle)
+    s = math.pi * spec.module / 2 + 2 * spec.profile_shift * spec.module * math.tan(spec.pressure_angle) - spec.thinning
+    th = np.maximum(np.asarray(polar, dtype=float), db)
+    out = s / spec.reference_diameter + spherical_involute_function(d, db) - spherical_involute_function(th, db)
+    return float(out) if np.ndim(out) == 0 else out
+
+
+def tooth_solid_angle(spec: BevelGearSpec, points: int = 4001) -> float:
+    """Solid angle (sr) of one tooth above the root cone: the integral of 2 phi(theta) sin theta
+    d theta from delta_f to delta_a (composite Simpson; the integrand is smooth but for a kink at
+    the base cone, where the interval is split)."""
+    from scipy.integrate import simpson
+    g = bevel_geometry(spec)
+    lo, hi = g.root_cone_angle, g.tip_cone_angle
+    cuts = [lo] + ([g.base_cone_angle] if lo < g.base_cone_angle < hi else []) + [hi]
+    total = 0.0
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        th = np.linspace(a, b, points)
+        total += simpson(2 * tooth_half_angle(spec, th) * np.sin(th), x=th)
+    return total
+
+
+def gear_solid_angle(spec: BevelGearSpec) -> float:
+    """Solid angle of the whole toothed blank on a sphere about the apex: the cap inside the root
+    cone plus the teeth. Times (R_e^3 - R_i^3) / 3 it is the volume between the toe and heel spheres."""
+    g = bevel_geometry(spec)
+    return 2 * math.pi * (1 - math.cos(g.root_cone_angle)) + spec.teeth * tooth_solid_angle(spec)
+
+
+def check_tooth(spec: BevelGearSpec) -> None:
+    """GeometryError for a tooth that cannot be made: pointed at the tip cone (``pointed_tooth``),
+    no space left at the root (``no_tooth_space``), or ``interference``: on the back-cone equivalent
+    spur pair, the mate's tip (addendum (h_a* - x) m, the mate of a Gleason-style pair) passes the
+    point where the line of action touches this gear's base circle. Below the base cone the flank
+    is not generated (it continues along the meridian), so a gear whose mate would reach there is
+    refused rather than built without the undercut its generation would cut; a gear the generating
+    crown gear would undercut slightly but whose mate clears the base cone is built."""
+    g = bevel_geometry(spec)
+    tip = tooth_half_angle(spec, g.tip_cone_angle)
+    if tip <= 0:
+        raise GeometryError("pointed_tooth", f"{spec.name}: the flanks meet below the tip cone")
+    if tooth_half_angle(spec, g.root_cone_angle) >= math.pi / spec.teeth * (1 - 1e-6):
+        raise GeometryError("no_tooth_space", f"{spec.name}: neighbouring teeth touch at the root cone")
+    a = spec.pressure_angle
+    mate_addendum = (spec.addendum_coefficient - spec.profile_shift) * spec.module
+    rv1 = g.cone_distance * math.tan(g.pitch_cone_angle) if g.pitch_cone_angle < math.pi / 2 - 1e-9 else math.inf
+    if g.mate_pitch_cone_angle > math.radians(89.0):  # a crown-like mate: the rack's limit
+        reach, room = mate_addendum, rv1 * math.sin(a) ** 2
+    else:
+        rv2 = g.cone_distance * math.tan(g.mate_pitch_cone_angle)
+        reach = math.sqrt((rv2 + mate_addendum) ** 2 - (rv2 * math.cos(a)) ** 2) - rv2 * math.sin(a)
+        room = rv1 * math.sin(a)
+    if reach > room * (1 + 1e-12):
+        raise GeometryError("interference", f"{spec.name}: the mate's tip reaches {reach:.4g} mm along the line of "
+                            f"action of the back-cone equivalent pair, past this gear's base circle at {room:.4g} mm "
+                            "(its flank below the base cone is not generated)")
+
+
+def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:
+    """Transverse contact ratio of the back-cone (Tredgold) equivalent spur pair at the heel:
+    (sqrt(R_va1^2 - R_vb1^2) + sqrt(R_va2^2 - R_vb2^2) - (R_v1 + R_v2) sin alpha) / (pi m cos alpha),
+    R_v = R_e tan delta, R_va = R_v + h_a, R_vb = R_v cos alpha. The mate's addendum defaults to
+    the same proportions with shift -x (the mate of a Gleason-style pair)."""
+    a = spec.pressure_angle
+    m = spec.module
+    re = spec.cone_distance
+    ha2 = (spec.addendum_coefficient - spec.profile_shift) * m if mate_addendum is None else mate_addendum
+    out = -re * (math.tan(spec.pitch_cone_angle) + math.tan(spec.mate_pitch_cone_angle)) * math.sin(a)
+    for delta, ha in ((spec.pitch_cone_angle, spec.addendum), (spec.mate_pitch_cone_angle, ha2)):
+        rv = re * math.tan(delta)
+        out += math.sqrt((rv + ha) ** 2 - (rv * math.cos(a)) ** 2)
+    return out / (math.pi * m * math.cos(a))
+
+
+def spherical_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:
+    """Contact ratio of the spherical-involute pair itself (no back-cone approximation): the arc of the
+    great circle of action (through the pitch-cone generator, at the pressure angle to the pitch
+    circles' tangent; it touches both base cones) between the two tip cones, over the base pitch
+    along it, 2 pi sin(delta_b1) / z1 (the circle rolls on base cone 1 without slipping)."""
+    from scipy.optimize import brentq
+    d1, d2 = spec.pitch_cone_angle, spec.mate_pitch_cone_angle
+    a, re, m = spec.pressure_angle, spec.cone_distance, spec.module
+    ha2 = (spec.addendum_coefficient - spec.profile_shift) * m if mate_addendum is None else mate_addendum
+    tip1 = d1 + spec.addendum_angle
+    tip2 = d2 + math.atan(ha2 / re)
+    c = np.array([math.sin(d1), 0.0, math.cos(d1)])
+    along = math.cos(a) * np.array([0.0, 1.0, 0.0]) + math.sin(a) * np.array([math.cos(d1), 0.0, -math.sin(d1)])
+    axis2 = np.array([math.sin(spec.shaft_angle), 0.0, math.cos(spec.shaft_angle)])
+
+    def point(t):
+        return math.cos(t) * c + math.sin(t) * along
+
+    def beyond_tip1(t):
+        return math.acos(min(1.0, point(t)[2])) - tip1
+
+    def beyond_tip2(t):
+        return math.acos(min(1.0, float(point(t) @ axis2))) - tip2
+
+    # along +t the point leaves gear 1's axis (p_z falls): its tip ends the path there, gear 2's on -t
+    ends = [brentq(beyond_tip1, 0.0, math.pi / 2, xtol=1e-15), brentq(beyond_tip2, -math.pi / 2, 0.0, xtol=1e-15)]
+    path = abs(ends[0] - ends[1])
+    return path / (2 * math.pi * math.sin(base_cone_angle(d1, a)) / spec.teeth)
+
+
+__all__ = ["spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+           "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
+           "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio"]
