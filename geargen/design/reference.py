@@ -105,6 +105,16 @@ backlash_mm = 0.05
 backlash_on = "wheel"
 '''
 
+_BEVEL_EXAMPLE = '''[gears.bevel_pinion]
+kind = "bevel"
+teeth = 15
+mate_teeth = 30
+shaft_angle_deg = 90
+diametral_pitch_per_in = 32
+pressure_angle_deg = 20
+face_width_in = 0.15
+'''
+
 TABLES: tuple[Table, ...] = (
     Table("Top-level keys", (), "Keys before the first table. Everything is optional.",
           Example("robot_joint.toml", ("",))),
@@ -129,6 +139,12 @@ TABLES: tuple[Table, ...] = (
           "as one set (`geargen gear --kind worm` / `--kind worm_wheel`); the wheel's flank is the envelope of the "
           "worm's thread. The set is written in the worm's axial system: `module_mm` is the axial module m_x.",
           example_text=_WORM_EXAMPLE, context={"gears": {"NAME": {"kind": "worm"}}}),
+    Table("[gear] or [gears.NAME] with kind = \"bevel\"", ("gears", "NAME"),
+          "A straight bevel gear with spherical-involute teeth (`geargen gear --kind bevel`), defined with its mate: "
+          "the pitch cone follows from both tooth numbers and the shaft angle. Module or diametral pitch and the "
+          "thinning are the heel's; the face width is measured along the cone; tip and root cones pass through "
+          "the apex; toe and heel are spheres about the apex.",
+          example_text=_BEVEL_EXAMPLE, context={"gears": {"NAME": {"kind": "bevel"}}}),
     Table("[synthesis]", ("synthesis",),
           "Centre synthesis of a dual-pinion drive (the paper's Eqs. 7-8 and Appendix): where the clusters sit "
           "so that both paths mesh. Backlash B is circumferential, at the reference pitch circles "
