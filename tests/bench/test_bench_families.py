@@ -28,11 +28,12 @@ bench = _load(ROOT / "bench" / "bench_families.py")
 peers = _load(ROOT / "bench" / "peers" / "make_peer_family.py")
 
 # peer parameter -> the design-table keys that give it (first found wins)
-TABLE_KEYS = {"teeth": ("teeth",), "mate_teeth": ("mate_teeth",), "face": ("face_width_mm",),
-              "length": ("length_mm",), "helix_deg": ("helix_angle_deg",), "starts": ("starts", "worm_starts"),
-              "q": ("diametral_quotient", "worm_diametral_quotient")}
+TABLE_KEYS = {"teeth": ("teeth", "wheel_teeth"), "mate_teeth": ("mate_teeth",),
+              "face": ("face_width_mm", "wheel_face_width_mm"), "length": ("length_mm", "worm_face_length_mm"),
+              "helix_deg": ("helix_angle_deg",), "starts": ("starts",), "q": ("diameter_quotient",),
+              "wheel_teeth": ("wheel_teeth",)}
 # peer parameters a table does not state: the peer's own switches or its pair's data
-PEER_ONLY = {"herringbone", "wheel_teeth", "shaft_deg"}
+PEER_ONLY = {"herringbone", "shaft_deg"}
 
 
 def table_value(table: dict, name: str):
@@ -62,7 +63,11 @@ def test_peers_build_the_case_geargen_builds(case):
                 continue
             assert math.isclose(value, table_value(case.table, name), rel_tol=1e-12), (peer, name)
         # and every dimension the table states reaches the peer (none silently left at its default)
-        for name in ("teeth", "mate_teeth", "module", "face", "length", "starts", "q"):
+        # a worm-gear set's table states both parts; each part's peer takes its own part's dimensions
+        stated_names = {"worm": ("module", "length", "starts", "q"),
+                        "worm_wheel": ("teeth", "module", "face", "starts", "q")}.get(
+            case.table.get("kind"), ("teeth", "mate_teeth", "module", "face", "length", "starts", "q"))
+        for name in stated_names:
             try:
                 table_value(case.table, name)
             except KeyError:
