@@ -74,7 +74,7 @@ def gear(teeth: int | None = None, *, module: float | None = None, diametral_pit
     if module is not None and diametral_pitch is not None:
         raise DesignError("module", "given with diametral_pitch", "one of module or diametral_pitch")
     # every gear option of the command, unset unless given
-    args = argparse.Namespace(**({dest: None for dest in command.GEAR_OPTIONS} | given))
+    args = argparse.Namespace(**(command.unset_options() | given))
     spec, _ = _keyword_errors(command.spec_from_args, args)
     return shape(build_gear(spec, check=True).shape)
 

@@ -137,6 +137,12 @@ def _kind_option_table() -> dict[str, tuple]:
     return out
 
 
+def unset_options() -> dict[str, None]:
+    """Every gear option's argparse dest (the common ones, ``kind`` and each kind's own), unset: the
+    namespace a caller that is not the command line starts from."""
+    return {dest: None for dest in [*GEAR_OPTIONS, "kind", *_kind_option_table()]}
+
+
 def _given(args) -> list[str]:
     """The flags of the gear options given on the command line (the kind's own ones too)."""
     given = [flag for dest, (flag, _) in GEAR_OPTIONS.items() if getattr(args, dest, None) is not None]
