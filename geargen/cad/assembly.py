@@ -509,7 +509,7 @@ def _bevel_drive(out: _Parts, layout, s: Mapping[str, Any], ish, x_in: float, d_
     if not math.isclose(gear_spec.bore_diameter, d_in):
         raise BuildError("bevel gear: its bore is not the input shaft")
     # the gear's back face (its heel root circle's plane) must clear the carriage arm under it
-    lowest = z_arm_top + gap + (bev.apex_height("gear") - _bevel_back_face(gear_spec))
+    lowest = z_arm_top + gap + (_bevel_back_face(gear_spec) - bev.apex_height("gear"))
     if z_heel < lowest - 1e-9:
         shift = (lowest - z_heel) / (MM_PER_IN if layout.design.length_unit == "in" else 1.0)
         raise DesignError("parts.input_shaft_to_bevel", f"puts the bevel gear's back (its heel root circle) into the "

@@ -4,8 +4,8 @@ the one home of the numbers the solids, the mesh check and the stiffness model s
 From the ``[parts]`` bevel keys (teeth, pitch, face width along the cone; heel pitch circle of
 the gear ``input_shaft_to_bevel`` above the input gear's mid-face, where
 :func:`geargen.model.shafts.carriage_shafts` loads the input shaft) and the pair's backlash, the
-``[train] upstream_backlash_arcmin`` of this stage (rad at the driven, input shaft) times the
-gear's heel pitch radius, split equally between the two thinnings (arcs of the heel pitch
+``[parts] bevel_backlash`` or the ``[train] upstream_backlash_arcmin`` of this stage (rad at the
+driven, input shaft) times the gear's heel pitch radius, split equally between the two thinnings (arcs of the heel pitch
 circles: the pair's circumferential backlash is t1 + t2).
 
 Placement (mm, the assembly frame of :mod:`geargen.model.layout`): a bevel solid has its apex at
@@ -53,18 +53,28 @@ def _rotation(axis, angle: float) -> np.ndarray:
     return m
 
 
-def bevel_backlash(layout: Layout, pinion_teeth: int, gear_teeth: int) -> float:
-    """The [train] ``upstream_backlash_arcmin`` of the stage ``pinion_teeth:gear_teeth`` of [layout]
-    ``upstream_stages``, in rad at its driven shaft."""
+def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
+    """The bevel pair's circumferential backlash at the gear's heel pitch circle (mm): [parts]
+    ``bevel_backlash``, or the [train] ``upstream_backlash_arcmin`` of the stage
+    ``pinion_teeth:gear_teeth`` of [layout] ``upstream_stages`` (rad at its driven shaft, the bevel
+    gear's) times the gear's heel pitch radius; both given: they must agree."""
     from geargen.design.train import train_settings
+    zp, zg = parts["bevel_pinion_teeth"], parts["bevel_gear_teeth"]
+    module = parts["bevel_module"] or 25.4 / parts["bevel_diametral_pitch_per_in"]
     stages = [tuple(p) for p in layout.settings.get("upstream_stages", ())]
-    backlash = train_settings(layout.design).upstream_backlash
-    key = (pinion_teeth, gear_teeth)
-    if key not in stages or len(backlash) <= stages.index(key):
-        raise DesignError("train.upstream_backlash_arcmin", f"the bevel pair {pinion_teeth}:{gear_teeth} needs its "
-                          "backlash to cut its teeth", f"[layout] upstream_stages holding [{pinion_teeth}, {gear_teeth}] "
-                          "and its backlash in [train] upstream_backlash_arcmin")
-    return backlash[stages.index(key)]
+    angles = train_settings(layout.design).upstream_backlash
+    train = None
+    if (zp, zg) in stages and len(angles) > stages.index((zp, zg)):
+        train = angles[stages.index((zp, zg))] * zg * module / 2
+    given = parts.get("bevel_backlash")
+    if given is None and train is None:
+        raise DesignError("parts.bevel_backlash", f"the bevel pair {zp}:{zg} needs its backlash to cut its teeth",
+                          f"a length, or [layout] upstream_stages holding [{zp}, {zg}] with its backlash in "
+                          "[train] upstream_backlash_arcmin")
+    if given is not None and train is not None and not math.isclose(given, train, rel_tol=1e-9):
+        raise DesignError("parts.bevel_backlash", f"{given:.6g} mm differs from the [train] upstream_backlash_arcmin "
+                          f"of the pair ({train:.6g} mm at the gear's heel pitch circle)", "one of the two, or equal")
+    return train if given is None else given
 
 
 def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDrive | None:
@@ -81,9 +91,7 @@ def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDri
     from geargen.model.shafts import carriage_shafts
     zp, zg = s["bevel_pinion_teeth"], s["bevel_gear_teeth"]
     module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
-    backlash_angle = bevel_backlash(layout, zp, zg)
-    gear_pitch_radius = zg * module / 2
-    thinning = backlash_angle * gear_pitch_radius / 2
+    thinning = bevel_backlash(layout, s) / 2
     shaft = carriage_shafts(layout, s)["input"]
     spec_in = layout.gear("input").spec
     bore = (spec_in.large if isinstance(spec_in, ClusterSpec) else spec_in).hub.bore_diameter  # the input shaft
