@@ -97,3 +97,19 @@ def summary(name: str, params: list[dict], results, seed: int) -> str:
     slowest = max(range(len(results)), key=lambda i: results[i][2])
     return (f"{name}: sweep of {len(params)} (seed {seed}): {dict(tags)}; total {sum(r[2] for r in results):.1f} s "
             f"of builds; slowest {results[slowest][2]:.2f} s: {params[slowest]}")
+
+
+def assert_sweep(name: str, params: list[dict], results, seed: int, expected_kinds=frozenset()) -> Counter:
+    """Print the sweep's summary and fail on every result that is neither ``ok``, a ``design_error``
+    nor a ``geometry_error:KIND`` with KIND in ``expected_kinds`` (the refusals that are the right
+    answer for impossible parameters); the tags counted, for the family's own coverage asserts."""
+    print("\n" + summary(name, params, results, seed))
+
+    def accepted(tag: str) -> bool:
+        return tag in ("ok", "design_error") or (tag.startswith("geometry_error:")
+                                                  and tag.split(":", 1)[1] in expected_kinds)
+    failures = failures_of(params, results, accepted)
+    for p, r in failures[:10]:
+        print(r[0], r[1], p)
+    assert not failures, f"{len(failures)} tagged failures: {Counter(r[0] for _, r in failures)}"
+    return Counter(r[0] for r in results)
