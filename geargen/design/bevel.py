@@ -31,6 +31,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from geargen.design.gear import _check
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
@@ -144,14 +145,6 @@ class BevelGearSpec:
             out.append(f"face width {self.face_width:.6g} mm is more than a third of the outer cone distance "
                        f"{self.cone_distance:.6g} mm (the usual limit)")
         return out
-
-
-def _check(name: str, value, lo: float, hi: float, unit: str, exclusive_lo: bool = False) -> None:
-    ok = (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-          and (value > lo if exclusive_lo else value >= lo) and value <= hi)
-    if not ok:
-        left = "(" if exclusive_lo else "["
-        raise DesignError(name, f"{value!r} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())
 
 
 BEVEL_FIELDS: list[Field] = [

@@ -356,8 +356,11 @@ def internal_rim_diameter(spec: GearSpec) -> float:
     return 2 * spec.root_radius_standard + 2 * INTERNAL_RIM_MODULES * spec.module
 
 
-def _check(name: str, value, lo: float, hi: float, unit: str, exclusive_lo: bool = False) -> None:
-    ok = isinstance(value, (int, float)) and math.isfinite(value) and (value > lo if exclusive_lo else value >= lo) and value <= hi
+def _check(name: str, value, lo: float, hi: float, unit: str = "", exclusive_lo: bool = False) -> None:
+    """DesignError naming ``name`` unless ``value`` is a finite number (not a bool) in [lo, hi] (or (lo, hi]);
+    every gear family's spec validates its numbers with it."""
+    ok = (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
+          and (value > lo if exclusive_lo else value >= lo) and value <= hi)
     if not ok:
         left = "(" if exclusive_lo else "["
         raise DesignError(name, f"{value!r} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())

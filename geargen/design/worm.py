@@ -27,17 +27,13 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from geargen.design.gear import _check
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import MM_PER_IN, module_from_diametral_pitch
 
 DEG = math.pi / 180.0
 WORM_KINDS = ("worm", "worm_wheel")
-
-
-def _check(name: str, value, lo: float, hi: float, unit: str = "") -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and lo <= value <= hi):
-        raise DesignError(name, f"{value!r} is out of range", f"[{lo:.6g}, {hi:.6g}] {unit}".rstrip())
 
 
 @dataclass(frozen=True)
