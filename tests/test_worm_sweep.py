@@ -18,14 +18,13 @@ import math
 import os
 import sys
 import traceback
-from collections import Counter
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 sys.path.insert(0, str(Path(__file__).parent))
-from sweep_support import run_sweep, summary  # noqa: E402
+from sweep_support import assert_sweep, run_sweep  # noqa: E402
 
 COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "100"))
 SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261124"))
@@ -121,12 +120,5 @@ def test_random_worm_sets_build_or_are_refused_clearly():
     rng = np.random.default_rng(SEED)
     params = [random_parameters(rng) for _ in range(COUNT)]
     results = run_sweep(params, f"{__file__}:check_one")
-    tags = Counter(r[0] for r in results)
-    print("\n" + summary("worm sets", params, results, SEED))
-    failures = [(p, r) for p, r in zip(params, results)
-                if not (r[0] in ("ok", "design_error")
-                        or (r[0].startswith("geometry_error:") and r[0].split(":")[1] in EXPECTED_GEOMETRY_KINDS))]
-    for p, r in failures[:10]:
-        print(r[0], r[1], p)
-    assert not failures, f"{len(failures)} tagged failures: {Counter(r[0] for _, r in failures)}"
+    tags = assert_sweep("worm sets", params, results, SEED, EXPECTED_GEOMETRY_KINDS)
     assert tags["ok"] >= 0.5 * COUNT  # the sweep mostly builds, not refuses
