@@ -280,6 +280,7 @@ def overlap_check(parts, layout: Layout | None = None) -> Any:
     from geargen.cad.assembly import pairwise_overlaps
     meshing = [(m.part1, m.part2, "meshing gears: checked by the geometric mesh checker") for m in layout.meshes] \
         if layout is not None else []
+    meshing += list(getattr(parts, "meshing", ()))
     return pairwise_overlaps(parts.parts, parts.intended_contacts, delegated=meshing)
 
 
@@ -865,9 +866,10 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     from geargen.model import BACKLASH_KIND
     dc = result.checks.design_check
     tolerances = [t.to_dict("mm") for t in dc.tolerances] if dc is not None else []
+    bevel = list(dc.bevel) if dc is not None else []  # mm, rad (geargen.checks.verdict._bevel_meshes)
     structure = result.checks.structure
     return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
-            "meshes": meshes, "tolerances": tolerances, "overlaps": overlaps,
+            "meshes": meshes, "bevel_meshes": bevel, "tolerances": tolerances, "overlaps": overlaps,
             "structure": None if structure is None else structure.to_dict()}
 
 

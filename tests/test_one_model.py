@@ -25,7 +25,13 @@ def _design(tmp_path, clearance_in: float):
     old = "bearing_clearance_in = 0.02 "
     assert old in text
     path = tmp_path / f"robot_joint_{clearance_in}.toml"
-    path.write_text(text.replace(old, f"bearing_clearance_in = {clearance_in} "))
+    text = text.replace(old, f"bearing_clearance_in = {clearance_in} ")
+    # the carriage arm rises with the clearance, and the bevel gear's back must clear it by the
+    # clearance: the bevel heel goes up by twice the change (geargen.cad.assembly._bevel_drive)
+    bevel = "input_shaft_to_bevel_in = 0.525 "
+    assert bevel in text
+    text = text.replace(bevel, f"input_shaft_to_bevel_in = {0.525 + 2 * (clearance_in - 0.02):.6g} ")
+    path.write_text(text)
     return load_design(path)
 
 

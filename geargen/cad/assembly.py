@@ -36,6 +36,7 @@ from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
 from geargen.design.cluster import ClusterSpec
 from geargen.design.parts import parts_settings
 from geargen.errors import BuildError, DesignError
+from geargen.units import MM_PER_IN
 
 # ---------------------------------------------------------------- colours (r, g, b, alpha)
 
@@ -133,6 +134,8 @@ class PartSet:
     stationary: tuple[str, ...] = ()
     rotating: tuple[str, ...] = ()
     rolling: tuple[tuple[str, str], ...] = ()
+    # meshing pairs among these parts (part, part, why): checked by their mesh checker, not the overlap check
+    meshing: tuple[tuple[str, str, str], ...] = ()
 
     def part(self, name: str) -> PlacedPart:
         for p in self.parts:
@@ -203,6 +206,7 @@ class _Parts:
         self.stationary: list[str] = []
         self.rotating: list[str] = []
         self.rolling: list[tuple[str, str]] = []
+        self.meshing: list[tuple[str, str, str]] = []  # meshes among the parts (the bevel pair)
 
     def shared(self, builder, *args):
         """``builder(*args)``, built once per assembly: parts made alike (two bearings of one size,
@@ -223,7 +227,8 @@ class _Parts:
     def done(self) -> PartSet:
         fixed = [g for g in self.ground if g not in self.rotating] + self.stationary  # a spindle turns
         return PartSet(self.parts, self.contacts, self.notes, self.dims, tuple(self.ground),
-                       tuple(dict.fromkeys(fixed)), tuple(self.rotating), tuple(self.rolling))
+                       tuple(dict.fromkeys(fixed)), tuple(self.rotating), tuple(self.rolling),
+                       tuple(self.meshing))
 
 
 def _at(x=0.0, y=0.0, z=0.0) -> np.ndarray:
@@ -324,7 +329,7 @@ def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         pieces = drive["pieces"]
         holes += drive["holes"]
     else:
-        drive = _bevel_drive(out, layout, s, ish, x_in, d_in)
+        drive = _bevel_drive(out, layout, s, ish, x_in, d_in, z_arm_top)
         pieces = [P.box_between((drive["saddle_x0"], -half_w * 0.6, z_plate_top),
                                 (drive["x_end"] - gap, half_w * 0.6, drive["z_axis"] - drive["motor_r"]))]
     x_motor_end, z_top_parts = drive["x_end"], drive["z_top"]
@@ -444,38 +449,107 @@ def _x_min_above(shape, z: float, lo, hi) -> float:
     return math.inf if box.IsVoid() else box.Get()[0]
 
 
-def _bevel_drive(out: _Parts, layout, s: Mapping[str, Any], ish, x_in: float, d_in: float) -> dict[str, Any]:
-    """The motor lying along +x on the carriage, driving the input shaft through a bevel pair
-    (the robot joint, Fig. 10): the bevel gear's heel ``input_shaft_to_bevel`` above the input's
-    mid-face (the placed input shaft's load), the motor's stub ending on the pinion's heel."""
+def _bevel_back_face(spec) -> float:
+    """Distance from the apex, along the axis, of the plane through the heel's root circle: the
+    toothed body of :func:`geargen.cad.bevel_solid.build_bevel` lies nearer the apex than it, only
+    the blank's spherical back (inside the root cone) reaches beyond."""
+    from geargen.core.bevel import bevel_geometry
+    g = bevel_geometry(spec)
+    return spec.cone_distance * math.cos(g.root_cone_angle)
+
+
+def _bevel_part(spec):
+    """A bevel gear's solid (apex at the origin, axis +z, the teeth on +z) with its back flat at
+    :func:`_bevel_back_face` (the spherical cap behind the root circle is blank, not tooth: it
+    would reach the parts behind the heel). When that leaves the axis bare (the toe sphere lies
+    beyond the back face: a gear of large cone angle), a web joins the toothed ring to the bore:
+    a disc from the middle of the face, (R_i + R_e)/2 cos delta_f from the apex, to the back
+    face, its rim half way between the toe sphere and the root cone there, so it stays inside
+    the root cone (no tooth surface is touched) and runs into the ring."""
+    from geargen.cad.bevel_solid import build_bevel
+    from geargen.core.bevel import bevel_geometry
+    shape = build_bevel(spec, check=True).shape
+    r = spec.cone_distance * 1.1
+    back = _bevel_back_face(spec)
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    if ri >= back:
+        root = bevel_geometry(spec).root_cone_angle
+        a0 = (ri + re) / 2 * math.cos(root)
+        rim = (math.sqrt(ri * ri - a0 * a0) + a0 * math.tan(root)) / 2
+        web = P.translate(P.cylinder(2 * rim, r - a0, spec.bore_diameter), (0, 0, a0))
+        shape = P.fuse([shape, web], spec.name)
+    return P._single(P.cut(shape, P.box(2 * r, 2 * r, r, (-r, -r, back))), spec.name)
+
+
+def _bevel_drive(out: _Parts, layout, s: Mapping[str, Any], ish, x_in: float, d_in: float,
+                 z_arm_top: float) -> dict[str, Any]:
+    """The motor lying along +x on the carriage, driving the input shaft through a toothed bevel
+    pair (the robot joint, Fig. 10): the bevel gear's heel (pitch circle) ``input_shaft_to_bevel``
+    above the input's mid-face (the placed input shaft's load), the two apexes at the pitch cones'
+    common apex, the motor's stub ending on the pinion's back face. The pinion's teeth sit in the
+    middle of the gear's spaces (the pair's backlash split to both sides); the pair is a mesh,
+    checked on the exact outlines (:func:`geargen.checks.bevel_placed.check_placed_bevel_pair`)."""
+    from geargen.model.bevel_drive import bevel_drive
+    placed = bevel_drive(layout, dict(s))
+    gear_spec, pinion_spec = placed.gear, placed.pinion
     module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
     bev = P.bevel_pair_geometry(s["bevel_pinion_teeth"], s["bevel_gear_teeth"], module, s["bevel_face_width"])
     gap = s["bearing_clearance"]
     z_heel = ish.loads["bevel_gear"]
     z_apex = z_heel + bev.apex_height("gear")
-    bevel_gear = out.add("bevel_gear", P.bevel_pitch_cone(bev, "gear", bore=d_in), _at(x_in, 0, z_heel), "carriage",
-                         "bevel", description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg")
-    x_pinion_heel = x_in + bev.apex_height("pinion")
-    pinion = out.add("bevel_pinion", P.bevel_pitch_cone(bev, "pinion"), _along_x(x_pinion_heel, 0, z_apex, True),
-                     "carriage", "bevel",
-                     description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg")
-    out.touch(bevel_gear, pinion, "bevel pitch cones roll on each other (pitch-cone model)")
+    apex = (x_in, 0.0, z_apex)
+    # one home: the toothed gears' cones and apex are the pitch-cone model's
+    for spec, which in ((gear_spec, "gear"), (pinion_spec, "pinion")):
+        radius, cone = bev._cone(which)
+        if abs(spec.pitch_cone_angle - cone) > 1e-12 or abs(spec.reference_diameter / 2 - radius) > 1e-9 \
+                or abs(spec.cone_distance - bev.cone_distance) > 1e-9:
+            raise BuildError(f"{spec.name}: its cones differ from the bevel pair's pitch cones")
+    if not np.allclose(placed.apex, apex, rtol=0, atol=1e-9) or abs(placed.z_heel - z_heel) > 1e-9:
+        raise BuildError("bevel pair: the placed apex is not the pitch cones' apex")
+    if not math.isclose(gear_spec.bore_diameter, d_in):
+        raise BuildError("bevel gear: its bore is not the input shaft")
+    # the gear's back face (its heel root circle's plane) must clear the carriage arm under it
+    lowest = z_arm_top + gap + (_bevel_back_face(gear_spec) - bev.apex_height("gear"))
+    if z_heel < lowest - 1e-9:
+        shift = (lowest - z_heel) / (MM_PER_IN if layout.design.length_unit == "in" else 1.0)
+        raise DesignError("parts.input_shaft_to_bevel", f"puts the bevel gear's back (its heel root circle) into the "
+                          f"carriage arm under it", f"at least {shift:.4g} {layout.design.length_unit} more")
+    gear_shape, pinion_shape = _bevel_part(gear_spec), _bevel_part(pinion_spec)
+    gear_matrix, pinion_matrix = placed.gear_matrix, placed.pinion_matrix
+    bevel_gear = out.add("bevel_gear", gear_shape, gear_matrix, "carriage", "bevel",
+                         description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg, "
+                                     f"spherical involute")
+    pinion = out.add("bevel_pinion", pinion_shape, pinion_matrix, "carriage", "bevel",
+                     description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg, "
+                                 f"spherical involute")
+    out.meshing.append((bevel_gear, pinion, "meshing bevel gears: checked by the bevel mesh checker"))
     out.touch("input_shaft", bevel_gear, "shaft in the bevel gear's bore")
     out.rolling.append((bevel_gear, pinion))
     out.rotating += [bevel_gear, pinion]
-    # motor along +x, its stub ending on the pinion's heel
+    # motor along +x, its stub ending on the pinion's back face
     stub = s["motor_shaft_length"]
-    x_flange = x_pinion_heel + stub
+    x_pinion_back = x_in + _bevel_back_face(pinion_spec)
+    x_flange = x_pinion_back + stub
     motor_r = s["motor_body_diameter"] / 2
     motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
                                                  s["motor_flange_thickness"], s["motor_shaft_diameter"], stub),
                     _along_x(x_flange, 0, z_apex), "carriage", "motor", description="servo motor with encoder (envelope)")
     out.touch(motor, pinion, "motor shaft stub on the bevel pinion")
     x_end = x_flange + s["motor_flange_thickness"] + s["motor_body_length"]
+    # the input shaft fills the gear's bore up to the toe, or its web's face
+    rb = d_in / 2
+    back = _bevel_back_face(gear_spec)
+    if gear_spec.toe_cone_distance >= back:
+        from geargen.core.bevel import bevel_geometry
+        input_top = z_apex - (gear_spec.toe_cone_distance + gear_spec.cone_distance) / 2 \
+            * math.cos(bevel_geometry(gear_spec).root_cone_angle)
+    else:
+        input_top = z_apex - math.sqrt(gear_spec.toe_cone_distance ** 2 - rb * rb)
     return dict(x_end=x_end, z_axis=z_apex, motor_r=motor_r, z_top=z_apex + motor_r,
-                saddle_x0=x_flange + s["motor_flange_thickness"] + gap, input_top=z_heel + bev.axial_height("gear"),
-                dims=dict(bevel=bev),
-                note=f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}) as pitch-cone frusta; "
+                saddle_x0=x_flange + s["motor_flange_thickness"] + gap, input_top=input_top,
+                dims=dict(bevel=bev, bevel_apex=apex),
+                note=f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}), spherical-involute "
+                     f"teeth, thinning {gear_spec.thinning:.4g} mm each; "
                      f"motor to output ratio {bev.ratio * layout.ratio['train']:.6g}")
 
 

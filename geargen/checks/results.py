@@ -101,6 +101,8 @@ class Failure:
 
 
 #: quantities (names used in Failure.quantity) that are lengths
+_BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")
+
 LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
                      "tip_land", "path_difference", "carriage_travel")
 
@@ -410,6 +412,8 @@ class DesignCheck:
     # per mesh with thickness allowances (geargen.checks.allowance, mm): the range they give with the
     # centre-distance tolerance, analytic and measured on the thinnest and thickest teeth
     backlash_range: list[dict[str, Any]] = field(default_factory=list)
+    # the bevel pair of the robot joint as placed (geargen.checks.verdict._bevel_meshes, mm, rad)
+    bevel: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def all_failures(self) -> list[Failure]:
@@ -439,6 +443,7 @@ class DesignCheck:
                           for key, v in b.items()} for b in self.backlash],
             "backlash_range": [{key: (_scaled(v, s) if key in _RANGE_LENGTHS else v) for key, v in r.items()}
                                for r in self.backlash_range],
+            "bevel": [{key: (_num(v * s) if key in _BEVEL_LENGTHS else v) for key, v in b.items()} for b in self.bevel],
         }
 
 

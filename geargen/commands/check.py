@@ -185,6 +185,12 @@ def table(result: DesignCheck) -> str:
         eps = f"{m.total_contact_ratio:.3f}" if math.isfinite(m.total_contact_ratio) else "-"
         lines.append(f"{m.mesh:<24}{m.path:<10}{_fmt(m.min_normal_backlash, u):>12}{_fmt(m.min_clearance, u):>12}"
                      f"{eps:>9}  {kinds}")
+    for b in result.bevel:
+        lines += ["", f"bevel pair ({b['gear1']} - {b['gear2']}): backlash {b['where']}",
+                  f"  {b['mesh']:<22}measured {_fmt(b['backlash'], u)}  design {_fmt(b['design_backlash'], u)}  "
+                  f"difference {(b['backlash'] - b['design_backlash']) / LENGTH_SUFFIXES[u]:.1e}  "
+                  f"each side {_fmt(b['play_negative'], u)} / {_fmt(b['play_positive'], u)}  "
+                  f"tip clearance {_fmt(b['tip_clearance'], u)}"]
     if result.tolerances:
         lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
         head = f"{'mesh':<16}{'meant for':<11}{'nominal':>12}{'worst case':>12}{'MC min':>12}{'MC 1%':>12}{'samples':>9}  failure"

@@ -379,8 +379,15 @@ def _default_parts(put, g, unit: str, bearings, max_torque: float, plate: float,
     apex = zg * module / 2 * zp / zg
     below = inp.face_width / 2 + gap + bearings["input"][2]
     above = max(above, flange / 2 + plate + gap - apex - below)
+    # the toothed gear's back (the plane of its heel root circle, dedendum 1.25 m) lies below its
+    # heel pitch circle: R_e cos(delta_f) - r / tan(delta) further down
+    delta = math.atan2(zg, zp)
+    above += cone * math.cos(delta - math.atan(1.25 * module / cone)) - zg * module / 2 / math.tan(delta)
     put("parts", f"input_shaft_to_bevel_{unit}", _round(above, unit), "the bevel gear's heel clear above the "
         "carriage arm over the input's upper bearing")
+    if not (out.get("train") or {}).get("upstream_backlash_arcmin"):
+        put("parts", f"bevel_backlash_{unit}", _in_unit(0.0015 * MM_PER_IN, unit),
+            "0.0015 in circumferential, the fine-pitch allowance of AGMA 2002 (the robot joint's)")
     put("parts", f"motor_body_diameter_{unit}", _round(flange, unit), why)
     put("parts", f"motor_body_length_{unit}", _round(body_length, unit), why)
     put("parts", f"motor_flange_{unit}", _round(flange, unit), why)

@@ -55,7 +55,11 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         _L("bevel_face_width", required=False, default=None,
            help="face width of the bevel pair (less than the cone distance)"),
         _L("input_shaft_to_bevel", required=False, default=None,
-           help="input gear's mid-plane to the bevel gear's heel"),
+           help="input gear's mid-plane to the bevel gear's heel (its heel pitch circle)"),
+        _L("bevel_backlash", required=False, default=None,
+           help="circumferential backlash of the bevel pair at the heel pitch circles, cut as equal thinnings of "
+                "both gears; when absent, the [train] upstream_backlash_arcmin of the pair's [layout] "
+                "upstream_stages entry at the bevel gear's heel pitch radius (give one of them)"),
         _L("stage_bearing_outer_diameter", required=False, default=None,
            help="with [stages]: outer diameter of the stage shafts' bearings (bore: the shaft's gears' bore)"),
         _L("stage_bearing_width", required=False, default=None,
@@ -228,7 +232,7 @@ def _check_motor_drive(design, v: dict[str, Any]) -> None:
     """The carriage's motor drives the input through a bevel pair, or (a design with [stages])
     through those stages standing on the carriage: each needs its own keys and refuses the other's."""
     staged = bool(design.section("stages"))
-    needed, refused = (_STAGE_KEYS, _BEVEL_KEYS + ("bevel_module", "bevel_diametral_pitch_per_in")) if staged \
+    needed, refused = (_STAGE_KEYS, _BEVEL_KEYS + ("bevel_module", "bevel_diametral_pitch_per_in", "bevel_backlash")) if staged \
         else (_BEVEL_KEYS, _STAGE_KEYS)
     why = "the design's [stages] drive the input" if staged else "the motor drives the input through the bevel pair"
     for name in refused:

@@ -517,23 +517,19 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
 
 
 def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | None:
-    """Eq. 1 on the robot joint's bevel pair ([parts] bevel keys, 90 deg shafts), at the driven
-    gear's mean radius, at the output; None without a bevel pair of these teeth."""
-    design = layout.design
-    if not design.section("parts"):
-        return None
-    from geargen.design.parts import parts_settings
+    """Eq. 1 on the robot joint's bevel pair as placed (:func:`geargen.model.bevel_drive.bevel_drive`:
+    the specs the solids are built from), at the driven gear's mean radius, at the output; None
+    without a bevel pair of these teeth."""
     from geargen.core.stiffness import mesh_stiffness, reflect, torsional_from_linear
-    s = parts_settings(design)
-    if s.get("bevel_pinion_teeth") != z1 or s.get("bevel_gear_teeth") != z2:
+    from geargen.model.bevel_drive import bevel_drive
+    placed = bevel_drive(layout)
+    if placed is None or (placed.pinion.teeth, placed.gear.teeth) != (z1, z2):
         return None
-    module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
-    face = s["bevel_face_width"]
-    cone = math.atan2(z2, z1)  # pitch cone angle of the driven gear, shafts at 90 deg
-    r_mean = z2 * module / 2 - face / 2 * math.sin(cone)
-    r_base = r_mean * math.cos(math.radians(20.0))  # the pitch-cone model's 20 deg pressure angle
+    gear = placed.gear
+    r_mean = gear.reference_diameter / 2 - gear.face_width / 2 * math.sin(gear.pitch_cone_angle)
+    r_base = r_mean * math.cos(gear.pressure_angle)
     from geargen.design.stiffness import stiffness_design
-    k = float(mesh_stiffness(stiffness_design(design).stiffness.elastic_modulus, face))
+    k = float(mesh_stiffness(stiffness_design(layout.design).stiffness.elastic_modulus, gear.face_width))
     return float(reflect(torsional_from_linear(k, r_base), driven_speed))
 
 

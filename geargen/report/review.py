@@ -385,6 +385,15 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
              "backlash (path 2)", "contact ratio", f"min tip clearance ({unit})", "result"], rows)
 
     dc = getattr(result.checks, "design_check", None)
+    if dc is not None and dc.bevel:
+        r.p("The bevel pair: backlash circumferential at the heel pitch circle, measured on the exact "
+            f"spherical-involute outlines on the heel sphere of the placed gears (lengths in {unit}).")
+        r.table(["mesh", "gear 1 / gear 2", "design backlash", "measured backlash", "difference", "free play each side",
+                 f"min tip clearance ({unit})", "result"],
+                [[b["mesh"], f"{b['gear1']} / {b['gear2']}", _len(b["design_backlash"], scale), _len(b["backlash"], scale),
+                  f"{(b['backlash'] - b['design_backlash']) / scale:.1e}",
+                  f"{_len(b['play_negative'], scale)} / {_len(b['play_positive'], scale)}", _len(b["tip_clearance"], scale),
+                  "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"] for b in dc.bevel])
     if dc is not None and dc.tolerances:
         r.h("Backlash across the error budget")
         r.p("Minimum backlash of each mesh with every error of the [errors.*] budget: the worst case and the "

@@ -114,6 +114,8 @@ def test_robot_joint_command(capsys):
     for mesh in ("mesh1_a", "mesh1_b", "mesh2_a", "mesh2_b"):
         assert text.count(mesh) >= 2  # sweep row and tolerance row
     assert "preloaded" in text and "carriage travel" in text
+    # the bevel pair, measured on its exact outlines: the design's 0.0015 in (tests/test_robot_bevel.py)
+    assert "bevel pair (bevel_gear - bevel_pinion)" in text and "measured 0.001500  design 0.001500" in text
 
 
 def test_pure_check_modules_do_not_load_the_cad_kernel():

@@ -100,7 +100,7 @@ def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
     face 0..0.1875 in, the 0.0625 in gap, the small gear 0.25..0.5625 in; its bearings 0.196 in
     wide a 0.02 in clearance beyond the faces, so supports at -0.118 and 0.6805 in: span
     0.7985 in, the small gear's mid-face (0.40625 in) 0.52425 in from the lower support; the
-    shaft twists over 0.3125 in between the gears' mid-planes; the input shaft over 0.50 in
+    shaft twists over 0.3125 in between the gears' mid-planes; the input shaft over 0.525 in
     (input_shaft_to_bevel)."""
     s = _robot_joint_summary()
     E, G = 207e3, 79.3e3
@@ -149,7 +149,7 @@ def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
     # in the file in the first round)
     assert cos == pytest.approx(-0.7315, abs=1e-4)
     assert k_path == pytest.approx(18.551e6, rel=1e-4)
-    common = 1 / (1 / (G * math.pi * (0.1875 * IN) ** 4 / 32 / (0.5 * IN) * (R1 * R2) ** 2)
+    common = 1 / (1 / (G * math.pi * (0.1875 * IN) ** 4 / 32 / (0.525 * IN) * (R1 * R2) ** 2)
                   + 1 / (G * math.pi * ((1.25 * IN) ** 4 - IN ** 4) / 32 / (0.4 * IN)))
     assert s.common.stiffness == pytest.approx(common, rel=1e-12)
     # preload spring: three blades and two springs along the carriage, through lambda = 1/(R2 r_b2)
