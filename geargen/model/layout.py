@@ -26,6 +26,7 @@ train states its thinning, else "mid".
 
 from __future__ import annotations
 
+import importlib
 import math
 from dataclasses import dataclass, field, replace
 from fractions import Fraction
@@ -222,6 +223,11 @@ def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: st
             "text": text, "what": what}
 
 
+#: layout kinds placed by their own module ("module:function(design, settings) -> Layout"); the
+#: dual- and split-pinion drives are placed here
+PLACERS: dict[str, str] = {}
+
+
 def is_drive(design: Design) -> bool:
     """Whether the design describes a drive to resolve (a [layout] or a [synthesis]); a design
     without either only declares gear pairs to check ([checks] meshes) or a gear."""
@@ -238,8 +244,11 @@ def resolve(design: Design, position: str | None = None) -> Layout:
         if position == "disengaged" and not design.section("engagement"):
             raise DesignError("--position", "'disengaged' needs an [engagement] section", "'engaged'")
         settings["position"] = position
-    if settings["kind"] != "dual_pinion":
+    if settings["kind"] == "split_pinion":
         return _place_split_pinion(design, settings)
+    if settings["kind"] in PLACERS:
+        module, function = PLACERS[settings["kind"]].split(":")
+        return getattr(importlib.import_module(module), function)(design, settings)
     wanted = settings["position"]
     layout = _place_dual_pinion(design, {**settings, "position": "engaged"}, None)
     if not design.section("engagement"):
