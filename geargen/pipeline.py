@@ -867,9 +867,10 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     dc = result.checks.design_check
     tolerances = [t.to_dict("mm") for t in dc.tolerances] if dc is not None else []
     bevel = list(dc.bevel) if dc is not None else []  # mm, rad (geargen.checks.verdict._bevel_meshes)
+    planetary = list(dc.planetary) if dc is not None else []  # mm, rad (geargen.checks.planetary_placed)
     structure = result.checks.structure
     return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
-            "meshes": meshes, "bevel_meshes": bevel, "tolerances": tolerances, "overlaps": overlaps,
+            "meshes": meshes, "bevel_meshes": bevel, "planetary_meshes": planetary, "tolerances": tolerances, "overlaps": overlaps,
             "structure": None if structure is None else structure.to_dict()}
 
 

@@ -64,6 +64,10 @@ FAILURE_KINDS: dict[str, str] = {
     "ratio_mismatch": "the exact ratio of the train is not one the design requires",
     "trochoid_interference": "internal pair: leaving mesh, the pinion's tip corner cuts the ring's tip corner",
     "radial_assembly_fouling": "internal pair: the pinion cannot be moved into mesh along the line of centres",
+    "planetary_assembly": "planetary stage: a planet's carrier angle is no assembly angle (2 pi k / (z_s + z_r)): "
+                          "it cannot mesh both the sun and the ring",
+    "planetary_coaxiality": "planetary stage: the sun-planet and planet-ring working centre distances differ",
+    "planet_neighbour_clearance": "planetary stage: neighbouring planets' tip circles do not clear",
 }
 
 #: kinds that are interference (teeth overlapping), in the order they are reported
@@ -101,6 +105,9 @@ class Failure:
 
 
 #: quantities (names used in Failure.quantity) that are lengths
+_PLANETARY_LENGTHS = ("centre_distance", "backlash", "closed_form_backlash", "play_ccw", "play_cw", "design_min",
+                      "design_max", "carrier_radius", "coaxiality_difference", "coaxiality_tolerance",
+                      "neighbour_tip_gap", "planet_tip_clearance")
 _BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")
 
 LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
@@ -414,6 +421,8 @@ class DesignCheck:
     backlash_range: list[dict[str, Any]] = field(default_factory=list)
     # the bevel pair of the robot joint as placed (geargen.checks.verdict._bevel_meshes, mm, rad)
     bevel: list[dict[str, Any]] = field(default_factory=list)
+    # the planetary stages as placed (geargen.checks.planetary_placed: planet-ring meshes, conditions; mm, rad)
+    planetary: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def all_failures(self) -> list[Failure]:
@@ -444,6 +453,8 @@ class DesignCheck:
             "backlash_range": [{key: (_scaled(v, s) if key in _RANGE_LENGTHS else v) for key, v in r.items()}
                                for r in self.backlash_range],
             "bevel": [{key: (_num(v * s) if key in _BEVEL_LENGTHS else v) for key, v in b.items()} for b in self.bevel],
+            "planetary": [{key: (_num(v * s) if key in _PLANETARY_LENGTHS else v) for key, v in b.items()}
+                          for b in self.planetary],
         }
 
 

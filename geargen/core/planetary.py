@@ -138,6 +138,38 @@ def assembly_angles(stage: PlanetaryStage, equal_spacing: bool = True) -> list[f
     return [2 * math.pi * k / total for k in steps]
 
 
+def planet_phases(sun_teeth: int, planet_teeth: int, ring_teeth: int, sun_rotation: float,
+                  angles) -> tuple[list[float], float]:
+    """Rotations (rad, tooth 0 centreline; the ring's: its tooth space 0) of planets at carrier
+    angles ``angles`` and of the ring, so that every planet sits in the middle of its play with
+    the sun (rotation ``sun_rotation``) and with the ring (both meshes symmetric about the line of
+    centres: a tooth centred in the mate's space there).
+
+    Sun-planet (external): a sun tooth ``d = sun_rotation - phi`` off the line of centres puts a
+    planet space ``- d z_s / z_p`` off it on the far side: ``rho = phi + pi + pi / z_p - (sun_rotation
+    - phi) z_s / z_p``. Planet-ring (internal, both turn the same way): the planet's tooth ``rho -
+    phi`` off the outward line puts the ring's space ``(rho - phi) z_p / z_r`` off it:
+    ``ring = phi + (rho - phi) z_p / z_r (mod 2 pi / z_r)``. Planet 0 fixes the ring; planet i
+    needs ``phi_i (z_s + z_r) / (2 pi)`` whole: the assembly condition (mismatches stay in the
+    returned rotations; :func:`ring_phase_error` measures them)."""
+    zs, zp, zr = sun_teeth, planet_teeth, ring_teeth
+    rho = [phi + math.pi + math.pi / zp - (sun_rotation - phi) * zs / zp for phi in angles]
+    ring = angles[0] + (rho[0] - angles[0]) * zp / zr
+    return rho, ring % (2 * math.pi / zr)
+
+
+def ring_phase_error(sun_teeth: int, ring_teeth: int, angles) -> list[float]:
+    """Per planet, how far (rad of the ring, in (-pi / z_r, pi / z_r]) the ring's space it needs
+    lies from the ring placed for planet 0: ``phi_i (z_s + z_r) / z_r`` reduced by the ring's pitch
+    (zero for every planet exactly when the assembly condition holds)."""
+    pitch = 2 * math.pi / ring_teeth
+    out = []
+    for phi in angles:
+        d = (phi - angles[0]) * (sun_teeth + ring_teeth) / ring_teeth
+        out.append(d - pitch * math.floor(d / pitch + 0.5))
+    return out
+
+
 @dataclass(frozen=True)
 class PlanetaryCheck:
     """The stage's numbers once all conditions hold (mm, rad)."""
@@ -170,4 +202,4 @@ def check_stage(stage: PlanetaryStage, equal_spacing: bool = True) -> PlanetaryC
 
 
 __all__ = ["PlanetaryStage", "PlanetaryCheck", "ratios", "sun_planet_working", "planet_ring_working",
-           "coaxial_ring_shift", "assembly_angles", "check_stage"]
+           "coaxial_ring_shift", "assembly_angles", "check_stage", "planet_phases", "ring_phase_error"]

@@ -194,8 +194,11 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
             if isinstance(spec, GearSpec):  # the other families check their teeth in their readers
                 problems.run(_check_gear_tooth, gname, spec, gear_tables[gname], defaults, unit)
         if design.section("layout") or design.section("synthesis"):
+            # the one internal gear a drive may hold: a planetary stage's ring
+            rings = {t.get("ring") for t in (design.section("stages") or {}).values()
+                     if isinstance(t, Mapping) and t.get("kind") == "planetary"}
             for gname, spec in gears.items():
-                if getattr(spec, "kind", "external") != "external":
+                if getattr(spec, "kind", "external") != "external" and not (spec.kind == "internal" and gname in rings):
                     problems.add(DesignError(f"gears.{gname}.kind", f"{spec.kind!r}: the drives geargen places "
                                              "([layout] dual_pinion, split_pinion) are of external gears",
                                              "'external', or the gear in its own design file"))

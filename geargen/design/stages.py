@@ -34,6 +34,9 @@ from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
 STAGE_FIELDS = [
+    Field("kind", "string", required=False, default="pair", choices=("pair", "planetary"),
+          help="pair: a driver and a driven gear; planetary: sun, planets and a fixed ring "
+               "(geargen.design.planetary_stage, its own keys)"),
     Field("driver", "string", help="the gear table of the stage's driving gear (the first stage's: on the motor)"),
     Field("driven", "string", help="the gear table of the stage's driven gear (the last stage's: on the input "
                                    "gear's shaft)"),
@@ -60,6 +63,7 @@ class Stage:
     direction: float
     backlash_min: float
     backlash_max: float
+    kind: str = "pair"
 
     def ratio(self, design) -> Fraction:
         """Driver speed over driven speed."""
@@ -77,6 +81,10 @@ def stages(design) -> tuple[Stage, ...]:
         where = f"stages.{name}"
         if not isinstance(data, dict):
             raise DesignError(where, "expected a table")
+        if data.get("kind") == "planetary":
+            from geargen.design.planetary_stage import read_planetary_stage
+            out.append(read_planetary_stage(design, name, data, used))
+            continue
         v = read_table(data, STAGE_FIELDS, where)
         gears = []
         for role in ("driver", "driven"):
@@ -113,6 +121,10 @@ def stages(design) -> tuple[Stage, ...]:
                               f"{(standard + 0.5 * a.module) / k:.6g} {unit}; profile shifts are the gears' own)")
         out.append(Stage(name, v["driver"], v["driven"], cd, standard, v["direction"],
                          v["circumferential_backlash_min"], v["circumferential_backlash_max"]))
+    if len(out) > 1 and any(st.kind == "planetary" for st in out):
+        name = next(st.name for st in out if st.kind == "planetary")
+        raise DesignError(f"stages.{name}.kind", "a planetary stage is placed as the only upstream stage (sun on the "
+                          "motor, carrier on the input gear's shaft)", "one [stages.NAME] table, or 'pair' stages")
     if out and design.section("layout").get("upstream_stages"):
         raise DesignError("layout.upstream_stages", "the [stages] tables already give the stages before the input",
                           "one of them")
@@ -125,7 +137,8 @@ def shaft_speeds(design, stage_list: tuple[Stage, ...], input_speed: float) -> d
     speeds: dict[str, float] = {}
     speed = input_speed
     for s in reversed(stage_list):
-        speeds[s.driven] = speed
+        if s.driven is not None:  # a planetary stage's carrier is no gear
+            speeds[s.driven] = speed
         speed *= float(s.ratio(design))
         speeds[s.driver] = speed
     return speeds

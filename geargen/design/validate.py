@@ -189,6 +189,10 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
     if path[:2] == ("stiffness", "components") and len(path) == 3:
         return _COMPONENT_FIELDS, _COMPONENT_QUANTITIES
     if head == "stages" and len(path) == 2:
+        table = data.get("stages", {}).get(path[1], {})
+        if isinstance(table, Mapping) and table.get("kind") == "planetary":
+            from geargen.design.planetary_stage import PLANETARY_STAGE_FIELDS
+            return PLANETARY_STAGE_FIELDS, []
         return STAGE_FIELDS, []
     if head == "parts" and len(path) == 1:
         return HARDWARE_FIELDS[hardware_of(data)], []

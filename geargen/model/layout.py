@@ -212,8 +212,14 @@ def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: st
     total = Fraction(train_ratio)
     described = []
     from geargen.design.stages import stages
-    pairs = [(design.gear(st.driver).teeth, design.gear(st.driven).teeth) for st in stages(design)]
-    for driver, driven in pairs or settings["upstream_stages"]:
+    stage_list = stages(design)
+    for st in stage_list:
+        total *= st.ratio(design)
+        if st.kind == "planetary":  # ring fixed, sun in, carrier out
+            described.append(f"(1 + {design.gear(st.ring).teeth}/{design.gear(st.sun).teeth})")
+        else:
+            described.append(f"{design.gear(st.driven).teeth}/{design.gear(st.driver).teeth}")
+    for driver, driven in () if stage_list else settings["upstream_stages"]:
         total *= Fraction(driven, driver)
         described.append(f"{driven}/{driver}")
     required = settings["required_ratios"]
@@ -463,6 +469,14 @@ def _place_stages(design: Design, s: dict, loop_gears: list[GearPlacement], rule
     meshes: list[MeshPlacement] = []
     notes: list[str] = []
     for st in reversed(stage_list):
+        if st.kind == "planetary":
+            from geargen.model.planetary_stage import place_planetary_stage
+            placed = place_planetary_stage(design, st, centre, level, rule)
+            gears += placed.gears
+            meshes += placed.meshes
+            notes += placed.notes
+            level += placed.height + gap
+            continue
         driver, driven = design.gear(st.driver), design.gear(st.driven)
         if rule != "as_designed":
             driver, driven = _thin_pair(driver, driven, _modelled_backlash(st.backlash_min, st.backlash_max, rule),

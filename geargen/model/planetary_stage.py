@@ -1,0 +1,105 @@
+"""A planetary upstream stage placed (:mod:`geargen.design.planetary_stage`): the one home of its
+carrier radius, planet angles and every phase.
+
+Sun and ring on the input gear's axis, the planets at the carrier radius ``a`` and the carrier
+angles of :func:`geargen.core.planetary.assembly_angles`; all faces centred on one level. Phases
+(:func:`geargen.core.planetary.planet_phases`): the sun's tooth 0 on +x, each planet and the ring
+in the middle of both plays, in the level's lowest plane (carried to each gear's own face by its
+helix). Tooth thickness as modelled: for ``model_backlash`` mid/max/min the sun and planet are
+thinned (equally, or as the design shares it) for the sun-planet backlash at ``a``, then the
+ring's spaces widened for the same backlash in the planet-ring mesh.
+
+The meshes: each sun-planet mesh a :class:`MeshPlacement` (the external checker); the
+planet-ring meshes are checked on the placed exact outlines by
+:mod:`geargen.checks.planetary_placed`, which reads the placements from the Layout.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from geargen.design.gear import GearSpec, with_changes
+from geargen.errors import DesignError
+from geargen.units import LENGTH_SUFFIXES
+
+
+@dataclass(frozen=True)
+class PlacedPlanetary:
+    """The placements and meshes of one planetary stage, its height (mm) and notes."""
+
+    gears: list
+    meshes: list
+    notes: list
+    height: float
+
+
+def planet_part(planet: str, i: int) -> str:
+    """Part name of planet ``i`` (from 1) of the gear table ``planet``."""
+    return f"{planet}_{i}"
+
+
+def internal_backlash(planet: GearSpec, ring: GearSpec, centre_distance: float) -> float:
+    """Planet-ring backlash (mm) at ``centre_distance``, in the resolved model's kind
+    (circumferential at the planet's reference circle: j_bt / cos alpha_t)."""
+    from geargen.core.internal import internal_pair_geometry
+    pair = internal_pair_geometry(planet, ring, centre_distance)
+    return pair.backlash_transverse / math.cos(planet.transverse_pressure_angle)
+
+
+def _modelled_gears(design, st, a: float, rule: str):
+    from geargen.model.layout import _modelled_backlash, _thin_pair
+    sun, planet, ring = design.gear(st.sun), design.gear(st.planet), design.gear(st.ring)
+    if rule == "as_designed":
+        return sun, planet, ring, []
+    target = _modelled_backlash(st.backlash_min, st.backlash_max, rule)
+    sun, planet = _thin_pair(sun, planet, target, a, f"stages.{st.name}")
+    ring0 = with_changes(ring, thinning=0.0)
+    # widening the ring's spaces by t adds t to this backlash (both at the planet's reference circle)
+    extra = target - internal_backlash(planet, ring0, a)
+    if extra < -1e-12:
+        raise DesignError(f"stages.{st.name}.carrier_radius", f"the planet-ring mesh already has "
+                          f"{target - extra:.4g} mm of backlash at {a:.6g} mm, more than the {target:.4g} mm modelled",
+                          "a carrier radius nearer the planet-ring zero-backlash distance, or ring profile shift")
+    ring = with_changes(ring0, thinning=max(extra, 0.0))
+    unit = design.length_unit
+    k = LENGTH_SUFFIXES[unit]
+    note = (f"stage {st.name}: thinning derived for {rule}-range backlash: {st.sun} {sun.thinning / k:.6g}, "
+            f"{st.planet} {planet.thinning / k:.6g}, {st.ring} {ring.thinning / k:.6g} (space widened) {unit}")
+    return sun, planet, ring, [note]
+
+
+def place_planetary_stage(design, st, centre: tuple[float, float], level: float, rule: str) -> PlacedPlanetary:
+    """Place the planetary stage ``st`` coaxial with ``centre`` from height ``level`` (mm)."""
+    from geargen.core.planetary import assembly_angles, planet_phases, sun_planet_working
+    from geargen.model.layout import GearPlacement, MeshPlacement, running_backlash
+    from geargen.profile.tooth import section_rotation
+
+    stage = st.core_stage(design)
+    a = st.carrier_radius if st.carrier_radius is not None else sun_planet_working(stage)[1]
+    sun, planet, ring, notes = _modelled_gears(design, st, a, rule)
+    angles = assembly_angles(stage, equal_spacing=st.planet_spacing == "equal")
+    height = max(g.face_width for g in (sun, planet, ring))
+    z = {g.name: level + (height - g.face_width) / 2 for g in (sun, planet, ring)}
+    sun_rotation = 0.0
+    rho, ring_rotation = planet_phases(sun.teeth, planet.teeth, ring.teeth, sun_rotation, angles)
+    group = f"stage_{st.name}"
+    gears = [GearPlacement(st.sun, sun, tuple(centre), z[sun.name], sun_rotation - section_rotation(sun, level - z[sun.name]),
+                           group, ("planetary_sun",)),
+             GearPlacement(st.ring, ring, tuple(centre), z[ring.name],
+                           ring_rotation - section_rotation(ring, level - z[ring.name]), group, ("planetary_ring",))]
+    meshes = []
+    lo = max(z[sun.name], z[planet.name])
+    hi = min(z[sun.name] + sun.face_width, z[planet.name] + planet.face_width)
+    modelled = running_backlash(sun, planet, a)
+    for i, (phi, r) in enumerate(zip(angles, rho), start=1):
+        name = planet_part(st.planet, i)
+        c = (centre[0] + a * math.cos(phi), centre[1] + a * math.sin(phi))
+        gears.append(GearPlacement(name, planet, c, z[planet.name],
+                                   r - section_rotation(planet, level - z[planet.name]), group, ("planetary_planet",)))
+        meshes.append(MeshPlacement(f"stage_{st.name}_sun_{name}", st.sun, sun, name, planet, (lo + hi) / 2,
+                                    st.backlash_min, st.backlash_max, modelled, True, "", a))
+    return PlacedPlanetary(gears, meshes, notes, height)
+
+
+__all__ = ["PlacedPlanetary", "planet_part", "internal_backlash", "place_planetary_stage"]
