@@ -308,7 +308,7 @@ def rotating_parts(layout: Layout, parts) -> list:
     report = structure_check(parts, layout)
     body_of = {n: body for body in report.bodies for n in body}
     kinds = {p.name: p.kind for p in parts.parts}
-    turning = {g.name for g in layout.gears} | set(parts.rotating)
+    turning = {g.name for g in layout.gears if "planetary_ring" not in g.roles} | set(parts.rotating)
     turning_bodies = {body for body in report.bodies if turning & set(body)}
     motors = {n for n, k in kinds.items() if k == "motor"}
     driven_by_motor = {n for a, b, _ in parts.intended_contacts for n, m in ((a, b), (b, a)) if m in motors}
@@ -663,7 +663,7 @@ def structure_check(parts, layout: Layout):
     from geargen.checks.structure import structure_check as check
     rolling = {frozenset(p) for p in parts.rolling}
     contacts = [(a, b) for a, b, _ in parts.intended_contacts if frozenset((a, b)) not in rolling]
-    rotating = [g.name for g in layout.gears] + list(parts.rotating)
+    rotating = [g.name for g in layout.gears if "planetary_ring" not in g.roles] + list(parts.rotating)
     kinds = {g.name: "gear" for g in layout.gears} | {p.name: p.kind for p in parts.parts}
     return check(kinds, contacts, parts.ground, parts.stationary, rotating)
 

@@ -159,8 +159,13 @@ def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
         if key not in cache:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                solid = build_cluster(g.spec, tolerance) if isinstance(g.spec, ClusterSpec) \
-                    else build_gear(g.spec, tolerance)
+                if isinstance(g.spec, ClusterSpec):
+                    solid = build_cluster(g.spec, tolerance)
+                elif g.spec.kind == "internal":  # a planetary stage's ring
+                    from geargen.cad.internal_solid import build_internal
+                    solid = build_internal(g.spec, tolerance)
+                else:
+                    solid = build_gear(g.spec, tolerance)
             # undercut and the like: reported with the build, not printed
             cache[key] = (solid, tuple(dict.fromkeys(str(w.message) for w in caught)))
         solid, notes = cache[key]
@@ -333,7 +338,8 @@ def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
         pieces = [P.box_between((drive["saddle_x0"], -half_w * 0.6, z_plate_top),
                                 (drive["x_end"] - gap, half_w * 0.6, drive["z_axis"] - drive["motor_r"]))]
     x_motor_end, z_top_parts = drive["x_end"], drive["z_top"]
-    out.touch("servo_motor", "carriage", "motor on its mount")
+    if "motor_mount" not in drive:  # else the drive's own part holds the motor
+        out.touch("servo_motor", "carriage", "motor on its mount")
     # the input shaft and its bearings (placed by the model), up through the carriage arm to the
     # gear that drives it
     ishaft = out.add("input_shaft", out.shared(P.shaft, d_in, drive["input_top"] - ish.z_lo), _at(x_in, 0, ish.z_lo),
@@ -418,8 +424,13 @@ def carriage_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     # the walls; it stops short of the bevel pinion and motor that rise above it
     uppers = [(placed_shafts[k], placed_shafts[k].supports()[-1]) for k in ("output", "cluster_a", "cluster_b")]
     z_cover = max(b.z + b.width for _, b in uppers)
+    # parts the drive lays wholly above the cover (a planetary stage's) may overhang it
+    over = set(drive.get("over_cover", ()))
+    for p in out.parts:
+        if p.name in over and not _bbox(p.world()).Get()[2] >= z_cover + floor:
+            raise BuildError(f"{p.name} reaches down to the link cover (its top {z_cover + floor:.4g} mm)")
     x_end = min((_x_min_above(p.world(), z_cover, (-radius, -radius, z_bottom), (length, radius, z_top))
-                 for p in out.parts if p.group == "carriage"), default=length) - gap
+                 for p in out.parts if p.group == "carriage" and p.name not in over), default=length) - gap
     reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
     if not x_end > reach:
         key = "parts.stage_bearing_width" if stage_list else "parts.input_shaft_to_bevel"
@@ -560,6 +571,9 @@ def _stage_drive(out: _Parts, layout, s: Mapping[str, Any], placed_shafts, stage
     under it) and an upper one under the bridge; two side columns on the base plate carry the
     bridge clear of every stage gear; the first driver sits on the motor's shaft, which comes
     down through the bridge."""
+    if stage_list[-1].kind == "planetary":
+        from geargen.cad.planetary_parts import planetary_drive
+        return planetary_drive(out, layout, s, placed_shafts, stage_list[-1], post_x0)
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     g = {p.name: p for p in layout.gears}
     shafts = [placed_shafts[k] for k in sorted(k for k in placed_shafts if k.startswith("stage_"))]

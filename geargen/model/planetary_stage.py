@@ -75,12 +75,21 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
     from geargen.model.layout import GearPlacement, MeshPlacement, running_backlash
     from geargen.profile.tooth import section_rotation
 
+    from geargen.design.parts import parts_settings
+    parts = parts_settings(design)
+    plate, gap = parts["carriage_plate_thickness"], parts["bearing_clearance"]
+    if plate is None:
+        raise DesignError("parts.carriage_plate_thickness", "missing: the planet carrier's plates are this thick",
+                          "a length")
     stage = st.core_stage(design)
     a = st.carrier_radius if st.carrier_radius is not None else sun_planet_working(stage)[1]
     sun, planet, ring, notes = _modelled_gears(design, st, a, rule)
     angles = assembly_angles(stage, equal_spacing=st.planet_spacing == "equal")
     height = max(g.face_width for g in (sun, planet, ring))
-    z = {g.name: level + (height - g.face_width) / 2 for g in (sun, planet, ring)}
+    # the carrier's lower plate from ``level``, the gears a bearing clearance above it
+    base = level + plate + gap
+    z = {g.name: base + (height - g.face_width) / 2 for g in (sun, planet, ring)}
+    level = base
     sun_rotation = 0.0
     rho, ring_rotation = planet_phases(sun.teeth, planet.teeth, ring.teeth, sun_rotation, angles)
     group = f"stage_{st.name}"
@@ -99,7 +108,54 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
                                    r - section_rotation(planet, level - z[planet.name]), group, ("planetary_planet",)))
         meshes.append(MeshPlacement(f"stage_{st.name}_sun_{name}", st.sun, sun, name, planet, (lo + hi) / 2,
                                     st.backlash_min, st.backlash_max, modelled, True, "", a))
-    return PlacedPlanetary(gears, meshes, notes, height)
+    return PlacedPlanetary(gears, meshes, notes, plate + gap + height + gap + plate)
 
 
-__all__ = ["PlacedPlanetary", "planet_part", "internal_backlash", "place_planetary_stage"]
+@dataclass(frozen=True)
+class Carrier:
+    """The planet carrier of a placed planetary stage (mm): two plates of ``thickness`` on the
+    stage's axis through ``centre``, the lower from ``z_lower`` (the input gear's shaft ends in
+    its bore, ``bore``), the upper from ``z_upper`` (the motor shaft passes its ``hole``); each a
+    bearing clearance from the gears; their ``radius`` reaches a pin diameter past the pins, which
+    run through both plates at ``pins`` (the planets' centres), of the planets' bore."""
+
+    name: str
+    centre: tuple[float, float]
+    z_lower: float
+    z_upper: float
+    thickness: float
+    radius: float
+    pins: tuple[tuple[float, float], ...]
+    pin_diameter: float
+    bore: float
+    hole: float
+
+    @property
+    def top(self) -> float:
+        return self.z_upper + self.thickness
+
+    @property
+    def lower_top(self) -> float:
+        return self.z_lower + self.thickness
+
+
+def carrier(layout, parts, st) -> Carrier:
+    """The carrier of the planetary stage ``st`` as ``layout`` places it (sizes: [parts] plate
+    thickness and clearance, the planets' bore, the input's and the sun's bores)."""
+    from geargen.model.shafts import _bore
+    plate, gap = parts["carriage_plate_thickness"], parts["bearing_clearance"]
+    sun = layout.gear(st.sun)
+    planets = [g for g in layout.gears if g.group == f"stage_{st.name}" and "planetary_planet" in g.roles]
+    members = [sun, layout.gear(st.ring)] + planets
+    lo, hi = min(g.height[0] for g in members), max(g.height[1] for g in members)
+    pin = _bore(planets[0].spec)
+    if not pin > 0:
+        raise DesignError(f"gears.{st.planet}.bore_diameter", "missing: the planets turn on carrier pins of this "
+                          "diameter", "> 0")
+    a = max(math.dist(p.centre, sun.centre) for p in planets)
+    return Carrier(f"carrier_{st.name}", tuple(sun.centre), lo - gap - plate, hi + gap, plate, a + pin,
+                   tuple(tuple(p.centre) for p in planets), pin, _bore(layout.gear("input").spec),
+                   _bore(sun.spec) + 2 * gap)
+
+
+__all__ = ["PlacedPlanetary", "Carrier", "planet_part", "internal_backlash", "place_planetary_stage", "carrier"]

@@ -155,6 +155,13 @@ def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
         out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, shaft.z_hi, shaft.diameter, shaft.bearings,
                              {**shaft.loads, "bevel_gear": bevel_heel})
         return out
+    if stage_list[-1].kind == "planetary":
+        # the input shaft runs up through the carriage arm into the planet carrier's lower plate
+        from geargen.model.planetary_stage import carrier
+        c = carrier(layout, parts, stage_list[-1])
+        out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, c.lower_top, shaft.diameter, shaft.bearings,
+                             {**shaft.loads, c.name: c.z_lower + c.thickness / 2})
+        return out
     # the input shaft runs up through the carriage arm to the last stage's driven gear
     last = layout.gear(stage_list[-1].driven)
     if not math.isclose(_bore(last.spec), shaft.diameter, rel_tol=1e-9):
