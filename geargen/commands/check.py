@@ -191,6 +191,24 @@ def table(result: DesignCheck) -> str:
                   f"difference {(b['backlash'] - b['design_backlash']) / LENGTH_SUFFIXES[u]:.1e}  "
                   f"each side {_fmt(b['play_negative'], u)} / {_fmt(b['play_positive'], u)}  "
                   f"tip clearance {_fmt(b['tip_clearance'], u)}"]
+    for b in result.planetary:
+        k = LENGTH_SUFFIXES[u]
+        if "gear1" in b:
+            fails = ", ".join(dict.fromkeys(f.kind for f in result.failures if f.mesh == b["mesh"])) or "ok"
+            lines += [f"  {b['mesh']:<30}measured {_fmt(b['backlash'], u)}  closed form "
+                      f"{_fmt(b['closed_form_backlash'], u)}  each side {_fmt(b['play_cw'], u)} / "
+                      f"{_fmt(b['play_ccw'], u)}  design {_fmt(b['design_min'], u)} to {_fmt(b['design_max'], u)}  {fails}"]
+        else:
+            fails = ", ".join(dict.fromkeys(f.kind for f in result.failures if f.mesh == b["mesh"])) or "ok"
+            lines += [f"planetary stage {b['stage']}: ratio {b['ratio']:.6g}, carrier radius {_fmt(b['carrier_radius'], u)}, "
+                      f"coaxiality difference {b['coaxiality_difference'] / k:.2e}, assembly step error "
+                      f"{b['assembly_step_error']:.1e}, planet tip gap {_fmt(b['neighbour_tip_gap'], u)}, "
+                      f"minimum tooth difference {b['minimum_tooth_difference']}  {fails}"]
+    if result.planetary:
+        # under one heading: the planet-ring rows, then the stage's conditions
+        rows = [ln for ln in lines[-len(result.planetary):]]
+        lines[-len(result.planetary):] = ["", "planet-ring meshes (backlash at the planet's reference circle, exact "
+                                          "outlines as placed) and the stage's conditions"] + rows
     if result.tolerances:
         lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
         head = f"{'mesh':<16}{'meant for':<11}{'nominal':>12}{'worst case':>12}{'MC min':>12}{'MC 1%':>12}{'samples':>9}  failure"

@@ -434,6 +434,9 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
     st_list = design_stages(design)
     if st_list:
         for st in st_list:
+            if st.kind == "planetary":
+                raise DesignError(f"stages.{st.name}.kind", "geargen train does not model a planetary stage yet "
+                                  "(its planets' lost motion and stiffness in series)", "'pair' stages")
             out.append(mesh_stage(layout.mesh(f"stage_{st.name}"), f"stage {st.name} ({st.driver}-{st.driven})",
                                   train.gear_ratio(st.driven), False,
                                   "backlash: the modelled teeth at the placed centres"))

@@ -395,6 +395,26 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
                   f"{(b['backlash'] - b['design_backlash']) / scale:.1e}",
                   f"{_len(b['play_negative'], scale)} / {_len(b['play_positive'], scale)}", _len(b["tip_clearance"], scale),
                   "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"] for b in dc.bevel])
+    if dc is not None and dc.planetary:
+        r.h("Planetary stage")
+        rings = [b for b in dc.planetary if "gear1" in b]
+        r.p("Planet-ring meshes: backlash circumferential at the planet's reference circle, measured on the exact "
+            "outlines of the placed planet and ring (the planet turned both ways, the ring held), against the closed "
+            f"form; the internal pair's interference margins (lengths in {unit}). The sun-planet meshes are in the "
+            "mesh table.")
+        r.table(["mesh", "gear 1 / gear 2", "design backlash", "measured backlash", "closed form", "free play each side",
+                 "contact ratio", "result"],
+                [[b["mesh"], f"{b['gear1']} / {b['gear2']}", f"{_len(b['design_min'], scale)} to "
+                  f"{_len(b['design_max'], scale)}", _len(b["backlash"], scale), _len(b["closed_form_backlash"], scale),
+                  f"{_len(b['play_cw'], scale)} / {_len(b['play_ccw'], scale)}", f"{b['contact_ratio']:.4g}",
+                  "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"] for b in rings])
+        r.table(["stage", "ratio", f"carrier radius ({unit})", f"coaxiality difference ({unit})",
+                 "assembly step error", f"planet tip gap ({unit})", "min tooth difference", "result"],
+                [[b["stage"], f"{b['ratio']:.6g}", _len(b["carrier_radius"], scale),
+                  f"{b['coaxiality_difference'] / scale:.2e}", f"{b['assembly_step_error']:.1e}",
+                  _len(b["neighbour_tip_gap"], scale), str(b["minimum_tooth_difference"]),
+                  "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"]
+                 for b in dc.planetary if "gear1" not in b])
     if dc is not None and dc.tolerances:
         r.h("Backlash across the error budget")
         r.p("Minimum backlash of each mesh with every error of the [errors.*] budget: the worst case and the "
