@@ -25,6 +25,7 @@ DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT /
            # design files only: no Python of their own
            "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
            "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
+           "planetary_dual_pinion": ROOT / "assemblies/planetary_dual_pinion.toml",
            # gears and a synthesis only: every other part from the default hardware
            "gears_only": ROOT / "tests/data/metric_dual_pinion.toml"}
 

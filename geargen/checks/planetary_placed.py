@@ -42,6 +42,10 @@ def placed_ring_play(planet_spec, planet_centre, planet_rotation, ring_spec, rin
     material = RingMaterial(internal_profile(ring_spec))
     pts = pinion_points(profile, step or 1e-3 * planet_spec.module)
     cx, cy = planet_centre[0] - ring_centre[0], planet_centre[1] - ring_centre[1]
+    # only the points a turn of up to one pitch can bring to the ring's teeth
+    c, s = math.cos(planet_rotation), math.sin(planet_rotation)
+    reach = np.hypot(cx + c * pts[:, 0] - s * pts[:, 1], cy + s * pts[:, 0] + c * pts[:, 1])
+    pts = pts[reach > material.ring.tip_radius - profile.tip_radius * 2 * math.pi / planet_spec.teeth]
 
     def depth(turn: float) -> float:
         c, s = math.cos(planet_rotation + turn), math.sin(planet_rotation + turn)

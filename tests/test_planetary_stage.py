@@ -1,0 +1,229 @@
+"""The planetary upstream stage (geargen.design.planetary_stage, geargen.model.planetary_stage,
+geargen.checks.planetary_placed) in assemblies/planetary_dual_pinion.toml: the placement's phases
+against a numeric solve on the exact outlines, the assembly condition (a violating planet count is
+refused by name, and numerically cannot be placed), the ratio against a numeric kinematic solve,
+named check failures of bad variants, and the one-home rule (the carrier radius moves the solids
+and the checks)."""
+
+import math
+from fractions import Fraction
+from pathlib import Path
+
+import numpy as np
+import pytest
+from matplotlib.path import Path as Polygon
+from scipy.optimize import brentq
+
+from geargen.checks.internal_pair import pinion_points
+from geargen.checks.planetary_placed import placed_ring_play
+from geargen.checks.verdict import verify
+from geargen.core.planetary import planet_phases, ring_phase_error
+from geargen.design.assembly import load_design
+from geargen.errors import DesignError
+from geargen.model import resolve
+from geargen.profile.tooth import tooth_profile
+
+ROOT = Path(__file__).resolve().parents[1]
+DESIGN = ROOT / "assemblies" / "planetary_dual_pinion.toml"
+
+
+def _variant(tmp_path, old: str, new: str, name: str = "variant.toml"):
+    text = DESIGN.read_text()
+    assert old in text
+    path = tmp_path / name
+    path.write_text(text.replace(old, new))
+    return load_design(path)
+
+
+@pytest.fixture(scope="module")
+def layout():
+    return resolve(load_design(DESIGN))
+
+
+def _stage(layout):
+    sun, ring = layout.gear("sun"), layout.gear("ring")
+    planets = [g for g in layout.gears if "planetary_planet" in g.roles]
+    return sun, ring, planets
+
+
+def _free_turn(moving_pts, held_outline, centre, rotation, sign, pitch):
+    """Free rotation (rad) of the moving gear's points about ``centre`` from ``rotation`` until a
+    point enters the held gear's polygon (an independent inside test: matplotlib's point in
+    polygon on the finely sampled exact outline); bisection to 1e-10 rad."""
+    def hits(turn):
+        c, s = math.cos(rotation + turn), math.sin(rotation + turn)
+        xy = np.column_stack([centre[0] + c * moving_pts[:, 0] - s * moving_pts[:, 1],
+                              centre[1] + s * moving_pts[:, 0] + c * moving_pts[:, 1]])
+        return bool(held_outline.contains_points(xy).any())
+    assert not hits(0.0)
+    lo, hi = 0.0, 0.0
+    while not hits(sign * hi):
+        lo, hi = hi, hi + 0.01 * pitch
+        assert hi < pitch
+    while hi - lo > 1e-10:
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if hits(sign * mid) else (mid, hi)
+    return lo
+
+
+def test_every_placed_planet_sits_mid_play_with_the_sun_and_the_ring(layout):
+    """The phases of geargen.core.planetary.planet_phases (closed form) against the free play
+    solved numerically on the exact outlines as placed: each planet turns equally far both ways
+    before it touches the sun (point in polygon on the sun's sampled outline, sun frame) and the
+    ring (geargen.checks.planetary_placed.placed_ring_play), and the two sum to the backlash the
+    modelled teeth give (0.08 mm, the middle of the 0.04-0.12 mm range, at the planet's reference
+    circle)."""
+    sun, ring, planets = _stage(layout)
+    assert len(planets) == 3
+    sun_spec = sun.spec
+    # chords of ~4 um: the polygon lies inside the exact outline by h^2 / 8 rho < 4 nm (rho > 0.5 mm)
+    sun_pts = pinion_points(tooth_profile(sun_spec, warn=False), 5e-3 * sun_spec.module)
+    c, s = math.cos(sun.rotation), math.sin(sun.rotation)
+    sun_world = np.column_stack([sun.centre[0] + c * sun_pts[:, 0] - s * sun_pts[:, 1],
+                                 sun.centre[1] + s * sun_pts[:, 0] + c * sun_pts[:, 1]])
+    for p in planets:
+        spec = p.spec
+        pitch = 2 * math.pi / spec.teeth
+        # the sun's outline facing this planet (one run of the closed outline), closed through the
+        # sun's centre: a wedge of the sun that holds every tooth the planet can reach
+        gap = np.hypot(*(sun_world - p.centre).T)
+        ordered = np.roll(sun_world, -int(np.argmax(gap)), axis=0)  # start opposite the planet
+        near = np.flatnonzero(np.roll(gap, -int(np.argmax(gap))) < spec.tip_radius + 0.01)
+        run = ordered[near[0]:near[-1] + 1]
+        assert len(run) < len(ordered) / 2
+        wedge = Polygon(np.vstack([run, [sun.centre]]))
+        pts = pinion_points(tooth_profile(spec, warn=False), 2.5e-3 * spec.module)
+        c, s = math.cos(p.rotation), math.sin(p.rotation)
+        placed = np.column_stack([p.centre[0] + c * pts[:, 0] - s * pts[:, 1], p.centre[1] + s * pts[:, 0] + c * pts[:, 1]])
+        pts = pts[np.hypot(*(placed - sun.centre).T) < sun_spec.tip_radius + 0.01]
+        ccw = _free_turn(pts, wedge, p.centre, p.rotation, +1, pitch)
+        cw = _free_turn(pts, wedge, p.centre, p.rotation, -1, pitch)
+        assert ccw == pytest.approx(cw, abs=2e-7)  # centred (the sampling's error is alike both ways)
+        # the sun-planet play as the planet's rotation: at the sun's reference circle it is
+        # r_p (ccw + cw) z_p / z_p, the same circumferential length
+        assert spec.reference_radius * (ccw + cw) == pytest.approx(0.08, abs=5e-6)
+        ccw_r, cw_r = placed_ring_play(spec, p.centre, p.rotation, ring.spec, ring.centre, ring.rotation)
+        assert ccw_r == pytest.approx(cw_r, abs=1e-9)
+        assert spec.reference_radius * (ccw_r + cw_r) == pytest.approx(0.08, abs=1e-6)
+
+
+def test_a_planet_count_that_breaks_the_assembly_condition_cannot_be_placed(layout):
+    """(z_s + z_r) / N = 72 / 5 is not whole: with 5 equally spaced planets phased from the sun,
+    some planet needs the ring turned by a fraction of its pitch (ring_phase_error) and, on the
+    exact outlines, overlaps the ring; with N = 3 and 4 (72 / N whole) every planet has play on
+    both sides."""
+    sun, ring, planets = _stage(layout)
+    spec = planets[0].spec
+    a = math.dist(planets[0].centre, sun.centre)
+    for n, ok in ((3, True), (4, True), (5, False)):
+        angles = [2 * math.pi * i / n for i in range(n)]
+        errors = ring_phase_error(sun.spec.teeth, ring.spec.teeth, angles)
+        assert (max(map(abs, errors)) < 1e-12) == ok
+        rho, ring_rotation = planet_phases(sun.spec.teeth, spec.teeth, ring.spec.teeth, 0.0, angles)
+        plays = [min(placed_ring_play(spec, (a * math.cos(phi), a * math.sin(phi)), r, ring.spec, (0.0, 0.0),
+                                      ring_rotation)) for phi, r in zip(angles, rho)]
+        assert (min(plays) > 0) == ok, (n, plays)
+
+
+def test_planets_that_break_the_assembly_condition_are_refused_by_name(tmp_path):
+    with pytest.raises(DesignError) as e:
+        _variant(tmp_path, "planets = 3", "planets = 5")
+    text = str(e.value)
+    assert "stages.planetary.planets" in text and "72/5" in text and "1, 2, 3, 4, 6, 8, 9, 12" in text
+    # unequal spacing at the assembly angles is taken when asked for: 5 planets at 2 pi k / 72
+    design = _variant(tmp_path, "planets = 3", 'planets = 5\nplanet_spacing = "nearest_allowed"', "unequal.toml")
+    moved = resolve(design)
+    sun, _, placed = _stage(moved)
+    steps = [math.atan2(p.centre[1] - sun.centre[1], p.centre[0] - sun.centre[0]) % (2 * math.pi) * 72 / (2 * math.pi)
+             for p in placed]
+    assert [round(k) for k in steps] == [0, 14, 29, 43, 58]  # round(i 72 / 5)
+    assert steps == pytest.approx([round(k) for k in steps], abs=1e-9)
+    result = verify(moved, tolerances=False)
+    # every planet meshes both sun and ring; but five planets of 18.72 mm do not fit round a 15 T sun
+    assert {(f.kind, f.mesh) for f in result.failures} == {("planet_neighbour_clearance", "stage_planetary")}
+
+
+def test_the_stage_counts_its_ratio_and_it_is_the_kinematics_of_the_phases(layout):
+    """1 + z_r / z_s = 1 + 57/15 = 4.8 in the layout's ratio (72 with the loop's 15); and the
+    same from the phase relation alone: turning the carrier by a small angle with the ring held,
+    the sun turn that keeps every planet in mesh (solved numerically) is 4.8 times it."""
+    assert layout.ratio["ok"] and layout.ratio["total"] == Fraction(72)
+    assert "(1 + 57/15)" in layout.ratio["text"]
+    zs, zp, zr = 15, 21, 57
+    angles = [0.0, 2 * math.pi / 3, 4 * math.pi / 3]
+    ring0 = planet_phases(zs, zp, zr, 0.0, angles)[1]
+    turn = 1e-3
+    moved = [phi + turn for phi in angles]
+
+    pitch = 2 * math.pi / zr
+
+    def ring_slip(sun_turn):  # the ring's required rotation minus where it is held (within a pitch)
+        d = planet_phases(zs, zp, zr, sun_turn, moved)[1] - ring0
+        return d - pitch * round(d / pitch)
+
+    sun_turn = brentq(ring_slip, 0.0, 10 * turn, xtol=1e-15)
+    assert sun_turn / turn == pytest.approx(4.8, rel=1e-9)
+
+
+def test_the_neighbour_clearance_fails_the_check_by_name(tmp_path):
+    """Asking 7 mm between the planets' tip circles (they have 2 a sin 60 deg - d_a = 6.858 mm)."""
+    design = _variant(tmp_path, "circumferential_backlash_max_mm = 0.12\n\n[synthesis]",
+                      "circumferential_backlash_max_mm = 0.12\nplanet_tip_clearance_mm = 7\n\n[synthesis]")
+    result = verify(resolve(design), tolerances=False)
+    kinds = {f.kind for f in result.failures}
+    assert kinds == {"planet_neighbour_clearance"}
+    row = next(r for r in result.planetary if r["mesh"] == "stage_planetary")
+    a, d_a = 14.767394073994936, 18.72
+    assert row["neighbour_tip_gap"] == pytest.approx(2 * a * math.sin(math.pi / 3) - d_a, abs=1e-9)
+
+
+def test_a_ring_that_is_not_coaxial_fails_the_check_by_name(tmp_path):
+    """Ring shift 0.6 instead of 0.7: the planet-ring zero-backlash centre distance falls short of
+    the sun-planet one (coaxiality), and at the carrier radius the ring mesh's backlash leaves the
+    range."""
+    design = _variant(tmp_path, "module_mm = 0.8\nprofile_shift = 0.7", "module_mm = 0.8\nprofile_shift = 0.6")
+    result = verify(resolve(design), tolerances=False)
+    kinds = {f.kind for f in result.failures}
+    assert "planetary_coaxiality" in kinds
+
+
+def test_the_carrier_radius_has_one_home(tmp_path, layout):
+    """Moving the carrier radius (14.767 -> 14.80 mm) moves the planets, and the checks see it:
+    the sun-planet meshes run at the new centre distance with the thinning derived there, and the
+    planet-ring backlash measured on the placed outlines follows the closed form there."""
+    design = _variant(tmp_path, "planets = 3", "planets = 3\ncarrier_radius_mm = 14.80")
+    moved = resolve(design)
+    sun, ring, planets = _stage(moved)
+    assert all(math.dist(p.centre, sun.centre) == pytest.approx(14.80, abs=1e-12) for p in planets)
+    mesh = moved.mesh("stage_planetary_sun_planet_1")
+    assert mesh.centre_distance == pytest.approx(14.80)
+    old = _stage(layout)[2][0].spec
+    assert planets[0].spec.thinning != pytest.approx(old.thinning)  # the modelled teeth follow the radius
+    result = verify(moved, tolerances=False)
+    assert not result.failures
+    rows = [r for r in result.planetary if "gear1" in r]
+    for r in rows:
+        assert r["centre_distance"] == pytest.approx(14.80, abs=1e-12)
+        assert r["backlash"] == pytest.approx(0.08, abs=1e-6)
+
+
+@pytest.mark.slow
+def test_the_carrier_radius_moves_the_carrier_solids(tmp_path, layout):
+    """The carrier's pins stand at the planets' centres and its plates reach a pin diameter past
+    them: both follow the carrier radius of the Layout (the non-gear parts built from each)."""
+    from geargen.cad.assembly import non_gear_parts
+    from geargen.cad.parts import volume
+    design = _variant(tmp_path, "planets = 3", "planets = 3\ncarrier_radius_mm = 14.80")
+    out = {}
+    for key, lay in (("design", layout), ("moved", resolve(design))):
+        parts = {p.name: p for p in non_gear_parts(lay).parts}
+        pin = parts["carrier_planetary_pin_1"]
+        plate = parts["carrier_planetary_lower"]
+        out[key] = (np.asarray(pin.matrix)[:2, 3] - np.asarray(plate.matrix)[:2, 3], volume(plate.shape))
+    for key, a in (("design", 14.767394073994936), ("moved", 14.80)):
+        offset, vol = out[key]
+        assert offset == pytest.approx([a, 0.0], abs=1e-9)
+        # plate: disc r = a + d_pin, less the input shaft's bore (5 mm) and three pin holes (4 mm)
+        r = a + 4.0
+        expected = math.pi * (r ** 2 - 2.5 ** 2 - 3 * 2.0 ** 2) * 4.0
+        assert vol == pytest.approx(expected, rel=1e-6)
