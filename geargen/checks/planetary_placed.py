@@ -82,7 +82,7 @@ def planetary_meshes(layout, result) -> list[dict]:
     from geargen.checks.internal_pair import check_internal
     from geargen.core.planetary import planet_ring_working, sun_planet_working
     from geargen.design.stages import stages
-    from geargen.model.planetary_stage import internal_backlash, planet_part
+    from geargen.model.planetary_stage import core_stage, internal_backlash, planet_part
 
     design = layout.design
     k, unit = LENGTH_SUFFIXES[design.length_unit], design.length_unit
@@ -96,7 +96,7 @@ def planetary_meshes(layout, result) -> list[dict]:
         ring_spec, sun_spec = ring.spec, sun.spec
         z_s, z_r = sun_spec.teeth, ring_spec.teeth
         # the stage's conditions
-        core = st.core_stage(design)
+        core = core_stage(design, st)
         coax = planet_ring_working(core)[1] - sun_planet_working(core)[1]
         if abs(coax) > st.coaxiality_tolerance:
             result.failures.append(Failure("planetary_coaxiality", stage_name,

@@ -89,20 +89,10 @@ class PlanetaryStageSpec:
         """Sun speed over carrier speed, ring fixed: 1 + z_r / z_s."""
         return 1 + Fraction(design.gears[self.ring].teeth, design.gears[self.sun].teeth)
 
-    def core_stage(self, design, sun=None, planet=None, ring=None):
-        """The stage as :class:`geargen.core.planetary.PlanetaryStage` (the gears as given, or the
-        modelled ones)."""
-        from geargen.core.planetary import PlanetaryStage
-        s, p, r = (g if g is not None else design.gears[n] for g, n in ((sun, self.sun), (planet, self.planet),
-                                                                      (ring, self.ring)))
-        return PlanetaryStage(s.teeth, p.teeth, r.teeth, self.planets, s.module, s.pressure_angle, s.helix_angle,
-                              s.profile_shift, p.profile_shift, r.profile_shift, 2 * p.tip_radius,
-                              self.planet_tip_clearance, self.coaxiality_tolerance)
 
 
 def read_planetary_stage(design, name: str, data, used: dict[str, str]) -> PlanetaryStageSpec:
     """The table ``[stages.NAME]`` of a planetary stage, validated (errors name ``stages.NAME.<key>``)."""
-    from geargen.core.planetary import assembly_angles
     where = f"stages.{name}"
     v = read_table(data, PLANETARY_STAGE_FIELDS, where)
     gears = {}
@@ -137,18 +127,18 @@ def read_planetary_stage(design, name: str, data, used: dict[str, str]) -> Plane
     spec = PlanetaryStageSpec(name, v["sun"], v["planet"], v["ring"], v["planets"], v["planet_spacing"],
                               v["carrier_radius"], v["circumferential_backlash_min"], v["circumferential_backlash_max"],
                               v["planet_tip_clearance"], v["coaxiality_tolerance"])
-    try:
-        stage = spec.core_stage(design)
-        assembly_angles(stage, equal_spacing=v["planet_spacing"] == "equal")
-    except DesignError as e:
-        total = sun.teeth + ring.teeth
-        if e.field != "planets":
-            raise DesignError(f"{where}.{e.field}", e.problem, e.allowed) from None
+    # the assembly condition (geargen.core.planetary.assembly_angles: the design layer reads below
+    # core, so the whole-number test is here; the placement asks core again)
+    total = sun.teeth + ring.teeth
+    if v["planet_spacing"] == "equal" and total % spec.planets:
         allowed = [n for n in range(1, 33) if total % n == 0]
         raise DesignError(f"{where}.planets", f"(z_s + z_r) / N = {total}/{spec.planets} = {total / spec.planets:.4g} "
                           f"is not whole: {spec.planets} equally spaced planets cannot be assembled",
                           f"N dividing z_s + z_r = {total}: {', '.join(map(str, allowed))}; or planet_spacing = "
-                          "'nearest_allowed'") from None
+                          "'nearest_allowed'")
+    if spec.planets > total:
+        raise DesignError(f"{where}.planets", f"{spec.planets} planets do not fit {total} assembly positions",
+                          f"<= {total}")
     return spec
 
 

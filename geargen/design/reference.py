@@ -199,6 +199,16 @@ TABLES: tuple[Table, ...] = (
           "in levels above its arm; each keeps its backlash (checked against its range) and counts in the ratio and, "
           "as [stiffness.components] of kind mesh, in the stiffness.",
           Example("metric_dual_pinion.toml", ("stages.motor", "stages.idler")), sections=("stages",)),
+    Table("[stages.NAME] of kind planetary", ("stages", "NAME"),
+          "A planetary stage (ring fixed, sun in, carrier out: ratio 1 + z_r/z_s), the only upstream stage: the "
+          "sun on the motor shaft, the carrier on the input gear's shaft, sun, carrier and ring coaxial with it. "
+          "Refused on load when N equally spaced planets cannot be assembled ((z_s + z_r)/N not whole; "
+          "`planet_spacing = \"nearest_allowed\"` takes the assembly angles 2 pi k/(z_s + z_r) nearest to equal "
+          "spacing instead). Each planet is placed in the middle of its play with the sun and the ring; the "
+          "sun-planet meshes are checked like any mesh, the planet-ring meshes and the stage's coaxiality and "
+          "neighbour clearance on the exact outlines as placed.",
+          Example("planetary_dual_pinion.toml", ("stages.planetary",)), sections=("stages",),
+          context={"stages": {"NAME": {"kind": "planetary"}}}),
     Table("[layout]", ("layout",),
           "How the build places the gears. A file with [synthesis] and no [layout] is a dual-pinion drive "
           "with every default. A split pinion also needs `centre_distance_*` and the backlash range.",
