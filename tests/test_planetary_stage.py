@@ -227,3 +227,35 @@ def test_the_carrier_radius_moves_the_carrier_solids(tmp_path, layout):
         r = a + 4.0
         expected = math.pi * (r ** 2 - 2.5 ** 2 - 3 * 2.0 ** 2) * 4.0
         assert vol == pytest.approx(expected, rel=1e-6)
+
+
+def test_the_sun_teeth_count_in_the_ratio_check(tmp_path):
+    """z_s 18 and z_r 60 (still z_s + 2 z_p, coaxial with the same shifts, (18 + 60) / 3 = 26
+    whole): the stage is 1 + 60/18 = 13/3, the drive 65, not the required 72: ratio_mismatch."""
+    text = DESIGN.read_text()
+    for old, new in (("[gears.sun]\nteeth = 15", "[gears.sun]\nteeth = 18"), ("teeth = 57", "teeth = 60")):
+        assert old in text
+        text = text.replace(old, new)
+    path = tmp_path / "sun18.toml"
+    path.write_text(text)
+    layout = resolve(load_design(path))
+    assert layout.ratio["total"] == Fraction(65) and "(1 + 60/18)" in layout.ratio["text"]
+    result = verify(layout, tolerances=False)
+    assert [f.kind for f in result.failures] == ["ratio_mismatch"]
+    # and the sun's placement follows: the carrier radius is the new working centre distance
+    sun, _, planets = _stage(layout)
+    assert sun.spec.teeth == 18
+    assert math.dist(planets[0].centre, sun.centre) > 14.767394073994936 + 1.0
+
+
+def test_geargen_check_gives_the_verdict(tmp_path, capsys):
+    """`geargen check` passes the shipped design and fails a variant whose planets crowd (exit 1)."""
+    from geargen.cli import main
+    assert main(["check", str(DESIGN)]) == 0
+    assert "stage_planetary_planet_3_ring" in capsys.readouterr().out
+    text = DESIGN.read_text().replace("circumferential_backlash_max_mm = 0.12\n\n[synthesis]",
+                                      "circumferential_backlash_max_mm = 0.12\nplanet_tip_clearance_mm = 7\n\n[synthesis]")
+    bad = tmp_path / "crowded.toml"
+    bad.write_text(text)
+    assert main(["check", str(bad)]) == 1
+    assert "planet_neighbour_clearance" in capsys.readouterr().out
