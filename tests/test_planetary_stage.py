@@ -307,3 +307,25 @@ def test_the_exported_ring_and_planet_stand_as_checked(built_assemblies, layout)
     # two flanks within 0.2 um; a wrong phase or an unthinned ring would be 10 um off or more
     # (measured: 13 nm apart)
     assert gap_solid == pytest.approx(gap_exact, abs=2e-4)
+
+
+def test_a_planet_off_its_assembly_angle_fails_the_check(layout):
+    """The check reads the Layout: planet 2 carried round the sun by half an assembly step
+    (pi / 72, turning about its own axis as the carrier would carry it) is no longer at an assembly
+    angle: planetary_assembly, and its ring mesh, half a ring pitch out of phase, overlaps."""
+    import dataclasses
+    sun = layout.gear("sun")
+    step = math.pi / 72
+    moved = []
+    for g in layout.gears:
+        if g.name == "planet_2":
+            x, y = g.centre[0] - sun.centre[0], g.centre[1] - sun.centre[1]
+            c, s = math.cos(step), math.sin(step)
+            g = dataclasses.replace(g, centre=(sun.centre[0] + c * x - s * y, sun.centre[1] + s * x + c * y),
+                                    rotation=g.rotation + step)
+        moved.append(g)
+    result = verify(dataclasses.replace(layout, gears=tuple(moved), meshes=()), tolerances=False)
+    kinds = {(f.kind, f.mesh) for f in result.failures}
+    assert ("planetary_assembly", "stage_planetary") in kinds
+    assert ("flank_interference", "stage_planetary_planet_2_ring") in kinds
+    assert not any(m.endswith(("planet_1_ring", "planet_3_ring")) for _, m in kinds)

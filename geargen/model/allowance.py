@@ -38,7 +38,11 @@ def range_fields(layout: Layout, mesh: MeshPlacement) -> tuple[str, str]:
     """The design keys of ``mesh``'s backlash range (min, max), in the design's length unit."""
     u = layout.design.length_unit
     if mesh.name.startswith("stage_"):
-        base = f"stages.{mesh.name[len('stage_'):]}.circumferential_backlash_"
+        from geargen.design.stages import stages
+        # a planetary stage's sun-planet meshes are stage_NAME_sun_PLANET: the stage's range
+        name = next((st.name for st in stages(layout.design) if st.kind == "planetary"
+                     and mesh.name.startswith(f"stage_{st.name}_sun_")), mesh.name[len('stage_'):])
+        base = f"stages.{name}.circumferential_backlash_"
         return f"{base}min_{u}", f"{base}max_{u}"
     if layout.kind == "split_pinion":
         return f"layout.circumferential_backlash_min_{u}", f"layout.circumferential_backlash_max_{u}"
