@@ -118,6 +118,11 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
                                    r - section_rotation(planet, level - z[planet.name]), group, ("planetary_planet",)))
         meshes.append(MeshPlacement(f"stage_{st.name}_sun_{name}", st.sun, sun, name, planet, (lo + hi) / 2,
                                     st.backlash_min, st.backlash_max, modelled, True, "", a))
+    unit = design.length_unit
+    notes.append(f"stage {st.name}: planetary, {len(angles)} planets on the carrier radius "
+                 f"{a / LENGTH_SUFFIXES[unit]:.6g} {unit} at "
+                 + ", ".join(f"{math.degrees(phi):.6g}" for phi in angles) + " deg; its meshes are not in the "
+                 "stiffness model (taken as rigid), geargen train does not model it")
     return PlacedPlanetary(gears, meshes, notes, plate + gap + height + gap + plate)
 
 
