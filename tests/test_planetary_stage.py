@@ -329,3 +329,25 @@ def test_a_planet_off_its_assembly_angle_fails_the_check(layout):
     assert ("planetary_assembly", "stage_planetary") in kinds
     assert ("flank_interference", "stage_planetary_planet_2_ring") in kinds
     assert not any(m.endswith(("planet_1_ring", "planet_3_ring")) for _, m in kinds)
+
+
+def test_a_helical_stage_meshes_mid_play_on_every_plane(tmp_path):
+    """Sun left-hand, planets and ring right-hand, 15 deg: the phases set in the stage's lowest
+    plane are carried through each gear's helix; every planet has equal play both ways with the
+    ring on the lowest and the highest plane of the faces, and the check passes."""
+    text = DESIGN.read_text()
+    for gear in ("[gears.sun]\nteeth = 15", "[gears.planet]\nteeth = 21", "[gears.ring]\nkind = \"internal\"\nteeth = 57"):
+        assert gear in text
+        hand = "left" if "sun" in gear else "right"
+        text = text.replace(gear, f'{gear}\nhelix_angle_deg = 15\nhand = "{hand}"')
+    path = tmp_path / "helical.toml"
+    path.write_text(text)
+    layout = resolve(load_design(path))
+    sun, ring, planets = _stage(layout)
+    assert planets[0].spec.helix_angle == pytest.approx(math.radians(15))
+    assert not verify(layout, tolerances=False).failures
+    for p in planets:
+        for z in p.face_z(p.spec):
+            ccw, cw = placed_ring_play(p.spec, p.centre, p.rotation_at(p.spec, z), ring.spec, ring.centre,
+                                       ring.rotation_at(ring.spec, z))
+            assert ccw == pytest.approx(cw, abs=1e-9) and ccw > 0
