@@ -351,3 +351,31 @@ def test_a_helical_stage_meshes_mid_play_on_every_plane(tmp_path):
             ccw, cw = placed_ring_play(p.spec, p.centre, p.rotation_at(p.spec, z), ring.spec, ring.centre,
                                        ring.rotation_at(ring.spec, z))
             assert ccw == pytest.approx(cw, abs=1e-9) and ccw > 0
+
+
+def test_the_stiffness_model_twists_the_input_shaft_up_to_the_carrier(tmp_path, layout):
+    """The input shaft's torsion component (from_geometry) runs from the input gear's mid-face to
+    the middle of the carrier's lower plate, which stands a clearance under the stage's gears: the
+    length read from the Layout's placements by hand, and a thicker plate ([parts]
+    carriage_plate_thickness 4 -> 5 mm) lengthens it in the analysis as it thickens the carrier."""
+    from geargen.design.parts import parts_settings
+    from geargen.model.analysis import placed_components
+    from geargen.model.planetary_stage import carrier
+    from geargen.design.stages import stages
+
+    def twist(lay):
+        comp = next(c for c in placed_components(lay.design, lay) if c.name == "input_shaft")
+        parts = parts_settings(lay.design)
+        t, gap = parts["carriage_plate_thickness"], parts["bearing_clearance"]
+        inp, sun = lay.gear("input"), lay.gear("sun")
+        by_hand = (sun.z - gap - t / 2) - (inp.z + inp.spec.face_width / 2)  # all stage faces 6 mm: one level
+        assert comp.length == pytest.approx(by_hand, abs=1e-12)
+        return comp.length, carrier(lay, parts, stages(lay.design)[0]).thickness
+
+    length, plate = twist(layout)
+    design = _variant(tmp_path, "carriage_plate_thickness_mm = 4", "carriage_plate_thickness_mm = 5")
+    longer, thicker = twist(resolve(design))
+    assert (plate, thicker) == (4.0, 5.0)
+    # the stage stands on the link cover's level (unchanged): its gears rise by the 1 mm the plate
+    # grew, the plate's middle by half of it
+    assert longer == pytest.approx(length + 0.5, abs=1e-12)
