@@ -1,0 +1,253 @@
+"""The axial-motion preload drive placed (Hale & Slocum, "Type 2 Design": "axial motion of a pair
+of right and left handed helical gears"): ``[layout] kind = "axial_preload"``.
+
+The drive. An input shaft at ``(centre_distance, 0)`` carries a left-hand pinion (from z = 0)
+and, ``pinion_axial_gap`` above it, a right-hand pinion, fixed to each other; the output shaft
+at the origin carries a right-hand gear meshing the left-hand pinion (mesh ``mesh_left``) and a
+left-hand gear meshing the right-hand pinion (``mesh_right``), clamped to each other. The loop:
+input -> mesh_left -> output -> mesh_right -> input. The input shaft slides along z in its
+bearings; a compression spring pushes it along +z. Two output gears rather than one
+double-helical gear: each mesh is then a plain external helical pair that the exact checker
+(:mod:`geargen.checks.mesh2d`) verifies as it is, and the two halves are phased to each other
+when they are clamped (a one-piece herringbone would fix that phase by its cutting).
+
+The slide. A helical flank is a helicoid of lead ``L = 2 pi r / tan(beta)`` (the same at every
+radius: ``tan(beta) / r = tan(beta_w) / r_w = tan(beta_b) / r_b``), so sliding a pinion by ``s``
+along its axis while its shaft does not turn turns its transverse section, in any fixed plane,
+by ``s tan(beta) / r``: an arc ``s tan(beta)`` on the reference circle, whatever radius one
+measures at (the backlash of the model is circumferential at the pinion's reference circle, so
+that is the radius used). The left hand turns counter-clockwise for +s, the right hand
+clockwise: +s closes the left-hand pinion's counter-clockwise flank in ``mesh_left`` and the
+right-hand pinion's clockwise flank in ``mesh_right`` (the working flanks). With the shaft's
+turn ``theta`` (counter-clockwise) and each mesh's backlash ``j`` centred at s = 0 (the
+reference position, where the output halves are phased), the working gaps are
+``j_l / 2 - s tan(beta) - r theta`` and ``j_r / 2 - s tan(beta) + r theta``; both equal to the
+loaded flank gap ``g`` at
+
+    s = (j_l + j_r - 4 g) / (4 tan(beta)),    theta = (j_l - j_r) / (4 r).
+
+From the free flanks in contact (a slide of the whole loop backlash) it would be
+``(j_l + j_r) / (2 tan(beta))`` (:func:`geargen.core.axial_preload.axial_travel_for_backlash`).
+The solids are placed at this take-up (rigid teeth, ``g`` left open). Under the preload the
+teeth yield and the spring pushes the shaft further by the windup
+``(P / k_1 + P / k_2) / (2 lambda)`` with ``lambda = tan(beta) / r_2`` the output rotation of
+each path per mm of slide (``r_2`` the output gear's reference radius) and ``k_i`` the mesh
+stiffness of Eq. 1 at the output (``E w / 11`` along the line of action, times ``r_b2^2``).
+
+Forces. Each path carries the loop preload ``P`` (torque at the output), a tangential force
+``F_t = P / r_2`` at the reference circles; each helix takes ``F_t tan(beta)`` axially, so the
+spring force is ``F_axial = 2 F_t tan(beta)`` (:mod:`geargen.core.axial_preload`), and with the
+drive torque (equal and opposite increments of the two paths' tangential force) the axial
+forces' change cancels: the preload is decoupled from the drive torque (Type 2).
+
+Stiffness (Eqs. 5 and 6). The spring of axial stiffness ``k_a`` acts on the loop through the
+lever ``lambda`` on each path, so it is ``k_3 = k_a / lambda^2 = k_a (r_2 / tan(beta))^2`` at the
+output (:func:`geargen.core.stiffness.preload_spring_at_output`).
+
+Friction. The meshes' forces on the input shaft: the two tangential forces cancel and the two
+separating forces ``F_t tan(alpha_wt)`` add (the output gears are coaxial: ``phi = 0`` of
+:func:`geargen.core.axial_preload.lateral_force_factor`), a lateral load ``2 F_t tan(alpha_wt)``
+on the sliding fit; its friction over the spring force is ``mu tan(alpha_wt) / tan(beta)``,
+which grows as the helix angle shrinks (the paper's warning): a design whose ratio exceeds
+``max_friction_to_preload`` is refused, naming the helix angle.
+"""
+
+from __future__ import annotations
+
+import math
+from fractions import Fraction
+from typing import Any
+
+from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, lateral_force_factor,
+                                        preload_band, smallest_helix_angle, tangential_preload)
+from geargen.core.drive import TwoPathDrive
+from geargen.core.stiffness import mesh_stiffness, preload_spring_at_output, torsional_from_linear
+from geargen.core.synthesis import mate_rotation
+from geargen.design.assembly import Design
+from geargen.design.gear import GearSpec
+from geargen.errors import DesignError
+from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, _modelled_backlash, _ratio_check, _thin_pair,
+                                  running_backlash)
+from geargen.profile.tooth import section_rotation
+from geargen.units import LENGTH_SUFFIXES
+
+#: the meshes of the loop: (mesh name, pinion role, output role, working flank of the pinion)
+MESHES = (("mesh_left", "pinion_left", "output_right", "input ccw"),
+          ("mesh_right", "pinion_right", "output_left", "input cw"))
+
+
+def slide_for_backlash(backlash_left: float, backlash_right: float, helix_angle: float,
+                       loaded_flank_gap: float = 0.0) -> float:
+    """Slide of the input shaft (mm, along +z) from the reference position (both meshes centred in
+    their play) that leaves ``loaded_flank_gap`` on both working flanks; backlash circumferential
+    at the pinion's reference circle (mm). See the module docstring."""
+    return (backlash_left + backlash_right - 4 * loaded_flank_gap) / (4 * math.tan(helix_angle))
+
+
+def turn_for_backlash(backlash_left: float, backlash_right: float, pinion_reference_radius: float) -> float:
+    """The input shaft's counter-clockwise turn (rad) that shares the slide's take-up between two
+    meshes of unequal backlash."""
+    return (backlash_left - backlash_right) / (4 * pinion_reference_radius)
+
+
+def axial_lever(helix_angle: float, output_reference_radius: float) -> float:
+    """``lambda``: output rotation of each path per mm of the input's slide (rad/mm)."""
+    return math.tan(helix_angle) / output_reference_radius
+
+
+def _windup_slide(preload: float, k1: float, k2: float, lever: float) -> float:
+    """Slide (mm) that winds the meshes up to the loop preload ``preload`` (N mm at the output)."""
+    return (preload / k1 + preload / k2) / (2 * lever)
+
+
+def _centred_rotation(pinion: GearSpec, output: GearSpec, rot_output_face: float, z_output: float,
+                      z_pinion: float) -> float:
+    """Rotation (at the pinion's own face, height ``z_pinion``) that centres the pinion in its play
+    with the output gear at the origin (rotation ``rot_output_face`` at its face ``z_output``)."""
+    rot_output_there = rot_output_face + section_rotation(output, z_pinion - z_output)
+    return float(mate_rotation(math.pi, rot_output_there, pinion.teeth, output.teeth, 0.0, 0))
+
+
+def place_axial_preload(design: Design, s: dict) -> Layout:
+    """The resolved axial-preload drive (see the module docstring)."""
+    k = LENGTH_SUFFIXES[design.length_unit]
+    unit = design.length_unit
+    spec = {role: design.gear(s[role]) for role in ("pinion_left", "pinion_right", "output_right", "output_left")}
+    c = s["centre_distance"]
+    lo, hi = s["circumferential_backlash_min"], s["circumferential_backlash_max"]
+    if lo > hi:
+        raise DesignError(f"layout.circumferential_backlash_min_{unit}", f"{lo / k:.6g} {unit} is larger than the "
+                          f"maximum {hi / k:.6g} {unit}", f"[0, {hi / k:.6g}] {unit}")
+    rule = s["model_backlash"]
+    gap = s["loaded_flank_gap"]
+    notes: list[str] = []
+    thinning_source = "design"
+    if rule != "as_designed":
+        target = _modelled_backlash(lo, hi, rule)
+        for _, p, o, _ in MESHES:
+            spec[p], spec[o] = _thin_pair(spec[p], spec[o], target, c, f"gears.{s[p]}")
+        thinning_source = f"derived for {rule}-range backlash ([layout] model_backlash)"
+        notes.append(f"thinning derived for {rule}-range backlash: " + ", ".join(
+            f"{s[r]} {spec[r].thinning / k:.6g} {unit}" for r in spec) + " (circumferential, at the reference circle)")
+    pl, pr, o_r, o_l = (spec[r] for r in ("pinion_left", "pinion_right", "output_right", "output_left"))
+    backlash = {m: running_backlash(spec[p], spec[o], c) for m, p, o, _ in MESHES}
+    for m, p, o, _ in MESHES:
+        if not backlash[m] > 2 * gap:
+            raise DesignError(f"gears.{s[p]}", f"{m}: the teeth have {backlash[m] / k:.4g} {unit} of backlash at "
+                              f"{c / k:.6g} {unit}, not more than twice the loaded flank gap {gap / k:.4g} {unit}",
+                              "thinner teeth or a larger backlash range")
+
+    beta = pl.helix_angle
+    r_p, r_o = pl.reference_radius, o_r.reference_radius
+    # heights at the reference position: the pinions stacked, each output gear centred on its pinion
+    z_pl = 0.0
+    z_pr = pl.face_width + s["pinion_axial_gap"]
+    z_or = z_pl + (pl.face_width - o_r.face_width) / 2
+    z_ol = z_pr + (pr.face_width - o_l.face_width) / 2
+    if z_or + o_r.face_width > z_ol + 1e-9:
+        raise DesignError(f"layout.pinion_axial_gap_{unit}", f"the output gears' faces overlap: {s['output_right']} "
+                          f"reaches {(z_or + o_r.face_width) / k:.6g} {unit}, {s['output_left']} starts at {z_ol / k:.6g} {unit}",
+                          f">= {(s['pinion_axial_gap'] + z_or + o_r.face_width - z_ol) / k:.6g} {unit}")
+    # the output halves are phased with a tooth space on +x (facing the pinion) at their own faces
+    rot_or, rot_ol = math.pi / o_r.teeth, math.pi / o_l.teeth
+    ref_pl = _centred_rotation(pl, o_r, rot_or, z_or, z_pl)
+    ref_pr = _centred_rotation(pr, o_l, rot_ol, z_ol, z_pr)
+
+    # the slide that closes the loop: take-up (the solids) and windup (the preload)
+    take_up = slide_for_backlash(backlash["mesh_left"], backlash["mesh_right"], beta, gap)
+    theta = turn_for_backlash(backlash["mesh_left"], backlash["mesh_right"], r_p)
+    preload = s["preload_torque_Nm"] * 1e3  # N mm at the output, per path
+    elastic = s["elastic_modulus_GPa"] * 1e3  # MPa
+    engaged = {m: min(spec[p].face_width, spec[o].face_width) for m, p, o, _ in MESHES}
+    k_mesh = {m: float(mesh_stiffness(elastic, w)) for m, w in engaged.items()}  # N/mm, Eq. 1
+    k_path = {m: float(torsional_from_linear(k_mesh[m], o_r.base_radius)) for m in k_mesh}  # N mm/rad at the output
+    lever = axial_lever(beta, r_o)
+    windup = _windup_slide(preload, k_path["mesh_left"], k_path["mesh_right"], lever)
+    k_axial = s["preload_spring_rate_N_per_mm"]
+    k3 = float(preload_spring_at_output(k_axial, lever))
+    drive = TwoPathDrive("type2", k_path["mesh_left"], k_path["mesh_right"], preload, k3)
+    tangential = preload / r_o
+    spring_force = 2 * tangential * math.tan(beta)
+    if not math.isclose(tangential_preload(spring_force, beta), tangential, rel_tol=1e-12):
+        raise AssertionError("spring force and tangential preload disagree")  # pragma: no cover - one relation
+    # the slide at either end of the design's backlash range (teeth in contact, preloaded)
+    slide_range = (slide_for_backlash(lo, lo, beta) + windup, slide_for_backlash(hi, hi, beta) + windup)
+    stroke = s["input_stroke"]
+    if stroke < slide_range[1]:
+        raise DesignError(f"layout.input_stroke_{s['_units'].get('input_stroke', unit)}",
+                          f"{stroke / k:.6g} {unit} is shorter than the slide the preload needs with the largest "
+                          f"backlash of the range ({slide_range[1] / k:.6g} {unit}: take-up "
+                          f"{(slide_range[1] - windup) / k:.6g} + windup {windup / k:.6g})",
+                          f">= {slide_range[1] / k:.6g} {unit}")
+    # friction of the sliding fit against the preload
+    alpha_wt = math.acos((pl.base_radius + o_r.base_radius) / c)
+    mu = s["sliding_friction_coefficient"]
+    lateral = lateral_force_factor(0.0, alpha_wt)  # the output gears are coaxial: their centres 0 apart
+    ratio = friction_to_preload_ratio(mu, beta, lateral)
+    limit = s["max_friction_to_preload"]
+    smallest = smallest_helix_angle(mu, lateral, limit)
+    if ratio > limit:
+        raise DesignError(f"gears.{s['pinion_left']}.helix_angle_deg",
+                          f"{math.degrees(beta):.4g} deg: the sliding fit's friction is {ratio:.3g} of the spring force "
+                          f"(mu {mu:.3g}, lateral load {lateral:.3g} F_t), above layout.max_friction_to_preload "
+                          f"{limit:.3g}", f">= {math.degrees(smallest):.4g} deg (all four gears)")
+    band = preload_band(spring_force, beta, mu, lateral)
+    table = [dict(helix_angle_deg=row.helix_angle_deg, friction_to_preload=row.friction_to_preload,
+                  hysteresis=row.hysteresis, tangential_preload_per_spring_force=row.preload_per_spring_force)
+             for row in helix_angle_table(mu, pl.pressure_angle, lateral)]
+
+    gears = [
+        GearPlacement(s["output_right"], o_r, (0.0, 0.0), z_or, rot_or, "output", ("output",)),
+        GearPlacement(s["output_left"], o_l, (0.0, 0.0), z_ol, rot_ol, "output", ("output",)),
+        GearPlacement(s["pinion_left"], pl, (c, 0.0), z_pl + take_up, ref_pl + theta, "input", ("input",)),
+        GearPlacement(s["pinion_right"], pr, (c, 0.0), z_pr + take_up, ref_pr + theta, "input", ("input",)),
+    ]
+    by = {g.name: g for g in gears}
+    meshes = []
+    for m, p, o, flank in MESHES:
+        gp, go = by[s[p]], by[s[o]]
+        zl = max(gp.face_z(spec[p])[0], go.face_z(spec[o])[0])
+        zh = min(gp.face_z(spec[p])[1], go.face_z(spec[o])[1])
+        meshes.append(MeshPlacement(m, s[p], spec[p], s[o], spec[o], (zl + zh) / 2, lo, hi, backlash[m], True,
+                                    flank, c))
+    report: dict[str, Any] = {
+        "slide": {"take_up": take_up, "windup": windup, "total": take_up + windup, "turn_rad": theta,
+                  "at_backlash_min": slide_range[0], "at_backlash_max": slide_range[1], "stroke": stroke,
+                  "stroke_margin": stroke - slide_range[1],
+                  "radius": "reference circle of the pinion (s tan(beta) of arc there; the lead is one at every radius)"},
+        "forces": {"preload_torque_output_Nmm": preload, "preload_torque_input_Nmm": tangential * r_p,
+                   "tangential_preload_N": tangential, "spring_force_N": spring_force,
+                   "spring_compression": spring_force / k_axial, "lateral_load_N": lateral * tangential},
+        "friction": {"coefficient": mu, "lateral_force_factor": lateral, "working_pressure_angle_rad": alpha_wt,
+                     "friction_to_preload": ratio, "max_friction_to_preload": limit,
+                     "smallest_helix_angle_rad": smallest, "preload_band_N": [band.low, band.nominal, band.high],
+                     "hysteresis": band.hysteresis, "helix_angle_table": table},
+        "stiffness": {"mesh_N_per_mm": k_mesh, "k1": drive.k1, "k2": drive.k2, "lever_rad_per_mm": lever,
+                      "spring_axial_N_per_mm": k_axial, "k3": k3, "drive_eq5": drive.drive_stiffness,
+                      "loop_eq6": drive.loop_stiffness, "loop_windup_rad": preload / k_path["mesh_left"]
+                      + preload / k_path["mesh_right"], "units": "N mm/rad at the output"},
+    }
+    notes += [
+        f"axial preload: the input slides {take_up * 1e3:.4g} um to take up the backlash "
+        f"({backlash['mesh_left'] / k:.4g} + {backlash['mesh_right'] / k:.4g} {unit}, the solids placed there, "
+        f"{gap / k:.4g} {unit} left on the working flanks) and {windup * 1e3:.4g} um more to wind the meshes "
+        f"up to the preload: {(take_up + windup) * 1e3:.4g} um of a {stroke / k:.4g} {unit} stroke "
+        f"({slide_range[0] * 1e3:.4g} to {slide_range[1] * 1e3:.4g} um over the backlash range)",
+        f"axial preload: spring force {spring_force:.4g} N = 2 F_t tan(beta) for the loop preload "
+        f"{preload / 1e3:.4g} N m at the output (F_t {tangential:.4g} N per path); spring compressed "
+        f"{spring_force / k_axial / k:.4g} {unit} at {k_axial:.4g} N/mm",
+        f"axial preload: friction-to-preload {ratio:.3g} at helix {math.degrees(beta):.4g} deg (mu {mu:.3g}, "
+        f"lateral load {lateral:.3g} F_t; limit {limit:.3g} needs >= {math.degrees(smallest):.4g} deg); preload band "
+        f"{band.low:.4g} to {band.high:.4g} N of F_t; by helix angle: " + ", ".join(
+            f"{row['helix_angle_deg']:.0f} deg {row['friction_to_preload']:.3g}" for row in table),
+        f"axial preload: stiffness at the output k1 = k2 = {drive.k1 / 1e3:.4g} N m/rad (Eq. 1 meshes), "
+        f"k3 = {k3 / 1e3:.4g} N m/rad (spring {k_axial:.4g} N/mm x (r_2 / tan(beta))^2); drive (Eq. 5) "
+        f"{drive.drive_stiffness / 1e3:.4g} N m/rad, loop (Eq. 6) {drive.loop_stiffness / 1e3:.4g} N m/rad",
+    ]
+    ratio_check = _ratio_check(design, s, Fraction(o_r.teeth, pl.teeth), "input to output")
+    return Layout(design=design, kind="axial_preload", gears=tuple(gears), meshes=tuple(meshes), settings=s,
+                  ratio=ratio_check, notes=tuple(notes), axial_shift={"input": take_up},
+                  thinning={g.name: {"source": thinning_source} for g in gears}, drive_report=report)
+
+
+__all__ = ["MESHES", "slide_for_backlash", "turn_for_backlash", "axial_lever", "place_axial_preload"]
