@@ -55,6 +55,7 @@ which grows as the helix angle shrinks (the paper's warning): a design whose rat
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
@@ -68,6 +69,7 @@ from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
 from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, _modelled_backlash, _ratio_check, _thin_pair,
                                   running_backlash)
+from geargen.model.shafts import Bearing, Shaft, _bore, _mid
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -250,4 +252,77 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
                   thinning={g.name: {"source": thinning_source} for g in gears}, drive_report=report)
 
 
-__all__ = ["MESHES", "slide_for_backlash", "turn_for_backlash", "axial_lever", "place_axial_preload"]
+@dataclass(frozen=True)
+class AxialPreloadHardware:
+    """The placed shafts, bearings and preload spring of an axial-preload drive (mm): the one home
+    of the lengths the parts are built from. ``input`` slides with the pinions (its bearings too:
+    their outer rings float in the plates' bores); the plates stand where the reference position
+    (no slide) puts the bearings, so the slide ``shift`` shows as the input bearings' offset in
+    their bores and a longer spring. ``spring_z``: the spring from the cup's floor to the lower
+    input bearing's face (its installed length plus the slide); ``stroke_z``: the face of the stop
+    over the upper input bearing, the highest its face may reach (the reference plus
+    ``[layout] input_stroke``)."""
+
+    input: Shaft
+    output: Shaft
+    shift: float
+    bottom_plate: tuple[float, float]  # z range
+    top_plate: tuple[float, float]
+    spring_z: tuple[float, float]
+    spring_active_coils: float
+    cup_floor_z: float
+    stroke_z: float
+
+
+def axial_preload_hardware(layout: Layout, parts: dict[str, Any]) -> AxialPreloadHardware:
+    """The shafts and spring of the drive placed by :func:`place_axial_preload` (see
+    :class:`AxialPreloadHardware`): each shaft on two bearings a ``bearing_clearance`` beyond its
+    gears' faces; the plates as thick as the narrower bearing, level with the bearings' inner faces
+    at the reference position; the spring's active coils from its rate ``G d^4 / (8 D^3 n)``."""
+    from geargen.core.flexures import spring_rate
+    st = layout.settings
+    gap = parts["bearing_clearance"]
+    shift = layout.axial_shift["input"]
+    pin = [layout.gear(st[r]) for r in ("pinion_left", "pinion_right")]
+    out = [layout.gear(st[r]) for r in ("output_right", "output_left")]
+    d_in, d_out = _bore(pin[0].spec), _bore(out[0].spec)
+    for placed in pin + out:
+        own = _bore(placed.spec)
+        if not own > 0 or own != _bore((pin if placed in pin else out)[0].spec):
+            raise DesignError(f"gears.{placed.name}.bore_diameter", f"{own:.6g} mm: the gears on one shaft share its "
+                              "diameter, which their bore gives", f"{_bore((pin if placed in pin else out)[0].spec):.6g} mm")
+    ibw, ibod = parts["input_bearing_width"], parts["input_bearing_outer_diameter"]
+    obw, obod = parts["output_bearing_width"], parts["output_bearing_outer_diameter"]
+    lo_in = min(p.height[0] for p in pin) - shift  # the pinions' faces at the reference position
+    hi_in = max(p.height[1] for p in pin) - shift
+    lo_out, hi_out = min(p.height[0] for p in out), max(p.height[1] for p in out)
+    plate_t = min(ibw, obw)
+    bottom = (min(lo_in, lo_out) - gap - plate_t, min(lo_in, lo_out) - gap)
+    top = (max(hi_in, hi_out) + gap, max(hi_in, hi_out) + gap + plate_t)
+    in_bearings = (Bearing("input_bearing_lower", bottom[1] - ibw + shift, ibw, d_in, ibod),
+                   Bearing("input_bearing_upper", top[0] + shift, ibw, d_in, ibod))
+    out_bearings = (Bearing("output_bearing_lower", bottom[1] - obw, obw, d_out, obod),
+                    Bearing("output_bearing_upper", top[0], obw, d_out, obod))
+    c = tuple(pin[0].centre)
+    shaft_in = Shaft("input_shaft", c, in_bearings[0].z, in_bearings[1].z + ibw + parts["motor_stub_length"], d_in,
+                     in_bearings, {p.name: _mid(p, p.spec) for p in pin})
+    shaft_out = Shaft("output_shaft", tuple(out[0].centre), out_bearings[0].z, out_bearings[1].z + obw, d_out,
+                      out_bearings, {p.name: _mid(p, p.spec) for p in out})
+    d, mean = parts["spring_wire_diameter"], parts["spring_mean_diameter"]
+    if not (mean - d > d_in and mean + d < ibod):
+        raise DesignError("parts.spring_mean_diameter", f"{mean:.6g} mm: the coils ({mean - d:.6g} to {mean + d:.6g} mm) "
+                          f"must bear on the lower bearing's face, clear of the shaft ({d_in:.6g} mm) and inside its "
+                          f"outer diameter ({ibod:.6g} mm)", f"({d_in + d:.6g}, {ibod - d:.6g}) mm")
+    rate = layout.drive_report["stiffness"]["spring_axial_N_per_mm"]
+    coils = float(spring_rate(parts["spring_shear_modulus_GPa"] * 1e3, d, mean, 1.0)) / rate
+    floor = bottom[1] - ibw - parts["spring_installed_length"]
+    length = in_bearings[0].z - floor
+    if not length > d * (coils + 3):  # the swept wire's coils (active + two closed ends) must stay apart
+        raise DesignError("parts.spring_installed_length", f"{parts['spring_installed_length']:.6g} mm closes the "
+                          f"spring's {coils:.3g} active coils of {d:.6g} mm wire", f"> {d * (coils + 3):.6g} mm")
+    return AxialPreloadHardware(shaft_in, shaft_out, shift, bottom, top, (floor, in_bearings[0].z), coils, floor,
+                                top[1] + layout.settings["input_stroke"])
+
+
+__all__ = ["MESHES", "slide_for_backlash", "turn_for_backlash", "axial_lever", "place_axial_preload",
+           "AxialPreloadHardware", "axial_preload_hardware"]
