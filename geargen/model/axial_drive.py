@@ -45,9 +45,10 @@ lever ``lambda`` on each path, so it is ``k_3 = k_a / lambda^2 = k_a (r_2 / tan(
 output (:func:`geargen.core.stiffness.preload_spring_at_output`).
 
 Friction. The meshes' forces on the input shaft: the two tangential forces cancel and the two
-separating forces ``F_t tan(alpha_wt)`` add (the output gears are coaxial: ``phi = 0`` of
-:func:`geargen.core.axial_preload.lateral_force_factor`), a lateral load ``2 F_t tan(alpha_wt)``
-on the sliding fit; its friction over the spring force is ``mu tan(alpha_wt) / tan(beta)``,
+separating components add (the output gears are coaxial: ``phi = 0`` of
+:func:`geargen.core.axial_preload.lateral_force_factor`), a lateral load ``2 (P / r_b2) sin(alpha_wt)``
+(``2 F_t tan(alpha_wt)`` at standard centres) on the sliding fit; its friction over the spring
+force is then ``mu tan(alpha_wt) / tan(beta)``,
 which grows as the helix angle shrinks (the paper's warning): a design whose ratio exceeds
 ``max_friction_to_preload`` is refused, naming the helix angle.
 """
@@ -59,8 +60,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, lateral_force_factor,
-                                        preload_band, smallest_helix_angle, tangential_preload)
+from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, preload_band,
+                                        smallest_helix_angle, tangential_preload)
 from geargen.core.drive import TwoPathDrive
 from geargen.core.stiffness import mesh_stiffness, preload_spring_at_output, torsional_from_linear
 from geargen.core.synthesis import mate_rotation
@@ -175,16 +176,22 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
     # the slide at either end of the design's backlash range (teeth in contact, preloaded)
     slide_range = (slide_for_backlash(lo, lo, beta) + windup, slide_for_backlash(hi, hi, beta) + windup)
     stroke = s["input_stroke"]
-    if stroke < slide_range[1]:
+    # the stroke must hold the slide of the largest backlash of the range, and of the teeth as modelled
+    # (as designed, they may lie outside the range: the check then says so, the slide still happens)
+    needed = max(slide_range[1], take_up + 2 * gap / (2 * math.tan(beta)) + windup)
+    if stroke < needed:
         raise DesignError(f"layout.input_stroke_{s['_units'].get('input_stroke', unit)}",
                           f"{stroke / k:.6g} {unit} is shorter than the slide the preload needs with the largest "
-                          f"backlash of the range ({slide_range[1] / k:.6g} {unit}: take-up "
-                          f"{(slide_range[1] - windup) / k:.6g} + windup {windup / k:.6g})",
-                          f">= {slide_range[1] / k:.6g} {unit}")
+                          f"backlash ({needed / k:.6g} {unit}: take-up {(needed - windup) / k:.6g} + windup "
+                          f"{windup / k:.6g})", f">= {needed / k:.6g} {unit}")
     # friction of the sliding fit against the preload
     alpha_wt = math.acos((pl.base_radius + o_r.base_radius) / c)
     mu = s["sliding_friction_coefficient"]
-    lateral = lateral_force_factor(0.0, alpha_wt)  # the output gears are coaxial: their centres 0 apart
+    # the lateral load on the sliding fit: the two mesh forces (P / r_b2 each, along lines of action
+    # mirrored about the centre line) add their separating components 2 (P / r_b2) sin(alpha_wt); over
+    # the reference tangential preload F_t. At standard centres it is lateral_force_factor(0, alpha_wt)
+    # = 2 tan(alpha_wt) (the output gears are coaxial: their centres 0 apart)
+    lateral = 2 * (preload / o_r.base_radius) * math.sin(alpha_wt) / (preload / r_o)
     ratio = friction_to_preload_ratio(mu, beta, lateral)
     limit = s["max_friction_to_preload"]
     smallest = smallest_helix_angle(mu, lateral, limit)
