@@ -194,6 +194,22 @@ def test_eqs_5_and_6_and_k3_by_a_numeric_loop_model(layout):
                                       rel=1e-9)
 
 
+def test_drive_torque_leaves_the_slide_and_the_spring_alone(layout):
+    """Type 2: a drive torque at the input, the output held, changes the two paths' forces by equal
+    and opposite amounts; their axial components cancel, so the slide (and the spring's force,
+    hence the preload) does not move (the loop model of the Eqs. 5/6 test)."""
+    pinion, output = layout.meshes[0].gear1, layout.meshes[0].gear2
+    k_mesh = 207e3 * 12 / 11
+    lever_b = output_rotation_per_slide(layout) * output.base_radius
+    K, (g_left, g_right) = loop_model(k_mesh, 20.0, lever_b, pinion.base_radius, output.base_radius)
+    torque = 2000.0  # N mm at the input
+    turn, slide = np.linalg.solve(K[:2, :2], np.array([torque, 0.0]))
+    assert abs(slide) < 1e-12 * abs(turn)
+    change = [k_mesh * (g[:2] @ (turn, slide)) for g in (g_left, g_right)]
+    assert change[0] == pytest.approx(-change[1], rel=1e-12)
+    assert (change[0] - change[1]) * pinion.base_radius == pytest.approx(torque, rel=1e-9)
+
+
 def test_lateral_load_is_the_vector_sum_of_the_mesh_forces(layout):
     """Each mesh pushes the pinion with P / r_b2 along its line of action (tangent to both base
     circles); the two lines are mirror images about the centre line (opposite working flanks)."""
