@@ -194,6 +194,19 @@ def test_eqs_5_and_6_and_k3_by_a_numeric_loop_model(layout):
                                       rel=1e-9)
 
 
+def test_the_stiffness_summary_reads_the_placed_lever(layout):
+    """geargen stiffness and the build's summary ([stiffness] components, [preload]) take the
+    placement's lever: the same k3, Eq. 6 and spring force as the placement's own report."""
+    summary = pl.stiffness(layout)
+    rep = layout.drive_report
+    assert summary.lever == pytest.approx(rep["stiffness"]["lever_rad_per_mm"], rel=1e-12)
+    assert summary.drive.k3 == pytest.approx(rep["stiffness"]["k3"], rel=1e-12)
+    assert summary.drive.loop_stiffness == pytest.approx(rep["stiffness"]["loop_eq6"], rel=1e-12)
+    assert summary.drive.drive_stiffness == pytest.approx(rep["stiffness"]["drive_eq5"], rel=1e-12)
+    assert summary.carriage_force == pytest.approx(rep["forces"]["spring_force_N"], rel=1e-12)
+    assert not summary.warnings
+
+
 def test_drive_torque_leaves_the_slide_and_the_spring_alone(layout):
     """Type 2: a drive torque at the input, the output held, changes the two paths' forces by equal
     and opposite amounts; their axial components cancel, so the slide (and the spring's force,
@@ -323,3 +336,10 @@ def test_moving_the_input_moves_its_parts_and_changes_the_analysis(tmp_path):
                                                                "circumferential_backlash_max_mm = 0.07")))))
     assert shaft.part("input_shaft").matrix[2, 3] - z_base == pytest.approx(0.005 / 2 / math.tan(math.radians(20)),
                                                                             rel=1e-6)
+
+
+def test_a_drive_that_does_not_slide_its_input_is_refused(tmp_path):
+    path = variant(tmp_path, (r'^preload = "axial"', 'preload = "radial"'))
+    with pytest.raises(DesignError) as err:
+        pl.place(pl.load(path))
+    assert err.value.field == "drive.preload" and "'axial'" in err.value.allowed

@@ -66,10 +66,7 @@ def test_build_writes_everything_with_a_manifest(built_assemblies, name):
         for f in info["files"]:
             assert f in m["files"] and (folder / f).exists()
     html = (folder / "report.html").read_text()
-    # the axial preload reports its Eqs. 5 and 6 in its own notes (geargen.model.axial_drive): it has
-    # no [stiffness] summary, whose preload diagram the others draw
-    figures = ("render", "layout") + (() if name == "axial_preload" else ("preload_diagram",))
-    for figure in figures:  # linked files, listed in the manifest
+    for figure in ("render", "layout", "preload_diagram"):  # linked files, listed in the manifest
         assert f"src='figures/{figure}.png'" in html and f"figures/{figure}.svg" in m["files"]
     assert not list(folder.parent.glob(".*"))  # the temporary build folder is gone
 

@@ -84,12 +84,6 @@ LAYOUT_FIELDS = [
     Field("input_stroke", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="axial preload: travel the input shaft's sliding bearings allow along +z (the spring's push) from the "
                "reference position where both meshes sit in the middle of their play"),
-    Field("preload_torque_Nm", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
-          help="axial preload: the loop preload, torque of each path at the output (N m)"),
-    Field("preload_spring_rate_N_per_mm", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
-          help="axial preload: axial stiffness of the preload spring (N/mm)"),
-    Field("elastic_modulus_GPa", "number", required=False, default=207.0, minimum=1.0,
-          help="axial preload: elastic modulus of the gears, for the mesh stiffness of Eq. 1 (GPa)"),
     Field("sliding_friction_coefficient", "number", required=False, default=0.1, minimum=0.0, maximum=1.0,
           help="axial preload: friction coefficient of the input shaft's sliding fit (the floating bearings' outer "
                "rings in their bores)"),
@@ -110,7 +104,7 @@ MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[eng
 #: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])
 SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
 #: the keys an axial-preload layout must give
-AXIAL_PRELOAD_KEYS = SPLIT_PINION_KEYS + ("input_stroke", "preload_torque_Nm", "preload_spring_rate_N_per_mm")
+AXIAL_PRELOAD_KEYS = SPLIT_PINION_KEYS + ("input_stroke",)
 
 
 def is_split_pinion(data) -> bool:
@@ -158,10 +152,8 @@ def layout_settings(design) -> dict[str, Any]:
     if v["kind"] in ("split_pinion", "axial_preload"):
         for name in SPLIT_PINION_KEYS if v["kind"] == "split_pinion" else AXIAL_PRELOAD_KEYS:
             if v[name] is None:
-                spellings = " or ".join(f"{name}_{u}" for u in LENGTH_SUFFIXES) \
-                    if name in SPLIT_PINION_KEYS + ("input_stroke",) else name
                 raise DesignError(f"layout.{name}", f"missing for {'a split pinion' if v['kind'] == 'split_pinion' else 'an axial preload'}",
-                                  spellings)
+                                  " or ".join(f"{name}_{u}" for u in LENGTH_SUFFIXES))
         lo, hi = v["circumferential_backlash_min"], v["circumferential_backlash_max"]
         if lo > hi:
             unit = v["_units"]["circumferential_backlash_min"]

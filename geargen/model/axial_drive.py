@@ -32,7 +32,11 @@ The solids are placed at this take-up (rigid teeth, ``g`` left open). Under the 
 teeth yield and the spring pushes the shaft further by the windup
 ``(P / k_1 + P / k_2) / (2 lambda)`` with ``lambda = tan(beta) / r_2`` the output rotation of
 each path per mm of slide (``r_2`` the output gear's reference radius) and ``k_i`` the mesh
-stiffness of Eq. 1 at the output (``E w / 11`` along the line of action, times ``r_b2^2``).
+stiffness of Eq. 1 at the output (``E w / 11`` along the line of action, times ``r_b2^2``; or ISO
+6336 as ``[stiffness] mesh_stiffness`` says). The loop preload ``P`` and the spring's stiffness
+``k_a`` come from ``[preload]`` (``preload_*``, ``preload_spring_stiffness_N_per_mm``), the
+modulus from ``[stiffness]``: the same numbers the stiffness summary reads, which takes its
+preload lever ``lambda`` from this placement.
 
 Forces. Each path carries the loop preload ``P`` (torque at the output), a tangential force
 ``F_t = P / r_2`` at the reference circles; each helix takes ``F_t tan(beta)`` axially, so the
@@ -63,7 +67,7 @@ from typing import Any
 from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, preload_band,
                                         smallest_helix_angle, tangential_preload)
 from geargen.core.drive import TwoPathDrive
-from geargen.core.stiffness import mesh_stiffness, preload_spring_at_output, torsional_from_linear
+from geargen.core.stiffness import gear_mesh_stiffness, preload_spring_at_output, torsional_from_linear
 from geargen.core.synthesis import mate_rotation
 from geargen.design.assembly import Design
 from geargen.design.gear import GearSpec
@@ -109,6 +113,32 @@ def _centred_rotation(pinion: GearSpec, output: GearSpec, rot_output_face: float
     with the output gear at the origin (rotation ``rot_output_face`` at its face ``z_output``)."""
     rot_output_there = rot_output_face + section_rotation(output, z_pinion - z_output)
     return float(mate_rotation(math.pi, rot_output_there, pinion.teeth, output.teeth, 0.0, 0))
+
+
+def _preload_inputs(design: Design) -> tuple[float, float, float, str]:
+    """(loop preload N mm at the output, the spring's axial stiffness N/mm, the gears' elastic
+    modulus MPa, the mesh stiffness method) from their homes: ``[preload]`` (``preload_*``, else
+    the paper's rule for a Type 2 drive, half the largest load; ``preload_spring_stiffness_*``
+    linear) and ``[stiffness]``; the drive must say ``[drive] type = "type2"``,
+    ``preload = "axial"``."""
+    from geargen.core.stiffness import required_preload
+    from geargen.design.stiffness import stiffness_design
+    if design.drive_type != "type2" or design.preload_method != "axial":
+        raise DesignError("drive.preload" if design.drive_type == "type2" else "drive.type",
+                          f"type {design.drive_type!r}, preload {design.preload_method!r}: the axial preload is a Type 2 "
+                          "drive whose preload device slides the input", "[drive] type = 'type2', preload = 'axial'")
+    if not design.section("stiffness") or not design.section("preload"):
+        raise DesignError("preload" if design.section("stiffness") else "stiffness", "missing: the slide, the spring "
+                          "force and the loop's stiffness follow from the preload and the meshes' stiffness",
+                          "[stiffness] (the gears' elastic modulus, the meshes as components) and [preload] "
+                          "(max_output_torque_*, preload_*, preload_spring_stiffness_N_per_mm)")
+    sd = stiffness_design(design)
+    pre = sd.preload
+    if pre.preload_spring_linear is None:
+        raise DesignError("preload.preload_spring_stiffness", "missing: the axial preload's spring pushes the input "
+                          "shaft along its axis", "preload_spring_stiffness_N_per_mm (linear, along the slide)")
+    preload = pre.preload if pre.preload is not None else required_preload(pre.max_output_torque, "type2")
+    return preload, pre.preload_spring_linear, sd.stiffness.elastic_modulus, sd.stiffness.mesh_stiffness
 
 
 def place_axial_preload(design: Design, s: dict) -> Layout:
@@ -159,14 +189,13 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
     # the slide that closes the loop: take-up (the solids) and windup (the preload)
     take_up = slide_for_backlash(backlash["mesh_left"], backlash["mesh_right"], beta, gap)
     theta = turn_for_backlash(backlash["mesh_left"], backlash["mesh_right"], r_p)
-    preload = s["preload_torque_Nm"] * 1e3  # N mm at the output, per path
-    elastic = s["elastic_modulus_GPa"] * 1e3  # MPa
+    preload, k_axial, elastic, method = _preload_inputs(design)
     engaged = {m: min(spec[p].face_width, spec[o].face_width) for m, p, o, _ in MESHES}
-    k_mesh = {m: float(mesh_stiffness(elastic, w)) for m, w in engaged.items()}  # N/mm, Eq. 1
+    k_mesh = {m: gear_mesh_stiffness(spec[p], spec[o], engaged[m], elastic, method, "stiffness.mesh_stiffness")[0]
+              for m, p, o, _ in MESHES}  # N/mm along the line of action (Eq. 1 or ISO 6336)
     k_path = {m: float(torsional_from_linear(k_mesh[m], o_r.base_radius)) for m in k_mesh}  # N mm/rad at the output
     lever = axial_lever(beta, r_o)
     windup = _windup_slide(preload, k_path["mesh_left"], k_path["mesh_right"], lever)
-    k_axial = s["preload_spring_rate_N_per_mm"]
     k3 = float(preload_spring_at_output(k_axial, lever))
     drive = TwoPathDrive("type2", k_path["mesh_left"], k_path["mesh_right"], preload, k3)
     tangential = preload / r_o
@@ -249,7 +278,7 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
         f"lateral load {lateral:.3g} F_t; limit {limit:.3g} needs >= {math.degrees(smallest):.4g} deg); preload band "
         f"{band.low:.4g} to {band.high:.4g} N of F_t; by helix angle: " + ", ".join(
             f"{row['helix_angle_deg']:.0f} deg {row['friction_to_preload']:.3g}" for row in table),
-        f"axial preload: stiffness at the output k1 = k2 = {drive.k1 / 1e3:.4g} N m/rad (Eq. 1 meshes), "
+        f"axial preload: stiffness at the output, meshes only: k1 = k2 = {drive.k1 / 1e3:.4g} N m/rad, "
         f"k3 = {k3 / 1e3:.4g} N m/rad (spring {k_axial:.4g} N/mm x (r_2 / tan(beta))^2); drive (Eq. 5) "
         f"{drive.drive_stiffness / 1e3:.4g} N m/rad, loop (Eq. 6) {drive.loop_stiffness / 1e3:.4g} N m/rad",
     ]
