@@ -72,9 +72,13 @@ def axial_preload_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet
     out.stationary.append(cup)
     d, mean = s["spring_wire_diameter"], s["spring_mean_diameter"]
     z0, z1 = hw.spring_z
-    spring = out.add("preload_spring", P.coil_envelope(d, mean, z1 - z0), _at(x_in, 0, z0), "housing", "spring",
-                     description=f"preload spring: {hw.spring_active_coils:.3g} active coils of {d:.4g} mm wire on "
-                                 f"{mean:.4g} mm, {z1 - z0:.4g} mm long as placed (envelope)")
+    # the wire swept along its helix: the active coils and a closed, ground coil at each end
+    total_coils = hw.spring_active_coils + 2
+    spring = out.add("preload_spring", P.compression_spring(d, mean, z1 - z0, total_coils), _at(x_in, 0, z0),
+                     "housing", "spring", description=f"preload spring: {hw.spring_active_coils:.3g} active coils "
+                                                      f"({total_coils:.3g} in all) of {d:.4g} mm wire on {mean:.4g} mm, "
+                                                      f"{z1 - z0:.4g} mm long as placed",
+                     envelope=P.coil_envelope(d, mean, z1 - z0))
     out.touch(spring, cup, "spring on the cup's floor")
     out.touch(spring, lower_in.name, "spring on the lower input bearing's outer ring")
     # the stroke: a stop over the upper input bearing's outer ring, input_stroke above its face at the
