@@ -192,6 +192,12 @@ def test_eqs_5_and_6_and_k3_by_a_numeric_loop_model(layout):
     assert rep["k3"] == pytest.approx(4 * spring_only, rel=1e-6)
     assert rep["k3"] == pytest.approx(k_axial * (output.reference_radius / math.tan(output.helix_angle)) ** 2,
                                       rel=1e-9)
+    # the windup: from flanks just touching, the spring's force pushes the slide on (input free,
+    # output held) until the meshes carry it; the extra slide is the report's windup
+    spring_force = layout.drive_report["forces"]["spring_force_N"]
+    turn, slide = np.linalg.solve(K[:2, :2] - np.diag([0.0, k_axial]), np.array([0.0, spring_force]))
+    assert slide == pytest.approx(layout.drive_report["slide"]["windup"], rel=1e-6)
+    assert k_mesh * (g_left[:2] @ (turn, slide)) * r_bo == pytest.approx(5000.0, rel=1e-6)  # the preload
 
 
 def test_the_stiffness_summary_reads_the_placed_lever(layout):
@@ -343,3 +349,23 @@ def test_a_drive_that_does_not_slide_its_input_is_refused(tmp_path):
     with pytest.raises(DesignError) as err:
         pl.place(pl.load(path))
     assert err.value.field == "drive.preload" and "'axial'" in err.value.allowed
+
+
+def test_hardware_that_cannot_hold_the_slide_is_refused():
+    """The spring must bear on the lower bearing's face (clear of the shaft, inside the ring) and
+    its installed length must keep its coils apart (geargen.model.axial_drive.axial_preload_hardware)."""
+    from geargen.design.parts import parts_settings
+    from geargen.model.axial_drive import axial_preload_hardware
+    design = pl.load(DESIGN)
+    layout = pl.place(design)
+    parts = parts_settings(design)
+    hw = axial_preload_hardware(layout, parts)
+    # 20 N/mm from G d^4 / (8 D^3 n): 79.3 GPa, 3.4 mm wire on 20 mm (Shigley, helical springs)
+    assert hw.spring_active_coils == pytest.approx(79.3e3 * 3.4 ** 4 / (8 * 20 ** 3 * 20), rel=1e-12)
+    assert hw.spring_z[1] - hw.spring_z[0] == pytest.approx(45 + layout.axial_shift["input"], rel=1e-12)
+    assert hw.stroke_z - hw.top_plate[1] == pytest.approx(0.5)
+    for key, value, field in (("spring_mean_diameter", 14.0, "parts.spring_mean_diameter"),
+                              ("spring_installed_length", 35.0, "parts.spring_installed_length")):
+        with pytest.raises(DesignError) as err:
+            axial_preload_hardware(layout, {**parts, key: value})
+        assert err.value.field == field

@@ -201,7 +201,9 @@ TABLES: tuple[Table, ...] = (
           Example("metric_dual_pinion.toml", ("stages.motor", "stages.idler")), sections=("stages",)),
     Table("[layout]", ("layout",),
           "How the build places the gears. A file with [synthesis] and no [layout] is a dual-pinion drive "
-          "with every default. A split pinion also needs `centre_distance_*` and the backlash range.",
+          "with every default. A split pinion also needs `centre_distance_*` and the backlash range; an axial "
+          "preload those, `input_stroke_*` and its four helical gears (its preload and spring in [preload]: "
+          "assemblies/axial_preload.toml).",
           Example("split_pinion.toml", ("layout",)), sections=("layout",)),
     Table("[parts] of a dual pinion on a preload carriage", ("parts",),
           "The sizes of the non-gear parts; the drive the file describes decides which (a dual pinion with "
