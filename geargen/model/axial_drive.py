@@ -65,7 +65,7 @@ from fractions import Fraction
 from typing import Any
 
 from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, preload_band,
-                                        smallest_helix_angle, tangential_preload)
+                                        smallest_helix_angle)
 from geargen.core.drive import TwoPathDrive
 from geargen.core.stiffness import gear_mesh_stiffness, preload_spring_at_output, torsional_from_linear
 from geargen.core.synthesis import mate_rotation
@@ -200,14 +200,12 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
     drive = TwoPathDrive("type2", k_path["mesh_left"], k_path["mesh_right"], preload, k3)
     tangential = preload / r_o
     spring_force = 2 * tangential * math.tan(beta)
-    if not math.isclose(tangential_preload(spring_force, beta), tangential, rel_tol=1e-12):
-        raise AssertionError("spring force and tangential preload disagree")  # pragma: no cover - one relation
     # the slide at either end of the design's backlash range (teeth in contact, preloaded)
     slide_range = (slide_for_backlash(lo, lo, beta) + windup, slide_for_backlash(hi, hi, beta) + windup)
     stroke = s["input_stroke"]
     # the stroke must hold the slide of the largest backlash of the range, and of the teeth as modelled
     # (as designed, they may lie outside the range: the check then says so, the slide still happens)
-    needed = max(slide_range[1], take_up + 2 * gap / (2 * math.tan(beta)) + windup)
+    needed = max(slide_range[1], take_up + gap / math.tan(beta) + windup)  # flanks touching, wound up
     if stroke < needed:
         raise DesignError(f"layout.input_stroke_{s['_units'].get('input_stroke', unit)}",
                           f"{stroke / k:.6g} {unit} is shorter than the slide the preload needs with the largest "
