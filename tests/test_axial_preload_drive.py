@@ -369,3 +369,32 @@ def test_hardware_that_cannot_hold_the_slide_is_refused():
         with pytest.raises(DesignError) as err:
             axial_preload_hardware(layout, {**parts, key: value})
         assert err.value.field == field
+
+
+def test_unequal_backlash_is_shared_by_the_shafts_turn(tmp_path):
+    """Pinions as designed with 0.035 and 0.055 mm of backlash: the slide takes up their mean, the
+    shaft's turn (j_l - j_r) / (4 r) the difference; the exact outlines show the loaded flank gap
+    on both working flanks, and the root finder on the outlines finds the same slide and turn."""
+    path = variant(tmp_path, (r'^model_backlash = "mid"', 'model_backlash = "as_designed"'),
+                   (r"^(\[gears\.pinion_left\])", r"\1\nthinning_circumferential_mm = 0.035"),
+                   (r"^(\[gears\.pinion_right\])", r"\1\nthinning_circumferential_mm = 0.055"))
+    layout = pl.place(pl.load(path))
+    gap = layout.settings["loaded_flank_gap"]
+    j = {m.name: m.modelled_backlash for m in layout.meshes}
+    assert j["mesh_left"] == pytest.approx(0.035, abs=1e-6) and j["mesh_right"] == pytest.approx(0.055, abs=1e-6)
+    turn = layout.drive_report["slide"]["turn_rad"]
+    assert turn == pytest.approx((j["mesh_left"] - j["mesh_right"]) / (4 * layout.meshes[0].gear1.reference_radius),
+                                 rel=1e-12)
+    play = working_and_free_play(layout, np.linspace(0.0, 2 * math.pi / 20, 6, endpoint=False))
+    for name, (working, free) in play.items():
+        assert working == pytest.approx(gap, abs=1e-9)
+        assert free == pytest.approx(j[name] - gap, abs=1e-9)
+
+    def residual(v):
+        p = working_and_free_play(moved(layout, v[0], v[1] * 1e-3))
+        return [(p["mesh_left"][0] - gap) * 1e3, (p["mesh_right"][0] - gap) * 1e3]
+
+    sol = root(residual, [0.0, 0.0], tol=1e-12)
+    assert sol.success
+    assert sol.x[0] == pytest.approx(layout.axial_shift["input"], abs=1e-8)
+    assert sol.x[1] * 1e-3 == pytest.approx(turn, abs=1e-9)
