@@ -398,3 +398,105 @@ def test_unequal_backlash_is_shared_by_the_shafts_turn(tmp_path):
     assert sol.success
     assert sol.x[0] == pytest.approx(layout.axial_shift["input"], abs=1e-8)
     assert sol.x[1] * 1e-3 == pytest.approx(turn, abs=1e-9)
+
+
+SWEEP_TEMPLATE = """
+name = "axial_sweep"
+length_unit = "mm"
+[drive]
+type = "type2"
+preload = "axial"
+[gear_defaults]
+module_mm = {module}
+pressure_angle_deg = 20
+helix_angle_deg = {helix}
+[gears.pinion_left]
+teeth = {zp}
+hand = "left"
+face_width_mm = {face}
+[gears.pinion_right]
+teeth = {zp}
+hand = "right"
+face_width_mm = {face}
+[gears.output_right]
+teeth = {zo}
+hand = "right"
+face_width_mm = {face}
+[gears.output_left]
+teeth = {zo}
+hand = "left"
+face_width_mm = {face}
+[layout]
+kind = "axial_preload"
+loaded_flank_gap_mm = 0.0005
+centre_distance_mm = {centre}
+pinion_axial_gap_mm = 2
+circumferential_backlash_min_mm = {lo}
+circumferential_backlash_max_mm = {hi}
+input_stroke_mm = {stroke}
+sliding_friction_coefficient = {mu}
+max_friction_to_preload = 0.15
+[stiffness]
+train = "custom"
+[stiffness.components.mesh_left]
+kind = "mesh"
+gears = ["pinion_left", "output_right"]
+ratio = 1.0
+scope = "path1"
+[stiffness.components.mesh_right]
+kind = "mesh"
+gears = ["pinion_right", "output_left"]
+ratio = 1.0
+scope = "path2"
+[preload]
+max_output_torque_Nm = {torque}
+preload_spring_stiffness_N_per_mm = {spring}
+"""
+
+
+def test_seeded_sweep_closes_the_loop_or_names_the_refusal(tmp_path):
+    """100 random drives (seeded): each is placed with both working flanks at the loaded flank gap
+    and the free flanks at the rest of its backlash (exact outlines), or refused naming the stroke
+    or the helix angle, and then only when the closed forms (by hand here) say it must be."""
+    rng = np.random.default_rng(20261124)
+    outcomes = {"placed": 0, "layout.input_stroke_mm": 0, "gears.pinion_left.helix_angle_deg": 0}
+    for case in range(100):
+        module, helix = float(rng.uniform(0.5, 3.0)), float(rng.uniform(6.0, 35.0))
+        zp, zo = int(rng.integers(14, 30)), int(rng.integers(40, 110))
+        lo = float(rng.uniform(0.01, 0.05)) * module
+        hi = lo * float(rng.uniform(1.2, 2.5))
+        values = dict(module=module, helix=helix, zp=zp, zo=zo, face=round(8 * module, 3), lo=lo, hi=hi,
+                      centre=(zp + zo) * module / (2 * math.cos(math.radians(helix))) + 1e-6,
+                      stroke=float(rng.uniform(0.02, 0.4)) * module, mu=float(rng.uniform(0.03, 0.15)),
+                      torque=float(rng.uniform(1.0, 50.0)) * module ** 2, spring=float(rng.uniform(5.0, 50.0)))
+        path = tmp_path / f"case{case}.toml"
+        path.write_text(SWEEP_TEMPLATE.format(**values))
+        beta = math.radians(helix)
+        alpha_t = math.atan(math.tan(math.radians(20)) / math.cos(beta))
+        friction_ratio = values["mu"] * math.tan(alpha_t) / math.tan(beta)  # standard centres (1 nm wide)
+        # the slide the largest backlash needs, by hand: take-up hi / (2 tan(beta)) and the windup of
+        # the meshes (E w / 11 each at r_b2) under the paper's Type 2 preload, half the largest torque
+        r_o = zo * module / math.cos(beta) / 2
+        k_path = 207e3 * values["face"] / 11 * (r_o * math.cos(alpha_t)) ** 2
+        windup = 2 * (values["torque"] * 1e3 / 2) / k_path / (2 * math.tan(beta) / r_o)
+        needed = hi / (2 * math.tan(beta)) + windup
+        try:
+            layout = pl.place(pl.load(path))
+        except DesignError as exc:
+            assert exc.field in outcomes, (case, str(exc))
+            outcomes[exc.field] += 1
+            if exc.field == "layout.input_stroke_mm":  # checked first
+                assert values["stroke"] < needed * (1 + 1e-6), case
+            else:
+                assert values["stroke"] >= needed * (1 - 1e-6) and friction_ratio > 0.15 - 1e-9, case
+            continue
+        outcomes["placed"] += 1
+        assert friction_ratio <= 0.15 + 1e-9 and values["stroke"] >= needed * (1 - 1e-6), case
+        assert layout.drive_report["slide"]["at_backlash_max"] == pytest.approx(needed, rel=1e-6)
+        gap = layout.settings["loaded_flank_gap"]
+        for name, (working, free) in working_and_free_play(layout).items():
+            j = layout.mesh(name).modelled_backlash
+            assert j == pytest.approx((lo + hi) / 2, abs=1e-9)
+            assert working == pytest.approx(gap, abs=1e-8), (case, name)
+            assert free == pytest.approx(j - gap, abs=1e-8), (case, name)
+    assert all(count >= 5 for count in outcomes.values()), outcomes
