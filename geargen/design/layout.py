@@ -58,7 +58,7 @@ LAYOUT_FIELDS = [
           help="dual pinion: travel of the preload carriage either way, drawn in the layout and the report"),
     # split pinion
     Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
-          help="split pinion: centre distance of both pinions from the output"),
+          help="split pinion and axial preload: centre distance of both pinions from the output"),
     Field("pinion_stiff", "string", required=False, default="pinion_stiff",
           help="split pinion: the gear table of the stiff (outer) path's pinion"),
     Field("pinion_compliant", "string", required=False, default="pinion_compliant",
@@ -66,13 +66,13 @@ LAYOUT_FIELDS = [
     Field("output", "string", required=False, default="output",
           help="split pinion: the gear table of the output gear"),
     Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0,
-          help="split pinion: axial gap between the two pinions"),
+          help="split pinion and axial preload: axial gap between the two pinions"),
     Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0,
-          help="split pinion: smallest backlash of each pinion with the output (circumferential, at the reference "
-               "circles)"),
+          help="split pinion and axial preload: smallest backlash of each pinion with the output (circumferential, at "
+               "the reference circles)"),
     Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0,
-          help="split pinion: largest backlash of each pinion with the output (circumferential, at the reference "
-               "circles)"),
+          help="split pinion and axial preload: largest backlash of each pinion with the output (circumferential, at "
+               "the reference circles)"),
     # axial preload (geargen.model.axial_drive); centre_distance, circumferential_backlash_min/_max and
     # pinion_axial_gap as the split pinion's, the backlash being each mesh's own
     Field("pinion_left", "string", required=False, default="pinion_left",
