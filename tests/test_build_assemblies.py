@@ -22,6 +22,7 @@ pytestmark = pytest.mark.slow
 ROOT = Path(__file__).resolve().parents[1]
 DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
            "split_pinion": ROOT / "assemblies/split_pinion.toml",
+           "axial_preload": ROOT / "assemblies/axial_preload.toml",
            # design files only: no Python of their own
            "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
            "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",

@@ -192,6 +192,9 @@ def non_gear_parts(layout, stiffness=None) -> PartSet:
     the drive's hardware (:func:`geargen.design.parts.hardware_of`)."""
     s = parts_settings(layout.design)
     builder = {"carriage": carriage_parts, "beam_pinion": beam_pinion_parts, "split_pinion": split_pinion_parts}
+    if s["hardware"] == "axial_preload":
+        from geargen.cad.axial_parts import axial_preload_parts  # it imports this module's helpers
+        return axial_preload_parts(layout, s, stiffness)
     return builder[s["hardware"]](layout, s, stiffness)
 
 

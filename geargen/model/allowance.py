@@ -44,7 +44,7 @@ def range_fields(layout: Layout, mesh: MeshPlacement) -> tuple[str, str]:
                      and mesh.name.startswith(f"stage_{st.name}_sun_")), mesh.name[len('stage_'):])
         base = f"stages.{name}.circumferential_backlash_"
         return f"{base}min_{u}", f"{base}max_{u}"
-    if layout.kind == "split_pinion":
+    if layout.kind in ("split_pinion", "axial_preload"):
         return f"layout.circumferential_backlash_min_{u}", f"layout.circumferential_backlash_max_{u}"
     n = mesh.name.split("_")[0][len("mesh"):]  # mesh1_a -> 1
     return (f"synthesis.circumferential_backlash_min_mesh{n}_{u}",
