@@ -16,6 +16,10 @@ the order written, from the motor to the loop::
     centre_distance_mm = 30.05        # default: the standard centre distance
     direction_deg = 0                 # where the driver's shaft lies, seen from the driven one
 
+A table with ``kind = "planetary"`` is a planetary stage instead (sun, planets, fixed ring; its
+keys and rules in :mod:`geargen.design.planetary_stage`), the only stage: the carrier drives the
+input gear's shaft.
+
 Each stage's driven gear shares a shaft with the next stage's driver; the last driven gear
 shares the input gear's shaft, the first driver is on the motor. Outside the preloaded loop a
 stage keeps its backlash: its range is checked like any mesh, and its ratio and stiffness count
