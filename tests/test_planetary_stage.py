@@ -379,3 +379,19 @@ def test_the_stiffness_model_twists_the_input_shaft_up_to_the_carrier(tmp_path, 
     # the stage stands on the link cover's level (unchanged): its gears rise by the 1 mm the plate
     # grew, the plate's middle by half of it
     assert longer == pytest.approx(length + 0.5, abs=1e-12)
+
+
+def test_a_ring_cut_too_wide_fails_the_ring_meshes_by_name(layout):
+    """The check reads the ring as the Layout models it: its spaces widened by 0.05 mm more, each
+    planet-ring mesh has 0.08 + 0.05 = 0.13 mm of backlash (as placed and over a planet pitch of
+    mesh positions), above the 0.12 mm maximum: backlash_out_of_range for each, nothing else."""
+    import dataclasses
+    from geargen.design.gear import with_changes
+    gears = tuple(dataclasses.replace(g, spec=with_changes(g.spec, thinning=g.spec.thinning + 0.05))
+                  if g.name == "ring" else g for g in layout.gears)
+    result = verify(dataclasses.replace(layout, gears=gears), tolerances=False)
+    assert {(f.kind, f.mesh) for f in result.failures} == {
+        ("backlash_out_of_range", f"stage_planetary_planet_{i}_ring") for i in (1, 2, 3)}
+    for row in (r for r in result.planetary if "gear1" in r):
+        assert row["backlash"] == pytest.approx(0.13, abs=1e-6)
+        assert row["sweep_min"] == pytest.approx(0.13, abs=1e-6) and row["sweep_max"] == pytest.approx(0.13, abs=1e-6)

@@ -106,6 +106,7 @@ class Failure:
 
 #: quantities (names used in Failure.quantity) that are lengths
 _PLANETARY_LENGTHS = ("centre_distance", "backlash", "closed_form_backlash", "play_ccw", "play_cw", "design_min",
+                      "sweep_min", "sweep_max",
                       "design_max", "carrier_radius", "coaxiality_difference", "coaxiality_tolerance",
                       "neighbour_tip_gap", "planet_tip_clearance")
 _BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")

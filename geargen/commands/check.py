@@ -195,7 +195,8 @@ def table(result: DesignCheck) -> str:
         k = LENGTH_SUFFIXES[u]
         if "gear1" in b:
             fails = ", ".join(dict.fromkeys(f.kind for f in result.failures if f.mesh == b["mesh"])) or "ok"
-            lines += [f"  {b['mesh']:<30}measured {_fmt(b['backlash'], u)}  closed form "
+            lines += [f"  {b['mesh']:<30}measured {_fmt(b['backlash'], u)} (over a pitch {_fmt(b['sweep_min'], u)} to "
+                      f"{_fmt(b['sweep_max'], u)})  closed form "
                       f"{_fmt(b['closed_form_backlash'], u)}  each side {_fmt(b['play_cw'], u)} / "
                       f"{_fmt(b['play_ccw'], u)}  design {_fmt(b['design_min'], u)} to {_fmt(b['design_max'], u)}  {fails}"]
         else:

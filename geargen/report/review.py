@@ -399,13 +399,15 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
         r.h("Planetary stage")
         rings = [b for b in dc.planetary if "gear1" in b]
         r.p("Planet-ring meshes: backlash circumferential at the planet's reference circle, measured on the exact "
-            "outlines of the placed planet and ring (the planet turned both ways, the ring held), against the closed "
-            f"form; the internal pair's interference margins (lengths in {unit}). The sun-planet meshes are in the "
-            "mesh table.")
-        r.table(["mesh", "gear 1 / gear 2", "design backlash", "measured backlash", "closed form", "free play each side",
-                 "contact ratio", "result"],
+            "outlines of the placed planet and ring (the planet turned both ways, the ring held), over one planet "
+            "pitch of mesh positions and by the closed form; the result column holds the internal pair's interference "
+            f"checks too (involute, tip, trochoid, radial assembly; lengths in {unit}). The sun-planet meshes are in "
+            "the mesh table.")
+        r.table(["mesh", "gear 1 / gear 2", "design backlash", "measured backlash", "over a planet pitch", "closed form",
+                 "free play each side", "contact ratio", "result"],
                 [[b["mesh"], f"{b['gear1']} / {b['gear2']}", f"{_len(b['design_min'], scale)} to "
-                  f"{_len(b['design_max'], scale)}", _len(b["backlash"], scale), _len(b["closed_form_backlash"], scale),
+                  f"{_len(b['design_max'], scale)}", _len(b["backlash"], scale),
+                  f"{_len(b['sweep_min'], scale)} to {_len(b['sweep_max'], scale)}", _len(b["closed_form_backlash"], scale),
                   f"{_len(b['play_cw'], scale)} / {_len(b['play_ccw'], scale)}", f"{b['contact_ratio']:.4g}",
                   "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"] for b in rings])
         r.table(["stage", "ratio", f"carrier radius ({unit})", f"coaxiality difference ({unit})",
