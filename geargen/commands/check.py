@@ -150,17 +150,18 @@ def _fmt(v: float, unit: str) -> str:
 def table(result: DesignCheck) -> str:
     """The text table of a design check (lengths in the design's unit)."""
     u = result.length_unit
+    w = max([24] + [len(m.mesh) + 2 for m in result.meshes])  # the mesh column fits the longest name
     lines = [f"geargen check {result.design}  (lengths in {u})", ""]
     if result.backlash:
         lines += [f"backlash: {BACKLASH_KIND}, as modelled and placed (the numbers synth and build report)"]
-        head = (f"{'mesh':<24}{'centre dist.':>14}{'modelled':>12}{'min':>12}{'max':>12}{'design min':>12}"
+        head = (f"{'mesh':<{w}}{'centre dist.':>14}{'modelled':>12}{'min':>12}{'max':>12}{'design min':>12}"
                 f"{'design max':>12}")
         lines += [head, "-" * len(head)]
         for b in result.backlash:
             if not b.get("engaged", True):
-                lines.append(f"{b['mesh']:<24}{'disengaged: axial clearance':>36} {_fmt(b.get('axial_clearance'), u)}")
+                lines.append(f"{b['mesh']:<{w}}{'disengaged: axial clearance':>36} {_fmt(b.get('axial_clearance'), u)}")
                 continue
-            lines.append(f"{b['mesh']:<24}{_fmt(b['centre_distance'], u):>14}{_fmt(b.get('modelled'), u):>12}"
+            lines.append(f"{b['mesh']:<{w}}{_fmt(b['centre_distance'], u):>14}{_fmt(b.get('modelled'), u):>12}"
                          f"{_fmt(b.get('min'), u):>12}{_fmt(b.get('max'), u):>12}{_fmt(b.get('design_min'), u):>12}"
                          f"{_fmt(b.get('design_max'), u):>12}")
         lines.append("")
@@ -168,22 +169,22 @@ def table(result: DesignCheck) -> str:
         f_a = result.backlash_range[0]["centre_distance_tolerance"]
         lines += [f"backlash range from the tooth-thickness allowances, centre distance +-{_fmt(f_a, u)} {u}: "
                   "analytic, and measured on the thickest (min) and thinnest (max) teeth"]
-        head = (f"{'mesh':<24}{'analytic min':>14}{'max':>12}{'measured min':>14}{'max':>12}{'difference':>12}"
+        head = (f"{'mesh':<{w}}{'analytic min':>14}{'max':>12}{'measured min':>14}{'max':>12}{'difference':>12}"
                 f"  verdict")
         lines += [head, "-" * len(head)]
         for r in result.backlash_range:
-            lines.append(f"{r['mesh']:<24}{_fmt(r['analytic'][0], u):>14}{_fmt(r['analytic'][1], u):>12}"
+            lines.append(f"{r['mesh']:<{w}}{_fmt(r['analytic'][0], u):>14}{_fmt(r['analytic'][1], u):>12}"
                          f"{_fmt(r['measured'][0], u):>14}{_fmt(r['measured'][1], u):>12}"
                          f"{r['difference'] / LENGTH_SUFFIXES[u]:>12.1e}  {'ok' if r['ok'] else 'FAIL'}")
         lines.append("")
     lines += ["geometric checks (normal backlash: between the non-working flanks, normal to the teeth; "
               "clearance: tip to mate root)"]
-    head = f"{'mesh':<24}{'path':<10}{'normal min':>12}{'clearance':>12}{'contact':>9}  failure"
+    head = f"{'mesh':<{w}}{'path':<10}{'normal min':>12}{'clearance':>12}{'contact':>9}  failure"
     lines += [head, "-" * len(head)]
     for m in result.meshes:
         kinds = ", ".join(m.failure_kinds) or "ok"
         eps = f"{m.total_contact_ratio:.3f}" if math.isfinite(m.total_contact_ratio) else "-"
-        lines.append(f"{m.mesh:<24}{m.path:<10}{_fmt(m.min_normal_backlash, u):>12}{_fmt(m.min_clearance, u):>12}"
+        lines.append(f"{m.mesh:<{w}}{m.path:<10}{_fmt(m.min_normal_backlash, u):>12}{_fmt(m.min_clearance, u):>12}"
                      f"{eps:>9}  {kinds}")
     for b in result.bevel:
         lines += ["", f"bevel pair ({b['gear1']} - {b['gear2']}): backlash {b['where']}",
