@@ -102,6 +102,10 @@ class Failure:
 
 #: quantities (names used in Failure.quantity) that are lengths
 _BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")
+_RACK_LENGTHS = ("backlash_min", "backlash_max", "design_min", "design_max", "placed_backlash", "working_flank_gap",
+                 "free_flank_gap", "tip_clearance", "centre_offset", "carriage_y", "carriage_deviation",
+                 "carriage_needed", "carriage_travel", "carriage_y_nominal", "loop_error_travel", "rack_offset",
+                 "rack_backlash")
 
 LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
                      "tip_land", "path_difference", "carriage_travel")
@@ -414,6 +418,8 @@ class DesignCheck:
     backlash_range: list[dict[str, Any]] = field(default_factory=list)
     # the bevel pair of the robot joint as placed (geargen.checks.verdict._bevel_meshes, mm, rad)
     bevel: list[dict[str, Any]] = field(default_factory=list)
+    # the rack meshes and carriage of a rack dual-pinion drive (geargen.checks.rack_drive, mm, N)
+    rack: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def all_failures(self) -> list[Failure]:
@@ -444,6 +450,8 @@ class DesignCheck:
             "backlash_range": [{key: (_scaled(v, s) if key in _RANGE_LENGTHS else v) for key, v in r.items()}
                                for r in self.backlash_range],
             "bevel": [{key: (_num(v * s) if key in _BEVEL_LENGTHS else v) for key, v in b.items()} for b in self.bevel],
+            "rack": [{key: (_num(v * s) if key in _RACK_LENGTHS and v is not None else v) for key, v in b.items()}
+                     for b in self.rack],
         }
 
 

@@ -130,6 +130,8 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
                                        f"ratio {layout.ratio['what']} is {layout.ratio['total']}, not one of "
                                        f"{layout.ratio['required']} ({layout.ratio['text']})"))
     result.bevel = _bevel_meshes(layout, result)
+    from geargen.checks.rack_drive import rack_meshes
+    result.rack = rack_meshes(layout, result)
     if settings.tolerances if tolerances is None else tolerances:
         result.tolerances = _tolerances(layout, setups, settings)
     return result

@@ -225,7 +225,9 @@ def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: st
 
 #: layout kinds placed by their own module ("module:function(design, settings) -> Layout"); the
 #: dual- and split-pinion drives are placed here
-PLACERS: dict[str, str] = {}
+PLACERS: dict[str, str] = {
+    "rack_dual_pinion": "geargen.model.rack_drive:place_rack_drive",
+}
 
 
 def is_drive(design: Design) -> bool:
