@@ -5,7 +5,9 @@ the pinions' placed phase on the rack, the carriage's travel and the preload's r
 
 Failures (kinds of :data:`geargen.checks.results.FAILURE_KINDS`): each rack mesh's own
 (``tip_to_root_interference``, ``involute_interference``, ``flank_interference``,
-``no_backlash``), ``backlash_out_of_range`` when its measured free-flank backlash leaves the
+``no_backlash``), ``undercut`` when the rack works below the pinion's interference point (the
+base circle's tangent point on the line of action, the closed form of
+:func:`geargen.core.rack.rack_pinion_geometry`), ``backlash_out_of_range`` when its measured free-flank backlash leaves the
 design range or is not the placed value, ``preload_contact_lost`` when a pinion does not stand
 a loaded flank gap from its working flank (the loop is not closed as placed) or the drive force
 unloads a path, ``carriage_travel_exceeded`` when the carriage's stroke cannot take its
@@ -80,6 +82,17 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
         check = check_rack_pinion_mesh(placed.rack, placed.pinion, placed.rack_offset, POSITIONS, min_backlash=lo)
         for f in check.failures:
             result.failures.append(Failure(f.kind, name, f.message, f.quantity, f.value, f.limit, f.mesh_position))
+        geometry = check.geometry
+        if "involute" in geometry.interference:
+            # the rack that cut the pinion also meshes with it without touching the undercut, but
+            # the active profile then starts inside the undercut: contact is lost there
+            limit = placed.pinion.reference_radius * math.sin(geometry.transverse_pressure_angle)
+            reach = (placed.rack.addendum - placed.rack.tip_radius * (1 - math.sin(placed.rack.pressure_angle))
+                     - geometry.rolling_line_height) / math.sin(geometry.transverse_pressure_angle)
+            result.failures.append(Failure("undercut", name, f"the rack's straight flank works {reach / k:.4g} {unit} "
+                                           f"down the line of action, past the pinion's interference point at "
+                                           f"{limit / k:.4g} {unit}: the {placed.pinion.teeth}-tooth pinion is "
+                                           "undercut where the rack works", "path_difference", reach, limit))
         j_min = float(check.circumferential_backlash.min())
         j_max = float(check.circumferential_backlash.max())
         if not (lo - RACK_BACKLASH_TOLERANCE <= j_min and j_max <= hi + RACK_BACKLASH_TOLERANCE):
