@@ -159,8 +159,13 @@ def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
         if key not in cache:
             with warnings.catch_warnings(record=True) as caught:
                 warnings.simplefilter("always")
-                solid = build_cluster(g.spec, tolerance) if isinstance(g.spec, ClusterSpec) \
-                    else build_gear(g.spec, tolerance)
+                if isinstance(g.spec, ClusterSpec):
+                    solid = build_cluster(g.spec, tolerance)
+                elif getattr(g.spec, "kind", "external") == "external":
+                    solid = build_gear(g.spec, tolerance)
+                else:  # another family's part (the rack of a rack drive): its own builder
+                    from geargen.cad.families import build_part
+                    solid = build_part(g.spec)
             # undercut and the like: reported with the build, not printed
             cache[key] = (solid, tuple(dict.fromkeys(str(w.message) for w in caught)))
         solid, notes = cache[key]
@@ -186,7 +191,9 @@ def non_gear_parts(layout, stiffness=None) -> PartSet:
     """The non-gear parts of ``layout``'s design, placed, with the intended contacts: built by
     the drive's hardware (:func:`geargen.design.parts.hardware_of`)."""
     s = parts_settings(layout.design)
-    builder = {"carriage": carriage_parts, "beam_pinion": beam_pinion_parts, "split_pinion": split_pinion_parts}
+    from geargen.cad.rack_drive_parts import rack_drive_parts
+    builder = {"carriage": carriage_parts, "beam_pinion": beam_pinion_parts, "split_pinion": split_pinion_parts,
+               "rack_drive": rack_drive_parts}
     return builder[s["hardware"]](layout, s, stiffness)
 
 
@@ -1200,6 +1207,8 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
         return None
     spec = solid.spec
     gears = (spec.large, spec.small) if isinstance(spec, ClusterSpec) else (spec,)
+    if not all(hasattr(g, "hub") for g in gears):  # a rack: no bore, nothing runs into a core
+        return None
     if any(g.hub.keyway_width > 0 for g in gears):
         return None
     pieces = []
@@ -1220,6 +1229,8 @@ def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
     if solid is None:
         return None if part.envelope is None else part.envelope.Moved(location(part.matrix))
     spec = solid.spec
+    if not isinstance(spec, ClusterSpec) and not hasattr(spec, "hub"):  # a rack: its own (prismatic) solid
+        return part.shape.Moved(location(part.matrix))
     pieces = []
 
     def gear_body(g, z0):

@@ -70,6 +70,10 @@ class GearPlacement:
     def rotation_at(self, gear: GearSpec, z: float) -> float:
         """Rotation of ``gear``'s transverse section at world height ``z`` (tooth 0 centreline)."""
         z0 = self.face_z(gear)[0]
+        if getattr(gear, "kind", "external") == "rack":
+            if gear.is_helical:  # a helical rack's section slides along it: no rotation to give
+                raise ValueError(f"{self.name}: a helical rack's section is not a rotation")
+            return self.rotation
         return self.rotation + section_rotation(gear, z - z0)
 
     @property
