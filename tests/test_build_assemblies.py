@@ -25,6 +25,7 @@ DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT /
            # design files only: no Python of their own
            "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
            "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
+           "rack_drive": ROOT / "assemblies/rack_drive.toml",
            # gears and a synthesis only: every other part from the default hardware
            "gears_only": ROOT / "tests/data/metric_dual_pinion.toml"}
 
@@ -270,3 +271,15 @@ def test_failing_build_writes_nothing_unless_forced(tmp_path, parallel):
         with pytest.raises(pl.BuildFailed, match="fails its checks"):
             pl.build(bad, out=out, quiet=True, parallel=False)
     assert not out.exists() and not list(tmp_path.glob(".out*"))
+
+
+def test_rack_drive_build_and_check_give_one_verdict(built_assemblies):
+    """The rack drive's build passed its checks; ``geargen check`` on the same file gives the same
+    verdict (no failures) with the rack meshes' rows, and the manifest lists the rack's data."""
+    from geargen.checks.verdict import check_design
+    folder = built_assemblies["rack_drive"]
+    result, _ = check_design(pl.load(DESIGNS["rack_drive"]))
+    assert result.ok and _manifest(folder)["status"] == "ok"
+    assert {r["mesh"] for r in result.rack} == {"rack_a", "rack_b", "carriage"}
+    data = json.loads((folder / "drawings" / "rack.json").read_text())
+    assert data["kind"] == "rack" and data["teeth"] % 2 == 0

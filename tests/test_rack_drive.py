@@ -257,3 +257,22 @@ def test_one_home_spacing_moves_shafts_and_analysis(tmp_path, layout):
     assert moved.placement.carriage_y > layout.placement.carriage_y  # steeper centre line: the input rises
     assert moved.placement.lever != pytest.approx(layout.placement.lever, rel=1e-6)
     assert moved.placement.stiffness()["k3"] != pytest.approx(layout.placement.stiffness()["k3"], rel=1e-6)
+
+
+@pytest.mark.slow
+def test_one_home_spacing_and_spring_rate_move_the_parts(tmp_path, layout):
+    """The solids read the same placement: a wider pinion spacing moves the path shafts and the
+    housing's bearing seats, and a stiffer spring rate changes the drawn spring's coils."""
+    from geargen.cad.assembly import non_gear_parts
+    base = non_gear_parts(layout)
+    wide = non_gear_parts(resolve(_variant(tmp_path, "pinion_spacing_mm = 112.76", "pinion_spacing_mm = 116.0")))
+    assert base.part("path_shaft_a").matrix[0, 3] == pytest.approx(56.38)
+    assert wide.part("path_shaft_a").matrix[0, 3] == pytest.approx(58.0)
+    assert wide.part("path_shaft_b").matrix[0, 3] == pytest.approx(-58.0)
+    stiff = non_gear_parts(resolve(_variant(tmp_path, "carriage_spring_rate_N_per_mm = 50",
+                                            "carriage_spring_rate_N_per_mm = 80")))
+    g, d, mean = 79.3e3, 4.0, 20.0
+    for parts, rate in ((base, 50.0), (stiff, 80.0)):
+        coils = parts.dimensions["carriage_spring"]["active_coils"]
+        assert coils == pytest.approx(g * d ** 4 / (8 * mean ** 3 * rate), rel=1e-12)
+        assert parts.dimensions["carriage_spring"]["free"] == pytest.approx(40.0 + 800.0 / rate, rel=1e-12)
