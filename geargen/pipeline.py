@@ -878,9 +878,12 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     dc = result.checks.design_check
     tolerances = [t.to_dict("mm") for t in dc.tolerances] if dc is not None else []
     bevel = list(dc.bevel) if dc is not None else []  # mm, rad (geargen.checks.verdict._bevel_meshes)
+    rack = list(dc.rack) if dc is not None else []  # mm, N (geargen.checks.rack_drive)
     structure = result.checks.structure
     return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
             "meshes": meshes, "bevel_meshes": bevel, "tolerances": tolerances, "overlaps": overlaps,
+            "rack_meshes": [r for r in rack if r["mesh"] != "carriage"],
+            "rack_carriage": next((r for r in rack if r["mesh"] == "carriage"), None),
             "structure": None if structure is None else structure.to_dict()}
 
 
