@@ -276,3 +276,24 @@ def test_one_home_spacing_and_spring_rate_move_the_parts(tmp_path, layout):
         coils = parts.dimensions["carriage_spring"]["active_coils"]
         assert coils == pytest.approx(g * d ** 4 / (8 * mean ** 3 * rate), rel=1e-12)
         assert parts.dimensions["carriage_spring"]["free"] == pytest.approx(40.0 + 800.0 / rate, rel=1e-12)
+
+
+def test_rack_length_is_the_travel_plus_the_pinions_span(layout):
+    """[layout] slide_travel + pinion spacing + a pinion tip diameter, rounded up to a whole even
+    number of pitches (a tooth space on the symmetry line): 300 + 112.76 + 44 = 456.76 mm -> 74 x
+    2 pi = 464.96 mm; the rack centred on x = 0 with its pitch line on y = 0."""
+    rack = layout.placement.rack
+    assert rack.teeth == 74 and rack.length == pytest.approx(74 * 2 * math.pi, rel=1e-12)
+    placed = layout.gear("rack")
+    assert placed.centre[0] == pytest.approx(-rack.length / 2, rel=1e-12)
+    assert placed.centre[1] == pytest.approx(-rack.pitch_line_height, rel=1e-12)
+    assert rack.pitch_line_height == pytest.approx(4 + 1.25 * 2)  # back height + dedendum
+
+
+def test_geargen_check_names_the_failure(tmp_path, capsys):
+    from geargen.cli import main
+    _variant(tmp_path, "carriage_travel_mm = 0.5", "carriage_travel_mm = 0.05")
+    code = main(["check", str(tmp_path / "rack_drive.toml")])
+    out = capsys.readouterr().out
+    assert code != 0 and "carriage: carriage_travel_exceeded" in out
+    assert main(["check", str(DESIGN)]) == 0

@@ -310,9 +310,11 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     r.h("Key numbers")
     r.table(*key_numbers_table(key_numbers(result)))
     r.p(design.description or design.name)
+    frame = ("the rack's pitch line along x, its teeth toward +y, the symmetry line (the preload carriage's "
+             "motion) on the y axis" if layout.kind == "rack_dual_pinion" else
+             "the output gear's centre at the origin, +x along the symmetry line towards the input")
     r.p(f"Design file {design.path.name if design.path else '-'}, sha256 {design.sha256}. Lengths in {unit} "
-        f"unless marked; the model frame has the output gear's centre at the origin, +x along the symmetry line "
-        f"towards the input, +z along the gear axes. Position modelled: {layout.position}.")
+        f"unless marked; the model frame has {frame}, +z along the gear axes. Position modelled: {layout.position}.")
     if not result.ok:
         r.h("Failures" + (" (written anyway with --force)" if result.forced else ""))
         r.items(list(result.checks.failures))
