@@ -259,6 +259,25 @@ def test_one_home_spacing_moves_shafts_and_analysis(tmp_path, layout):
     assert moved.placement.stiffness()["k3"] != pytest.approx(layout.placement.stiffness()["k3"], rel=1e-6)
 
 
+def test_path_stiffness_is_meshes_and_shaft_in_series(tmp_path, layout):
+    """Each path at the rack: the input mesh (Eq. 1, 207 GPa x 15 mm / 11) reflected by
+    (r_b,path / r_pinion)^2, the 16 mm path shaft twisting between the mid-faces of the pinion and
+    the path gear (10 + 2 + 7.5 = 19.5 mm; G pi d^4 / 32 / L) over r_pinion^2, and the rack mesh
+    (207 GPa x 20 mm / 11) times cos^2(20 deg), in series. A longer gap between the gears (the
+    placement's one home of the heights) softens the shaft and the path."""
+    s = layout.placement.stiffness()
+    r_b = 45 * math.cos(math.radians(20))
+    k_in = 207e3 * 15 / 11 * (r_b / 20) ** 2
+    k_shaft = 79.3e3 * math.pi * 16 ** 4 / 32 / 19.5 / 20 ** 2
+    k_rack = 207e3 * 20 / 11 * math.cos(math.radians(20)) ** 2
+    assert s["k1"] == pytest.approx(1 / (1 / k_in + 1 / k_shaft + 1 / k_rack), rel=1e-12)
+    apart = resolve(_variant(tmp_path, "[layout]\n", "[layout]\npath_gear_axial_gap_mm = 10\n"))
+    k_shaft_apart = 79.3e3 * math.pi * 16 ** 4 / 32 / 27.5 / 20 ** 2
+    assert apart.placement.stiffness()["k1"] == pytest.approx(1 / (1 / k_in + 1 / k_shaft_apart + 1 / k_rack),
+                                                              rel=1e-12)
+    assert apart.gear("path_gear_a").z == pytest.approx(layout.gear("path_gear_a").z + 8)
+
+
 @pytest.mark.slow
 def test_one_home_spacing_and_spring_rate_move_the_parts(tmp_path, layout):
     """The solids read the same placement: a wider pinion spacing moves the path shafts and the

@@ -189,13 +189,16 @@ def preload_forces(spring_force: float, cos_gamma: float, input_base_radius: flo
 
 
 def path_stiffness_at_rack(input_mesh: float, rack_mesh: float, path_base_radius: float,
-                           pinion_reference_radius: float, rack_pressure_angle: float) -> float:
+                           pinion_reference_radius: float, rack_pressure_angle: float,
+                           shaft_torsion: float = math.inf) -> float:
     """One path's linear stiffness at the rack (N/mm along x), the input held: the input mesh
     (N/mm along its line of action) reflected through the path shaft, ``(r_b,path / r_pinion)^2``,
-    in series with the rack mesh along the rack, ``k cos^2(alpha_t)``."""
+    the path shaft's torsion between its two gears (N·mm/rad) over ``r_pinion^2``, and the rack
+    mesh along the rack, ``k cos^2(alpha_t)``, in series."""
     reflected = input_mesh * (path_base_radius / pinion_reference_radius) ** 2
     along = rack_mesh * math.cos(rack_pressure_angle) ** 2
-    return 1.0 / (1.0 / reflected + 1.0 / along)
+    twist = shaft_torsion / pinion_reference_radius ** 2
+    return 1.0 / (1.0 / reflected + 1.0 / twist + 1.0 / along)
 
 
 def carriage_k3(carriage_spring_rate: float, lever: float) -> float:

@@ -102,6 +102,9 @@ LAYOUT_FIELDS = [
           exclusive_minimum=True, help="rack drive: the carriage spring's rate along its motion (N/mm)"),
     Field("gear_elastic_modulus_GPa", "number", required=False, default=207.0, minimum=1.0, maximum=1000.0,
           help="rack drive: Young's modulus of the gears and rack for the mesh stiffness of Eq. 1 (steel: 207)"),
+    Field("shaft_shear_modulus_GPa", "number", required=False, default=79.3, minimum=1.0, maximum=1000.0,
+          help="rack drive: shear modulus of the path shafts, whose torsion between pinion and path gear is in each "
+               "path (steel: 79.3)"),
     Field("max_rack_force_N", "number", required=False, default=None, minimum=0.0,
           help="rack drive: largest drive force on the rack (N); both paths must stay loaded up to it"),
     # the gear ratio the controller needs, from encoder to output

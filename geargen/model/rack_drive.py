@@ -81,6 +81,8 @@ class RackDrivePlacement:
     spring_rate: float
     max_rack_force: float | None
     elastic_modulus: float
+    shear_modulus: float
+    shaft_twist_length: float  # path shaft between the pinion's and the path gear's mid-faces
 
     @property
     def carriage_deviation(self) -> float:
@@ -103,18 +105,20 @@ class RackDrivePlacement:
 
     def stiffness(self) -> dict[str, float]:
         """Paths, carriage spring and Eqs. 5-6 at the rack (N/mm along x): Eq. 1 meshes
-        (``E w / 11`` on the narrower face), the input held."""
+        (``E w / 11`` on the narrower face) and the path shaft's torsion between the placed gears'
+        mid-faces (the pinion's bore as its diameter), the input held."""
         from geargen.core.drive import TwoPathDrive
-        from geargen.core.stiffness import mesh_stiffness
+        from geargen.core.stiffness import mesh_stiffness, shaft_torsional_stiffness
         e = self.elastic_modulus
         k_in = float(mesh_stiffness(e, min(self.input.face_width, self.path_gear.face_width)))
         k_rack = float(mesh_stiffness(e, min(self.rack.face_width, self.pinion.face_width)))
+        k_shaft = shaft_torsional_stiffness(self.shear_modulus, self.pinion.hub.bore_diameter, self.shaft_twist_length)
         k_path = path_stiffness_at_rack(k_in, k_rack, self.path_gear.base_radius, self.pinion.reference_radius,
-                                        self.rack.transverse_pressure_angle)
+                                        self.rack.transverse_pressure_angle, k_shaft)
         k3 = carriage_k3(self.spring_rate, self.lever)
         preload = self.forces().mesh_force_at_rest * self.path_gear.base_radius / self.pinion.reference_radius
         drive = TwoPathDrive("type2", k_path, k_path, preload, k3)
-        return {"input_mesh": k_in, "rack_mesh": k_rack, "k1": k_path, "k2": k_path, "k3": k3,
+        return {"input_mesh": k_in, "rack_mesh": k_rack, "path_shaft_torsion": k_shaft, "k1": k_path, "k2": k_path, "k3": k3,
                 "drive": drive.drive_stiffness, "loop": drive.loop_stiffness,
                 "drive_type1": 2 * k_path, "loop_preload": preload}
 
@@ -158,6 +162,9 @@ def _rack(design: Design, s: dict, pinion: GearSpec) -> RackSpec:
 def place_rack_drive(design: Design, s: dict) -> Layout:
     """The resolved rack drive (see the module docstring)."""
     pinion, path, inp = (_gear(design, r) for r in ROLES)
+    if not pinion.hub.bore_diameter > 0:
+        raise DesignError("gears.pinion.bore_diameter_mm", "missing: the path shaft (the pinion's bore) carries the "
+                          "path's torque between its gears", "a bore diameter > 0")
     if path.module != inp.module or path.pressure_angle != inp.pressure_angle:
         raise DesignError("gears.input.module_mm", "the input meshes the path gears: same module and pressure angle",
                           f"{path.module:.6g} mm, {math.degrees(path.pressure_angle):.6g} deg")
@@ -196,6 +203,12 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     except GeometryError as exc:
         raise DesignError("layout.input_centre_distance", str(exc), "a centre distance the input and path gears "
                           "mesh at") from None
+    # heights: the rack from z = 0, each pinion centred on it, the path gear above the pinion, the
+    # input centred on the path gear
+    z_rack = 0.0
+    z_pinion = z_rack + (rack.face_width - pinion.face_width) / 2
+    z_path = z_pinion + pinion.face_width + s["path_gear_axial_gap"]
+    z_input = z_path + (path.face_width - inp.face_width) / 2
     cos_g = frame.cos_gamma(y_c)
     placement = RackDrivePlacement(
         rack=rack, pinion=pinion, path_gear=path, input=inp, frame=frame, rack_offset=offset,
@@ -204,13 +217,8 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
         carriage_travel=s["carriage_travel"], cos_gamma=cos_g, lever=frame.lever(y_c),
         loop_error=s["rack_loop_error"], spring_force=s["carriage_preload_force_N"],
         spring_rate=s["carriage_spring_rate_N_per_mm"], max_rack_force=s["max_rack_force_N"],
-        elastic_modulus=s["gear_elastic_modulus_GPa"] * 1e3)
-    # heights: the rack from z = 0, each pinion centred on it, the path gear above the pinion, the
-    # input centred on the path gear
-    z_rack = 0.0
-    z_pinion = z_rack + (rack.face_width - pinion.face_width) / 2
-    z_path = z_pinion + pinion.face_width + s["path_gear_axial_gap"]
-    z_input = z_path + (path.face_width - inp.face_width) / 2
+        elastic_modulus=s["gear_elastic_modulus_GPa"] * 1e3, shear_modulus=s["shaft_shear_modulus_GPa"] * 1e3,
+        shaft_twist_length=(z_path + path.face_width / 2) - (z_pinion + pinion.face_width / 2))
     n_half = rack.teeth // 2
     gears = [
         GearPlacement("rack", rack, (-n_half * rack.transverse_pitch, -rack.pitch_line_height), z_rack, 0.0,
