@@ -191,6 +191,29 @@ def test_carriage_sensitivity_to_a_loop_error(layout):
     assert report(p)["loop_error_travel"] == pytest.approx(p.loop_error * p.sensitivity, rel=1e-12)
 
 
+def test_carriage_travel_for_teeth_across_the_backlash_ranges(layout):
+    """Teeth made to another backlash than modelled, keying kept: the closure re-solved (root find
+    on the involute relation) moves the carriage as the closed form of backlash_travel says, for
+    the input meshes (thinner teeth: the carriage goes further in) and for the rack meshes (the
+    pinions turn on by half the extra rack backlash)."""
+    p = layout.placement
+    inp, path = p.input, p.path_gear
+    pinion_a = layout.gear("pinion_a").rotation
+
+    def solved(extra_path, extra_rack):
+        return solve_carriage(p.frame, pinion_a + extra_rack / 2 / p.pinion.reference_radius + p.keying,
+                              p.input_rotation, lambda c: running_backlash(inp, path, c) + extra_path,
+                              p.loaded_flank_gap, p.carriage_y, 1.0)
+
+    for extra_path, extra_rack in ((0.015, 0.0), (0.0, 0.02), (-0.015, -0.02)):
+        moved = p.carriage_y - solved(extra_path, extra_rack)  # toward the shafts
+        expected = p.backlash_travel(p.modelled_path_backlash + extra_path, p.rack_backlash + extra_rack)
+        assert moved == pytest.approx(expected, rel=2e-3)  # the centre line's angle changes a little with y
+    # mid-range teeth: half of either range from the corners; the shipped stroke holds all of it
+    assert p.tolerance_travel == pytest.approx(p.backlash_travel(0.06, 0.08), rel=1e-12)
+    assert p.tolerance_travel + p.loop_error_travel < p.carriage_travel
+
+
 def test_shipped_design_passes_its_checks(layout):
     result, _ = check_design(layout.design)
     assert result.ok, [f.message for f in result.all_failures]

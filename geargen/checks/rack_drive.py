@@ -11,7 +11,7 @@ base circle's tangent point on the line of action, the closed form of
 design range or is not the placed value, ``preload_contact_lost`` when a pinion does not stand
 a loaded flank gap from its working flank (the loop is not closed as placed) or the drive force
 unloads a path, ``carriage_travel_exceeded`` when the carriage's stroke cannot take its
-placement's offset plus the anticipated loop error.
+placement's offset, the anticipated loop error and teeth made anywhere in the backlash ranges.
 """
 
 from __future__ import annotations
@@ -121,12 +121,14 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
                          where="circumferential along the rack's rolling line (the pinion's reference circle), "
                                "on the exact outlines"))
     values = report(placed)
-    needed = abs(placed.carriage_deviation) + placed.loop_error_travel
+    needed = abs(placed.carriage_deviation) + placed.loop_error_travel + placed.tolerance_travel
     if needed > placed.carriage_travel:
         result.failures.append(Failure("carriage_travel_exceeded", "carriage", f"the carriage must travel "
                                        f"{needed / k:.4g} {unit} (placed {placed.carriage_deviation / k:+.4g} {unit} "
                                        f"from nominal, {placed.loop_error_travel / k:.4g} {unit} for the "
-                                       f"{placed.loop_error / k:.4g} {unit} loop error) but its stroke is "
+                                       f"{placed.loop_error / k:.4g} {unit} loop error, "
+                                       f"{placed.tolerance_travel / k:.4g} {unit} for teeth anywhere in the backlash "
+                                       f"ranges) but its stroke is "
                                        f"{placed.carriage_travel / k:.4g} {unit}", "carriage_travel", needed,
                                        placed.carriage_travel))
     if placed.max_rack_force is not None and placed.max_rack_force > values["unloading_rack_force"]:

@@ -95,7 +95,8 @@ LAYOUT_FIELDS = [
           help="rack drive: axial gap between the pinion and the path gear on each path shaft"),
     Field("rack_loop_error", "length", required=False, default=0.0, minimum=0.0,
           help="rack drive: anticipated loop error as a rack displacement, peak to peak (rack pitch error over the "
-               "pinion span, runouts); the carriage must travel far enough to absorb it"),
+               "pinion span, runouts); the carriage must travel far enough to absorb it, and teeth made anywhere in the "
+               "backlash ranges"),
     Field("carriage_preload_force_N", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="rack drive: the carriage spring's force on the input gear, toward the path shafts (N)"),
     Field("carriage_spring_rate_N_per_mm", "number", required=False, default=None, minimum=0.0,

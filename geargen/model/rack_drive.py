@@ -68,6 +68,7 @@ class RackDrivePlacement:
     rack_backlash: float
     rack_backlash_range: tuple[float, float]
     path_backlash_range: tuple[float, float]
+    modelled_path_backlash: float
     loaded_flank_gap: float
     keying: float
     input_rotation: float
@@ -93,6 +94,22 @@ class RackDrivePlacement:
         """Carriage travel (mm, total) that a rack loop error ``e`` needs: ``e / (2 lambda)`` (each
         path takes half of it)."""
         return self.loop_error / (2 * self.lever)
+
+    def backlash_travel(self, path_backlash: float, rack_backlash: float) -> float:
+        """Carriage travel toward the shafts (mm) when the teeth are made to other backlashes than
+        modelled (circumferential, mm): the input meshes' working gaps open by half the extra
+        path backlash, ``cos(alpha_t)`` of it along the lines of action, which the carriage closes
+        at ``cos(gamma)``; each pinion turns on by half the extra rack backlash, which the carriage
+        takes up at the lever ``lambda``."""
+        modelled = self.modelled_path_backlash
+        along = (path_backlash - modelled) * math.cos(self.input.transverse_pressure_angle) / 2
+        return along / self.cos_gamma + (rack_backlash - self.rack_backlash) / (2 * self.lever)
+
+    @property
+    def tolerance_travel(self) -> float:
+        """The largest carriage travel (mm, either way) over the design's backlash ranges: teeth at
+        the ranges' smallest or largest backlash, both meshes alike."""
+        return max(abs(self.backlash_travel(self.path_backlash_range[i], self.rack_backlash_range[i])) for i in (0, 1))
 
     @property
     def sensitivity(self) -> float:
@@ -213,6 +230,7 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     placement = RackDrivePlacement(
         rack=rack, pinion=pinion, path_gear=path, input=inp, frame=frame, rack_offset=offset,
         rack_backlash=geom.backlash_circumferential, rack_backlash_range=rack_range, path_backlash_range=path_range,
+        modelled_path_backlash=running_backlash(inp, path, float(frame.centre_distance(y_c))),
         loaded_flank_gap=gap, keying=keying, input_rotation=rot_input, carriage_y=y_c, carriage_y_nominal=y_nom,
         carriage_travel=s["carriage_travel"], cos_gamma=cos_g, lever=frame.lever(y_c),
         loop_error=s["rack_loop_error"], spring_force=s["carriage_preload_force_N"],
@@ -260,7 +278,8 @@ def report(placement: RackDrivePlacement) -> dict[str, Any]:
     out = {"carriage_y": placement.carriage_y, "carriage_y_nominal": placement.carriage_y_nominal,
            "carriage_deviation": placement.carriage_deviation, "carriage_travel": placement.carriage_travel,
            "lever": placement.lever, "sensitivity": placement.sensitivity, "cos_gamma": placement.cos_gamma,
-           "loop_error_travel": placement.loop_error_travel, "keying_rad": placement.keying,
+           "loop_error_travel": placement.loop_error_travel, "tolerance_travel": placement.tolerance_travel,
+           "keying_rad": placement.keying,
            "rack_offset": placement.rack_offset, "rack_backlash": placement.rack_backlash,
            "spring_force": placement.spring_force, "mesh_force_at_rest": f0.mesh_force_at_rest,
            "unloading_rack_force": f0.unloading_rack_force, "stiffness": placement.stiffness()}
