@@ -12,6 +12,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 ASSEMBLY_DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
                     "split_pinion": ROOT / "assemblies/split_pinion.toml",
+                    "axial_preload": ROOT / "assemblies/axial_preload.toml",
                     "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
                     "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
                     "rack_drive": ROOT / "assemblies/rack_drive.toml",

@@ -129,8 +129,19 @@ def test_robot_joint_assembly_is_the_build(built_assemblies, tmp_path):
     joint.export(str(path))
     back = cq.importers.importStep(str(path)).val()
     assert len(back.Solids()) == len(manifest["parts"])
-    # the kernel's plain volume (the Gauss-Kronrod one takes minutes on re-read large gears) is
-    # deterministic: the same geometry gives the same number; it scatters ~1e-4 from the exact one
+    # the same geometry, solid by solid: the kernel's plain volume (the adaptive one takes minutes on
+    # re-read large gears) is deterministic for most faces, but on the re-read bevel gears' B-spline
+    # faces it scatters ~1e-6; there the adaptive integration decides (measured 8e-13 apart)
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    def adaptive_volume(solid):
+        props = GProp_GProps()
+        BRepGProp.VolumeProperties_s(solid.wrapped, props, 1e-10, False)
+        return props.Mass()
+
+    for made, read in zip(joint.toCompound().Solids(), back.Solids(), strict=True):
+        if read.Volume() != pytest.approx(made.Volume(), rel=1e-9):
+            assert adaptive_volume(read) == pytest.approx(adaptive_volume(made), rel=1e-9)
     volume = sum(s.Volume() for s in back.Solids())
-    assert volume == pytest.approx(sum(s.Volume() for s in joint.toCompound().Solids()), rel=1e-9)
     assert volume == pytest.approx(sum(entry["volume_mm3"] for entry in manifest["parts"].values()), rel=1e-3)

@@ -22,10 +22,11 @@ pytestmark = pytest.mark.slow
 ROOT = Path(__file__).resolve().parents[1]
 DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
            "split_pinion": ROOT / "assemblies/split_pinion.toml",
+           "axial_preload": ROOT / "assemblies/axial_preload.toml",
+           "rack_drive": ROOT / "assemblies/rack_drive.toml",
            # design files only: no Python of their own
            "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
            "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
-           "rack_drive": ROOT / "assemblies/rack_drive.toml",
            # gears and a synthesis only: every other part from the default hardware
            "gears_only": ROOT / "tests/data/metric_dual_pinion.toml"}
 

@@ -191,9 +191,13 @@ def non_gear_parts(layout, stiffness=None) -> PartSet:
     """The non-gear parts of ``layout``'s design, placed, with the intended contacts: built by
     the drive's hardware (:func:`geargen.design.parts.hardware_of`)."""
     s = parts_settings(layout.design)
-    from geargen.cad.rack_drive_parts import rack_drive_parts
-    builder = {"carriage": carriage_parts, "beam_pinion": beam_pinion_parts, "split_pinion": split_pinion_parts,
-               "rack_drive": rack_drive_parts}
+    builder = {"carriage": carriage_parts, "beam_pinion": beam_pinion_parts, "split_pinion": split_pinion_parts}
+    if s["hardware"] == "axial_preload":
+        from geargen.cad.axial_parts import axial_preload_parts  # it imports this module's helpers
+        return axial_preload_parts(layout, s, stiffness)
+    if s["hardware"] == "rack_drive":
+        from geargen.cad.rack_drive_parts import rack_drive_parts  # it imports this module's helpers
+        return rack_drive_parts(layout, s, stiffness)
     return builder[s["hardware"]](layout, s, stiffness)
 
 

@@ -871,7 +871,8 @@ def loop_errors_from_travels(travels: Mapping[str, float], lever: float, source:
 
 def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = None,
                       travel_source: str = "synthesis", components=None,
-                      beam_supports: tuple[float, float] | None = None) -> StiffnessSummary:
+                      beam_supports: tuple[float, float] | None = None,
+                      placed_lever: float | None = None) -> StiffnessSummary:
     """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
 
     ``beam_supports``: radial stiffness (N/mm) of the structure under the long pinion's lower and
@@ -882,6 +883,9 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     the loop error of the ``[preload]`` section when given. ``components``: the design's
     ``[stiffness.components]`` with the lengths of the placed shafts filled in
     (:func:`geargen.model.analysis.placed_components`); default: as the design gives them.
+    ``placed_lever`` (rad/mm): output rotation of each path per unit preload motion where the
+    resolved drive places it rather than a dual-pinion train (the axial preload's slide,
+    :mod:`geargen.model.axial_drive`).
     """
     sd = stiffness_design(design)
     if sd.preload is None:
@@ -909,6 +913,8 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     lever = None
     if isinstance(train, DualPinionTrain) and method in ("radial", "axial"):
         lever = preload_lever(train, method, pre.line_of_action_angle)
+    elif placed_lever is not None:
+        lever = placed_lever
 
     # --- the preload spring (type 2) ---
     linear_parts: list[tuple[str, float]] = []

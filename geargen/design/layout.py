@@ -13,7 +13,10 @@ Layout::
     required_ratios = [32]            # whole-number ratios, encoder to output, the controller needs
 
 A split pinion also needs ``centre_distance_*`` and ``circumferential_backlash_min_*`` /
-``_max_*``. :func:`layout_settings` reads the table; :func:`check_layout` adds the rules that
+``_max_*``; an axial preload (``kind = "axial_preload"``, :mod:`geargen.model.axial_drive`) those
+and ``input_stroke_*``, its four helical gears named by ``pinion_left``, ``pinion_right``,
+``output_right``, ``output_left`` (rules: :mod:`geargen.design.axial_preload`), its preload and
+spring in ``[preload]``. :func:`layout_settings` reads the table; :func:`check_layout` adds the rules that
 involve other sections (the gears named, the synthesis, the engagement).
 """
 
@@ -25,14 +28,16 @@ from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
-LAYOUT_KINDS = ("dual_pinion", "split_pinion", "rack_dual_pinion")
+LAYOUT_KINDS = ("dual_pinion", "split_pinion", "axial_preload", "rack_dual_pinion")
 MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
 POSITIONS = ("engaged", "disengaged")
 
 LAYOUT_FIELDS = [
     Field("kind", "string", required=False, default=None, choices=LAYOUT_KINDS,
           help="dual_pinion: gears placed by the centre synthesis of [synthesis] (the default when there is one); "
-               "split_pinion: two pinions side by side on one output"),
+               "split_pinion: two pinions side by side on one output; axial_preload: a left- and a right-hand helical "
+               "pinion on an input shaft that slides axially under a preload spring, each meshing its own output gear "
+               "of the opposite hand (geargen.model.axial_drive)"),
     Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH,
           help="tooth thickness of the model: mid, max or min of the backlash range, or as_designed (the gears' own "
                "thinning; the default when a gear gives one, else mid)"),
@@ -53,7 +58,7 @@ LAYOUT_FIELDS = [
           help="dual pinion: travel of the preload carriage either way, drawn in the layout and the report"),
     # split pinion
     Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
-          help="split pinion: centre distance of both pinions from the output"),
+          help="split pinion and axial preload: centre distance of both pinions from the output"),
     Field("pinion_stiff", "string", required=False, default="pinion_stiff",
           help="split pinion: the gear table of the stiff (outer) path's pinion"),
     Field("pinion_compliant", "string", required=False, default="pinion_compliant",
@@ -61,13 +66,13 @@ LAYOUT_FIELDS = [
     Field("output", "string", required=False, default="output",
           help="split pinion: the gear table of the output gear"),
     Field("pinion_axial_gap", "length", required=False, default=0.0, minimum=0.0,
-          help="split pinion: axial gap between the two pinions"),
+          help="split pinion and axial preload: axial gap between the two pinions"),
     Field("circumferential_backlash_min", "length", required=False, default=None, minimum=0.0,
-          help="split pinion: smallest backlash of each pinion with the output (circumferential, at the reference "
-               "circles)"),
+          help="split pinion and axial preload: smallest backlash of each pinion with the output (circumferential, at "
+               "the reference circles)"),
     Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0,
-          help="split pinion: largest backlash of each pinion with the output (circumferential, at the reference "
-               "circles)"),
+          help="split pinion and axial preload: largest backlash of each pinion with the output (circumferential, at "
+               "the reference circles)"),
     # rack dual pinion (Type 2, geargen.model.rack_drive): gear tables "pinion", "path_gear", "input"
     Field("pinion_spacing", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="rack drive: distance along the rack between the two path shafts (each carries a rack pinion and a "
@@ -108,6 +113,26 @@ LAYOUT_FIELDS = [
                "path (steel: 79.3)"),
     Field("max_rack_force_N", "number", required=False, default=None, minimum=0.0,
           help="rack drive: largest drive force on the rack (N); both paths must stay loaded up to it"),
+    # axial preload (geargen.model.axial_drive); centre_distance, circumferential_backlash_min/_max and
+    # pinion_axial_gap as the split pinion's, the backlash being each mesh's own
+    Field("pinion_left", "string", required=False, default="pinion_left",
+          help="axial preload: the gear table of the left-hand pinion (meshes output_right)"),
+    Field("pinion_right", "string", required=False, default="pinion_right",
+          help="axial preload: the gear table of the right-hand pinion, above the left-hand one (meshes output_left)"),
+    Field("output_right", "string", required=False, default="output_right",
+          help="axial preload: the gear table of the right-hand output gear, meshing pinion_left"),
+    Field("output_left", "string", required=False, default="output_left",
+          help="axial preload: the gear table of the left-hand output gear, meshing pinion_right (clamped to "
+               "output_right on the output shaft)"),
+    Field("input_stroke", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="axial preload: travel the input shaft's sliding bearings allow along +z (the spring's push) from the "
+               "reference position where both meshes sit in the middle of their play"),
+    Field("sliding_friction_coefficient", "number", required=False, default=0.1, minimum=0.0, maximum=1.0,
+          help="axial preload: friction coefficient of the input shaft's sliding fit (the floating bearings' outer "
+               "rings in their bores)"),
+    Field("max_friction_to_preload", "number", required=False, default=0.15, minimum=0.0, exclusive_minimum=True,
+          help="axial preload: the largest friction force of the sliding fit over the spring force the design "
+               "accepts (the helix angle must be large enough)"),
     # the gear ratio the controller needs, from encoder to output
     Field("upstream_stages", "list", required=False, default=(),
           help="[driver_teeth, driven_teeth] of each stage between the encoder and the input gear"),
@@ -126,6 +151,8 @@ RACK_DRIVE_KEYS = ("pinion_spacing", "input_centre_distance", "rack_backlash_min
 
 #: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])
 SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
+#: the keys an axial-preload layout must give
+AXIAL_PRELOAD_KEYS = SPLIT_PINION_KEYS + ("input_stroke",)
 
 
 def is_split_pinion(data) -> bool:
@@ -133,6 +160,12 @@ def is_split_pinion(data) -> bool:
     drive decides its hardware and its stiffness train)."""
     sections = data.sections if hasattr(data, "sections") else data
     return (sections.get("layout") or {}).get("kind") == "split_pinion"
+
+
+def is_axial_preload(data) -> bool:
+    """A loaded design or the parsed file whose ``[layout]`` says ``kind = "axial_preload"``."""
+    sections = data.sections if hasattr(data, "sections") else data
+    return (sections.get("layout") or {}).get("kind") == "axial_preload"
 
 
 def layout_settings(design) -> dict[str, Any]:
@@ -164,10 +197,10 @@ def layout_settings(design) -> dict[str, Any]:
         if isinstance(ratio, bool) or not isinstance(ratio, int) or ratio <= 0:
             raise DesignError(f"layout.required_ratios[{i}]", f"{ratio!r} is not a whole-number ratio",
                               "whole numbers > 0, e.g. 180 or 360")
-    if v["kind"] == "split_pinion":
-        for name in SPLIT_PINION_KEYS:
+    if v["kind"] in ("split_pinion", "axial_preload"):
+        for name in SPLIT_PINION_KEYS if v["kind"] == "split_pinion" else AXIAL_PRELOAD_KEYS:
             if v[name] is None:
-                raise DesignError(f"layout.{name}", "missing for a split pinion",
+                raise DesignError(f"layout.{name}", f"missing for {'a split pinion' if v['kind'] == 'split_pinion' else 'an axial preload'}",
                                   " or ".join(f"{name}_{u}" for u in LENGTH_SUFFIXES))
         lo, hi = v["circumferential_backlash_min"], v["circumferential_backlash_max"]
         if lo > hi:
@@ -207,6 +240,9 @@ def check_layout(design, v: dict[str, Any]) -> None:
             raise DesignError(f"gears.{v['pinion_compliant']}.teeth", f"{compliant.teeth} teeth, but "
                               f"gears.{v['pinion_stiff']} has {stiff.teeth}: the two pinions turn together on one "
                               "axis and mesh one output", f"{stiff.teeth}")
+    if v["kind"] == "axial_preload":
+        from geargen.design.axial_preload import check_axial_gears
+        check_axial_gears(design, v)
     if v["position"] == "disengaged" and not design.section("engagement"):
         raise DesignError("layout.position", "'disengaged' needs an [engagement] section", "'engaged'")
     if v["model_backlash"] != "as_designed":
@@ -217,5 +253,6 @@ def check_layout(design, v: dict[str, Any]) -> None:
                               f"given for gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
 
 
-__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "MOVED_KEYS", "SPLIT_PINION_KEYS", "RACK_DRIVE_KEYS", "is_split_pinion",
+__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "MOVED_KEYS", "SPLIT_PINION_KEYS",
+           "AXIAL_PRELOAD_KEYS", "RACK_DRIVE_KEYS", "is_split_pinion", "is_axial_preload",
            "layout_settings", "check_layout"]

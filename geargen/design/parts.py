@@ -17,23 +17,24 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from geargen.design.layout import is_split_pinion
+from geargen.design.layout import is_axial_preload, is_split_pinion
 from geargen.design.schema import Field, read_table
 from geargen.design.stiffness import SPRING_ENDS, spring_spec_from_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
 
-HARDWARE = ("carriage", "beam_pinion", "split_pinion", "rack_drive")
+HARDWARE = ("carriage", "beam_pinion", "split_pinion", "axial_preload", "rack_drive")
 
 
 def hardware_of(data) -> str:
     """The hardware of a drive (one of :data:`HARDWARE`): from a loaded design or the parsed file."""
     if is_split_pinion(data):
         return "split_pinion"
+    if is_axial_preload(data):
+        return "axial_preload"
     sections = data.sections if hasattr(data, "sections") else data
     if (sections.get("layout") or {}).get("kind") == "rack_dual_pinion":
         return "rack_drive"
-    sections = data.sections if hasattr(data, "sections") else data
     return "beam_pinion" if sections.get("beam_pinion") else "carriage"
 
 
@@ -183,6 +184,26 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         Field("spring_shear_modulus_GPa", "number", required=False, default=79.3, minimum=1.0,
               help="shear modulus of the spring wire (music wire: 79.3)"),
     ],
+    # geargen.model.axial_drive / geargen.cad.axial_parts: the sliding input shaft and its spring
+    "axial_preload": _COMMON + [
+        _L("input_bearing_outer_diameter",
+           help="outer diameter of the input shaft's two bearings (bore: the pinions' bore); their outer rings "
+                "slide in the housing plates' bores"),
+        _L("input_bearing_width", help="width of the input shaft's bearings"),
+        _L("output_bearing_outer_diameter", help="outer diameter of the output shaft's bearings (bore: the output "
+                                                 "gears' bore)"),
+        _L("output_bearing_width", help="width of the output shaft's bearings"),
+        _L("spring_wire_diameter", help="wire of the preload spring, which pushes the lower input bearing's outer ring"),
+        _L("spring_mean_diameter", help="mean coil diameter of the preload spring (its coils must lie on the bearing's "
+                                        "outer ring, clear of the shaft)"),
+        _L("spring_installed_length", help="length of the preload spring at the reference position (shaft not slid)"),
+        Field("spring_shear_modulus_GPa", "number", required=False, default=79.3, minimum=1.0,
+              help="shear modulus of the spring wire: the active coils follow from layout.preload_spring_rate"),
+        _L("spring_cup_wall", help="wall and floor of the cup under the bottom plate that holds the spring"),
+        _L("motor_stub_length", help="the input shaft's end above the upper bearing, for the motor's sliding coupling"),
+        _L("housing_margin", required=False, default=5.0,
+           help="top and bottom plates: material left around the outermost bearing seats"),
+    ],
 }
 
 #: (larger, smaller): ring-shaped parts whose outer diameter must exceed the diameter inside them.
@@ -207,6 +228,8 @@ _MUST_EXCEED: dict[str, tuple[tuple[str, str], ...]] = {
     "rack_drive": (("path_bearing_outer_diameter", "gears.pinion"),
                    ("input_bearing_outer_diameter", "gears.input"),
                    ("spring_mean_diameter", "spring_wire_diameter")),
+    "axial_preload": (("input_bearing_outer_diameter", "gears.pinion_left"),
+                      ("output_bearing_outer_diameter", "gears.output_right")),
 }
 
 #: the sections each hardware's parts are sized from
@@ -215,6 +238,7 @@ _NEEDS: dict[str, tuple[str, ...]] = {
     "beam_pinion": ("beam_pinion", "engagement"),
     "split_pinion": (),
     "rack_drive": (),
+    "axial_preload": (),
 }
 
 

@@ -201,7 +201,9 @@ TABLES: tuple[Table, ...] = (
           Example("metric_dual_pinion.toml", ("stages.motor", "stages.idler")), sections=("stages",)),
     Table("[layout]", ("layout",),
           "How the build places the gears. A file with [synthesis] and no [layout] is a dual-pinion drive "
-          "with every default. A split pinion also needs `centre_distance_*` and the backlash range.",
+          "with every default. A split pinion also needs `centre_distance_*` and the backlash range; an axial "
+          "preload those, `input_stroke_*` and its four helical gears (its preload and spring in [preload]: "
+          "assemblies/axial_preload.toml).",
           Example("split_pinion.toml", ("layout",)), sections=("layout",)),
     Table("[parts] of a dual pinion on a preload carriage", ("parts",),
           "The sizes of the non-gear parts; the drive the file describes decides which (a dual pinion with "
@@ -225,6 +227,13 @@ TABLES: tuple[Table, ...] = (
           "bearing (the stiffness model reads the same shafts), the output shaft and bearings, the housing's "
           "bottom and top plates that hold every bearing.", Example("split_pinion.toml", ("parts",)),
           context={"layout": {"kind": "split_pinion"}}),
+    Table("[parts] of an axial preload", ("parts",),
+          "The axial-motion preload (geargen.model.axial_drive): the input shaft through both helical pinions on "
+          "two bearings whose outer rings slide in the housing plates' bores, its stroke and the motor stub above; "
+          "the preload spring in a cup under the bottom plate pushing the lower bearing's outer ring (its active "
+          "coils follow from [layout] preload_spring_rate_N_per_mm); the output shaft and bearings; the housing's "
+          "bottom and top plates.", Example("axial_preload.toml", ("parts",)),
+          context={"layout": {"kind": "axial_preload"}}),
     Table("[export]", ("export",), "Tolerances of the exported files and the rendered view. Every key is optional.",
           Example("robot_joint.toml", ("export",)), sections=("export",)),
     Table("[train]", ("train",),

@@ -168,7 +168,7 @@ _DUAL_PINION = Starter(
             Key("kind", "shaft_torsion"),
             Key("shaft", "input"),
             Key("diameter_mm", 5),
-            Key("length_mm", 12, "= [parts] input_shaft_to_bevel"),
+            Key("length_mm", 13.5, "= [parts] input_shaft_to_bevel"),
             Key("scope", "common"),
         ), "In series with both paths: the input shaft from the bevel gear ..."),
         Table("stiffness.components.output_hub", (
@@ -231,7 +231,9 @@ _DUAL_PINION = Starter(
             Key("bevel_gear_teeth", 30),
             Key("bevel_module_mm", 0.8),
             Key("bevel_face_width_mm", 4, "under a third of the 13.4 mm cone distance"),
-            Key("input_shaft_to_bevel_mm", 12),
+            Key("input_shaft_to_bevel_mm", 13.5, "the bevel gear's heel root circle 0.6 mm above the carriage arm"),
+            Key("bevel_backlash_mm", 0.04, "circumferential at the heel pitch circles, cut as equal thinnings (about "
+                "the robot joint's 0.0015 in)"),
             Key("motor_body_diameter_mm", 28, "a small servo motor with encoder"),
             Key("motor_body_length_mm", 40),
             Key("motor_flange_mm", 28),

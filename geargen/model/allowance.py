@@ -40,7 +40,7 @@ def range_fields(layout: Layout, mesh: MeshPlacement) -> tuple[str, str]:
     if mesh.name.startswith("stage_"):
         base = f"stages.{mesh.name[len('stage_'):]}.circumferential_backlash_"
         return f"{base}min_{u}", f"{base}max_{u}"
-    if layout.kind == "split_pinion":
+    if layout.kind in ("split_pinion", "axial_preload"):
         return f"layout.circumferential_backlash_min_{u}", f"layout.circumferential_backlash_max_{u}"
     if layout.kind == "rack_dual_pinion":
         return f"layout.path_backlash_min_{u}", f"layout.path_backlash_max_{u}"

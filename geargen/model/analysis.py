@@ -156,8 +156,12 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
         return None, "no [stiffness] and [preload] sections"
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
+    # the axial preload places its own lever: the output rotation per mm of the input's slide
+    lever = layout.drive_report["stiffness"]["lever_rad_per_mm"] if layout is not None and \
+        layout.kind == "axial_preload" else None
     return stiffness_summary(design, travels, components=placed_components(design, layout),
-                             beam_supports=beam_supports(layout, layout.engagement if layout else None)), note
+                             beam_supports=beam_supports(layout, layout.engagement if layout else None),
+                             placed_lever=lever), note
 
 
 def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | None:

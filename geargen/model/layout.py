@@ -135,6 +135,9 @@ class Layout:
     settings: dict[str, Any] = field(default_factory=dict)
     placement: Any = None
     thinning: dict[str, dict[str, Any]] = field(default_factory=dict)
+    # what a drive kind placed by its own module reports about itself (mm, rad, N; e.g. the axial
+    # preload's slide, spring force and stiffnesses): written beside every export, in internal units
+    drive_report: dict[str, Any] = field(default_factory=dict)
 
     def gear(self, name: str) -> GearPlacement:
         for g in self.gears:
@@ -174,7 +177,8 @@ class Layout:
                 "loaded_flank_gap": (self.settings.get("loaded_flank_gap") or 0.0) * k,
                 "carriage_x": None if self.carriage_x is None else self.carriage_x * k,
                 "gears": gears, "meshes": meshes, "notes": list(self.notes),
-                "defaulted": {d.key: d.value for d in self.design.defaulted}}
+                "defaulted": {d.key: d.value for d in self.design.defaulted},
+                **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {})}
 
 
 #: the one kind of backlash the resolved model, the checks' design range and the reports share
@@ -231,6 +235,7 @@ def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: st
 #: dual- and split-pinion drives are placed here
 PLACERS: dict[str, str] = {
     "rack_dual_pinion": "geargen.model.rack_drive:place_rack_drive",
+    "axial_preload": "geargen.model.axial_drive:place_axial_preload",
 }
 
 

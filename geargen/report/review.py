@@ -388,6 +388,7 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
 
     dc = getattr(result.checks, "design_check", None)
     if dc is not None and dc.bevel:
+        r.h("Bevel pair")
         r.p("The bevel pair: backlash circumferential at the heel pitch circle, measured on the exact "
             f"spherical-involute outlines on the heel sphere of the placed gears (lengths in {unit}).")
         r.table(["mesh", "gear 1 / gear 2", "design backlash", "measured backlash", "difference", "free play each side",
