@@ -269,6 +269,12 @@ def test_missing_and_bad_keys_are_refused(tmp_path):
     with pytest.raises(DesignError) as exc:
         resolve(_variant(tmp_path, "input_centre_distance_mm = 60.0", "input_centre_distance_mm = 50.0"))
     assert exc.value.field == "layout.input_centre_distance"
+    # no backlash on the rack: the pinions cannot stand the loaded flank gap off their working flanks
+    with pytest.raises(DesignError) as exc:
+        resolve(_variant(tmp_path, "rack_backlash_min_mm = 0.04          # each pinion on the rack, set by its "
+                         "centre height\nrack_backlash_max_mm = 0.08",
+                         "rack_backlash_min_mm = 0.0\nrack_backlash_max_mm = 0.0"))
+    assert exc.value.field == "layout.rack_backlash_min_mm" and "loaded flank gap" in exc.value.problem
 
 
 def test_one_home_spacing_moves_shafts_and_analysis(tmp_path, layout):

@@ -10,7 +10,7 @@ base circle's tangent point on the line of action, the closed form of
 :func:`geargen.core.rack.rack_pinion_geometry`), ``backlash_out_of_range`` when its measured free-flank backlash leaves the
 design range or is not the placed value, ``preload_contact_lost`` when a pinion does not stand
 a loaded flank gap from its working flank (the loop is not closed as placed) or the drive force
-unloads a path, ``carriage_travel_exceeded`` when the carriage's stroke cannot take its
+unloads a path, ``flank_interference`` when a placed pinion's free flank overlaps the rack, ``carriage_travel_exceeded`` when the carriage's stroke cannot take its
 placement's offset, the anticipated loop error and teeth made anywhere in the backlash ranges.
 """
 
@@ -113,6 +113,10 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
                                            f"{unit} from its working flank on the rack, not the loaded flank gap "
                                            f"{placed.loaded_flank_gap / k:.4g} {unit}: the loop is not closed as "
                                            "placed", "circumferential_backlash", working, placed.loaded_flank_gap))
+        if free < -RACK_BACKLASH_TOLERANCE:
+            result.failures.append(Failure("flank_interference", name, f"pinion {side}'s free flank overlaps the "
+                                           f"rack by {-free / k:.4g} {unit} as placed", "circumferential_backlash",
+                                           free, 0.0))
         rows.append(dict(mesh=name, gear1=f"pinion_{side}", gear2="rack", backlash_min=j_min, backlash_max=j_max,
                          design_min=lo, design_max=hi, placed_backlash=placed.rack_backlash,
                          working_flank_gap=working, free_flank_gap=free,

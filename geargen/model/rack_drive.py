@@ -202,6 +202,17 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     rack_target = _modelled_backlash(*rack_range, "mid" if rule == "as_designed" else rule)
     offset = centre_offset_for_backlash(rack, pinion, rack_target)
     geom = rack_pinion_geometry(rack, pinion, offset)
+    unit = design.length_unit
+    k = 1.0 / LENGTH_SUFFIXES[unit]
+    # each loop stands a loaded flank gap short of its working flanks: the backlash must leave it
+    for key, backlash in (("rack_backlash_max" if rule == "max" else "rack_backlash_min", geom.backlash_circumferential),
+                          ("path_backlash_max" if rule == "max" else "path_backlash_min",
+                           running_backlash(inp, path, a_nom))):
+        if backlash <= 2 * gap:
+            raise DesignError(f"layout.{key}_{s['_units'].get(key, unit)}", f"the modelled backlash "
+                              f"{backlash * k:.4g} {unit} leaves no room for the loaded flank gap "
+                              f"({gap * k:.4g} {unit}) on the working flank without closing the other",
+                              f"a range whose modelled backlash exceeds {2 * gap * k:.4g} {unit}")
     shaft_y = geom.centre_height
     frame = RackDriveFrame(h, shaft_y, inp.teeth, path.teeth, path.reference_radius, path.base_radius,
                            inp.base_radius, pinion.reference_radius)
@@ -256,8 +267,6 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
         MeshPlacement("mesh_input_b", "input", inp, "path_gear_b", path, plane, *path_range,
                       running_backlash(inp, path, c), True, "input ccw", c),
     )
-    unit = design.length_unit
-    k = 1.0 / LENGTH_SUFFIXES[unit]
     notes = [f"rack drive: carriage (input centre) at y = {y_c * k:.6g} {unit} above the rack's pitch line, "
              f"{(y_c - y_nom) * k:+.3g} {unit} from nominal; the loop closes there (both pinions tight on the rack)",
              f"rack drive: path gear keyed {math.degrees(keying):.6g} deg from its pinion on shaft a "
