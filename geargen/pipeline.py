@@ -373,9 +373,12 @@ def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
     from geargen.profile import tooth_profile
     from geargen.report.layout import LayoutGear, LayoutMesh, layout_figure
     import warnings
+    from geargen.design.gear import GearSpec
     gears, names = [], {}
     for g in layout.gears:
         for spec in g.gears:
+            if not isinstance(spec, GearSpec):  # a rack drive's rack: not a circle of the layout figure
+                continue
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 root = tooth_profile(spec).root_radius
@@ -428,6 +431,7 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     centre distances of the resolved drive). Needs no check result: the build draws them while the
     second process checks the meshes. Returns ``{"drawing:NAME:svg"|...: path}``."""
     from geargen.cad.export import write_json
+    from geargen.design.gear import GearSpec
     from geargen.profile.tooth import tooth_profile
     from geargen.report.drawing import gear_drawings
 
@@ -442,6 +446,13 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
             if spec.name in drawn:  # the second of two identical clusters: the same gear, one drawing
                 continue
             drawn.add(spec.name)
+            if not isinstance(spec, GearSpec):  # another family's part (a rack drive's rack): its data only
+                from geargen.model.gear_data import family_data
+                path = out_folder / f"{spec.name}.json"
+                out_folder.mkdir(parents=True, exist_ok=True)
+                write_json(path, _jsonable(family_data(spec)))
+                files[f"drawing:{spec.name}:json"] = path
+                continue
             profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
             data = drive_gear_data(layout, spec, profile, allowances.get(spec.name))
             made = gear_drawings(data, profile, out_folder, spec.name, f"gear {spec.name} of {source}",
@@ -868,9 +879,13 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     tolerances = [t.to_dict("mm") for t in dc.tolerances] if dc is not None else []
     bevel = list(dc.bevel) if dc is not None else []  # mm, rad (geargen.checks.verdict._bevel_meshes)
     planetary = list(dc.planetary) if dc is not None else []  # mm, rad (geargen.checks.planetary_placed)
+    rack = list(dc.rack) if dc is not None else []  # mm, N (geargen.checks.rack_drive)
     structure = result.checks.structure
     return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
-            "meshes": meshes, "bevel_meshes": bevel, "planetary_meshes": planetary, "tolerances": tolerances, "overlaps": overlaps,
+            "meshes": meshes, "bevel_meshes": bevel, "planetary_meshes": planetary, "tolerances": tolerances,
+            "overlaps": overlaps,
+            "rack_meshes": [r for r in rack if r["mesh"] != "carriage"],
+            "rack_carriage": next((r for r in rack if r["mesh"] == "carriage"), None),
             "structure": None if structure is None else structure.to_dict()}
 
 

@@ -16,6 +16,7 @@ ASSEMBLY_DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis
                     "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
                     "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
                     "planetary_dual_pinion": ROOT / "assemblies/planetary_dual_pinion.toml",
+                    "rack_drive": ROOT / "assemblies/rack_drive.toml",
                     # gears and a synthesis only: built with the default hardware
                     "gears_only": ROOT / "tests/data/metric_dual_pinion.toml"}
 

@@ -23,6 +23,7 @@ ROOT = Path(__file__).resolve().parents[1]
 DESIGNS = {"robot_joint": ROOT / "assemblies/robot_joint.toml", "c_axis": ROOT / "assemblies/c_axis.toml",
            "split_pinion": ROOT / "assemblies/split_pinion.toml",
            "axial_preload": ROOT / "assemblies/axial_preload.toml",
+           "rack_drive": ROOT / "assemblies/rack_drive.toml",
            # design files only: no Python of their own
            "split_pinion_inch": ROOT / "assemblies/split_pinion_inch.toml",
            "metric_dual_pinion": ROOT / "assemblies/metric_dual_pinion.toml",
@@ -67,7 +68,10 @@ def test_build_writes_everything_with_a_manifest(built_assemblies, name):
         for f in info["files"]:
             assert f in m["files"] and (folder / f).exists()
     html = (folder / "report.html").read_text()
-    for figure in ("render", "layout", "preload_diagram"):  # linked files, listed in the manifest
+    # the preload diagram is drawn from the stiffness summary of [stiffness]; the rack drive gives
+    # its Eqs. 5-6 in its check rows (geargen.checks.rack_drive) and has no such section
+    figures = ("render", "layout") + (("preload_diagram",) if design.section("stiffness") else ())
+    for figure in figures:  # linked files, listed in the manifest
         assert f"src='figures/{figure}.png'" in html and f"figures/{figure}.svg" in m["files"]
     assert not list(folder.parent.glob(".*"))  # the temporary build folder is gone
 
@@ -111,7 +115,9 @@ def test_no_parts_overlap_except_intended_contacts(built_assemblies, name):
     meshes = _manifest(built_assemblies[name])["checks"]["meshes"]
     # (and the bevel pair of the robot joint, by the bevel mesh checker: tests/test_robot_bevel.py)
     bevel = _manifest(built_assemblies[name])["checks"].get("bevel_meshes", [])
-    assert len(ov["meshing_pairs"]) == len(meshes) + len(bevel)
+    # (and the rack meshes of the rack drive, by the rack pair checker: tests/test_rack_drive.py)
+    rack = _manifest(built_assemblies[name])["checks"].get("rack_meshes", [])
+    assert len(ov["meshing_pairs"]) == len(meshes) + len(bevel) + len(rack)
 
 
 def _own_frame(shape, matrix):
@@ -272,3 +278,15 @@ def test_failing_build_writes_nothing_unless_forced(tmp_path, parallel):
         with pytest.raises(pl.BuildFailed, match="fails its checks"):
             pl.build(bad, out=out, quiet=True, parallel=False)
     assert not out.exists() and not list(tmp_path.glob(".out*"))
+
+
+def test_rack_drive_build_and_check_give_one_verdict(built_assemblies):
+    """The rack drive's build passed its checks; ``geargen check`` on the same file gives the same
+    verdict (no failures) with the rack meshes' rows, and the manifest lists the rack's data."""
+    from geargen.checks.verdict import check_design
+    folder = built_assemblies["rack_drive"]
+    result, _ = check_design(pl.load(DESIGNS["rack_drive"]))
+    assert result.ok and _manifest(folder)["status"] == "ok"
+    assert {r["mesh"] for r in result.rack} == {"rack_a", "rack_b", "carriage"}
+    data = json.loads((folder / "drawings" / "rack.json").read_text())
+    assert data["kind"] == "rack" and data["teeth"] % 2 == 0

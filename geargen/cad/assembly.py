@@ -164,8 +164,11 @@ def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
                 elif g.spec.kind == "internal":  # a planetary stage's ring
                     from geargen.cad.internal_solid import build_internal
                     solid = build_internal(g.spec, tolerance)
-                else:
+                elif getattr(g.spec, "kind", "external") == "external":
                     solid = build_gear(g.spec, tolerance)
+                else:  # another family's part (the rack of a rack drive): its own builder
+                    from geargen.cad.families import build_part
+                    solid = build_part(g.spec)
             # undercut and the like: reported with the build, not printed
             cache[key] = (solid, tuple(dict.fromkeys(str(w.message) for w in caught)))
         solid, notes = cache[key]
@@ -195,6 +198,9 @@ def non_gear_parts(layout, stiffness=None) -> PartSet:
     if s["hardware"] == "axial_preload":
         from geargen.cad.axial_parts import axial_preload_parts  # it imports this module's helpers
         return axial_preload_parts(layout, s, stiffness)
+    if s["hardware"] == "rack_drive":
+        from geargen.cad.rack_drive_parts import rack_drive_parts  # it imports this module's helpers
+        return rack_drive_parts(layout, s, stiffness)
     return builder[s["hardware"]](layout, s, stiffness)
 
 
@@ -1217,6 +1223,8 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
         return None
     spec = solid.spec
     gears = (spec.large, spec.small) if isinstance(spec, ClusterSpec) else (spec,)
+    if not all(hasattr(g, "hub") for g in gears):  # a rack: no bore, nothing runs into a core
+        return None
     if any(g.hub.keyway_width > 0 for g in gears):
         return None
     pieces = []
@@ -1237,6 +1245,8 @@ def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
     if solid is None:
         return None if part.envelope is None else part.envelope.Moved(location(part.matrix))
     spec = solid.spec
+    if not isinstance(spec, ClusterSpec) and not hasattr(spec, "hub"):  # a rack: its own (prismatic) solid
+        return part.shape.Moved(location(part.matrix))
     pieces = []
 
     def gear_body(g, z0):

@@ -110,6 +110,10 @@ _PLANETARY_LENGTHS = ("centre_distance", "backlash", "closed_form_backlash", "pl
                       "design_max", "carrier_radius", "coaxiality_difference", "coaxiality_tolerance",
                       "neighbour_tip_gap", "planet_tip_clearance")
 _BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")
+_RACK_LENGTHS = ("backlash_min", "backlash_max", "design_min", "design_max", "placed_backlash", "working_flank_gap",
+                 "free_flank_gap", "tip_clearance", "centre_offset", "carriage_y", "carriage_deviation",
+                 "carriage_needed", "carriage_travel", "carriage_y_nominal", "loop_error_travel", "rack_offset",
+                 "rack_backlash")
 
 LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
                      "tip_land", "path_difference", "carriage_travel")
@@ -424,6 +428,8 @@ class DesignCheck:
     bevel: list[dict[str, Any]] = field(default_factory=list)
     # the planetary stages as placed (geargen.checks.planetary_placed: planet-ring meshes, conditions; mm, rad)
     planetary: list[dict[str, Any]] = field(default_factory=list)
+    # the rack meshes and carriage of a rack dual-pinion drive (geargen.checks.rack_drive, mm, N)
+    rack: list[dict[str, Any]] = field(default_factory=list)
 
     @property
     def all_failures(self) -> list[Failure]:
@@ -456,6 +462,8 @@ class DesignCheck:
             "bevel": [{key: (_num(v * s) if key in _BEVEL_LENGTHS else v) for key, v in b.items()} for b in self.bevel],
             "planetary": [{key: (_num(v * s) if key in _PLANETARY_LENGTHS else v) for key, v in b.items()}
                           for b in self.planetary],
+            "rack": [{key: (_num(v * s) if key in _RACK_LENGTHS and v is not None else v) for key, v in b.items()}
+                     for b in self.rack],
         }
 
 

@@ -132,6 +132,8 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
     result.bevel = _bevel_meshes(layout, result)
     from geargen.checks.planetary_placed import planetary_meshes
     result.planetary = planetary_meshes(layout, result)
+    from geargen.checks.rack_drive import rack_meshes
+    result.rack = rack_meshes(layout, result)
     if settings.tolerances if tolerances is None else tolerances:
         result.tolerances = _tolerances(layout, setups, settings)
     return result

@@ -147,6 +147,29 @@ def _fmt(v: float, unit: str) -> str:
     return f"{v / LENGTH_SUFFIXES[unit]:.6f}" if unit == "in" else f"{v / LENGTH_SUFFIXES[unit]:.5f}"
 
 
+def _rack_lines(rows: list, u: str) -> list[str]:
+    """The rack drive's rows (:mod:`geargen.checks.rack_drive`): rack meshes, carriage, preload, stiffness."""
+    lines = []
+    for r in rows:
+        if r["mesh"] != "carriage":
+            lines += ["", f"rack mesh ({r['gear1']} - rack): backlash {r['where']}",
+                      f"  {r['mesh']:<22}measured {_fmt(r['backlash_min'], u)} to {_fmt(r['backlash_max'], u)}  "
+                      f"design {_fmt(r['design_min'], u)} to {_fmt(r['design_max'], u)}  working flank gap "
+                      f"{_fmt(r['working_flank_gap'], u)}  tip clearance {_fmt(r['tip_clearance'], u)}  "
+                      f"contact ratio {r['contact_ratio']:.3f}"]
+            continue
+        k = r["stiffness"]
+        lines += ["", "preload carriage (Type 2, radial motion, Fig. 9)",
+                  f"  carriage at y {_fmt(r['carriage_y'], u)} ({_fmt(r['carriage_deviation'], u)} from nominal), "
+                  f"needs {_fmt(r['carriage_needed'], u)} of its {_fmt(r['carriage_travel'], u)} {u} stroke; "
+                  f"{r['sensitivity']:.4g} {u} of carriage per {u} of loop error at the rack",
+                  f"  spring {r['spring_force']:.4g} N: each input mesh {r['mesh_force_at_rest']:.4g} N at rest; "
+                  f"a path unloads at {r['unloading_rack_force']:.4g} N on the rack",
+                  f"  stiffness at the rack (N/mm): paths {k['k1']:.4g}, {k['k2']:.4g}; k3 {k['k3']:.4g}; "
+                  f"drive (Eq. 5) {k['drive']:.4g}; loop (Eq. 6) {k['loop']:.4g}"]
+    return lines
+
+
 def table(result: DesignCheck) -> str:
     """The text table of a design check (lengths in the design's unit)."""
     u = result.length_unit
@@ -211,6 +234,7 @@ def table(result: DesignCheck) -> str:
         rows = [ln for ln in lines[-len(result.planetary):]]
         lines[-len(result.planetary):] = ["", "planet-ring meshes (backlash at the planet's reference circle, exact "
                                           "outlines as placed) and the stage's conditions"] + rows
+    lines += _rack_lines(result.rack, u)
     if result.tolerances:
         lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
         head = f"{'mesh':<16}{'meant for':<11}{'nominal':>12}{'worst case':>12}{'MC min':>12}{'MC 1%':>12}{'samples':>9}  failure"

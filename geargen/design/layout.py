@@ -28,7 +28,7 @@ from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
-LAYOUT_KINDS = ("dual_pinion", "split_pinion", "axial_preload")
+LAYOUT_KINDS = ("dual_pinion", "split_pinion", "axial_preload", "rack_dual_pinion")
 MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
 POSITIONS = ("engaged", "disengaged")
 
@@ -73,6 +73,46 @@ LAYOUT_FIELDS = [
     Field("circumferential_backlash_max", "length", required=False, default=None, minimum=0.0,
           help="split pinion and axial preload: largest backlash of each pinion with the output (circumferential, at "
                "the reference circles)"),
+    # rack dual pinion (Type 2, geargen.model.rack_drive): gear tables "pinion", "path_gear", "input"
+    Field("pinion_spacing", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="rack drive: distance along the rack between the two path shafts (each carries a rack pinion and a "
+               "path gear)"),
+    Field("input_centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="rack drive: design centre distance of the input gear (on the preload carriage) from each path gear: "
+               "the carriage's nominal height"),
+    Field("rack_backlash_min", "length", required=False, default=None, minimum=0.0,
+          help="rack drive: smallest circumferential backlash of each pinion on the rack (set by the pinions' centre "
+               "height)"),
+    Field("rack_backlash_max", "length", required=False, default=None, minimum=0.0,
+          help="rack drive: largest circumferential backlash of each pinion on the rack"),
+    Field("path_backlash_min", "length", required=False, default=None, minimum=0.0,
+          help="rack drive: smallest circumferential backlash of the input with each path gear (at the input's "
+               "reference circle)"),
+    Field("path_backlash_max", "length", required=False, default=None, minimum=0.0,
+          help="rack drive: largest circumferential backlash of the input with each path gear"),
+    Field("slide_travel", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="rack drive: travel of the machine slide; the rack is this plus the pinions' span long"),
+    Field("rack_face_width", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="rack drive: face width of the rack (default: the pinion's)"),
+    Field("rack_back_height", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="rack drive: rack back face to its root line (default: 2 modules)"),
+    Field("path_gear_axial_gap", "length", required=False, default=2.0, minimum=0.0,
+          help="rack drive: axial gap between the pinion and the path gear on each path shaft"),
+    Field("rack_loop_error", "length", required=False, default=0.0, minimum=0.0,
+          help="rack drive: anticipated loop error as a rack displacement, peak to peak (rack pitch error over the "
+               "pinion span, runouts); the carriage must travel far enough to absorb it, and teeth made anywhere in the "
+               "backlash ranges"),
+    Field("carriage_preload_force_N", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          help="rack drive: the carriage spring's force on the input gear, toward the path shafts (N)"),
+    Field("carriage_spring_rate_N_per_mm", "number", required=False, default=None, minimum=0.0,
+          exclusive_minimum=True, help="rack drive: the carriage spring's rate along its motion (N/mm)"),
+    Field("gear_elastic_modulus_GPa", "number", required=False, default=207.0, minimum=1.0, maximum=1000.0,
+          help="rack drive: Young's modulus of the gears and rack for the mesh stiffness of Eq. 1 (steel: 207)"),
+    Field("shaft_shear_modulus_GPa", "number", required=False, default=79.3, minimum=1.0, maximum=1000.0,
+          help="rack drive: shear modulus of the path shafts, whose torsion between pinion and path gear is in each "
+               "path (steel: 79.3)"),
+    Field("max_rack_force_N", "number", required=False, default=None, minimum=0.0,
+          help="rack drive: largest drive force on the rack (N); both paths must stay loaded up to it"),
     # axial preload (geargen.model.axial_drive); centre_distance, circumferential_backlash_min/_max and
     # pinion_axial_gap as the split pinion's, the backlash being each mesh's own
     Field("pinion_left", "string", required=False, default="pinion_left",
@@ -103,6 +143,11 @@ LAYOUT_FIELDS = [
 #: keys [layout] no longer has -> (what they gave, the key that gives it now: its one home); a file
 #: that still has one is told where it went rather than offered the nearest spelling of another key
 MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[engagement] clearance_<unit>")}
+
+#: the keys a rack dual-pinion layout must give
+RACK_DRIVE_KEYS = ("pinion_spacing", "input_centre_distance", "rack_backlash_min", "rack_backlash_max",
+                   "path_backlash_min", "path_backlash_max", "slide_travel", "carriage_travel",
+                   "carriage_preload_force_N", "carriage_spring_rate_N_per_mm")
 
 #: the keys a split-pinion layout must give (a dual-pinion one takes them from [synthesis])
 SPLIT_PINION_KEYS = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
@@ -164,6 +209,18 @@ def layout_settings(design) -> dict[str, Any]:
             raise DesignError(f"layout.circumferential_backlash_min_{unit}",
                               f"{lo / scale:.6g} {unit} is larger than the maximum {hi / scale:.6g} {unit}",
                               f"[0, {hi / scale:.6g}] {unit}")
+    if v["kind"] == "rack_dual_pinion":
+        for name in RACK_DRIVE_KEYS:
+            if v[name] is None:
+                allowed = name if name.endswith("_N") or "_N_" in name else " or ".join(
+                    f"{name}_{u}" for u in LENGTH_SUFFIXES)
+                raise DesignError(f"layout.{name}", "missing for a rack dual-pinion drive", allowed)
+        for lo_key, hi_key in (("rack_backlash_min", "rack_backlash_max"), ("path_backlash_min", "path_backlash_max")):
+            if v[lo_key] > v[hi_key]:
+                unit = v["_units"][lo_key]
+                scale = LENGTH_SUFFIXES[unit]
+                raise DesignError(f"layout.{lo_key}_{unit}", f"{v[lo_key] / scale:.6g} {unit} is larger than the "
+                                  f"maximum {v[hi_key] / scale:.6g} {unit}", f"[0, {v[hi_key] / scale:.6g}] {unit}")
     return v
 
 
@@ -197,5 +254,5 @@ def check_layout(design, v: dict[str, Any]) -> None:
 
 
 __all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "LAYOUT_FIELDS", "MOVED_KEYS", "SPLIT_PINION_KEYS",
-           "AXIAL_PRELOAD_KEYS", "is_split_pinion", "is_axial_preload",
+           "AXIAL_PRELOAD_KEYS", "RACK_DRIVE_KEYS", "is_split_pinion", "is_axial_preload",
            "layout_settings", "check_layout"]

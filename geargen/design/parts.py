@@ -23,7 +23,7 @@ from geargen.design.stiffness import SPRING_ENDS, spring_spec_from_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
 
-HARDWARE = ("carriage", "beam_pinion", "split_pinion", "axial_preload")
+HARDWARE = ("carriage", "beam_pinion", "split_pinion", "axial_preload", "rack_drive")
 
 
 def hardware_of(data) -> str:
@@ -33,6 +33,8 @@ def hardware_of(data) -> str:
     if is_axial_preload(data):
         return "axial_preload"
     sections = data.sections if hasattr(data, "sections") else data
+    if (sections.get("layout") or {}).get("kind") == "rack_dual_pinion":
+        return "rack_drive"
     return "beam_pinion" if sections.get("beam_pinion") else "carriage"
 
 
@@ -161,6 +163,27 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         _L("output_bearing_outer_diameter", help="outer diameter of the output shaft's bearings"),
         _L("output_bearing_width", help="width of the output shaft's bearings"),
     ],
+    # the rack dual-pinion drive (geargen.cad.rack_drive_parts): path shafts on a bearing each side of
+    # their gears in two housing plates, the input shaft in the preload carriage on a linear guide
+    "rack_drive": _COMMON + [
+        _L("path_bearing_outer_diameter", help="outer diameter of the path shafts' bearings (bore: the pinion's)"),
+        _L("path_bearing_width", help="width of the path shafts' bearings (and of the housing plates that hold them)"),
+        _L("input_bearing_outer_diameter", help="outer diameter of the input shaft's two bearings in the carriage "
+                                                "(bore: the input gear's)"),
+        _L("input_bearing_width", help="width of each of the input shaft's bearings"),
+        _L("housing_margin", required=False, default=5.0,
+           help="housing plates and carriage: material left around the bearing seats"),
+        _L("rail_width", help="linear guide rail under the carriage, across its motion"),
+        _L("rail_height", help="height of the linear guide rail"),
+        _L("guide_block_length", help="the guide's sliding block along the motion"),
+        _L("guide_block_height", help="height of the guide's sliding block (rail top to carriage)"),
+        _L("spring_wire_diameter", help="carriage spring wire (its active coils follow from the spring rate)"),
+        _L("spring_mean_diameter", help="carriage spring mean coil diameter"),
+        _L("spring_installed_length", help="carriage spring length as installed (preloaded)"),
+        _L("spring_post_thickness", help="the post on the top plate the spring pushes from, along the motion"),
+        Field("spring_shear_modulus_GPa", "number", required=False, default=79.3, minimum=1.0,
+              help="shear modulus of the spring wire (music wire: 79.3)"),
+    ],
     # geargen.model.axial_drive / geargen.cad.axial_parts: the sliding input shaft and its spring
     "axial_preload": _COMMON + [
         _L("input_bearing_outer_diameter",
@@ -202,6 +225,9 @@ _MUST_EXCEED: dict[str, tuple[tuple[str, str], ...]] = {
     "split_pinion": (("bearing_outer_diameter", "hollow_shaft_outer_diameter"),
                      ("compliant_bearing_outer_diameter", "gears.pinion_compliant"),
                      ("output_bearing_outer_diameter", "output_shaft_diameter")),
+    "rack_drive": (("path_bearing_outer_diameter", "gears.pinion"),
+                   ("input_bearing_outer_diameter", "gears.input"),
+                   ("spring_mean_diameter", "spring_wire_diameter")),
     "axial_preload": (("input_bearing_outer_diameter", "gears.pinion_left"),
                       ("output_bearing_outer_diameter", "gears.output_right")),
 }
@@ -211,6 +237,7 @@ _NEEDS: dict[str, tuple[str, ...]] = {
     "carriage": ("flexures", "springs"),
     "beam_pinion": ("beam_pinion", "engagement"),
     "split_pinion": (),
+    "rack_drive": (),
     "axial_preload": (),
 }
 

@@ -27,7 +27,7 @@ TOLERANCE_KEY = "checks.centre_distance_tolerance"
 
 def entered_allowance(spec: GearSpec, where: str | None = None) -> ThicknessAllowance | None:
     """The allowance the gear table gives (``thickness_*_deviation_*``), or None."""
-    if spec.thickness_deviations is None:
+    if getattr(spec, "thickness_deviations", None) is None:  # a rack states no thickness allowance
         return None
     upper, lower = spec.thickness_deviations
     return ThicknessAllowance(upper, lower, "entered (design file: thickness_upper_deviation, "
@@ -46,6 +46,8 @@ def range_fields(layout: Layout, mesh: MeshPlacement) -> tuple[str, str]:
         return f"{base}min_{u}", f"{base}max_{u}"
     if layout.kind in ("split_pinion", "axial_preload"):
         return f"layout.circumferential_backlash_min_{u}", f"layout.circumferential_backlash_max_{u}"
+    if layout.kind == "rack_dual_pinion":
+        return f"layout.path_backlash_min_{u}", f"layout.path_backlash_max_{u}"
     n = mesh.name.split("_")[0][len("mesh"):]  # mesh1_a -> 1
     return (f"synthesis.circumferential_backlash_min_mesh{n}_{u}",
             f"synthesis.circumferential_backlash_max_mesh{n}_{u}")

@@ -70,6 +70,10 @@ class GearPlacement:
     def rotation_at(self, gear: GearSpec, z: float) -> float:
         """Rotation of ``gear``'s transverse section at world height ``z`` (tooth 0 centreline)."""
         z0 = self.face_z(gear)[0]
+        if getattr(gear, "kind", "external") == "rack":
+            if gear.is_helical:  # a helical rack's section slides along it: no rotation to give
+                raise ValueError(f"{self.name}: a helical rack's section is not a rotation")
+            return self.rotation
         return self.rotation + section_rotation(gear, z - z0)
 
     @property
@@ -236,6 +240,7 @@ def _ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: st
 #: layout kinds placed by their own module ("module:function(design, settings) -> Layout"); the
 #: dual- and split-pinion drives are placed here
 PLACERS: dict[str, str] = {
+    "rack_dual_pinion": "geargen.model.rack_drive:place_rack_drive",
     "axial_preload": "geargen.model.axial_drive:place_axial_preload",
 }
 

@@ -310,9 +310,11 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     r.h("Key numbers")
     r.table(*key_numbers_table(key_numbers(result)))
     r.p(design.description or design.name)
+    frame = ("the rack's pitch line along x, its teeth toward +y, the symmetry line (the preload carriage's "
+             "motion) on the y axis" if layout.kind == "rack_dual_pinion" else
+             "the output gear's centre at the origin, +x along the symmetry line towards the input")
     r.p(f"Design file {design.path.name if design.path else '-'}, sha256 {design.sha256}. Lengths in {unit} "
-        f"unless marked; the model frame has the output gear's centre at the origin, +x along the symmetry line "
-        f"towards the input, +z along the gear axes. Position modelled: {layout.position}.")
+        f"unless marked; the model frame has {frame}, +z along the gear axes. Position modelled: {layout.position}.")
     if not result.ok:
         r.h("Failures" + (" (written anyway with --force)" if result.forced else ""))
         r.items(list(result.checks.failures))
@@ -417,6 +419,27 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
                   _len(b["neighbour_tip_gap"], scale), str(b["minimum_tooth_difference"]),
                   "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"]
                  for b in dc.planetary if "gear1" not in b])
+    if dc is not None and dc.rack:
+        r.h("Rack meshes and preload carriage")
+        meshes = [b for b in dc.rack if b["mesh"] != "carriage"]
+        r.p("The rack meshes: backlash circumferential along the rack's rolling line, measured on the exact "
+            f"outlines of the pinions as placed over the rack (lengths in {unit}).")
+        r.table(["mesh", "design backlash", "measured backlash", "working flank gap", f"min tip clearance ({unit})",
+                 "contact ratio", "result"],
+                [[b["mesh"], f"{_len(b['design_min'], scale)} to {_len(b['design_max'], scale)}",
+                  f"{_len(b['backlash_min'], scale)} to {_len(b['backlash_max'], scale)}",
+                  _len(b["working_flank_gap"], scale), _len(b["tip_clearance"], scale), f"{b['contact_ratio']:.4g}",
+                  "; ".join(f.message for f in dc.failures if f.mesh == b["mesh"]) or "ok"] for b in meshes])
+        c = next((b for b in dc.rack if b["mesh"] == "carriage"), None)
+        if c is not None:
+            k = c["stiffness"]
+            r.p(f"Preload carriage (Type 2, radial motion, Fig. 9): the loop closes with the input's centre at y = "
+                f"{_len(c['carriage_y'], scale)} {unit}; the carriage needs {_len(c['carriage_needed'], scale)} of "
+                f"its {_len(c['carriage_travel'], scale)} {unit} stroke ({c['sensitivity']:.4g} {unit} per {unit} of "
+                f"loop error at the rack). Spring {c['spring_force']:.4g} N: {c['mesh_force_at_rest']:.4g} N in "
+                f"each input mesh at rest, a path unloads at {c['unloading_rack_force']:.4g} N on the rack. "
+                f"Stiffness at the rack: paths {k['k1']:.4g} and {k['k2']:.4g} N/mm, carriage spring k3 "
+                f"{k['k3']:.4g} N/mm, drive (Eq. 5) {k['drive']:.4g} N/mm, loop (Eq. 6) {k['loop']:.4g} N/mm.")
     if dc is not None and dc.tolerances:
         r.h("Backlash across the error budget")
         r.p("Minimum backlash of each mesh with every error of the [errors.*] budget: the worst case and the "
