@@ -91,22 +91,27 @@ class PlanetaryStageSpec:
 
 
 
+def stage_gear(design, where: str, role: str, gear: str, used: dict[str, str]):
+    """The gear table ``gear`` a stage names as its ``role``: in the design, not a gear of the
+    loop, in no other stage (``used`` records each gear's role)."""
+    if gear not in design.gears:
+        raise DesignError(f"{where}.{role}", f"no gear named {gear!r} in the design", ", ".join(design.gears))
+    if gear in ("input", "cluster_large", "cluster_small", "output"):
+        raise DesignError(f"{where}.{role}", f"{gear!r} is a gear of the anti-backlash loop",
+                          "a gear table of its own for each stage gear")
+    if gear in used:
+        raise DesignError(f"{where}.{role}", f"{gear!r} is already the {used[gear]}", "a gear in one stage only")
+    used[gear] = f"{role} of {where}"
+    return design.gears[gear]
+
+
 def read_planetary_stage(design, name: str, data, used: dict[str, str]) -> PlanetaryStageSpec:
     """The table ``[stages.NAME]`` of a planetary stage, validated (errors name ``stages.NAME.<key>``)."""
     where = f"stages.{name}"
     v = read_table(data, PLANETARY_STAGE_FIELDS, where)
     gears = {}
     for role in ("sun", "planet", "ring"):
-        gear = v[role]
-        if gear not in design.gears:
-            raise DesignError(f"{where}.{role}", f"no gear named {gear!r} in the design", ", ".join(design.gears))
-        if gear in ("input", "cluster_large", "cluster_small", "output"):
-            raise DesignError(f"{where}.{role}", f"{gear!r} is a gear of the anti-backlash loop",
-                              "a gear table of its own for each stage gear")
-        if gear in used:
-            raise DesignError(f"{where}.{role}", f"{gear!r} is already the {used[gear]}", "a gear in one stage only")
-        used[gear] = f"{role} of stages.{name}"
-        gears[role] = design.gears[gear]
+        gears[role] = stage_gear(design, where, role, v[role], used)
     sun, planet, ring = gears["sun"], gears["planet"], gears["ring"]
     for role, g, kind in (("sun", sun, "external"), ("planet", planet, "external"), ("ring", ring, "internal")):
         if g.kind != kind:

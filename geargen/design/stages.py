@@ -33,6 +33,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+from geargen.design.planetary_stage import read_planetary_stage, stage_gear
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
@@ -86,22 +87,12 @@ def stages(design) -> tuple[Stage, ...]:
         if not isinstance(data, dict):
             raise DesignError(where, "expected a table")
         if data.get("kind") == "planetary":
-            from geargen.design.planetary_stage import read_planetary_stage
             out.append(read_planetary_stage(design, name, data, used))
             continue
         v = read_table(data, STAGE_FIELDS, where)
         gears = []
         for role in ("driver", "driven"):
-            gear = v[role]
-            if gear not in design.gears:
-                raise DesignError(f"{where}.{role}", f"no gear named {gear!r} in the design", ", ".join(design.gears))
-            if gear in ("input", "cluster_large", "cluster_small", "output"):
-                raise DesignError(f"{where}.{role}", f"{gear!r} is a gear of the anti-backlash loop",
-                                  "a gear table of its own for each stage gear")
-            if gear in used:
-                raise DesignError(f"{where}.{role}", f"{gear!r} is already the {used[gear]}", "a gear in one stage only")
-            used[gear] = f"{role} of stages.{name}"
-            gears.append(design.gears[gear])
+            gears.append(stage_gear(design, where, role, v[role], used))
         a, b = gears
         if not (math.isclose(a.module, b.module, rel_tol=1e-9)
                 and math.isclose(a.pressure_angle, b.pressure_angle, rel_tol=1e-9)
