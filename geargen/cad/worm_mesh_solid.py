@@ -158,13 +158,16 @@ def _turns(pieces, points: np.ndarray) -> np.ndarray:
 
 
 def solid_worm_backlash(s: WormGearSet, wheel_shape, worm_shape, planes: int = 9, step: float | None = None,
-                        centre_distance_error: float = 0.0) -> WormPairCheck:
+                        centre_distance_error: float = 0.0, axial_window: float | None = None) -> WormPairCheck:
     """The pair of solids at the design centre distance plus ``centre_distance_error`` (the worm
     moved away from the wheel), worm angle 0, wheel angle 0: the wheel's
     free rotation per side (+1: toward +X at the mesh) over ``planes`` transverse planes across 95 %
     of the face (those of geargen.checks.worm_pair), backlash = their sum times r2. ``step``: the
     sampling of the wheel's section and of the worm's near contact (default 0.005 m_x: chord sag
-    under 20 nm on the flanks)."""
+    under 20 nm on the flanks). ``axial_window``: only the worm's points within it of the line of
+    centres (|X| <= window), e.g. p_x / 2 for the one thread geargen.checks.worm_pair reads; by
+    default every thread that meets the wheel (off the design centre distance the other engaged
+    teeth, at other phases of the mesh, may touch first)."""
     from OCP.gp import gp_Dir, gp_Pln, gp_Pnt
     g = worm_geometry(s)
     m = s.axial_module
@@ -178,15 +181,17 @@ def solid_worm_backlash(s: WormGearSet, wheel_shape, worm_shape, planes: int = 9
     extent = 4 * (a + s.worm_face_length)  # bounds the infinite section lines of the worm's tip cylinder
     for z in np.linspace(-0.95 * s.wheel_face_width / 2, 0.95 * s.wheel_face_width / 2, planes):
         z = float(z)
-        near = [f for f, (x0, y0, z0, x1, y1, z1) in wheel_faces if z0 <= z <= z1 and x0 < reach and x1 > -reach and y1 > 0]
+        near = [f for f, (x0, y0, z0, x1, y1, z1) in wheel_faces
+                if z0 <= z <= z1 and x0 < reach and x1 > -reach and y1 > 0]
         pieces = _wheel_pieces(_Section(near, gp_Pln(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1)), extent), step, 1e-6 * m)
         # the mesh plane Z = z is the worm's plane y = -z (worm_to_mesh: Z = -y)
         candidates = {0: [], 1: []}
         for line in _Section(worm_faces, gp_Pln(gp_Pnt(0, -z, 0), gp_Dir(0, 1, 0)), extent).lines:
             params = _Section.params(line, 20 * step)
             pts, keep = _Section.points(line, params)
-            turns = _turns(pieces, worm_to_mesh(pts, a)[:, :2])
-            turns[~keep] = np.inf
+            mesh = worm_to_mesh(pts, a)
+            turns = _turns(pieces, mesh[:, :2])
+            turns[~keep | (np.abs(mesh[:, 0]) > (math.inf if axial_window is None else axial_window))] = np.inf
             for k in range(2):
                 for i in np.argsort(turns[:, k])[:3]:  # each side's closest coarse points of this line
                     if np.isfinite(turns[i, k]):
@@ -195,7 +200,10 @@ def solid_worm_backlash(s: WormGearSet, wheel_shape, worm_shape, planes: int = 9
         for k, side in ((0, 1), (1, -1)):
             for _, line, lo, hi in sorted(candidates[k], key=lambda c: c[0])[:12]:
                 pts, keep = _Section.points(line, np.linspace(lo, hi, 41))
-                turns = _turns(pieces, worm_to_mesh(pts, a)[:, :2])[keep]
+                mesh = worm_to_mesh(pts, a)
+                if axial_window is not None:
+                    keep &= np.abs(mesh[:, 0]) <= axial_window
+                turns = _turns(pieces, mesh[:, :2])[keep]
                 value = float(turns[:, k].min()) if len(turns) else math.inf
                 if value < best[side][0]:
                     best[side] = (value, z)

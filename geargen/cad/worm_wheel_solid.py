@@ -119,7 +119,8 @@ def space_outline(s: WormGearSet, g: WormGeometry, z: float, n_flank: int = 40, 
         phis = np.linspace(phi_c, phi_c + x_c / p, n_trochoid)
         edge = np.stack([x_c - p * (phis - phi_c), np.full_like(phis, a + rho * math.cos(math.pi - math.asin(z / rho))),
                          np.full_like(phis, z)], axis=-1)
-        tr = _turn(to_wheel(edge, wheel_angle(s, g, phis))[:, :2], -side * g.wheel_thinning / g.wheel_reference_diameter)
+        thinning_turn = -side * g.wheel_thinning / g.wheel_reference_diameter
+        tr = _turn(to_wheel(edge, wheel_angle(s, g, phis))[:, :2], thinning_turn)
         tr[0] = flank[-1]
         flanks[side], trochoids[side] = flank, tr
     root = _arc(a - math.sqrt(rho * rho - z * z), trochoids[1][-1], trochoids[-1][-1], n_arc)
@@ -212,12 +213,13 @@ def build_worm_wheel(spec: WormWheelSpec, check: bool = False, rows_per_module: 
     """The throated wheel, axis Z, mid plane z = 0, a tooth space centred on +Y: the core's fixed
     mesh frame at wheel angle 0 (the worm's axis is the line (t, a, 0) along X). ``rows_per_module``
     transverse planes of exact points per axial module of face (default
-    :data:`DEFAULT_ROWS_PER_MODULE`, at least 4 per z range: :func:`row_heights`), ``n_flank``/``n_trochoid`` exact points per flank/trochoid in each."""
+    :data:`DEFAULT_ROWS_PER_MODULE`, at least 4 per z range: :func:`row_heights`),
+    ``n_flank``/``n_trochoid`` exact points per flank/trochoid in each."""
     from OCP.BRep import BRep_Builder
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing
+    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing, \
+        BRepBuilderAPI_Transform
     from OCP.BRepLib import BRepLib
     from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
     from OCP.TopAbs import TopAbs_SHELL
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS, TopoDS_Compound
