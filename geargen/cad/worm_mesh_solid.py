@@ -17,14 +17,27 @@ coarsely, then densely around the points closest to contact.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from geargen.cad.worm_solid import worm_to_mesh
-from geargen.checks.worm_pair import WormPairCheck
 from geargen.core.worm import worm_geometry
 from geargen.design.worm import WormGearSet
 from geargen.errors import BuildError
+
+
+@dataclass(frozen=True)
+class SolidWormPlay:
+    """What geargen.checks.worm_pair.WormPairCheck reports, read from the solids: ``free_rotation``
+    (rad) of the wheel per side (+1: toward +X at the mesh), ``backlash`` (mm, arc at the wheel
+    reference circle), ``interference``, the plane of first contact per side, the centre distance."""
+
+    free_rotation: dict
+    backlash: float
+    interference: bool
+    contact_plane: dict
+    centre_distance: float
 
 
 class _Section:
@@ -158,7 +171,7 @@ def _turns(pieces, points: np.ndarray) -> np.ndarray:
 
 
 def solid_worm_backlash(s: WormGearSet, wheel_shape, worm_shape, planes: int = 9, step: float | None = None,
-                        centre_distance_error: float = 0.0, axial_window: float | None = None) -> WormPairCheck:
+                        centre_distance_error: float = 0.0, axial_window: float | None = None) -> SolidWormPlay:
     """The pair of solids at the design centre distance plus ``centre_distance_error`` (the worm
     moved away from the wheel), worm angle 0, wheel angle 0: the wheel's
     free rotation per side (+1: toward +X at the mesh) over ``planes`` transverse planes across 95 %
@@ -208,9 +221,9 @@ def solid_worm_backlash(s: WormGearSet, wheel_shape, worm_shape, planes: int = 9
                 if value < best[side][0]:
                     best[side] = (value, z)
     rotation = {side: best[side][0] for side in (1, -1)}
-    return WormPairCheck(free_rotation=rotation, backlash=(rotation[1] + rotation[-1]) * r2,
+    return SolidWormPlay(free_rotation=rotation, backlash=(rotation[1] + rotation[-1]) * r2,
                          interference=min(rotation.values()) * r2 < -1e-7,
                          contact_plane={side: best[side][1] for side in (1, -1)}, centre_distance=a)
 
 
-__all__ = ["solid_worm_backlash"]
+__all__ = ["SolidWormPlay", "solid_worm_backlash"]
