@@ -31,6 +31,9 @@ from sweep_support import assert_sweep, run_sweep  # noqa: E402
 COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "100"))
 SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261124"))
 SOLID_FRACTION = float(os.environ.get("GEARGEN_SWEEP_SOLID_FRACTION", "0.1"))
+#: a set with solids builds and checks two (worm 5-40 s, wheel 3-30 s with its BRepCheck on a busy
+#: 2-core machine): more than the runner's default 60 s per set
+TIMEOUT = float(os.environ.get("GEARGEN_SWEEP_TIMEOUT", "150"))
 
 #: refusals that are the right answer for impossible parameters
 EXPECTED_GEOMETRY_KINDS = {"wheel_undercut"}
@@ -145,6 +148,6 @@ def check_one(p: dict) -> tuple[str, str]:
 def test_random_worm_sets_build_or_are_refused_clearly():
     rng = np.random.default_rng(SEED)
     params = [random_parameters(rng) for _ in range(COUNT)]
-    results = run_sweep(params, f"{__file__}:check_one")
+    results = run_sweep(params, f"{__file__}:check_one", timeout=TIMEOUT)
     tags = assert_sweep("worm sets", params, results, SEED, EXPECTED_GEOMETRY_KINDS)
     assert tags["ok"] >= 0.5 * COUNT  # the sweep mostly builds, not refuses
