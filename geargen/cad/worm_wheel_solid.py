@@ -52,9 +52,12 @@ def crease_height(g: WormGeometry) -> float:
 
 def z_ranges(s: WormGearSet, g: WormGeometry) -> list[tuple[float, float]]:
     """The face split at +-z_c (only the ranges inside the face; a sliver under 1e-6 m_x is dropped
-    and its neighbour carried to the end, where the rim's kink is then below any tolerance)."""
-    half, zc = s.wheel_face_width / 2, crease_height(g)
-    cuts = [-half] + [c for c in (-zc, zc) if -half + 1e-6 * s.axial_module < c < half - 1e-6 * s.axial_module] + [half]
+    and its neighbour carried to the end, where the rim's kink is then below any tolerance; an
+    outside diameter equal to the throat diameter makes the rim the cylinder alone)."""
+    half, zc, tiny = s.wheel_face_width / 2, crease_height(g), 1e-6 * s.axial_module
+    if zc < tiny:  # the outside cylinder is the throat's tangent at z = 0: no crease
+        return [(-half, half)]
+    cuts = [-half] + [c for c in (-zc, zc) if -half + tiny < c < half - tiny] + [half]
     return list(zip(cuts[:-1], cuts[1:]))
 
 

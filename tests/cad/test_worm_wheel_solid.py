@@ -191,3 +191,20 @@ def test_backlash_measured_on_the_solids_is_the_design_backlash(hand, backlash_o
         # exact check, reading one phase, overstates the backlash off the design centre distance
         every_thread = solid_worm_backlash(s, wheel, worm, centre_distance_error=0.05)
         assert 0.05 < every_thread.backlash < exact - 2e-3
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("changes, ranges", [
+    (dict(wheel_outside_diameter=96.0), 1),  # outside diameter = throat: the rim is the cylinder, no crease
+    (dict(wheel_face_width=10.0), 1),  # face inside +-z_c (7.4 mm): the rim is the throat torus alone
+])
+def test_worm_wheel_solid_one_rim_surface(changes, ranges):
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    from geargen.cad.worm_wheel_solid import build_worm_wheel, z_ranges
+
+    s = khk_set(**changes)
+    assert len(z_ranges(s, worm_geometry(s))) == ranges
+    wheel = build_worm_wheel(WormWheelSpec(s))
+    assert check_solid(wheel.shape) is None
+    # measured -4.5e-9 and -4.2e-9
+    assert solid_volume(wheel.shape) == pytest.approx(exact_wheel_volume(s, nodes=8), rel=1e-7)
