@@ -34,7 +34,7 @@ each library's own):
     herringbone         30T m2 25 deg, face 40, no gap
     bevel pinion/gear   straight, 15/30 teeth, 32 DP (outer), 90 deg shafts, face 4 mm
     worm                ZA, m3 (axial), 2 starts, q 11, length 70
-    worm wheel          40T for that worm, face 25
+    worm wheel          40T for that worm, face 24 (geargen allows at most 1.8 x the throat radius, 24.3)
 
 Every build runs in a fresh process (geargen: this script with ``--worker``; a peer:
 make_peer_family.py in the peers' venv), ``--repeat`` times (once when a build takes over
@@ -87,7 +87,7 @@ _DH = {"kind": "double_helical", "teeth": 30, "module_mm": 2.0, "pressure_angle_
 _BEVEL = {"kind": "bevel", "diametral_pitch_per_in": 32.0, "pressure_angle_deg": 20.0, "shaft_angle_deg": 90.0,
           "face_width_mm": 4.0}
 _WORM = {"module_mm": 3.0, "pressure_angle_deg": 20.0, "starts": 2, "wheel_teeth": 40, "diameter_quotient": 11.0,
-         "worm_face_length_mm": 70.0, "wheel_face_width_mm": 25.0}  # one set: the worm and its wheel
+         "worm_face_length_mm": 70.0, "wheel_face_width_mm": 24.0}  # one set: the worm and its wheel
 
 CASES = [
     Case("external spur", dict(_SPUR), ("bd_warehouse", "py_gearworks")),

@@ -36,3 +36,16 @@ def test_gear_command_writes_the_worm(tmp_path, capsys):
     # the worm is thinned by the backlash: axial thread thickness p_x/2 - j
     assert data["worm_axial_thread_thickness"] == pytest.approx(math.pi * 3 / 2 - 0.05)
     assert (out / "worm.step").stat().st_size > 0
+
+
+@pytest.mark.slow
+def test_gear_command_writes_the_worm_wheel(tmp_path):
+    out = tmp_path / "wheel"
+    assert main(["gear", "--kind", "worm_wheel", *KHK, "--worm-length", "30", "--wheel-width", "28",
+                 "--backlash", "0.05", "--no-stl", "--out", str(out)]) == 0
+    data = json.loads((out / "worm_wheel.json").read_text())
+    # KHK Gear Technical Reference Table 4.17: throat diameter 96, outside diameter 99, root diameter 82.5
+    assert data["kind"] == "worm_wheel"
+    assert (data["throat_diameter"], data["wheel_outside_diameter"], data["wheel_root_diameter"]) == \
+        pytest.approx((96.0, 99.0, 82.5))
+    assert (out / "worm_wheel.step").stat().st_size > 0 and not (out / "worm_wheel.stl").exists()

@@ -3,11 +3,13 @@
 Each set is either refused with a DesignError / an expected GeometryError (a wheel the hob
 undercuts), or: its wheel's envelope sections are computed across the face, the pair check at
 the design centre distance measures the design backlash within 2 um with no interference, and the
-worm is built as one valid closed solid whose volume matches the exact screw-solid formula.
+worm is built as one valid closed solid whose volume matches the exact screw-solid formula, and so
+is the wheel (its volume against Gauss-Legendre over z of the exact section areas).
 Otherwise a tagged failure: ``backlash``, ``interference``, ``invalid``, ``not_one_solid``,
-``wrong_volume``, ``timeout``, ``crash:<exception type>``. (The worm wheel has no solid yet: its
-sections are checked, not a solid; the worm solid is built for a tenth of the sets in CI,
-``GEARGEN_SWEEP_SOLID_FRACTION=1`` for all.)
+``wrong_volume`` (``wheel_`` before the last three for the wheel), ``timeout``,
+``crash:<exception type>``. The solids are built for a tenth of the sets in CI,
+``GEARGEN_SWEEP_SOLID_FRACTION=1`` for all; the wheel at a coarse grid (its sub-micron accuracy at
+the default grid is tests/cad/test_worm_wheel_solid.py's).
 
 More by hand: ``GEARGEN_SWEEP_COUNT=2000 GEARGEN_SWEEP_SEED=7 pytest tests/test_worm_sweep.py -s``.
 """
@@ -29,6 +31,9 @@ from sweep_support import assert_sweep, run_sweep  # noqa: E402
 COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "100"))
 SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261124"))
 SOLID_FRACTION = float(os.environ.get("GEARGEN_SWEEP_SOLID_FRACTION", "0.1"))
+#: a set with solids builds and checks two (worm 5-40 s, wheel 3-30 s with its BRepCheck on a busy
+#: 2-core machine): more than the runner's default 60 s per set
+TIMEOUT = float(os.environ.get("GEARGEN_SWEEP_TIMEOUT", "150"))
 
 #: refusals that are the right answer for impossible parameters
 EXPECTED_GEOMETRY_KINDS = {"wheel_undercut"}
@@ -49,7 +54,7 @@ def random_parameters(rng: np.random.Generator) -> dict:
         "backlash_modules": float(rng.uniform(0.0, 0.05)) if rng.random() < 0.7 else 0.0,
         "backlash_on": str(rng.choice(["wheel", "worm"])),
         "face_fraction": float(rng.uniform(0.2, 1.0)),
-        # the worm solid (5-40 s a build) for one set in ten: the sweep's CI time; all of them by hand
+        # the worm and wheel solids (5-40 s a build) for one set in ten: the sweep's CI time; all by hand
         "build_solid": bool(rng.random() < SOLID_FRACTION),
     }
 
@@ -77,6 +82,20 @@ def exact_worm_volume(s) -> float:
     thread = quad(lambda r: 2 * math.pi * r * (g.worm_axial_thickness - 2 * (r - r1) * math.tan(g.axial_pressure_angle)),
                   rf, ra, epsabs=1e-14)[0]
     return math.pi * rf * rf * L + L * thread / g.axial_pitch
+
+
+#: the wheel's grid in the sweep: coarse (CI time); validity and volume are checked, not accuracy
+WHEEL_ROWS_PER_MODULE = 2.0
+
+
+def _wheel_volume(s) -> float:
+    """Gauss-Legendre over z of the exact section areas (tests/cad/test_worm_wheel_solid.py)."""
+    import importlib.util
+    path = Path(__file__).parent / "cad" / "test_worm_wheel_solid.py"
+    spec = importlib.util.spec_from_file_location("_wheel_solid_test", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module.exact_wheel_volume(s, nodes=8)
 
 
 def check_one(p: dict) -> tuple[str, str]:
@@ -110,6 +129,16 @@ def check_one(p: dict) -> tuple[str, str]:
         # 32 interpolation points a turn: helix chord error ~ r dtheta^4 / 384, relative ~1e-6
         if abs(vol / expected - 1) > 1e-5:
             return "wrong_volume", f"{vol!r} vs {expected!r} ({vol / expected - 1:.2e})"
+        from geargen.cad.worm_wheel_solid import build_worm_wheel
+        from geargen.design.worm import WormWheelSpec
+        wheel = build_worm_wheel(WormWheelSpec(s), rows_per_module=WHEEL_ROWS_PER_MODULE, n_flank=16, n_trochoid=8)
+        problem = check_solid(wheel.shape)
+        if problem:
+            return ("wheel_not_one_solid" if "solids" in problem else "wheel_invalid"), problem
+        vol, expected = solid_volume(wheel.shape, eps=1e-7), _wheel_volume(s)
+        # the coarse grid's surface is within a few um of the envelope: relative volume error ~1e-6
+        if abs(vol / expected - 1) > 2e-5:
+            return "wheel_wrong_volume", f"{vol!r} vs {expected!r} ({vol / expected - 1:.2e})"
     except Exception as exc:  # noqa: BLE001
         return f"crash:{type(exc).__name__}", traceback.format_exc(limit=3)[-300:]
     return "ok", ""
@@ -119,6 +148,6 @@ def check_one(p: dict) -> tuple[str, str]:
 def test_random_worm_sets_build_or_are_refused_clearly():
     rng = np.random.default_rng(SEED)
     params = [random_parameters(rng) for _ in range(COUNT)]
-    results = run_sweep(params, f"{__file__}:check_one")
+    results = run_sweep(params, f"{__file__}:check_one", timeout=TIMEOUT)
     tags = assert_sweep("worm sets", params, results, SEED, EXPECTED_GEOMETRY_KINDS)
     assert tags["ok"] >= 0.5 * COUNT  # the sweep mostly builds, not refuses

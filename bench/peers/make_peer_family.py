@@ -151,8 +151,8 @@ PEERS = {
     "bevel gear": {"py_gearworks": (pgw_bevel, dict(teeth=30, mate_teeth=15, module=DP32, face=4.0))},
     "worm": {"bd_warehouse": (bd_worm, dict(_WORM, length=70.0)),
              "wormgear": (wg_worm, dict(_WORM, length=70.0, wheel_teeth=40))},
-    "worm wheel": {"bd_warehouse": (bd_worm_wheel, dict(_WORM, teeth=40, face=25.0)),
-                   "wormgear": (wg_worm_wheel, dict(_WORM, teeth=40, face=25.0))},
+    "worm wheel": {"bd_warehouse": (bd_worm_wheel, dict(_WORM, teeth=40, face=24.0)),
+                   "wormgear": (wg_worm_wheel, dict(_WORM, teeth=40, face=24.0))},
 }
 
 

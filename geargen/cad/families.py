@@ -18,6 +18,7 @@ BUILDERS: dict[str, str] = {
     "internal": "geargen.cad.internal_solid:build_internal",
     "double_helical": "geargen.cad.double_helical:build_double_helical",
     "worm": "geargen.cad.worm_solid:build_worm",
+    "worm_wheel": "geargen.cad.worm_wheel_solid:build_worm_wheel",
     "bevel": "geargen.cad.bevel_solid:build_bevel",
 }
 
