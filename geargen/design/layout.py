@@ -55,7 +55,7 @@ LAYOUT_FIELDS = [
           help="dual pinion: how far the input's face sits below the cluster's large gear face (default: the input "
                "centred on it)"),
     Field("carriage_travel", "length", required=False, default=None, minimum=0.0,
-          help="dual pinion: travel of the preload carriage either way, drawn in the layout and the report"),
+          help="dual pinion and rack drive: travel of the preload carriage either way, drawn in the layout and the report"),
     # split pinion
     Field("centre_distance", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="split pinion and axial preload: centre distance of both pinions from the output"),
@@ -140,6 +140,38 @@ LAYOUT_FIELDS = [
           help="whole-number ratios, encoder to output, that the controller accepts (the build checks one is met)"),
 ]
 
+#: the [layout] keys each kind reads besides the common ones (kind, model_backlash, loaded_flank_gap,
+#: upstream_stages, required_ratios): a key of another kind is refused by name, never ignored
+KIND_KEYS: dict[str, tuple[str, ...]] = {
+    "dual_pinion": ("position", "cluster", "cluster_axial_gap", "input_face_offset", "carriage_travel"),
+    "split_pinion": ("centre_distance", "pinion_stiff", "pinion_compliant", "output", "pinion_axial_gap",
+                     "circumferential_backlash_min", "circumferential_backlash_max"),
+    "axial_preload": ("centre_distance", "pinion_axial_gap", "circumferential_backlash_min",
+                      "circumferential_backlash_max", "pinion_left", "pinion_right", "output_right", "output_left",
+                      "input_stroke", "sliding_friction_coefficient", "max_friction_to_preload"),
+    "rack_dual_pinion": ("carriage_travel", "pinion_spacing", "input_centre_distance", "rack_backlash_min", "rack_backlash_max",
+                         "path_backlash_min", "path_backlash_max", "slide_travel", "rack_face_width",
+                         "rack_back_height", "path_gear_axial_gap", "rack_loop_error", "carriage_preload_force_N",
+                         "carriage_spring_rate_N_per_mm", "gear_elastic_modulus_GPa", "shaft_shear_modulus_GPa",
+                         "max_rack_force_N"),
+}
+COMMON_KEYS = ("kind", "model_backlash", "loaded_flank_gap", "upstream_stages", "required_ratios")
+
+
+def _refuse_other_kinds_keys(table: dict, kind: str) -> None:
+    """A key another layout kind reads, given for ``kind``: refused naming it (it would change nothing)."""
+    names = {f.name for f in LAYOUT_FIELDS}
+    mine = set(COMMON_KEYS) | set(KIND_KEYS[kind])
+    for key in table:
+        base = key if key in names else next((key[:-len(u) - 1] for u in LENGTH_SUFFIXES
+                                             if key.endswith("_" + u) and key[:-len(u) - 1] in names), None)
+        if base is not None and base not in mine:
+            owners = [k for k, keys in KIND_KEYS.items() if base in keys]
+            raise DesignError(f"layout.{key}", f"does not apply to layout.kind = {kind!r} (a key of "
+                              f"{' and '.join(map(repr, owners))})",
+                              "leave it out; the keys of this kind: " + ", ".join(sorted(mine - {"kind"})))
+
+
 #: keys [layout] no longer has -> (what they gave, the key that gives it now: its one home); a file
 #: that still has one is told where it went rather than offered the nearest spelling of another key
 MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[engagement] clearance_<unit>")}
@@ -186,6 +218,7 @@ def layout_settings(design) -> dict[str, Any]:
             raise DesignError("layout.kind", "missing", " | ".join(map(repr, LAYOUT_KINDS))
                               + " (or a [synthesis] section: a dual-pinion drive)")
         v["kind"] = "dual_pinion"
+    _refuse_other_kinds_keys(table, v["kind"])
     if v["model_backlash"] is None:
         v["model_backlash"] = "as_designed" if any(g.thinning > 0 for g in design.gears.values()) else "mid"
     for i, stage in enumerate(v["upstream_stages"]):

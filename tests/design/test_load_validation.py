@@ -265,7 +265,8 @@ def test_layout_parts_and_export_rules(tmp_path):
     assert err.field == "export.render_view"
     err = error_of(variant(tmp_path, ROBOT, (r'^kind = "dual_pinion"', 'kind = "split_pinion"')))
     assert isinstance(err, DesignErrors)  # the robot joint's cluster shaft is no shaft of a split pinion either
-    assert [e.field for e in err.errors][:2] == ["stiffness.components.cluster_shaft.shaft", "layout.centre_distance"]
+    # ... and its [layout] cluster key is a dual pinion's (refused before the missing centre distance)
+    assert [e.field for e in err.errors][:2] == ["stiffness.components.cluster_shaft.shaft", "layout.cluster"]
 
 
 def test_a_split_pinions_speeds_come_from_its_teeth(tmp_path, capsys):
@@ -381,3 +382,20 @@ def test_springs_too_short_for_the_swept_wire_model_name_the_key_and_the_alterna
     assert "> 0.315 in, or parts.spring_model = 'envelope'" in err
     assert _accepts(tmp_path, ROBOT, [(r"^installed_length_in = 0\.35", "installed_length_in = 0.30"),
                                       (r'^spring_model = "helix"', 'spring_model = "envelope"')])
+
+
+@pytest.mark.parametrize("source, edit, key, owner", [
+    # a rack drive given the split pinion's centre distance: it would place nothing
+    ("rack_drive.toml", (r"^pinion_spacing_mm", "centre_distance_mm = 50\npinion_spacing_mm"), "centre_distance_mm",
+     "'split_pinion' and 'axial_preload'"),
+    ("axial_preload.toml", (r"^input_stroke_mm", "slide_travel_mm = 100\ninput_stroke_mm"), "slide_travel_mm",
+     "'rack_dual_pinion'"),
+    ("split_pinion.toml", (r"^\[layout\]", "[layout]\ncluster = \"separate\""), "cluster", "'dual_pinion'"),
+    ("robot_joint.toml", (r"^\[layout\]", "[layout]\ninput_stroke_in = 0.02"), "input_stroke_in", "'axial_preload'"),
+])
+def test_a_layout_key_of_another_kind_is_refused_by_name(tmp_path, capsys, source, edit, key, owner):
+    """[layout] holds the keys of every drive kind; one the design's kind does not read is refused
+    (it would change nothing quietly), naming the key and the kind that reads it."""
+    code, err = run(capsys, "check", variant(tmp_path, ROOT / "assemblies" / source, edit))
+    assert code == 2
+    assert f"layout.{key}: does not apply to layout.kind" in err and f"(a key of {owner})" in err
