@@ -71,6 +71,19 @@ def make_set(p: dict):
                        wheel_profile_shift=p["x2"], backlash=p["backlash_modules"] * m, backlash_on=p["backlash_on"])
 
 
+def _solid_failure(shape, expected_volume: float, tolerance: float, tag: str) -> tuple[str, str] | None:
+    """The tagged failure of a built solid (``tag`` + not_one_solid / invalid / wrong_volume), or None
+    when it is one valid solid whose volume is ``expected_volume`` within ``tolerance`` (relative)."""
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    problem = check_solid(shape)
+    if problem:
+        return tag + ("not_one_solid" if "solids" in problem else "invalid"), problem
+    vol = solid_volume(shape, eps=1e-7)
+    if abs(vol / expected_volume - 1) > tolerance:
+        return tag + "wrong_volume", f"{vol!r} vs {expected_volume!r} ({vol / expected_volume - 1:.2e})"
+    return None
+
+
 def exact_worm_volume(s) -> float:
     """Root cylinder plus thread filling t_x(r)/p_x of each axial line (see tests/cad/test_worm_solid.py)."""
     from scipy.integrate import quad
@@ -118,27 +131,20 @@ def check_one(p: dict) -> tuple[str, str]:
             return "backlash", f"{check.backlash!r} vs {s.backlash!r}"
         if not p["build_solid"]:
             return "ok", "sections and pair check"
-        from geargen.cad.gear_solid import check_solid, solid_volume
         from geargen.cad.worm_solid import build_worm
         from geargen.design.worm import WormSpec
         worm = build_worm(WormSpec(s), points_per_turn=32)
-        problem = check_solid(worm.shape)
-        if problem:
-            return ("not_one_solid" if "solids" in problem else "invalid"), problem
-        vol, expected = solid_volume(worm.shape, eps=1e-7), exact_worm_volume(s)
         # 32 interpolation points a turn: helix chord error ~ r dtheta^4 / 384, relative ~1e-6
-        if abs(vol / expected - 1) > 1e-5:
-            return "wrong_volume", f"{vol!r} vs {expected!r} ({vol / expected - 1:.2e})"
+        failure = _solid_failure(worm.shape, exact_worm_volume(s), 1e-5, "")
+        if failure:
+            return failure
         from geargen.cad.worm_wheel_solid import build_worm_wheel
         from geargen.design.worm import WormWheelSpec
         wheel = build_worm_wheel(WormWheelSpec(s), rows_per_module=WHEEL_ROWS_PER_MODULE, n_flank=16, n_trochoid=8)
-        problem = check_solid(wheel.shape)
-        if problem:
-            return ("wheel_not_one_solid" if "solids" in problem else "wheel_invalid"), problem
-        vol, expected = solid_volume(wheel.shape, eps=1e-7), _wheel_volume(s)
         # the coarse grid's surface is within a few um of the envelope: relative volume error ~1e-6
-        if abs(vol / expected - 1) > 2e-5:
-            return "wheel_wrong_volume", f"{vol!r} vs {expected!r} ({vol / expected - 1:.2e})"
+        failure = _solid_failure(wheel.shape, _wheel_volume(s), 2e-5, "wheel_")
+        if failure:
+            return failure
     except Exception as exc:  # noqa: BLE001
         return f"crash:{type(exc).__name__}", traceback.format_exc(limit=3)[-300:]
     return "ok", ""

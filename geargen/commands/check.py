@@ -147,6 +147,29 @@ def _fmt(v: float, unit: str) -> str:
     return f"{v / LENGTH_SUFFIXES[unit]:.6f}" if unit == "in" else f"{v / LENGTH_SUFFIXES[unit]:.5f}"
 
 
+def _planetary_lines(result: DesignCheck, u: str) -> list[str]:
+    """The planetary stages' rows (:mod:`geargen.checks.planetary_placed`) under one heading: the
+    planet-ring meshes, then each stage's conditions."""
+    if not result.planetary:
+        return []
+    lines = ["", "planet-ring meshes (backlash at the planet's reference circle, exact outlines as placed) and the "
+             "stage's conditions"]
+    for b in result.planetary:
+        fails = ", ".join(dict.fromkeys(f.kind for f in result.failures if f.mesh == b["mesh"])) or "ok"
+        if "gear1" in b:
+            lines.append(f"  {b['mesh']:<30}measured {_fmt(b['backlash'], u)} (over a pitch {_fmt(b['sweep_min'], u)} "
+                         f"to {_fmt(b['sweep_max'], u)})  closed form {_fmt(b['closed_form_backlash'], u)}  each side "
+                         f"{_fmt(b['play_cw'], u)} / {_fmt(b['play_ccw'], u)}  design {_fmt(b['design_min'], u)} to "
+                         f"{_fmt(b['design_max'], u)}  {fails}")
+        else:
+            lines.append(f"planetary stage {b['stage']}: ratio {b['ratio']:.6g}, carrier radius "
+                         f"{_fmt(b['carrier_radius'], u)}, coaxiality difference "
+                         f"{b['coaxiality_difference'] / LENGTH_SUFFIXES[u]:.2e}, assembly step error "
+                         f"{b['assembly_step_error']:.1e}, planet tip gap {_fmt(b['neighbour_tip_gap'], u)}, "
+                         f"minimum tooth difference {b['minimum_tooth_difference']}  {fails}")
+    return lines
+
+
 def _rack_lines(rows: list, u: str) -> list[str]:
     """The rack drive's rows (:mod:`geargen.checks.rack_drive`): rack meshes, carriage, preload, stiffness."""
     lines = []
@@ -215,25 +238,7 @@ def table(result: DesignCheck) -> str:
                   f"difference {(b['backlash'] - b['design_backlash']) / LENGTH_SUFFIXES[u]:.1e}  "
                   f"each side {_fmt(b['play_negative'], u)} / {_fmt(b['play_positive'], u)}  "
                   f"tip clearance {_fmt(b['tip_clearance'], u)}"]
-    for b in result.planetary:
-        k = LENGTH_SUFFIXES[u]
-        if "gear1" in b:
-            fails = ", ".join(dict.fromkeys(f.kind for f in result.failures if f.mesh == b["mesh"])) or "ok"
-            lines += [f"  {b['mesh']:<30}measured {_fmt(b['backlash'], u)} (over a pitch {_fmt(b['sweep_min'], u)} to "
-                      f"{_fmt(b['sweep_max'], u)})  closed form "
-                      f"{_fmt(b['closed_form_backlash'], u)}  each side {_fmt(b['play_cw'], u)} / "
-                      f"{_fmt(b['play_ccw'], u)}  design {_fmt(b['design_min'], u)} to {_fmt(b['design_max'], u)}  {fails}"]
-        else:
-            fails = ", ".join(dict.fromkeys(f.kind for f in result.failures if f.mesh == b["mesh"])) or "ok"
-            lines += [f"planetary stage {b['stage']}: ratio {b['ratio']:.6g}, carrier radius {_fmt(b['carrier_radius'], u)}, "
-                      f"coaxiality difference {b['coaxiality_difference'] / k:.2e}, assembly step error "
-                      f"{b['assembly_step_error']:.1e}, planet tip gap {_fmt(b['neighbour_tip_gap'], u)}, "
-                      f"minimum tooth difference {b['minimum_tooth_difference']}  {fails}"]
-    if result.planetary:
-        # under one heading: the planet-ring rows, then the stage's conditions
-        rows = [ln for ln in lines[-len(result.planetary):]]
-        lines[-len(result.planetary):] = ["", "planet-ring meshes (backlash at the planet's reference circle, exact "
-                                          "outlines as placed) and the stage's conditions"] + rows
+    lines += _planetary_lines(result, u)
     lines += _rack_lines(result.rack, u)
     if result.tolerances:
         lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
