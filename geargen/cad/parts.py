@@ -43,6 +43,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 from OCP.TopTools import TopTools_ListOfShape
 
+from geargen.core.bevel import BevelPairGeometry
 from geargen.errors import BuildError, DesignError
 
 
@@ -227,69 +228,6 @@ def bearing(bore: float, outer_diameter: float, width: float) -> TopoDS_Shape:
     if not outer_diameter > bore:
         raise DesignError("outer_diameter", f"{outer_diameter!r} mm is not larger than the bore", f"> {bore:.6g} mm")
     return cylinder(outer_diameter, width, bore)
-
-
-@dataclass(frozen=True)
-class BevelPairGeometry:
-    """Pitch cones of a bevel pair with intersecting axes (mm, rad).
-
-    ``pitch_angle_*`` is each gear's pitch-cone half angle (they add up to the shaft angle),
-    ``pitch_radius_*`` the pitch radius at the heel (outer end of the face), ``cone_distance``
-    the slant length from the common apex to the heel. A gear's frustum runs from its heel
-    (radius ``pitch_radius``) a ``face_width`` along the cone towards the apex.
-    """
-
-    pinion_teeth: int
-    gear_teeth: int
-    module: float
-    face_width: float
-    shaft_angle: float
-    pitch_angle_pinion: float
-    pitch_angle_gear: float
-    pitch_radius_pinion: float
-    pitch_radius_gear: float
-    cone_distance: float
-
-    @property
-    def ratio(self) -> float:
-        return self.gear_teeth / self.pinion_teeth
-
-    def apex_height(self, which: str) -> float:
-        """Distance along the axis from a gear's heel plane to the common apex (mm)."""
-        r, g = self._cone(which)
-        return r / math.tan(g)
-
-    def axial_height(self, which: str) -> float:
-        """Axial length of a gear's frustum (mm): face width times cos(pitch angle)."""
-        return self.face_width * math.cos(self._cone(which)[1])
-
-    def toe_radius(self, which: str) -> float:
-        r, g = self._cone(which)
-        return r - self.face_width * math.sin(g)
-
-    def _cone(self, which: str) -> tuple[float, float]:
-        if which == "pinion":
-            return self.pitch_radius_pinion, self.pitch_angle_pinion
-        if which == "gear":
-            return self.pitch_radius_gear, self.pitch_angle_gear
-        raise ValueError("which must be 'pinion' or 'gear'")
-
-
-def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_width: float,
-                        shaft_angle: float = math.pi / 2) -> BevelPairGeometry:
-    """Pitch cones of a bevel pair: ``tan(gamma_p) = sin(S) / (z_g/z_p + cos(S))``, gamma_g = S - gamma_p,
-    heel pitch radii ``z m / 2``, cone distance ``r_p / sin(gamma_p)``."""
-    _positive(module=module, face_width=face_width, shaft_angle=shaft_angle)
-    if pinion_teeth < 4 or gear_teeth < 4:
-        raise DesignError("teeth", f"{pinion_teeth}, {gear_teeth} are too few", ">= 4 each")
-    ratio = gear_teeth / pinion_teeth
-    gp = math.atan2(math.sin(shaft_angle), ratio + math.cos(shaft_angle))
-    gg = shaft_angle - gp
-    rp, rg = pinion_teeth * module / 2, gear_teeth * module / 2
-    cone = rp / math.sin(gp)
-    if not face_width < cone:
-        raise DesignError("face_width", f"{face_width:.6g} mm exceeds the cone distance", f"< {cone:.6g} mm")
-    return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
 
 
 def bevel_pitch_cone(geometry: BevelPairGeometry, which: str, bore: float = 0.0) -> TopoDS_Shape:
@@ -542,7 +480,6 @@ def split_collar(bore: float, outer_diameter: float, width: float, slot: float) 
 
 
 __all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
-           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "BevelPairGeometry",
-           "bevel_pair_geometry", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
+           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
            "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
            "link_cover_volume", "ring_relief", "quill", "quill_volume", "split_collar"]

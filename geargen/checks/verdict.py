@@ -21,13 +21,16 @@ from dataclasses import replace
 
 import numpy as np
 
+from geargen.checks.hardware import parts_check
 from geargen.checks.mesh2d import CheckSettings, MeshSetup, check_mesh
 from geargen.checks.results import DesignCheck, Failure
+from geargen.checks.structure import drive_structure
 from geargen.core.accuracy import gear_errors
 from geargen.design.assembly import Design
 from geargen.design.checks import ChecksSettings, checks_settings
 from geargen.errors import DesignError
-from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive, resolve
+from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive
+from geargen.drives import resolve
 from geargen.units import LENGTH_SUFFIXES
 
 #: below this the design range is met (mm): the path-1 numbers carry ~1e-12 mm of round-off
@@ -134,9 +137,28 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
     result.planetary = planetary_meshes(layout, result)
     from geargen.checks.rack_drive import rack_meshes
     result.rack = rack_meshes(layout, result)
+    if layout.hardware is not None:
+        _parts(layout, result, settings)
     if settings.tolerances if tolerances is None else tolerances:
         result.tolerances = _tolerances(layout, setups, settings)
     return result
+
+
+def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> None:
+    """The resolved drive's parts against each other (:func:`geargen.checks.hardware.parts_check`)
+    and how they hold together (:func:`geargen.checks.structure.drive_structure`), as failures."""
+    report = parts_check(layout)
+    result.parts = report
+    kinds = {"overlap": "parts_overlap", "interpenetrating": "parts_interpenetrating",
+             "missing_contact": "contact_missing"}
+    for f in report.findings:
+        result.failures.append(Failure(kinds[f.kind], "parts", f.message))
+    structure = drive_structure(layout)
+    result.structure = structure
+    if settings.structure == "fail":
+        result.failures += [Failure("structure", "parts", text) for text in structure.failures]
+    else:
+        result.notes += [f"structure ([checks] structure = \"report\"): {text}" for text in structure.failures]
 
 
 #: the placed bevel pair's measured backlash may differ from its design value (t1 + t2) by this

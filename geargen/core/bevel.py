@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from geargen.design.bevel import BevelGearSpec
-from geargen.errors import GeometryError
+from geargen.errors import DesignError, GeometryError
 
 
 def pitch_cone_angles(teeth: int, mate_teeth: int, shaft_angle: float) -> tuple[float, float]:
@@ -241,6 +241,117 @@ def spherical_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = N
     return path / (2 * math.pi * math.sin(base_cone_angle(d1, a)) / spec.teeth)
 
 
-__all__ = ["spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+def flat_back_distance(spec: BevelGearSpec) -> float:
+    """Distance along the axis from the apex to a bevel gear's flat back (mm): the plane through
+    its heel root circle. The toothed body lies nearer the apex; only the blank's spherical back
+    (inside the root cone) reaches beyond, and a gear cut flat there keeps every tooth whole."""
+    return spec.cone_distance * math.cos(bevel_geometry(spec).root_cone_angle)
+
+
+def flat_back_web(spec: BevelGearSpec) -> tuple[float, float] | None:
+    """The web that joins a flat-backed bevel gear's toothed ring to its bore when the toe sphere
+    lies beyond the flat back (a gear of large cone angle leaves the axis bare): ``(a0, rim)``, a
+    disc from ``a0`` along the axis (the middle of the face projected on the root cone) to the
+    back, of radius ``rim`` half way between the toe sphere and the root cone there, so it stays
+    inside the root cone and runs into the ring. None when the gear needs no web."""
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    if ri < flat_back_distance(spec):
+        return None
+    root = bevel_geometry(spec).root_cone_angle
+    a0 = (ri + re) / 2 * math.cos(root)
+    return a0, (math.sqrt(ri * ri - a0 * a0) + a0 * math.tan(root)) / 2
+
+
+def flat_back_envelope(spec: BevelGearSpec, points: int = 48) -> list[np.ndarray]:
+    """Closed (r, s) profiles (mm; s along the axis from the apex) whose revolutions hold a bevel
+    gear cut flat at its back (:func:`flat_back_distance`): between the toe and heel spheres, inside
+    the tip cone, outside the bore, nearer the apex than the back; with the web when it has one
+    (:func:`flat_back_web`). An envelope: the teeth reach the tip cone only at their tips."""
+    g = bevel_geometry(spec)
+    ri, re, da = g.toe_cone_distance, g.cone_distance, g.tip_cone_angle
+    back, rb = flat_back_distance(spec), spec.bore_diameter / 2
+    outline = [(ri * math.sin(da), ri * math.cos(da))]
+    heel = np.linspace(da, math.acos(min(back / re, 1.0)), points)
+    outline += [(re * math.sin(p), re * math.cos(p)) for p in heel]  # heel sphere, tip cone to the back
+    if ri < back:
+        outline += [(rb, back), (rb, math.sqrt(max(ri * ri - rb * rb, 0.0)))]
+        toe = np.linspace(math.asin(min(rb / ri, 1.0)), da, points)
+    else:  # the toe sphere lies beyond the back: the ring ends on the back plane
+        inner = math.sqrt(ri * ri - back * back)
+        outline += [(inner, back)]
+        toe = np.linspace(math.asin(inner / ri), da, points)
+    outline += [(ri * math.sin(p), ri * math.cos(p)) for p in toe[:-1]]  # toe sphere back to the start
+    profiles = [np.array(outline)]
+    web = flat_back_web(spec)
+    if web is not None:
+        a0, rim = web
+        profiles.append(np.array([(rb, a0), (rim, a0), (rim, back), (rb, back)]))
+    return profiles
+
+
+@dataclass(frozen=True)
+class BevelPairGeometry:
+    """Pitch cones of a bevel pair with intersecting axes (mm, rad).
+
+    ``pitch_angle_*`` is each gear's pitch-cone half angle (they add up to the shaft angle),
+    ``pitch_radius_*`` the pitch radius at the heel (outer end of the face), ``cone_distance``
+    the slant length from the common apex to the heel. A gear's frustum runs from its heel
+    (radius ``pitch_radius``) a ``face_width`` along the cone towards the apex.
+    """
+
+    pinion_teeth: int
+    gear_teeth: int
+    module: float
+    face_width: float
+    shaft_angle: float
+    pitch_angle_pinion: float
+    pitch_angle_gear: float
+    pitch_radius_pinion: float
+    pitch_radius_gear: float
+    cone_distance: float
+
+    @property
+    def ratio(self) -> float:
+        return self.gear_teeth / self.pinion_teeth
+
+    def apex_height(self, which: str) -> float:
+        """Distance along the axis from a gear's heel plane to the common apex (mm)."""
+        r, g = self._cone(which)
+        return r / math.tan(g)
+
+    def axial_height(self, which: str) -> float:
+        """Axial length of a gear's frustum (mm): face width times cos(pitch angle)."""
+        return self.face_width * math.cos(self._cone(which)[1])
+
+    def toe_radius(self, which: str) -> float:
+        r, g = self._cone(which)
+        return r - self.face_width * math.sin(g)
+
+    def _cone(self, which: str) -> tuple[float, float]:
+        if which == "pinion":
+            return self.pitch_radius_pinion, self.pitch_angle_pinion
+        if which == "gear":
+            return self.pitch_radius_gear, self.pitch_angle_gear
+        raise ValueError("which must be 'pinion' or 'gear'")
+
+
+def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_width: float,
+                        shaft_angle: float = math.pi / 2) -> BevelPairGeometry:
+    """Pitch cones of a bevel pair: ``tan(gamma_p) = sin(S) / (z_g/z_p + cos(S))``, gamma_g = S - gamma_p,
+    heel pitch radii ``z m / 2``, cone distance ``r_p / sin(gamma_p)``."""
+    for name, v in (("module", module), ("face_width", face_width), ("shaft_angle", shaft_angle)):
+        if not (math.isfinite(v) and v > 0):
+            raise DesignError(name, f"{v!r} is out of range", "> 0")
+    if pinion_teeth < 4 or gear_teeth < 4:
+        raise DesignError("teeth", f"{pinion_teeth}, {gear_teeth} are too few", ">= 4 each")
+    gp, gg = pitch_cone_angles(pinion_teeth, gear_teeth, shaft_angle)
+    rp, rg = pinion_teeth * module / 2, gear_teeth * module / 2
+    cone = rp / math.sin(gp)
+    if not face_width < cone:
+        raise DesignError("face_width", f"{face_width:.6g} mm exceeds the cone distance", f"< {cone:.6g} mm")
+    return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
+
+
+__all__ = ["flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "flat_back_distance", "flat_back_web", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
            "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
            "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio"]

@@ -193,8 +193,8 @@ def drive_from_design(design: Design, location: str = "output"):
     "common" are in series with the drive and not part of this model (``StiffnessSummary.common``).
     """
     from geargen.errors import DesignError
-    from geargen.model.layout import is_drive, resolve
-    summary, _ = stiffness(design, resolve(design) if is_drive(design) else None)
+    from geargen.model.layout import is_drive, place
+    summary, _ = stiffness(design, place(design) if is_drive(design) else None)
     if summary is None:
         raise DesignError("stiffness", "missing: the drive model needs [stiffness] and [preload] sections",
                           "see assemblies/robot_joint.toml")

@@ -74,7 +74,7 @@ from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
 from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, _modelled_backlash, _ratio_check, _thin_pair,
                                   running_backlash)
-from geargen.model.shafts import Bearing, Shaft, _bore, _mid
+from geargen.model.shafts import Bearing, Shaft, bore_of as _bore, _mid
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 

@@ -138,6 +138,9 @@ class Layout:
     # what a drive kind placed by its own module reports about itself (mm, rad, N; e.g. the axial
     # preload's slide, spring force and stiffnesses): written beside every export, in internal units
     drive_report: dict[str, Any] = field(default_factory=dict)
+    # the non-gear parts and every joint (geargen.model.components.Hardware), laid out by the
+    # drive kind's hardware when the drive is resolved (geargen.drives.resolve); None: no hardware
+    hardware: Any = None
 
     def gear(self, name: str) -> GearPlacement:
         for g in self.gears:
@@ -178,7 +181,8 @@ class Layout:
                 "carriage_x": None if self.carriage_x is None else self.carriage_x * k,
                 "gears": gears, "meshes": meshes, "notes": list(self.notes),
                 "defaulted": {d.key: d.value for d in self.design.defaulted},
-                **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {})}
+                **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {}),
+                **({"hardware": self.hardware.to_dict(1.0 / k)} if self.hardware is not None else {})}
 
 
 #: the one kind of backlash the resolved model, the checks' design range and the reports share
@@ -251,9 +255,10 @@ def is_drive(design: Design) -> bool:
     return bool(design.section("layout") or design.section("synthesis"))
 
 
-def resolve(design: Design, position: str | None = None) -> Layout:
-    """The resolved drive (:class:`Layout`): final teeth, centres, heights and rotations of every
-    gear, and the meshes to check. ``position`` overrides ``[layout] position``."""
+def place(design: Design, position: str | None = None) -> Layout:
+    """The gears of the drive placed (:class:`Layout` without its hardware): final teeth, centres,
+    heights and rotations of every gear, and the meshes to check. ``position`` overrides ``[layout]
+    position``. :func:`geargen.drives.resolve` adds the hardware."""
     settings = layout_settings(design)
     if position is not None:
         if position not in POSITIONS:
@@ -633,4 +638,4 @@ def _place_split_pinion(design: Design, s: dict) -> Layout:
 
 
 __all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
-           "layout_settings", "is_drive", "resolve", "running_backlash"]
+           "layout_settings", "is_drive", "place", "running_backlash"]

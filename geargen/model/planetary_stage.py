@@ -157,7 +157,7 @@ class Carrier:
 def carrier(layout, parts, st) -> Carrier:
     """The carrier of the planetary stage ``st`` as ``layout`` places it (sizes: [parts] plate
     thickness and clearance, the planets' bore, the input's and the sun's bores)."""
-    from geargen.model.shafts import _bore
+    from geargen.model.shafts import bore_of as _bore
     plate, gap = parts["carriage_plate_thickness"], parts["bearing_clearance"]
     sun = layout.gear(st.sun)
     planets = [g for g in layout.gears if g.group == f"stage_{st.name}" and "planetary_planet" in g.roles]

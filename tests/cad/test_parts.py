@@ -4,6 +4,8 @@ import math
 
 import pytest
 
+from geargen.core.bevel import bevel_pair_geometry
+
 pytestmark = pytest.mark.slow
 
 P = pytest.importorskip("geargen.cad.parts")
@@ -25,7 +27,7 @@ def test_frustum_volume():
 
 
 def test_bevel_pitch_cones_meet_at_one_apex():
-    g = P.bevel_pair_geometry(15, 30, 0.79375, 3.81)
+    g = bevel_pair_geometry(15, 30, 0.79375, 3.81)
     assert g.pitch_angle_pinion + g.pitch_angle_gear == pytest.approx(math.pi / 2, rel=1e-15)
     assert math.tan(g.pitch_angle_gear) == pytest.approx(2.0, rel=1e-14)  # ratio 2 at 90 deg shaft angle
     # both heels lie on the same cone distance from the common apex
