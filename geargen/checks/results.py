@@ -440,6 +440,10 @@ class DesignCheck:
     # they hold together (geargen.checks.structure.StructureReport); None: the drive has no hardware
     parts: Any = None
     structure: Any = None
+    # the values the file does not give as the drive uses them (geargen.drives.defaulted) and the
+    # resolved [parts] as TOML to paste into the file (geargen.drives.parts_table)
+    defaulted: tuple = ()
+    parts_table: str = ""
 
     @property
     def all_failures(self) -> list[Failure]:

@@ -30,7 +30,7 @@ from geargen.design.assembly import Design
 from geargen.design.checks import ChecksSettings, checks_settings
 from geargen.errors import DesignError
 from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive
-from geargen.drives import resolve
+from geargen.drives import defaulted, parts_table, resolve
 from geargen.units import LENGTH_SUFFIXES
 
 #: below this the design range is met (mm): the path-1 numbers carry ~1e-12 mm of round-off
@@ -137,6 +137,8 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
     result.planetary = planetary_meshes(layout, result)
     from geargen.checks.rack_drive import rack_meshes
     result.rack = rack_meshes(layout, result)
+    result.defaulted = defaulted(layout)
+    result.parts_table = parts_table(layout)
     if layout.hardware is not None:
         _parts(layout, result, settings)
     if settings.tolerances if tolerances is None else tolerances:
@@ -151,8 +153,12 @@ def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> Non
     result.parts = report
     kinds = {"overlap": "parts_overlap", "interpenetrating": "parts_interpenetrating",
              "missing_contact": "contact_missing"}
+    fixes = layout.hardware.fixes
+    scale = LENGTH_SUFFIXES[layout.design.length_unit]
     for f in report.findings:
-        result.failures.append(Failure(kinds[f.kind], "parts", f.message))
+        offered = [fixes[p] for p in (f.part1, f.part2) if f.kind == "overlap" and p in fixes]
+        hint = "".join(f" (fix: {key} = {value / scale:.6g}: {why})" for key, value, why in offered)
+        result.failures.append(Failure(kinds[f.kind], "parts", f.message + hint))
     structure = drive_structure(layout)
     result.structure = structure
     if settings.structure == "fail":

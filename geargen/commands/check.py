@@ -277,8 +277,10 @@ def run(args: argparse.Namespace) -> int:
     result = check_design(design, settings, sections=args.sections or None, exported=args.exported,
                           tolerances=False if args.no_tolerances else None, position=args.position)
     data = result.to_dict(arrays=args.arrays)
-    if design.defaulted:
-        data["defaulted"] = {d.key: {"value": d.value, "why": d.why} for d in design.defaulted}
+    if result.defaulted:
+        data["defaulted"] = {d.key: {"value": d.value, "why": d.why} for d in result.defaulted}
+    if result.parts_table:
+        data["parts_toml"] = result.parts_table
     if args.plots:
         from geargen.report.checks import write_check_plots
         data["plots"] = [str(p) for p in write_check_plots(result, args.plots)]
@@ -287,10 +289,13 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write("\n")
     else:
         print(table(result))
-        if design.defaulted:
-            print(f"\ndefault hardware ({len(design.defaulted)} values the file does not give; the build's report "
+        if result.defaulted:
+            print(f"\ndefault hardware ({len(result.defaulted)} values the file does not give; the build's report "
                   "lists them):")
-            print("\n".join(f"  {d}" for d in design.defaulted))
+            print("\n".join(f"  {d}" for d in result.defaulted))
+        if result.parts_table:
+            print("\nthe hardware as resolved (paste into the design file and change what you like):\n")
+            print(result.parts_table)
         if args.json:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
             Path(args.json).write_text(json.dumps(data, indent=2) + "\n")

@@ -144,6 +144,12 @@ class ComponentSet:
     ground: list[str] = field(default_factory=list)
     stationary: list[str] = field(default_factory=list)
     rotating: list[str] = field(default_factory=list)
+    # hardware keys the file left out whose default the layout sized from the placed drive:
+    # (design key, value in mm, why)
+    defaults: list[tuple[str, float, str]] = field(default_factory=list)
+    # part -> (design key, value in mm, what it does): a value of the designer's that the layout
+    # found moves the part clear of what it would run into (offered with an overlap)
+    fixes: dict[str, tuple[str, float, str]] = field(default_factory=dict)
 
     def add(self, name: str, body: Body | None, placement: np.ndarray, group: str, kind: str, role: str = "part",
             description: str = "", shared: bool = False, envelope: Body | None = None, toothed=None) -> str:
@@ -173,7 +179,7 @@ class ComponentSet:
         fixed = [g for g in self.ground if g not in self.rotating] + self.stationary  # a spindle turns
         return Hardware(tuple(self.components), tuple(self.joints), tuple(self.notes), dict(self.dimensions),
                         tuple(dict.fromkeys(self.ground)), tuple(dict.fromkeys(fixed)),
-                        tuple(dict.fromkeys(self.rotating)))
+                        tuple(dict.fromkeys(self.rotating)), tuple(self.defaults), dict(self.fixes))
 
 
 def analytic_body(component: Component) -> Body:
@@ -208,6 +214,8 @@ class Hardware:
     ground: tuple[str, ...] = ()
     stationary: tuple[str, ...] = ()
     rotating: tuple[str, ...] = ()
+    defaults: tuple[tuple[str, float, str], ...] = ()
+    fixes: dict[str, tuple[str, float, str]] = field(default_factory=dict)
 
     def component(self, name: str) -> Component:
         for c in self.components:
@@ -232,7 +240,9 @@ class Hardware:
     def to_dict(self, scale: float = 1.0) -> dict[str, Any]:
         return {"components": [c.to_dict(scale) for c in self.components],
                 "joints": [{"a": j.a, "b": j.b, "kind": j.kind, "why": j.why} for j in self.joints],
-                "ground": list(self.ground), "stationary": list(self.stationary), "rotating": list(self.rotating)}
+                "ground": list(self.ground), "stationary": list(self.stationary), "rotating": list(self.rotating),
+                "defaults": [{"key": k, "value": v / scale, "why": why} for k, v, why in self.defaults],
+                "fixes": {part: {"key": k, "value": v / scale, "why": why} for part, (k, v, why) in self.fixes.items()}}
 
 
 __all__ = ["Toothed", "JOINT_KINDS", "COLOURS", "transform", "at", "along_x", "Component", "Joint", "ComponentSet",

@@ -24,6 +24,7 @@ from geargen.core.flexures import spring_total_coils
 from geargen.design.stages import stages
 from geargen.design.stiffness import stiffness_design
 from geargen.drives.planetary.hardware import planetary_drive
+from geargen.drives.rules import Candidate, RuleBroken
 from geargen.errors import BuildError, DesignError
 from geargen.model import bodies as B
 from geargen.model.bevel_drive import bevel_drive
@@ -209,14 +210,25 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
         if c.name in over and not placed_box(analytic_body(c), c.placement)[0][2] >= z_cover + floor:
             raise DesignError(f"stages.{stage_list[-1].name}", f"{c.name} reaches down to the link cover (its top "
                               f"{z_cover + floor:.4g} mm)", "a stage that stands clear above the cover")
-    x_end = min((lowest_x_above(analytic_body(c), c.placement, z_cover)
-                 for c in out.components if c.group == "carriage" and c.name not in over), default=length) - gap
+    rising = [(lowest_x_above(analytic_body(c), c.placement, z_cover), c.name)
+              for c in out.components if c.group == "carriage" and c.name not in over]
+    x_first, first = min(rising, default=(length + gap, ""))
+    x_end = x_first - gap
     reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
     if not x_end > reach:
-        key = "parts.stage_bearing_width" if stage_list else "parts.input_shaft_to_bevel"
-        raise DesignError(key, f"the carriage rises above the upper bearings within {reach - x_end:.4g} mm of them: "
-                          "no room for the link cover's seats",
-                          "smaller cluster bearings" + ("" if stage_list else ", or a longer input_shaft_to_bevel"))
+        unit = design.length_unit
+        candidates = (Candidate("cluster_bearing_outer_diameter", -1, "smaller cluster bearings"),)
+        if stage_list:
+            candidates += (Candidate("stage_bearing_outer_diameter", -1, "smaller stage bearings"),)
+        else:
+            candidates = (Candidate("input_shaft_to_bevel", -1, "the bevel pair lower, less of it above the cover"),
+                          Candidate("bevel_face_width", -1, "a narrower bevel pair: its toe further out"),
+                          Candidate("motor_shaft_length", +1, "the motor further out")) + candidates
+        raise RuleBroken(f"parts.{candidates[0].name}_{unit}",
+                         f"{first} rises above the link cover's plane within {(reach - x_end) / design.mm_per_unit:.4g} "
+                         f"{unit} of the upper bearings' seats (x {x_first / design.mm_per_unit:.5g} {unit}; the seats "
+                         f"reach x {reach / design.mm_per_unit:.5g} {unit}): no room for the cover", None,
+                         "link_cover_room", x_end - reach, candidates)
     seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width),
               B.ring_relief(b.outer_diameter, sh.diameter)) for sh, b in uppers]
     cover = out.add("link_cover", B.link_cover(radius, wall, x_end, floor, seats), at(0, 0, z_cover), "link",
@@ -231,6 +243,35 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
                           blade_x=list(map(float, xs)), spring_total_coils=coils, **drive.get("dims", {}))
     out.notes.append(drive["note"])
     return out.freeze()
+
+
+def motor_clear_x(gears, z_axis: float, body_diameter: float, flange: float, gap: float) -> float:
+    """The least x (mm) of a motor lying along +x on the axis (y = 0, z = ``z_axis``) for which
+    neither its round body nor its square flange reaches any of the placed ``gears`` (their tip
+    circles over their faces), a ``gap`` clear: for each gear, the furthest x of its tip circle within
+    the band of y the motor's section covers at the gear's nearest height."""
+    x = -math.inf
+    for placed in gears:
+        for gear in placed.gears:
+            if not hasattr(gear, "tip_radius"):
+                continue
+            z0, z1 = placed.face_z(gear)
+            cx, cy = placed.centre
+            h = 0.0 if z0 <= z_axis <= z1 else min(abs(z0 - z_axis), abs(z1 - z_axis))
+            bands = []
+            if h < body_diameter / 2 + gap:
+                bands.append(math.sqrt(max((body_diameter / 2 + gap) ** 2 - h * h, 0.0)))
+            if h < flange / 2 + gap:
+                bands.append(flange / 2 + gap)
+            if not bands:
+                continue
+            band, rt = max(bands), gear.tip_radius
+            off = abs(cy) - band
+            if off <= 0:
+                x = max(x, cx + rt + gap)
+            elif off < rt:
+                x = max(x, cx + math.sqrt(rt * rt - off * off) + gap)
+    return x
 
 
 def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: float, d_in: float,
@@ -262,9 +303,12 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     # the gear's back face (its heel root circle's plane) must clear the carriage arm under it
     lowest = z_arm_top + gap + (flat_back_distance(gear_spec) - bev.apex_height("gear"))
     if z_heel < lowest - 1e-9:
-        shift = (lowest - z_heel) / (MM_PER_IN if layout.design.length_unit == "in" else 1.0)
-        raise DesignError("parts.input_shaft_to_bevel", f"puts the bevel gear's back (its heel root circle) into the "
-                          f"carriage arm under it", f"at least {shift:.4g} {layout.design.length_unit} more")
+        unit = layout.design.length_unit
+        shift = (lowest - z_heel) / layout.design.mm_per_unit
+        raise RuleBroken(f"parts.input_shaft_to_bevel_{unit}", f"puts the bevel gear's back (its heel root circle) "
+                         f"{shift:.4g} {unit} into the carriage arm under it", None, "bevel_above_arm",
+                         z_heel - lowest, (Candidate("input_shaft_to_bevel", +1, "the bevel pair higher"),
+                                           Candidate("carriage_plate_thickness", -1, "a thinner carriage arm")))
     gear_matrix, pinion_matrix = placed.gear_matrix, placed.pinion_matrix
     bevel_gear = out.add("bevel_gear", None, gear_matrix, "carriage", "bevel", toothed=Toothed(gear_spec, "flat"),
                          description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg, "
@@ -275,9 +319,25 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     out.join(bevel_gear, pinion, "meshing bevel gears: checked by the bevel mesh checker", kind="mesh")
     out.join("input_shaft", bevel_gear, "shaft in the bevel gear's bore")
     out.rotating += [bevel_gear, pinion]
-    # motor along +x, its stub ending on the pinion's back face
-    stub = s["motor_shaft_length"]
+    # motor along +x, its stub ending on the pinion's back face; its flange beyond every gear its
+    # body would otherwise reach (a default stub is made that long; a given one is the designer's,
+    # and the parts check names the length that clears)
     x_pinion_back = x_in + flat_back_distance(pinion_spec)
+    clear = motor_clear_x(layout.gears, z_apex, s["motor_body_diameter"], s["motor_flange"], gap)
+    stub_clear = clear - x_pinion_back
+    stub = s["motor_shaft_length"]
+    unit = layout.design.length_unit
+    key = f"parts.motor_shaft_length_{unit}"
+    if stub < stub_clear:
+        # the defaults' step: 0.5 mm, or 1/32 in
+        step = 0.5 if unit == "mm" else MM_PER_IN / 32
+        stub_clear = math.ceil(stub_clear / step - 1e-9) * step
+        if key in {d.key for d in layout.design.defaulted}:
+            out.defaults.append((key, stub_clear, "the stub that puts the motor's flange beyond the gears its body "
+                                                  "would reach"))
+            stub = stub_clear
+        else:
+            out.fixes["servo_motor"] = (key, stub_clear, "puts the motor's flange beyond the gears")
     x_flange = x_pinion_back + stub
     motor_r = s["motor_body_diameter"] / 2
     motor = out.add("servo_motor", B.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
