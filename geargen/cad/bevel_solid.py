@@ -480,26 +480,16 @@ def build_bevel(spec: BevelGearSpec, check: bool = False, back: str = "spherical
     return BevelSolid(shape, spec.name, spec, spec.length_unit, back)
 
 
-def flank_deviation(shape, spec: BevelGearSpec, grid: int = 12) -> np.ndarray:
-    """Deviations (mm) of points sampled on the solid's flank faces from the spherical involute.
-
-    Each B-spline face is sampled on a ``grid`` x ``grid`` parameter grid (points inside the face
-    only); a point between the base (or root) and tip cones, at distance R from the apex, is
-    compared, on the sphere of radius R, with the flank of its tooth: the deviation is the arc of
-    the circle of latitude between the point and the flank, R sin(theta) (|phi - phi_k| - phi(theta)),
-    an upper bound of its distance from the flank surface. Points of the root faces (on the root
-    cone) are left out by their polar angle."""
+def face_points(shape, grid: int = 12) -> np.ndarray:
+    """Points ``(n, 3)`` on the B-spline faces of ``shape`` (a bevel gear's flanks are its only ones;
+    a peer's may include others): each face sampled on a ``grid`` x ``grid`` parameter grid, points
+    inside the face only."""
     from OCP.BRep import BRep_Tool
     from OCP.BRepTools import BRepTools
     from OCP.BRepTopAdaptor import BRepTopAdaptor_FClass2d
     from OCP.TopAbs import TopAbs_FACE, TopAbs_IN
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
-
-    g = bevel_geometry(spec)
-    lo = max(g.base_cone_angle, g.root_cone_angle) + 0.02 * (g.tip_cone_angle - g.root_cone_angle)
-    hi = g.tip_cone_angle - 0.02 * (g.tip_cone_angle - g.root_cone_angle)
-    pitch = 2 * math.pi / spec.teeth
     out = []
     exp = TopExp_Explorer(shape, TopAbs_FACE)
     while exp.More():
@@ -512,18 +502,41 @@ def flank_deviation(shape, spec: BevelGearSpec, grid: int = 12) -> np.ndarray:
         inside = BRepTopAdaptor_FClass2d(face, 1e-9)
         for u in np.linspace(u0, u1, grid + 2)[1:-1]:
             for v in np.linspace(v0, v1, grid + 2)[1:-1]:
-                if inside.Perform(gp_Pnt2d(u, v)) != TopAbs_IN:
-                    continue
-                p = surface.Value(u, v)
-                x, y, z = p.X(), p.Y(), p.Z()
-                r = math.sqrt(x * x + y * y + z * z)
-                theta = math.acos(z / r)
-                if not lo <= theta <= hi:
-                    continue
-                phi = math.atan2(y, x)
-                local = abs(phi - pitch * round(phi / pitch))  # from the nearest tooth's centre
-                out.append(r * math.sin(theta) * (local - tooth_half_angle(spec, theta)))
-    return np.asarray(out)
+                if inside.Perform(gp_Pnt2d(u, v)) == TopAbs_IN:
+                    p = surface.Value(u, v)
+                    out.append((p.X(), p.Y(), p.Z()))
+    return np.array(out).reshape(-1, 3)
 
 
-__all__ = ["BevelSolid", "build_bevel", "bevel_volume", "flank_deviation", "FLANK_TOLERANCE"]
+def involute_deviation(spec: BevelGearSpec, points: np.ndarray, phase: float = 0.0,
+                       margins: tuple[float, float] = (0.02, 0.02)) -> tuple[np.ndarray, np.ndarray]:
+    """Signed deviations (mm, + = outside the tooth) of ``points`` ``(n, 3)`` (apex at the origin,
+    axis +z) from the spherical-involute flank of their tooth, and their side (-1 lower, +1 upper),
+    for tooth 0 centred on azimuth ``phase``. Only points between the base (or root) and tip cones
+    count, ``margins`` (fractions of the tooth depth) inside each: on the sphere of radius R the
+    deviation is the arc of the circle of latitude between the point and the flank,
+    R sin(theta) (|phi - phi_k| - phi(theta)), an upper bound of its distance from the flank."""
+    g = bevel_geometry(spec)
+    depth = g.tip_cone_angle - g.root_cone_angle
+    lo = max(g.base_cone_angle, g.root_cone_angle) + margins[0] * depth
+    hi = g.tip_cone_angle - margins[1] * depth
+    r = np.linalg.norm(points, axis=1)
+    theta = np.arccos(np.clip(points[:, 2] / np.maximum(r, 1e-300), -1.0, 1.0))
+    keep = (theta >= lo) & (theta <= hi)
+    r, theta, pts = r[keep], theta[keep], points[keep]
+    pitch = 2 * math.pi / spec.teeth
+    phi = np.arctan2(pts[:, 1], pts[:, 0]) - phase
+    local = phi - pitch * np.round(phi / pitch)  # from the nearest tooth's centre
+    dev = r * np.sin(theta) * (np.abs(local) - tooth_half_angle(spec, theta))
+    return dev, np.where(local < 0, -1, 1)
+
+
+def flank_deviation(shape, spec: BevelGearSpec, grid: int = 12) -> np.ndarray:
+    """Deviations (mm) of points sampled on the solid's flank faces (:func:`face_points`) from the
+    spherical involute (:func:`involute_deviation`, tooth 0 on azimuth 0); points of the root
+    faces (on the root cone) are left out by their polar angle."""
+    return involute_deviation(spec, face_points(shape, grid))[0]
+
+
+__all__ = ["BevelSolid", "build_bevel", "bevel_volume", "face_points", "involute_deviation", "flank_deviation",
+           "FLANK_TOLERANCE"]
