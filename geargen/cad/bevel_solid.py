@@ -24,8 +24,9 @@ solid by tests/cad/test_bevel_solid.py). Rulings are lines, toe and heel arcs ci
 surfaces and curves are built once and turned for the other teeth; neighbouring faces share their
 edges, so the shell is put together edge by edge (BRep_Builder), not sewn. The toe face (and a
 spherical back) is one spherical face bounded by the whole toothed outline, with a seam along the
-meridian through tooth 0's first root corner and an inner circle at the bore (or the web, or a
-degenerate edge at the pole). No root fillet: the flank meets the root cone (or the meridian
+meridian at azimuth 0 (tooth 0's tip arc is split there) and an inner circle at the bore (or the
+web, or a degenerate edge at the pole); a flat back's heel is a patch of the heel sphere per tooth
+and the plane within the heel root circle. No root fillet: the flank meets the root cone (or the meridian
 below the base cone) at a sharp edge.
 """
 
@@ -54,8 +55,10 @@ from geargen.design.bevel import BevelGearSpec
 from geargen.errors import BuildError
 from geargen.profile.bspline_fit import fit_function
 
-#: largest distance of a flank's B-spline from the spherical involute, relative to the heel cone
-#: distance R_e (on the 13 mm heel of the bench gears, 1.3e-9 mm; the fit reaches it with 2-3 spans)
+#: largest distance of a flank's B-spline (and of its curve on the spheres) from the spherical
+#: involute, relative to the heel cone distance R_e: 1.3e-9 mm on the 13 mm heel of the bench gears,
+#: reached with 2 spans (9 poles) on the gear, 7 (14 poles) on the pinion, whose flank starts on the
+#: base cone, where the involute's speed is zero
 FLANK_TOLERANCE = 1e-10
 _LOC = TopLoc_Location()
 _F, _R = TopAbs_FORWARD, TopAbs_REVERSED
@@ -260,16 +263,17 @@ class _Shell:
         self.builder = BRep_Builder()
         self.faces: list = []
 
-    def vertex(self, p, tolerance: float = KERNEL_TOLERANCE):
-        v = _vertex(self.builder, float(p[0]), float(p[1]), float(p[2]))
-        if tolerance > KERNEL_TOLERANCE:
-            self.builder.UpdateVertex(v, tolerance)
-        return v
+    def vertex(self, p):
+        return _vertex(self.builder, float(p[0]), float(p[1]), float(p[2]))
 
     def edge(self, curve, v0, v1, p0: float, p1: float, tolerance: float = KERNEL_TOLERANCE):
+        """An edge of ``curve`` over [p0, p1]; a tolerance above the kernel's goes to its vertices too
+        (a vertex's is never below its edges')."""
         e = _edge(self.builder, curve, v0, v1, p0, p1)
         if tolerance > KERNEL_TOLERANCE:
             self.builder.UpdateEdge(e, tolerance)
+            for v in (v0, v1):
+                self.builder.UpdateVertex(v, tolerance)
         return e
 
     def pcurve(self, edge, pcurve, surface, tolerance: float = KERNEL_TOLERANCE):
@@ -385,7 +389,7 @@ def _body(spec: BevelGearSpec, back: str):
         shell.pcurve(rulings[i - 1], c.ruling(t0), surface)
         loop = [(e, _F) for e in toes] + [(rulings[i], _F)] + [(e, _R) for e in heels[::-1]] + [(rulings[i - 1], _R)]
         if c.sense < 0:  # the same loop the other way round is the one counter-clockwise in (u, v)
-            loop = [(e, _R if o == _F else _F) for e, o in loop[::-1]]
+            loop = [(e, _R if way == _F else _F) for e, way in loop[::-1]]
         shell.face(surface, [loop], c.sense)
         toe_outline += toes
         heel_outline += heels
@@ -432,8 +436,8 @@ def _body(spec: BevelGearSpec, back: str):
         bore_low = toe_inner
     elif core.toe_inner_face == "web":
         web_plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, core.web_z), gp_Dir(0, 0, 1), x_axis))
-        rim = ri * math.sin(core.toe_inner)
-        shell.pcurve(toe_inner, Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), rim), web_plane)
+        meets_toe = ri * math.sin(core.toe_inner)  # the radius where the web's face meets the toe sphere
+        shell.pcurve(toe_inner, Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), meets_toe), web_plane)
         wires = [[(toe_inner, _F)]]
         if rb > 0:
             bore_low, _ = inner_circle(rb, core.web_z)

@@ -257,7 +257,7 @@ def back_plane_distance(spec: BevelGearSpec) -> float:
     """Distance from the apex, along the axis, of the plane through the heel's root circle (a flat
     back): every tooth lies nearer the apex than it, only the spherical cap inside the root cone
     reaches beyond."""
-    return spec.cone_distance * math.cos(spec.pitch_cone_angle - spec.dedendum_angle)
+    return spec.cone_distance * math.cos(bevel_geometry(spec).root_cone_angle)
 
 
 #: the backs a bevel gear solid is built with
@@ -293,11 +293,12 @@ class BevelCore:
 
 
 def bevel_core(spec: BevelGearSpec, back: str = "spherical") -> BevelCore:
+    """The core of ``spec``'s solid with ``back`` (one of :data:`BACKS`, else a DesignError naming it)."""
     if back not in BACKS:
         raise DesignError("back", f"{back!r} is not a bevel gear back", ", ".join(map(repr, BACKS)))
     ri, re = spec.toe_cone_distance, spec.cone_distance
     rb = spec.bore_diameter / 2
-    root = spec.pitch_cone_angle - spec.dedendum_angle
+    root = bevel_geometry(spec).root_cone_angle
     toe_bore = math.asin(rb / ri)
     bore_low = math.sqrt(ri * ri - rb * rb)
     if back == "spherical":
@@ -344,7 +345,7 @@ def bevel_volume(spec: BevelGearSpec, back: str = "spherical") -> float:
     root cone, back (heel sphere or plane), bore, web, toe sphere."""
     ri, re = spec.toe_cone_distance, spec.cone_distance
     rb = spec.bore_diameter / 2
-    root = spec.pitch_cone_angle - spec.dedendum_angle
+    root = bevel_geometry(spec).root_cone_angle
     core = bevel_core(spec, back)
     toe_root, heel_root = (ri * math.sin(root), ri * math.cos(root)), (re * math.sin(root), re * math.cos(root))
     pieces = [("line", toe_root, heel_root)]
