@@ -50,13 +50,22 @@ The same checks for every STEP, in this process after the runs: the last run's f
 (geargen.cad.export.read_step) and checked by geargen.cad.gear_solid.check_solid (one solid,
 BRepCheck valid, positive volume) and its volume integrated by solid_volume (Gauss-Kronrod,
 relative 1e-7); ``vol/geargen`` is a peer's volume over geargen's for the same case (rims, root
-fillets and wheel throats differ by design, so this is a sanity column, not a score).
+fillets and wheel throats differ by design, so this is a sanity column, not a score). For the
+bevel cases ``flank um`` is the flank's form deviation from the exact spherical involute on that
+STEP, every source measured alike (:func:`bevel_flank_accuracy`), with the tooth's mean thickness
+offset from the case's zero-backlash tooth in brackets.
+
+Measured (this machine, load ~10 on 2 cores from other agents, median of 3): bevel pinion geargen
+0.066 s, STEP 305 kB, flank 8e-9 um against py_gearworks 5.9 s, 1195 kB, 0.29 um; bevel gear
+geargen 0.086 s, 381 kB, 6e-8 um against 5.0 s, 977 kB, 1.3 um (the boolean build was 16.5 s /
+7.7 s, 795 / 724 kB, 4e-6 / 1e-5 um on the same load).
 """
 
 from __future__ import annotations
 
 import argparse
 import json
+import math
 import statistics
 import subprocess
 import sys
@@ -200,6 +209,49 @@ def step_check(path: Path) -> tuple[str, float | None]:
     return ("valid" if problem is None else problem), volume
 
 
+#: where each source's bevel gear has its apex and axis, to bring its STEP into geargen's frame (apex at
+#: the origin, teeth towards +z): py_gearworks puts the heel pitch circle in the xy plane, the apex on
+#: +z at r_p / tan(delta) (its BevelGear docstring; the bounding boxes agree)
+BEVEL_FRAMES = {"geargen": lambda spec: (0.0, 1.0),
+                "py_gearworks": lambda spec: (spec.reference_diameter / 2 / math.tan(spec.pitch_cone_angle), -1.0)}
+
+
+def bevel_flank_accuracy(path: Path, table: dict, source: str) -> dict:
+    """The flank deviation of a bevel gear's STEP read back, the same measure for every source: points
+    on its B-spline faces (geargen.cad.bevel_solid.face_points, 12 x 12 per face), brought into
+    geargen's frame (:data:`BEVEL_FRAMES`), compared with the exact spherical involute of the case
+    (involute_deviation) over the middle of the flank (10 % of the depth off the base or root cone,
+    20 % off the tip cone: py_gearworks truncates its tips by 0.1 m). The tooth's phase is searched
+    (median |deviation| least); a source's tooth may be thicker or thinner than the case's
+    zero-backlash tooth, so per flank side the mean offset is removed and reported as ``thickness_um``
+    (+ = thicker) and ``form_um`` is the largest deviation that remains."""
+    import numpy as np
+    from scipy.optimize import minimize_scalar
+
+    from geargen.cad.bevel_solid import face_points, involute_deviation
+    from geargen.cad.export import read_step
+    spec = read_spec(table, "bench")
+    apex_z, sense = BEVEL_FRAMES[source](spec)
+    pts = face_points(read_step(path).shape)
+    pts = np.column_stack([pts[:, 0], pts[:, 1], sense * (pts[:, 2] - apex_z)])
+    margins = (0.1, 0.2)
+    pitch = 2 * math.pi / spec.teeth
+
+    def spread(phase):
+        return float(np.median(np.abs(involute_deviation(spec, pts, phase, margins)[0])))
+    coarse = np.linspace(0.0, pitch, 721)
+    best = coarse[int(np.argmin([spread(p) for p in coarse]))]
+    step = pitch / 720
+    phase = minimize_scalar(spread, bounds=(best - step, best + step), method="bounded",
+                            options={"xatol": 1e-12}).x
+    dev, side = involute_deviation(spec, pts, phase, margins)
+    if not len(dev):
+        return dict(form_um=None, thickness_um=None, points=0)
+    offsets = {s: float(dev[side == s].mean()) for s in (-1, 1) if np.any(side == s)}
+    form = max(float(np.abs(dev[side == s] - m).max()) for s, m in offsets.items())
+    return dict(form_um=form * 1e3, thickness_um=sum(offsets.values()) * 1e3, points=int(len(dev)))
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--peers", default=None, help="python of the peers' venv (bench/peers/requirements.txt)")
@@ -248,18 +300,20 @@ def main(argv=None) -> int:
             if "failed" not in r and "refused" not in r:
                 r["valid"], r["volume"] = step_check(r["path"])
                 r["kb"] = r["path"].stat().st_size / 1e3
+                if table.get("kind") == "bevel" and source in BEVEL_FRAMES:
+                    r["flank"] = bevel_flank_accuracy(r["path"], table, source)
             rows.append((case, source, r))
             print(f"{case.name} / {source}: {({k: v for k, v in r.items() if k != 'path'})}", file=sys.stderr)
 
     print(f"\nBuild times, fresh process each, median of {args.repeat}; STEP files in {out}")
     header = ("case", "source", "import s", "build s", "STEP s", "STEP kB", "STEP read back", "volume mm3",
-              "vol/geargen", "what was built")
+              "vol/geargen", "flank um (thickness um)", "what was built")
     print(" | ".join(header))
     print(" | ".join("---" for _ in header))
     geargen_volume = {case.name: r.get("volume") for case, source, r in rows if source == "geargen"}
     for case, source, r in rows:
         if "failed" in r or "refused" in r:
-            print(" | ".join([case.name, source, "", "", "", "", "", "", "", r.get("failed") or r["refused"]]))
+            print(" | ".join([case.name, source, "", "", "", "", "", "", "", "", r.get("failed") or r["refused"]]))
             continue
         ref = geargen_volume.get(case.name)
         ratio = f"{r['volume'] / ref:.4f}" if source != "geargen" and ref and r["volume"] else ""
@@ -268,8 +322,12 @@ def main(argv=None) -> int:
             note += f"; {case.note}"
         if r.get("runs", args.repeat) < args.repeat:
             note += f" ({r['runs']} runs)"
+        flank = r.get("flank") or {}
+        accuracy = (f"{flank['form_um']:.2g} ({flank['thickness_um']:+.3g})" if flank.get("form_um") is not None
+                    else "")
         print(" | ".join([case.name, source, f"{r['import_s']:.2f}", f"{r['build_s']:.3f}", f"{r['step_s']:.3f}",
-                          f"{r['kb']:.0f}", r["valid"], f"{r['volume']:.1f}" if r["volume"] else "n/a", ratio, note]))
+                          f"{r['kb']:.0f}", r["valid"], f"{r['volume']:.1f}" if r["volume"] else "n/a", ratio, accuracy,
+                          note]))
     return 0
 
 

@@ -39,7 +39,7 @@ import numpy as np
 from geargen.design.assembly import Design, load_design
 from geargen.design.checks import checks_settings
 from geargen.design.export import export_settings
-from geargen.errors import DesignError, GeargenError
+from geargen.errors import GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement
 from geargen.drives import resolve
 from geargen.units import LENGTH_SUFFIXES

@@ -41,19 +41,8 @@ def build_part(spec, check: bool = False):
 
 def build_toothed(toothed):
     """The solid of a toothed component of a drive's hardware (:class:`geargen.model.components.Toothed`):
-    its family's solid, a bevel gear cut flat at its back (``back = "flat"``:
-    :func:`geargen.core.bevel.flat_back_distance`, with the web to the bore where the gear needs one)."""
-    from geargen.cad import parts as P
-    from geargen.cad.bevel_solid import build_bevel
-    from geargen.core.bevel import flat_back_distance, flat_back_web
-    spec = toothed.spec
-    if toothed.back != "flat":
-        return build_part(spec, check=True).shape
-    shape = build_bevel(spec, check=True).shape
-    r = spec.cone_distance * 1.1
-    back = flat_back_distance(spec)
-    web = flat_back_web(spec)
-    if web is not None:
-        a0, rim = web
-        shape = P.fuse([shape, P.translate(P.cylinder(2 * rim, r - a0, spec.bore_diameter), (0, 0, a0))], spec.name)
-    return P._single(P.cut(shape, P.box(2 * r, 2 * r, r, (-r, -r, back))), spec.name)
+    its family's solid, a bevel gear with the back the component asks for."""
+    if getattr(toothed.spec, "kind", "") == "bevel":
+        from geargen.cad.bevel_solid import build_bevel
+        return build_bevel(toothed.spec, check=True, back=toothed.back).shape
+    return build_part(toothed.spec, check=True).shape

@@ -195,6 +195,174 @@ def check_tooth(spec: BevelGearSpec) -> None:
                             "(its flank below the base cone is not generated)")
 
 
+@dataclass(frozen=True)
+class ToothOutline:
+    """Tooth 0's outline on the unit sphere about the apex (rad), the data a solid is built from.
+
+    The tooth is centred on azimuth 0; its lower flank (negative azimuth) is the spherical
+    involute of :func:`spherical_involute_points` turned by ``-involute_offset``, from the roll
+    angle ``roll_start`` (on the root cone, or 0 on the base cone) to ``roll_tip`` (on the tip
+    cone); the upper flank is its mirror image in the xz plane. Below the base cone (``meridian``:
+    the root cone lies inside it) each flank continues along the meridian at azimuth
+    -/+ ``root_half_angle`` down to the root cone."""
+
+    root: float  # polar angle of the root cone, delta_f
+    flank_start: float  # polar angle where the involute starts: max(delta_f, delta_b)
+    tip: float  # polar angle of the tip cone, delta_a
+    base_cone: float
+    root_half_angle: float  # half the tooth's azimuth at flank_start (and along the meridian below it)
+    tip_half_angle: float
+    involute_offset: float  # phi_0 = s / d + inv_s(delta): the half angle the involute turns back from
+    roll_start: float
+    roll_tip: float
+
+    @property
+    def meridian(self) -> bool:
+        return self.flank_start > self.root
+
+
+def involute_roll(polar, base_cone: float):
+    """The rolling angle t (about the axis) at which the spherical involute of ``base_cone`` reaches
+    ``polar``: t = psi / sin delta_b (:func:`spherical_involute_roll`)."""
+    return spherical_involute_roll(polar, base_cone) / math.sin(base_cone)
+
+
+def tooth_outline(spec: BevelGearSpec) -> ToothOutline:
+    g = bevel_geometry(spec)
+    start = max(g.root_cone_angle, g.base_cone_angle)
+    return ToothOutline(
+        root=g.root_cone_angle, flank_start=start, tip=g.tip_cone_angle, base_cone=g.base_cone_angle,
+        root_half_angle=tooth_half_angle(spec, start), tip_half_angle=tooth_half_angle(spec, g.tip_cone_angle),
+        involute_offset=tooth_half_angle(spec, g.base_cone_angle),
+        roll_start=float(involute_roll(start, g.base_cone_angle)),
+        roll_tip=float(involute_roll(g.tip_cone_angle, g.base_cone_angle)))
+
+
+def lower_flank_points(outline: ToothOutline, roll) -> tuple[np.ndarray, np.ndarray]:
+    """Unit vectors ``(n, 3)`` of tooth 0's lower flank at the rolling angles ``roll``, and their
+    derivatives d/dt. From the involute's definition: dP/dt = sin psi cos delta_b (cos delta_b cos t,
+    cos delta_b sin t, -sin delta_b) (zero on the base cone, where the involute starts), turned
+    with the point by -phi_0 about the axis."""
+    t = np.atleast_1d(np.asarray(roll, dtype=float))
+    sb, cb = math.sin(outline.base_cone), math.cos(outline.base_cone)
+    p = spherical_involute_points(t, outline.base_cone)
+    speed = np.sin(t * sb) * cb
+    d = speed[:, None] * np.stack([cb * np.cos(t), cb * np.sin(t), np.full_like(t, -sb)], axis=-1)
+    c, s = math.cos(outline.involute_offset), math.sin(outline.involute_offset)
+    turn = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])  # rotation by -phi_0
+    return p @ turn.T, d @ turn.T
+
+
+def back_plane_distance(spec: BevelGearSpec) -> float:
+    """Distance from the apex, along the axis, of the plane through the heel's root circle (a flat
+    back): every tooth lies nearer the apex than it, only the spherical cap inside the root cone
+    reaches beyond."""
+    return spec.cone_distance * math.cos(bevel_geometry(spec).root_cone_angle)
+
+
+#: the backs a bevel gear solid is built with
+BACKS = ("spherical", "flat")
+
+
+@dataclass(frozen=True)
+class BevelCore:
+    """The axisymmetric part of a bevel gear solid inside its root cone (mm, rad; z along the axis
+    from the apex, rho from the axis), for the back ``back``:
+
+    - ``"spherical"``: between the toe and heel spheres, less the bore;
+    - ``"flat"``: the same cut by the plane z = ``back_z`` through the heel root circle
+      (:func:`back_plane_distance`). When the toe sphere lies beyond that plane (R_i >= back_z, a
+      gear of large cone angle) nothing would join the toothed ring to the axis: a web (``web``)
+      does, a disc rho <= ``web_rim`` from z = ``web_z`` = (R_i + R_e)/2 cos delta_f to the back
+      plane, its rim half way between the toe sphere and the root cone at that height, so it stays
+      inside the root cone and runs into the ring.
+
+    ``toe_inner``: polar angle of the toe face's inner circle (0: the face reaches the axis),
+    ``toe_inner_face`` the face beyond it (``"bore"``, ``"web"``, or None); ``heel_inner`` the same
+    on the heel sphere (spherical back); ``bore_z`` the bore's (z_low, z_high), None without a bore."""
+
+    back: str
+    back_z: float | None
+    web: bool
+    web_z: float | None
+    web_rim: float | None
+    toe_inner: float
+    toe_inner_face: str | None
+    heel_inner: float | None
+    bore_z: tuple[float, float] | None
+
+
+def bevel_core(spec: BevelGearSpec, back: str = "spherical") -> BevelCore:
+    """The core of ``spec``'s solid with ``back`` (one of :data:`BACKS`, else a DesignError naming it)."""
+    if back not in BACKS:
+        raise DesignError("back", f"{back!r} is not a bevel gear back", ", ".join(map(repr, BACKS)))
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    rb = spec.bore_diameter / 2
+    root = bevel_geometry(spec).root_cone_angle
+    toe_bore = math.asin(rb / ri)
+    bore_low = math.sqrt(ri * ri - rb * rb)
+    if back == "spherical":
+        return BevelCore(back, None, False, None, None, toe_bore, "bore" if rb > 0 else None,
+                         math.asin(rb / re), (bore_low, math.sqrt(re * re - rb * rb)) if rb > 0 else None)
+    plane = back_plane_distance(spec)
+    if ri < plane:
+        return BevelCore(back, plane, False, None, None, toe_bore, "bore" if rb > 0 else None, None,
+                         (bore_low, plane) if rb > 0 else None)
+    web_z = (ri + re) / 2 * math.cos(root)
+    rim = (math.sqrt(ri * ri - web_z * web_z) + web_z * math.tan(root)) / 2
+    web_meets_toe = math.sqrt(ri * ri - web_z * web_z)  # the web's face at web_z ends on the toe sphere
+    if rb >= web_meets_toe:  # the bore takes the web's face away: the bore runs to the toe sphere
+        return BevelCore(back, plane, True, web_z, rim, toe_bore, "bore", None, (bore_low, plane))
+    return BevelCore(back, plane, True, web_z, rim, math.acos(web_z / ri), "web", None,
+                     (web_z, plane) if rb > 0 else None)
+
+
+def _revolved(pieces) -> float:
+    """Volume of the region of the (rho, z) half plane bounded counter-clockwise by ``pieces``,
+    turned about the z axis: pi times the loop integral of rho^2 dz (Green). A piece is
+    ``("line", (rho0, z0), (rho1, z1))``, on which the integral is (z1 - z0)(rho0^2 + rho0 rho1 +
+    rho1^2) / 3, or ``("arc", R, theta0, theta1)`` about the origin (rho = R sin theta, z = R cos
+    theta), where it is -R^3 [cos^3 theta / 3 - cos theta] from theta0 to theta1."""
+    total = 0.0
+    for piece in pieces:
+        if piece[0] == "line":
+            (r0, z0), (r1, z1) = piece[1], piece[2]
+            total += (z1 - z0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3
+        else:
+            _, radius, t0, t1 = piece
+
+            def f(t):
+                return math.cos(t) ** 3 / 3 - math.cos(t)
+            total -= radius ** 3 * (f(t1) - f(t0))
+    return math.pi * total
+
+
+def bevel_volume(spec: BevelGearSpec, back: str = "spherical") -> float:
+    """Volume (mm^3) of the bevel gear solid with the back ``back`` (:func:`bevel_core`), independent
+    of the CAD kernel: the teeth, z times the tooth's solid angle (:func:`tooth_solid_angle`) times
+    (R_e^3 - R_i^3) / 3 (every tooth lies between the spheres and nearer the apex than the flat back),
+    plus the core inside the root cone, the revolution of its meridian outline (:func:`_revolved`):
+    root cone, back (heel sphere or plane), bore, web, toe sphere."""
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    rb = spec.bore_diameter / 2
+    root = bevel_geometry(spec).root_cone_angle
+    core = bevel_core(spec, back)
+    toe_root, heel_root = (ri * math.sin(root), ri * math.cos(root)), (re * math.sin(root), re * math.cos(root))
+    pieces = [("line", toe_root, heel_root)]
+    if core.back == "spherical":
+        pieces.append(("arc", re, root, core.heel_inner))
+        if rb > 0:
+            pieces.append(("line", (rb, core.bore_z[1]), (rb, core.bore_z[0])))
+    else:
+        pieces.append(("line", heel_root, (rb, core.back_z)))
+        if rb > 0:
+            pieces.append(("line", (rb, core.back_z), (rb, core.bore_z[0])))
+        if core.toe_inner_face == "web":
+            pieces.append(("line", (rb, core.web_z), (ri * math.sin(core.toe_inner), core.web_z)))
+    pieces.append(("arc", ri, core.toe_inner, root))
+    return spec.teeth * tooth_solid_angle(spec) * (re ** 3 - ri ** 3) / 3 + _revolved(pieces)
+
+
 def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:
     """Transverse contact ratio of the back-cone (Tredgold) equivalent spur pair at the heel:
     (sqrt(R_va1^2 - R_vb1^2) + sqrt(R_va2^2 - R_vb2^2) - (R_v1 + R_v2) sin alpha) / (pi m cos alpha),
@@ -241,39 +409,19 @@ def spherical_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = N
     return path / (2 * math.pi * math.sin(base_cone_angle(d1, a)) / spec.teeth)
 
 
-def flat_back_distance(spec: BevelGearSpec) -> float:
-    """Distance along the axis from the apex to a bevel gear's flat back (mm): the plane through
-    its heel root circle. The toothed body lies nearer the apex; only the blank's spherical back
-    (inside the root cone) reaches beyond, and a gear cut flat there keeps every tooth whole."""
-    return spec.cone_distance * math.cos(bevel_geometry(spec).root_cone_angle)
-
-
-def flat_back_web(spec: BevelGearSpec) -> tuple[float, float] | None:
-    """The web that joins a flat-backed bevel gear's toothed ring to its bore when the toe sphere
-    lies beyond the flat back (a gear of large cone angle leaves the axis bare): ``(a0, rim)``, a
-    disc from ``a0`` along the axis (the middle of the face projected on the root cone) to the
-    back, of radius ``rim`` half way between the toe sphere and the root cone there, so it stays
-    inside the root cone and runs into the ring. None when the gear needs no web."""
-    ri, re = spec.toe_cone_distance, spec.cone_distance
-    if ri < flat_back_distance(spec):
-        return None
-    root = bevel_geometry(spec).root_cone_angle
-    a0 = (ri + re) / 2 * math.cos(root)
-    return a0, (math.sqrt(ri * ri - a0 * a0) + a0 * math.tan(root)) / 2
-
-
 def flat_back_envelope(spec: BevelGearSpec, points: int = 48) -> list[np.ndarray]:
-    """Closed (r, s) profiles (mm; s along the axis from the apex) whose revolutions hold a bevel
-    gear cut flat at its back (:func:`flat_back_distance`): between the toe and heel spheres, inside
-    the tip cone, outside the bore, nearer the apex than the back; with the web when it has one
-    (:func:`flat_back_web`). An envelope: the teeth reach the tip cone only at their tips."""
+    """Closed (rho, z) profiles (mm; z along the axis from the apex) whose revolutions hold the
+    flat-backed bevel gear solid (:func:`bevel_core` with ``back = "flat"``): between the toe and heel
+    spheres, inside the tip cone, outside the bore, nearer the apex than the back plane; and its web
+    when it has one. An envelope: the teeth reach the tip cone only at their tips."""
     g = bevel_geometry(spec)
+    core = bevel_core(spec, "flat")
     ri, re, da = g.toe_cone_distance, g.cone_distance, g.tip_cone_angle
-    back, rb = flat_back_distance(spec), spec.bore_diameter / 2
+    back, rb = core.back_z, spec.bore_diameter / 2
     outline = [(ri * math.sin(da), ri * math.cos(da))]
     heel = np.linspace(da, math.acos(min(back / re, 1.0)), points)
     outline += [(re * math.sin(p), re * math.cos(p)) for p in heel]  # heel sphere, tip cone to the back
-    if ri < back:
+    if not core.web:
         outline += [(rb, back), (rb, math.sqrt(max(ri * ri - rb * rb, 0.0)))]
         toe = np.linspace(math.asin(min(rb / ri, 1.0)), da, points)
     else:  # the toe sphere lies beyond the back: the ring ends on the back plane
@@ -282,10 +430,8 @@ def flat_back_envelope(spec: BevelGearSpec, points: int = 48) -> list[np.ndarray
         toe = np.linspace(math.asin(inner / ri), da, points)
     outline += [(ri * math.sin(p), ri * math.cos(p)) for p in toe[:-1]]  # toe sphere back to the start
     profiles = [np.array(outline)]
-    web = flat_back_web(spec)
-    if web is not None:
-        a0, rim = web
-        profiles.append(np.array([(rb, a0), (rim, a0), (rim, back), (rb, back)]))
+    if core.web:
+        profiles.append(np.array([(rb, core.web_z), (core.web_rim, core.web_z), (core.web_rim, back), (rb, back)]))
     return profiles
 
 
@@ -352,6 +498,8 @@ def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_
     return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
 
 
-__all__ = ["flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "flat_back_distance", "flat_back_web", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+__all__ = ["flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
            "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
-           "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio"]
+           "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio",
+           "ToothOutline", "involute_roll", "tooth_outline", "lower_flank_points", "back_plane_distance", "BACKS",
+           "BevelCore", "bevel_core", "bevel_volume"]

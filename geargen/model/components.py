@@ -76,11 +76,11 @@ def along_x(x, y, z, towards_minus: bool = False) -> np.ndarray:
 @dataclass(frozen=True)
 class Toothed:
     """A toothed part of a drive's hardware, made by its family: ``spec`` (a bevel gear of the motor
-    drive), and ``back`` = "flat" for a bevel gear cut flat through its heel root circle
-    (:func:`geargen.core.bevel.flat_back_distance`), "own" for the family's own solid."""
+    drive), and its ``back``: "flat" for a bevel gear cut flat through its heel root circle
+    (:func:`geargen.core.bevel.bevel_core`), "spherical" for the heel sphere."""
 
     spec: Any
-    back: str = "own"
+    back: str = "spherical"
 
 
 @dataclass(frozen=True, eq=False)

@@ -192,6 +192,16 @@ def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: 
     return SplineFit(degree, knots, mults, poles, err, length, (t0, t1), mapped is not None)
 
 
+def fit_function(point, deriv, length: float, tolerance: float, degree: int = FIT_DEGREE,
+                 max_spans: int = 64) -> SplineFit:
+    """Fit any smooth curve ``point(s)`` ``(n, d)`` for s in [0, ``length``] (``deriv`` its d/ds) the
+    same way as a segment (exact ends and end tangents, fewest uniform spans within ``tolerance`` at
+    the same parameter); its columns may mix coordinates, e.g. a 3-D curve with its curve on a
+    surface, which then share knots and parameter."""
+    poles, knots, mults, err = _fit(point, deriv, length, tolerance, degree, max_spans)
+    return SplineFit(degree, knots, mults, poles, err, length, (0.0, length))
+
+
 def fit_rotation(rate: float, length: float, tolerance: float, degree: int = FIT_DEGREE,
                  max_spans: int = 64) -> SplineFit:
     """Fit ``(cos(rate z), sin(rate z))`` for z in [0, length] (mm; ``rate`` rad/mm) to
@@ -216,4 +226,4 @@ def greville(fit: SplineFit) -> np.ndarray:
     return np.array([t[i + 1:i + p + 1].mean() for i in range(len(t) - p - 1)])
 
 
-__all__ = ["SplineFit", "fit_segment", "fit_rotation", "greville", "FIT_DEGREE"]
+__all__ = ["SplineFit", "fit_segment", "fit_function", "fit_rotation", "greville", "FIT_DEGREE"]

@@ -19,7 +19,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from geargen.core.bevel import bevel_geometry, bevel_pair_geometry, flat_back_distance
+from geargen.core.bevel import back_plane_distance, bevel_core, bevel_pair_geometry
 from geargen.core.flexures import spring_total_coils
 from geargen.design.stages import stages
 from geargen.design.stiffness import stiffness_design
@@ -56,7 +56,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
         raise DesignError("springs.installed_length", "missing (the springs' length in the model)", "a length")
     out = ComponentSet()
     g = {p.name: p for p in layout.gears}
-    inp, outg = g["input"], g["output"]
+    inp = g["input"]
     # each cluster: one part, or its large and small gear as two parts on one shaft
     members = {side: [p for p in layout.gears if p.group == f"cluster_{side}"] for side in ("a", "b")}
     clusters = [members["a"][0], members["b"][0]]
@@ -81,7 +81,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
         sh = placed_shafts[f"cluster_{side}"]
         shaft_with_bearings(sh, f"cluster_{side}", f"d {sh.diameter:.4g} mm", [m.name for m in members[side]],
                             "cluster gear on its shaft (pressed and bonded)")
-    oshaft = shaft_with_bearings(placed_shafts["output"], "output", f"joint shaft d {placed_shafts['output'].diameter:.4g} mm",
+    shaft_with_bearings(placed_shafts["output"], "output", f"joint shaft d {placed_shafts['output'].diameter:.4g} mm",
                                  ["output"], "shaft in the output gear's bore")
     bw, bod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
     zb_lo, zb_hi = (b.z for b in placed_shafts["cluster_a"].bearings)
@@ -301,7 +301,7 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     if not math.isclose(gear_spec.bore_diameter, d_in):
         raise BuildError("bevel gear: its bore is not the input shaft")
     # the gear's back face (its heel root circle's plane) must clear the carriage arm under it
-    lowest = z_arm_top + gap + (flat_back_distance(gear_spec) - bev.apex_height("gear"))
+    lowest = z_arm_top + gap + (back_plane_distance(gear_spec) - bev.apex_height("gear"))
     if z_heel < lowest - 1e-9:
         unit = layout.design.length_unit
         shift = (lowest - z_heel) / layout.design.mm_per_unit
@@ -322,7 +322,7 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     # motor along +x, its stub ending on the pinion's back face; its flange beyond every gear its
     # body would otherwise reach (a default stub is made that long; a given one is the designer's,
     # and the parts check names the length that clears)
-    x_pinion_back = x_in + flat_back_distance(pinion_spec)
+    x_pinion_back = x_in + back_plane_distance(pinion_spec)
     clear = motor_clear_x(layout.gears, z_apex, s["motor_body_diameter"], s["motor_flange"], gap)
     stub_clear = clear - x_pinion_back
     stub = s["motor_shaft_length"]
@@ -345,14 +345,8 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
                     along_x(x_flange, 0, z_apex), "carriage", "motor", description="servo motor with encoder (envelope)")
     out.join(motor, pinion, "motor shaft stub on the bevel pinion", kind="motor")
     x_end = x_flange + s["motor_flange_thickness"] + s["motor_body_length"]
-    # the input shaft fills the gear's bore up to the toe, or its web's face
-    rb = d_in / 2
-    back = flat_back_distance(gear_spec)
-    if gear_spec.toe_cone_distance >= back:
-        input_top = z_apex - (gear_spec.toe_cone_distance + gear_spec.cone_distance) / 2 \
-            * math.cos(bevel_geometry(gear_spec).root_cone_angle)
-    else:
-        input_top = z_apex - math.sqrt(gear_spec.toe_cone_distance ** 2 - rb * rb)
+    # the input shaft fills the gear's bore from its lower end (the toe, or the web's face)
+    input_top = z_apex - bevel_core(gear_spec, "flat").bore_z[0]
     return dict(x_end=x_end, z_axis=z_apex, motor_r=motor_r, z_top=z_apex + motor_r,
                 saddle_x0=x_flange + s["motor_flange_thickness"] + gap, input_top=input_top,
                 dims=dict(bevel=bev, bevel_apex=apex),
