@@ -1010,11 +1010,11 @@ def _damage_safety(levels, curve, reference_strength) -> float:
     """The factor S with D(levels' stresses times S) = 1 (brentq on log S)."""
     from scipy.optimize import brentq
 
-    def f(log_s):
-        return math.log(max(_damage([(s * math.exp(log_s), n) for s, n in levels], curve, reference_strength),
-                            1e-300))
+    def f(log_s):  # log D, grows with S; capped where a level passes the static strength (D infinite)
+        d = _damage([(s * math.exp(log_s), n) for s, n in levels], curve, reference_strength)
+        return min(math.log(max(d, 1e-300)), 1e3)
     lo, hi = math.log(1e-3), math.log(1e3)
-    if f(lo) < 0 or f(hi) > 0:
+    if f(lo) > 0 or f(hi) < 0:
         return math.nan
     return math.exp(brentq(f, lo, hi, xtol=1e-12))
 
