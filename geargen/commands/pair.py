@@ -315,8 +315,7 @@ def rate_from_args(args, gear1: GearSpec, gear2: GearSpec, centre_distance_mm: f
         geo = rating_geometry(gear1, gear2, centre_distance_mm)
         load = 2 * torque_nmm / geo.reference_diameters[0]
         rating = rate_pair(geo, load, conditions, materials)
-        widths = face_width_for_minimum_safety(lambda b: geo if b is None else rating_geometry(
-            gear1, gear2, centre_distance_mm, b), load, conditions, materials)
+        widths = face_width_for_minimum_safety(geo, load, conditions, materials)
     except DesignError as exc:
         flag = _RATING_FIELD_FLAGS.get(exc.field.split(".")[-1])
         if flag is None:

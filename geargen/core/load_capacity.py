@@ -42,10 +42,10 @@ Units: mm, N, N/mm^2 (= MPa), um where the standard uses um (deviations, roughne
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Sequence
 
-from geargen.core.iso6336_materials import MATERIALS, AllowableStress, Material, allowable_stress
+from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
 from geargen.errors import DesignError
 
 STANDARD = "ISO 6336-2:2019 / ISO 6336-3:2019, method B"
@@ -149,6 +149,16 @@ class RatingGeometry:
     thinning_normal: tuple[float, float]  # normal tooth thinning at the reference cylinder, mm
     rim_thickness: tuple[float | None, float | None]  # s_R under the root; None: solid to the axis
     rack_teeth: int | None
+    double_helical: bool = False
+
+    def with_face_width(self, face_width: float) -> "RatingGeometry":
+        """The same mesh carrying ``face_width`` (mm; both halves of a double-helical pair): only
+        b and eps_beta change."""
+        if not (math.isfinite(face_width) and face_width > 0):
+            raise DesignError("face_width", f"{face_width!r} mm is out of range", "> 0 mm")
+        half = face_width / 2 if self.double_helical else face_width
+        return replace(self, face_width=face_width, half_face_width=half,
+                       eps_beta=half * math.sin(self.helix_angle) / (math.pi * self.normal_module))
 
     @property
     def gear_ratio(self) -> float:
@@ -169,7 +179,6 @@ class RatingGeometry:
     def line_of_action_radii(self, pinion_roll: float) -> tuple[float, float]:
         """Radii of curvature (transverse) of both flanks at the contact point where the pinion's
         involute has roll length ``pinion_roll``; the ring's is concave (its own, positive)."""
-        rb1 = self.base_diameters[0] / 2
         if self.kind == "rack":
             return pinion_roll, math.inf
         line = self.centre_distance * math.sin(self.working_pressure_angle)
@@ -227,7 +236,7 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
     p_bt = math.pi * gear1.transverse_module * math.cos(alpha_t)
     d1, db1, da1 = 2 * gear1.reference_radius, 2 * gear1.base_radius, 2 * gear1.tip_radius
     common = dict(normal_module=m_n, normal_pressure_angle=a_n, helix_angle=beta, base_helix_angle=beta_b,
-                  transverse_pressure_angle=alpha_t, face_width=b, half_face_width=half,
+                  transverse_pressure_angle=alpha_t, face_width=b, half_face_width=half, double_helical=double,
                   eps_beta=half * math.sin(beta) / (math.pi * m_n))
     if gear2.kind == "rack":
         from geargen.core.rack import rack_pinion_geometry
@@ -920,22 +929,20 @@ class FaceWidthSolution:
         return max(self.pitting, self.bending)
 
 
-def face_width_for_minimum_safety(make_geometry, tangential_load: float, conditions: RatingConditions,
+def face_width_for_minimum_safety(geo: RatingGeometry, tangential_load: float, conditions: RatingConditions,
                                   materials: tuple[Material, Material],
                                   reversed_bending: tuple[bool, bool] = (False, False)) -> FaceWidthSolution:
-    """Solve ``min S_H(b) = S_Hmin`` and ``min S_F(b) = S_Fmin`` for b. ``make_geometry(b)`` gives
-    the mesh at face width b (mm). Searched from 0.05 m_n to 1000 m_n (brentq on log b, the safety
-    factors growing with b). Bad inputs at a trial width (an accuracy grade's scope) end the
-    search with the error."""
+    """Solve ``min S_H(b) = S_Hmin`` and ``min S_F(b) = S_Fmin`` for the face width b of the mesh
+    ``geo`` (:meth:`RatingGeometry.with_face_width`). Searched from 0.05 m_n to 1000 m_n (brentq on
+    log b, the safety factors growing with b)."""
     from scipy.optimize import brentq
 
-    probe = make_geometry(None)
-    m_n = probe.normal_module
+    m_n = geo.normal_module
     lo, hi = math.log(0.05 * m_n), math.log(1000.0 * m_n)
     s_hmin, s_fmin = conditions.minimum_safety
 
     def margin(log_b, key, minimum):
-        r = rate_pair(make_geometry(math.exp(log_b)), tangential_load, conditions, materials, reversed_bending)
+        r = rate_pair(geo.with_face_width(math.exp(log_b)), tangential_load, conditions, materials, reversed_bending)
         return min(r[key]) - minimum
 
     def solve(key, minimum):
@@ -1103,13 +1110,9 @@ def rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: Sequence[
     flanks = {case.flank for case in load_cases}
     reversed_bending = (len(flanks) > 1, len(flanks) > 1)
     geo = rating_geometry(gear1, gear2, centre_distance, face_width)
-
-    def make(b):
-        return geo if b is None else rating_geometry(gear1, gear2, centre_distance, b)
-
     rated = tuple((case, rate_pair(geo, case.tangential_load, conditions, materials, reversed_bending))
                   for case in load_cases)
-    widths = tuple(face_width_for_minimum_safety(make, case.tangential_load, conditions, materials, reversed_bending)
+    widths = tuple(face_width_for_minimum_safety(geo, case.tangential_load, conditions, materials, reversed_bending)
                    for case in load_cases)
     spectra = tuple(s for s in (spectrum_damage(rated, f) for f in FLANKS) if s is not None)
     return MeshRating(cases=rated, spectra=spectra, face_widths=widths)

@@ -392,12 +392,12 @@ def test_rated_at_the_solved_face_width_the_safety_factor_is_the_minimum(given):
     # K_Hbeta computed (it changes with b through f_sh and the line load) and given
     g1, g2 = helical_gears()
     conditions = lc.RatingConditions(**{**CONDITIONS.__dict__, "face_load_factor": given})
-    make = lambda b: lc.rating_geometry(g1, g2, 136.0, b)  # noqa: E731
     load = 2 * 160e3 / (19 * 3 / math.cos(22 * DEG))
-    sol = lc.face_width_for_minimum_safety(make, load, conditions, CARBURISED)
+    sol = lc.face_width_for_minimum_safety(lc.rating_geometry(g1, g2, 136.0), load, conditions, CARBURISED)
     assert sol.message == ""
-    at_h = lc.rate_pair(make(sol.pitting), load, conditions, CARBURISED)
-    at_f = lc.rate_pair(make(sol.bending), load, conditions, CARBURISED)
+    # rated at the returned widths with the mesh built anew for that width (not the solve's shortcut)
+    at_h = lc.rate_pair(lc.rating_geometry(g1, g2, 136.0, sol.pitting), load, conditions, CARBURISED)
+    at_f = lc.rate_pair(lc.rating_geometry(g1, g2, 136.0, sol.bending), load, conditions, CARBURISED)
     # 1e-6: the solve's tolerance is 1e-13 on log b; the safety factors are smooth in b
     assert min(at_h.S_H) == pytest.approx(1.1, abs=1e-6)
     assert min(at_f.S_F) == pytest.approx(1.6, abs=1e-6)
