@@ -258,7 +258,7 @@ _RATING_FLAGS = {"speed": "--speed", "life": "--life", "material": "--material",
 _RATING_FIELD_FLAGS = {**_RATING_FLAGS, "tangential_load": "--torque", "application_factor": "--application-factor",
                        "tip_relief": "--tip-relief", "grade": "--accuracy-grade",
                        "reference_diameter": "--accuracy-grade", "normal_module": "--accuracy-grade",
-                       "face_width": "--face-width"}
+                       "face_width": "--face-width", "rack_tip_radius": "--rack-tip-radius"}
 
 
 def _per_gear(args, name: str, values, default=None):

@@ -600,6 +600,9 @@ def tooth_root_form(teeth: float, profile_shift: float, normal_module: float, no
                           f"z_n {z_n:.4g}, x {x:.4g}", "a gear whose fillet the tangent can touch")
     s_fn = m * (z_n * math.sin(math.pi / 3 - theta) + math.sqrt(3) * (g / math.cos(theta) - rho / m))
     rho_f = m * (rho / m + 2 * g * g / (math.cos(theta) * (z_n * math.cos(theta) ** 2 - 2 * g)))
+    if not rho_f > 1e-6 * m:  # a rack (z_n 1e9) keeps 1e-8 m_n of trochoid where its rho_fP is 0
+        raise DesignError("rack_tip_radius", f"a sharp root (rho_F = {rho_f:.3g} mm at the critical section) has no "
+                          "finite stress correction factor Y_S", "a root fillet radius > 0")
     d_n = m * z_n
     d_bn = d_n * math.cos(a_n)
     d_an = d_n + 2 * tip_height
@@ -1068,6 +1071,10 @@ class MeshRating:
         return all(r.ok for _, r in self.cases) and spectra_ok
 
     def to_dict(self) -> dict[str, Any]:
+        """JSON-ready; a damage safety factor that no level reaches (nan) is None."""
+        def finite(values):
+            return [v if math.isfinite(v) else None for v in values]
+
         if self.scope is not None:
             return {"standard": STANDARD, "rated": False, "scope": self.scope}
         return {"standard": STANDARD, "rated": True, "ok": self.ok,
@@ -1077,8 +1084,8 @@ class MeshRating:
                                "message": fw.message},
                            "load_capacity": r.to_dict()}
                           for (case, r), fw in zip(self.cases, self.face_widths)],
-                "spectra": [{"flank": s.flank, "D_pitting": list(s.pitting), "D_bending": list(s.bending),
-                             "S_H_spectrum": list(s.pitting_safety), "S_F_spectrum": list(s.bending_safety)}
+                "spectra": [{"flank": s.flank, "D_pitting": finite(s.pitting), "D_bending": finite(s.bending),
+                             "S_H_spectrum": finite(s.pitting_safety), "S_F_spectrum": finite(s.bending_safety)}
                             for s in self.spectra]}
 
 

@@ -419,6 +419,9 @@ def test_one_level_spectrum_has_the_rated_safety_factor_and_damage_adds():
                                            lc.LoadCase(load, "level b", "drive", 0.5)], CONDITIONS, CARBURISED)
     assert halves.spectra[0].pitting == pytest.approx(spectrum.pitting, rel=1e-12)
     assert halves.spectra[0].bending == pytest.approx(spectrum.bending, rel=1e-12)
+    # the drive's report writes it as strict JSON
+    text = json.dumps(halves.to_dict(), allow_nan=False)
+    assert json.loads(text)["spectra"][0]["flank"] == "drive"
 
 
 def test_loads_on_both_flanks_reverse_the_bending_by_y_m_0_7():
@@ -493,3 +496,9 @@ def test_internal_pair_and_rack_change_what_the_standard_says():
         assert r["Z_BD"][1] == 1.0
         assert r["tooth_root"][1]["z_n"] == lc.RACK_VIRTUAL_TEETH
         assert all(math.isfinite(s) and s > 0 for s in r.S_F + r.S_H)
+    # a rack cut with a sharp root has no finite Y_S: refused by name, not rated as infinitely weak
+    sharp = RackSpec(teeth=40, module=2.0, pressure_angle=20 * DEG, face_width=20.0, pitch_line_height=10.0,
+                     root_fillet_coefficient=0.0)
+    with pytest.raises(DesignError) as exc:
+        lc.rate_mesh(pinion, sharp, None, [lc.LoadCase(2000.0, "drive")], cond, mats)
+    assert exc.value.field == "rack_tip_radius"
