@@ -337,12 +337,31 @@ def _revolved(pieces) -> float:
     return math.pi * total
 
 
-def bevel_volume(spec: BevelGearSpec, back: str = "spherical") -> float:
-    """Volume (mm^3) of the bevel gear solid with the back ``back`` (:func:`bevel_core`), independent
-    of the CAD kernel: the teeth, z times the tooth's solid angle (:func:`tooth_solid_angle`) times
-    (R_e^3 - R_i^3) / 3 (every tooth lies between the spheres and nearer the apex than the flat back),
-    plus the core inside the root cone, the revolution of its meridian outline (:func:`_revolved`):
-    root cone, back (heel sphere or plane), bore, web, toe sphere."""
+def _revolved_moment(pieces) -> float:
+    """The integral of rho^2 dV (mm^5) over the region of :func:`_revolved` turned about the z axis:
+    2 pi times the area integral of rho^3, which is pi / 2 times the loop integral of rho^4 dz
+    (Green). On a line rho^4 integrates to (z1 - z0)(rho1^5 - rho0^5) / (5 (rho1 - rho0)); on an arc
+    rho = R sin theta, z = R cos theta, to -R^5 times the integral of sin^5."""
+    total = 0.0
+    for piece in pieces:
+        if piece[0] == "line":
+            (r0, z0), (r1, z1) = piece[1], piece[2]
+            if abs(r1 - r0) < 1e-15:
+                total += (z1 - z0) * r0 ** 4
+            else:
+                total += (z1 - z0) * (r1 ** 5 - r0 ** 5) / (5 * (r1 - r0))
+        else:
+            _, radius, t0, t1 = piece
+
+            def f(t):  # an antiderivative of sin^5
+                c = math.cos(t)
+                return -c + 2 * c ** 3 / 3 - c ** 5 / 5
+            total -= radius ** 5 * (f(t1) - f(t0))
+    return math.pi / 2 * total
+
+
+def _core_pieces(spec: BevelGearSpec, back: str) -> list:
+    """The meridian outline of the core of :func:`bevel_core` (counter-clockwise pieces)."""
     ri, re = spec.toe_cone_distance, spec.cone_distance
     rb = spec.bore_diameter / 2
     root = bevel_geometry(spec).root_cone_angle
@@ -360,7 +379,33 @@ def bevel_volume(spec: BevelGearSpec, back: str = "spherical") -> float:
         if core.toe_inner_face == "web":
             pieces.append(("line", (rb, core.web_z), (ri * math.sin(core.toe_inner), core.web_z)))
     pieces.append(("arc", ri, core.toe_inner, root))
-    return spec.teeth * tooth_solid_angle(spec) * (re ** 3 - ri ** 3) / 3 + _revolved(pieces)
+    return pieces
+
+
+def bevel_axial_moment(spec: BevelGearSpec, back: str = "spherical", points: int = 4001) -> float:
+    """The integral of r^2 dV (mm^5) about the axis of the bevel gear solid with ``back``: the teeth,
+    z (R_e^5 - R_i^5) / 5 times the integral of 2 phi(theta) sin^3 theta from delta_f to delta_a
+    (r = R sin theta, dV = R^2 sin theta dR dtheta dphi), plus the core's (:func:`_revolved_moment`)."""
+    from scipy.integrate import simpson
+    g = bevel_geometry(spec)
+    lo, hi = g.root_cone_angle, g.tip_cone_angle
+    cuts = [lo] + ([g.base_cone_angle] if lo < g.base_cone_angle < hi else []) + [hi]
+    angular = 0.0
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        th = np.linspace(a, b, points)
+        angular += simpson(2 * tooth_half_angle(spec, th) * np.sin(th) ** 3, x=th)
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    return spec.teeth * angular * (re ** 5 - ri ** 5) / 5 + _revolved_moment(_core_pieces(spec, back))
+
+
+def bevel_volume(spec: BevelGearSpec, back: str = "spherical") -> float:
+    """Volume (mm^3) of the bevel gear solid with the back ``back`` (:func:`bevel_core`), independent
+    of the CAD kernel: the teeth, z times the tooth's solid angle (:func:`tooth_solid_angle`) times
+    (R_e^3 - R_i^3) / 3 (every tooth lies between the spheres and nearer the apex than the flat back),
+    plus the core inside the root cone, the revolution of its meridian outline (:func:`_revolved`):
+    root cone, back (heel sphere or plane), bore, web, toe sphere."""
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    return spec.teeth * tooth_solid_angle(spec) * (re ** 3 - ri ** 3) / 3 + _revolved(_core_pieces(spec, back))
 
 
 def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:
@@ -498,7 +543,7 @@ def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_
     return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
 
 
-__all__ = ["flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+__all__ = ["bevel_axial_moment", "flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
            "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
            "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio",
            "ToothOutline", "involute_roll", "tooth_outline", "lower_flank_points", "back_plane_distance", "BACKS",
