@@ -121,6 +121,39 @@ def test_dual_motor_zones_match_the_hand_calculation():
     assert uni["capacity_Nm"] == pytest.approx(2.4 * 40 - 30)
 
 
+def test_planetary_stage_lost_motion_stiffness_and_planets_by_hand():
+    """Issue 31: geargen train refused the planetary design. By hand from the design file: sun 15 T,
+    planets 21 T, ring 57 T, m 0.8 (reference radii r_s 6, r_r 22.8 mm); the carrier turns with the
+    loop's input, 54/18 x 100/20 = 15 x the output. Sun held, the carrier's free turn is
+    (j_sp + j_pr) / (r_s + r_r) (each planet's two meshes along lines of action r_bs and r_br from the
+    axis): as built (mid-range, 0.08 mm in each mesh) 0.16 / 28.8 / 15 = 370.4 urad at the output;
+    over the design's range 0.08 / 432 = 185.2 to 0.24 / 432 = 555.6 urad. Stiffness: per planet
+    (r_bs + r_br)^2 / (2 / k) with k = E w / 11 = 207e3 x 6 / 11 N/mm, 3 planets, x 15^2, in series with
+    the input shaft (the stage's driven shaft). Planets spin at 15 |1 - 57/21| = 25.71 x the output
+    (72 / 2.8 from the motor) and orbit at the carrier radius 14.767 mm (m a^2 at the carrier)."""
+    from geargen import pipeline
+    data = run_train("planetary_dual_pinion")
+    st = {s["name"].split(" (")[0]: s for s in data["stages"]}
+    plan = st["stage planetary"]
+    assert plan["lost_motion_at_output_urad"] == pytest.approx(0.16 / 28.8 / 15 * 1e6, rel=1e-6)  # 370.37
+    assert plan["lost_motion_min_at_output_urad"] == pytest.approx(0.08 / 28.8 / 15 * 1e6, rel=1e-12)  # 185.19
+    assert plan["lost_motion_max_at_output_urad"] == pytest.approx(0.24 / 28.8 / 15 * 1e6, rel=1e-12)  # 555.56
+    assert not plan["preloaded"] and data["totals"]["lost_motion_at_output_urad"] == pytest.approx(
+        plan["lost_motion_at_output_urad"], rel=1e-12)  # the loop keeps none
+    cos20 = math.cos(math.radians(20))
+    k = 207e3 * 6 / 11
+    meshes = 3 * ((6 + 22.8) * cos20) ** 2 / (2 / k) * 15 ** 2 / 1e3  # N·m/rad at the output
+    summary = pipeline.stiffness(pipeline.place(load_design("assemblies/planetary_dual_pinion.toml")))
+    shaft = next(c for c in summary.common.components if c.name == "input_shaft").at_output / 1e3
+    assert plan["components"] == ["input_shaft"]
+    assert plan["stiffness_at_output_Nm_per_rad"] == pytest.approx(1 / (1 / meshes + 1 / shaft), rel=1e-9)
+    parts = {p["name"]: p for p in data["parts"]}
+    assert parts["planet_1"]["ratio_to_motor"] == pytest.approx(2.8, rel=1e-12)
+    orbit = parts["planet_1 orbit"]
+    assert orbit["ratio_to_motor"] == pytest.approx(4.8, rel=1e-12)
+    assert orbit["inertia_own_axis_kg_m2"] == pytest.approx(parts["planet_1"]["mass_kg"] * 14.767e-3 ** 2, rel=1e-4)
+
+
 def test_bad_train_input_names_the_field(tmp_path):
     text = open("assemblies/dual_motor.toml").read()
     for old, new, field in (("load_inertia_kg_m2 = 1.5", "load_inertia_kg_m2 = 1.5\nbandwidth_Hz = 10", "train.damping_ratio"),
