@@ -68,6 +68,8 @@ FAILURE_KINDS: dict[str, str] = {
                           "it cannot mesh both the sun and the ring",
     "planetary_coaxiality": "planetary stage: the sun-planet and planet-ring working centre distances differ",
     "planet_neighbour_clearance": "planetary stage: neighbouring planets' tip circles do not clear",
+    "spring_overstressed": "a preload spring's wire shear stress (Wahl-corrected) exceeds its allowable, 0.45 of "
+                           "the music wire's tensile strength, at its working force or closed solid",
 }
 
 #: kinds that are interference (teeth overlapping), in the order they are reported
