@@ -530,7 +530,12 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
                 if stiff is not None:
                     source = "stiffness: Eq. 1 on the bevel pair of [parts] at its mean radius"
             if lost is None:
-                warnings.append(f"upstream stage {z1}:{z2}: backlash not known (give [train] upstream_backlash_arcmin)")
+                lost = _bevel_lost_motion(layout, z1, z2, driven_speed)
+                if lost is not None:
+                    source += "; backlash: the bevel pair's as cut ([parts] bevel_backlash)"
+            if lost is None:
+                warnings.append(f"upstream stage {z1}:{z2}: backlash not known (give [train] upstream_backlash_arcmin, "
+                                "or [parts] bevel_backlash_* for the robot joint's bevel pair)")
             if stiff is None:
                 warnings.append(f"upstream stage {z1}:{z2}: stiffness not known (give [train] "
                                 "upstream_stiffness_Nm_per_arcmin); taken as rigid")
@@ -547,9 +552,10 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         out.append(mesh_stage(mesh, f"split pinion ({pinions} - {mesh.gear2.name})", 1.0, True,
                               "loop: both pinions preloaded"))
     else:
+        # "loop stage n": mesh n with the parts on its driven shaft (geargen stiffness's "mesh n" is the mesh alone)
         for label in ("mesh1", "mesh2"):
             mesh = next(m for m in layout.meshes if m.name.startswith(label) and m.engaged)
-            out.append(mesh_stage(mesh, f"{label[:-1]} {label[-1]} ({mesh.gear1.name}-{mesh.gear2.name})",
+            out.append(mesh_stage(mesh, f"loop stage {label[-1]} ({mesh.gear1.name}-{mesh.gear2.name})",
                                   train.gear_ratio(mesh.gear2.name), True, "loop: preloaded"))
 
     # components to stages: a stage holds the components on its driven shaft (same speed)
@@ -594,6 +600,17 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         stages.append(TrainStage(stiffness=stiffness, single_path_stiffness=1.0 / c1 if c1 > 0 else None,
                                  single_path_mesh_compliance=cm, components=tuple(names), **d))
     return stages, paths_c
+
+
+def _bevel_lost_motion(layout, z1: int, z2: int, driven_speed: float) -> float | None:
+    """The robot joint's bevel pair's backlash as placed (:func:`geargen.model.bevel_drive.bevel_drive`:
+    circumferential at the gear's heel pitch circle, what its teeth are cut to) as an angle at the
+    output: / the heel pitch radius / the driven shaft's speed; None without a bevel pair of these teeth."""
+    from geargen.model.bevel_drive import bevel_drive
+    placed = bevel_drive(layout)
+    if placed is None or (placed.pinion.teeth, placed.gear.teeth) != (z1, z2):
+        return None
+    return placed.backlash / (placed.gear.reference_diameter / 2) / driven_speed
 
 
 def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | None:

@@ -90,6 +90,10 @@ def format_train(data: dict[str, Any]) -> str:
                      f"{s['compliance_share']:7.1%} {_fmt(s['lost_motion_at_output_urad'], '13.1f'):>13s} {span:>13s} "
                      f"{s['share_of_lost_motion']:6.1%} {_fmt(s['lost_motion_left_urad'], '9.1f'):>9s}"
                      + ("  preloaded" if s["preloaded"] else ""))
+    lines.append("  each stage is its mesh with the parts on its driven shaft (geargen stiffness's components):")
+    for s in data["stages"]:
+        if s["components"]:
+            lines.append(f"    {s['name'].split(' (')[0]}: " + ", ".join(s["components"]))
     lines += ["", f"Totals: inertia at the motor {t['inertia_at_motor_kg_m2']:.4g} kg m^2 (rotor "
               f"{_fmt(t['motor_rotor_inertia_kg_m2'])}, parts {t['parts_inertia_at_motor_kg_m2']:.4g}, load "
               f"{t['load_inertia_at_motor_kg_m2']:.4g}); stiffness at the output {_fmt(t['stiffness_at_output_Nm_per_rad'], '.6g')} "
