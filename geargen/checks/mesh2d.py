@@ -852,7 +852,8 @@ def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> 
     kind_of_limit = np.array([0, 2, 1])  # CONJUGATE -> none, NON_CONJUGATE -> involute, ROOT_BODY -> tip-to-root
 
     def intrusion(conj, full, limit):
-        dep = rb1 * (conj - full)  # turn back from running contact until the feature clears
+        with np.errstate(invalid="ignore"):  # inf - inf where nothing touches: no intrusion (NaN, dropped below)
+            dep = rb1 * (conj - full)  # turn back from running contact until the feature clears
         # a tip in the mate's root: the radial depth under the tip circle says more than the turn
         return np.where((limit == ROOT_BODY) & (clear < 0), -clear, dep), kind_of_limit[limit]
 
@@ -1021,7 +1022,9 @@ def check_mesh(setup: MeshSetup, settings: CheckSettings = CheckSettings()) -> M
         fails.append(Failure("low_contact_ratio", setup.name,
                              f"contact ratio {total:.4g} (measured transverse {eps:.4g}) is below "
                              f"{settings.min_contact_ratio:g}", "contact_ratio", total, settings.min_contact_ratio))
-    if settings.require_backlash and not any(f.kind == "flank_interference" for f in fails):
+    # where the teeth never touch there is no backlash to measure (the contact ratio says so)
+    if settings.require_backlash and not any(f.kind == "flank_interference" for f in fails) \
+            and np.isfinite(sw.normal_backlash).any():
         jmin = float(np.nanmin(sw.normal_backlash))
         if jmin <= INTERFERENCE_TOLERANCE:
             i = int(np.nanargmin(sw.normal_backlash))
