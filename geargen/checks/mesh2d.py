@@ -55,6 +55,7 @@ from geargen.design.gear import GearSpec
 from geargen.errors import GeargenError, GeometryError
 from geargen.profile import UndercutWarning, section_rotation, tooth_profile
 from geargen.profile.tooth import ToothProfile
+from geargen.units import length_text
 
 #: segment kind codes of sampled boundary points
 ROOT, FILLET, INVOLUTE, TIP = 0, 1, 2, 3
@@ -966,8 +967,9 @@ def _static_failures(setup: MeshSetup, settings: CheckSettings):
         minimum = settings.min_tip_land_modules * g.module
         if o.profile.tip_land < minimum:
             fails.append(Failure("pointed_tooth", setup.name,
-                                 f"{g.name}: tip land {o.profile.tip_land:.4g} mm is below {minimum:.4g} mm "
-                                 f"({settings.min_tip_land_modules:g} m_n)", "tip_land", o.profile.tip_land, minimum))
+                                 f"{g.name}: tip land {length_text(o.profile.tip_land, g.length_unit)} is below "
+                                 f"{length_text(minimum, g.length_unit)} ({settings.min_tip_land_modules:g} m_n)",
+                                 "tip_land", o.profile.tip_land, minimum))
         if o.profile.undercut:
             notes.append(f"{g.name} is undercut: its involute starts at radius {o.r_start:.6g} mm")
     try:
@@ -1009,9 +1011,11 @@ def check_mesh(setup: MeshSetup, settings: CheckSettings = CheckSettings()) -> M
             kind = {"pointed_tooth": "pointed_tooth", "no_involute": "undercut"}.get(exc.kind)
             if kind is None:
                 raise
+            text = str(exc).removeprefix(f"{exc.kind}: ")  # the failure line says its kind
+            text = text if text.startswith(f"{g.name}: ") else f"{g.name}: {text}"
             return MeshCheck(mesh=setup.name, gear1=setup.gear1.name, gear2=setup.gear2.name, path="exact_2d",
                              centre_distance=setup.centre_distance, sweep=empty_sweep(),
-                             failures=[Failure(kind, setup.name, f"{g.name}: {exc}")])
+                             failures=[Failure(kind, setup.name, text)])
     fails, notes, geo = _static_failures(setup, settings)
     pos = mesh_positions(setup, settings.steps_per_tooth, settings.revolutions)
     sw = sweep_mesh(setup, pos, setup.planes(settings.planes))
