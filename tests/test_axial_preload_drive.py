@@ -382,6 +382,14 @@ def test_too_short_a_stroke_is_refused(tmp_path):
     assert ">= 0.065287" in err.value.allowed  # 0.06 / (2 tan 25 deg) = 0.06434 + the windup 0.00095
 
 
+def test_a_drive_without_its_bearings_is_refused(tmp_path):
+    """The friction acts on the placed input bearings: without [parts] the ratio cannot be found."""
+    path = variant(tmp_path, (r"^\[parts\]\n(.*\n)*?(?=\[export\])", ""))
+    with pytest.raises(DesignError) as err:
+        pl.place(pl.load(path))
+    assert err.value.field == "parts" and "friction" in err.value.problem
+
+
 def test_too_small_a_helix_angle_is_refused(tmp_path):
     # at 10 deg the standard centre distance is 135 / (2 cos 10 deg) = 68.5414 mm
     path = variant(tmp_path, (r"^helix_angle_deg = 25", "helix_angle_deg = 10"),

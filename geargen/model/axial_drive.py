@@ -226,6 +226,10 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
     # friction of the sliding fit against the preload: the outer rings of the input's two bearings
     # slide in their bores, each pressed by its reaction to the meshes' forces and couples
     from geargen.design.parts import parts_settings
+    if not design.section("parts"):
+        raise DesignError("parts", "missing: the sliding fit's friction acts on the input shaft's two bearings, "
+                          "which [parts] places", "a [parts] table sizing the axial_preload hardware "
+                          "(bearing_clearance_*, input_bearing_width_*, ...)")
     alpha_wt = math.acos((pl.base_radius + o_r.base_radius) / c)
     mu = s["sliding_friction_coefficient"]
     # at the reference position (the slide, tens of um, moves the arms by less than 0.1 %): each mesh
