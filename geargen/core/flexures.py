@@ -266,7 +266,9 @@ def smallest_spring_wire(force: float, rate: float, index: float, shear_modulus:
     installed length ``clearance(d)`` above solid at least: (the spring, installed in the middle of
     its range; the range); None when none does."""
     for d in wires:
-        trial = spring_for_rate(force, rate, d, index * d, 1e9, shear_modulus)  # any length: the coils and stresses
+        coils = shear_modulus * d / (8.0 * index ** 3 * rate)  # G d^4 / (8 D^3 k) at D = C d
+        shortest = spring_solid_height(d, coils) + clearance(d)
+        trial = spring_for_rate(force, rate, d, index * d, shortest, shear_modulus)
         lo, hi = spring_installed_range(trial, clearance(d))
         if trial.installed_stress <= trial.allowable_shear_stress and lo < hi:
             return spring_for_rate(force, rate, d, index * d, (lo + hi) / 2, shear_modulus), (lo, hi)
