@@ -74,6 +74,8 @@ FAILURE_KINDS: dict[str, str] = {
     "contact_missing": "two parts meant to touch (a joint of the drive) are apart",
     "structure": "a part is not held to the ground, a rotating body is joined rigidly to a stationary one, or a "
                  "joint element joins nothing",
+    "spring_overstressed": "a preload spring's wire shear stress (Wahl-corrected) exceeds its allowable, 0.45 of "
+                           "the music wire's tensile strength, at its working force or closed solid",
 }
 
 #: kinds that are interference (teeth overlapping), in the order they are reported

@@ -241,7 +241,8 @@ def table(result: DesignCheck) -> str:
     lines += _planetary_lines(result, u)
     lines += _rack_lines(result.rack, u)
     if result.tolerances:
-        lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
+        lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND}); MC: the backlash Monte Carlo, "
+                  "its samples [checks] monte_carlo_samples (or --samples), not [monte_carlo] (synth's carriage travel)"]
         head = f"{'mesh':<16}{'meant for':<11}{'nominal':>12}{'worst case':>12}{'MC min':>12}{'MC 1%':>12}{'samples':>9}  failure"
         lines += [head, "-" * len(head)]
         for t in result.tolerances:

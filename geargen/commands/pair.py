@@ -370,6 +370,7 @@ def run_internal(args, pinion: GearSpec, ring: GearSpec, unit: str) -> int:
     for key, value in result.margins.items():
         lines.append(f"    {key:34s} {value:.6g}")
     lines += [f"  FAIL {f.kind}: {f.message}" for f in result.failures] or ["  all checks pass"]
+    lines += [f"  note: {n}" for n in result.notes]
     from geargen import __version__
     data = {"generator": "geargen pair", "version": __version__, "kind": "internal", "length_unit": "mm",
             **result.to_dict()}

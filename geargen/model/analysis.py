@@ -157,11 +157,13 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
     # the axial preload places its own lever: the output rotation per mm of the input's slide
-    lever = layout.drive_report["stiffness"]["lever_rad_per_mm"] if layout is not None and \
-        layout.kind == "axial_preload" else None
+    axial = layout is not None and layout.kind == "axial_preload"
+    lever = layout.drive_report["stiffness"]["lever_rad_per_mm"] if axial else None
+    # its sliding fit's friction widens the preload band
+    friction = layout.drive_report["friction"]["friction_to_preload"] if axial else 0.0
     return stiffness_summary(design, travels, components=placed_components(design, layout),
                              beam_supports=beam_supports(layout, layout.engagement if layout else None),
-                             placed_lever=lever), note
+                             placed_lever=lever, placed_friction=friction), note
 
 
 def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | None:

@@ -122,7 +122,7 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
     notes.append(f"stage {st.name}: planetary, {len(angles)} planets on the carrier radius "
                  f"{a / LENGTH_SUFFIXES[unit]:.6g} {unit} at "
                  + ", ".join(f"{math.degrees(phi):.6g}" for phi in angles) + " deg; its meshes are not in the "
-                 "stiffness model (taken as rigid), geargen train does not model it")
+                 "loop's stiffness model (taken as rigid); geargen train gives its lost motion and stiffness")
     return PlacedPlanetary(gears, meshes, notes, plate + gap + height + gap + plate)
 
 
