@@ -33,7 +33,6 @@ from OCP.TopoDS import TopoDS_Shape
 from geargen.cad import parts as P
 from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
 from geargen.design.cluster import ClusterSpec
-from geargen.design.parts import parts_settings
 from geargen.errors import BuildError
 from geargen.model.components import COLOURS, transform
 
@@ -155,18 +154,10 @@ def _gear_text(spec) -> str:
 # ---------------------------------------------------------------- the [parts] section
 
 def non_gear_parts(layout, stiffness=None) -> PartSet:
-    """The non-gear parts of ``layout``'s design, placed, with the intended contacts: built by
-    the drive's hardware (:func:`geargen.design.parts.hardware_of`)."""
-    if layout.hardware is not None:
-        return parts_from_hardware(layout.hardware)
-    s = parts_settings(layout.design)
-    if s["hardware"] == "axial_preload":
-        from geargen.cad.axial_parts import axial_preload_parts  # it imports this module's helpers
-        return axial_preload_parts(layout, s, stiffness)
-    if s["hardware"] == "rack_drive":
-        from geargen.cad.rack_drive_parts import rack_drive_parts  # it imports this module's helpers
-        return rack_drive_parts(layout, s, stiffness)
-    raise ValueError(f"no hardware laid out for {s['hardware']!r}")
+    """The solids of the resolved drive's hardware (none for a drive without it)."""
+    if layout.hardware is None:
+        return PartSet([], [])
+    return parts_from_hardware(layout.hardware)
 
 
 def parts_from_hardware(hardware) -> PartSet:
@@ -178,61 +169,6 @@ def parts_from_hardware(hardware) -> PartSet:
                         envelope=builder.envelope(c)) for c in hardware.components]
     return PartSet(parts, hardware.contacts, list(hardware.notes), dict(hardware.dimensions), hardware.ground,
                    hardware.stationary, hardware.rotating, hardware.rolling, hardware.meshing)
-
-
-# ---------------------------------------------------------------- helpers
-
-
-class _Parts:
-    """Collects parts and contacts while the hardware lays them out."""
-
-    def __init__(self):
-        self.parts: list[PlacedPart] = []
-        self.contacts: list[tuple[str, str, str]] = []
-        self.notes: list[str] = []
-        self.dims: dict[str, Any] = {}
-        self._shapes: dict[tuple, Any] = {}
-        self.ground: list[str] = []
-        self.stationary: list[str] = []
-        self.rotating: list[str] = []
-        self.rolling: list[tuple[str, str]] = []
-        self.meshing: list[tuple[str, str, str]] = []  # meshes among the parts (the bevel pair)
-
-    def shared(self, builder, *args):
-        """``builder(*args)``, built once per assembly: parts made alike (two bearings of one size,
-        three blades) share one shape, which the assembly STEP writes as one product and the
-        kernel meshes once."""
-        key = (builder, args)
-        if key not in self._shapes:
-            self._shapes[key] = builder(*args)
-        return self._shapes[key]
-
-    def add(self, name, shape, matrix, group, kind, role="part", description="", envelope=None):
-        self.parts.append(PlacedPart(name, shape, matrix, group, kind, role, description, envelope=envelope))
-        return name
-
-    def touch(self, a: str, b: str, why: str):
-        self.contacts.append((a, b, why))
-
-    def done(self) -> PartSet:
-        fixed = [g for g in self.ground if g not in self.rotating] + self.stationary  # a spindle turns
-        return PartSet(self.parts, self.contacts, self.notes, self.dims, tuple(self.ground),
-                       tuple(dict.fromkeys(fixed)), tuple(self.rotating), tuple(self.rolling),
-                       tuple(self.meshing))
-
-
-def _at(x=0.0, y=0.0, z=0.0) -> np.ndarray:
-    return transform((x, y, z))
-
-
-def _along_x(x, y, z, towards_minus: bool = False) -> np.ndarray:
-    """Local +z along world +x (or -x), local origin at (x, y, z)."""
-    return transform((x, y, z), (0, 1, 0), -math.pi / 2 if towards_minus else math.pi / 2)
-
-
-def _bore(spec) -> float:
-    s = spec.large if isinstance(spec, ClusterSpec) else spec
-    return s.hub.bore_diameter
 
 
 # ---------------------------------------------------------------- the whole assembly
@@ -603,7 +539,7 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
     return report
 
 
-__all__ = ["COLOURS", "transform", "location", "PlacedPart", "PartSet", "gear_parts", "parts_settings",
+__all__ = ["COLOURS", "transform", "location", "PlacedPart", "PartSet", "gear_parts",
            "non_gear_parts", "parts_from_hardware", "all_parts", "assembly_document",
            "write_assembly_step", "export_parts", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
            "pairwise_overlaps"]

@@ -475,7 +475,7 @@ def build_bevel(spec: BevelGearSpec, check: bool = False, back: str = "spherical
     web to the bore when the toe sphere lies beyond it: :func:`geargen.core.bevel.bevel_core`).
     Raises GeometryError for a tooth that cannot be made (:func:`geargen.core.bevel.check_tooth`)."""
     check_tooth(spec)
-    bevel_core(spec, back)  # a wrong back is a DesignError before any kernel work
+    bevel_core(spec, back)  # a wrong back is refused (geargen.core.bevel) before any kernel work
     shape = _body(spec, back)
     if check:
         problem = check_solid(shape)

@@ -33,8 +33,7 @@ def build_part(spec, check: bool = False):
     valid closed solid)."""
     kind = part_kind(spec)
     if kind not in BUILDERS:
-        from geargen.errors import DesignError
-        raise DesignError("kind", f"{kind!r} has no solid builder", ", ".join(map(repr, BUILDERS)))
+        raise ValueError(f"{kind!r} has no solid builder (the design reader knows {', '.join(map(repr, BUILDERS))})")
     module, function = BUILDERS[kind].split(":")
     return getattr(importlib.import_module(module), function)(spec, check=check)
 

@@ -44,13 +44,19 @@ from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 from OCP.TopTools import TopTools_ListOfShape
 
 from geargen.core.bevel import BevelPairGeometry
-from geargen.errors import BuildError, DesignError
+from geargen.errors import BuildError
+
+
+def _internal(field: str, problem: str, allowed: str = "") -> ValueError:
+    """Numbers no builder can make: the resolved drive checks its parts before the CAD layer sees
+    them (geargen.model.bodies), so reaching here is a bug, not bad input."""
+    return ValueError(f"{field}: {problem}" + (f" (allowed: {allowed})" if allowed else ""))
 
 
 def _positive(**values) -> None:
     for name, v in values.items():
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-            raise DesignError(name, f"{v!r} is out of range", "> 0 mm")
+            raise _internal(name, f"{v!r} is out of range", "> 0 mm")
 
 
 # ---------------------------------------------------------------- shape queries and operations
@@ -182,7 +188,7 @@ def cylinder(diameter: float, height: float, bore: float = 0.0) -> TopoDS_Shape:
     """A (hollow) cylinder on +z, z in [0, height]. Volume ``pi/4 (d^2 - bore^2) h``."""
     _positive(diameter=diameter, height=height)
     if not 0 <= bore < diameter:
-        raise DesignError("bore", f"{bore!r} mm is out of range", f"[0, {diameter:.6g}) mm")
+        raise _internal("bore", f"{bore!r} mm is out of range", f"[0, {diameter:.6g}) mm")
     solid = _cylinder(diameter / 2, height)
     if bore > 0:
         solid = cut(solid, _cylinder(bore / 2, height))
@@ -207,7 +213,7 @@ def frustum(bottom_radius: float, top_radius: float, height: float, bore: float 
     """
     _positive(bottom_radius=bottom_radius, top_radius=top_radius, height=height)
     if not 0 <= bore < 2 * min(bottom_radius, top_radius):
-        raise DesignError("bore", f"{bore!r} mm is out of range", "smaller than both end diameters")
+        raise _internal("bore", f"{bore!r} mm is out of range", "smaller than both end diameters")
     solid = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), bottom_radius, top_radius, height,
                                  2 * math.pi).Shape()
     if bore > 0:
@@ -226,7 +232,7 @@ def shaft(diameter: float, length: float, bore: float = 0.0) -> TopoDS_Shape:
 def bearing(bore: float, outer_diameter: float, width: float) -> TopoDS_Shape:
     """A rolling bearing as its envelope ring: ``bore`` to ``outer_diameter``, z in [0, width]."""
     if not outer_diameter > bore:
-        raise DesignError("outer_diameter", f"{outer_diameter!r} mm is not larger than the bore", f"> {bore:.6g} mm")
+        raise _internal("outer_diameter", f"{outer_diameter!r} mm is not larger than the bore", f"> {bore:.6g} mm")
     return cylinder(outer_diameter, width, bore)
 
 
@@ -251,7 +257,7 @@ def servo_motor(body_diameter: float, body_length: float, flange_width: float, f
     _positive(body_diameter=body_diameter, body_length=body_length, flange_width=flange_width,
               flange_thickness=flange_thickness, shaft_diameter=shaft_diameter, shaft_length=shaft_length)
     if not shaft_diameter < min(body_diameter, flange_width):
-        raise DesignError("shaft_diameter", "the shaft is not thinner than the motor", "< body diameter")
+        raise _internal("shaft_diameter", "the shaft is not thinner than the motor", "< body diameter")
     flange = box(flange_width, flange_width, flange_thickness, (-flange_width / 2, -flange_width / 2, 0))
     body = translate(cylinder(body_diameter, body_length), (0, 0, flange_thickness))
     stub = translate(cylinder(shaft_diameter, shaft_length), (0, 0, -shaft_length))
@@ -277,11 +283,11 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
               total_coils=total_coils)
     d, mean = wire_diameter, mean_coil_diameter
     if not mean > 2 * d:
-        raise DesignError("mean_coil_diameter", "spring index D/d must exceed 2", f"> {2 * d:.6g} mm")
+        raise _internal("mean_coil_diameter", "spring index D/d must exceed 2", f"> {2 * d:.6g} mm")
     rise = length - d
     pitch = rise / total_coils
     if not pitch > d:
-        raise DesignError("length", f"{length:.6g} mm closes the coils (pitch {pitch:.4g} <= wire {d:.4g} mm)",
+        raise _internal("length", f"{length:.6g} mm closes the coils (pitch {pitch:.4g} <= wire {d:.4g} mm)",
                           f"> {d * (total_coils + 1):.6g} mm")
     helix = _helix(pitch, rise, mean / 2)
     circle = BRepBuilderAPI_MakeWire(
@@ -342,7 +348,7 @@ def link_tray(radius: float, length: float, height: float, wall: float, floor: f
     """
     _positive(radius=radius, length=length, height=height, wall=wall, floor=floor)
     if not (wall < radius and floor < height):
-        raise DesignError("wall", "walls and floor leave no room inside", "wall < radius, floor < height")
+        raise _internal("wall", "walls and floor leave no room inside", "wall < radius, floor < height")
 
     def outline(r: float, z0: float, h: float) -> TopoDS_Shape:
         disc = _cylinder(r, h, (0, 0, z0))
@@ -365,7 +371,7 @@ def _relieved(bosses) -> list[tuple[float, float, float, float, float]]:
     out = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
     for _, _, d, _, r in out:
         if not 0 <= r < d:
-            raise DesignError("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
+            raise _internal("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
     return out
 
 
@@ -401,7 +407,7 @@ def link_cover(radius: float, wall: float, x_end: float, thickness: float,
     _positive(radius=radius, wall=wall, x_end=x_end, thickness=thickness)
     r = radius - wall
     if not r > 0:
-        raise DesignError("wall", "walls leave no room inside", "wall < radius")
+        raise _internal("wall", "walls leave no room inside", "wall < radius")
     disc = _cylinder(r, thickness)
     rect = _box(x_end, 2 * r, thickness, (0.0, -r, 0.0))
     cover = intersect(union(disc, rect), _box(x_end + r, 2 * r, thickness, (-r, -r, 0.0)))
@@ -439,16 +445,16 @@ def quill(outer_diameter: float, length: float, bores: list[tuple[float, float, 
     spans = sorted(bores)
     for (z0, z1, d), following in zip(spans, spans[1:] + [(length, length, 0.0)]):
         if not (0 <= z0 < z1 <= following[0] and 0 < d < outer_diameter):
-            raise DesignError("bores", f"({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range",
+            raise _internal("bores", f"({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range",
                               f"apart, inside [0, {length:.6g}] mm, diameters in (0, {outer_diameter:.6g}) mm")
     if not lug_width < outer_diameter:
-        raise DesignError("lug_width", f"{lug_width:.6g} mm is not narrower than the sleeve", f"< {outer_diameter:.6g} mm")
+        raise _internal("lug_width", f"{lug_width:.6g} mm is not narrower than the sleeve", f"< {outer_diameter:.6g} mm")
     # the lug's root: the middle of the wall around the widest bore at the lug's height
     widest = max((d for z0, z1, d in spans if z0 < lug_thickness), default=0.0)
     root = (widest / 2 + radius) / 2
     # the root's corners inside the outer cylinder: the lug meets the sleeve across its whole section
     if not math.hypot(root, lug_width / 2) < radius:
-        raise DesignError("lug_width", f"{lug_width:.6g} mm is too wide for the sleeve's wall",
+        raise _internal("lug_width", f"{lug_width:.6g} mm is too wide for the sleeve's wall",
                           f"< {2 * math.sqrt(radius ** 2 - root ** 2):.6g} mm")
     solid = _cylinder(radius, length)
     solid = cut(solid, *[_cylinder(d / 2, z1 - z0, (0.0, 0.0, z0)) for z0, z1, d in spans]) if spans else solid

@@ -19,8 +19,10 @@ from typing import Any, Callable
 
 from geargen.design.assembly import Design
 from geargen.design.parts import parts_settings
+from geargen.drives.axial_preload.hardware import axial_hardware
 from geargen.drives.beam_pinion.hardware import beam_pinion_hardware
 from geargen.drives.dual_pinion.hardware import carriage_hardware
+from geargen.drives.rack_dual_pinion.hardware import rack_drive_hardware
 from geargen.drives.rules import RuleBroken, find_fixes, offered
 from geargen.drives.split_pinion.hardware import split_pinion_hardware
 from geargen.errors import DesignError
@@ -28,8 +30,10 @@ from geargen.model.layout import Layout, place
 
 #: the hardware of each kind (geargen.design.parts.HARDWARE) -> its layout function
 HARDWARE: dict[str, Callable[..., Any]] = {
+    "axial_preload": axial_hardware,
     "beam_pinion": beam_pinion_hardware,
     "carriage": carriage_hardware,
+    "rack_drive": rack_drive_hardware,
     "split_pinion": split_pinion_hardware,
 }
 
