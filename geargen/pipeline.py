@@ -459,7 +459,7 @@ def drive_allowances_of(layout: Layout) -> dict:
     """Every gear's thickness allowance in the resolved drive (entered, or chosen from its meshes'
     backlash ranges at the design's ``[checks] centre_distance_tolerance``)."""
     from geargen.model.allowance import drive_allowances
-    return drive_allowances(layout, checks_settings(layout.design).centre_distance_tolerance)
+    return drive_allowances(layout, checks_settings(layout.design).centre_distance_tolerance, strict=False)
 
 
 def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:

@@ -23,11 +23,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
-from geargen.model.layout import place
 from scipy.optimize import root
 
 from geargen import pipeline as pl
+from geargen.model.layout import place
 from geargen.checks.mesh2d import sweep_mesh
 from geargen.checks.verdict import check_design, mesh_setup
 from geargen.core.axial_preload import axial_travel_for_backlash
