@@ -41,7 +41,7 @@ from geargen.design.checks import checks_settings
 from geargen.design.export import export_settings
 from geargen.errors import GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement
-from geargen.drives import resolve
+from geargen.drives.resolver import resolve
 from geargen.units import LENGTH_SUFFIXES
 
 #: the build folder's sub-folder of the gears' drawings, DXF profiles and gear data

@@ -20,7 +20,7 @@ from geargen.checks.verdict import verify
 from geargen.core.planetary import planet_phases, ring_phase_error
 from geargen.design.assembly import load_design
 from geargen.errors import DesignError
-from geargen.drives import resolve
+from geargen.drives.resolver import resolve
 from geargen.profile.tooth import tooth_profile
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -24,7 +24,7 @@ from geargen.core.drive import TwoPathDrive
 from geargen.core.rack_drive import RackDriveFrame, solve_carriage
 from geargen.design.assembly import load_design
 from geargen.errors import DesignError
-from geargen.drives import resolve
+from geargen.drives.resolver import resolve
 from geargen.model.layout import running_backlash
 from geargen.model.rack_drive import report
 

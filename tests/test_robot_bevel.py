@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from geargen.design.assembly import load_design
-from geargen.drives import resolve
+from geargen.drives.resolver import resolve
 from geargen.model.bevel_drive import bevel_drive
 
 ROBOT = Path(__file__).resolve().parents[1] / "assemblies/robot_joint.toml"

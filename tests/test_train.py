@@ -44,7 +44,7 @@ def test_robot_joint_parts_follow_the_R_squared_law():
 
 
 def test_robot_joint_stage_lost_motion_by_hand_and_the_output_mesh_dominates():
-    from geargen.drives import resolve
+    from geargen.drives.resolver import resolve
     data = run_train("robot_joint")
     st = {s["name"].split(" (")[0]: s for s in data["stages"]}
     # mesh 2: 0.0025 in at the output's 1.75 in pitch radius; mesh 1: its backlash where the carriage

@@ -30,7 +30,7 @@ from geargen.design.assembly import Design
 from geargen.design.checks import ChecksSettings, checks_settings
 from geargen.errors import DesignError
 from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive
-from geargen.drives import defaulted, parts_table, resolve
+from geargen.drives.resolver import defaulted, parts_table, resolve
 from geargen.units import LENGTH_SUFFIXES
 
 #: below this the design range is met (mm): the path-1 numbers carry ~1e-12 mm of round-off

@@ -274,7 +274,7 @@ def assembly_gear(design, name: str, layout=None) -> tuple[GearSpec, str]:
     in a drive the resolved one (``layout``, or :func:`geargen.model.resolve`: the thinning the
     design states, or the one derived for its backlash), else the table as written."""
     from geargen.model import is_drive
-    from geargen.drives import resolve
+    from geargen.drives.resolver import resolve
 
     spec = design.gear(name)  # names the key when there is no such gear
     if not is_drive(design):
@@ -294,7 +294,7 @@ def drive_layout(args):
         return None  # spec_from_args says what is wrong
     from geargen.design.assembly import load_design
     from geargen.model import is_drive
-    from geargen.drives import resolve
+    from geargen.drives.resolver import resolve
     design = load_design(args.design)
     return resolve(design) if is_drive(design) else None
 

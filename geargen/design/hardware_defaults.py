@@ -381,15 +381,18 @@ def _given_number(table: Mapping[str, Any], name: str, unit: str) -> float | Non
     """The file's value of the [parts] length or count ``name`` (mm for a length), or None."""
     from geargen.units import LENGTH_SUFFIXES
     for k, v in table.items():
-        if isinstance(v, bool) or not isinstance(v, (int, float)):
+        # a bad value is the validating load's to refuse, naming it: the defaults size from good ones only
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not (math.isfinite(v) and v > 0):
             continue
         if k == name:
             return float(v)
         for suffix, scale in LENGTH_SUFFIXES.items():
             if k == f"{name}_{suffix}":
                 return float(v) * scale
-    if name == "bevel_module" and isinstance(table.get("bevel_diametral_pitch_per_in"), (int, float)):
-        return MM_PER_IN / float(table["bevel_diametral_pitch_per_in"])
+    pitch = table.get("bevel_diametral_pitch_per_in")
+    if name == "bevel_module" and isinstance(pitch, (int, float)) and not isinstance(pitch, bool) \
+            and math.isfinite(pitch) and pitch > 0:
+        return MM_PER_IN / float(pitch)
     return None
 
 

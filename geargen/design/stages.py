@@ -17,7 +17,7 @@ the order written, from the motor to the loop::
     direction_deg = 0                 # where the driver's shaft lies, seen from the driven one
 
 A table with ``kind = "planetary"`` is a planetary stage instead (sun, planets, fixed ring; its
-keys and rules in :mod:`geargen.design.planetary_stage`), the only stage: the carrier drives the
+keys and rules in :mod:`geargen.drives.planetary.keys`), the only stage: the carrier drives the
 input gear's shaft.
 
 Each stage's driven gear shares a shaft with the next stage's driver; the last driven gear
@@ -33,7 +33,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from geargen.design.planetary_stage import read_planetary_stage, stage_gear
+from geargen.drives.planetary.keys import read_planetary_stage, stage_gear
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
@@ -41,7 +41,7 @@ from geargen.units import LENGTH_SUFFIXES
 STAGE_FIELDS = [
     Field("kind", "string", required=False, default="pair", choices=("pair", "planetary"),
           help="pair: a driver and a driven gear; planetary: sun, planets and a fixed ring "
-               "(geargen.design.planetary_stage, its own keys)"),
+               "(geargen.drives.planetary.keys, its own keys)"),
     Field("driver", "string", help="the gear table of the stage's driving gear (the first stage's: on the motor)"),
     Field("driven", "string", help="the gear table of the stage's driven gear (the last stage's: on the input "
                                    "gear's shaft)"),

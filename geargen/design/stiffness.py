@@ -53,7 +53,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.layout import is_split_pinion
+from geargen.drives import KEYS, kind_of
 from geargen.design.schema import Field, bound_text, check_range, raise_unknown_keys, read_table, unknown_key
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
@@ -206,6 +206,8 @@ def _positive(name: str, value, allow_none: bool = False) -> None:
 SHAFTS = ("input", "cluster", "output")
 LOCATIONS = SHAFTS
 TRAINS = ("dual_pinion", "split_pinion", "custom")
+#: trains that only one kind of drive has (its keys module's STIFFNESS_TRAIN)
+DRIVE_TRAINS = tuple(k.STIFFNESS_TRAIN for k in KEYS.values() if k.STIFFNESS_TRAIN)
 #: the shafts of each train a component may name; their speeds come from the teeth (a split
 #: pinion's "input" is the pinions' shaft: both pinions turn together, z_output / z_pinion times the
 #: output). A custom train has none: each component types its ratio.
@@ -499,20 +501,21 @@ def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
                          from_geometry=v["from_geometry"]))
 
 
-def stiffness_spec_from_table(data: Mapping[str, Any], split_pinion: bool = False) -> StiffnessSpec:
-    """``[stiffness]`` read; ``split_pinion``: the design's [layout] is a split pinion, whose train
-    is the split_pinion train (the default there, and the only one: a custom train would type the
-    ratios its teeth give)."""
+def stiffness_spec_from_table(data: Mapping[str, Any], required_train: str | None = None) -> StiffnessSpec:
+    """``[stiffness]`` read; ``required_train``: the train the design's drive requires (a split
+    pinion's own train is the only one that describes it: a custom train would type the ratios its
+    teeth give), or None (dual_pinion by default, or custom). A train that belongs to a drive needs
+    that drive."""
     v = _read_section(data, _STIFFNESS_FIELDS, _MODULI, "stiffness", tables=("components",))
-    drive_train = "split_pinion" if split_pinion else "dual_pinion"
     if v["train"] is None:
-        v["train"] = drive_train
-    elif split_pinion and v["train"] != "split_pinion":
-        raise DesignError("stiffness.train", f"{v['train']!r} does not describe the split pinion of [layout] kind = "
-                          "'split_pinion'", "'split_pinion' (or leave train out)")
-    elif v["train"] == "split_pinion" and not split_pinion:
-        raise DesignError("stiffness.train", "'split_pinion' needs [layout] kind = 'split_pinion' (its pinions and "
-                          "output)", "'dual_pinion', 'custom'")
+        v["train"] = required_train or "dual_pinion"
+    elif required_train is not None and v["train"] != required_train:
+        raise DesignError("stiffness.train", f"{v['train']!r} does not describe this drive (its train is "
+                          f"{required_train!r})", f"{required_train!r} (or leave train out)")
+    elif required_train is None and v["train"] in DRIVE_TRAINS:
+        owner = next(k.LAYOUT_KIND for k in KEYS.values() if k.STIFFNESS_TRAIN == v["train"])
+        raise DesignError("stiffness.train", f"{v['train']!r} needs [layout] kind = {owner!r} (its gears are that "
+                          "drive's)", "'dual_pinion', 'custom'")
     comps = data.get("components", {})
     if not isinstance(comps, Mapping):
         raise DesignError("stiffness.components", "expected tables [stiffness.components.NAME]")
@@ -1100,7 +1103,7 @@ def stiffness_design(design) -> StiffnessDesign:
         return reader(table) if table else None
 
     unit, gears = design.length_unit, design.gears
-    spec = stiffness_spec_from_table(design.section("stiffness"), is_split_pinion(design))
+    spec = stiffness_spec_from_table(design.section("stiffness"), KEYS[kind_of(design)].STIFFNESS_TRAIN)
     if design.section("stiffness"):
         check_stiffness_gears(spec, gears)
     return StiffnessDesign(stiffness=spec,
@@ -1111,9 +1114,27 @@ def stiffness_design(design) -> StiffnessDesign:
                            engagement=opt("engagement", lambda t: engagement_spec_from_table(t, gears, unit, spec)))
 
 
+def check_swept_spring(design, unit: str) -> None:
+    """The swept-wire spring model (all ``Nt`` coils as one helix between ground ends) needs a
+    pitch above the wire: an installed length above ``d (Nt + 1)``, a wire more than the solid
+    height of a squared-and-ground spring."""
+    table = design.section("springs")
+    spring = spring_spec_from_table(table, unit)
+    if spring.installed_length is None:
+        return
+    coils = spring.active_coils + SPRING_ENDS[spring.end_type][0]
+    shortest = spring.wire_diameter * (coils + 1)
+    if not spring.installed_length > shortest:
+        key = next(k for k in table if k.startswith("installed_length_"))
+        scale = LENGTH_SUFFIXES[unit]
+        raise DesignError(f"springs.{key}", f"{spring.installed_length / scale:.6g} {unit} is too short for the "
+                          f"swept-wire model of the spring ({coils:g} coils of {spring.wire_diameter / scale:.6g} {unit} "
+                          "wire would touch)", f"> {shortest / scale:.6g} {unit}, or parts.spring_model = 'envelope'")
+
+
 __all__ = ["QUANTITY_SUFFIXES", "INTERNAL_UNITS", "convert_quantity", "Quantity", "ComponentSpec", "StiffnessSpec",
            "PreloadSpec", "FlexureSpec", "SpringSpec", "BeamPinionSpec", "EngagementSpec", "StiffnessDesign",
-           "stiffness_design", "component_from_table", "stiffness_spec_from_table", "preload_spec_from_table",
+           "stiffness_design", "check_swept_spring", "component_from_table", "stiffness_spec_from_table", "preload_spec_from_table",
            "flexure_spec_from_table", "spring_spec_from_table", "beam_pinion_spec_from_table",
            "engagement_spec_from_table", "engagement_meshes", "check_stiffness_gears", "SHAFTS", "SCOPES", "COMPONENT_KINDS", "END_TYPES",
            "SPRING_ENDS"]

@@ -42,20 +42,21 @@ from typing import Any, Mapping
 from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings
 from geargen.design.export import EXPORT_FIELDS, export_settings
 from geargen.design.gear import GEAR_FIELDS, family_fields
-from geargen.design.layout import LAYOUT_FIELDS, check_layout, is_split_pinion, layout_settings
-from geargen.design.parts import HARDWARE_FIELDS, check_parts, hardware_of, parts_settings
+from geargen.design.layout import check_layout, layout_fields, layout_settings
+from geargen.design.parts import check_parts, hardware_fields, parts_settings
 from geargen.design.schema import Field, Problems
 from geargen.design.stages import STAGE_FIELDS, check_stages, stages
 from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
                                       _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
                                       _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, _SPRING_FIELDS, _SPRING_QUANTITIES,
                                       _STIFFNESS_FIELDS, Quantity, beam_pinion_spec_from_table,
-                                      check_stiffness_gears, engagement_spec_from_table, flexure_spec_from_table,
+                                      check_stiffness_gears, check_swept_spring, engagement_spec_from_table, flexure_spec_from_table,
                                       preload_spec_from_table, spring_spec_from_table, stiffness_spec_from_table)
 from geargen.design.synthesis import (ERROR_FIELDS, GEAR_ROLES, MONTE_CARLO_FIELDS, SYNTHESIS_FIELDS,
                                       error_table, monte_carlo_settings, synthesis_inputs, validate_error_budget)
 from geargen.design.train import (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, TRAIN_FIELDS, TRAIN_QUANTITIES,
                                   dual_motor_spec, train_settings)
+from geargen.drives import KEYS, kind_of
 from geargen.errors import DesignError
 
 #: sections that need the drive type (the stiffness step reads it)
@@ -96,7 +97,7 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
         problems.add(DesignError("drive.type", f"missing: [{present}] describes a drive of a type", "'type1', 'type2'"))
     stiffness = None  # the gear roles the [engagement] check needs (defaults without [stiffness])
     if "stiffness" in sections:
-        stiffness = spec = run(stiffness_spec_from_table, sections["stiffness"], is_split_pinion(design))
+        stiffness = spec = run(stiffness_spec_from_table, sections["stiffness"], KEYS[kind_of(design)].STIFFNESS_TRAIN)
         if spec is not None and gears_complete:
             run(check_stiffness_gears, spec, design.gears)
     if "preload" in sections:
@@ -124,6 +125,8 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
         settings = run(parts_settings, design)
         if settings is not None and gears_complete:
             run(check_parts, design, settings)
+        if settings is not None and settings.get("spring_model") == "helix" and "springs" in sections:
+            run(check_swept_spring, design, unit)
     if "export" in sections:
         run(export_settings, design)
     if "train" in sections:
@@ -148,7 +151,7 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
     "springs": (_SPRING_FIELDS, _SPRING_QUANTITIES),
     "beam_pinion": (_BEAM_FIELDS, _BEAM_QUANTITIES),
     "engagement": (_ENGAGEMENT_FIELDS, []),
-    "layout": (LAYOUT_FIELDS, []),
+    "layout": (layout_fields(), []),
     "export": (EXPORT_FIELDS, []),
     "train": (TRAIN_FIELDS, TRAIN_QUANTITIES),
     "dual_motor": (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES),
@@ -191,11 +194,11 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
     if head == "stages" and len(path) == 2:
         table = data.get("stages", {}).get(path[1], {})
         if isinstance(table, Mapping) and table.get("kind") == "planetary":
-            from geargen.design.planetary_stage import PLANETARY_STAGE_FIELDS
+            from geargen.drives.planetary.keys import PLANETARY_STAGE_FIELDS
             return PLANETARY_STAGE_FIELDS, []
         return STAGE_FIELDS, []
     if head == "parts" and len(path) == 1:
-        return HARDWARE_FIELDS[hardware_of(data)], []
+        return hardware_fields(kind_of(data)), []
     if len(path) == 1 and head in _TABLE_SCHEMA:
         return _TABLE_SCHEMA[head]
     return None

@@ -36,7 +36,7 @@ from geargen.core.involute import reference_tooth_thickness
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec, with_changes
-from geargen.design.layout import LAYOUT_KINDS, MODEL_BACKLASH, POSITIONS
+from geargen.design.layout import MODEL_BACKLASH, POSITIONS
 from geargen.errors import DesignError
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
@@ -692,5 +692,5 @@ def _place_split_pinion(design: Design, s: dict) -> Layout:
                   notes=tuple(notes), thinning=thinning)
 
 
-__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
+__all__ = ["MODEL_BACKLASH", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
            "layout_settings", "is_drive", "place", "running_backlash"]

@@ -354,7 +354,7 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
 
 
 #: the shafts of each kind of hardware that the model places
-SHAFT_BUILDERS = {"carriage": carriage_shafts, "beam_pinion": beam_pinion_shafts, "split_pinion": split_pinion_shafts}
+SHAFT_BUILDERS = {"dual_pinion": carriage_shafts, "beam_pinion": beam_pinion_shafts, "split_pinion": split_pinion_shafts}
 
 
 def shafts(layout: Layout) -> dict[str, Shaft]:

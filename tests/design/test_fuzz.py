@@ -162,6 +162,13 @@ def _required(data: dict, path: tuple[str, ...], schema) -> bool:
             return False
         gears = [path[1]] if path[0] == "gears" else list(data["gears"])
         return any(not _gear_field_given(data, g, schema, path) for g in gears)
+    if path[0] == "parts" and schema.required:
+        # a [parts] key the default hardware sizes when the file leaves it out is not missing
+        from geargen.design.hardware_defaults import default_hardware
+        trimmed = {k: (dict(v) if k == "parts" else v) for k, v in data.items()}
+        del trimmed["parts"][path[-1]]
+        completed, _ = default_hardware(trimmed)
+        return not any(k.startswith(schema.name) for k in completed.get("parts", {}))
     return bool(schema.required)
 
 

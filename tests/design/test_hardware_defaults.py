@@ -13,7 +13,7 @@ from geargen.design.hardware_defaults import (INCH_BEARINGS, METRIC_BEARINGS, PR
                                               STEEL_BENDING_ALLOWABLE_MPA, default_hardware, lewis_form_factor,
                                               standard_bearing)
 from geargen.errors import DesignError
-from geargen.drives import resolve
+from geargen.drives.resolver import resolve
 from geargen.model.analysis import stiffness
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -118,12 +118,19 @@ def test_a_given_section_is_kept_and_only_the_missing_ones_are_sized():
     assert data.get("parts") is None  # the caller's data is not changed
 
 
-def test_a_bore_that_is_no_standard_bearing_is_refused_without_a_parts_table():
+def test_a_bore_that_is_no_standard_bearing_needs_its_bearing_given():
+    """A bore no standard bearing has cannot size its bearing: the refusal names the [parts] key to
+    give, and a partial [parts] giving that bearing (the rest defaulted) is taken."""
     text = GEARS_ONLY.read_text().replace("[gears.input]\n", "[gears.input]\nbore_diameter_mm = 5.5\n")
     data = tomllib.loads(text)
     with pytest.raises(DesignError, match="no standard bearing bore") as exc:
         default_hardware(data)
-    assert exc.value.field == "gears.input.bore_diameter"
+    assert exc.value.field == "parts.input_bearing_outer_diameter_mm"
+    data["parts"] = {"input_bearing_outer_diameter_mm": 14.0, "input_bearing_width_mm": 5.0}
+    completed, added = default_hardware(data)
+    assert completed["parts"]["input_bearing_outer_diameter_mm"] == 14.0  # the file's values stand
+    assert "parts.input_bearing_outer_diameter_mm" not in {d.key for d in added}
+    assert {"parts.cluster_bearing_outer_diameter_mm", "parts.motor_body_diameter_mm"} <= {d.key for d in added}
 
 
 def test_an_inch_design_gets_inch_bearings_and_inch_keys():

@@ -20,8 +20,8 @@ from geargen.design.assembly import SECTIONS, design_from_dict, load_design
 from geargen.design.checks import CHECKS_FIELDS
 from geargen.design.export import EXPORT_FIELDS
 from geargen.design.gear import GEAR_FIELDS, gear_from_table
-from geargen.design.layout import LAYOUT_FIELDS
-from geargen.design.parts import HARDWARE_FIELDS
+from geargen.design.layout import layout_fields
+from geargen.design.parts import hardware_fields
 from geargen.design.schema import DesignErrors, close_keys, read_table, typo_distance
 from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
                                       _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
@@ -52,10 +52,10 @@ SCHEMA = {
     "[springs]": _SPRING_FIELDS + _SPRING_QUANTITIES,
     "[beam_pinion]": _BEAM_FIELDS + _BEAM_QUANTITIES,
     "[engagement]": _ENGAGEMENT_FIELDS,
-    "[layout]": LAYOUT_FIELDS,
-    "[parts] of a dual pinion on a preload carriage": HARDWARE_FIELDS["carriage"],
-    "[parts] of a dual pinion with a beam-spring pinion": HARDWARE_FIELDS["beam_pinion"],
-    "[parts] of a split pinion": HARDWARE_FIELDS["split_pinion"],
+    "[layout]": layout_fields(),
+    "[parts] of a dual pinion on a preload carriage": hardware_fields("dual_pinion"),
+    "[parts] of a dual pinion with a beam-spring pinion": hardware_fields("beam_pinion"),
+    "[parts] of a split pinion": hardware_fields("split_pinion"),
     "[export]": EXPORT_FIELDS,
 }
 
