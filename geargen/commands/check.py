@@ -292,8 +292,8 @@ def run(args: argparse.Namespace) -> int:
                   "lists them):")
             print("\n".join(f"  {d}" for d in design.defaulted))
         if args.json:
-            Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-            Path(args.json).write_text(json.dumps(data, indent=2) + "\n")
+            from geargen.outputs import write_text
+            write_text(args.json, json.dumps(data, indent=2) + "\n", "--json")
     return 0 if result.ok else 1
 
 
