@@ -2,6 +2,18 @@
 
 from __future__ import annotations
 
+#: the most characters of a key path or problem a message repeats: a hostile design file's key
+#: or value (megabytes of it) is cut in the middle, not printed whole
+MESSAGE_PART_MAX = 300
+
+
+def clipped(text: str, most: int = MESSAGE_PART_MAX) -> str:
+    """``text``, or its start and end around "..." when it is longer than ``most`` characters."""
+    text = str(text)
+    if len(text) <= most:
+        return text
+    return f"{text[:most - 40]}...{text[-30:]} ({len(text):,} characters)"
+
 
 class GeargenError(Exception):
     """Base class of every error geargen raises on purpose."""
@@ -18,7 +30,7 @@ class DesignError(GeargenError, ValueError):
         self.field = field
         self.problem = problem
         self.allowed = allowed
-        text = f"{field}: {problem}"
+        text = f"{clipped(field)}: {clipped(problem)}"
         if allowed:
             text += f" (allowed: {allowed})"
         super().__init__(text)

@@ -40,6 +40,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from geargen.design.schema import PLAUSIBLE
 from geargen.errors import DesignError
 from geargen.units import MM_PER_IN
 
@@ -420,7 +421,8 @@ def _loop_reach(data, gears) -> float:
     a2 = None
     for unit, scale in LENGTH_SUFFIXES.items():
         value = syn.get(f"centre_distance_mesh2_{unit}")
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
+        # read before the file is validated: an absurd value (inf, 1e308) is left to the validation to refuse
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and 0 < value * scale <= PLAUSIBLE["length"][1]:
             a2 = value * scale
     small, large, out = gears["cluster_small"], gears["cluster_large"], gears["output"]
     if a2 is None:
