@@ -69,6 +69,16 @@ def test_every_way_of_nesting_is_measured(kind, text, tmp_path, capsys):
     assert code == 2 and f"nested deeper than {MAX_NESTING} levels" in err, (kind, err)
 
 
+def test_a_dotted_key_of_two_million_parts_is_refused_at_once(tmp_path, capsys):
+    # the TOML reader's time grows with the square of a dotted key's parts (8000 parts: 1 s), so a 4 MiB
+    # file of one would not end: the parts are counted before it reads the file
+    path = write(tmp_path, "deep.toml", ".".join(["a"] * 1_900_000) + " = 1\n")
+    t0 = time.perf_counter()
+    code, err = run(capsys, "check", path)
+    assert code == 2 and f"nested deeper than {MAX_NESTING} levels" in err
+    assert time.perf_counter() - t0 < 3.0  # 0.1 s measured; generous for a loaded 2-core machine
+
+
 def test_nesting_at_the_limit_reaches_the_schema(tmp_path, capsys):
     # the file is level 1, so an array of MAX_NESTING - 1 levels is allowed: the schema then names the key
     path = write(tmp_path, "robot_joint.toml", "junk = " + "[" * (MAX_NESTING - 1) + "]" * (MAX_NESTING - 1) + "\n"
