@@ -79,8 +79,8 @@ NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")
 #: the most characters of a gear's name: what the manufacturing drawing's gear data block
 #: (geargen.report.drawing, 235 mm of rows at ISO 3098's 3.5 mm lettering) holds in every case a
 #: placed drive gives, a gear with two mating gears (a split pinion's output) all three of names
-#: this long in the widest letter ("m") and a design file path of 100 characters; 20 overflows it
-#: (tests/design/test_names.py draws it)
+#: this long in the widest letter ("m") and a design file path of 100 characters: 17 fit, 18
+#: overflow it (tests/design/test_names.py draws it)
 GEAR_NAME_MAX = 16
 #: the most characters of any other name (a design's, a stage's, a stiffness component's): they
 #: go into file names with a suffix of up to 25 characters, far inside the 255 bytes a file name may have
