@@ -197,3 +197,12 @@ def test_the_largest_plausible_values_load(tmp_path):
     # the bounds are inclusive: 10 m itself is a length the loader takes (here a flexure blade's width)
     path = variant(tmp_path, ROOT / "assemblies" / "metric_dual_pinion.toml", r"^width_mm = 12$", "width_mm = 10000")
     assert load_design(path).sections["flexures"]["width_mm"] == 10000
+
+
+def test_an_unknown_key_of_100000_characters_is_named_cut_and_at_once(tmp_path, capsys):
+    # before: the message repeated all 100,000 characters
+    path = variant(tmp_path, ROOT / "assemblies" / "robot_joint.toml", r"^count = 3", "k" * 100_000 + " = 3")
+    t0 = time.perf_counter()
+    code, err = run(capsys, "synth", path)
+    assert code == 2 and "flexures.kkkk" in err and "(100,009 characters)" in err  # "flexures." + the key
+    assert len(err) < 3000 and time.perf_counter() - t0 < 3.0  # 0.05 s measured; generous for a loaded machine
