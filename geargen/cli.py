@@ -119,8 +119,10 @@ def _check_before_work(args) -> None:
 
 
 def _os_problem(exc: OSError) -> str:
+    """``"no space left on device: PATH"``: the cause (geargen.outputs.os_cause), then the file."""
+    from geargen.outputs import os_cause
     where = f": {exc.filename}" if exc.filename else ""
-    return f"{exc.strerror or exc}{where}"
+    return f"{os_cause(exc)}{where}"
 
 
 def main(argv: list[str] | None = None) -> int:

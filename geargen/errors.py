@@ -2,6 +2,20 @@
 
 from __future__ import annotations
 
+#: the most characters of a key path, and of a problem, a message repeats: a hostile design file's
+#: key or value (megabytes of it) is cut in the middle, not printed whole; geargen's own longest
+#: problems (an engagement's lead, explained) are a few hundred characters
+FIELD_MAX = 300
+PROBLEM_MAX = 2000
+
+
+def clipped(text: str, most: int = FIELD_MAX) -> str:
+    """``text``, or its start and end around "..." when it is longer than ``most`` characters."""
+    text = str(text)
+    if len(text) <= most:
+        return text
+    return f"{text[:most - 40]}...{text[-30:]} ({len(text):,} characters)"
+
 
 class GeargenError(Exception):
     """Base class of every error geargen raises on purpose."""
@@ -18,7 +32,7 @@ class DesignError(GeargenError, ValueError):
         self.field = field
         self.problem = problem
         self.allowed = allowed
-        text = f"{field}: {problem}"
+        text = f"{clipped(field)}: {clipped(problem, PROBLEM_MAX)}"
         if allowed:
             text += f" (allowed: {allowed})"
         super().__init__(text)

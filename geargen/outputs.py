@@ -81,23 +81,118 @@ def file_mode() -> int:
     return 0o666 & ~current_umask()
 
 
+# ---------------------------------------------------------------- where a file may be written
+
+#: the output folders being written now (between :meth:`OutputFolder.prepare` and its commit or
+#: discard), resolved, each with the target it will become: while any is, :func:`atomic_path`
+#: writes only inside one of them
+_WRITING: dict[Path, Path] = {}
+
+#: what a file system's refusal to write means, by errno, as messages say it
+_WRITE_CAUSES = {errno.ENOSPC: "no space left on device", errno.EDQUOT: "disk quota exceeded",
+                 errno.EROFS: "read-only file system", errno.EACCES: "permission denied",
+                 errno.EPERM: "operation not permitted", errno.EFBIG: "file too large"}
+#: free space (bytes) below which a write that failed without saying why (the CAD kernel's) is
+#: taken to have failed for want of space: less than any file geargen writes needs
+FULL_DISK_BYTES = 64 * 1024
+
+
+def os_cause(exc: OSError) -> str:
+    """The cause of an OSError as a message says it: ``"no space left on device"``, ..."""
+    return _WRITE_CAUSES.get(exc.errno) or (exc.strerror or str(exc)).lower()
+
+
+def writing_into(folder: Path, target: Path) -> None:
+    """Declare ``folder`` an output folder being written, to become ``target`` (see :func:`confined`)."""
+    _WRITING[Path(os.path.realpath(folder))] = Path(target)
+
+
+def done_writing(folder: Path) -> None:
+    _WRITING.pop(Path(os.path.realpath(folder)), None)
+
+
+def shown_path(path) -> Path:
+    """Where ``path`` (inside an output folder being written) will be once the folder is in place:
+    what a message names, rather than the temporary folder."""
+    real = Path(os.path.realpath(path))
+    for folder, target in _WRITING.items():
+        if real.is_relative_to(folder):
+            return target / real.relative_to(folder)
+    return Path(path)
+
+
+def confined(path) -> Path:
+    """``path``, when it may be written: while output folders are being written, only a path that
+    resolves (symbolic links and ``..`` followed) inside one of them; an :class:`OutputRefused`
+    otherwise, before anything is written. The one check between every file geargen writes and a
+    name that would lead it out of its folder."""
+    path = Path(path)
+    if not _WRITING:
+        return path
+    real = Path(os.path.realpath(path))
+    if not any(real.is_relative_to(folder) for folder in _WRITING):
+        raise OutputRefused(str(path), f"resolves to {real}, outside the output folder being written "
+                            f"({', '.join(map(str, _WRITING.values()))})", "geargen writes only inside its output folder")
+    return path
+
+
+def _full_disk(folder: Path) -> bool:
+    try:
+        st = os.statvfs(folder)
+    except (OSError, AttributeError):
+        return False
+    return st.f_bavail * st.f_frsize < FULL_DISK_BYTES
+
+
 @contextmanager
-def atomic_path(path):
+def atomic_path(path, user_file: bool = False):
     """Yield a temporary path next to ``path`` (same suffix); on success move it onto ``path``
     with the user's umask mode (``tempfile`` makes 0600 files). A failure or an interruption
-    removes the temporary file and leaves any old ``path`` untouched."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{path.suffix}", dir=path.parent)
-    os.close(fd)
+    removes the temporary file and leaves any old ``path`` untouched.
+
+    Every file geargen writes goes through here: ``path`` must be :func:`confined` to the output
+    folder being written, unless ``user_file`` (a file the user named, ``--json FILE``). The file
+    system's refusal (a full disk, a quota, a read-only file system) is an OSError naming ``path``
+    (an environment problem, exit status 3); so is a write that failed without saying why (the CAD
+    kernel's) on a file system with no space left."""
+    path = Path(path) if user_file else confined(path)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=f".tmp{path.suffix}", dir=path.parent)
+        os.close(fd)
+    except OSError as exc:
+        raise OSError(exc.errno, os_cause(exc), str(shown_path(path))) from None
     try:
         yield Path(tmp)
         os.chmod(tmp, file_mode())
         os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
+    except OSError as exc:
+        _remove(tmp)
+        raise OSError(exc.errno, os_cause(exc), str(shown_path(path))) from None
+    except Exception:
+        full = _full_disk(path.parent)  # before the partial file is removed: it may hold the last space
+        _remove(tmp)
+        if full:
+            raise OSError(errno.ENOSPC, _WRITE_CAUSES[errno.ENOSPC], str(shown_path(path))) from None
         raise
+    except BaseException:
+        _remove(tmp)
+        raise
+
+
+def write_file(path, content: str | bytes) -> Path:
+    """Write ``content`` (text as UTF-8, or bytes) to ``path`` through :func:`atomic_path`."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        tmp.write_bytes(content.encode("utf-8") if isinstance(content, str) else content)
+    return path
+
+
+def _remove(path) -> None:
+    try:
+        os.unlink(path)
+    except FileNotFoundError:
+        pass
 
 
 # ---------------------------------------------------------------- single files
@@ -115,8 +210,9 @@ def check_file_target(target, flag: str) -> None:
 
 
 def write_text(target, text: str, flag: str) -> Path | None:
-    """Write ``text`` to the file ``target`` atomically, or to standard output when it is ``-``.
-    Returns the path written (None for standard output)."""
+    """Write ``text`` to the file ``target`` the user named with ``flag`` (``--json FILE``)
+    atomically, or to standard output when it is ``-``. Returns the path written (None for
+    standard output)."""
     if str(target) == "-":
         sys.stdout.write(text)
         sys.stdout.flush()
@@ -124,10 +220,10 @@ def write_text(target, text: str, flag: str) -> Path | None:
     check_file_target(target, flag)
     path = Path(target).expanduser()
     try:
-        with atomic_path(path) as tmp:
+        with atomic_path(path, user_file=True) as tmp:
             tmp.write_text(text)
     except OSError as exc:
-        raise EnvironmentProblem(flag, f"cannot write {target}: {exc.strerror or exc}") from None
+        raise EnvironmentProblem(flag, f"cannot write {target}: {os_cause(exc)}") from None
     return path
 
 
@@ -533,6 +629,7 @@ class OutputFolder:
             self.temporary = Path(tempfile.mkdtemp(prefix=f".{self.target.name}.build.{os.getpid()}-", dir=parent))
             (self.temporary / MARKER).write_text(json.dumps(_marker(), indent=2) + "\n")
             os.mkdir(self.temporary / WORK, 0o777)  # the umask applies: 0755 under 022
+            writing_into(self.temporary / WORK, self.target)
         except OSError as exc:
             self.discard()
             raise EnvironmentProblem(shown, f"cannot write in {parent}: {exc.strerror or exc}",
@@ -547,11 +644,13 @@ class OutputFolder:
     def commit(self) -> Path:
         """Move the written folder onto the target (checked again: it may have changed meanwhile)."""
         self.check()
+        work = self.work
         try:
-            swap_into_place(self.work, self.target, self.temporary)
+            swap_into_place(work, self.target, self.temporary)
         except OSError as exc:
             raise EnvironmentProblem(f"{self.flag} {self.target}", f"cannot move the output into place: "
-                                     f"{exc.strerror or exc}") from None
+                                     f"{os_cause(exc)}") from None
+        done_writing(work)
         _remove_temporary(self.temporary)
         self.temporary = None
         self._made = []
@@ -564,12 +663,14 @@ class OutputFolder:
         manifest = {"generator": self.generator, "source": self.source, "version": __version__,
                     "design": {"name": design.name, "file": design_file, "sha256": design.sha256},
                     **(extra or {}), "files": manifest_files(self.work)}
-        write_text(self.work / MANIFEST, json.dumps(manifest, indent=2) + "\n", "--out")
+        with atomic_path(self.work / MANIFEST) as tmp:
+            tmp.write_text(json.dumps(manifest, indent=2) + "\n")
         return self.commit()
 
     def discard(self) -> None:
         """Remove the temporary folder and any folder :meth:`prepare` created above the target."""
         if self.temporary is not None:
+            done_writing(self.temporary / WORK)
             _remove_temporary(self.temporary)
             self.temporary = None
         for folder in reversed(self._made):
@@ -598,6 +699,6 @@ def manifest_files(folder: Path, skip: tuple[str, ...] = (MANIFEST,)) -> dict[st
             if p.is_file() and p.name not in skip}
 
 
-__all__ = ["MANIFEST", "OutputFolder", "FolderState", "Cleanup", "atomic_path", "check_file_target",
-           "check_output_folder", "clean_stale_temporaries", "current_umask", "exchange", "file_mode",
+__all__ = ["MANIFEST", "OutputFolder", "FolderState", "Cleanup", "atomic_path", "confined", "os_cause", "check_file_target",
+           "check_output_folder", "clean_stale_temporaries", "current_umask", "exchange", "file_mode", "write_file",
            "inspect_folder", "manifest_files", "process_alive", "swap_into_place", "write_text"]

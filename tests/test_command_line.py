@@ -485,3 +485,48 @@ def test_sigkill_at_random_moments_leaves_the_target_absent_or_complete(tmp_path
     assert last.wait(timeout=300) == 0
     assert _snapshot(out) is not None
     assert _temporaries(tmp_path) == [], outcomes
+
+
+# ---------------------------------------------------------------- a full disk (issue 31)
+
+GEAR_OPTIONS = ["--teeth", "21", "--module", "1", "--face-width", "5", "--no-stl", "--no-drawing"]
+
+
+@pytest.mark.parametrize("code, cause", [(28, "no space left on device"), (122, "disk quota exceeded"),
+                                         (30, "read-only file system"), (13, "permission denied")])
+def test_a_file_system_refusing_the_step_file_is_exit_3_saying_why(code, cause, tmp_path, monkeypatch, capsys):
+    # errno 28 ENOSPC, 122 EDQUOT, 30 EROFS, 13 EACCES (Linux); the STEP file is written by Python from the
+    # kernel's bytes, so the refusal is the OSError it is. Before: exit 2 "STEP write failed", no cause.
+    import errno as errno_module
+    assert (errno_module.ENOSPC, errno_module.EDQUOT, errno_module.EROFS, errno_module.EACCES) == (28, 122, 30, 13)
+    write_bytes = Path.write_bytes
+
+    def refusing(self, data):
+        if self.suffix == ".step":
+            raise OSError(code, os.strerror(code), str(self))
+        return write_bytes(self, data)
+
+    monkeypatch.setattr(Path, "write_bytes", refusing)
+    out = tmp_path / "g"
+    assert main(["gear", *GEAR_OPTIONS, "--out", str(out)]) == 3
+    err = capsys.readouterr().err
+    assert f"geargen gear: error: {cause}: {out / 'gear_21.step'}" in err
+    assert list(tmp_path.iterdir()) == []  # no output, no temporary folder
+
+
+def test_a_really_full_disk_is_exit_3_no_space_left(tmp_path):
+    """A 200 kB tmpfs in a private mount namespace (root in a container: ``unshare -m``); a gear's
+    STEP file is 1 MB. Skipped where no such file system can be mounted."""
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    script = f"mount -t tmpfs -o size=200k tmpfs {disk} || exit 99; cd {disk} && " \
+             f"{' '.join(_cli('gear', *GEAR_OPTIONS, '--out', 'g'))}; echo rc=$?; ls -A"
+    try:
+        done = subprocess.run(["unshare", "-m", "sh", "-c", script], capture_output=True, text=True, env=_env(),
+                              timeout=300)
+    except FileNotFoundError:
+        pytest.skip("no unshare")
+    if done.returncode == 99 or "rc=" not in done.stdout:
+        pytest.skip(f"cannot mount a tmpfs here: {done.stderr.strip()[:200]}")
+    assert "rc=3" in done.stdout and done.stdout.strip().endswith("rc=3")  # and nothing left on the disk
+    assert f"geargen gear: error: no space left on device: {disk / 'g' / 'gear_21.step'}" in done.stderr

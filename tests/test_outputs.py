@@ -5,6 +5,7 @@ so each rule of the policy is checked on its own: what is written, replaced, ref
 refused folder keeps every file.
 """
 
+import errno
 import json
 import os
 import socket
@@ -312,3 +313,43 @@ def test_a_gear_folder_from_before_manifests_named_the_command_needs_overwrite(t
     assert check_output_folder(folder, "geargen gear", "gear g from options", "g", overwrite=True) == "replace"
     with pytest.raises(OutputRefused, match="output of geargen gear, not of geargen build"):
         check_output_folder(folder, BUILD, "/d/g.toml", "g", overwrite=True)
+
+
+# ---------------------------------------------------------------- the file system says no
+
+
+@pytest.mark.parametrize("code, cause", [(errno.ENOSPC, "no space left on device"), (errno.EDQUOT, "disk quota exceeded"),
+                                         (errno.EROFS, "read-only file system"), (errno.EACCES, "permission denied")])
+def test_a_refused_write_names_the_cause_and_the_final_file(code, cause, tmp_path):
+    folder = OutputFolder(tmp_path / "out", "geargen test", "source")
+    work = folder.prepare()
+    try:
+        with pytest.raises(OSError) as info:
+            with outputs.atomic_path(work / "part.step") as tmp:
+                tmp.write_text("half")
+                raise OSError(code, os.strerror(code))
+    finally:
+        folder.discard()
+    # the errno kept (the command line's exit 3), the cause as a message says it, the file named where
+    # it will be once the folder is in place (not the temporary folder)
+    assert (info.value.errno, info.value.strerror, info.value.filename) == (code, cause, str(tmp_path / "out" / "part.step"))
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_a_write_that_failed_without_a_cause_on_a_full_disk_is_a_full_disk(tmp_path, monkeypatch):
+    # the CAD kernel's writer says only "failed"; on a file system with no space left that is the cause
+    class Full:
+        f_bavail, f_frsize = 0, 4096
+
+    def failing_write(target):
+        with outputs.atomic_path(target) as tmp:
+            tmp.write_text("half")
+            raise RuntimeError("the kernel's write failed")
+
+    with pytest.raises(RuntimeError):  # space left: the failure is not the disk's
+        failing_write(tmp_path / "a.step")
+    monkeypatch.setattr(outputs.os, "statvfs", lambda path: Full())
+    with pytest.raises(OSError) as info:
+        failing_write(tmp_path / "a.step")
+    assert (info.value.errno, str(info.value)) == (errno.ENOSPC, f"[Errno 28] no space left on device: '{tmp_path / 'a.step'}'")
+    assert list(tmp_path.iterdir()) == []

@@ -122,12 +122,24 @@ def export_step(parts, path, length_unit: str = "mm") -> ExportRecord:
     writer.SetNameMode(True)
     if not writer.Transfer(doc, STEPControl_AsIs):
         raise BuildError(f"STEP transfer failed for {path}")
-    with atomic_path(Path(path)) as tmp:
-        if writer.Write(str(tmp)) != IFSelect_RetDone:
-            raise BuildError(f"STEP write failed: {path}")
+    write_step_file(writer, path)
     size = Path(path).stat().st_size
     return ExportRecord(Path(path), "step", length_unit, time.perf_counter() - t0, size,
                         parts=tuple(n for n, _ in items))
+
+
+def write_step_file(writer, path) -> Path:
+    """Write a STEP writer's transferred document to ``path`` (atomically, through
+    :func:`geargen.outputs.atomic_path`). The kernel writes into memory and Python writes the file,
+    so a full disk, a quota or a read-only file system is the OSError it is (an environment
+    problem, exit 3), not the kernel's bare "write failed"."""
+    import io
+    buffer = io.BytesIO()
+    if writer.WriteStream(buffer) != IFSelect_RetDone:
+        raise BuildError(f"STEP write failed: {path}")
+    with atomic_path(Path(path)) as tmp:
+        tmp.write_bytes(buffer.getvalue())
+    return Path(path)
 
 
 def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: float = 0.5,
@@ -370,5 +382,5 @@ def exported_triangles(parts, folder) -> dict:
     return {name: read_stl(path) for name, path in stls.items() if path.is_file()}
 
 
-__all__ = ["export_step", "export_stl", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
+__all__ = ["export_step", "write_step_file", "export_stl", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
            "read_step", "read_stl", "exported_triangles", "StepContents", "STEP_UNITS", "MANIFEST"]

@@ -298,8 +298,8 @@ def run(args: argparse.Namespace) -> int:
             print("\nthe hardware as resolved (paste into the design file and change what you like):\n")
             print(result.parts_table)
         if args.json:
-            Path(args.json).parent.mkdir(parents=True, exist_ok=True)
-            Path(args.json).write_text(json.dumps(data, indent=2) + "\n")
+            from geargen.outputs import write_text
+            write_text(args.json, json.dumps(data, indent=2) + "\n", "--json")
     return 0 if result.ok else 1
 
 

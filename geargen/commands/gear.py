@@ -33,7 +33,8 @@ import warnings
 from pathlib import Path
 
 from geargen.design.gear import CYLINDRICAL_KINDS, FAMILY_READERS, GearSpec, gear_from_table, gear_kinds
-from geargen.errors import DesignError
+from geargen.design.schema import GEAR_NAME_MAX, check_name, shown
+from geargen.errors import DesignError, clipped
 from geargen.units import from_mm, to_mm
 
 
@@ -70,7 +71,9 @@ def add_arguments(p) -> None:
                         "in the unit of the pitch system (default 0)")
     g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
                    help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances")
-    g.add_argument("--name", default=None, help="part name (default: the design's, or gear_<teeth>)")
+    g.add_argument("--name", default=None,
+                   help=f"part name, the files' names (default: the [gear] file's, or gear_<teeth>): at most {GEAR_NAME_MAX} "
+                        "of A-Z a-z 0-9 _ - .")
     for kinds, module in _kind_modules().items():
         module.add_arguments(p.add_argument_group(f"--kind {' / '.join(kinds)} options"))
     p.add_argument("--thickness-allowance", type=float, nargs=2, metavar=("UPPER", "LOWER"), default=None,
@@ -188,6 +191,11 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
     flags_given = _given(args)
     if args.gear and not args.design:
         raise DesignError("--gear", "needs an assembly design file", "geargen gear FILE.toml --gear NAME")
+    if args.name is not None:
+        if args.gear:
+            raise DesignError("--name", f"the gear of --gear is named by its table [gears.{clipped(args.gear, 40)}]",
+                              "--name with gear options or a [gear] file")
+        check_name("--name", args.name, GEAR_NAME_MAX)
     if args.design and flags_given:
         raise DesignError(flags_given[0], f"conflicts with the design file {args.design}, which gives the gear",
                           "a design file or gear options, not both")
@@ -202,7 +210,7 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
         unknown = [k for k in data if k != "gear"]
         if unknown:
             raise DesignError(unknown[0], "unknown key or section in a gear design file", "[gear]")
-        return gear_from_table(data["gear"], where="gear", name=args.name or Path(args.design).stem), None
+        return gear_from_table(data["gear"], where="gear", name=_file_gear_name(args, data["gear"])), None
     kind = args.kind or "external"
     table = _kind_table(args, kind, flags_given)
     if args.module is None and args.diametral_pitch is None:
@@ -251,6 +259,20 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
         if not exc.field.startswith("options."):
             raise
         raise DesignError(_flag_of_key(exc.field.split(".", 1)[1], table, flags_given), exc.problem, exc.allowed) from None
+
+
+def _file_gear_name(args, table) -> str:
+    """The name of a ``[gear]`` file's gear: ``--name``, else the table's ``name``, else the file's
+    name, checked like every name that becomes a file name."""
+    written = table.get("name") if isinstance(table, dict) else None
+    if args.name is not None or written is not None:
+        return args.name if args.name is not None else check_name("gear.name", written, GEAR_NAME_MAX)
+    stem = Path(args.design).stem
+    try:
+        return check_name("gear.name", stem, GEAR_NAME_MAX)
+    except DesignError as exc:
+        raise DesignError("gear.name", f"missing, and the file's name {shown(stem)} is not a valid gear name",
+                          f'name = "..." in [gear], or --name; {exc.allowed}') from None
 
 
 def _kind_table(args, kind: str, flags_given: list[str]) -> dict:

@@ -36,7 +36,8 @@ from typing import Any, Mapping
 
 from geargen.design.feasibility import check_tooth
 from geargen.design.gear import GearSpec, gear_from_table, gear_keys_written
-from geargen.design.schema import DesignErrors, Problems, load_toml, unknown_key
+from geargen.design.schema import (GEAR_NAME_MAX, STRING_MAX, DesignErrors, Problems, check_name, read_toml, shown,
+                                   unknown_key)
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS
 
@@ -83,6 +84,9 @@ class Design:
     sha256: str = ""
     #: the values the file did not give and the default hardware chose (geargen.design.hardware_defaults)
     defaulted: tuple = ()
+    #: gear table key -> the label its ``name`` key gives it (only gears whose label differs from the
+    #: key): for reports and exports; the key stays the gear's identity (``gears``, every section)
+    labels: dict[str, str] = field(default_factory=dict)
 
     @property
     def mm_per_unit(self) -> float:
@@ -94,6 +98,10 @@ class Design:
         if name not in SECTIONS:
             raise KeyError(f"{name!r} is not a design-file section")
         return self.sections.get(name, {})
+
+    def label(self, gear: str) -> str:
+        """What reports and exports call the gear of table key ``gear``: its ``name``, else the key."""
+        return self.labels.get(gear, gear)
 
     def gear(self, name: str) -> GearSpec:
         try:
@@ -128,12 +136,21 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
     for key in unknown:
         problems.add(unknown_key(key, key, known, ", ".join(known), "unknown key or section"))
     name = data.get("name", path.stem if path else "design")
-    if not isinstance(name, str) or not name or any(c in name for c in "/\\") or name.startswith("."):
-        problems.add(DesignError("name", f"{name!r} is not a valid name", "a non-empty file-name-safe string"))
-        name = path.stem if path else "design"
+    try:
+        check_name("name", name)
+    except DesignError as exc:
+        if "name" not in data:  # the file's name stands in for the key
+            exc = DesignError("name", f"missing, and the file's name {shown(name)} is not a valid name",
+                              f'name = "..." in the file, {exc.allowed}')
+        problems.add(exc)
+        name = "design"
     description = data.get("description", "")
     if not isinstance(description, str):
-        problems.add(DesignError("description", f"expected a string, got {description!r}"))
+        problems.add(DesignError("description", f"expected a string, got {shown(description)}"))
+        description = ""
+    elif len(description) > STRING_MAX:
+        problems.add(DesignError("description", f"is {len(description):,} characters long",
+                                 f"at most {STRING_MAX:,} characters"))
         description = ""
     unit = data.get("length_unit")
     if unit is not None and unit not in LENGTH_UNITS:
@@ -165,15 +182,25 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         problems.add(DesignError("gears", f"expected tables [gears.NAME], got {type(gear_tables).__name__}"))
         gear_tables = {}
     gears: dict[str, GearSpec] = {}
+    labels: dict[str, str] = {}
     for gname, table in gear_tables.items():
+        if problems.run(check_name, f"gears.{gname}", gname, GEAR_NAME_MAX) is None:
+            continue
         if not isinstance(table, dict):
             problems.add(DesignError(f"gears.{gname}", f"expected a table, got {type(table).__name__}"))
             continue
         try:
+            # the table's key is the gear's identity (what every other section names it by); its
+            # ``name`` key, read and checked with the gear, only labels it
             gears[gname] = gear_from_table({**defaults, **table}, where=f"gears.{gname}", name=gname,
                                            length_unit=unit)
         except DesignError as exc:
             problems.add(_from_defaults(exc, gname, table, defaults))
+            continue
+        if isinstance(table.get("name"), str) and table["name"] != gname:
+            labels[gname] = table["name"]
+    for error in _name_clashes(gear_tables, labels):
+        problems.add(error)
     if unit is None:
         units = {g.length_unit for g in gears.values()}
         unit = units.pop() if len(units) == 1 else "mm"
@@ -186,7 +213,7 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
                 problems.add(DesignError(k, f"expected a table, got {type(v).__name__}", f"a [{k}] table"))
     design = Design(name=name, length_unit=unit, gears=gears, sections=sections, description=description,
                     drive_type=drive_type, preload_method=preload, path=path, sha256=sha256,
-                    defaulted=defaulted)
+                    defaulted=defaulted, labels=labels)
     if validate:
         from geargen.design.validate import validate_sections  # it reads the sections with their own modules
 
@@ -196,7 +223,7 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         if design.section("layout") or design.section("synthesis"):
             # the one internal gear a drive may hold: a planetary stage's ring
             rings = {t.get("ring") for t in (design.section("stages") or {}).values()
-                     if isinstance(t, Mapping) and t.get("kind") == "planetary"}
+                     if isinstance(t, Mapping) and t.get("kind") == "planetary" and isinstance(t.get("ring"), str)}
             for gname, spec in gears.items():
                 if getattr(spec, "kind", "external") != "external" and not (spec.kind == "internal" and gname in rings):
                     problems.add(DesignError(f"gears.{gname}.kind", f"{spec.kind!r}: the drives geargen places "
@@ -205,6 +232,26 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         validate_sections(design, problems, len(gears) == len(gear_tables), tuple(gear_tables))
     problems.raise_any(path.name if path else None)
     return design
+
+
+def _name_clashes(gear_tables: Mapping[str, Any], labels: Mapping[str, str]) -> list[DesignError]:
+    """Two gears that one name would stand for: keys alike but for case (their files are one on
+    macOS and Windows), or a label that is another gear's key or label."""
+    out = []
+    seen: dict[str, str] = {}  # casefolded key or label -> the gear table holding it
+    for gname in gear_tables:
+        folded = str(gname).casefold()
+        if folded in seen:
+            out.append(DesignError(f"gears.{gname}", f"differs from gears.{seen[folded]} only in case: both name "
+                                   "the same files on macOS and Windows", "gear names that differ in more than case"))
+        seen.setdefault(folded, gname)
+    for gname, label in labels.items():
+        other = seen.get(label.casefold())
+        if other is not None and other != gname:
+            out.append(DesignError(f"gears.{gname}.name", f"{label!r} is also the name of gears.{other}",
+                                   "a label no other gear has"))
+        seen.setdefault(label.casefold(), gname)
+    return out
 
 
 def _from_defaults(error: DesignError, gear: str, table: Mapping[str, Any], defaults: Mapping[str, Any]) -> DesignError:
@@ -236,6 +283,6 @@ def load_design(path: str | Path) -> Design:
     """Load a design file and validate all of it: every section, the rules between sections, and
     whether its gears, springs and flexures can be made (see :func:`design_from_dict`)."""
     path = Path(path).resolve()
-    data = load_toml(path)
-    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    data, raw = read_toml(path)
+    digest = hashlib.sha256(raw).hexdigest()
     return design_from_dict(data, path=path, sha256=digest, validate=True)

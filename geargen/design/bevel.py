@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from geargen.design.gear import _check
-from geargen.design.schema import Field, read_table
+from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
 
@@ -149,8 +149,8 @@ class BevelGearSpec:
 
 BEVEL_FIELDS: list[Field] = [
     Field("kind", "string", choices=("bevel",), help="\"bevel\": a straight bevel gear with spherical-involute teeth"),
-    Field("name", "string", required=False, default=None,
-          help="the gear's name in reports and exports (default: the table's name)"),
+    Field("name", "name", required=False, default=None, maximum=GEAR_NAME_MAX,
+          help="the gear's label in reports and exports (default: the table's name, its identity)"),
     Field("teeth", "integer", minimum=5, maximum=1000, help="number of teeth"),
     Field("mate_teeth", "integer", minimum=5, maximum=1000,
           help="number of teeth of the mating bevel gear (sets the pitch cone angle)"),
@@ -194,7 +194,7 @@ def bevel_from_table(data: Mapping[str, Any], where: str = "gear", name: str | N
                   shaft_angle=v["shaft_angle"], pressure_angle=v["pressure_angle"], profile_shift=v["profile_shift"],
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=v["thinning_circumferential"], bore_diameter=v["bore_diameter"],
-                  name=v["name"] or name or "bevel", length_unit=length_unit or unit)
+                  name=name or v["name"] or "bevel", length_unit=length_unit or unit)
     try:
         return BevelGearSpec(**kwargs)
     except DesignError as exc:

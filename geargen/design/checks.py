@@ -100,7 +100,8 @@ class ChecksSettings:
 CHECKS_FIELDS: list[Field] = [
     Field("steps_per_tooth", "integer", required=False, default=24, minimum=2, maximum=10000,
           help="mesh positions checked per tooth of the turned gear"),
-    Field("revolutions", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+    # at most the longest hunting period: the turned gear's revolutions until a mate of 2000 teeth repeats
+    Field("revolutions", "number", required=False, default=None, minimum=0.0, exclusive_minimum=True, maximum=2000.0,
           help="revolutions of the turned gear to sweep (default: one tooth cycle, or the whole hunting period when "
                "errors are swept)"),
     Field("section_planes", "integer", required=False, default=5, minimum=1, maximum=200,
@@ -187,7 +188,13 @@ def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) ->
         where = f"checks.{key}" + (f"[{k}]" if isinstance(raw, list) else "")
         if isinstance(c, bool) or not isinstance(c, (int, float)):
             raise DesignError(where, f"expected a number, got {c!r}")
-        check_range(f, float(c) * scale, where, scale, key[len("centre_distance_"):])
+        unit = key[len("centre_distance_"):]
+        check_range(f, float(c) * scale, where, scale, unit)
+        # two involutes touch only on a line of action between the base circles: the pair needs a > r_b1 + r_b2
+        bases = design.gears[m[0]].base_radius + design.gears[m[1]].base_radius
+        if float(c) * scale <= bases:
+            raise DesignError(where, f"{c:.6g} {unit} does not clear the base circles of {m[0]} and {m[1]}",
+                              f"> {bases / scale:.6g} {unit}")
         out.append(DeclaredMesh(m[0], m[1], float(c) * scale))
     return tuple(out)
 

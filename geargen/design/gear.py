@@ -29,7 +29,7 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import Any, Mapping
 
-from geargen.design.schema import Field, read_table
+from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
 
@@ -375,8 +375,9 @@ GEAR_FIELDS: list[Field] = [
     Field("kind", "string", required=False, default="external", choices=CYLINDRICAL_KINDS,
           help="the gear's kind: external (spur or helical), internal (a ring), double_helical (two helical halves "
                "of opposite hand); the other families have their own tables"),
-    Field("name", "string", required=False, default=None,
-          help="the gear's name in reports and exports (default: the table's name)"),
+    Field("name", "name", required=False, default=None, maximum=GEAR_NAME_MAX,
+          help="the gear's label in reports and exports (default: the table's name, which stays the gear's "
+               "identity in the design); the name of a [gear] file's gear"),
     Field("teeth", "integer", minimum=4, maximum=2000, help="number of teeth"),
     Field("module", "length", required=False, units=("mm",), minimum=0.01, exclusive_minimum=True, maximum=200.0,
           help="module in the pitch system given (normal unless pitch_system = \"transverse\"); give this or "
@@ -443,10 +444,13 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                     length_unit: str | None = None) -> GearSpec:
     """Build a :class:`GearSpec` from a design table, converting the transverse system if used.
 
-    ``length_unit`` is the design's unit for reports; by default inches for a diametral-pitch
-    design and mm for a module design.
+    ``name`` is the gear's identity (an assembly's table key), which the table's own ``name`` key
+    (a label) never replaces; without it the table's ``name`` names the gear. ``length_unit`` is
+    the design's unit for reports; by default inches for a diametral-pitch design and mm for a
+    module design.
     """
-    if isinstance(data, Mapping) and data.get("kind") in FAMILY_READERS:  # another family's table
+    if isinstance(data, Mapping) and isinstance(data.get("kind"), str) and data["kind"] in FAMILY_READERS:
+        # another family's table
         import importlib
         module, function = FAMILY_READERS[data["kind"]].split(":")
         return getattr(importlib.import_module(module), function)(data, where=where, name=name,
@@ -505,7 +509,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     kwargs = dict(teeth=v["teeth"], module=module_n, pressure_angle=alpha_n, face_width=v["face_width"],
                   helix_angle=beta, hand=v["hand"], profile_shift=shift_n,
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
-                  thinning=thinning, hub=hub, name=v["name"] or name or "gear", thickness_deviations=deviations,
+                  thinning=thinning, hub=hub, name=name or v["name"] or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
                   accuracy_standard=v["accuracy_standard"], kind=v["kind"], rim_diameter=v["rim_diameter"],
                   centre_gap=v["centre_gap"])

@@ -40,6 +40,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from geargen.design.schema import PLAUSIBLE
 from geargen.errors import DesignError
 from geargen.units import MM_PER_IN
 
@@ -207,7 +208,7 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
     if not isinstance(data, Mapping) or not _needs_defaults(data):
         return dict(data) if isinstance(data, Mapping) else data, ()
     wanted = [s for s in ("parts", "preload", "flexures", "springs", "stiffness") if s not in data]
-    if isinstance(data.get("parts"), Mapping):
+    if isinstance(data.get("parts"), Mapping) and _partial_parts(data["parts"]):
         wanted.append("parts")  # a partial [parts]: the keys it leaves out are defaulted
     gear_tables = data.get("gears") or {}
     defaults_table = data.get("gear_defaults") or {}
@@ -358,6 +359,21 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
     return out, tuple(added)
 
 
+def _partial_parts(table: Mapping[str, Any]) -> bool:
+    """Whether a [parts] table of the carriage leaves out a key it needs, and gives only values its
+    fields accept (a bad one is the validating load's to refuse, naming it; nothing is sized from it)."""
+    from dataclasses import replace
+
+    from geargen.design.parts import hardware_fields
+    from geargen.design.schema import read_table
+    fields = hardware_fields("dual_pinion")
+    try:
+        read_table(table, [replace(f, required=False) for f in fields], "parts")
+    except DesignError:
+        return False
+    return any(f.required and not _given(table, f.name) for f in fields)
+
+
 #: [parts] keys that say the same thing in two ways: giving one gives the other
 _SYNONYMS = {"bevel_module": "bevel_diametral_pitch", "bevel_diametral_pitch": "bevel_module"}
 
@@ -478,7 +494,8 @@ def _loop_reach(data, gears) -> float:
     a2 = None
     for unit, scale in LENGTH_SUFFIXES.items():
         value = syn.get(f"centre_distance_mesh2_{unit}")
-        if isinstance(value, (int, float)) and not isinstance(value, bool) and value > 0:
+        # read before the file is validated: an absurd value (inf, 1e308) is left to the validation to refuse
+        if isinstance(value, (int, float)) and not isinstance(value, bool) and 0 < value * scale <= PLAUSIBLE["length"][1]:
             a2 = value * scale
     small, large, out = gears["cluster_small"], gears["cluster_large"], gears["output"]
     if a2 is None:

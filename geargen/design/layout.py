@@ -24,13 +24,17 @@ from __future__ import annotations
 
 from typing import Any
 
-from geargen.design.schema import Field, read_table
+from geargen.design.schema import Field, read_table, shown
 from geargen.drives import KEYS, LAYOUT_KINDS, kind_of
 from geargen.drives.dual_pinion.keys import POSITIONS
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
 MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
+#: the most teeth of an upstream stage's gear (a GearSpec's most) and the largest required ratio
+#: (far past a 360:1 indexing drive)
+MAX_TEETH = 2000
+MAX_RATIO = 1_000_000
 
 #: the [layout] keys of every drive kind; each kind reads its own besides (geargen.drives.<kind>.keys)
 COMMON_FIELDS = [
@@ -112,13 +116,13 @@ def layout_settings(design) -> dict[str, Any]:
         v["model_backlash"] = "as_designed" if any(g.thinning > 0 for g in design.gears.values()) else "mid"
     for i, stage in enumerate(v["upstream_stages"]):
         if not (isinstance(stage, list) and len(stage) == 2
-                and all(isinstance(t, int) and not isinstance(t, bool) and t > 0 for t in stage)):
-            raise DesignError(f"layout.upstream_stages[{i}]", f"{stage!r} is not [driver_teeth, driven_teeth]",
-                              "two whole numbers > 0")
+                and all(isinstance(t, int) and not isinstance(t, bool) and 0 < t <= MAX_TEETH for t in stage)):
+            raise DesignError(f"layout.upstream_stages[{i}]", f"{shown(stage)} is not [driver_teeth, driven_teeth]",
+                              f"two whole numbers in [1, {MAX_TEETH}] (a worm's starts, a gear's teeth)")
     for i, ratio in enumerate(v["required_ratios"]):
-        if isinstance(ratio, bool) or not isinstance(ratio, int) or ratio <= 0:
-            raise DesignError(f"layout.required_ratios[{i}]", f"{ratio!r} is not a whole-number ratio",
-                              "whole numbers > 0, e.g. 180 or 360")
+        if isinstance(ratio, bool) or not isinstance(ratio, int) or not 0 < ratio <= MAX_RATIO:
+            raise DesignError(f"layout.required_ratios[{i}]", f"{shown(ratio)} is not a whole-number ratio",
+                              f"whole numbers in [1, {MAX_RATIO}], e.g. 180 or 360")
     fields = {f.name: f for f in kind_fields(drive)}
     for name in KEYS[drive].REQUIRED:
         if v[name] is None:

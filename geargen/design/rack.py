@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from geargen.design.gear import DEG, HANDS, _check, _with_field_prefix
-from geargen.design.schema import Field, read_table
+from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
 
@@ -250,7 +250,8 @@ class RackSpec:
 
 RACK_FIELDS: list[Field] = [
     Field("kind", "string", choices=("rack",), help="\"rack\": a spur or helical gear rack"),
-    Field("name", "string", required=False, default=None, help="the rack's name in reports and exports"),
+    Field("name", "name", required=False, default=None, maximum=GEAR_NAME_MAX,
+          help="the rack's label in reports and exports (default: the table's name, its identity)"),
     Field("teeth", "integer", required=False, default=None, minimum=1, maximum=10000,
           help="number of teeth along the rack (its length is teeth x the transverse pitch); give this or length"),
     Field("length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
@@ -344,7 +345,7 @@ def rack_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   tip_rounding=v["tip_rounding"], tip_radius_coefficient=v["tip_radius_coefficient"],
                   root_fillet_coefficient=v["root_fillet_coefficient"], thinning=thinning,
-                  name=v["name"] or name or "rack", length_unit=length_unit or unit)
+                  name=name or v["name"] or "rack", length_unit=length_unit or unit)
     if v["thinning_normal"] is not None:
         units = {**units, "thinning": units["thinning_normal"]}
         renamed = {"thinning": "thinning_normal"}

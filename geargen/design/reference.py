@@ -24,7 +24,8 @@ from pathlib import Path
 from typing import Any
 
 from geargen.design.assembly import SECTIONS
-from geargen.design.schema import Field, _fmt, _range_text
+from geargen.design.schema import (GEAR_NAME_MAX, MAX_FILE_BYTES, MAX_NESTING, NAME_MAX, PLAUSIBLE, Field, _fmt,
+                                   _range_text, plausible)
 from geargen.design.stiffness import (_KIND_KEYS, INTERNAL_UNITS, QUANTITY_SUFFIXES, BeamPinionSpec, ComponentSpec,
                                       FlexureSpec, PreloadSpec, Quantity, SpringSpec, StiffnessSpec)
 from geargen.design.validate import table_schema
@@ -276,6 +277,8 @@ def key_type(schema: Field | Quantity) -> str:
         return f"{schema.kind}: " + " ".join(f"_{s}" for s in schema.suffixes())
     if schema.kind == "string" and schema.choices:
         return "one of " + ", ".join(f'"{c}"' for c in schema.choices)
+    if schema.kind == "name":
+        return f"name: at most {int(schema.maximum or NAME_MAX)} of A-Z a-z 0-9 _ - ."
     return {"integer": "whole number", "number": "number", "string": "string", "bool": "true or false",
             "list": "list", "table": "table"}[schema.kind]
 
@@ -283,13 +286,13 @@ def key_type(schema: Field | Quantity) -> str:
 def range_text(schema: Field | Quantity) -> str:
     """The allowed values: lengths in mm, angles in degrees, quantities in their internal unit."""
     if isinstance(schema, Quantity):
-        family = schema.families[0]
         bounds = Field(schema.name, "number", minimum=schema.minimum, maximum=schema.maximum,
                        exclusive_minimum=schema.exclusive_minimum)
-        unit = "" if schema.minimum in (None, 0.0) and schema.maximum is None else INTERNAL_UNITS[family]
-        return _range_text(bounds, 1.0, unit)
+        return "; ".join(_range_text(plausible(bounds, family), 1.0, INTERNAL_UNITS[family])
+                         for family in schema.families)
     if schema.kind not in ("length", "angle", "number", "integer"):
         return ""
+    schema = plausible(schema)
     if schema.kind == "length":
         return _range_text(schema, 1.0, "mm")
     if schema.kind == "angle":
@@ -435,6 +438,13 @@ def design_files_markdown(root: Path = ASSEMBLIES) -> str:
            "(`face_width_mn` -> did you mean `face_width_mm`?), a value out of range with the range in the "
            "key's unit, and every problem of a file is reported at once. `geargen new KIND FILE.toml` writes a "
            f"commented starter design ({kinds}) that builds.", "",
+           f"The file is UTF-8 (a byte-order mark is accepted), at most {MAX_FILE_BYTES // 1024 // 1024} MiB, its "
+           f"tables and arrays nested at most {MAX_NESTING} deep. A number whose key sets no bound of its own on a "
+           "side has the plausible one of its kind there (the ranges below include them): a length at most "
+           f"{PLAUSIBLE['length'][1] / 1e3:g} m and, when above zero, at least {PLAUSIBLE['length'][0] * 1e6:g} nm; "
+           "an angle at most a turn. A name that becomes a file name (the design's, a gear table's, a stage's) is "
+           f"ASCII letters, digits, `_`, `-` and `.`, at most {NAME_MAX} characters, a gear's at most "
+           f"{GEAR_NAME_MAX} (what its drawing holds).", "",
            "Columns: the key (`_<unit>`: any suffix of its kind), what it takes, its range (`[a, b]` inclusive, "
            "`(a, b)` exclusive), its default (`required`, or blank: not set, the meaning says what happens), "
            "and its meaning.", ""]

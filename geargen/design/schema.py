@@ -9,15 +9,17 @@ from __future__ import annotations
 
 import difflib
 import math
+import os
+import re
 import tomllib
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Iterable, Mapping
 
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
-KINDS = ("length", "angle", "number", "integer", "string", "bool", "table", "list")
+KINDS = ("length", "angle", "number", "integer", "string", "name", "bool", "table", "list")
 
 _UNIT_SUFFIXES = {"length": LENGTH_SUFFIXES, "angle": ANGLE_SUFFIXES}
 
@@ -63,6 +65,64 @@ class Field:
         if self.kind in _UNIT_SUFFIXES:
             return [f"{self.name}_{u}" for u in self.suffixes()]
         return [self.name]
+
+
+
+# ---------------------------------------------------------------- names that become file names
+
+#: what a name may be made of: a design's, a gear's, a stage's name becomes file names
+#: (``NAME.step``, ``drawings/NAME.json``, ``carrier_NAME.stl``), STEP product names and labels
+#: on drawings. ASCII letters, digits, "_", "-" and ".", not first a "." (a hidden file, "..");
+#: no separator, space or control character, so no name can point outside its output folder, and
+#: every file system and CAD reader takes it as it is
+NAME_PATTERN = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.-]*")
+#: the most characters of a gear's name: what the manufacturing drawing's gear data block
+#: (geargen.report.drawing, 235 mm of rows at ISO 3098's 3.5 mm lettering) holds in every case a
+#: placed drive gives, a gear with two mating gears (a split pinion's output) all three of names
+#: this long in the widest letter ("m") and a design file path of 100 characters: 17 fit, 18
+#: overflow it (tests/design/test_names.py draws it)
+GEAR_NAME_MAX = 16
+#: the most characters of any other name (a design's, a stage's, a stiffness component's): they
+#: go into file names with a suffix of up to 25 characters, far inside the 255 bytes a file name may have
+NAME_MAX = 64
+#: names whose files geargen writes itself into the same folder as a gear's or part's files
+#: (``manifest.json``, the build's ``assembly.step``): a gear of that name would overwrite them.
+#: Compared without case, as macOS and Windows compare file names.
+RESERVED_NAMES = ("manifest", "assembly")
+#: the most characters of a string that is no name (a description, a material): far more than
+#: any sentence a design file needs; a longer one (a 50 MB name) would only slow every writer
+STRING_MAX = 2000
+
+
+def shown(value: Any, most: int = 60) -> str:
+    """``repr(value)``, cut to about ``most`` characters (a message never repeats a huge value)."""
+    text = repr(value)
+    return text if len(text) <= most else f"{text[:most - 15]}...{text[-12:]}"
+
+
+def name_rule(most: int) -> str:
+    """The allowed names, as an error message says them."""
+    return (f"at most {most} characters: letters A-Z a-z, digits, '_', '-' and '.', starting with a letter or "
+            f"digit; not {' or '.join(map(repr, RESERVED_NAMES))} (it names files)")
+
+
+def check_name(where: str, value: Any, most: int = NAME_MAX) -> str:
+    """``value`` when it is a valid name of at most ``most`` characters (:data:`NAME_PATTERN`),
+    else a :class:`DesignError` naming ``where`` and the first thing wrong with it."""
+    allowed = name_rule(most)
+    if not isinstance(value, str):
+        raise DesignError(where, f"expected a name, got {shown(value)}", allowed)
+    if not NAME_PATTERN.fullmatch(value):
+        if not value:
+            raise DesignError(where, "is empty", allowed)
+        bad = next((i for i, c in enumerate(value) if not NAME_PATTERN.fullmatch("a" + c)), 0)
+        what = f"starts with {value[0]!r}" if bad == 0 else f"holds {value[bad]!r} (character {bad + 1})"
+        raise DesignError(where, f"{shown(value)} {what}: not a valid name", allowed)
+    if len(value) > most:
+        raise DesignError(where, f"{shown(value)} is {len(value):,} characters long", allowed)
+    if value.casefold() in RESERVED_NAMES:
+        raise DesignError(where, f"{value!r} is the name of a file geargen writes beside it", allowed)
+    return value
 
 
 class DesignErrors(DesignError):
@@ -156,6 +216,8 @@ def close_keys(written: str, known: Iterable[str], most: int = 3) -> list[str]:
     tied for the closest are all given.
     """
     known = list(dict.fromkeys(known))
+    if len(written) > 2 * max(map(len, known), default=0):  # far longer than any key: no typo of one
+        return []
     with_unit = [k for k in known if k.startswith(written + "_")]
     if with_unit:
         return with_unit[:most]
@@ -209,6 +271,47 @@ def bound_text(value: float, toward: str) -> str:
     return _fmt(steps * quantum)
 
 
+#: The plausible magnitudes of a value of each kind, or quantity family (internal units), as
+#: (smallest nonzero, largest): the bounds of a key on each side where it sets none of its own.
+#: Far beyond any drive geargen designs, yet finite, so an absurd number (1e300, an exponent typed
+#: wrong) is refused naming its key before the model computes with it and overflows to inf or NaN;
+#: and a key that must be positive (a stiffness, a length something is divided by) is at least the
+#: smallest, never a 1e-300 that divides to infinity.
+PLAUSIBLE: dict[str, tuple[float, float]] = {
+    "length": (1e-6, 1e4),                # mm: 1 nm, below any measurement here, to 10 m, beyond any gearbox
+    "angle": (1e-9, 2 * math.pi),         # rad: 1 nrad to a full turn
+    "number": (1e-9, 1e6),                # ratios, coefficients, forces in N, rates in N/mm
+    "integer": (1, 2 ** 63 - 1),          # counts and seeds: TOML's own integer range
+    "force": (1e-6, 1e8),                 # N: to 10,000 t
+    "torque": (1e-6, 1e11),               # N·mm: to 100,000 kN·m
+    "linear_stiffness": (1e-9, 1e12),     # N/mm: to 10^9 N/um
+    "torsional_stiffness": (1e-6, 1e18),  # N·mm/rad: to 10^15 N·m/rad, far stiffer than a 1 m shaft
+    "stress": (1e-6, 1e7),                # MPa: to 10 TPa (diamond's modulus is 1.2 TPa)
+    "inertia": (1e-15, 1e9),              # kg·m²
+    "rotary_damping": (1e-12, 1e12),      # N·m·s/rad
+    "torque_constant": (1e-6, 1e4),       # N·m/A
+    "frequency": (1e-6, 1e9),             # Hz
+}
+
+
+def plausible(field: Field, family: str | None = None) -> Field:
+    """``field`` with the :data:`PLAUSIBLE` bounds of its kind (or of the quantity ``family``) on
+    each side where it sets none: a largest value; a smallest, the negative of it, for a signed key;
+    the smallest nonzero magnitude for a key that must be above zero."""
+    bounds = PLAUSIBLE.get(family or field.kind)
+    if bounds is None:
+        return field
+    smallest, largest = bounds
+    minimum, maximum, exclusive_minimum = field.minimum, field.maximum, field.exclusive_minimum
+    if maximum is None:
+        maximum = largest
+    if minimum is None:
+        minimum, exclusive_minimum = -largest, False
+    elif minimum == 0 and exclusive_minimum:
+        minimum, exclusive_minimum = smallest, False
+    return replace(field, minimum=minimum, maximum=maximum, exclusive_minimum=exclusive_minimum)
+
+
 def _range_text(field: Field, scale: float, unit: str) -> str:
     lo = None if field.minimum is None else field.minimum / scale
     hi = None if field.maximum is None else field.maximum / scale
@@ -224,8 +327,11 @@ def _range_text(field: Field, scale: float, unit: str) -> str:
     return "any finite value"
 
 
-def check_range(field: Field, value: float, where: str, scale: float = 1.0, unit: str = "") -> None:
-    """Raise :class:`DesignError` if ``value`` (internal units) is outside the field's range."""
+def check_range(field: Field, value: float, where: str, scale: float = 1.0, unit: str = "",
+                family: str | None = None) -> None:
+    """Raise :class:`DesignError` if ``value`` (internal units) is outside the field's range, or
+    outside the :func:`plausible` range of its kind (or quantity ``family``) where it sets none."""
+    field = plausible(field, family)
     if not math.isfinite(value):
         raise DesignError(where, "must be a finite number", _range_text(field, scale, unit))
     bad = False
@@ -237,33 +343,46 @@ def check_range(field: Field, value: float, where: str, scale: float = 1.0, unit
         raise DesignError(where, f"{_fmt(value / scale)} is out of range", _range_text(field, scale, unit))
 
 
+def as_float(raw: int | float, where: str) -> float:
+    """``float(raw)``; an integer too big for a float (TOML integers have any number of digits
+    here) is out of range, named."""
+    try:
+        return float(raw)
+    except OverflowError:
+        raise DesignError(where, f"{shown(raw)} is out of range", "a number below 1e308") from None
+
+
 def _convert(field: Field, key: str, raw: Any, where: str) -> Any:
     if field.kind in ("length", "angle", "number"):
         if isinstance(raw, bool) or not isinstance(raw, (int, float)):
-            raise DesignError(where, f"expected a number, got {raw!r}")
+            raise DesignError(where, f"expected a number, got {shown(raw)}")
         if field.kind == "number":
-            value = float(raw)
+            value = as_float(raw, where)
             check_range(field, value, where)
             return value
         unit = key[len(field.name) + 1:]
         scale = field.suffixes()[unit]
-        value = float(raw) * scale
+        value = as_float(raw, where) * scale
         check_range(field, value, where, scale, unit)
         return value
     if field.kind == "integer":
         if isinstance(raw, bool) or not isinstance(raw, int):
-            raise DesignError(where, f"expected a whole number, got {raw!r}")
-        check_range(field, float(raw), where)
+            raise DesignError(where, f"expected a whole number, got {shown(raw)}")
+        check_range(field, as_float(raw, where), where)
         return int(raw)
+    if field.kind == "name":
+        return check_name(where, raw, int(field.maximum) if field.maximum is not None else NAME_MAX)
     if field.kind == "string":
         if not isinstance(raw, str):
-            raise DesignError(where, f"expected a string, got {raw!r}")
+            raise DesignError(where, f"expected a string, got {shown(raw)}")
         if field.choices and raw not in field.choices:
-            raise DesignError(where, f"{raw!r} is not a valid choice", ", ".join(map(repr, field.choices)))
+            raise DesignError(where, f"{shown(raw)} is not a valid choice", ", ".join(map(repr, field.choices)))
+        if len(raw) > STRING_MAX:
+            raise DesignError(where, f"{shown(raw)} is {len(raw):,} characters long", f"at most {STRING_MAX:,}")
         return raw
     if field.kind == "bool":
         if not isinstance(raw, bool):
-            raise DesignError(where, f"expected true or false, got {raw!r}")
+            raise DesignError(where, f"expected true or false, got {shown(raw)}")
         return raw
     if field.kind == "table":
         if not isinstance(raw, dict):
@@ -321,13 +440,106 @@ def read_table(data: Mapping[str, Any], fields: list[Field], where: str = "",
     return out
 
 
-def load_toml(path: str | Path) -> dict[str, Any]:
-    """Read a TOML design file; syntax errors name the file and the line."""
+#: the largest design file read (bytes): the shipped ones are under 20 kB; a bigger file is not a
+#: design someone wrote, and reading it whole would only delay the refusal
+MAX_FILE_BYTES = 4 * 1024 * 1024
+#: the deepest nesting of tables and arrays a design file may have (the file itself is 1): the
+#: shipped ones reach 5 (a list in [stiffness.components.NAME]); far deeper, the TOML reader runs
+#: out of Python's stack, and no design has such a structure
+MAX_NESTING = 16
+_BOM = b"\xef\xbb\xbf"
+
+
+def _too_big(source: str, size: int) -> DesignError:
+    return DesignError(source, f"is {size:,} bytes: too big for a design file",
+                       f"a TOML file of at most {MAX_FILE_BYTES:,} bytes")
+
+
+def toml_text(data: bytes, source: str) -> str:
+    """The text of a TOML file's bytes, or a :class:`DesignError` naming ``source`` and why not.
+
+    A UTF-8 byte-order mark is accepted and dropped: it carries no content, TOML's own parsers
+    differ on it, and the editors that add it (Windows Notepad) give no visible sign of it, so
+    refusing it would leave the user hunting for an invisible character."""
+    if len(data) > MAX_FILE_BYTES:
+        raise _too_big(source, len(data))
+    if data.startswith(_BOM):
+        data = data[len(_BOM):]
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = data.count(b"\n", 0, exc.start) + 1
+        raise DesignError(source, f"not UTF-8 at byte {exc.start} (line {line}): byte 0x{data[exc.start]:02x}",
+                          "a TOML file is UTF-8 text: save it as UTF-8") from None
+
+
+def nesting_depth(data: Any) -> int:
+    """How deep tables and arrays nest in ``data`` (a scalar 0, a flat table 1), found without
+    recursion so that any depth can be measured."""
+    deepest = 0
+    stack = [(data, 0)]
+    while stack:
+        value, depth = stack.pop()
+        if isinstance(value, Mapping):
+            children = value.values()
+        elif isinstance(value, list):
+            children = value
+        else:
+            deepest = max(deepest, depth)
+            continue
+        deepest = max(deepest, depth + 1)
+        if depth + 1 > MAX_NESTING:
+            return depth + 1  # deep enough to refuse: no need to walk the rest
+        stack.extend((child, depth + 1) for child in children)
+    return deepest
+
+
+#: strings and comments of TOML text (replaced by ``""`` before keys are looked at)
+_STRINGS_AND_COMMENTS = re.compile(r'"""[\s\S]*?"""|\'\'\'[\s\S]*?\'\'\'|"(?:[^"\\\n]|\\.)*"|\'[^\'\n]*\'|#[^\n]*')
+#: a key of more than MAX_NESTING dotted parts (bare or quoted): matched possessively from the start
+#: of a word, so a long run of letters costs one pass
+_DOTTED_TOO_DEEP = re.compile(r'(?<![A-Za-z0-9_-])(?:(?:[A-Za-z0-9_-]++|"")[ \t]*+\.[ \t]*+){%d}' % MAX_NESTING)
+
+
+def parse_toml(text: str, source: str) -> dict[str, Any]:
+    """Parse TOML ``text``; a syntax error, or nesting deeper than :data:`MAX_NESTING`, is a
+    :class:`DesignError` naming ``source`` (and the line, for a syntax error)."""
+    too_deep = DesignError(source, f"nested deeper than {MAX_NESTING} levels of tables and arrays",
+                           f"at most {MAX_NESTING} levels (the shipped designs reach 5)")
+    # dotted keys first: the TOML reader takes time quadratic in their parts (8000 parts: 1 s; a 4 MiB
+    # file of them would not end), and they nest without it recursing
+    if _DOTTED_TOO_DEEP.search(_STRINGS_AND_COMMENTS.sub('""', text)):
+        raise too_deep
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise DesignError(source, f"not valid TOML: {exc}") from None
+    except ValueError as exc:  # an integer of more digits than Python converts (4300)
+        raise DesignError(source, f"holds a number Python cannot read: {str(exc).split(';')[0]}",
+                          "numbers a design needs") from None
+    except RecursionError:  # the parser recurses once per level of nested arrays or inline tables
+        raise too_deep from None
+    if nesting_depth(data) > MAX_NESTING:  # dotted keys nest without the parser recursing
+        raise too_deep
+    return data
+
+
+def read_toml(path: str | Path) -> tuple[dict[str, Any], bytes]:
+    """A TOML design file parsed, and its bytes (for its digest): every way a file can fail to be
+    read as a design (not UTF-8, nested too deep, not TOML, too big) is a :class:`DesignError`
+    naming the file and the cause."""
     path = Path(path)
     try:
         with path.open("rb") as fh:
-            return tomllib.load(fh)
+            size = os.fstat(fh.fileno()).st_size
+            if size > MAX_FILE_BYTES:
+                raise _too_big(str(path), size)
+            data = fh.read(MAX_FILE_BYTES + 1)  # not more, should the file grow meanwhile
     except FileNotFoundError:
         raise DesignError(str(path), "no such design file") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise DesignError(str(path), f"not valid TOML: {exc}") from None
+    return parse_toml(toml_text(data, str(path)), str(path)), data
+
+
+def load_toml(path: str | Path) -> dict[str, Any]:
+    """Read a TOML design file (see :func:`read_toml`); errors name the file, the cause and the line."""
+    return read_toml(path)[0]

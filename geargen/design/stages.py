@@ -33,8 +33,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
+from geargen.design.schema import Field, check_name, read_table, shown
 from geargen.drives.planetary.keys import read_planetary_stage, stage_gear
-from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
@@ -84,11 +84,17 @@ def stages(design) -> tuple[Stage, ...]:
     used: dict[str, str] = {}
     for name, data in table.items():
         where = f"stages.{name}"
+        check_name(where, name)  # it names the stage's parts and meshes (carrier_NAME, stage_NAME)
         if not isinstance(data, dict):
             raise DesignError(where, "expected a table")
         if data.get("kind") == "planetary":
             out.append(read_planetary_stage(design, name, data, used))
             continue
+        planetary = [k for k in ("sun", "planet", "ring") if k in data]
+        if planetary:  # a planetary stage's table whose kind went missing or wrong: say so, not "unknown key"
+            kind = data.get("kind")
+            raise DesignError(f"{where}.kind", "missing" if kind is None else f"{shown(kind)} is not 'planetary'",
+                              f"'planetary': the table gives {', '.join(planetary)}, a planetary stage's keys")
         v = read_table(data, STAGE_FIELDS, where)
         gears = []
         for role in ("driver", "driven"):

@@ -53,8 +53,9 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
+from geargen.design.schema import (Field, as_float, bound_text, check_name, check_range, raise_unknown_keys, read_table,
+                                   shown, unknown_key)
 from geargen.drives import KEYS, kind_of
-from geargen.design.schema import Field, bound_text, check_range, raise_unknown_keys, read_table, unknown_key
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
@@ -107,7 +108,9 @@ class Quantity:
     name: str
     families: tuple[str, ...]
     required: bool = False
-    minimum: float | None = None
+    # above zero unless a quantity says otherwise: a force, torque, stiffness or modulus of zero or
+    # below is no part's, and a stiffness or modulus is divided by
+    minimum: float | None = 0.0
     exclusive_minimum: bool = True
     maximum: float | None = None
     help: str = ""
@@ -151,13 +154,13 @@ def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list
         key = present[0]
         raw = data[key]
         if isinstance(raw, bool) or not isinstance(raw, (int, float)):
-            raise DesignError(prefix + key, f"expected a number, got {raw!r}")
+            raise DesignError(prefix + key, f"expected a number, got {shown(raw)}")
         _, fam, suf = qkeys[key]
         scale = QUANTITY_SUFFIXES[fam][suf]
-        value = float(raw) * scale
+        value = as_float(raw, prefix + key) * scale
         bounds = Field(q.name, "number", minimum=q.minimum, maximum=q.maximum,
                        exclusive_minimum=q.exclusive_minimum)
-        check_range(bounds, value, prefix + key, scale, suf)
+        check_range(bounds, value, prefix + key, scale, suf, family=fam)
         out[q.name] = (value, fam)
         out["_units"][q.name] = suf
     return out
@@ -521,6 +524,7 @@ def stiffness_spec_from_table(data: Mapping[str, Any], required_train: str | Non
         raise DesignError("stiffness.components", "expected tables [stiffness.components.NAME]")
     components = []
     for cname, table in comps.items():
+        check_name(f"stiffness.components.{cname}", cname)  # it names the component in reports and plots
         if not isinstance(table, Mapping):
             raise DesignError(f"stiffness.components.{cname}", "expected a table")
         components.append(component_from_table(cname, table))

@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 from typing import Any, Mapping
 
 from geargen.design.layout import layout_settings
-from geargen.design.schema import Field
+from geargen.design.schema import Field, as_float, check_range, shown
 from geargen.design.stiffness import Quantity, _read_section, _value
 from geargen.errors import DesignError
 
@@ -118,13 +118,17 @@ class TrainSettings:
         return self.motor_rotor_inertia is not None and (self.bandwidth is not None or self.position_gain is not None)
 
 
-def _numbers(values: Any, where: str, minimum_exclusive: float = 0.0) -> tuple[float, ...]:
+def _numbers(values: Any, where: str, family: str, scale: float, unit: str) -> tuple[float, ...]:
+    """A list of positive numbers written in ``unit`` (``scale`` of the :data:`PLAUSIBLE` family's
+    internal unit each), each in that family's plausible range."""
     if not isinstance(values, (list, tuple)):
-        raise DesignError(where, f"expected a list of numbers, got {values!r}", "[number, ...]")
+        raise DesignError(where, f"expected a list of numbers, got {shown(values)}", "[number, ...]")
+    positive = Field(where, "number", minimum=0.0, exclusive_minimum=True)
     out = []
     for i, v in enumerate(values):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= minimum_exclusive:
-            raise DesignError(f"{where}[{i}]", f"{v!r} is out of range", f"a number > {minimum_exclusive:g}")
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise DesignError(f"{where}[{i}]", f"expected a number, got {shown(v)}", "[number, ...]")
+        check_range(positive, as_float(v, f"{where}[{i}]") * scale, f"{where}[{i}]", scale, unit, family)
         out.append(float(v))
     return tuple(out)
 
@@ -150,13 +154,16 @@ def train_settings(design) -> TrainSettings:
             raise DesignError(where, f"{material!r} is not a known material", ", ".join(sorted(densities)))
     count = len(layout_settings(design)["upstream_stages"]) if design.section("layout") else 0
     lists = {}
-    for key, scale in (("upstream_backlash_arcmin", math.pi / 10800.0),
-                       ("upstream_stiffness_Nm_per_arcmin", 10800.0 / math.pi)):
-        values = _numbers(v[key], f"train.{key}")
+    # (key, unit, its family, internal units per unit, the model's units per unit: rad, N·m/rad)
+    for key, unit, family, internal, model in (
+            ("upstream_backlash_arcmin", "arcmin", "angle", math.pi / 10800.0, math.pi / 10800.0),
+            ("upstream_stiffness_Nm_per_arcmin", "Nm_per_arcmin", "torsional_stiffness", 1e3 * 10800.0 / math.pi,
+             10800.0 / math.pi)):
+        values = _numbers(v[key], f"train.{key}", family, internal, unit)
         if values and len(values) != count:
             raise DesignError(f"train.{key}", f"{len(values)} values for {count} [layout] upstream_stages",
                               "one per upstream stage")
-        lists[key] = tuple(x * scale for x in values)
+        lists[key] = tuple(x * model for x in values)
     given = {k: _value(v[k]) for k in ("bandwidth", "position_gain", "velocity_gain")}
     if given["bandwidth"] is not None and given["position_gain"] is not None:
         raise DesignError("train.position_gain", "given with bandwidth_Hz", "one of bandwidth_Hz (with damping_ratio) "

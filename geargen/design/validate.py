@@ -158,7 +158,7 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
 }
 
 #: the top-level keys and [drive], as fields (all optional)
-TOP_FIELDS = [Field("name", "string", required=False,
+TOP_FIELDS = [Field("name", "name", required=False,
                     help="the design's name in reports and manifests (default: the file name)"),
               Field("description", "string", required=False, help="one line describing the design, shown in the report"),
               Field("length_unit", "string", required=False, choices=("mm", "in"),

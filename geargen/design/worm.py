@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from geargen.design.gear import _check
-from geargen.design.schema import Field, read_table
+from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import MM_PER_IN, module_from_diametral_pitch
 
@@ -133,7 +133,8 @@ class WormWheelSpec:
 
 WORM_FIELDS: list[Field] = [
     Field("kind", "string", choices=WORM_KINDS, help="worm or worm_wheel: which part of the set the table builds"),
-    Field("name", "string", required=False, default=None, help="the part's name in reports and exports"),
+    Field("name", "name", required=False, default=None, maximum=GEAR_NAME_MAX,
+          help="the part's label in reports and exports (default: the table's name, its identity)"),
     Field("module", "length", required=False, units=("mm",), minimum=0.05, maximum=50.0,
           help="axial module m_x of the worm (transverse module of the wheel); or diametral_pitch_per_in"),
     Field("diametral_pitch_per_in", "number", required=False, minimum=MM_PER_IN / 50.0, maximum=MM_PER_IN / 0.05,
@@ -202,7 +203,7 @@ def worm_set_from_table(data: Mapping[str, Any], where: str = "gear", name: str 
         key = field if field not in units else f"{field}_{units[field]}"
         raise DesignError(p + key, exc.problem, exc.allowed) from None
     part = WormSpec if v["kind"] == "worm" else WormWheelSpec
-    return part(worm_set, name=v["name"] or name or v["kind"])
+    return part(worm_set, name=name or v["name"] or v["kind"])
 
 
 __all__ = ["WormGearSet", "WormSpec", "WormWheelSpec", "WORM_FIELDS", "WORM_KINDS", "worm_set_from_table"]

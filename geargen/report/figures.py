@@ -4,16 +4,25 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from geargen.outputs import atomic_path
+
 FIGURE_FORMATS = ("png", "svg")
+
+
+def write_figure(fig, path, **savefig) -> Path:
+    """``fig.savefig`` to ``path`` through :func:`geargen.outputs.atomic_path` (atomic, kept inside
+    the output folder being written, a full disk said as one); ``savefig``: its keyword arguments."""
+    path = Path(path)
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, **savefig)
+    return path
 
 
 def save_png(fig, path, dpi: int = 110) -> Path:
     """Save ``fig`` as PNG at ``path`` (folders created) and close it, so long runs do not leak figures."""
     import matplotlib.pyplot as plt
 
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=dpi)
+    path = write_figure(fig, path, dpi=dpi)
     plt.close(fig)
     return path
 
@@ -32,10 +41,9 @@ def save_figure(fig, folder, name: str, dpi: int = 110) -> dict[str, Path]:
     # SVG text stays text (editable, searchable); a fixed salt and no date keep the SVG the same run to run
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen"}):
         for fmt in FIGURE_FORMATS:
-            path = folder / f"{name}.{fmt}"
-            fig.savefig(path, format=fmt, dpi=dpi, facecolor="white", metadata={"Date": None} if fmt == "svg" else None)
-            out[fmt] = path
+            out[fmt] = write_figure(fig, folder / f"{name}.{fmt}", format=fmt, dpi=dpi, facecolor="white",
+                                    metadata={"Date": None} if fmt == "svg" else None)
     return out
 
 
-__all__ = ["FIGURE_FORMATS", "save_png", "save_figure"]
+__all__ = ["FIGURE_FORMATS", "write_figure", "save_png", "save_figure"]

@@ -192,7 +192,8 @@ def plot_layout(gears: list[LayoutGear], meshes: list[LayoutMesh], path: str | P
     fig.savefig(buf, format="png", facecolor="white")
     data = buf.getvalue()
     if path is not None:
-        Path(path).write_bytes(data)
+        from geargen.outputs import write_file
+        write_file(path, data)
     return data
 
 

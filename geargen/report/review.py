@@ -200,8 +200,9 @@ def write_review(review: Review, folder: str | Path) -> dict[str, Path]:
     folder = Path(folder)
     md = folder / "report.md"
     page = folder / "report.html"
-    md.write_text(to_markdown(review), encoding="utf-8")
-    page.write_text(to_html(review), encoding="utf-8")
+    from geargen.outputs import write_file
+    write_file(md, to_markdown(review))
+    write_file(page, to_html(review))
     return {"report_md": md, "report_html": page}
 
 

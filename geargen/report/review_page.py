@@ -117,15 +117,14 @@ def write_review_page(folder: str | Path, glb: bytes, data: dict[str, Any]) -> d
     folder.mkdir(exist_ok=True)
     files = {"review_page": folder / "index.html", "review_data": folder / "data.js",
              "review_model": folder / "model.js", "review_glb": folder / "assembly.glb"}
-    files["review_page"].write_text(index_html(data["title"], data["status"]), encoding="utf-8")
-    files["review_data"].write_text(_script("GEARGEN_REVIEW", data), encoding="utf-8")
-    files["review_model"].write_text(_script("GEARGEN_MODEL", {"name": data["design"], "glb_base64":
-                                                               base64.b64encode(glb).decode("ascii")}),
-                                     encoding="utf-8")
-    files["review_glb"].write_bytes(glb)
+    from geargen.outputs import write_file
+    write_file(files["review_page"], index_html(data["title"], data["status"]))
+    write_file(files["review_data"], _script("GEARGEN_REVIEW", data))
+    write_file(files["review_model"], _script("GEARGEN_MODEL", {"name": data["design"], "glb_base64":
+                                                                base64.b64encode(glb).decode("ascii")}))
+    write_file(files["review_glb"], glb)
     for role, name in VIEWER_FILES.items():
-        files[role] = folder / name
-        files[role].write_bytes((VIEWER / name).read_bytes())
+        files[role] = write_file(folder / name, (VIEWER / name).read_bytes())
     return files
 
 

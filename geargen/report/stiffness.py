@@ -15,6 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from geargen.core.stiffness import LOCATION_NAMES, StiffnessSummary, carriage_force
+from geargen.report.figures import write_figure
 from geargen.units import LENGTH_SUFFIXES
 
 NM = 1e-3  # N·mm -> N·m
@@ -346,9 +347,7 @@ def preload_diagram_figure(s: StiffnessSummary):
 
 def plot_preload_diagram(s: StiffnessSummary, path: str | Path) -> Path:
     """Write :func:`preload_diagram_figure` as PNG."""
-    path = Path(path)
-    preload_diagram_figure(s).savefig(path)
-    return path
+    return write_figure(preload_diagram_figure(s), path)
 
 
 def torque_deflection_figure(s: StiffnessSummary):
@@ -396,9 +395,7 @@ def torque_deflection_figure(s: StiffnessSummary):
 
 def plot_torque_deflection(s: StiffnessSummary, path: str | Path) -> Path:
     """Write :func:`torque_deflection_figure` as PNG."""
-    path = Path(path)
-    torque_deflection_figure(s).savefig(path)
-    return path
+    return write_figure(torque_deflection_figure(s), path)
 
 
 def preload_band_figure(s: StiffnessSummary):
@@ -455,9 +452,7 @@ def plot_preload_band(s: StiffnessSummary, path: str | Path) -> Path | None:
     fig = preload_band_figure(s)
     if fig is None:
         return None
-    path = Path(path)
-    fig.savefig(path)
-    return path
+    return write_figure(fig, path)
 
 
 def write_stiffness_plots(s: StiffnessSummary, out_dir: str | Path) -> dict[str, Path]:

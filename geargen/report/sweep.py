@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
-from geargen.report.figures import save_png
+from geargen.report.figures import save_png, write_figure
 
 OK_COLOUR = "#2ca02c"
 #: colours of the rejection tags, in order of first appearance (tab10 without its green)
@@ -124,8 +124,7 @@ def write_summary_plot(table, parameters: list[str], stem: str | Path, design_na
     """``<stem>.png`` and ``<stem>.svg`` of :func:`summary_figure`."""
     stem = Path(stem)
     fig = summary_figure(table, parameters, design_name)
-    svg = stem.with_suffix(".svg")
-    fig.savefig(svg)
+    svg = write_figure(fig, stem.with_suffix(".svg"))
     png = save_png(fig, stem.with_suffix(".png"))
     return {"plot_png": png, "plot_svg": svg}
 

@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import json
 import math
-import sys
 from dataclasses import dataclass
 from decimal import ROUND_HALF_UP, Decimal
 from pathlib import Path
@@ -350,12 +349,8 @@ def synthesis_json(run: SynthesisRun) -> dict:
 
 def write_json(data: dict, target: str | Path) -> None:
     """Write ``data`` to the file ``target``, or to standard output when it is ``-``."""
-    text = json.dumps(data, indent=2, allow_nan=False) + "\n"  # strict JSON: no NaN or Infinity
-    if str(target) == "-":
-        sys.stdout.write(text)
-    else:
-        Path(target).parent.mkdir(parents=True, exist_ok=True)
-        Path(target).write_text(text)
+    from geargen.outputs import write_text
+    write_text(target, json.dumps(data, indent=2, allow_nan=False) + "\n", "--json")  # strict JSON: no NaN or Infinity
 
 
 def histogram_png(run: SynthesisRun, path: str | Path, bins: int = 80) -> Path:

@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from geargen.report.figures import write_figure
+
 NM = 1e3
 
 
@@ -189,9 +191,8 @@ def write_train_plots(a, folder: Path) -> dict[str, Path]:
         ax.set_title(f"{a.name}: position loop, geared vs direct drive")
         ax.legend(fontsize=8)
         ax.grid(True, which="both", alpha=0.3)
-        path = folder / "servo_response.png"
         fig.tight_layout()
-        fig.savefig(path, dpi=120)
+        path = write_figure(fig, folder / "servo_response.png", dpi=120)
         plt.close(fig)
         out["servo_response"] = path
     fig, ax = plt.subplots(figsize=(7, 3.6))
@@ -211,8 +212,7 @@ def write_train_plots(a, folder: Path) -> dict[str, Path]:
     fig.legend(fontsize=8, loc="upper left")
     ax.set_title(f"{a.name}: where the lost motion and the compliance sit")
     fig.tight_layout()
-    path = folder / "stages.png"
-    fig.savefig(path, dpi=120)
+    path = write_figure(fig, folder / "stages.png", dpi=120)
     plt.close(fig)
     out["stages"] = path
     return out
@@ -296,8 +296,7 @@ def write_dual_motor_plots(a, folder: Path) -> dict[str, Path]:
     axes[0].legend(fontsize=8, loc="lower right")
     fig.suptitle(f"{a.name}: two motors on one output (Hale & Slocum Fig. 1)", fontsize=10)
     fig.tight_layout()
-    path = folder / "dual_motor.png"
-    fig.savefig(path, dpi=120)
+    path = write_figure(fig, folder / "dual_motor.png", dpi=120)
     plt.close(fig)
     return {"dual_motor": path}
 

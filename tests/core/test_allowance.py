@@ -140,7 +140,7 @@ def test_design_keys_give_the_entered_allowance():
 
 @pytest.mark.parametrize("keys, field, allowed", [
     ({"thickness_upper_deviation_um": 10, "thickness_lower_deviation_um": -10},
-     "gears.g.thickness_upper_deviation_um", "<= 0 um"),
+     "gears.g.thickness_upper_deviation_um", "[-1e+07, 0] um"),  # no own lower bound: a length's plausible -10 m = -1e7 um
     ({"thickness_upper_deviation_um": -30, "thickness_lower_deviation_um": -10},
      "gears.g.thickness_lower_deviation_um", "<= -30 um"),
     ({"thickness_upper_deviation_um": -30}, "gears.g.thickness_lower_deviation_um", "or neither"),

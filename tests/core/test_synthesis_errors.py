@@ -57,7 +57,8 @@ def robot(**changes):
     ({"synthesis__start_angle_A1_deg": 10.0}, "synthesis.start_angle_A1_deg", "(-90, 0) deg"),
     ({"synthesis__centre_distance_mesh1_in": 0.9}, "synthesis.centre_distance_mesh1_in", "sum of the base radii"),
     ({"synthesis__centre_distance_mesh1_in": 1.2}, "synthesis.centre_distance_mesh1_in", "sum of the tip radii"),
-    ({"synthesis__centre_distance_mesh1_in": 0.0}, "synthesis.centre_distance_mesh1_in", "> 0 in"),
+    # above zero: a length's plausible 1 nm to 10 m (schema.PLAUSIBLE), in inches
+    ({"synthesis__centre_distance_mesh1_in": 0.0}, "synthesis.centre_distance_mesh1_in", "[3.93701e-08, 393.701] in"),
     # a mesh with two pitches
     ({"gears__cluster_large__diametral_pitch_per_in": 24}, "gears.cluster_large", "the same pitch"),
 ])
@@ -83,7 +84,7 @@ def test_missing_gear_and_missing_section_are_named():
     ({"errors__input__runout_in": 0.001}, "errors.input.runout_in", "bearing_eccentricity_tir_in"),
     ({"errors__input__tooth_to_tooth_tir_in": None}, "errors.input.tooth_to_tooth_tir", "missing"),
     ({"errors__cluster_small__pitch_line_eccentricity_tir_in": -0.0001},
-     "errors.cluster_small.pitch_line_eccentricity_tir_in", ">= 0 in"),
+     "errors.cluster_small.pitch_line_eccentricity_tir_in", "[0, 393.701] in"),  # at most 10 m
 ])
 def test_bad_error_table_names_the_key(changes, field, text):
     with pytest.raises(DesignError) as info:

@@ -42,7 +42,8 @@ def test_normal_thinning_is_converted_to_circumferential():
 @pytest.mark.parametrize("table, key, allowed", [
     ({"teeth": 2, "module_mm": 1, "pressure_angle_deg": 20, "face_width_mm": 5}, "gear.teeth", "[4, 2000]"),
     ({"teeth": 20, "module_mm": 1, "pressure_angle_deg": 50, "face_width_mm": 5}, "gear.pressure_angle_deg", "[10, 35] deg"),
-    ({"teeth": 20, "module_mm": 1, "pressure_angle_deg": 20, "face_width_in": -1}, "gear.face_width_in", "(0, 196.85] in"),
+    ({"teeth": 20, "module_mm": 1, "pressure_angle_deg": 20, "face_width_in": -1}, "gear.face_width_in",
+     "[3.93701e-08, 196.85] in"),  # the key's own 5000 mm; above zero, a length's plausible 1 nm (schema.PLAUSIBLE)
     ({"teeth": 20, "module_mm": 1, "pressure_angle_deg": 20, "face_width_mm": 5, "colour": 1}, "gear.colour", "teeth"),
     ({"teeth": 20, "pressure_angle_deg": 20, "face_width_mm": 5}, "gear.module_mm", "diametral_pitch_per_in"),
     ({"teeth": 20, "module_mm": 1, "diametral_pitch_per_in": 32, "pressure_angle_deg": 20, "face_width_mm": 5},

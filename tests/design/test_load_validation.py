@@ -172,7 +172,8 @@ def test_flexure_thickness_zero_and_negative_length(tmp_path, capsys):
         bad = variant(tmp_path, ROBOT, edit)
         for command in ("synth", "check"):
             code, err = run(capsys, command, bad)
-            assert code == 2 and text in err and "(allowed: > 0 in)" in err
+            # a positive length's plausible range (schema.PLAUSIBLE): 1 nm = 1e-6 / 25.4 in to 10 m = 1e4 / 25.4 in
+            assert code == 2 and text in err and "(allowed: [3.93701e-08, 393.701] in)" in err
 
 
 def test_flexure_past_its_allowable_stress_at_the_travel(tmp_path, capsys):

@@ -117,15 +117,18 @@ def test_the_error_fields_keep_their_order():
     ("[gears.NAME] and [gear_defaults]", "pressure_angle", True, "[10, 35] deg", "required"),
     ("[gears.NAME] and [gear_defaults]", "helix_angle", True, "[0, 45] deg", "0 deg"),
     ("[preload]", "line_of_action_angle", True, "(-60, 60) deg", "0 deg"),
-    ("[preload]", "max_output_torque", True, "> 0", "required"),
-    ("[preload]", "preload", True, ">= 0", ""),
+    # a key that sets no bound of its own on a side has the plausible one of its kind (schema.PLAUSIBLE):
+    # a torque at most 1e11 N·mm, a positive one at least 1e-6; a length at most 10 m; an angle a turn
+    ("[preload]", "max_output_torque", True, "[1e-06, 1e+11] N·mm", "required"),
+    ("[preload]", "preload", True, "[0, 1e+11] N·mm", ""),
     ("[flexures]", "poisson_ratio", False, "[0, 0.5)", "0.29"),
-    ("[flexures]", "elastic_modulus", True, "> 0", "207 GPa"),
-    ("[springs]", "shear_modulus", True, "> 0", "79.3 GPa"),
-    ("[export]", "stl_angular_tolerance", True, "> 0 deg", "0.5 rad"),  # 0.5 rad is 28.6479 deg
-    ("[export]", "stl_chordal_tolerance", True, "> 0 mm", "0.005 mm"),
-    ("[parts] of a dual pinion on a preload carriage", "bearing_clearance", True, ">= 0 mm", "0.5 mm"),
-    ("[errors.GEAR]", "tooth_to_tooth_tir", True, ">= 0 mm", "required"),
+    ("[flexures]", "elastic_modulus", True, "[1e-06, 1e+07] MPa", "207 GPa"),
+    ("[springs]", "shear_modulus", True, "[1e-06, 1e+07] MPa", "79.3 GPa"),
+    # 0.5 rad is 28.6479 deg; 1e-9 rad is 5.72958e-08 deg
+    ("[export]", "stl_angular_tolerance", True, "[5.72958e-08, 360] deg", "0.5 rad"),
+    ("[export]", "stl_chordal_tolerance", True, "[1e-06, 10000] mm", "0.005 mm"),
+    ("[parts] of a dual pinion on a preload carriage", "bearing_clearance", True, "[0, 10000] mm", "0.5 mm"),
+    ("[errors.GEAR]", "tooth_to_tooth_tir", True, "[0, 10000] mm", "required"),
     ("[layout]", "upstream_stages", False, "", "[]"),
     ("[checks]", "require_backlash", False, "", "true"),
 ])
