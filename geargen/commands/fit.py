@@ -103,7 +103,8 @@ def _datasheet_summary(sheet: dict | None) -> list[str]:
     for t in sheet.get("tests", []):
         k = t["stiffness"]
         out.append(f"datasheet test {t['test']} (+-{t['torque_amplitude_Nm']:.4g} N·m): lost motion "
-                   f"{_number(t['lost_motion_urad'], 'urad')} at +-{t['lost_motion_at_Nm']:.4g} N·m, hysteresis loss "
+                   f"{_number(t['lost_motion_urad'], 'urad')} at +-{t['lost_motion_at_Nm']:.4g} N·m, torsion "
+                   f"{_number(t.get('torsion_urad'), 'urad')} at +-{t['torsion_at_Nm']:.4g} N·m, hysteresis loss "
                    f"{_number(t['hysteresis_loss_urad'], 'urad')}, K1/K2/K3 "
                    + " / ".join("-" if k[key] is None else f"{k[key]:.4g}" for key in ("K1_Nm_per_rad", "K2_Nm_per_rad",
                                                                                     "K3_Nm_per_rad"))

@@ -8,6 +8,8 @@ about the same torque amplitude, :func:`split_tests`):
   minus where it crosses zero on the rising branch (means over the test's crossings);
 - ``lost_motion_urad``: on the loop's mid-line (the mean of the rising and falling branches), the
   rotation at +T minus the rotation at -T, T = ``lost_motion_fraction`` x the rated torque;
+- ``torsion_urad`` (added): the mid-line rotation at + minus at - the rated torque (or the highest
+  level both branches reach): the whole play under load that a servo's lost-motion test reads;
 - ``stiffness``: K1, K2, K3, the slopes of the mid-line between 0 and T1, T1 and T2, T2 and the
   largest torque, both load directions together (one slope, an intercept per direction): the
   three-segment convention of strain-wave and cycloid gearbox catalogues.
@@ -154,7 +156,7 @@ def _segment_slope(levels: np.ndarray, mids: np.ndarray, lo: float, hi: float) -
 
 def torque_test_figures(test: int, applied: np.ndarray, rotation_urad: np.ndarray, spec) -> dict:
     """The datasheet entry of one test: applied torque (k,) Nm, noise-free; rotation (k,) urad;
-    ``spec`` the sidecar's :class:`~geargen.fit.measurement.TestSpec`."""
+    ``spec`` the sidecar's :class:`~geargen.fit.measurement.DatasheetSettings`."""
     amplitude = float(np.max(np.abs(applied)))
     rated = spec.rated_torque_Nm if spec.rated_torque_Nm is not None else amplitude
     how = {}
@@ -195,6 +197,12 @@ def torque_test_figures(test: int, applied: np.ndarray, rotation_urad: np.ndarra
     levels = np.linspace(top / MIDLINE_LEVELS, top, MIDLINE_LEVELS)
     levels = np.concatenate([-levels[::-1], levels])
     mids = np.array([(_midline(applied, rotation_urad, L)[0]) for L in levels], dtype=float)
+    # the whole torsion over the test (what a servo's lost-motion test reads as its play under load)
+    torsion_at = min(rated, top)
+    torsion = _midline(applied, rotation_urad, torsion_at)[0], _midline(applied, rotation_urad, -torsion_at)[0]
+    torsion = None if None in torsion else torsion[0] - torsion[1]
+    how["torsion"] = (f"mid-line rotation at +{torsion_at:.4g} Nm minus at -{torsion_at:.4g} Nm (the rated torque, or the "
+                      "highest level both branches reach)")
     stiffness = {"T1_Nm": t1, "T2_Nm": t2}
     used = []
     for key, lo, hi in (("K1_Nm_per_rad", 0.0, t1), ("K2_Nm_per_rad", t1, t2), ("K3_Nm_per_rad", t2, amplitude)):
@@ -207,7 +215,8 @@ def torque_test_figures(test: int, applied: np.ndarray, rotation_urad: np.ndarra
                         f"{used[2]} of them in the three segments)")
     return {"test": int(test), "torque_amplitude_Nm": amplitude, "rated_torque_Nm": rated,
             "hysteresis_loss_urad": hysteresis, "lost_motion_urad": lost_motion, "lost_motion_at_Nm": at,
-            "stiffness": stiffness, "samples": int(applied.size), "how": how}
+            "stiffness": stiffness, "torsion_urad": torsion, "torsion_at_Nm": torsion_at, "samples": int(applied.size),
+            "how": how}
 
 
 def torque_datasheet(meas: Measurement, applied: np.ndarray) -> list[dict]:

@@ -6,7 +6,7 @@ output angle and rotation columns are converted from their suffix unit; ``_deg``
 the contract spellings, other angle and length suffixes of :mod:`geargen.units` are accepted too).
 Three kinds: ``preload_trace``, ``torque_deflection`` (which may hold several tests, numbered by
 a ``test_nr`` column) and ``transmission_error``. The sidecar's optional ``[test]`` table says
-how the datasheet figures are taken (:class:`TestSpec`).
+how the datasheet figures are taken (:class:`DatasheetSettings`).
 
 Rows with an empty or non-numeric-NaN value in a required column are dropped (a probe
 drop-out) with a note; a missing temperature value is interpolated in time, with a note. Equal
@@ -162,7 +162,7 @@ class TransmissionModelSpec:
 
 
 @dataclass(frozen=True)
-class TestSpec:
+class DatasheetSettings:
     """How the datasheet figures of a torque_deflection record are taken (the sidecar's ``[test]``).
 
     ``rated_torque_Nm`` None: each test's largest |torque|; ``lost_motion_fraction``: lost motion
@@ -226,7 +226,7 @@ class Measurement:
     assembly: Path | None = None  # the design file the sidecar names (its error budget is compared)
     input_angle_rad: np.ndarray | None = None
     test_nr: np.ndarray | None = None
-    test: TestSpec = field(default_factory=TestSpec)
+    test: DatasheetSettings = field(default_factory=DatasheetSettings)
 
     def __post_init__(self):
         if self.kind not in KINDS:
@@ -535,7 +535,7 @@ def _load_sidecar(path: Path) -> dict:
                                "a sidecar of the contract's shape: a few levels of tables and arrays") from None
 
 
-def _test_spec(data, where: str) -> TestSpec:
+def _test_spec(data, where: str) -> DatasheetSettings:
     """The sidecar's optional ``[test]`` table (torque_deflection only)."""
     if not isinstance(data, dict):
         raise MeasurementError(f"{where}: test", "expected a table", ", ".join(TEST_KEYS))
@@ -551,7 +551,7 @@ def _test_spec(data, where: str) -> TestSpec:
                                    "[T1, T2] with 0 < T1 < T2, in Nm")
         limits = (float(limits[0]), float(limits[1]))
     try:
-        return TestSpec(rated_torque_Nm=values["rated_torque_Nm"],
+        return DatasheetSettings(rated_torque_Nm=values["rated_torque_Nm"],
                         lost_motion_fraction=(values["lost_motion_fraction"] if values["lost_motion_fraction"] is not None
                                               else LOST_MOTION_FRACTION),
                         stiffness_limits_Nm=limits)
@@ -562,7 +562,7 @@ def _test_spec(data, where: str) -> TestSpec:
 def read_sidecar(path: Path, notes: list[str], test_out: list | None = None
                  ) -> tuple[str, str, PreloadModelSpec | TorqueModelSpec | TransmissionModelSpec, Path | None]:
     """(kind, description, model spec, assembly path) from a sidecar TOML; errors name the key.
-    ``test_out``, when given, receives the ``[test]`` table's :class:`TestSpec`."""
+    ``test_out``, when given, receives the ``[test]`` table's :class:`DatasheetSettings`."""
     where = path.name
     if not path.exists():
         raise MeasurementError(str(path), "missing: every NAME.csv needs its sidecar NAME.toml beside it")
@@ -796,7 +796,7 @@ def read_measurement(csv_path: str | Path) -> Measurement:
         csv_path = csv_path.with_suffix(".csv")
     where = csv_path.name
     notes: list[str] = []
-    tests: list[TestSpec] = []
+    tests: list[DatasheetSettings] = []
     kind, description, model, assembly = read_sidecar(csv_path.with_suffix(".toml"), notes, tests)
     found: dict = {}
 
@@ -875,7 +875,7 @@ def read_measurement(csv_path: str | Path) -> Measurement:
     common = dict(kind=kind, name=csv_path.stem, time_s=t, model=model, temperature_C=temperature,
                   description=description, notes=tuple(notes), source=csv_path.resolve(),
                   columns={ch: name for ch, (_, _, name) in cols.items()}, assembly=assembly,
-                  test=tests[0] if tests else TestSpec())
+                  test=tests[0] if tests else DatasheetSettings())
     if kind == "preload_trace":
         return Measurement(angle_rad=data["angle"], carriage_um=data["carriage"], **common)
     if kind == "transmission_error":
@@ -956,7 +956,7 @@ def write_measurement(meas: Measurement, directory: str | Path, name: str | None
             v = getattr(m, key)
             if v is not None:
                 lines.append(f"{key} = {v!r}")
-    if meas.kind == "torque_deflection" and meas.test != TestSpec():
+    if meas.kind == "torque_deflection" and meas.test != DatasheetSettings():
         t = meas.test
         lines += ["", "[test]", f"lost_motion_fraction = {t.lost_motion_fraction!r}"]
         if t.rated_torque_Nm is not None:

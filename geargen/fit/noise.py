@@ -217,8 +217,9 @@ def reading_quantum(y: np.ndarray) -> float:
     """The resolution the channel was read or written with (an encoder's count, a dial's division,
     a current sensor's LSB), estimated from the readings; 0 when they sit on no grid.
 
-    Candidates are steps between neighbouring distinct readings (their 2nd, 10th, 25th and 50th
-    percentiles; a float's last digits, below 1e-9 of the range, are no step). The largest
+    Candidates are steps between neighbouring distinct readings, and between the readings read at
+    least as often as the median one (their 2nd, 10th, 25th and 50th percentiles; a float's last
+    digits, below 1e-9 of the range, are no step). The largest
     candidate on whose grid (offset by the first reading) at least :data:`GRID_SHARE` of the
     readings lie within :data:`GRID_TOLERANCE` of a step is taken, and refined by least squares
     of the distinct on-grid readings on their step numbers. So a few stray readings (a glitch, a
@@ -229,14 +230,18 @@ def reading_quantum(y: np.ndarray) -> float:
     if values.size < 3:
         return 0.0
     span = float(values[-1] - values[0])
-    steps = np.diff(values)
-    steps = steps[steps > 1e-9 * span]  # (a float's last digits are no step)
-    if steps.size == 0:
-        return 0.0
+    candidates = set()
+    # steps between neighbouring distinct readings, and between those read at least as often as
+    # the median one (stray readings, read once or twice, split the grid's steps)
+    for chosen in (values, values[counts >= np.median(counts)]):
+        steps = np.diff(chosen)
+        steps = steps[steps > 1e-9 * span]  # (a float's last digits are no step)
+        if steps.size:
+            candidates.update(np.percentile(steps, [2.0, 10.0, 25.0, 50.0]).tolist())
     offsets = values - values[0]
     total = float(counts.sum())
     best = 0.0
-    for q in sorted(set(np.percentile(steps, [2.0, 10.0, 25.0, 50.0]).tolist()), reverse=True):
+    for q in sorted(candidates, reverse=True):
         if not q > 0:
             continue
         k = np.round(offsets / q)

@@ -341,11 +341,12 @@ def _datasheet_lines(sheet: dict | None) -> list[str]:
     lines = ["## Datasheet figures", "", "Taken from the record itself, without any model (contracts/measurements.md).", ""]
     if sheet.get("tests"):
         lines += ["| test | amplitude (Nm) | rated (Nm) | hysteresis loss (urad) | lost motion (urad) at +- (Nm) | "
-                  "T1 / T2 (Nm) | K1 / K2 / K3 (Nm/rad) |", "|---|---|---|---|---|---|---|"]
+                  "torsion (urad) at +- (Nm) | T1 / T2 (Nm) | K1 / K2 / K3 (Nm/rad) |", "|---|---|---|---|---|---|---|---|"]
         for t in sheet["tests"]:
             k = t["stiffness"]
             lines.append(f"| {t['test']} | {_fmt(t['torque_amplitude_Nm'])} | {_fmt(t['rated_torque_Nm'])} | "
                          f"{_fmt(t['hysteresis_loss_urad'])} | {_fmt(t['lost_motion_urad'])} at {_fmt(t['lost_motion_at_Nm'])} | "
+                         f"{_fmt(t.get('torsion_urad'))} at {_fmt(t.get('torsion_at_Nm'))} | "
                          f"{_fmt(k['T1_Nm'])} / {_fmt(k['T2_Nm'])} | {_fmt(k['K1_Nm_per_rad'])} / "
                          f"{_fmt(k['K2_Nm_per_rad'])} / {_fmt(k['K3_Nm_per_rad'])} |")
         lines.append("")
