@@ -18,7 +18,14 @@ The rule (thresholds are fields of :class:`SelectionRule`):
    fit by more than 50 % of it, e.g. a dead band seen in one load cycle, whose halves hold one
    load direction each), the record is split instead into alternate sixteenths; an effect that
    neither split can determine is not added (nor counted against the residual).
-3. One effect is added per round; rounds stop when no candidate passes 1 and 2.
+3. One effect is added per round, or two: each round also fits its strongest significant
+   candidate jointly with each of the next two; such a pair is added when its dBIC beats the best
+   single's by the threshold (the second effect is significant beside the first) and both its
+   effects pass 2 (two effects that only separate when fitted together: a harmonic and a drift
+   over one revolution). Rounds stop when nothing passes 1 and 2. A candidate whose fit is
+   degenerate (a harmonic within half the order resolution of one in the model, a dead band
+   narrower than the record resolves at zero torque, a parameter at its bound) or physically
+   absurd (below) is rejected.
 4. **Residual against noise.** The extended model's residual r is compared with the noise
    level sigma estimated from the data alone (:mod:`geargen.fit.noise`). ``unexplained`` is set
    when any of these fails:
@@ -28,7 +35,13 @@ The rule (thresholds are fields of :class:`SelectionRule`):
      spread, have mean square ``<= 1 + 4 sqrt(2 / blocks) + 0.1`` (white noise gives 1);
    - leftovers: no candidate in the last round was significant but inconsistent between the
      halves (structure that no library effect explains), unless it is smaller than 5 % of the
-     noise (rms): a long record makes such trifles significant.
+     noise (rms): a long record makes such trifles significant;
+   - plausibility: no effect of the final model has physically absurd parameters (a play wider
+     than the record's range, a dead band wider than its rotation ...) and no channel's noise
+     level lies below its reading error q / sqrt(12).
+
+A torque-deflection record of more than 20,000 samples is searched on every k-th sample; the
+model found is fitted to every sample, and the residual tests are made on all of them.
 """
 
 from __future__ import annotations
@@ -66,7 +79,8 @@ class SelectionRule:
 
     def text(self) -> str:
         return (f"An effect is added when dBIC = n ln(RSS_before/RSS_after) - k ln n >= {self.bic_threshold:g} "
-                f"(k its free parameters, a harmonic's order included), strongest first, one per round, and only if "
+                f"(k its free parameters, a harmonic's order included), strongest first, one per round (or a pair, "
+                f"fitted jointly, when it beats the best single by {self.bic_threshold:g}), and only if "
                 f"fits to the first and to the second half of the record alone each reproduce the full-record effect "
                 f"within {self.held_out_limit:.0%} rms, or within {self.noise_factor:g} x the disagreement noise alone "
                 f"would cause if that is larger (alternate sixteenths of the record instead of halves when a half cannot "
@@ -74,7 +88,8 @@ class SelectionRule:
                 f"{self.level_limit:g} x the model-free noise level, its {self.block}-sample block sums are white "
                 f"(mean square <= 1 + {self.structure_z:g} sqrt(2/blocks) + {self.structure_margin:g}), and no significant "
                 f"candidate of at least {self.leftover_floor:.0%} of the noise (rms) was left over that the halves "
-                f"disagree on; otherwise `unexplained` is true.")
+                f"disagree on, and no effect's parameters are physically absurd (a play wider than the record's range, "
+                f"a noise level below a channel's resolution); otherwise `unexplained` is true.")
 
 
 @dataclass(frozen=True)

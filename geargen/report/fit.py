@@ -357,7 +357,7 @@ def _datasheet_lines(sheet: dict | None) -> list[str]:
     if sheet.get("how") and "transmission_accuracy_urad" in sheet and not sheet.get("tests"):
         acc = sheet["transmission_accuracy_urad"]
         lines += [f"Transmission accuracy: **{_fmt(acc)} urad** ({_fmt(acc * 180 / math.pi * 3600e-6 if acc else None)} "
-                  f"arcsec). {sheet['how']}.", ""]
+                  f"arcsec): {sheet['how']}.", ""]
         if sheet.get("per_revolution_urad"):
             lines += ["Per complete output revolution (urad): " + ", ".join(_fmt(v) for v in sheet["per_revolution_urad"]),
                       ""]

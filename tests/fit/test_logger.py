@@ -202,11 +202,12 @@ def test_a_printed_actuator_log_is_never_explained_with_absurd_parameters():
     meas = Measurement(kind="torque_deflection", name="printed", time_s=t, model=TorqueModelSpec("type1"),
                        torque_Nm=np.round((applied + 0.3 * rng.normal(size=t.size)) / 0.05) * 0.05,
                        rotation_rad=np.round(rotation / count) * count)
-    report = diagnose(meas).to_json()
+    dg = diagnose(meas)
+    report = dg.to_json()
     span_t, span_r = np.ptp(meas.torque_Nm), np.ptp(meas.rotation_rad) * 1e6
     assert report["noise_channels"]["output_rotation_urad"] >= count * 1e6 / np.sqrt(12) * (1 - 1e-5)
     for e in report["effects_added"]:
         assert not (e["effect"] == "hysteresis" and 2 * e["half_width"] >= span_t), e
         assert not (e["effect"] == "dead_band" and e["width_urad"] >= span_r), e
-    plausibility = next(x for x in diagnose(meas).tests if x.name == "plausibility")
+    plausibility = next(x for x in dg.tests if x.name == "plausibility")
     assert plausibility.passed or report["unexplained"]
