@@ -681,32 +681,37 @@ class PreloadModel:
                               options={"xatol": 1e-7 * max(1.0, order)})
         return float(res.x), drop(float(res.x))
 
-    def candidates(self, fit: ModelFit, count: int = 3) -> list[Candidate]:
-        out: list[Candidate] = []
-        r = fit.residual
-        sigma = max(self.noise.rms, 1e-300)
-        taken = self.model_orders(fit.terms)
-        pg = self.periodogram(r)
+    def spectrum_peaks(self, residual: np.ndarray, taken: list[float], count: int):
+        """The ``count`` highest peaks of the residual's order spectrum away from the orders
+        ``taken``: (order, drop in the sum of squares, amplitude) each. The peak order is
+        interpolated on the grid (a parabola; the grid's step is resolution / 5); it is refined
+        exactly, jointly with the model, once the candidate is the one being judged."""
+        pg = self.periodogram(residual)
         step = float(pg.orders[1] - pg.orders[0]) if pg.orders.size > 1 else 0.0
+        out = []
         for i in peaks(pg, count, exclude=taken, exclusion=0.5 * self.resolution):
-            # peak order by parabolic interpolation on the grid (step resolution/5); the order is
-            # refined exactly, jointly with the model, once the candidate is the one being judged
             q = float(pg.orders[i])
             if 0 < i < pg.orders.size - 1:
                 a, b, c = pg.reduction[i - 1], pg.reduction[i], pg.reduction[i + 1]
                 den = a - 2 * b + c
                 if den < 0:
                     q += 0.5 * step * (a - c) / den
-            drop = float(pg.reduction[i])
-            if any(abs(q - o) <= 0.5 * self.resolution for o in taken):
-                continue
+            if not any(abs(q - o) <= 0.5 * self.resolution for o in taken):
+                out.append((q, float(pg.reduction[i]), float(pg.amplitude[i])))
+        return out
+
+    def candidates(self, fit: ModelFit, count: int = 3) -> list[Candidate]:
+        out: list[Candidate] = []
+        r = fit.residual
+        sigma = max(self.noise.rms, 1e-300)
+        for q, drop, amplitude in self.spectrum_peaks(r, self.model_orders(fit.terms), count):
             where = attribute_order(q, self.train)
             src = f"{where[1]} x {where[0].name} (order {where[0].order:.4f})" if where else "no shaft or mesh"
             sigma2 = sigma ** 2
             power = drop / sigma2 if sigma2 >= np.finfo(float).tiny else drop / sigma / sigma  # sigma**2 may underflow
             out.append(Candidate(Term("harmonic", order=q),
                                  f"peak of the residual order spectrum at order {q:.4f} ({src}), amplitude "
-                                 f"{pg.amplitude[i]:.3g} {self.meas.units}, power {power:.1f} x noise variance",
+                                 f"{amplitude:.3g} {self.meas.units}, power {power:.1f} x noise variance",
                                  statistic=power))
         present = {(t.effect, t.variable) for t in fit.terms}
         for term in drift_terms(self.meas):

@@ -99,6 +99,17 @@ def _read_temperature(true_temp, s: Sampling, rng):
     return np.round((true_temp + s.temperature_noise_K * rng.normal(size=true_temp.size)) / 0.001) * 0.001
 
 
+def _add_drifts(signal: np.ndarray, truth, t: np.ndarray, temp_true: np.ndarray, expected: list) -> None:
+    """Add (in place) a truth's drift with temperature and with time, about their means, and
+    list them as expected effects."""
+    if truth.drift_per_kelvin:
+        signal += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true.mean()))
+        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
+    if truth.drift_per_second:
+        signal += fx.drift(t, truth.drift_per_second, float(t.mean()))
+        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+
+
 # ----------------------------------------------------------------------------- preload trace
 
 @dataclass(frozen=True)
@@ -181,12 +192,7 @@ def simulate_preload_trace(truth: PreloadTruth, rng: np.random.Generator,
     for order, amp, phase in truth.harmonics:
         x += fx.harmonic(theta, order, amp, phase)
         expected.append({"effect": "harmonic", "order": order, "amplitude": amp, "phase_deg": phase})
-    if truth.drift_per_kelvin:
-        x += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true.mean()))
-        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
-    if truth.drift_per_second:
-        x += fx.drift(t, truth.drift_per_second, float(t.mean()))
-        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+    _add_drifts(x, truth, t, temp_true, expected)
     outside = []
     if truth.chirp:
         amp, q0, q1 = truth.chirp
@@ -489,12 +495,7 @@ def simulate_transmission_error(truth: TransmissionTruth, rng: np.random.Generat
         te += fx.harmonic(nominal, q + s, amp, float(rng.uniform(0, 360)))
         expected.append({"effect": "sidebands", "order": q, "shaft": shafts[k].name, "amplitude": amp})
     temp_true = temperature_history(t, sm)
-    if truth.drift_per_kelvin:
-        te += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true.mean()))
-        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
-    if truth.drift_per_second:
-        te += fx.drift(t, truth.drift_per_second, float(t.mean()))
-        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+    _add_drifts(te, truth, t, temp_true, expected)
     follows = commanded_urad
     if truth.backlash_half_width_urad:
         follows = fx.play_operator(commanded_urad, truth.backlash_half_width_urad)

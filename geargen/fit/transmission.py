@@ -39,7 +39,6 @@ from geargen.fit.model import (Candidate, ModelFit, PreloadModel, Term, _contrib
                                _drift_value, _drift_variable, _mask_or_all, drift_terms)
 from geargen.fit.noise import NoiseEstimate
 from geargen.fit.orders import attribute_order, transmission_declared_orders, transmission_orders
-from geargen.fit.periodogram import peaks
 
 #: bins of a shaft's turn for the synchronous average that finds a tooth pulse
 PULSE_BINS = 720
@@ -119,10 +118,7 @@ class TransmissionModel(PreloadModel):
         return {"half_width": float(coef[0])}
 
     # ---------------------------------------------------------------- fit
-    def nominal(self) -> np.ndarray:
-        """Perfect gears: the transmission error stays at its mean."""
-        return self.x - self.x.mean()
-
+    # (nominal: perfect gears keep the error at its mean, as PreloadModel's carriage)
     def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
         terms = tuple(terms)
         whole = mask is None
@@ -181,19 +177,9 @@ class TransmissionModel(PreloadModel):
         r = fit.residual
         sigma2 = max(self.noise.rms, 1e-300) ** 2
         present = set(fit.terms)
-        taken = self.model_orders(fit.terms) + [o for t in fit.terms if t.effect == "sidebands"
-                                                for o in (t.order - t.params[0], t.order + t.params[0])]
-        pg = self.periodogram(r)
-        step = float(pg.orders[1] - pg.orders[0]) if pg.orders.size > 1 else 0.0
         seen_sidebands = set()
-        for i in peaks(pg, count, exclude=taken, exclusion=0.5 * self.resolution):
-            q = float(pg.orders[i])
-            if 0 < i < pg.orders.size - 1:
-                a, b, c = pg.reduction[i - 1], pg.reduction[i], pg.reduction[i + 1]
-                den = a - 2 * b + c
-                if den < 0:
-                    q += 0.5 * step * (a - c) / den
-            power = float(pg.reduction[i]) / sigma2
+        for q, drop, amplitude in self.spectrum_peaks(r, self._occupied_orders(fit.terms), count):
+            power = drop / sigma2
             side = self._sideband_of(q)
             if side is not None:
                 mesh, shaft = side
@@ -203,14 +189,14 @@ class TransmissionModel(PreloadModel):
                 seen_sidebands.add(term)
                 out.append(Candidate(term, f"peak of the residual order spectrum at order {q:.4f}: {mesh.name} "
                                            f"(order {mesh.order:.6g}) {'+' if q > mesh.order else '-'} the {shaft.name} "
-                                           f"shaft (order {shaft.order:.6g}), amplitude {pg.amplitude[i]:.3g} urad, "
+                                           f"shaft (order {shaft.order:.6g}), amplitude {amplitude:.3g} urad, "
                                            f"power {power:.1f} x noise variance", statistic=power))
                 continue
             where = attribute_order(q, self.train)
             src = f"{where[1]} x {where[0].name} (order {where[0].order:.4f})" if where else "no shaft or mesh"
             out.append(Candidate(Term("harmonic", order=q),
                                  f"peak of the residual order spectrum at order {q:.4f} ({src}), amplitude "
-                                 f"{pg.amplitude[i]:.3g} urad, power {power:.1f} x noise variance", statistic=power))
+                                 f"{amplitude:.3g} urad, power {power:.1f} x noise variance", statistic=power))
         kinds = {(t.effect, t.variable) for t in fit.terms}
         for term in drift_terms(self.meas):
             if ("drift", term.variable) in kinds:
