@@ -491,8 +491,9 @@ def _search(model, declared: ModelFit, noise: NoiseEstimate, n: int, rule: Selec
         if chosen is not None and len(chosen[1]) == 1:
             rivals = look_alike_rivals(chosen[1][0].term.effect, chosen[0], evaluated, rule)
             if rivals:
-                ambiguous.append(_ambiguity(chosen[0], rivals, model, chosen[2],
-                                            "the data fit each about as well: " + LOOK_ALIKE_EVIDENCE))
+                group = next(g for g in LOOK_ALIKES if chosen[1][0].term.effect in g)
+                why = next(text for key, text in LOOK_ALIKE_EVIDENCE.items() if key in group)
+                ambiguous.append(_ambiguity(chosen[0], rivals, model, chosen[2], "the data fit each about as well: " + why))
                 tested = chosen[2]
                 break
         if chosen is None:
@@ -662,10 +663,14 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
 
 
 #: effects that bend a torque-deflection curve alike, and what tells them apart physically
-LOOK_ALIKES = ({"stiffening", "dead_band", "hysteresis"},)
-LOOK_ALIKE_EVIDENCE = ("stiffening bends the curve over the whole load range, a dead band is a flat zone at zero "
-                       "torque, friction depends on the direction of loading; a test that loads further, or cycles "
-                       "more slowly through zero, separates them")
+LOOK_ALIKES = ({"stiffening", "dead_band", "hysteresis"}, {"ratio_error", "drift"})
+LOOK_ALIKE_EVIDENCE = {
+    "stiffening": ("stiffening bends the curve over the whole load range, a dead band is a flat zone at zero torque, "
+                   "friction depends on the direction of loading; a test that loads further, or cycles more slowly "
+                   "through zero, separates them"),
+    "ratio_error": ("a ratio error grows with the output angle, a drift with time or temperature: turning at a steady "
+                    "speed one way, the two are the same line; a test that turns back separates them"),
+}
 
 
 def look_alike_rivals(effect: str, dbic: float, evaluated, rule: SelectionRule) -> list:
