@@ -211,3 +211,33 @@ def test_a_printed_actuator_log_is_never_explained_with_absurd_parameters():
         assert not (e["effect"] == "dead_band" and e["width_urad"] >= span_r), e
     plausibility = next(x for x in dg.tests if x.name == "plausibility")
     assert plausibility.passed or report["unexplained"]
+
+
+def test_an_absurd_effect_or_noise_level_makes_the_record_unexplained():
+    """The plausibility test: a friction play as wide as the whole torque range (issue 30's
+    half_width 100.11 N·m on a +-100 N·m log, then called explained), a dead band wider than the
+    rotation recorded, or a channel's noise level below its reading error each fail it."""
+    from dataclasses import replace as with_values
+
+    from geargen.fit.model import ModelFit, Term, make_model
+    from geargen.fit.selection import estimate_noise, plausibility
+    sim = _simulate("torque_deflection", False, 204, rotation_resolution_urad=2.0)
+    m = sim.measurement
+    noise = estimate_noise(m)
+    model = make_model(m, noise)
+    span = float(np.ptp(model.T_smooth))
+
+    def verdict(values, terms=(Term("hysteresis"), Term("dead_band")), level_noise=noise):
+        fit = ModelFit(terms=terms, rss=1.0, n_fitted=m.samples, n_params=2, values=values, declared_values={})
+        return plausibility(model, fit, level_noise)
+
+    fine = ({"half_width": 0.4 * span}, {"width_urad": 10.0})
+    assert verdict(fine).passed
+    wide = verdict(({"half_width": 0.5 * span * 1.001}, {"width_urad": 10.0}))
+    assert not wide.passed and "wider than the whole torque range" in wide.text
+    band = verdict(({"half_width": 1.0}, {"width_urad": 1.01 * np.ptp(m.rotation_rad) * 1e6}))
+    assert not band.passed and "wider than the whole rotation" in band.text
+    # the rotation read in 2 urad steps: a level below 2 / sqrt(12) = 0.577 urad is below its reading error
+    low = with_values(noise, channels={**noise.channels, "rotation": 0.5})
+    below = verdict(fine, level_noise=low)
+    assert not below.passed and "below its reading error" in below.text
