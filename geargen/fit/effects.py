@@ -37,6 +37,8 @@ ratio_error          ``-relative * theta`` (urad): the       ``relative`` (measu
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 #: effect name -> (measurement kinds it applies to, parameters it reports, one-line meaning)
@@ -427,6 +429,10 @@ def driving_signal(x: np.ndarray, y: np.ndarray, noise: float, half_window: int 
     rough = local_linear_smooth(x, y, w) if smooth else y
     threshold = max(6.0 * noise, 0.02 * float(np.ptp(rough)))
     turns = reversals(rough, threshold)
+    # the hinge's lines must see the ramp rise well above the noise: over at least 8 noise levels
+    # of travel (a densely sampled record moves less than the noise from sample to sample)
+    travel = float(np.median(np.abs(np.diff(rough)))) if n > 1 else 0.0
+    w_hinge = int(min(max(w, math.ceil(8.0 * noise / travel) if travel > 0 else w), 16 * max(w, 1)))
     hinges = []
     cuts = []
     for j, r in enumerate(turns):
@@ -435,7 +441,7 @@ def driving_signal(x: np.ndarray, y: np.ndarray, noise: float, half_window: int 
             continue
         lo = cuts[-1] + 1 if cuts else 0
         hi = int(turns[j + 1]) if j + 1 < turns.size else n
-        k, values = _hinge(x, y, int(r), w, lo, hi)
+        k, values = _hinge(x, y, int(r), w_hinge, lo, hi)
         cuts.append(k)
         hinges.append((lo, values, k))
     bounds = [0] + [c + 1 for c in cuts] + [n]
@@ -455,7 +461,7 @@ def driving_signal(x: np.ndarray, y: np.ndarray, noise: float, half_window: int 
         val, _ = _window_line(x0, ys - ys.mean(), lo, hi, cums)
         out[a:b] = val + ys.mean()
     for lo, values, k in hinges:  # the turns themselves from their hinges
-        near = np.arange(max(k - w, lo), min(k + w + 1, lo + values.size))
+        near = np.arange(max(k - w_hinge, lo), min(k + w_hinge + 1, lo + values.size))
         near = near[np.isfinite(values[near - lo])]
         out[near] = values[near - lo]
     for a, b in zip(bounds[:-1], bounds[1:]):
