@@ -954,18 +954,19 @@ class TorqueModel:
     def _law(self, d: dict, phi_rad: np.ndarray) -> np.ndarray:
         return law_torque_Nm(self.spec.drive_type, d["k1"], d["k2"], d.get("k3"), d["preload"], phi_rad)
 
-    def law_slope(self, fit: ModelFit, spread_urad: float = 0.0) -> np.ndarray:
+    def law_slope(self, fit: ModelFit, spread_urad: float = 0.0, rotation_urad: np.ndarray | None = None) -> np.ndarray:
         """rms dT/dtheta (Nm per urad) of ``fit``'s two-path law over the rotations the reading may
         stand for: each sample's rotation plus a normal error of ``spread_urad`` (the rotation
         channel's noise), by 9-point Gauss-Hermite quadrature. Near a kink of the law a noisy
         reading falls on either side of it, so the slope it carries into the residual is a mix
-        of the two. The law is piecewise linear: a central difference over 1e-3 urad is exact."""
+        of the two. The law is piecewise linear: a central difference over 1e-3 urad is exact.
+        ``rotation_urad``: other rotations (another record's) to take it at."""
         d = fit.declared_values
-        phi_urad = self.rot_urad - d["theta0_urad"]
+        phi_urad = (self.rot_urad if rotation_urad is None else rotation_urad) - d["theta0_urad"]
         step = 1e-3
         nodes, weights = np.polynomial.hermite_e.hermegauss(9 if spread_urad > 0 else 1)
         weights = weights / weights.sum()
-        square = np.zeros(self.n)
+        square = np.zeros(phi_urad.size)
         for z, w in zip(nodes, weights):
             at = phi_urad + z * spread_urad
             k = (self._law(d, (at + step) * 1e-6) - self._law(d, (at - step) * 1e-6)) / (2 * step)

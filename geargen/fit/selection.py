@@ -590,22 +590,28 @@ def plausibility(model, fit: ModelFit, noise: NoiseEstimate) -> ResidualTest:
 TORQUE_SEARCH_SAMPLES = 20_000
 
 
-def _prepared(meas: Measurement):
-    """(noise, model, declared fit) of a record: the noise from the data, the declared model
-    fitted; for a torque record the rotation's noise then carried into torque by the fitted law."""
-    noise = estimate_noise(meas)
+def _prepared(meas: Measurement, noise: NoiseEstimate | None = None):
+    """(noise, model, declared fit) of a record: the noise from the data (``noise`` if given), the
+    declared model fitted; for a torque record the rotation's noise then carried into torque by
+    the fitted law."""
+    noise = noise if noise is not None else estimate_noise(meas)
     model = make_model(meas, noise)
     declared = model.fit(())
     if meas.kind == "torque_deflection" and noise.channels["rotation"] > 0:
-        # errors in both channels, by effective variance: the rotation's noise reaches the torque
-        # residual through the drive's stiffness, which the fitted law knows far better than a
-        # local slope of the noisy data can (where the drive is stiff the rotation barely moves)
-        noise = with_stiffness(noise, model.law_slope(declared, noise.channels["rotation"]),
-                               "the stiffness dT/dtheta of the fitted declared law (effective variance; its rms "
-                               "over the rotation channel's noise, near a kink)")
+        noise = _through_the_law(noise, model, declared)
         model = make_model(meas, noise)
         declared = model.fit(())
     return noise, model, declared
+
+
+def _through_the_law(noise: NoiseEstimate, model, declared: ModelFit, rotation_urad: np.ndarray | None = None):
+    """A torque record's noise with the rotation's noise carried into torque by ``declared``'s law
+    (at ``rotation_urad``, default the model's record): errors in both channels, by effective
+    variance. The fitted law knows the drive's stiffness far better than a local slope of the
+    noisy data can (where the drive is stiff the rotation barely moves)."""
+    return with_stiffness(noise, model.law_slope(declared, noise.channels["rotation"], rotation_urad),
+                          "the stiffness dT/dtheta of the fitted declared law (effective variance; its rms "
+                          "over the rotation channel's noise, near a kink)")
 
 
 def _independent(meas: Measurement, noise: NoiseEstimate) -> int:
@@ -619,16 +625,22 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
     from geargen.fit.datasheet import datasheet
 
     rule = rule or SelectionRule()
-    meas, rejected = reject_spikes(meas, estimate_noise(meas))
-    noise, model, declared = _prepared(meas)
-    n = _independent(meas, noise)
+    noise = estimate_noise(meas)
+    meas, rejected = reject_spikes(meas, noise)
+    if rejected:
+        noise = estimate_noise(meas)
     step = math.ceil(meas.samples / TORQUE_SEARCH_SAMPLES) if meas.kind == "torque_deflection" else 1
     if step > 1:
         keep = np.zeros(meas.samples, dtype=bool)
         keep[::step] = True
-        part = meas.without(~keep, f"the search for effects ran on every {step}th sample ({int(keep.sum())} of "
+        part = meas.without(~keep, f"the search for effects ran on one sample in {step} ({int(keep.sum())} of "
                                    f"{meas.samples}); the model it found was then fitted to every sample")
         noise_part, model_part, declared_part = _prepared(part)
+        if noise.channels["rotation"] > 0:  # (the part's law carries the rotation's noise into torque)
+            noise = _through_the_law(noise, model_part, declared_part, meas.rotation_rad * 1e6)
+        model = make_model(meas, noise)
+        declared = model.fit((), start=declared_part)
+        n = _independent(meas, noise)
         found = _search(model_part, declared_part, noise_part, _independent(part, noise_part), rule, meas.units)
         found.current = model.fit(found.current.terms, start=found.current) if found.current.terms else declared
         if found.tested is not None:
@@ -636,6 +648,8 @@ def diagnose(meas: Measurement, rule: SelectionRule | None = None) -> Diagnosis:
         meas = replace(meas, notes=meas.notes + (part.notes[-1],))
         model.meas = meas
     else:
+        noise, model, declared = _prepared(meas, noise)
+        n = _independent(meas, noise)
         found = _search(model, declared, noise, n, rule, meas.units)
     tests = residual_tests(found.current if found.tested is None else found.tested, noise, found.last_round, rule,
                            meas.units)
