@@ -1,13 +1,23 @@
-"""Bench: a 100,000-sample preload trace fitted, diagnosed and reported in under 5 s.
+"""Bench: ``geargen fit`` on a 100,000-row record of each kind, against 3 s each (issue 28).
 
-    .venv/bin/python bench/bench_fit.py [--samples 100000] [--seed 1] [--keep DIR]
+    .venv/bin/python bench/bench_fit.py [--samples 100000] [--seed 1] [--kind all] [--keep DIR]
 
-The trace comes from the project's simulator (geargen.fit.simulate): the paper's train
-(16/48/21/112 teeth), 3 output revolutions forward and 3 back, uneven sampling, four probe
-drop-outs, 0.5 um probe noise, and two effects the sidecar does not declare (an out-of-round
-output gear at order 2 and thermal drift). It is written as CSV + TOML, then timed through the
-same path as ``geargen fit``: read, fit and diagnose, write the JSON and the Markdown report with
-its plots. Simulation and file writing are not timed.
+Each record comes from the project's simulator (geargen.fit.simulate), is written as CSV + TOML,
+and is then timed through the same path as ``geargen fit``: read, fit and diagnose, write the
+JSON and the Markdown report with its plots. Simulation and file writing are not timed.
+
+- ``preload_trace``: the paper's train (16/48/21/112 teeth), 3 output revolutions forward and 3
+  back over an hour, uneven sampling, four probe drop-outs, 0.5 um probe noise, an out-of-round
+  output gear at order 2 and thermal drift, neither declared.
+- ``torque_deflection``: the type 2 law of the contract's example, ten cycles of +-80 Nm over an
+  hour, 0.1 Nm torque noise, a 15 urad dead band, 1 Nm of friction and thermal drift of the torque
+  cell, none declared.
+- ``transmission_error``: the paper's train as two stages ((16, 48), (21, 112)), 3 output
+  revolutions forward and 3 back, a 24-bit output and an 18-bit input encoder, a damaged tooth on
+  the output gear (8 urad, 3 deg wide) and a backlash of 2 x 20 urad, neither declared.
+
+Wall time depends on the machine's load (2 cores shared by several agents here), CPU time much
+less: both are printed, with the load average.
 """
 
 from __future__ import annotations
@@ -33,56 +43,81 @@ sys.path.insert(0, str(ROOT))
 
 from geargen.commands.fit import fit_files  # noqa: E402
 from geargen.fit.measurement import write_measurement  # noqa: E402
-from geargen.fit.simulate import PreloadSettings, PreloadTruth, Sampling, simulate_preload_trace  # noqa: E402
+from geargen.fit.simulate import (PreloadSettings, PreloadTruth, Sampling, TorqueSettings, TorqueTruth,  # noqa: E402
+                                  TransmissionSettings, TransmissionTruth, simulate_preload_trace,
+                                  simulate_torque_deflection, simulate_transmission_error)
 
-BUDGET_S = 5.0
+TARGET_S = 3.0
+KINDS = ("preload_trace", "torque_deflection", "transmission_error")
+
+
+def simulate(kind: str, samples: int, seed: int):
+    rng = np.random.default_rng(seed)
+    sampling = Sampling(samples=samples, duration_s=3600.0, dropouts=4)
+    if kind == "preload_trace":
+        return simulate_preload_trace(PreloadTruth(harmonics=((2.0, 3.0, 35.0),), drift_per_kelvin=1.2), rng,
+                                      PreloadSettings(sampling=sampling, revolutions=3.0, noise_um=0.5),
+                                      name="bench_preload")
+    if kind == "torque_deflection":
+        return simulate_torque_deflection(TorqueTruth(dead_band_urad=15.0, hysteresis_half_width=1.0,
+                                                      drift_per_kelvin=0.5), rng,
+                                          TorqueSettings(sampling=sampling, cycles=10), name="bench_torque")
+    return simulate_transmission_error(TransmissionTruth(stages=((16, 48), (21, 112)), eccentricity_urad=(3.0, 6.0, 20.0),
+                                                         mesh_urad=((4.0, 1.5), (6.0, 2.0)),
+                                                         tooth_pulse=(2, 120.0, 8.0, 3.0),
+                                                         backlash_half_width_urad=20.0), rng,
+                                       TransmissionSettings(sampling=sampling, revolutions=3.0), name="bench_te")
+
+
+def _params(e: dict) -> str:
+    keys = ("order", "shaft", "angle_deg", "width_deg", "amplitude", "per_kelvin", "per_second", "half_width",
+            "width_urad", "exponent", "relative")
+    return " ".join(f"{k} {e[k]:.4g}" if isinstance(e[k], float) else f"{k} {e[k]}" for k in keys if k in e)
 
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--samples", type=int, default=100_000)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--kind", choices=KINDS + ("all",), default="all")
     ap.add_argument("--keep", default=None, help="write the files here instead of a temporary folder")
     ap.add_argument("--blas-threads", action="store_true", help="leave BLAS threading at its default")
     args = ap.parse_args(argv)
+    kinds = KINDS if args.kind == "all" else (args.kind,)
 
-    truth = PreloadTruth(harmonics=((2.0, 3.0, 35.0),), drift_per_kelvin=1.2)
-    settings = PreloadSettings(sampling=Sampling(samples=args.samples, duration_s=3600.0, dropouts=4),
-                               revolutions=3.0, noise_um=0.5)
-    t0 = time.perf_counter()
-    sim = simulate_preload_trace(truth, np.random.default_rng(args.seed), settings, name="bench_preload")
-    with tempfile.TemporaryDirectory() as tmp:
-        folder = Path(args.keep) if args.keep else Path(tmp)
-        csv = write_measurement(sim.measurement, folder)
-        t_sim = time.perf_counter() - t0
-        out = fit_files(csv, folder / "bench_preload.fit.json", folder / "bench_preload_fit")
-    s, sec, cpu = out["summary"], out["seconds"], out["cpu_seconds"]
+    rows, found = [], []
+    for kind in kinds:
+        sim = simulate(kind, args.samples, args.seed)
+        with tempfile.TemporaryDirectory() as tmp:
+            folder = Path(args.keep) if args.keep else Path(tmp)
+            csv = write_measurement(sim.measurement, folder)
+            name = sim.measurement.name
+            out = fit_files(csv, folder / f"{name}.fit.json", folder / f"{name}_fit")
+        rows.append((kind, sim.measurement.samples, out["seconds"], out["cpu_seconds"]))
+        s = out["summary"]
+        found.append((kind, sim, s))
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"bench_fit: {sim.measurement.samples} samples, simulated and written in {t_sim:.2f} s (not timed); "
-          f"load average {load:.1f} on {os.cpu_count()} CPUs")
+    print(f"bench_fit: load average {load:.1f} on {os.cpu_count()} CPUs (wall time grows with it, CPU time does not)")
     print()
-    print("| step | wall s | CPU s |")
-    print("|---|---|---|")
-    names = {"read": "read CSV + TOML", "fit": "fit + diagnose", "report": "JSON + Markdown + 4 plots", "total": "total"}
-    for k, label in names.items():
-        print(f"| {label} | {sec[k]:.2f} | {cpu[k]:.2f} |")
+    print("| kind | rows | read s | fit s | report s (JSON, Markdown, 4 plots) | total wall s | total CPU s | target s |")
+    print("|---|---|---|---|---|---|---|---|")
+    worst = 0.0
+    for kind, samples, sec, cpu in rows:
+        print(f"| {kind} | {samples} | {sec['read']:.2f} | {sec['fit']:.2f} | {sec['report']:.2f} | {sec['total']:.2f} | "
+              f"{cpu['total']:.2f} | <= {TARGET_S:g} |")
+        worst = max(worst, cpu["total"])
     print()
-    st = s["stages"]
-    print("| quantity | value |")
-    print("|---|---|")
-    print(f"| true noise (um rms) | {sim.true_noise_rms:.4f} |")
-    print(f"| noise_rms, model-free (um) | {s['noise_rms']:.4f} |")
-    for k in ("nominal", "declared", "extended"):
-        print(f"| {k} rms (um) | {st[k]['rms']:.4f} |")
-    for e in s["effects_added"]:
-        params = ", ".join(f"{k} {v:.5g}" if isinstance(v, float) else f"{k} {v}" for k, v in e.items()
-                           if k in ("order", "amplitude", "phase_deg", "shaft", "multiple", "per_kelvin", "per_second", "half_width"))
-        print(f"| effect added | {e['effect']}: {params} |")
-    print(f"| expected | {'; '.join(str(x) for x in sim.expected)} |")
-    print(f"| unexplained | {s['unexplained']} |")
-    ok = sec["total"] < BUDGET_S
+    print("| kind | true noise | noise_rms | declared rms | extended rms | effects added | truth | unexplained |")
+    print("|---|---|---|---|---|---|---|---|")
+    for kind, sim, s in found:
+        st = s["stages"]
+        added = "; ".join(f"{e['effect']} {_params(e)}" for e in s["effects_added"]) or "none"
+        truth = "; ".join(f"{e['effect']} {_params(e)}" for e in sim.expected) or "none"
+        print(f"| {kind} | {sim.true_noise_rms:.4g} | {s['noise_rms']:.4g} | {st['declared']['rms']:.4g} | "
+              f"{st['extended']['rms']:.4g} | {added} | {truth} | {s['unexplained']} |")
+    ok = worst <= TARGET_S
     print()
-    print(f"{'PASS' if ok else 'FAIL'}: total {sec['total']:.2f} s {'<' if ok else '>='} {BUDGET_S:.0f} s")
+    print(f"{'PASS' if ok else 'FAIL'}: the slowest kind took {worst:.2f} s of CPU {'<=' if ok else '>'} {TARGET_S:g} s")
     return 0 if ok else 1
 
 

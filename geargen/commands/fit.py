@@ -91,6 +91,29 @@ def _design_update(meas, summary: dict, csv_path: Path, out: Path) -> tuple[dict
             "preload_variation": {"before": before, "after": after}}, text
 
 
+def _number(v, unit: str) -> str:
+    return "not measured" if v is None else f"{v:.4g} {unit}"
+
+
+def _datasheet_summary(sheet: dict | None) -> list[str]:
+    """One line per datasheet test (lost motion, hysteresis loss, stiffness), or the accuracy."""
+    if not sheet:
+        return []
+    out = []
+    for t in sheet.get("tests", []):
+        k = t["stiffness"]
+        out.append(f"datasheet test {t['test']} (+-{t['torque_amplitude_Nm']:.4g} N·m): lost motion "
+                   f"{_number(t['lost_motion_urad'], 'urad')} at +-{t['lost_motion_at_Nm']:.4g} N·m, torsion "
+                   f"{_number(t.get('torsion_urad'), 'urad')} at +-{t['torsion_at_Nm']:.4g} N·m, hysteresis loss "
+                   f"{_number(t['hysteresis_loss_urad'], 'urad')}, K1/K2/K3 "
+                   + " / ".join("-" if k[key] is None else f"{k[key]:.4g}" for key in ("K1_Nm_per_rad", "K2_Nm_per_rad",
+                                                                                    "K3_Nm_per_rad"))
+                   + f" N·m/rad (T1 {k['T1_Nm']:.4g}, T2 {k['T2_Nm']:.4g} N·m)")
+    if not sheet.get("tests") and "transmission_accuracy_urad" in sheet:
+        out.append(f"datasheet: transmission accuracy {_number(sheet['transmission_accuracy_urad'], 'urad')}")
+    return out
+
+
 def run(args) -> int:
     to_stdout = args.json_path == STDOUT
     text = sys.stderr if to_stdout else sys.stdout  # standard output carries the JSON alone
@@ -117,6 +140,8 @@ def run(args) -> int:
     if not s["effects_added"]:
         print("  no effect added", file=text)
     print(f"  unexplained: {'yes' if s['unexplained'] else 'no'}", file=text)
+    for line in _datasheet_summary(s.get("datasheet")):
+        print(f"  {line}", file=text)
     update = s.get("design_update")
     if update:
         print(f"  wrote {update['written']}: {len(update['changes'])} error values from the bench", file=text)

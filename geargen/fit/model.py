@@ -46,16 +46,24 @@ NM_PER_NMM = 1e-3
 #: from the declared law's straight lines over a finite load range
 EXPONENT_MIN = 1.1
 EXPONENT_SPAN = 2.9
+#: exponents a new stiffening is also started from (Hertzian line and point contact, and steeper)
+STIFFENING_STARTS = (1.25, 1.5, 2.0, 3.0)
+#: a dead band must be at least this many times as wide as one reading's uncertainty of the
+#: rotation at zero torque, or the record shows no flat zone (TorqueModel.degenerate)
+DEAD_BAND_RESOLUTION = 2.0
 
 
 @dataclass(frozen=True)
 class Term:
     """One library effect in a model: ``effect`` name; ``variable`` for drift ("temperature" or
-    "time"); ``order`` for a harmonic (per output revolution)."""
+    "time") or the shaft of a tooth pulse or of sidebands; ``order`` for a harmonic (per output
+    revolution) or the mesh order of sidebands; ``params`` the parameters that shape its columns
+    (a tooth pulse's angle and width, the sidebands' shaft order, a backlash's half-width)."""
 
     effect: str
     variable: str = ""
     order: float = 0.0
+    params: tuple = ()
 
     @property
     def label(self) -> str:
@@ -63,6 +71,10 @@ class Term:
             return f"harmonic at order {self.order:.4f}"
         if self.effect == "drift":
             return f"drift with {self.variable}"
+        if self.effect == "sidebands":
+            return f"sidebands of order {self.order:.4g} at +-{self.params[0]:.4g} ({self.variable})"
+        if self.effect == "tooth_pulse":
+            return f"tooth pulse on the {self.variable} shaft at {self.params[0]:.1f} deg"
         return self.effect
 
 
@@ -263,13 +275,19 @@ class PreloadModel:
 
     def __init__(self, meas: Measurement, noise: NoiseEstimate):
         spec: PreloadModelSpec = meas.model
+        self._setup(meas, noise, meas.carriage_um, train_orders(spec.teeth), declared_orders(spec.teeth, spec.declared))
+
+    def _setup(self, meas: Measurement, noise: NoiseEstimate, signal: np.ndarray, train: tuple[TrainOrder, ...],
+               declared: tuple[TrainOrder, ...]) -> None:
+        """What every model of sinusoids against the output angle holds: the signal fitted, the
+        train's orders and the declared ones, the order range the residual spectrum covers."""
         self.meas = meas
         self.noise = noise
         self.theta = meas.angle_rad
-        self.x = meas.carriage_um
+        self.x = signal
         self.n = meas.samples
-        self.train: tuple[TrainOrder, ...] = train_orders(spec.teeth)
-        self.declared: tuple[TrainOrder, ...] = declared_orders(spec.teeth, spec.declared)
+        self.train: tuple[TrainOrder, ...] = train
+        self.declared: tuple[TrainOrder, ...] = declared
         revs = float(np.ptp(self.theta)) / (2 * math.pi)
         self.revolutions = max(revs, 1e-9)
         self.resolution = 1.0 / self.revolutions
@@ -351,6 +369,10 @@ class PreloadModel:
                 v = _drift_variable(self.meas, term.variable)
                 np.subtract(v[rows], self._drift_mean(term.variable), out=X[:, col])
                 col += 1
+            elif self._width(term):
+                term_width = self._width(term)
+                X[:, col:col + term_width] = self._term_rows(term, rows)
+                col += term_width
         if extra is not None:
             X[:, col] = extra
         return X
@@ -362,7 +384,7 @@ class PreloadModel:
         return self._base
 
     def _term_columns(self, term: Term) -> np.ndarray:
-        key = (term.effect, term.variable, term.order)
+        key = term
         if key not in self._cache:
             if len(self._cache) > 64:
                 self._cache.clear()
@@ -370,7 +392,7 @@ class PreloadModel:
         return self._cache[key]
 
     def _columns(self, terms: tuple[Term, ...]):
-        key = tuple((t.effect, t.variable, t.order) for t in terms)
+        key = tuple(terms)
         hit = self._columns_cache.get(key)
         if hit is None:
             hit = self._build_columns(terms)
@@ -484,16 +506,7 @@ class PreloadModel:
         else:  # made again when asked for: most fits are only compared by their rss
             rss = self._rss(prediction, mask)
             prediction = residual = None
-        values = []
-        for i, term in enumerate(terms):
-            if term.effect == "hysteresis":
-                values.append({"half_width": h})
-            elif term.effect == "harmonic":
-                a, b = coef[slices[i]]
-                amp, ph = fx.harmonic_parameters(a, b)
-                values.append({"order": term.order, "amplitude": amp, "phase_deg": ph})
-            else:
-                values.append(_drift_value(term.variable, float(coef[slices[i]][0])))
+        values = [self._term_values(term, coef[slices[i]], h) for i, term in enumerate(terms)]
         declared_values = {"offset": float(coef[0])}
         for j, t in enumerate(self.declared):
             amp, ph = fx.harmonic_parameters(coef[1 + 2 * j], coef[2 + 2 * j])
@@ -504,6 +517,15 @@ class PreloadModel:
                         declared_values=declared_values,
                         state={"coef": coef, "half_width": h, "slices": slices, "mask": mask},
                         success=success, message=message, prediction=prediction, residual=residual, arrays=arrays)
+
+    def _term_values(self, term: Term, coef: np.ndarray, half_width: float) -> dict:
+        """A term's parameters (contract names) from its fitted coefficients."""
+        if term.effect == "hysteresis":
+            return {"half_width": half_width}
+        if term.effect == "harmonic":
+            amp, ph = fx.harmonic_parameters(*coef)
+            return {"order": term.order, "amplitude": amp, "phase_deg": ph}
+        return _drift_value(term.variable, float(coef[0]))
 
     def _check_declared_design(self) -> None:
         """The recorded output angles must tell the declared sinusoids and the offset apart."""
@@ -659,32 +681,37 @@ class PreloadModel:
                               options={"xatol": 1e-7 * max(1.0, order)})
         return float(res.x), drop(float(res.x))
 
-    def candidates(self, fit: ModelFit, count: int = 3) -> list[Candidate]:
-        out: list[Candidate] = []
-        r = fit.residual
-        sigma = max(self.noise.rms, 1e-300)
-        taken = self.model_orders(fit.terms)
-        pg = self.periodogram(r)
+    def spectrum_peaks(self, residual: np.ndarray, taken: list[float], count: int):
+        """The ``count`` highest peaks of the residual's order spectrum away from the orders
+        ``taken``: (order, drop in the sum of squares, amplitude) each. The peak order is
+        interpolated on the grid (a parabola; the grid's step is resolution / 5); it is refined
+        exactly, jointly with the model, once the candidate is the one being judged."""
+        pg = self.periodogram(residual)
         step = float(pg.orders[1] - pg.orders[0]) if pg.orders.size > 1 else 0.0
+        out = []
         for i in peaks(pg, count, exclude=taken, exclusion=0.5 * self.resolution):
-            # peak order by parabolic interpolation on the grid (step resolution/5); the order is
-            # refined exactly, jointly with the model, once the candidate is the one being judged
             q = float(pg.orders[i])
             if 0 < i < pg.orders.size - 1:
                 a, b, c = pg.reduction[i - 1], pg.reduction[i], pg.reduction[i + 1]
                 den = a - 2 * b + c
                 if den < 0:
                     q += 0.5 * step * (a - c) / den
-            drop = float(pg.reduction[i])
-            if any(abs(q - o) <= 0.5 * self.resolution for o in taken):
-                continue
+            if not any(abs(q - o) <= 0.5 * self.resolution for o in taken):
+                out.append((q, float(pg.reduction[i]), float(pg.amplitude[i])))
+        return out
+
+    def candidates(self, fit: ModelFit, count: int = 3) -> list[Candidate]:
+        out: list[Candidate] = []
+        r = fit.residual
+        sigma = max(self.noise.rms, 1e-300)
+        for q, drop, amplitude in self.spectrum_peaks(r, self.model_orders(fit.terms), count):
             where = attribute_order(q, self.train)
             src = f"{where[1]} x {where[0].name} (order {where[0].order:.4f})" if where else "no shaft or mesh"
             sigma2 = sigma ** 2
             power = drop / sigma2 if sigma2 >= np.finfo(float).tiny else drop / sigma / sigma  # sigma**2 may underflow
             out.append(Candidate(Term("harmonic", order=q),
                                  f"peak of the residual order spectrum at order {q:.4f} ({src}), amplitude "
-                                 f"{pg.amplitude[i]:.3g} {self.meas.units}, power {power:.1f} x noise variance",
+                                 f"{amplitude:.3g} {self.meas.units}, power {power:.1f} x noise variance",
                                  statistic=power))
         present = {(t.effect, t.variable) for t in fit.terms}
         for term in drift_terms(self.meas):
@@ -704,9 +731,42 @@ class PreloadModel:
                                      f"{self.meas.units} (friction lag gives +2h)", statistic=gap))
         return out
 
+    def _occupied_orders(self, terms, skip: int | None = None) -> list[float]:
+        """Orders the model's sinusoids sit at (declared, and harmonics other than term ``skip``)."""
+        return [t.order for t in self.declared] + [t.order for j, t in enumerate(terms)
+                                                   if t.effect == "harmonic" and j != skip]
+
     def degenerate(self, fit: ModelFit, index: int) -> str | None:
-        """Why term ``index`` is no real effect although it fits, or None (none apply here)."""
+        """Why term ``index`` is no real effect although it fits, or None: a harmonic closer than
+        half the record's order resolution (1 / revolutions) to an order already in the model
+        (over one revolution orders 1 and 1.4 are nearly the same sinusoid, and a pair of them
+        fits anything slow with two large amplitudes that cancel)."""
+        term = fit.terms[index]
+        if term.effect != "harmonic":
+            return None
+        others = self._occupied_orders(fit.terms, index)
+        if not others:
+            return None
+        near = min(others, key=lambda o: abs(o - term.order))
+        if abs(near - term.order) < 0.5 * self.resolution:
+            return (f"order {term.order:.4f} is within half the record's order resolution ({self.resolution:.3g}: "
+                    f"{self.revolutions:.3g} revolutions) of order {near:.4f}, already in the model: the record "
+                    "cannot tell the two apart")
         return None
+
+    def implausible(self, fit: ModelFit, index: int) -> str | None:
+        """Why term ``index``'s parameters are physically absurd for this record, or None: a play
+        wider than the whole range of the signal explains nothing (it never lets go)."""
+        term, v = fit.terms[index], fit.values[index]
+        span = float(np.ptp(self.x))
+        if term.effect == "hysteresis" and 2.0 * v["half_width"] >= span:
+            return (f"a play of full width {2 * v['half_width']:.4g} {self.meas.units} is wider than the whole range of "
+                    f"the record ({span:.4g} {self.meas.units})")
+        return None
+
+    def noise_readings(self, noise: NoiseEstimate) -> list[tuple[str, np.ndarray, float]]:
+        """(column, readings, noise level) of each measured channel, for the plausibility test."""
+        return [(self.meas.column("carriage"), self.x, noise.channels["signal"])]
 
     def quick_gain(self, fit: ModelFit, term: Term) -> float | None:
         """Drop in the sum of squares a candidate gives to first order, or None when there is no
@@ -827,9 +887,25 @@ class TorqueModel:
         self.t = meas.time_s
         self.n = meas.samples
         self.type2 = self.spec.drive_type == "type2"
+        self._cache: dict = {}
+        self._kinds: dict = {}  # parameter names -> how each is transformed
         self._check_slope()
-        self.T_smooth = fx.driving_signal(self.t, self.T, noise.channels.get("torque", noise.rms), self.SMOOTH_HALF_WINDOW)
+        # a torque the sampling does not resolve (a load stepped within a few samples) is not
+        # smoothed: a line over 17 samples would round its steps off and overshoot its plateaus
+        window = self.SMOOTH_HALF_WINDOW if (noise.resolved or {}).get("torque", True) else 0
+        self.T_smooth = fx.driving_signal(self.t, self.T, noise.channels.get("torque", noise.rms), window)
         self.declared_start = self._declared_start()
+        # the amplitude of the test each sample belongs to (geargen.fit.datasheet.split_tests): a
+        # friction that grows with the cycle's amplitude scales with it
+        from geargen.fit.datasheet import split_tests
+        self.tests = split_tests(self.T_smooth, meas.test_nr)
+        self.test_amplitude = np.empty(self.n)
+        for _, rows in self.tests:
+            self.test_amplitude[rows] = np.max(np.abs(self.T_smooth[rows])) if rows.size else 1.0
+        self.reference_amplitude = float(np.max(self.test_amplitude))
+        amplitudes = [float(np.max(np.abs(self.T_smooth[rows]))) for _, rows in self.tests if rows.size]
+        # an amplitude-dependent friction needs tests of different amplitudes to be seen
+        self.amplitudes_differ = len(amplitudes) >= 2 and max(amplitudes) >= 1.3 * min(amplitudes)
         # weighted least squares (effective variance): each residual over its noise level, relative
         # to the mean level, so that the rss stays in torque units and the noise of the fit is noise.rms
         variance = np.asarray(noise.variance, dtype=float)
@@ -878,18 +954,19 @@ class TorqueModel:
     def _law(self, d: dict, phi_rad: np.ndarray) -> np.ndarray:
         return law_torque_Nm(self.spec.drive_type, d["k1"], d["k2"], d.get("k3"), d["preload"], phi_rad)
 
-    def law_slope(self, fit: ModelFit, spread_urad: float = 0.0) -> np.ndarray:
+    def law_slope(self, fit: ModelFit, spread_urad: float = 0.0, rotation_urad: np.ndarray | None = None) -> np.ndarray:
         """rms dT/dtheta (Nm per urad) of ``fit``'s two-path law over the rotations the reading may
         stand for: each sample's rotation plus a normal error of ``spread_urad`` (the rotation
         channel's noise), by 9-point Gauss-Hermite quadrature. Near a kink of the law a noisy
         reading falls on either side of it, so the slope it carries into the residual is a mix
-        of the two. The law is piecewise linear: a central difference over 1e-3 urad is exact."""
+        of the two. The law is piecewise linear: a central difference over 1e-3 urad is exact.
+        ``rotation_urad``: other rotations (another record's) to take it at."""
         d = fit.declared_values
-        phi_urad = self.rot_urad - d["theta0_urad"]
+        phi_urad = (self.rot_urad if rotation_urad is None else rotation_urad) - d["theta0_urad"]
         step = 1e-3
         nodes, weights = np.polynomial.hermite_e.hermegauss(9 if spread_urad > 0 else 1)
         weights = weights / weights.sum()
-        square = np.zeros(self.n)
+        square = np.zeros(phi_urad.size)
         for z, w in zip(nodes, weights):
             at = phi_urad + z * spread_urad
             k = (self._law(d, (at + step) * 1e-6) - self._law(d, (at - step) * 1e-6)) / (2 * step)
@@ -915,12 +992,26 @@ class TorqueModel:
                 names += [f"{i}:amplitude", f"{i}:exponent"]
             elif term.effect == "dead_band":
                 names.append(f"{i}:width_urad")
+            elif term.effect == "amplitude_hysteresis":
+                names += [f"{i}:half_width", f"{i}:growth"]
         return names
 
     def _drift_ref(self, variable: str) -> tuple[np.ndarray, float]:
         v = _drift_variable(self.meas, variable)
         ref = float(v[0]) if variable == "time" else float(np.mean(v[: min(10, v.size)]))
         return v, ref
+
+    def _memo(self, key: tuple, make):
+        """``make()`` remembered under ``key`` (the component and the parameters it depends on): a
+        finite-difference Jacobian moves one parameter at a time, so the play, the law and the
+        stiffening are each remade only when a parameter of their own moved. Keeps the last few
+        (fewer for very long records)."""
+        hit = self._cache.get(key)
+        if hit is None:
+            if len(self._cache) >= (24 if self.n <= 2_000_000 else 6):
+                self._cache.pop(next(iter(self._cache)))
+            hit = self._cache[key] = make()
+        return hit
 
     def _evaluate(self, names, p, terms):
         """(prediction, contributions per term, declared dict, effect values per term)."""
@@ -929,14 +1020,16 @@ class TorqueModel:
              "theta0_urad": val["theta0_urad"]}
         if self.type2:
             d["k3"] = math.exp(val["ln_k3"])
-        phi_urad = self.rot_urad - d["theta0_urad"]
+        law_key = tuple(d[k] for k in ("k1", "k2", "preload")) + (d.get("k3"),)
+        theta0 = d["theta0_urad"]
         idx = {t.effect: i for i, t in enumerate(terms)}
-        if "dead_band" in idx:
-            phi_urad_s = fx.dead_zone(phi_urad, val[f"{idx['dead_band']}:width_urad"])
-        else:
-            phi_urad_s = phi_urad
-        phi = phi_urad_s * 1e-6
-        base = self._law(d, phi)
+        width = val[f"{idx['dead_band']}:width_urad"] if "dead_band" in idx else None
+
+        def phi_of(w):  # the rotation the springs see, rad
+            return self._memo(("phi", theta0, w), lambda: (fx.dead_zone(self.rot_urad - theta0, w) if w is not None
+                                                             else self.rot_urad - theta0) * 1e-6)
+        phi = phi_of(width)
+        base = self._memo(("law", law_key, theta0, width), lambda: self._law(d, phi))
         pred = base.copy()
         contributions, values = [None] * len(terms), [None] * len(terms)
         for i, term in enumerate(terms):
@@ -946,16 +1039,21 @@ class TorqueModel:
                 values[i] = _drift_value(term.variable, val[f"{i}:rate"])
             elif term.effect == "hysteresis":
                 h = val[f"{i}:half_width"]
-                c = self.T_smooth - fx.play_operator(self.T_smooth, h)
+                c = self._memo(("play", h), lambda: self.T_smooth - fx.play_operator(self.T_smooth, h))
                 values[i] = {"half_width": h}
             elif term.effect == "stiffening":
                 amp, ex = val[f"{i}:amplitude"], val[f"{i}:exponent"]
-                c = fx.stiffening(phi, amp, ex)
+                c = amp * self._memo(("stiffening", theta0, width, ex), lambda: fx.stiffening(phi, 1.0, ex))
                 values[i] = {"exponent": ex, "amplitude": amp}
             elif term.effect == "dead_band":
                 w = val[f"{i}:width_urad"]
-                c = base - self._law(d, phi_urad * 1e-6)
+                c = base - self._memo(("law", law_key, theta0, None), lambda: self._law(d, phi_of(None)))
                 values[i] = {"width_urad": w}
+            elif term.effect == "amplitude_hysteresis":
+                h, growth = val[f"{i}:half_width"], val[f"{i}:growth"]
+                c = self._memo(("play", h, growth), lambda: self.T_smooth - fx.play_operator(
+                    self.T_smooth, self._friction_widths(h, growth)))
+                values[i] = {"half_width": h, "reference_amplitude": self.reference_amplitude, "exponent": growth}
             else:
                 raise ValueError(f"{term.effect} does not apply to a torque_deflection")
             contributions[i] = c
@@ -969,14 +1067,19 @@ class TorqueModel:
     @staticmethod
     def _is_magnitude(name: str) -> bool:
         return (name == "preload" or name.endswith(":half_width") or name.endswith(":width_urad")
-                or name.endswith(":amplitude"))  # stiffening stiffens: a negative amplitude would soften
+                or name.endswith(":amplitude")  # stiffening stiffens: a negative amplitude would soften
+                or name.endswith(":growth"))  # (friction that grows with the amplitude, as the library says)
 
     def _transform(self, names, p) -> dict:
+        kinds = self._kinds.get(tuple(names))
+        if kinds is None:
+            kinds = self._kinds[tuple(names)] = tuple(
+                "magnitude" if self._is_magnitude(nm) else "exponent" if nm.endswith(":exponent") else "" for nm in names)
         val = {}
-        for nm, v in zip(names, p):
-            if self._is_magnitude(nm):
+        for nm, kind, v in zip(names, kinds, p):
+            if kind == "magnitude":
                 v = abs(v)
-            elif nm.endswith(":exponent"):
+            elif kind == "exponent":
                 v = EXPONENT_MIN + EXPONENT_SPAN / (1.0 + math.exp(-min(max(v, -50.0), 50.0)))
             val[nm] = float(v)
         return val
@@ -1008,7 +1111,9 @@ class TorqueModel:
         for i, term in enumerate(terms):
             for key, default in self._effect_defaults(term).items():
                 p0.setdefault(f"{i}:{key}", default)
-        for k, v in (extra or {}).items():  # start values for the last term (the candidate)
+        extra = dict(extra or {})
+        starts = extra.pop("starts", ())  # further (exponent, amplitude) starts of a new stiffening
+        for k, v in extra.items():  # start values for the last term (the candidate)
             p0[f"{len(terms) - 1}:{k}"] = v
         x0 = np.array([self._untransform(nm, p0[nm]) for nm in names], dtype=float)
         sigma = max(self.noise.rms, 1e-12)
@@ -1017,15 +1122,45 @@ class TorqueModel:
         T = self.T
         scale = self.residual_scale[mask]
 
+        inverse_scale = 1.0 / scale
+        every_row = bool(mask.all())
+        fitted = int(mask.sum())
+        prior_index = [names.index(nm) for nm in prior_names]
+        preload_index = names.index("preload")
+
         def fun(p):
             pred, *_ = self._evaluate(names, p, terms)
-            r = (T - pred)[mask] / scale
-            val = self._transform(names, p)
-            prior = [sigma * (val[nm] - prior_centre[nm]) for nm in prior_names]
-            prior.append(sigma * (val["preload"] - prior_centre["preload"]) / pscale)
-            return np.concatenate([r, prior])
+            out = np.empty(fitted + len(prior_index) + 1)
+            r = out[:fitted]
+            if every_row:
+                np.subtract(T, pred, out=r)
+            else:
+                r[:] = (T - pred)[mask]
+            r *= inverse_scale
+            for j, (k, nm) in enumerate(zip(prior_index, prior_names)):  # (ln k: fitted as is)
+                out[fitted + j] = sigma * (p[k] - prior_centre[nm])
+            out[-1] = sigma * (abs(p[preload_index]) - prior_centre["preload"]) / pscale
+            return out
 
-        res = least_squares(fun, x0, x_scale="jac", method="lm", max_nfev=60 * (len(names) + 1))
+        # (a relative change of the sum of squares below 1e-7 moves a dBIC by n x 1e-7, hundredths)
+        res = least_squares(fun, x0, x_scale="jac", method="lm", max_nfev=60 * (len(names) + 1), ftol=1e-7, xtol=1e-7)
+        at_bound = starts and terms[-1].effect == "stiffening" and not (
+            EXPONENT_MIN + 0.01 * EXPONENT_SPAN < self._transform(names, res.x)[f"{len(terms) - 1}:exponent"]
+            < EXPONENT_MIN + 0.99 * EXPONENT_SPAN)
+        if at_bound:
+            # a stiffening's exponent trades against k3 and the preload: from one start the solver
+            # can end at an exponent bound (a local minimum) where another start finds the law
+            i = len(terms) - 1
+            j_ex, j_amp = names.index(f"{i}:exponent"), names.index(f"{i}:amplitude")
+            for ex, amp in starts:
+                if abs(self._transform(names, res.x)[f"{i}:exponent"] - ex) < 0.05 * EXPONENT_SPAN:
+                    continue
+                x1 = x0.copy()
+                x1[j_ex], x1[j_amp] = self._untransform(f"{i}:exponent", ex), amp
+                other = least_squares(fun, x1, x_scale="jac", method="lm", max_nfev=60 * (len(names) + 1),
+                                      ftol=1e-7, xtol=1e-7)
+                if other.cost < res.cost * (1 - 1e-9):
+                    res = other
         pred, contributions, d, values = self._evaluate(names, res.x, terms)
         resid = T - pred
         n_params = len(names)
@@ -1049,11 +1184,17 @@ class TorqueModel:
             C[:, j] = (self._evaluate(names, xp, terms)[1][index] - base) / step
         return _contribution_noise(fit.state["jac"], C, self.noise.rms)
 
+    def _friction_widths(self, half_width: float, growth: float) -> np.ndarray:
+        """Per-sample play half-width of an amplitude hysteresis: h (A / A_ref)^growth, A the
+        amplitude of the sample's test."""
+        return half_width * (self.test_amplitude / self.reference_amplitude) ** growth
+
     def _effect_defaults(self, term: Term) -> dict:
         if term.effect == "drift":
             return {"rate": 0.0}
-        if term.effect == "hysteresis":
-            return {"half_width": 0.5 * self.noise.rms}
+        if term.effect in ("hysteresis", "amplitude_hysteresis"):
+            return {"half_width": 0.5 * self.noise.rms, "growth": 1.0} if term.effect != "hysteresis" else \
+                {"half_width": 0.5 * self.noise.rms}
         if term.effect == "stiffening":
             return {"amplitude": 0.0, "exponent": 1.5}
         if term.effect == "dead_band":
@@ -1075,7 +1216,8 @@ class TorqueModel:
             rate = _slope(v - ref, r)
             out.append(Candidate(term, f"residual correlates with {term.variable} (r = {_correlation(v, r):+.3f})",
                                  start={"rate": rate}, statistic=_correlation(v, r)))
-        if ("hysteresis", "") not in present:
+        friction = ("hysteresis", "") in present or ("amplitude_hysteresis", "") in present
+        if not friction:
             dT = np.diff(self.T_smooth, prepend=self.T_smooth[0])
             up, down = r[dT > 0], r[dT < 0]
             if up.size > 10 and down.size > 10:
@@ -1083,20 +1225,45 @@ class TorqueModel:
                 out.append(Candidate(Term("hysteresis"),
                                      f"residual while torque rises minus while it falls: {gap:+.3g} Nm (friction gives +2h)",
                                      start={"half_width": max(0.5 * gap, 0.1 * self.noise.rms)}, statistic=gap))
+            if self.amplitudes_differ:
+                widths = []
+                for _, rows in self.tests:
+                    u, dn = r[rows][dT[rows] > 0], r[rows][dT[rows] < 0]
+                    if u.size > 3 and dn.size > 3:
+                        widths.append((float(np.max(np.abs(self.T_smooth[rows]))), 0.5 * float(u.mean() - dn.mean())))
+                good = [(a, h) for a, h in widths if h > 0]
+                growth = 1.0
+                if len(good) >= 2 and np.ptp([a for a, _ in good]) > 0:
+                    growth = float(np.clip(np.polyfit(np.log([a for a, _ in good]), np.log([h for _, h in good]), 1)[0],
+                                           0.0, 4.0))
+                h_ref = max((h for a, h in good if a == max(a for a, _ in good)), default=0.1 * self.noise.rms)
+                text = ", ".join(f"{h:+.3g} Nm at {a:.3g} Nm" for a, h in widths)
+                out.append(Candidate(Term("amplitude_hysteresis"),
+                                     f"half the residual gap between rising and falling torque, test by test: {text} "
+                                     f"(friction that grows with the amplitude: exponent about {growth:.2g})",
+                                     start={"half_width": max(h_ref, 0.1 * self.noise.rms), "growth": growth},
+                                     statistic=growth))
         phi = self._phi_urad(fit) * 1e-6
         if ("stiffening", "") not in present:
             best = None
+            tried = []
             for ex in (1.25, 1.5, 2.0, 2.5, 3.0, 3.5):
                 b = fx.stiffening(phi, 1.0, ex)
                 amp = max(float(b @ r / max(b @ b, 1e-300)), 0.0)
                 drop = amp * (b @ r)
+                # (the declared fit's k3 has taken up part of the bend: the projection starts the
+                # amplitude low; the other start is a stiffening worth 5 % of the peak torque)
+                reach = float(np.max(np.abs(phi))) / fx.STIFFENING_REFERENCE_RAD
+                tried.append((ex, max(amp, 0.05 * float(np.max(np.abs(self.T))) / max(reach, 1e-12) ** ex)))
                 if best is None or drop > best[2]:
                     best = (amp, ex, drop)
             curv = _side_curvature(phi, r)
             out.append(Candidate(Term("stiffening"),
                                  f"residual bends with load: quadratic coefficient {curv[0]:+.3g} (phi > 0) and {curv[1]:+.3g} "
                                  f"(phi < 0) Nm/mrad^2; best power law exponent {best[1]}",
-                                 start={"amplitude": max(best[0], 1e-3), "exponent": best[1]}, statistic=best[2]))
+                                 start={"amplitude": max(best[0], 1e-3), "exponent": best[1],
+                                        "starts": tuple(e for e in tried if e[0] in STIFFENING_STARTS or e[0] == 1.25)},
+                                 statistic=best[2]))
         if ("dead_band", "") not in present:
             scale = max(np.ptp(self.rot_urad), 1.0)
             best = (0.0, fit.rss)
@@ -1128,7 +1295,53 @@ class TorqueModel:
             if v["exponent"] > EXPONENT_MIN + 0.99 * EXPONENT_SPAN:
                 return (f"exponent {v['exponent']:.3f} at the upper bound {EXPONENT_MIN + EXPONENT_SPAN:g}: "
                         "outside the Hertzian range")
+        if term.effect == "dead_band":
+            resolved = self.zero_torque_spread(fit)
+            if v["width_urad"] < DEAD_BAND_RESOLUTION * resolved:
+                return (f"a band of {v['width_urad']:.3g} urad is narrower than {DEAD_BAND_RESOLUTION:g} x the "
+                        f"{resolved:.3g} urad by which a single reading places the rotation at zero torque (the rotation "
+                        "channel's noise and the torque's carried through the drive stiffness): the record shows no "
+                        "flat zone there, which is what a dead band is; the kink it puts in the law only bends the "
+                        "curve")
+        if term.effect == "amplitude_hysteresis" and v["exponent"] < 0.05:
+            return (f"exponent {v['exponent']:.3g}: a friction that does not grow with the amplitude is the "
+                    "constant-width hysteresis")
         return None
+
+    def zero_torque_spread(self, fit: ModelFit) -> float:
+        """urad by which one reading places the rotation at zero torque: the rotation channel's
+        noise and the torque channel's through the drive stiffness of ``fit``'s law, in quadrature."""
+        d = fit.declared_values
+        step = 1e-3  # urad: the law is linear within a path's unloading torque, far beyond this
+        k_drive = float(np.diff(self._law(d, np.array([-step, step]) * 1e-6))[0] / (2 * step))  # Nm per urad at zero
+        sigma_t, sigma_r = self.noise.channels.get("torque", 0.0), self.noise.channels.get("rotation", 0.0)
+        torque_part = sigma_t / k_drive if k_drive > 0 else 0.0  # (k_drive in Nm per urad)
+        return math.hypot(sigma_r, torque_part)
+
+    def implausible(self, fit: ModelFit, index: int) -> str | None:
+        """Why term ``index``'s parameters are physically absurd for this record, or None: a
+        friction play (of any test) wider than the torque range it plays across never lets go and
+        explains nothing; a dead band wider than the whole rotation recorded has no sides."""
+        term, v = fit.terms[index], fit.values[index]
+        span = float(np.ptp(self.T_smooth))
+        if term.effect == "hysteresis" and 2.0 * v["half_width"] >= span:
+            return (f"a friction play of full width {2 * v['half_width']:.4g} Nm is wider than the whole torque range "
+                    f"of the record ({span:.4g} Nm)")
+        if term.effect == "amplitude_hysteresis":
+            for test, rows in self.tests:
+                a = float(np.max(np.abs(self.T_smooth[rows]))) if rows.size else 0.0
+                h = v["half_width"] * (a / self.reference_amplitude) ** v["exponent"]
+                if rows.size and 2.0 * h >= float(np.ptp(self.T_smooth[rows])):
+                    return (f"in test {test} the friction play of full width {2 * h:.4g} Nm is wider than the test's "
+                            f"torque range ({np.ptp(self.T_smooth[rows]):.4g} Nm)")
+        if term.effect == "dead_band" and v["width_urad"] >= float(np.ptp(self.rot_urad)):
+            return (f"a dead band of {v['width_urad']:.4g} urad is wider than the whole rotation recorded "
+                    f"({np.ptp(self.rot_urad):.4g} urad)")
+        return None
+
+    def noise_readings(self, noise: NoiseEstimate) -> list[tuple[str, np.ndarray, float]]:
+        return [(self.meas.column("torque"), self.T, noise.channels["torque"]),
+                (self.meas.column("rotation"), self.rot_urad, noise.channels["rotation"])]
 
     def quick_gain(self, fit: ModelFit, term: Term) -> float | None:
         return None
@@ -1144,6 +1357,15 @@ class TorqueModel:
             return {"effect": "stiffening", "exponent": v["exponent"], "amplitude": v["amplitude"],
                     "reference_rotation_urad": fx.STIFFENING_REFERENCE_RAD * 1e6,
                     "law": "amplitude * sign(phi) * |phi / reference_rotation| ** exponent (Nm)"}
+        if term.effect == "amplitude_hysteresis":
+            per_test = [{"test": int(test), "torque_amplitude_Nm": float(np.max(np.abs(self.T_smooth[rows]))),
+                         "half_width": float(v["half_width"] * (np.max(np.abs(self.T_smooth[rows]))
+                                                                / self.reference_amplitude) ** v["exponent"])}
+                        for test, rows in self.tests if rows.size]
+            return {"effect": "amplitude_hysteresis", "half_width": v["half_width"],
+                    "reference_amplitude": v["reference_amplitude"], "exponent": v["exponent"], "tests": per_test,
+                    "law": "play operator on the applied torque of half-width half_width * (A / reference_amplitude) "
+                           "** exponent, A the torque amplitude of the sample's test (Nm)"}
         return {"effect": "dead_band", "width_urad": v["width_urad"]}
 
 
@@ -1205,4 +1427,7 @@ def _side_curvature(phi_rad: np.ndarray, r: np.ndarray) -> tuple[float, float]:
 
 def make_model(meas: Measurement, noise: NoiseEstimate):
     """The model class for a measurement's kind."""
+    if meas.kind == "transmission_error":
+        from geargen.fit.transmission import TransmissionModel
+        return TransmissionModel(meas, noise)
     return PreloadModel(meas, noise) if meas.kind == "preload_trace" else TorqueModel(meas, noise)

@@ -26,7 +26,7 @@ noise variance at each sample is ``s_T^2 + k^2 s_theta^2``.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -52,6 +52,8 @@ class NoiseEstimate:
     ar1_channels: dict = None
     ar1_scatter: float = 0.0  # standard error of ar1
     ar1_scatters: dict = None  # of each channel's
+    #: per channel: False where the sampling does not resolve the signal (:func:`channel_level`)
+    resolved: dict = None
 
     @property
     def independent_fraction(self) -> float:
@@ -146,22 +148,32 @@ def level_of(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[floa
     return level_of_contrasts(magnitudes, y), magnitudes.size
 
 
-def level_of_contrasts(magnitudes: np.ndarray, y: np.ndarray) -> float:
+def level_of_contrasts(magnitudes: np.ndarray, y: np.ndarray, resolved: bool = True) -> float:
     """The noise level of the readings ``y`` from their |contrasts| (:func:`contrast_magnitudes`):
     1.4826 x their median, or, for a coarsely quantised reading, what its step implies. NaN
-    without contrasts. Reorders ``magnitudes`` in place."""
+    without contrasts. Reorders ``magnitudes`` in place.
+
+    A quantised reading (:func:`reading_quantum` finds its step q) is never given a level below
+    its reading error q / sqrt(12): an encoder read at 10 Hz while it holds still gives runs of
+    four equal counts, whose contrasts are zero (or a float's last digit), and a level of 1e-10
+    of a count would weigh every fit. ``resolved`` False says the contrasts see the signal itself
+    (it changes faster than the sampling resolves, :func:`coloured_level`): their rms is then the
+    signal's, not the noise's, and the level is the larger of the median and q / sqrt(12)."""
     if magnitudes.size == 0:
         return float("nan")
     level = float(MAD_TO_SIGMA * np.median(magnitudes))
     q = reading_quantum(y)
     # a sensor's step (a dial's division, an encoder's count) is a visible fraction of what it
     # reads; a step of a millionth of the range is the number format of the file, below any noise
-    if q / math.sqrt(12.0) > 0.5 * level and q >= 1e-6 * float(np.ptp(y)):
-        # a coarse quantiser: most runs read a staircase, and the median of the contrasts (a
-        # discrete distribution) no longer measures their spread. For a signal that sweeps across
-        # the levels the reading error is uniform, q^2/12, plus the noise underneath: the
-        # contrasts' (trimmed) rms holds both; q / sqrt(12) is the least it can be.
-        level = max(trimmed_rms(magnitudes), q / math.sqrt(12.0))
+    if q >= 1e-6 * float(np.ptp(y)) and q > 0:
+        reading_error = q / math.sqrt(12.0)
+        if resolved and reading_error > 0.5 * level:
+            # a coarse quantiser: most runs read a staircase, and the median of the contrasts (a
+            # discrete distribution) no longer measures their spread. For a signal that sweeps
+            # across the levels the reading error is uniform, q^2/12, plus the noise underneath:
+            # the contrasts' (trimmed) rms holds both
+            level = trimmed_rms(magnitudes)
+        level = max(level, reading_error)
     return level
 
 
@@ -195,22 +207,52 @@ def trimmed_rms(magnitudes: np.ndarray) -> float:
     return float(math.sqrt(np.mean(np.square(m[:cut])) / _TRIM_99))
 
 
+#: a reading is on a grid of step q when it lies within this fraction of q of a grid point
+GRID_TOLERANCE = 0.05
+#: ... and a channel is read on that grid when at least this fraction of its readings are
+GRID_SHARE = 0.95
+
+
 def reading_quantum(y: np.ndarray) -> float:
-    """The resolution the channel was read or written with: the smallest step between distinct
-    readings, when at least 99 % of readings sit on that grid within 1 % of a step; else 0."""
-    values = np.unique(np.asarray(y, dtype=float))
+    """The resolution the channel was read or written with (an encoder's count, a dial's division,
+    a current sensor's LSB), estimated from the readings; 0 when they sit on no grid.
+
+    Candidates are steps between neighbouring distinct readings, and between the readings read at
+    least as often as the median one (their 2nd, 10th, 25th and 50th percentiles; a float's last
+    digits, below 1e-9 of the range, are no step). The largest
+    candidate on whose grid (offset by the first reading) at least :data:`GRID_SHARE` of the
+    readings lie within :data:`GRID_TOLERANCE` of a step is taken, and refined by least squares
+    of the distinct on-grid readings on their step numbers. So a few stray readings (a glitch, a
+    reading of another scale), a count converted to other units and rounded to a few decimals, or
+    an offset, still give the step; readings of a continuous quantity (about 10 % of them within
+    5 % of any grid) give none."""
+    values, counts = np.unique(np.asarray(y, dtype=float), return_counts=True)
     if values.size < 3:
         return 0.0
-    steps = np.diff(values)
-    steps = steps[steps > 1e-12 * (values[-1] - values[0])]  # (a float's last digit is no step)
-    if steps.size == 0:
-        return 0.0
-    q = float(steps.min())
-    off = (values - values[0]) / q
-    on_grid = np.abs(off - np.round(off)) <= 0.01
-    if on_grid.mean() < 0.99:
-        return 0.0
-    return q
+    span = float(values[-1] - values[0])
+    candidates = set()
+    # steps between neighbouring distinct readings, and between those read at least as often as
+    # the median one (stray readings, read once or twice, split the grid's steps)
+    for chosen in (values, values[counts >= np.median(counts)]):
+        steps = np.diff(chosen)
+        steps = steps[steps > 1e-9 * span]  # (a float's last digits are no step)
+        if steps.size:
+            candidates.update(np.percentile(steps, [2.0, 10.0, 25.0, 50.0]).tolist())
+    offsets = values - values[0]
+    total = float(counts.sum())
+    best = 0.0
+    for q in sorted(candidates, reverse=True):
+        if not q > 0:
+            continue
+        k = np.round(offsets / q)
+        on_grid = np.abs(offsets / q - k) <= GRID_TOLERANCE
+        if counts[on_grid].sum() >= GRID_SHARE * total:
+            # the step (and an offset) by least squares over the distinct on-grid readings
+            A = np.column_stack([np.ones(int(on_grid.sum())), k[on_grid]])
+            offset_and_step = np.linalg.lstsq(A, offsets[on_grid], rcond=None)[0]
+            best = float(offset_and_step[1]) if offset_and_step[1] > 0 else q
+            break
+    return best
 
 
 def contrast_variance(rho: float) -> float:
@@ -224,6 +266,17 @@ AR1_WHITE = 0.05
 AR1_RANGE = (-0.5, 0.95)
 
 
+_UNRESOLVED_TEXT = (" the signal changes faster than the sampling resolves (differences over every other sample "
+                    "exceed those over consecutive ones as no noise colour can): the level is the median, an upper "
+                    "bound, floored at the reading error of a quantised channel")
+
+
+def _unresolved_ratio() -> float:
+    """(L2 / L1)^2 at the top of :data:`AR1_RANGE`: AR(1) noise gives at most this (2.0 at 0.95)."""
+    phi = AR1_RANGE[1]
+    return contrast_variance(phi * phi) / contrast_variance(phi)
+
+
 def coloured_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[float, int, float]:
     """(noise level, runs, lag-one correlation phi) of one channel, for white or AR(1) noise.
 
@@ -231,20 +284,35 @@ def coloured_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tupl
     sample (``L2``, both interleaved halves) see AR(1) noise differently: their variances are
     ``sigma^2 f(phi)`` and ``sigma^2 f(phi^2)`` (:func:`contrast_variance`), and
     ``f(phi^2) / f(phi) = (L2 / L1)^2`` rises from 0.35 (phi -0.5) through 1 (white) to 2 (phi
-    -> 1), so it gives phi, and ``sigma = L1 / sqrt(f(phi))``. Exact for evenly spaced samples."""
+    -> 1), so it gives phi, and ``sigma = L1 / sqrt(f(phi))``. Exact for evenly spaced samples.
+
+    A ratio at or beyond what AR(1) noise can give (2.0, at the top of :data:`AR1_RANGE`) is no
+    noise colour: the signal changes faster than the sampling resolves (a load stepped within a
+    few samples of a 10 Hz logger, an encoder's count stepping now and then: an isolated step
+    gives 2, a smooth signal up to 64, as third differences grow with the cube of the spacing),
+    and the differences hold the signal. The level is then the contrasts' median, floored at a quantised
+    channel's reading error (:func:`level_of_contrasts` with ``resolved=False``), taken as white:
+    correcting it for a correlation of 0.95 would multiply it by 5.7."""
+    level, count, phi, _ = channel_level(t, y, gap_ratio)
+    return level, count, phi
+
+
+def channel_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tuple[float, int, float, bool]:
+    """:func:`coloured_level` and whether the sampling resolves the signal (see there)."""
     t = np.asarray(t, dtype=float)
     y = np.asarray(y, dtype=float)
     magnitudes = contrast_magnitudes(t, y, gap_ratio)
     count = magnitudes.size
-    l1 = level_of_contrasts(magnitudes, y)
-    if y.size < 16 or not l1 > 0:
-        return l1, count, 0.0
+    if y.size < 16 or count == 0:
+        return level_of_contrasts(magnitudes, y), count, 0.0, True
     # the ratio from the contrasts' trimmed rms (nearly the efficiency of the rms for Gaussian
     # noise, where the median loses a third; the few kinks of the signal trimmed away)
     stride1 = trimmed_rms(magnitudes)
     stride2 = trimmed_rms(np.concatenate([contrast_magnitudes(t[i::2], y[i::2], gap_ratio) for i in (0, 1)]))
-    if not (stride1 > 0 and stride2 > 0):
-        return l1, count, 0.0
+    resolved = not (stride1 > 0 and stride2 > 0 and (stride2 / stride1) ** 2 >= _unresolved_ratio())
+    l1 = level_of_contrasts(magnitudes, y, resolved)
+    if not resolved or not l1 > 0 or not (stride1 > 0 and stride2 > 0):
+        return l1, count, 0.0, resolved
     ratio = (stride2 / stride1) ** 2
 
     def excess(phi):
@@ -253,16 +321,14 @@ def coloured_level(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> tupl
     lo, hi = AR1_RANGE
     if excess(lo) >= 0:
         phi = lo
-    elif excess(hi) <= 0:
-        phi = hi
-    else:
+    else:  # (excess(hi) > 0: a ratio at the top of the range is an unresolved signal, above)
         for _ in range(60):
             mid = 0.5 * (lo + hi)
             lo, hi = (mid, hi) if excess(mid) < 0 else (lo, mid)
         phi = 0.5 * (lo + hi)
     if abs(phi) < AR1_WHITE:
-        return l1, count, 0.0
-    return l1 / math.sqrt(contrast_variance(phi)), count, phi
+        return l1, count, 0.0, True
+    return l1 / math.sqrt(contrast_variance(phi)), count, phi, True
 
 
 def ar1_scatter(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0, parts: int = 4) -> float:
@@ -282,9 +348,11 @@ def noise_of_signal(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> Noi
     AR(1) (:func:`coloured_level`).
 
     ``variance`` is a read-only broadcast of the one level (no memory per sample)."""
-    sigma, windows, phi = coloured_level(t, y, gap_ratio)
+    sigma, windows, phi, resolved = channel_level(t, y, gap_ratio)
     n = np.asarray(y).size
     method = "third divided differences along time over 4-sample runs, 1.4826 x median"
+    if not resolved:
+        method += _UNRESOLVED_TEXT
     scatter = 0.0
     if phi:
         scatter = ar1_scatter(t, y, gap_ratio)
@@ -292,7 +360,18 @@ def noise_of_signal(t: np.ndarray, y: np.ndarray, gap_ratio: float = 4.0) -> Noi
                    "(AR(1)), the level corrected for it")
     return NoiseEstimate(rms=sigma, variance=np.broadcast_to(sigma * sigma, (n,)), windows=windows,
                          method=method, channels={"signal": sigma}, ar1=phi, ar1_channels={"signal": phi},
-                         ar1_scatter=scatter)
+                         ar1_scatter=scatter, resolved={"signal": resolved})
+
+
+def noise_of_transmission(t: np.ndarray, input_urad: np.ndarray, output_urad: np.ndarray, te_urad: np.ndarray,
+                          gap_ratio: float = 4.0) -> NoiseEstimate:
+    """Noise of a transmission error record: the transmission error's own (:func:`noise_of_signal`:
+    both encoders' noise and steps as they reach it), with each encoder's level in its
+    ``channels`` (``input_angle``, ``output_angle``, urad at its shaft)."""
+    est = noise_of_signal(t, te_urad, gap_ratio)
+    levels = {"input_angle": channel_level(t, input_urad, gap_ratio)[0],
+              "output_angle": channel_level(t, output_urad, gap_ratio)[0]}
+    return replace(est, channels={**est.channels, **levels})
 
 
 def local_slope(x: np.ndarray, y: np.ndarray, half_window: int = 12) -> np.ndarray:
@@ -347,18 +426,18 @@ def local_spacing(t: np.ndarray, half_window: int) -> np.ndarray:
 def noise_of_torque_residual(t: np.ndarray, torque: np.ndarray, rotation: np.ndarray,
                              gap_ratio: float = 4.0) -> NoiseEstimate:
     """Noise of ``torque - law(rotation)`` in torque units, from both channels (see module doc)."""
-    s_t, w_t, phi_t = coloured_level(t, torque, gap_ratio)
-    s_r, w_r, phi_r = coloured_level(t, rotation, gap_ratio)
+    s_t, w_t, phi_t, res_t = channel_level(t, torque, gap_ratio)
+    s_r, w_r, phi_r, res_r = channel_level(t, rotation, gap_ratio)
     k = stiffness_along_time(t, torque, rotation, s_r)
     scatter = {"torque": ar1_scatter(t, torque, gap_ratio) if phi_t else 0.0,
                "rotation": ar1_scatter(t, rotation, gap_ratio) if phi_r else 0.0}
     return _torque_noise(s_t, s_r, phi_t, phi_r, k, min(w_t, w_r),
                          "the local stiffness dT/dtheta of the data, taken as (dT/dt) / (dtheta/dt) so that neither "
-                         "channel's noise biases it", scatter)
+                         "channel's noise biases it", scatter, {"torque": res_t, "rotation": res_r})
 
 
 def _torque_noise(s_t: float, s_r: float, phi_t: float, phi_r: float, k: np.ndarray, windows: int,
-                  source: str, scatter: dict | None = None) -> NoiseEstimate:
+                  source: str, scatter: dict | None = None, resolved: dict | None = None) -> NoiseEstimate:
     """The torque residual's noise from the channels' levels and lag-one correlations, the
     rotation's carried by the stiffness ``k``: variance ``s_T^2 + k^2 s_theta^2``; the residual's
     correlation the variance-weighted mean of the channels'."""
@@ -374,10 +453,14 @@ def _torque_noise(s_t: float, s_r: float, phi_t: float, phi_r: float, k: np.ndar
               f"carried into torque by {source}")
     if phi_t or phi_r:
         method += f"; lag-one correlations {phi_t:.3f} (torque), {phi_r:.3f} (rotation): AR(1), levels corrected"
+    resolved = resolved or {"torque": True, "rotation": True}
+    for channel, ok in resolved.items():
+        if not ok:
+            method += f"; {channel}:{_UNRESOLVED_TEXT}"
     return NoiseEstimate(rms=float(np.sqrt(np.mean(variance))), variance=variance, windows=windows, method=method,
                          channels={"torque": s_t, "rotation": s_r}, ar1=phi,
                          ar1_channels={"torque": phi_t, "rotation": phi_r}, ar1_scatter=phi_scatter,
-                         ar1_scatters=dict(scatter))
+                         ar1_scatters=dict(scatter), resolved=dict(resolved))
 
 
 def with_stiffness(noise: NoiseEstimate, stiffness: np.ndarray, source: str) -> NoiseEstimate:
@@ -386,7 +469,7 @@ def with_stiffness(noise: NoiseEstimate, stiffness: np.ndarray, source: str) -> 
     ``s_T^2 + k^2 s_theta^2``. The channels' own levels stay the model-free ones."""
     ar = noise.ar1_channels or {}
     return _torque_noise(noise.channels["torque"], noise.channels["rotation"], ar.get("torque", 0.0),
-                         ar.get("rotation", 0.0), stiffness, noise.windows, source, noise.ar1_scatters)
+                         ar.get("rotation", 0.0), stiffness, noise.windows, source, noise.ar1_scatters, noise.resolved)
 
 
 def spike_threshold(samples: int, false_per_record: float = 0.05) -> float:

@@ -73,3 +73,47 @@ def attribute_order(order: float, train: tuple[TrainOrder, ...], tolerance: floa
             if best is None or m < best[1]:
                 best = (t, m)
     return best
+
+
+# ----------------------------------------------------------------------- transmission error
+
+def transmission_orders(stages: tuple[tuple[int, int], ...]) -> tuple[TrainOrder, ...]:
+    """Shaft and tooth-mesh orders of a train of stages (driver, driven), input to output, per
+    output revolution: ``input``, ``shaft1`` ... (the shafts between the stages), ``output``; and
+    ``mesh1`` ... (the driver's teeth passing per output revolution)."""
+    stages = tuple((int(a), int(b)) for a, b in stages)
+    count = len(stages)
+    # the shaft before stage j turns prod_{i >= j} driven_i / driver_i times per output turn
+    turns = [1.0] * (count + 1)
+    for j in range(count - 1, -1, -1):
+        turns[j] = turns[j + 1] * stages[j][1] / stages[j][0]
+    shafts = []
+    for j, order in enumerate(turns):
+        if j == 0:
+            name, text = "input", "input shaft"
+        elif j == count:
+            name, text = "output", "output shaft"
+        else:
+            name, text = f"shaft{j}", f"shaft between stage {j} and {j + 1}"
+        shafts.append(TrainOrder(name, "shaft", order, f"{text}, {order:.6g} per output revolution"))
+    meshes = [TrainOrder(f"mesh{j + 1}", "mesh", turns[j] * a, f"stage {j + 1} ({a} driving {b}) tooth passing")
+              for j, (a, b) in enumerate(stages)]
+    return tuple(shafts + meshes)
+
+
+def transmission_declared_orders(stages: tuple[tuple[int, int], ...], declared: tuple[str, ...],
+                                 tolerance: float = 1e-9) -> tuple[TrainOrder, ...]:
+    """The orders the declared model of a transmission-error record holds (contract): once per turn
+    of every shaft (``eccentricity``), each stage's tooth-mesh order and its second harmonic
+    (``tooth_to_tooth``); each distinct order once."""
+    out: list[TrainOrder] = []
+    for t in transmission_orders(stages):
+        wanted = ("eccentricity" in declared and t.kind == "shaft") or ("tooth_to_tooth" in declared and t.kind == "mesh")
+        if not wanted:
+            continue
+        terms = [t] if t.kind == "shaft" else [t, TrainOrder(f"{t.name} x2", "mesh", 2.0 * t.order,
+                                                             f"second harmonic of {t.description}")]
+        for term in terms:
+            if all(abs(term.order - o.order) > tolerance for o in out):
+                out.append(term)
+    return tuple(out)

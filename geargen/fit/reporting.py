@@ -29,17 +29,20 @@ def report_input(dg: Diagnosis) -> FitReportInput:
         tests=[{"name": t.name, "statistic": t.statistic, "limit": t.limit, "passed": t.passed, "text": t.text} for t in dg.tests],
         notes=list(meas.notes), declared_values=_declared_text(dg),
     )
-    if meas.kind == "preload_trace":
+    if meas.kind in ("preload_trace", "transmission_error"):
         pg_d = model.periodogram(dg.declared.residual)
         pg_e = model.periodogram(dg.extended.residual)
         spectrum = {"orders": pg_d.orders, "declared": pg_d.amplitude, "extended": np.interp(pg_d.orders, pg_e.orders, pg_e.amplitude)}
+        found = [(f"found {e['order']:.4g}", e["order"]) for e in summary["effects_added"] if e["effect"] == "harmonic"]
+        found += [(f"sideband {q:.4g}", q) for e in summary["effects_added"] if e["effect"] == "sidebands"
+                  for q in e["orders"]]
+        measured, label = ((meas.carriage_um, "carriage position (um)") if meas.kind == "preload_trace" else
+                           (meas.te_urad, "transmission error (urad at the output)"))
         return FitReportInput(
-            abscissa=np.degrees(meas.angle_rad), abscissa_label="output angle (deg)", measured=meas.carriage_um,
-            measured_label="carriage position (um)", direction=_direction(meas.angle_rad),
+            abscissa=np.degrees(meas.angle_rad), abscissa_label="output angle (deg)", measured=measured,
+            measured_label=label, direction=_direction(meas.angle_rad),
             direction_label="output turning forward + / back −", spectrum=spectrum,
-            train_orders=[(t.name, t.order) for t in model.train],
-            effect_orders=[(f"found {e['order']:.4g}", e["order"]) for e in summary["effects_added"] if e["effect"] == "harmonic"],
-            **common)
+            train_orders=[(t.name, t.order) for t in model.train], effect_orders=found, **common)
     return FitReportInput(
         abscissa=meas.rotation_rad * 1e6, abscissa_label="output rotation (urad)", measured=meas.torque_Nm,
         measured_label="output torque (Nm)", direction=_direction(model.T_smooth),
@@ -48,7 +51,7 @@ def report_input(dg: Diagnosis) -> FitReportInput:
 
 def _declared_text(dg: Diagnosis) -> dict:
     v = dg.extended.declared_values
-    if dg.measurement.kind == "preload_trace":
+    if dg.measurement.kind in ("preload_trace", "transmission_error"):
         return {k: val for k, val in v.items()}
     out = {f"{k}_Nm_per_rad": v[k] for k in ("k1", "k2", "k3") if k in v}
     out["preload_Nm"] = v["preload"]

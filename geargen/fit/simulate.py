@@ -99,6 +99,17 @@ def _read_temperature(true_temp, s: Sampling, rng):
     return np.round((true_temp + s.temperature_noise_K * rng.normal(size=true_temp.size)) / 0.001) * 0.001
 
 
+def _add_drifts(signal: np.ndarray, truth, t: np.ndarray, temp_true: np.ndarray, expected: list) -> None:
+    """Add (in place) a truth's drift with temperature and with time, about their means, and
+    list them as expected effects."""
+    if truth.drift_per_kelvin:
+        signal += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true.mean()))
+        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
+    if truth.drift_per_second:
+        signal += fx.drift(t, truth.drift_per_second, float(t.mean()))
+        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+
+
 # ----------------------------------------------------------------------------- preload trace
 
 @dataclass(frozen=True)
@@ -181,12 +192,7 @@ def simulate_preload_trace(truth: PreloadTruth, rng: np.random.Generator,
     for order, amp, phase in truth.harmonics:
         x += fx.harmonic(theta, order, amp, phase)
         expected.append({"effect": "harmonic", "order": order, "amplitude": amp, "phase_deg": phase})
-    if truth.drift_per_kelvin:
-        x += fx.drift(temp_true, truth.drift_per_kelvin, float(temp_true.mean()))
-        expected.append({"effect": "drift", "per_kelvin": truth.drift_per_kelvin})
-    if truth.drift_per_second:
-        x += fx.drift(t, truth.drift_per_second, float(t.mean()))
-        expected.append({"effect": "drift", "per_second": truth.drift_per_second})
+    _add_drifts(x, truth, t, temp_true, expected)
     outside = []
     if truth.chirp:
         amp, q0, q1 = truth.chirp
@@ -230,6 +236,8 @@ class TorqueTruth:
     friction), ``stiffening`` (amplitude Nm at 1 mrad, exponent), ``dead_band_urad``.
     Outside the library: ``step`` (Nm, fraction of the record: the torque cell slips),
     ``vibration`` (amplitude Nm, period s), ``burst`` (noise factor, start fraction, length fraction).
+    ``amplitude_hysteresis`` (h_ref Nm, exponent m): friction of half-width h_ref (A / A_max)^m in a
+    test of torque amplitude A (polymer parts, torque from motor current).
     """
 
     drive_type: str = "type2"
@@ -243,6 +251,7 @@ class TorqueTruth:
     drift_per_kelvin: float = 0.0
     drift_per_second: float = 0.0
     hysteresis_half_width: float = 0.0
+    amplitude_hysteresis: tuple[float, float] | None = None  # (half-width at the largest test's amplitude, exponent)
     stiffening: tuple[float, float] | None = None
     dead_band_urad: float = 0.0
     step: tuple[float, float] | None = None
@@ -276,16 +285,32 @@ class TorqueSettings:
     torque_resolution_Nm: float = 0.001
     rotation_noise_urad: float = 0.05
     rotation_resolution_urad: float = 0.01
+    #: several tests in one record: ((cycles, peak Nm), ...) run in turn (replaces cycles and
+    #: max_torque_Nm); ``number_tests`` writes their numbers in a test_nr column
+    tests: tuple[tuple[int, float], ...] | None = None
+    number_tests: bool = False
 
 
-def torque_program(t: np.ndarray, duration: float, cycles: int, peak: float) -> np.ndarray:
-    """Applied torque: ``cycles`` x (0 -> +peak -> -peak -> 0) at a constant rate."""
-    knots = [0.0]
-    for _ in range(cycles):
-        knots += [peak, -peak, 0.0]
+def torque_program(t: np.ndarray, duration: float, cycles: int, peak: float,
+                   tests: tuple[tuple[int, float], ...] | None = None) -> np.ndarray:
+    """Applied torque: ``cycles`` x (0 -> +peak -> -peak -> 0) at a constant rate; or, with
+    ``tests`` ((cycles, peak), ...), each test's cycles in turn (:func:`test_program`)."""
+    return test_program(t, duration, tests or ((cycles, peak),))[0]
+
+
+def test_program(t: np.ndarray, duration: float, tests: tuple[tuple[int, float], ...]) -> tuple[np.ndarray, np.ndarray]:
+    """(applied torque (n,), test index (n,) int) of tests run one after the other, each
+    ``cycles`` x (0 -> +peak -> -peak -> 0), the torque changing at one constant rate throughout."""
+    knots, owner = [0.0], []
+    for k, (cycles, peak) in enumerate(tests):
+        for _ in range(cycles):
+            knots += [peak, -peak, 0.0]
+            owner += [k, k, k]
     knots = np.array(knots)
     dist = np.concatenate([[0.0], np.cumsum(np.abs(np.diff(knots)))])
-    return np.interp(t / duration * dist[-1], dist, knots)
+    travel = t / duration * dist[-1]
+    segment = np.clip(np.searchsorted(dist, travel, side="right") - 1, 0, len(owner) - 1)
+    return np.interp(travel, dist, knots), np.asarray(owner)[segment]
 
 
 def _solve_rotation(truth: TorqueTruth, spring_torque: np.ndarray) -> np.ndarray:
@@ -312,8 +337,13 @@ def simulate_torque_deflection(truth: TorqueTruth, rng: np.random.Generator,
     sm = st.sampling
     t = sample_times(sm, rng)
     n = t.size
-    applied = torque_program(t, sm.duration_s, st.cycles, st.max_torque_Nm)
+    tests = st.tests or ((st.cycles, st.max_torque_Nm),)
+    applied, test_index = test_program(t, sm.duration_s, tests)
     spring = fx.play_operator(applied, truth.hysteresis_half_width) if truth.hysteresis_half_width else applied
+    if truth.amplitude_hysteresis:
+        h_ref, growth = truth.amplitude_hysteresis
+        peaks = np.array([abs(p) for _, p in tests])
+        spring = fx.play_operator(applied, h_ref * (peaks[test_index] / peaks.max()) ** growth)
     phi = _solve_rotation(truth, spring)
     rotation_urad = truth.theta0_urad + fx.dead_zone_inverse(phi * 1e6, truth.dead_band_urad)
     temp_true = temperature_history(t, sm)
@@ -327,6 +357,9 @@ def simulate_torque_deflection(truth: TorqueTruth, rng: np.random.Generator,
         expected.append({"effect": "drift", "per_second": truth.drift_per_second})
     if truth.hysteresis_half_width:
         expected.append({"effect": "hysteresis", "half_width": truth.hysteresis_half_width})
+    if truth.amplitude_hysteresis:
+        expected.append({"effect": "amplitude_hysteresis", "half_width": truth.amplitude_hysteresis[0],
+                         "exponent": truth.amplitude_hysteresis[1]})
     if truth.stiffening:
         expected.append({"effect": "stiffening", "amplitude": truth.stiffening[0], "exponent": truth.stiffening[1]})
     if truth.dead_band_urad:
@@ -367,5 +400,117 @@ def simulate_torque_deflection(truth: TorqueTruth, rng: np.random.Generator,
     temperature = _read_temperature(temp_true, sm, rng) if sm.temperature else None
     meas = Measurement(kind="torque_deflection", name=name, time_s=t, torque_Nm=torque, rotation_rad=rot * 1e-6,
                        temperature_C=temperature, model=truth.declared_spec(),
+                       test_nr=(test_index + 1).astype(float) if st.number_tests else None,
                        description="simulated torque-deflection test (geargen.fit.simulate)")
     return Simulated(meas, float(np.sqrt(np.mean(noise_residual ** 2))), reading, tuple(expected), tuple(outside))
+
+
+# ----------------------------------------------------------------------------- transmission error
+
+@dataclass(frozen=True)
+class TransmissionTruth:
+    """Truth of a transmission-error record, urad at the output; phases random unless given.
+
+    ``stages`` (driver, driven) teeth, input to output; ``eccentricity_urad``: once-per-turn
+    amplitude of each shaft (input first, output last); ``mesh_urad``: (first harmonic, second
+    harmonic) of each stage's tooth mesh. ``declared`` is what the sidecar will declare.
+    Undeclared library effects: ``harmonics`` ((order, amplitude, phase_deg), ...);
+    ``tooth_pulse`` (shaft index, angle_deg, amplitude, width_deg); ``sidebands`` (stage index,
+    shaft index, amplitude of each line); ``ratio_relative`` (measured / declared ratio - 1);
+    ``backlash_half_width_urad``; ``drift_per_kelvin``, ``drift_per_second``."""
+
+    stages: tuple[tuple[int, int], ...] = ((12, 36), (15, 45))
+    declared: tuple[str, ...] = ("eccentricity", "tooth_to_tooth")
+    eccentricity_urad: tuple[float, ...] = (3.0, 6.0, 20.0)
+    mesh_urad: tuple[tuple[float, float], ...] = ((4.0, 1.5), (6.0, 2.0))
+    harmonics: tuple[tuple[float, float, float], ...] = ()
+    tooth_pulse: tuple[int, float, float, float] | None = None
+    sidebands: tuple[int, int, float] | None = None
+    ratio_relative: float = 0.0
+    backlash_half_width_urad: float = 0.0
+    drift_per_kelvin: float = 0.0
+    drift_per_second: float = 0.0
+
+
+@dataclass(frozen=True)
+class TransmissionSettings:
+    """The test: ``revolutions`` of the output forward (and back when ``return_trip``); each
+    encoder's noise (urad at its own shaft) and resolution (counts per revolution)."""
+
+    sampling: Sampling = field(default_factory=lambda: Sampling(samples=12000, duration_s=600.0))
+    revolutions: float = 1.2
+    return_trip: bool = True
+    output_noise_urad: float = 0.5
+    input_noise_urad: float = 2.0
+    output_counts: int = 1 << 24
+    input_counts: int = 1 << 18
+    speed_ripple: float = 0.08
+
+
+def simulate_transmission_error(truth: TransmissionTruth, rng: np.random.Generator,
+                                settings: TransmissionSettings | None = None, name: str = "te_sim") -> Simulated:
+    """A transmission-error record from a truth model (see :class:`TransmissionTruth`).
+
+    The input is driven along a smooth program (forward, and back again); the output follows at
+    the true ratio (declared x (1 + ``ratio_relative``)), through the backlash (a play on the
+    commanded angle), plus the periodic errors, the pulse, the sidebands and the drift. Each
+    encoder reads its shaft with Gaussian noise, then rounds to its counts."""
+    from geargen.fit.measurement import TransmissionModelSpec
+    from geargen.fit.orders import transmission_orders
+
+    st = settings or TransmissionSettings()
+    sm = st.sampling
+    t = sample_times(sm, rng)
+    n = t.size
+    spec = TransmissionModelSpec(stages=tuple(tuple(s) for s in truth.stages), declared=truth.declared)
+    orders = transmission_orders(spec.stages)
+    shafts = [o for o in orders if o.kind == "shaft"]
+    meshes = [o for o in orders if o.kind == "mesh"]
+    nominal = output_angle_history(t, sm.duration_s, st.revolutions, st.return_trip, st.speed_ripple)
+    true_ratio = spec.ratio * (1.0 + truth.ratio_relative)
+    input_angle = true_ratio * nominal
+    commanded_urad = input_angle / true_ratio * 1e6  # (= nominal, urad)
+    te = np.zeros(n)
+    for shaft, amp in zip(shafts, truth.eccentricity_urad):
+        te += fx.harmonic(nominal, shaft.order, amp, float(rng.uniform(0, 360)))
+    for mesh, (a1, a2) in zip(meshes, truth.mesh_urad):
+        te += fx.harmonic(nominal, mesh.order, a1, float(rng.uniform(0, 360)))
+        te += fx.harmonic(nominal, 2 * mesh.order, a2, float(rng.uniform(0, 360)))
+    expected = []
+    declared_names = {"eccentricity"} & set(truth.declared), {"tooth_to_tooth"} & set(truth.declared)
+    if not declared_names[0]:
+        expected += [{"effect": "harmonic", "order": s.order, "amplitude": a} for s, a in zip(shafts, truth.eccentricity_urad)]
+    for order, amp, phase in truth.harmonics:
+        te += fx.harmonic(nominal, order, amp, phase)
+        expected.append({"effect": "harmonic", "order": order, "amplitude": amp, "phase_deg": phase})
+    if truth.tooth_pulse:
+        k, angle, amp, width = truth.tooth_pulse
+        te += amp * fx.tooth_pulse(shafts[k].order * nominal, angle, width)
+        expected.append({"effect": "tooth_pulse", "shaft": shafts[k].name, "angle_deg": angle, "amplitude": amp,
+                         "width_deg": width})
+    if truth.sidebands:
+        j, k, amp = truth.sidebands
+        q, s = meshes[j].order, shafts[k].order
+        te += fx.harmonic(nominal, q - s, amp, float(rng.uniform(0, 360)))
+        te += fx.harmonic(nominal, q + s, amp, float(rng.uniform(0, 360)))
+        expected.append({"effect": "sidebands", "order": q, "shaft": shafts[k].name, "amplitude": amp})
+    temp_true = temperature_history(t, sm)
+    _add_drifts(te, truth, t, temp_true, expected)
+    follows = commanded_urad
+    if truth.backlash_half_width_urad:
+        follows = fx.play_operator(commanded_urad, truth.backlash_half_width_urad)
+        expected.append({"effect": "hysteresis", "half_width": truth.backlash_half_width_urad})
+    if truth.ratio_relative:
+        expected.append({"effect": "ratio_error", "relative": truth.ratio_relative})
+    output_true = (follows + te) * 1e-6
+    out_read = output_true + st.output_noise_urad * 1e-6 * rng.normal(size=n)
+    in_read = input_angle + st.input_noise_urad * 1e-6 * rng.normal(size=n)
+    out_step, in_step = 2 * math.pi / st.output_counts, 2 * math.pi / st.input_counts
+    out_read = np.round(out_read / out_step) * out_step
+    in_read = np.round(in_read / in_step) * in_step
+    temperature = _read_temperature(temp_true, sm, rng) if sm.temperature else None
+    meas = Measurement(kind="transmission_error", name=name, time_s=t, input_angle_rad=in_read, angle_rad=out_read,
+                       temperature_C=temperature, model=spec,
+                       description="simulated transmission error record (geargen.fit.simulate)")
+    te_clean = (output_true - input_angle / spec.ratio) * 1e6
+    return Simulated(meas, float(np.sqrt(np.mean((meas.te_urad - te_clean) ** 2))), te_clean, tuple(expected))

@@ -191,7 +191,7 @@ def _plots(directory: Path, inp: FitReportInput, max_points: int) -> list[tuple[
         ax.plot(inp.abscissa[idx], inp.residual_declared[idx], ".", ms=1.0, color="tab:blue", label="declared")
         ax.plot(inp.abscissa[idx], inp.residual_extended[idx], ".", ms=1.0, color="tab:red", label="extended")
         ax.set_xlabel(inp.abscissa_label)
-        ax.set_title("residual against output angle (no load in a preload trace)", fontsize=9)
+        ax.set_title(f"residual against output angle (no load in a {inp.kind.replace('_', ' ')})", fontsize=9)
     ax.set_ylabel(f"residual ({u})")
     ax.legend(fontsize=8, markerscale=6)
     ax = axes[0, 1]
@@ -243,8 +243,9 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
     lines = [f"# Fit report: {inp.name}", ""]
     if inp.description:
         lines += [f"*{inp.description}*", ""]
-    lines += [f"Kind `{inp.kind}`, {s['samples']} samples, residual in **{u}**"
-              + (" of carriage position against output angle." if inp.kind == "preload_trace" else " of output torque."), ""]
+    what = {"preload_trace": " of carriage position against output angle.", "torque_deflection": " of output torque.",
+            "transmission_error": " of transmission error at the output (output angle - input angle / ratio)."}
+    lines += [f"Kind `{inp.kind}`, {s['samples']} samples, residual in **{u}**" + what.get(inp.kind, "."), ""]
     lines += ["## Result", "", "| stage | rms | max abs |", "|---|---|---|"]
     for stage in ("nominal", "declared", "extended"):
         v = s["stages"][stage]
@@ -264,6 +265,8 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
         lines += ["The nominal stage is null: the declared model has no nominal values.", ""]
     elif inp.kind == "preload_trace":
         lines += ["Nominal stage: perfect gears, the carriage stays at its mean position.", ""]
+    elif inp.kind == "transmission_error":
+        lines += ["Nominal stage: perfect gears at the declared ratio, the transmission error stays at its mean.", ""]
     else:
         lines += ["Nominal stage: the two-path law with the declared stiffnesses and preload and the probe zero as read.", ""]
     if inp.declared_values:
@@ -271,6 +274,7 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
         for k, v in inp.declared_values.items():
             lines.append(f"- {k}: {_params_text(v) if isinstance(v, dict) else _fmt(v, 6)}")
         lines.append("")
+    lines += _datasheet_lines(s.get("datasheet"))
     lines += ["## Effects added", ""]
     if not inp.effects:
         lines += ["None: nothing beyond the declared model is justified by the data.", ""]
@@ -328,6 +332,36 @@ def markdown(inp: FitReportInput, plots: list[tuple[str, str]]) -> str:
     for title, fname in plots:
         lines += [f"### {title}", "", f"![{title}]({fname})", ""]
     return "\n".join(lines)
+
+
+def _datasheet_lines(sheet: dict | None) -> list[str]:
+    """The datasheet section: figures taken from the record itself, without the model."""
+    if not sheet:
+        return []
+    lines = ["## Datasheet figures", "", "Taken from the record itself, without any model (contracts/measurements.md).", ""]
+    if sheet.get("tests"):
+        lines += ["| test | amplitude (Nm) | rated (Nm) | hysteresis loss (urad) | lost motion (urad) at +- (Nm) | "
+                  "torsion (urad) at +- (Nm) | T1 / T2 (Nm) | K1 / K2 / K3 (Nm/rad) |", "|---|---|---|---|---|---|---|---|"]
+        for t in sheet["tests"]:
+            k = t["stiffness"]
+            lines.append(f"| {t['test']} | {_fmt(t['torque_amplitude_Nm'])} | {_fmt(t['rated_torque_Nm'])} | "
+                         f"{_fmt(t['hysteresis_loss_urad'])} | {_fmt(t['lost_motion_urad'])} at {_fmt(t['lost_motion_at_Nm'])} | "
+                         f"{_fmt(t.get('torsion_urad'))} at {_fmt(t.get('torsion_at_Nm'))} | "
+                         f"{_fmt(k['T1_Nm'])} / {_fmt(k['T2_Nm'])} | {_fmt(k['K1_Nm_per_rad'])} / "
+                         f"{_fmt(k['K2_Nm_per_rad'])} / {_fmt(k['K3_Nm_per_rad'])} |")
+        lines.append("")
+        for t in sheet["tests"]:
+            lines.append(f"- test {t['test']}: " + "; ".join(f"{key.replace('_', ' ')}: {text}"
+                                                             for key, text in t.get("how", {}).items()))
+        lines.append("")
+    if sheet.get("how") and "transmission_accuracy_urad" in sheet and not sheet.get("tests"):
+        acc = sheet["transmission_accuracy_urad"]
+        lines += [f"Transmission accuracy: **{_fmt(acc)} urad** ({_fmt(acc * 180 / math.pi * 3600e-6 if acc else None)} "
+                  f"arcsec): {sheet['how']}.", ""]
+        if sheet.get("per_revolution_urad"):
+            lines += ["Per complete output revolution (urad): " + ", ".join(_fmt(v) for v in sheet["per_revolution_urad"]),
+                      ""]
+    return lines
 
 
 def write_fit_report(directory: str | Path, inp: FitReportInput, max_points: int = 10000, plots: bool = True) -> Path:

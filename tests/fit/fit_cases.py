@@ -20,14 +20,17 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
 
 from geargen.fit.selection import diagnose  # noqa: E402
 from geargen.fit.simulate import (PreloadSettings, PreloadTruth, Sampling, TorqueSettings, TorqueTruth,  # noqa: E402
-                                  simulate_preload_trace, simulate_torque_deflection)
+                                  TransmissionSettings, TransmissionTruth, simulate_preload_trace,
+                                  simulate_torque_deflection, simulate_transmission_error)
 
 #: tolerances of the issue: orders to 0.01, amplitudes and widths (every magnitude) to 10 %,
-#: extended residual within 20 % of the noise actually injected
+#: extended residual within 20 % of the noise actually injected; a tooth pulse's place on its
+#: shaft's turn to 1 deg (a tenth of the narrowest pulse of the cases)
 ORDER_TOL = 0.01
 RELATIVE_TOL = 0.10
 NOISE_TOL = 0.20
-MAGNITUDES = ("amplitude", "per_kelvin", "per_second", "half_width", "width_urad", "exponent")
+ANGLE_TOL_DEG = 1.0
+MAGNITUDES = ("amplitude", "per_kelvin", "per_second", "half_width", "width_urad", "exponent", "width_deg", "relative")
 
 
 @dataclass(frozen=True)
@@ -49,12 +52,18 @@ def _preload(name, seed, noise, expect, temperature=True, ar1=0.0, **truth):
 
 
 def _torque(name, seed, noise, expect, temperature=True, max_torque=80.0, cycles=2, rotation_noise=0.05, ar1=0.0,
-            **truth):
+            tests=None, number_tests=False, **truth):
     """``noise``: on the torque channel (Nm), ``ar1`` its lag-one correlation; ``rotation_noise``:
-    on the rotation probe (urad)."""
+    on the rotation probe (urad); ``tests`` ((cycles, peak Nm), ...) several tests in one record,
+    numbered in a test_nr column when ``number_tests``."""
     return Case(name, TorqueTruth(**truth), seed, noise, expect,
                 {"temperature": temperature, "max_torque": max_torque, "cycles": cycles,
-                 "rotation_noise": rotation_noise, "ar1": ar1})
+                 "rotation_noise": rotation_noise, "ar1": ar1, "tests": tests, "number_tests": number_tests})
+
+
+def _te(name, seed, noise, expect, **truth):
+    """A transmission-error record; ``noise``: the output encoder's (urad)."""
+    return Case(name, TransmissionTruth(**truth), seed, noise, expect)
 
 
 CASES: list[Case] = [
@@ -167,6 +176,21 @@ CASES: list[Case] = [
             dead_band_urad=20.0),
     _torque("torque/pair: stiffening + dead band", 416, 0.2, "effects", max_torque=150.0, stiffening=(2.0, 2.0),
             dead_band_urad=10.0),
+    # friction that grows with the test's amplitude: five small cycles then three large, with and
+    # without a test_nr column (the tests then found by their amplitude)
+    _torque("torque/amplitude hysteresis, tests numbered", 421, 0.1, "effects", tests=((5, 30.0), (3, 80.0)),
+            number_tests=True, amplitude_hysteresis=(3.0, 1.0)),
+    _torque("torque/amplitude hysteresis, tests by amplitude", 422, 0.1, "effects", tests=((5, 30.0), (3, 80.0)),
+            amplitude_hysteresis=(2.0, 0.7)),
+    # transmission error records: none and each undeclared effect (stages 12/36 and 15/45)
+    _te("te/none", 601, 0.5, "none"),
+    _te("te/tooth pulse on the output gear", 602, 0.5, "effects", tooth_pulse=(2, 120.0, 8.0, 8.0)),
+    _te("te/tooth pulse on the input pinion", 603, 0.5, "effects", tooth_pulse=(0, 200.0, 6.0, 30.0)),
+    _te("te/sidebands of mesh 1 at the output", 604, 0.5, "effects", sidebands=(0, 2, 3.0)),
+    _te("te/ratio error", 605, 0.5, "effects", ratio_relative=2e-5),
+    _te("te/backlash", 606, 0.5, "effects", backlash_half_width_urad=15.0),
+    _te("te/drift per kelvin", 607, 0.5, "effects", drift_per_kelvin=5.0),
+    _te("te/harmonic 2 x output", 608, 0.5, "effects", harmonics=((2.0, 5.0, 40.0),)),
     # torque-deflection tests: effects outside the library
     _torque("torque/outside: torque cell slip (step)", 95, 0.1, "unexplained", step=(1.0, 0.55)),
     _torque("torque/outside: vibration", 96, 0.1, "unexplained", vibration=(0.5, 37.0)),
@@ -178,6 +202,9 @@ CASES: list[Case] = [
 
 def simulate(case: Case):
     rng = np.random.default_rng(case.seed)
+    if isinstance(case.truth, TransmissionTruth):
+        return simulate_transmission_error(case.truth, rng, TransmissionSettings(output_noise_urad=case.noise),
+                                           name=case.name.replace("/", "_"))
     if isinstance(case.truth, PreloadTruth):
         st = PreloadSettings(noise_um=case.noise, noise_ar1=case.settings.get("ar1", 0.0),
                              sampling=replace(Sampling(), temperature=case.settings.get("temperature", True)))
@@ -186,7 +213,8 @@ def simulate(case: Case):
     st = replace(base, torque_noise_Nm=case.noise, rotation_noise_urad=case.settings.get("rotation_noise", 0.05),
                  noise_ar1=case.settings.get("ar1", 0.0),
                  max_torque_Nm=case.settings.get("max_torque", 80.0),
-                 cycles=case.settings.get("cycles", 2),
+                 cycles=case.settings.get("cycles", 2), tests=case.settings.get("tests"),
+                 number_tests=case.settings.get("number_tests", False),
                  sampling=replace(base.sampling, temperature=case.settings.get("temperature", True)))
     return simulate_torque_deflection(case.truth, rng, st, name=case.name.replace("/", "_"))
 
@@ -232,6 +260,11 @@ def problems(case: Case, sim, report: dict) -> list[str]:
             continue
         if "order" in exp and abs(got["order"] - exp["order"]) > ORDER_TOL:
             out.append(f"order {got['order']:.5f}, true {exp['order']:.5f}")
+        for key in ("shaft",):
+            if key in exp and got.get(key) != exp[key]:
+                out.append(f"{exp['effect']}: {key} {got.get(key)}, true {exp[key]}")
+        if "angle_deg" in exp and abs((got["angle_deg"] - exp["angle_deg"] + 180.0) % 360.0 - 180.0) > ANGLE_TOL_DEG:
+            out.append(f"{exp['effect']}: angle {got['angle_deg']:.3f} deg, true {exp['angle_deg']:.3f}")
         for key in MAGNITUDES:
             if key in exp:
                 if key not in got:
@@ -252,7 +285,8 @@ def run_case(case: Case) -> dict:
 
 
 def _params(e: dict) -> str:
-    keys = ("order", "amplitude", "per_kelvin", "per_second", "half_width", "exponent", "width_urad")
+    keys = ("order", "amplitude", "per_kelvin", "per_second", "half_width", "exponent", "width_urad", "angle_deg",
+            "width_deg", "relative")
     return " ".join(f"{k}={e[k]:.4g}" for k in keys if k in e)
 
 

@@ -180,3 +180,21 @@ def test_memory_grows_by_a_few_floats_per_row(tmp_path, monkeypatch):
     # the fit a dozen arrays of the record's length at most (fits, residuals, play, held-out parts)
     assert per_row_read < 8, per_row_read
     assert per_row_fit < 14, per_row_fit
+
+
+def test_a_long_torque_record_is_searched_on_every_kth_sample_and_fitted_on_all():
+    """45,000 rows: the search runs on one sample in 3 (15,000, at most TORQUE_SEARCH_SAMPLES);
+    the friction it finds is fitted to every sample, with the residual at the injected noise."""
+    from geargen.fit.selection import TORQUE_SEARCH_SAMPLES
+    from geargen.fit.simulate import TorqueSettings, TorqueTruth, simulate_torque_deflection
+    sim = simulate_torque_deflection(TorqueTruth(hysteresis_half_width=1.0), np.random.default_rng(13),
+                                     TorqueSettings(sampling=Sampling(samples=45_000, duration_s=2400.0), cycles=4))
+    assert 2 * TORQUE_SEARCH_SAMPLES < 45_000 <= 3 * TORQUE_SEARCH_SAMPLES
+    dg = diagnose(sim.measurement)
+    report = dg.to_json()
+    assert any("one sample in 3 (15000 of 45000)" in n for n in dg.measurement.notes)
+    assert dg.extended.residual.size == 45_000 and not report["unexplained"]
+    (e,) = report["effects_added"]
+    assert e["effect"] == "hysteresis" and e["half_width"] == pytest.approx(1.0, rel=0.05)
+    # the fit to all 45,000 samples: its residual is the injected noise (0.1 Nm) to 5 %
+    assert report["stages"]["extended"]["rms"] == pytest.approx(sim.true_noise_rms, rel=0.05)
