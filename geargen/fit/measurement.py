@@ -513,26 +513,15 @@ def _model_from_assembly(kind: str, design_path: Path, where: str, notes: list[s
 
 
 def _load_sidecar(path: Path) -> dict:
-    """The sidecar's TOML; every way it can be unreadable is a MeasurementError naming the file
-    and why: not UTF-8, a byte-order mark, nesting deeper than the parser's recursion allows."""
-    where = path.name
-    try:
-        head = path.read_bytes()[:3]
-    except OSError as exc:
-        raise MeasurementError(str(path), f"cannot be read: {exc.strerror or exc}") from None
-    if head == b"\xef\xbb\xbf":
-        raise MeasurementError(where, "starts with a UTF-8 byte-order mark (BOM), which TOML does not allow",
-                               "the sidecar saved as UTF-8 without a BOM (most editors: 'UTF-8', not 'UTF-8 with BOM')")
+    """The sidecar's TOML, read as a design file is (:func:`geargen.design.schema.load_toml`: a
+    byte-order mark is taken; not UTF-8, nested too deep, too big or not TOML is a MeasurementError
+    naming the file and why)."""
     try:
         return load_toml(path)
     except DesignError as exc:
-        raise MeasurementError(where, exc.problem, exc.allowed) from None
-    except UnicodeDecodeError as exc:
-        raise MeasurementError(where, f"is not UTF-8 text: byte 0x{exc.object[exc.start]:02x} at offset {exc.start} "
-                               "cannot be decoded", "a TOML file in UTF-8") from None
-    except RecursionError:
-        raise MeasurementError(where, "nests arrays or tables too deeply to be read",
-                               "a sidecar of the contract's shape: a few levels of tables and arrays") from None
+        raise MeasurementError(path.name, exc.problem, exc.allowed) from None
+    except OSError as exc:
+        raise MeasurementError(str(path), f"cannot be read: {exc.strerror or exc}") from None
 
 
 def _test_spec(data, where: str) -> DatasheetSettings:
