@@ -865,8 +865,8 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     dc = result.checks.design_check
     tolerances = [t.to_dict("mm") for t in dc.tolerances] if dc is not None else []
     bevel = list(dc.bevel) if dc is not None else []  # mm, rad (geargen.checks.verdict._bevel_meshes)
-    planetary = list(dc.planetary) if dc is not None else []  # mm, rad (geargen.checks.planetary_placed)
-    rack = list(dc.rack) if dc is not None else []  # mm, N (geargen.checks.rack_drive)
+    planetary = list(dc.planetary) if dc is not None else []  # mm, rad (geargen.drives.planetary.verdict)
+    rack = list(dc.rack) if dc is not None else []  # mm, N (geargen.drives.rack_dual_pinion.verdict)
     structure = result.checks.structure
     return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
             "meshes": meshes, "bevel_meshes": bevel, "planetary_meshes": planetary, "tolerances": tolerances,

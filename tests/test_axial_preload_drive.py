@@ -1,4 +1,4 @@
-"""The axial-motion preload drive (geargen.model.axial_drive, assemblies/axial_preload.toml)
+"""The axial-motion preload drive (geargen.drives.axial_preload.place, assemblies/axial_preload.toml)
 against independent methods:
 
 * the placement closes the loop: the exact 2-D checker (geargen.checks.mesh2d, involute and
@@ -26,7 +26,7 @@ import pytest
 from scipy.optimize import root
 
 from geargen import pipeline as pl
-from geargen.model.layout import place
+from geargen.drives.resolver import place
 from geargen.checks.mesh2d import sweep_mesh
 from geargen.checks.verdict import check_design, mesh_setup
 from geargen.core.axial_preload import axial_travel_for_backlash
@@ -267,9 +267,9 @@ def test_bearing_reactions_are_the_shafts_vector_statics(layout):
     p = rep["forces"]["preload_torque_output_Nmm"]
     beta = pinion.helix_angle
     from geargen.design.parts import parts_settings
-    from geargen.model.axial_drive import axial_preload_hardware
+    from geargen.drives.axial_preload.place import axial_preload_hardware
     hw = axial_preload_hardware(layout, parts_settings(layout.design))
-    # at the reference position (the model's, see geargen.model.axial_drive): the slide undone
+    # at the reference position (the model's, see geargen.drives.axial_preload.place): the slide undone
     z_bear = [b.z - hw.shift + b.width / 2 for b in hw.input.bearings]
     faces = {g.name: tuple(z - (hw.shift if g.group == "input" else 0.0) for z in g.face_z(g.spec))
              for g in layout.gears}
@@ -468,9 +468,9 @@ def test_a_drive_that_does_not_slide_its_input_is_refused(tmp_path):
 
 def test_hardware_that_cannot_hold_the_slide_is_refused():
     """The spring must bear on the lower bearing's face (clear of the shaft, inside the ring) and
-    its installed length must keep its coils apart (geargen.model.axial_drive.axial_preload_hardware)."""
+    its installed length must keep its coils apart (geargen.drives.axial_preload.place.axial_preload_hardware)."""
     from geargen.design.parts import parts_settings
-    from geargen.model.axial_drive import axial_preload_hardware
+    from geargen.drives.axial_preload.place import axial_preload_hardware
     design = pl.load(DESIGN)
     layout = pl.place(design)
     parts = parts_settings(design)

@@ -69,7 +69,7 @@ def test_build_writes_everything_with_a_manifest(built_assemblies, name):
             assert f in m["files"] and (folder / f).exists()
     html = (folder / "report.html").read_text()
     # the preload diagram is drawn from the stiffness summary of [stiffness]; the rack drive gives
-    # its Eqs. 5-6 in its check rows (geargen.checks.rack_drive) and has no such section
+    # its Eqs. 5-6 in its check rows (geargen.drives.rack_dual_pinion.verdict) and has no such section
     figures = ("render", "layout") + (("preload_diagram",) if design.section("stiffness") else ())
     for figure in figures:  # linked files, listed in the manifest
         assert f"src='figures/{figure}.png'" in html and f"figures/{figure}.svg" in m["files"]

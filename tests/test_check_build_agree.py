@@ -139,12 +139,14 @@ def _check_failures(data: dict) -> set[tuple[str, str]]:
 def _build_failures(lines: list[str]) -> tuple[set[tuple[str, str]], set[frozenset]]:
     verdict, solids = set(), set()
     for line in lines:
-        m = re.match(r"(\S+) \(([a-z_]+)\): ", line)
+        if "(solids)" in line:  # path 2: the build's own reading of its solids
+            m = re.match(r"parts overlap \(solids\): (\S+) and (\S+) share", line)
+            if m:
+                solids.add(frozenset(m.groups()))
+            continue
+        m = re.match(r"(.+?) \(([a-z_]+)\): ", line)  # a failure may name several meshes
         if m:
             verdict.add((m.group(2), m.group(1)))
-        m = re.match(r"parts overlap \(solids\): (\S+) and (\S+) share", line)
-        if m:
-            solids.add(frozenset(m.groups()))
     return verdict, solids
 
 

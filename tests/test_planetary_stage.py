@@ -1,5 +1,5 @@
-"""The planetary upstream stage (geargen.design.planetary_stage, geargen.model.planetary_stage,
-geargen.checks.planetary_placed) in assemblies/planetary_dual_pinion.toml: the placement's phases
+"""The planetary upstream stage (geargen.design.planetary_stage, geargen.drives.planetary.place,
+geargen.drives.planetary.verdict) in assemblies/planetary_dual_pinion.toml: the placement's phases
 against a numeric solve on the exact outlines, the assembly condition (a violating planet count is
 refused by name, and numerically cannot be placed), the ratio against a numeric kinematic solve,
 named check failures of bad variants, and the one-home rule (the carrier radius moves the solids
@@ -15,7 +15,7 @@ from matplotlib.path import Path as Polygon
 from scipy.optimize import brentq
 
 from geargen.checks.internal_pair import pinion_points
-from geargen.checks.planetary_placed import placed_ring_play
+from geargen.drives.planetary.verdict import placed_ring_play
 from geargen.checks.verdict import verify
 from geargen.core.planetary import planet_phases, ring_phase_error
 from geargen.design.assembly import load_design
@@ -70,7 +70,7 @@ def test_every_placed_planet_sits_mid_play_with_the_sun_and_the_ring(layout):
     """The phases of geargen.core.planetary.planet_phases (closed form) against the free play
     solved numerically on the exact outlines as placed: each planet turns equally far both ways
     before it touches the sun (point in polygon on the sun's sampled outline, sun frame) and the
-    ring (geargen.checks.planetary_placed.placed_ring_play), and the two sum to the backlash the
+    ring (geargen.drives.planetary.verdict.placed_ring_play), and the two sum to the backlash the
     modelled teeth give (0.08 mm, the middle of the 0.04-0.12 mm range, at the planet's reference
     circle)."""
     sun, ring, planets = _stage(layout)
@@ -364,7 +364,7 @@ def test_the_stiffness_model_twists_the_input_shaft_up_to_the_carrier(tmp_path, 
     carriage_plate_thickness 4 -> 5 mm) lengthens it in the analysis as it thickens the carrier."""
     from geargen.design.parts import parts_settings
     from geargen.model.analysis import placed_components
-    from geargen.model.planetary_stage import carrier
+    from geargen.drives.planetary.place import carrier
     from geargen.design.stages import stages
 
     def twist(lay):

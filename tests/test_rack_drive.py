@@ -1,4 +1,4 @@
-"""The Type 2 dual-pinion rack drive (assemblies/rack_drive.toml, geargen.model.rack_drive).
+"""The Type 2 dual-pinion rack drive (assemblies/rack_drive.toml, geargen.drives.rack_dual_pinion.place).
 
 Every placed number is checked against an independent method here: the loop closure against a
 2-D Newton solve of the contact conditions on the exact tooth outlines (geargen.checks.mesh2d
@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from geargen.checks.mesh2d import MeshState, free_play, polar_outline
-from geargen.checks.rack_drive import placed_rack_gaps
+from geargen.drives.rack_dual_pinion.verdict import placed_rack_gaps
 from geargen.checks.verdict import check_design
 from geargen.core.drive import TwoPathDrive
 from geargen.core.rack_drive import RackDriveFrame, solve_carriage
@@ -26,7 +26,7 @@ from geargen.design.assembly import load_design
 from geargen.errors import DesignError
 from geargen.drives.resolver import resolve
 from geargen.model.layout import running_backlash
-from geargen.model.rack_drive import report
+from geargen.drives.rack_dual_pinion.place import report
 
 DESIGN = Path(__file__).resolve().parents[1] / "assemblies" / "rack_drive.toml"
 
@@ -341,7 +341,7 @@ def _spring_variant(tmp_path, wire, mean, installed):
 
 
 def _spring_failure(design):
-    from geargen.checks.rack_drive import carriage_spring_failure
+    from geargen.drives.rack_dual_pinion.verdict import carriage_spring_failure
     from geargen.design.parts import parts_settings
     return carriage_spring_failure(resolve(design).placement, parts_settings(design), "mm")
 

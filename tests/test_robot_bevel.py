@@ -1,4 +1,4 @@
-"""The robot joint's bevel pair as toothed bevel gears (geargen.model.bevel_drive, placed by
+"""The robot joint's bevel pair as toothed bevel gears (geargen.drives.dual_pinion.bevel, placed by
 geargen.cad.assembly._bevel_drive, checked by geargen.checks.verdict._bevel_meshes).
 
 Independent references: the pitch cones of a 15:30 pair at 90 deg are tan delta_p = 15/30 (any
@@ -19,7 +19,7 @@ import pytest
 
 from geargen.design.assembly import load_design
 from geargen.drives.resolver import resolve
-from geargen.model.bevel_drive import bevel_drive
+from geargen.drives.dual_pinion.bevel import bevel_drive
 
 ROBOT = Path(__file__).resolve().parents[1] / "assemblies/robot_joint.toml"
 IN = 25.4
@@ -78,9 +78,9 @@ def test_bevel_mesh_backlash_is_the_design_value_centred():
 
 
 def test_a_misphased_or_misplaced_pinion_fails_the_bevel_check():
-    from geargen.checks.bevel_placed import check_placed_bevel_pair
+    from geargen.drives.dual_pinion.bevel_verdict import check_placed_bevel_pair
     from geargen.errors import GeometryError
-    from geargen.model.bevel_drive import _rotation
+    from geargen.drives.dual_pinion.bevel import _rotation
     placed = bevel_drive(_layout())
     r_pinion = placed.pinion.reference_diameter / 2
     # turn the pinion on its own axis by 0.8 of the backlash (arc at its pitch circle): one side

@@ -432,12 +432,9 @@ class DesignCheck:
     # per mesh with thickness allowances (geargen.checks.allowance, mm): the range they give with the
     # centre-distance tolerance, analytic and measured on the thinnest and thickest teeth
     backlash_range: list[dict[str, Any]] = field(default_factory=list)
-    # the bevel pair of the robot joint as placed (geargen.checks.verdict._bevel_meshes, mm, rad)
-    bevel: list[dict[str, Any]] = field(default_factory=list)
-    # the planetary stages as placed (geargen.checks.planetary_placed: planet-ring meshes, conditions; mm, rad)
-    planetary: list[dict[str, Any]] = field(default_factory=list)
-    # the rack meshes and carriage of a rack dual-pinion drive (geargen.checks.rack_drive, mm, N)
-    rack: list[dict[str, Any]] = field(default_factory=list)
+    # the drive kind's own rows (geargen.drives.kind.DriveKind.rows: placed pairs the mesh checker
+    # does not check, mm, rad, N), each naming the table it belongs to ("table")
+    rows: list[dict[str, Any]] = field(default_factory=list)
     # the resolved drive's parts read against each other (geargen.checks.hardware.PartsReport) and how
     # they hold together (geargen.checks.structure.StructureReport); None: the drive has no hardware
     parts: Any = None
@@ -446,6 +443,22 @@ class DesignCheck:
     # resolved [parts] as TOML to paste into the file (geargen.drives.parts_table)
     defaulted: tuple = ()
     parts_table: str = ""
+
+    def table(self, name: str) -> list[dict[str, Any]]:
+        """The drive kind's rows of table ``name``."""
+        return [r for r in self.rows if r.get("table") == name]
+
+    @property
+    def bevel(self) -> list[dict[str, Any]]:
+        return self.table("bevel")
+
+    @property
+    def planetary(self) -> list[dict[str, Any]]:
+        return self.table("planetary")
+
+    @property
+    def rack(self) -> list[dict[str, Any]]:
+        return self.table("rack")
 
     @property
     def all_failures(self) -> list[Failure]:

@@ -134,11 +134,8 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
         result.failures.append(Failure("ratio_mismatch", "train",
                                        f"ratio {layout.ratio['what']} is {layout.ratio['total']}, not one of "
                                        f"{layout.ratio['required']} ({layout.ratio['text']})"))
-    result.bevel = _bevel_meshes(layout, result)
-    from geargen.checks.planetary_placed import planetary_meshes
-    result.planetary = planetary_meshes(layout, result)
-    from geargen.checks.rack_drive import rack_meshes
-    result.rack = rack_meshes(layout, result)
+    # the drive kind's own rows: placed pairs the mesh checker does not check (geargen.drives.kind)
+    result.rows = layout.drive.rows(layout, result) if layout.drive is not None else []
     result.defaulted = defaulted(layout)
     result.parts_table = parts_table(layout)
     if layout.hardware is not None:
@@ -167,47 +164,6 @@ def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> Non
         result.failures += [Failure("structure", "parts", text) for text in structure.failures]
     else:
         result.notes += [f"structure ([checks] structure = \"report\"): {text}" for text in structure.failures]
-
-
-#: the placed bevel pair's measured backlash may differ from its design value (t1 + t2) by this
-#: much (mm): the bisection on the sampled exact flanks (geargen.checks.bevel_pair) is far finer
-BEVEL_BACKLASH_TOLERANCE = 1e-4
-
-
-def _bevel_meshes(layout: Layout, result: DesignCheck) -> list[dict]:
-    """The robot joint's bevel pair as placed (:mod:`geargen.model.bevel_drive`): backlash each way
-    and tip clearances on the exact outlines on the heel sphere
-    (:func:`geargen.checks.bevel_placed.check_placed_bevel_pair`); a failure when the flanks overlap,
-    a tip reaches the mate's root, there is no backlash, or it is not the design value."""
-    from geargen.checks.bevel_placed import check_placed_bevel_pair
-    from geargen.model.bevel_drive import bevel_drive
-    placed = bevel_drive(layout)
-    if placed is None:
-        return []
-    name = "bevel"
-    k, unit = LENGTH_SUFFIXES[layout.design.length_unit], layout.design.length_unit
-    c = check_placed_bevel_pair(placed.gear, placed.gear_matrix, placed.pinion, placed.pinion_matrix)
-    clearance = min(c.pair.tip_clearance_1, c.pair.tip_clearance_2)
-    if min(c.play_positive, c.play_negative) < 0:
-        side = min(c.play_positive, c.play_negative)
-        result.failures.append(Failure("flank_interference", name, f"the bevel teeth overlap by {-side / k:.4g} {unit} "
-                                       "(circumferential at the heel pitch circle)", "circumferential_backlash",
-                                       side, 0.0))
-    elif min(c.play_positive, c.play_negative) == 0:
-        result.failures.append(Failure("no_backlash", name, "the bevel flanks touch on both sides",
-                                       "circumferential_backlash", 0.0, 0.0))
-    if clearance <= 0:
-        result.failures.append(Failure("tip_to_root_interference", name, f"a bevel tip reaches the mate's root cone "
-                                       f"({clearance / k:.4g} {unit})", "min_clearance", clearance, 0.0))
-    if abs(c.backlash - placed.backlash) > BEVEL_BACKLASH_TOLERANCE:
-        result.failures.append(Failure("backlash_out_of_range", name,
-                                       f"bevel backlash {c.backlash / k:.6g} {unit} is not the design's "
-                                       f"{placed.backlash / k:.6g} {unit}", "circumferential_backlash",
-                                       c.backlash, placed.backlash))
-    return [dict(mesh=name, gear1="bevel_gear", gear2="bevel_pinion", backlash=c.backlash,
-                 design_backlash=placed.backlash, play_positive=c.play_positive, play_negative=c.play_negative,
-                 tip_clearance=clearance, apex_distance=c.apex_distance, shaft_angle=c.shaft_angle,
-                 where="heel pitch circle, circumferential, on the exact spherical-involute outlines")]
 
 
 def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSettings) -> list:

@@ -148,7 +148,7 @@ def _fmt(v: float, unit: str) -> str:
 
 
 def _planetary_lines(result: DesignCheck, u: str) -> list[str]:
-    """The planetary stages' rows (:mod:`geargen.checks.planetary_placed`) under one heading: the
+    """The planetary stages' rows (:mod:`geargen.drives.planetary.verdict`) under one heading: the
     planet-ring meshes, then each stage's conditions."""
     if not result.planetary:
         return []
@@ -171,7 +171,7 @@ def _planetary_lines(result: DesignCheck, u: str) -> list[str]:
 
 
 def _rack_lines(rows: list, u: str) -> list[str]:
-    """The rack drive's rows (:mod:`geargen.checks.rack_drive`): rack meshes, carriage, preload, stiffness."""
+    """The rack drive's rows (:mod:`geargen.drives.rack_dual_pinion.verdict`): rack meshes, carriage, preload, stiffness."""
     lines = []
     for r in rows:
         if r["mesh"] != "carriage":

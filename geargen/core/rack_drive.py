@@ -1,6 +1,6 @@
 """The Type 2 dual-pinion rack drive (numpy/scipy only): loop closure, preload lever and forces.
 
-Frame (mm, rad; the assembly frame of :mod:`geargen.model.rack_drive`): the rack's pitch line is
+Frame (mm, rad; the assembly frame of :mod:`geargen.drives.rack_dual_pinion.place`): the rack's pitch line is
 the x axis, its teeth point to +y; the two path shafts stand at ``(+-h, y_s)`` (``h`` half the
 pinion spacing, ``y_s`` the pinions' centre height), each carrying a rack pinion and a path gear;
 the input gear (the motor's) sits on the symmetry line at ``(0, y)`` on the preload carriage,

@@ -901,7 +901,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     (:func:`geargen.model.analysis.placed_components`); default: as the design gives them.
     ``placed_lever`` (rad/mm): output rotation of each path per unit preload motion where the
     resolved drive places it rather than a dual-pinion train (the axial preload's slide,
-    :mod:`geargen.model.axial_drive`); ``placed_friction``: the friction force of its sliding fit
+    :mod:`geargen.drives.axial_preload.place`); ``placed_friction``: the friction force of its sliding fit
     over the spring force (the preload band then includes the friction's, :class:`PreloadVariation`).
     """
     sd = stiffness_design(design)

@@ -13,7 +13,7 @@ Layout::
     required_ratios = [32]            # whole-number ratios, encoder to output, the controller needs
 
 A split pinion also needs ``centre_distance_*`` and ``circumferential_backlash_min_*`` /
-``_max_*``; an axial preload (``kind = "axial_preload"``, :mod:`geargen.model.axial_drive`) those
+``_max_*``; an axial preload (``kind = "axial_preload"``, :mod:`geargen.drives.axial_preload.place`) those
 and ``input_stroke_*``, its four helical gears named by ``pinion_left``, ``pinion_right``,
 ``output_right``, ``output_left`` (rules: :mod:`geargen.design.axial_preload`), its preload and
 spring in ``[preload]``. :func:`layout_settings` reads the table; :func:`check_layout` adds the rules that

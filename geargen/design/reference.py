@@ -239,7 +239,7 @@ TABLES: tuple[Table, ...] = (
           "bottom and top plates that hold every bearing.", Example("split_pinion.toml", ("parts",)),
           context={"layout": {"kind": "split_pinion"}}),
     Table("[parts] of an axial preload", ("parts",),
-          "The axial-motion preload (geargen.model.axial_drive): the input shaft through both helical pinions on "
+          "The axial-motion preload (geargen.drives.axial_preload.place): the input shaft through both helical pinions on "
           "two bearings whose outer rings slide in the housing plates' bores, its stroke and the motor stub above; "
           "the preload spring in a cup under the bottom plate pushing the lower bearing's outer ring (its active "
           "coils follow from [layout] preload_spring_rate_N_per_mm); the output shaft and bearings; the housing's "

@@ -1,41 +1,40 @@
 """The resolved drive: where every command starts.
 
-:func:`resolve`: the design's gears placed
-(:func:`geargen.model.layout.place`), then the drive kind's hardware laid out as components and
-joints (:mod:`geargen.model.components`), so the resolved drive (:class:`geargen.model.Layout`)
-holds every length of every part. ``geargen check`` evaluates the hardware's rules on it, and
-``geargen build`` turns the same components into solids.
-
-The hardware a design gets is its drive kind's (:func:`geargen.drives.kind_of`);
-:data:`HARDWARE` maps each kind to its layout function ``(layout, parts, stiffness) -> Hardware``
-(``parts``: the validated ``[parts]`` settings; ``stiffness``: a callable giving the stiffness
-summary, for hardware sized by it).
+:func:`resolve`: the design's gears placed by its drive kind (:func:`place`), then the kind's
+hardware laid out as components and joints (:mod:`geargen.model.components`), so the resolved
+drive (:class:`geargen.model.Layout`) holds every length of every part and carries its kind
+(``Layout.drive``, :class:`geargen.drives.kind.DriveKind`). ``geargen check`` evaluates the
+hardware's rules on it, and ``geargen build`` turns the same components into solids.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Any, Callable
+from typing import Any
 
 from geargen.design.assembly import Design
+from geargen.design.layout import POSITIONS, layout_settings
 from geargen.design.parts import hardware_fields, parts_settings
-from geargen.drives.axial_preload.hardware import axial_hardware
-from geargen.drives.beam_pinion.hardware import beam_pinion_hardware
-from geargen.drives.dual_pinion.hardware import carriage_hardware
-from geargen.drives.rack_dual_pinion.hardware import rack_drive_hardware
+from geargen.drives.registry import DRIVES
 from geargen.drives.rules import RuleBroken, find_fixes, offered
-from geargen.drives.split_pinion.hardware import split_pinion_hardware
 from geargen.errors import DesignError
-from geargen.model.layout import Layout, place
+from geargen.model.analysis import stiffness
+from geargen.model.layout import Layout, is_drive
 
-#: the hardware of each kind (geargen.design.parts.HARDWARE) -> its layout function
-HARDWARE: dict[str, Callable[..., Any]] = {
-    "axial_preload": axial_hardware,
-    "beam_pinion": beam_pinion_hardware,
-    "dual_pinion": carriage_hardware,
-    "rack_dual_pinion": rack_drive_hardware,
-    "split_pinion": split_pinion_hardware,
-}
+
+def place(design: Design, position: str | None = None) -> Layout:
+    """The gears of the drive placed by its kind (:class:`Layout` without its hardware): final
+    teeth, centres, heights and rotations of every gear, and the meshes to check. ``position``
+    overrides ``[layout] position``."""
+    settings = layout_settings(design)
+    if position is not None:
+        if position not in POSITIONS:
+            raise DesignError("--position", f"{position!r} is not a valid choice", ", ".join(map(repr, POSITIONS)))
+        if position == "disengaged" and not design.section("engagement"):
+            raise DesignError("--position", "'disengaged' needs an [engagement] section", "'engaged'")
+        settings["position"] = position
+    kind = DRIVES[settings["drive"]]
+    return replace(kind.place(design, settings), drive=kind)
 
 
 def resolve(design: Design, position: str | None = None) -> Layout:
@@ -61,19 +60,16 @@ def with_hardware(layout: Layout) -> Layout:
     if not design.section("parts"):
         return layout
     settings = parts_settings(design)
-    lay_out = HARDWARE.get(settings["hardware"])
-    if lay_out is None:
-        return layout
+    lay_out = layout.drive.hardware
     summary: dict[str, Any] = {}
 
-    def stiffness():
+    def summarised():
         if "summary" not in summary:
-            from geargen.model.analysis import stiffness as analyse
-            summary["summary"] = analyse(design, layout)[0]
+            summary["summary"] = stiffness(design, layout)[0]
         return summary["summary"]
 
     try:
-        hardware = lay_out(layout, settings, stiffness)
+        hardware = lay_out(layout, settings, summarised)
     except RuleBroken:
         raise
     except DesignError as exc:
@@ -128,4 +124,20 @@ def parts_table(layout: Layout) -> str:
     return "\n".join(lines)
 
 
-__all__ = ["HARDWARE", "resolve", "with_hardware", "defaulted", "parts_table"]
+def drive_from_design(design: Design, location: str = "output"):
+    """The two-path drive model (:class:`geargen.core.drive.TwoPathDrive`: ``k1``, ``k2``, ``k3``
+    and the loop preload) of ``design`` as every command computes it: from the resolved drive
+    when the design is one, so the placed shafts size its components.
+
+    Referred to the output by default: torques in N·mm, rotations in rad, stiffnesses in
+    N·mm/rad (divide by 1e3 for the N·m of the measurement contract). Components with scope
+    "common" are in series with the drive and not part of this model (``StiffnessSummary.common``).
+    """
+    summary, _ = stiffness(design, place(design) if is_drive(design) else None)
+    if summary is None:
+        raise DesignError("stiffness", "missing: the drive model needs [stiffness] and [preload] sections",
+                          "see assemblies/robot_joint.toml")
+    return summary.drive if location == "output" else summary.drive_at(location)
+
+
+__all__ = ["place", "resolve", "with_hardware", "defaulted", "parts_table", "drive_from_design"]

@@ -500,7 +500,7 @@ def _model_from_assembly(kind: str, design_path: Path, where: str, notes: list[s
             return {"stages": stages}
         notes.append(f"teeth {list(teeth)} and drive {design.drive_type} from the assembly {design_path.name}")
         return {"teeth": list(teeth), "drive": design.drive_type}
-    from geargen.model.analysis import drive_from_design  # the drive as every command resolves it
+    from geargen.drives.resolver import drive_from_design  # the drive as every command resolves it
 
     drive = drive_from_design(design)
     # TwoPathDrive in geargen's internal units: N*mm/rad and N*mm

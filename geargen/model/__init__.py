@@ -2,7 +2,7 @@
 centre, height and phase once; every command and every export reads that one model."""
 
 from geargen.model.layout import (BACKLASH_KIND, MODEL_BACKLASH, POSITIONS, GearPlacement, Layout,
-                                  MeshPlacement, is_drive, layout_settings, place, running_backlash)
+                                  MeshPlacement, is_drive, layout_settings, running_backlash)
 
 __all__ = ["BACKLASH_KIND", "MODEL_BACKLASH", "POSITIONS", "GearPlacement", "Layout", "MeshPlacement",
-           "is_drive", "layout_settings", "place", "running_backlash"]
+           "is_drive", "layout_settings", "running_backlash"]

@@ -185,22 +185,4 @@ def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | No
     return drive_column(layout, parts, span, engagement).support_stiffness(sd.beam_pinion.elastic_modulus)
 
 
-def drive_from_design(design: Design, location: str = "output"):
-    """The two-path drive model (:class:`geargen.core.drive.TwoPathDrive`: ``k1``, ``k2``, ``k3``
-    and the loop preload) of ``design`` as every command computes it: from the resolved drive
-    when the design is one, so the placed shafts size its components.
-
-    Referred to the output by default: torques in N·mm, rotations in rad, stiffnesses in
-    N·mm/rad (divide by 1e3 for the N·m of the measurement contract). Components with scope
-    "common" are in series with the drive and not part of this model (``StiffnessSummary.common``).
-    """
-    from geargen.errors import DesignError
-    from geargen.model.layout import is_drive, place
-    summary, _ = stiffness(design, place(design) if is_drive(design) else None)
-    if summary is None:
-        raise DesignError("stiffness", "missing: the drive model needs [stiffness] and [preload] sections",
-                          "see assemblies/robot_joint.toml")
-    return summary.drive if location == "output" else summary.drive_at(location)
-
-
-__all__ = ["loop_error_travels", "placed_components", "stiffness", "beam_supports", "drive_from_design"]
+__all__ = ["loop_error_travels", "placed_components", "stiffness", "beam_supports"]

@@ -157,7 +157,7 @@ def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
         return out
     if stage_list[-1].kind == "planetary":
         # the input shaft runs up through the carriage arm into the planet carrier's lower plate
-        from geargen.model.planetary_stage import carrier
+        from geargen.drives.planetary.place import carrier
         c = carrier(layout, parts, stage_list[-1])
         out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, c.lower_top, shaft.diameter, shaft.bearings,
                              {**shaft.loads, c.name: c.z_lower + c.thickness / 2})

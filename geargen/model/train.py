@@ -408,7 +408,7 @@ def _planet_motions(layout, train) -> dict[str, tuple[float, float, float]]:
         for i, g in enumerate(planets, start=1):
             radius = math.dist(g.centre, ring.centre)
             out[g.name] = (carrier * abs(1 - ring.spec.teeth / g.spec.teeth), carrier, radius)
-            out[f"carrier_{st.name}_pin_{i}"] = (carrier, carrier, radius)  # geargen.model.planetary_stage.carrier
+            out[f"carrier_{st.name}_pin_{i}"] = (carrier, carrier, radius)  # geargen.drives.planetary.place.carrier
     return out
 
 
@@ -479,7 +479,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         of the input power."""
         from geargen.core.stiffness import gear_mesh_stiffness, reflect
         from geargen.design.stiffness import stiffness_design
-        from geargen.model.planetary_stage import internal_backlash
+        from geargen.drives.planetary.place import internal_backlash
         group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
         sun, planet, ring = (next(g.spec for g in group if role in g.roles)
                              for role in ("planetary_sun", "planetary_planet", "planetary_ring"))
@@ -603,10 +603,10 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
 
 
 def _bevel_lost_motion(layout, z1: int, z2: int, driven_speed: float) -> float | None:
-    """The robot joint's bevel pair's backlash as placed (:func:`geargen.model.bevel_drive.bevel_drive`:
+    """The robot joint's bevel pair's backlash as placed (:func:`geargen.drives.dual_pinion.bevel.bevel_drive`:
     circumferential at the gear's heel pitch circle, what its teeth are cut to) as an angle at the
     output: / the heel pitch radius / the driven shaft's speed; None without a bevel pair of these teeth."""
-    from geargen.model.bevel_drive import bevel_drive
+    from geargen.drives.dual_pinion.bevel import bevel_drive
     placed = bevel_drive(layout)
     if placed is None or (placed.pinion.teeth, placed.gear.teeth) != (z1, z2):
         return None
@@ -614,11 +614,11 @@ def _bevel_lost_motion(layout, z1: int, z2: int, driven_speed: float) -> float |
 
 
 def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | None:
-    """Eq. 1 on the robot joint's bevel pair as placed (:func:`geargen.model.bevel_drive.bevel_drive`:
+    """Eq. 1 on the robot joint's bevel pair as placed (:func:`geargen.drives.dual_pinion.bevel.bevel_drive`:
     the specs the solids are built from), at the driven gear's mean radius, at the output; None
     without a bevel pair of these teeth."""
     from geargen.core.stiffness import mesh_stiffness, reflect, torsional_from_linear
-    from geargen.model.bevel_drive import bevel_drive
+    from geargen.drives.dual_pinion.bevel import bevel_drive
     placed = bevel_drive(layout)
     if placed is None or (placed.pinion.teeth, placed.gear.teeth) != (z1, z2):
         return None

@@ -9,7 +9,7 @@ import pytest
 
 from geargen.core import flexures as fx
 from geargen.core.stiffness import stiffness_summary
-from geargen.model.analysis import drive_from_design
+from geargen.drives.resolver import drive_from_design
 from geargen.design.assembly import design_from_dict, load_design
 from geargen.design.stiffness import (component_from_table, convert_quantity, preload_spec_from_table,
                                       stiffness_design)

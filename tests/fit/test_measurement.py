@@ -138,7 +138,7 @@ def test_teeth_from_an_assembly(tmp_path):
 
 def test_torque_law_from_an_assembly(tmp_path):
     from geargen.design.assembly import load_design
-    from geargen.model.analysis import drive_from_design
+    from geargen.drives.resolver import drive_from_design
     design = ROOT / "assemblies" / "robot_joint.toml"
     drive = drive_from_design(load_design(design))  # the drive as stiffness and build report it
     toml_text = f'kind = "torque_deflection"\nassembly = "{design.as_posix()}"\n'

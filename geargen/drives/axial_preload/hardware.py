@@ -1,5 +1,5 @@
 """The hardware of an axial-preload drive (``[layout] kind = "axial_preload"``), built where
-:func:`geargen.model.axial_drive.axial_preload_hardware` places them: the input shaft through
+:func:`geargen.drives.axial_preload.place.axial_preload_hardware` places them: the input shaft through
 both helical pinions on two bearings whose outer rings slide in the housing plates' bores (the
 shaft slid by the placement's take-up), the
 preload spring in a cup under the bottom plate pushing the lower input bearing, the stop over the
@@ -11,7 +11,7 @@ from __future__ import annotations
 from typing import Any, Mapping
 
 from geargen.model import bodies as B
-from geargen.model.axial_drive import axial_preload_hardware
+from geargen.drives.axial_preload.place import axial_preload_hardware
 from geargen.model.components import ComponentSet, Hardware, at
 
 

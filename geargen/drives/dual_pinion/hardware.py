@@ -27,7 +27,7 @@ from geargen.drives.planetary.hardware import planetary_drive
 from geargen.drives.rules import Candidate, RuleBroken
 from geargen.errors import BuildError, DesignError
 from geargen.model import bodies as B
-from geargen.model.bevel_drive import bevel_drive
+from geargen.drives.dual_pinion.bevel import bevel_drive
 from geargen.model.bodies import lowest_x_above
 from geargen.model.components import (ComponentSet, Hardware, Toothed, along_x, analytic_body, at, placed_box)
 from geargen.model.shafts import bore_of, carriage_arm_top, carriage_shafts
@@ -281,7 +281,7 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     above the input's mid-face (the placed input shaft's load), the two apexes at the pitch cones'
     common apex, the motor's stub ending on the pinion's back face. The pinion's teeth sit in the
     middle of the gear's spaces (the pair's backlash split to both sides); the pair is a mesh,
-    checked on the exact outlines (:func:`geargen.checks.bevel_placed.check_placed_bevel_pair`)."""
+    checked on the exact outlines (:func:`geargen.drives.dual_pinion.bevel_verdict.check_placed_bevel_pair`)."""
     placed = bevel_drive(layout, dict(s))
     gear_spec, pinion_spec = placed.gear, placed.pinion
     module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]

@@ -2,7 +2,7 @@
 the planet carrier (two plates and a pin per planet), the frame that holds the ring and the motor,
 and the motor with its shaft in the sun's bore.
 
-Every size comes from the placement (:func:`geargen.model.planetary_stage.carrier`: plates from
+Every size comes from the placement (:func:`geargen.drives.planetary.place.carrier`: plates from
 the gears' heights, pins of the planets' bore at the planets' centres) and from ``[parts]``
 (plate thickness, clearance, motor). The frame is one part: a tube standing on the ring's top
 face (its bore a clearance outside the ring's root circle, its outside the ring's rim) under a
@@ -19,7 +19,7 @@ from typing import Any, Mapping
 from geargen.errors import DesignError
 from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, at
-from geargen.model.planetary_stage import carrier
+from geargen.drives.planetary.place import carrier
 from geargen.model.shafts import bore_of
 from geargen.profile.internal import internal_profile
 

@@ -15,7 +15,7 @@ The carrier drives the input gear's shaft: sun, carrier and ring stand coaxial w
 (ring fixed, sun in, carrier out) ``1 + z_r / z_s``. The conditions (:mod:`geargen.core.planetary`):
 the assembly condition is checked here, on reading (a stage that cannot be assembled has no
 placement to check); coaxiality and the planets' neighbour clearance are reported and checked by
-``geargen check`` (:mod:`geargen.checks.planetary_placed`).
+``geargen check`` (:mod:`geargen.drives.planetary.verdict`).
 
 Planet spacing: ``"equal"`` (default) needs ``(z_s + z_r) / N`` whole. ``"nearest_allowed"``
 accepts the assembly angles ``2 pi k / (z_s + z_r)`` nearest to equal spacing: they assemble, but

@@ -1,4 +1,4 @@
-"""The hardware of the Type 2 rack drive (:mod:`geargen.model.rack_drive`), placed from its
+"""The hardware of the Type 2 rack drive (:mod:`geargen.drives.rack_dual_pinion.place`), placed from its
 resolved layout and the ``[parts]`` sizes of the "rack_drive" hardware.
 
 * each path shaft (the pinion's bore) runs through its pinion and path gear, on a bearing below
@@ -25,7 +25,7 @@ from geargen.core.flexures import spring_for_rate
 from geargen.errors import DesignError
 from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, Hardware, at, transform
-from geargen.model.rack_drive import rack_drive
+from geargen.drives.rack_dual_pinion.place import rack_drive
 
 
 def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
@@ -54,7 +54,7 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
             b = out.add(f"path_bearing_{side}_{where}", B.bearing(d_path, bod, bw), at(x, y, z),
                         f"path_{side}", "bearing", description=f"{d_path:.4g} x {bod:.4g} x {bw:.4g} mm", shared=True)
             out.join(b, shaft, "bearing on the path shaft", kind="bearing")
-        out.join(f"pinion_{side}", "rack", "rack mesh: checked by geargen.checks.rack_drive", kind="mesh")
+        out.join(f"pinion_{side}", "rack", "rack mesh: checked by geargen.drives.rack_dual_pinion.verdict", kind="mesh")
     xa, ys = g["pinion_a"].centre
     xi, yi = g["input"].centre
     d_in = placed.input.hub.bore_diameter

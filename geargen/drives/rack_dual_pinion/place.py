@@ -22,7 +22,7 @@ axis, teeth up, gear axes +z, the symmetry line x = 0):
   symmetric, and the carriage height where the loop closes is solved (root find) and placed.
 
 Everything downstream reads this one :class:`RackDrivePlacement` (``Layout.placement``): the
-solids, the checks (:mod:`geargen.checks.rack_drive`), the stiffness and preload report.
+solids, the checks (:mod:`geargen.drives.rack_dual_pinion.verdict`), the stiffness and preload report.
 """
 
 from __future__ import annotations
@@ -39,7 +39,7 @@ from geargen.design.assembly import Design
 from geargen.design.gear import GearSpec
 from geargen.design.rack import RackSpec
 from geargen.errors import DesignError, GeometryError
-from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, _modelled_backlash, _ratio_check, _thin_pair,
+from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, thin_pair,
                                   running_backlash)
 from geargen.units import LENGTH_SUFFIXES
 
@@ -195,11 +195,11 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     path_range = (s["path_backlash_min"], s["path_backlash_max"])
     rack_range = (s["rack_backlash_min"], s["rack_backlash_max"])
     if rule != "as_designed":
-        inp, path = _thin_pair(inp, path, _modelled_backlash(*path_range, rule), a_nom, "layout.path_backlash")
+        inp, path = thin_pair(inp, path, modelled_backlash(*path_range, rule), a_nom, "layout.path_backlash")
     rack = _rack(design, s, pinion)
     # the rack meshes' backlash comes from the pinions' centre height (the rack's backlash from
     # centre offset); a tooth thickness rule does not apply to a height, so "as_designed" takes mid
-    rack_target = _modelled_backlash(*rack_range, "mid" if rule == "as_designed" else rule)
+    rack_target = modelled_backlash(*rack_range, "mid" if rule == "as_designed" else rule)
     offset = centre_offset_for_backlash(rack, pinion, rack_target)
     geom = rack_pinion_geometry(rack, pinion, offset)
     unit = design.length_unit
@@ -277,7 +277,7 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     source = "design" if rule == "as_designed" else f"derived for {rule}-range backlash ([layout] model_backlash)"
     thinning = {g.name: {"source": source if g.name.startswith(("input", "path_gear")) else "design"} for g in gears}
     return Layout(design=design, kind="rack_dual_pinion", gears=tuple(gears), meshes=meshes, settings=s,
-                  ratio=_ratio_check(design, s, Fraction(path.teeth, inp.teeth), "motor to path shafts"),
+                  ratio=ratio_check(design, s, Fraction(path.teeth, inp.teeth), "motor to path shafts"),
                   notes=tuple(notes), placement=placement, carriage_travel=s["carriage_travel"], thinning=thinning)
 
 

@@ -11,7 +11,7 @@ ring's spaces widened for the same backlash in the planet-ring mesh.
 
 The meshes: each sun-planet mesh a :class:`MeshPlacement` (the external checker); the
 planet-ring meshes are checked on the placed exact outlines by
-:mod:`geargen.checks.planetary_placed`, which reads the placements from the Layout.
+:mod:`geargen.drives.planetary.verdict`, which reads the placements from the Layout.
 """
 
 from __future__ import annotations
@@ -58,12 +58,12 @@ def internal_backlash(planet: GearSpec, ring: GearSpec, centre_distance: float) 
 
 
 def _modelled_gears(design, st, a: float, rule: str):
-    from geargen.model.layout import _modelled_backlash, _thin_pair
+    from geargen.model.layout import modelled_backlash, thin_pair
     sun, planet, ring = design.gear(st.sun), design.gear(st.planet), design.gear(st.ring)
     if rule == "as_designed":
         return sun, planet, ring, []
-    target = _modelled_backlash(st.backlash_min, st.backlash_max, rule)
-    sun, planet = _thin_pair(sun, planet, target, a, f"stages.{st.name}")
+    target = modelled_backlash(st.backlash_min, st.backlash_max, rule)
+    sun, planet = thin_pair(sun, planet, target, a, f"stages.{st.name}")
     ring0 = with_changes(ring, thinning=0.0)
     # widening the ring's spaces by t adds t to this backlash (both at the planet's reference circle)
     extra = target - internal_backlash(planet, ring0, a)

@@ -17,8 +17,11 @@ from dataclasses import dataclass
 import numpy as np
 
 from geargen.checks.bevel_pair import BevelPairCheck, _frame2, check_bevel_pair
+from geargen.checks.results import Failure
 from geargen.design.bevel import BevelGearSpec
+from geargen.drives.dual_pinion.bevel import bevel_drive
 from geargen.errors import GeometryError
+from geargen.units import LENGTH_SUFFIXES
 
 
 @dataclass(frozen=True)
@@ -76,4 +79,43 @@ def check_placed_bevel_pair(gear1: BevelGearSpec, matrix1: np.ndarray, gear2: Be
                             play_negative=(offset - pair.free_angle_negative) * r1, pair=pair)
 
 
-__all__ = ["PlacedBevelCheck", "check_placed_bevel_pair"]
+#: the placed bevel pair's measured backlash may differ from its design value (t1 + t2) by this
+#: much (mm): the bisection on the sampled exact flanks (geargen.checks.bevel_pair) is far finer
+BEVEL_BACKLASH_TOLERANCE = 1e-4
+
+
+def rows(layout, result) -> list[dict]:
+    """The robot joint's bevel pair as placed (:mod:`geargen.drives.dual_pinion.bevel`): backlash each way
+    and tip clearances on the exact outlines on the heel sphere
+    (:func:`geargen.drives.dual_pinion.bevel_verdict.check_placed_bevel_pair`); a failure when the flanks overlap,
+    a tip reaches the mate's root, there is no backlash, or it is not the design value."""
+    placed = bevel_drive(layout)
+    if placed is None:
+        return []
+    name = "bevel"
+    k, unit = LENGTH_SUFFIXES[layout.design.length_unit], layout.design.length_unit
+    c = check_placed_bevel_pair(placed.gear, placed.gear_matrix, placed.pinion, placed.pinion_matrix)
+    clearance = min(c.pair.tip_clearance_1, c.pair.tip_clearance_2)
+    if min(c.play_positive, c.play_negative) < 0:
+        side = min(c.play_positive, c.play_negative)
+        result.failures.append(Failure("flank_interference", name, f"the bevel teeth overlap by {-side / k:.4g} {unit} "
+                                       "(circumferential at the heel pitch circle)", "circumferential_backlash",
+                                       side, 0.0))
+    elif min(c.play_positive, c.play_negative) == 0:
+        result.failures.append(Failure("no_backlash", name, "the bevel flanks touch on both sides",
+                                       "circumferential_backlash", 0.0, 0.0))
+    if clearance <= 0:
+        result.failures.append(Failure("tip_to_root_interference", name, f"a bevel tip reaches the mate's root cone "
+                                       f"({clearance / k:.4g} {unit})", "min_clearance", clearance, 0.0))
+    if abs(c.backlash - placed.backlash) > BEVEL_BACKLASH_TOLERANCE:
+        result.failures.append(Failure("backlash_out_of_range", name,
+                                       f"bevel backlash {c.backlash / k:.6g} {unit} is not the design's "
+                                       f"{placed.backlash / k:.6g} {unit}", "circumferential_backlash",
+                                       c.backlash, placed.backlash))
+    return [dict(table="bevel", mesh=name, gear1="bevel_gear", gear2="bevel_pinion", backlash=c.backlash,
+                 design_backlash=placed.backlash, play_positive=c.play_positive, play_negative=c.play_negative,
+                 tip_clearance=clearance, apex_distance=c.apex_distance, shaft_angle=c.shaft_angle,
+                 where="heel pitch circle, circumferential, on the exact spherical-involute outlines")]
+
+
+__all__ = ["PlacedBevelCheck", "check_placed_bevel_pair", "rows", "BEVEL_BACKLASH_TOLERANCE"]

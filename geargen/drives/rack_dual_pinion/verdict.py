@@ -1,4 +1,4 @@
-"""The verdict rows of the Type 2 rack drive (:mod:`geargen.model.rack_drive`) beyond its two
+"""The verdict rows of the Type 2 rack drive (:mod:`geargen.drives.rack_dual_pinion.place`) beyond its two
 external input meshes (which the exact 2-D checker of :mod:`geargen.checks.mesh2d` checks as
 every other mesh): the two rack meshes on the exact outlines (:mod:`geargen.checks.rack_pair`),
 the pinions' placed phase on the rack, the carriage's travel and the preload's reach.
@@ -119,7 +119,7 @@ def carriage_spring_failure(placed, parts: dict, unit: str) -> Failure | None:
 
 def rack_meshes(layout, result: DesignCheck) -> list[dict]:
     """The rack drive's own verdict rows (see the module docstring); [] for another drive."""
-    from geargen.model.rack_drive import rack_drive, report
+    from geargen.drives.rack_dual_pinion.place import rack_drive, report
     placed = rack_drive(layout)
     if placed is None:
         return []
@@ -168,7 +168,7 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
             result.failures.append(Failure("flank_interference", name, f"pinion {side}'s free flank overlaps the "
                                            f"rack by {-free / k:.4g} {unit} as placed", "circumferential_backlash",
                                            free, 0.0))
-        rows.append(dict(mesh=name, gear1=f"pinion_{side}", gear2="rack", backlash_min=j_min, backlash_max=j_max,
+        rows.append(dict(table="rack", mesh=name, gear1=f"pinion_{side}", gear2="rack", backlash_min=j_min, backlash_max=j_max,
                          design_min=lo, design_max=hi, placed_backlash=placed.rack_backlash,
                          working_flank_gap=working, free_flank_gap=free,
                          tip_clearance=float(min(check.tip_clearance_pinion.min(), check.tip_clearance_rack.min())),
@@ -196,7 +196,7 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
     spring = carriage_spring_failure(placed, parts_settings(layout.design), unit)
     if spring is not None:
         result.failures.append(spring)
-    rows.append(dict(mesh="carriage", gear1="input", gear2="", carriage_y=placed.carriage_y,
+    rows.append(dict(table="rack", mesh="carriage", gear1="input", gear2="", carriage_y=placed.carriage_y,
                      carriage_deviation=placed.carriage_deviation, carriage_needed=needed,
                      carriage_travel=placed.carriage_travel, **{k_: v for k_, v in values.items()
                                                                 if k_ not in ("carriage_y", "carriage_deviation",

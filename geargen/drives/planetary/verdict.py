@@ -1,11 +1,11 @@
-"""The planetary stages of a resolved drive, checked as placed (:mod:`geargen.model.planetary_stage`).
+"""The planetary stages of a resolved drive, checked as placed (:mod:`geargen.drives.planetary.place`).
 
 Everything is read from the Layout's placements (centres, rotations, the modelled teeth):
 
 - each planet-ring mesh on the exact outlines (:class:`geargen.checks.internal_pair.RingMaterial`
   against the planet's sampled exact outline): the planet turned both ways from where it is placed,
   the ring held, until it touches (bisection): free play on both sides, its sum against the design
-  range and against the closed form (:func:`geargen.model.planetary_stage.internal_backlash`),
+  range and against the closed form (:func:`geargen.drives.planetary.place.internal_backlash`),
   and over one planet pitch of mesh positions (:func:`ring_mesh_sweep`);
   and the internal pair's named checks (:func:`geargen.checks.internal_pair.check_internal`:
   involute, tip and trochoid interference, radial-assembly fouling);
@@ -106,7 +106,7 @@ def planetary_meshes(layout, result) -> list[dict]:
     from geargen.checks.internal_pair import check_internal
     from geargen.core.planetary import planet_ring_working, sun_planet_working
     from geargen.design.stages import stages
-    from geargen.model.planetary_stage import core_stage, internal_backlash, planet_part
+    from geargen.drives.planetary.place import core_stage, internal_backlash, planet_part
 
     design = layout.design
     k, unit = LENGTH_SUFFIXES[design.length_unit], design.length_unit
@@ -177,7 +177,7 @@ def planetary_meshes(layout, result) -> list[dict]:
                                                f"planet-ring backlash measured {measured / k:.6g} {unit}, closed form "
                                                f"{closed / k:.6g} {unit}", "path_difference", abs(measured - closed),
                                                PLANETARY_BACKLASH_TOLERANCE))
-            rows.append(dict(mesh=name, gear1=p.name, gear2=ring.name, stage=st.name, centre_distance=a_i,
+            rows.append(dict(table="planetary", mesh=name, gear1=p.name, gear2=ring.name, stage=st.name, centre_distance=a_i,
                              backlash=measured, closed_form_backlash=closed, play_ccw=ccw * p.spec.reference_radius,
                              play_cw=cw * p.spec.reference_radius, design_min=st.backlash_min,
                              design_max=st.backlash_max, carrier_angle=angles[i - 1],
@@ -185,7 +185,7 @@ def planetary_meshes(layout, result) -> list[dict]:
                              margins={m: v for m, v in named.margins.items()},
                              contact_ratio=named.geometry.contact_ratio,
                              where="planet's reference circle, circumferential, on the exact outlines as placed"))
-        rows.append(dict(mesh=stage_name, stage=st.name, ratio=float(st.ratio(design)), carrier_radius=a,
+        rows.append(dict(table="planetary", mesh=stage_name, stage=st.name, ratio=float(st.ratio(design)), carrier_radius=a,
                          coaxiality_difference=coax, coaxiality_tolerance=st.coaxiality_tolerance,
                          assembly_step_error=off, neighbour_tip_gap=gap, planet_tip_clearance=st.planet_tip_clearance,
                          planets=len(planets), minimum_tooth_difference=named.minimum_tooth_difference))

@@ -76,7 +76,7 @@ from geargen.core.synthesis import mate_rotation
 from geargen.design.assembly import Design
 from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
-from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, _modelled_backlash, _ratio_check, _thin_pair,
+from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, thin_pair,
                                   running_backlash)
 from geargen.model.shafts import Bearing, Shaft, bore_of as _bore, _mid
 from geargen.profile.tooth import section_rotation
@@ -168,9 +168,9 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
     notes: list[str] = []
     thinning_source = "design"
     if rule != "as_designed":
-        target = _modelled_backlash(lo, hi, rule)
+        target = modelled_backlash(lo, hi, rule)
         for _, p, o, _ in MESHES:
-            spec[p], spec[o] = _thin_pair(spec[p], spec[o], target, c, f"gears.{s[p]}")
+            spec[p], spec[o] = thin_pair(spec[p], spec[o], target, c, f"gears.{s[p]}")
         thinning_source = f"derived for {rule}-range backlash ([layout] model_backlash)"
         notes.append(f"thinning derived for {rule}-range backlash: " + ", ".join(
             f"{s[r]} {spec[r].thinning / k:.6g} {unit}" for r in spec) + " (circumferential, at the reference circle)")
@@ -326,9 +326,9 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
         f"k3 = {k3 / 1e3:.4g} N m/rad (spring {k_axial:.4g} N/mm x (r_2 / tan(beta))^2); drive (Eq. 5) "
         f"{drive.drive_stiffness / 1e3:.4g} N m/rad, loop (Eq. 6) {drive.loop_stiffness / 1e3:.4g} N m/rad",
     ]
-    ratio_check = _ratio_check(design, s, Fraction(o_r.teeth, pl.teeth), "input to output")
+    ratio = ratio_check(design, s, Fraction(o_r.teeth, pl.teeth), "input to output")
     return Layout(design=design, kind="axial_preload", gears=tuple(gears), meshes=tuple(meshes), settings=s,
-                  ratio=ratio_check, notes=tuple(notes), axial_shift={"input": take_up},
+                  ratio=ratio, notes=tuple(notes), axial_shift={"input": take_up},
                   thinning={g.name: {"source": thinning_source} for g in gears}, drive_report=report)
 
 

@@ -1,0 +1,9 @@
+"""The dual pinion whose long input pinion is a beam spring, sliding into mesh (the C-axis, Fig. 12)."""
+
+from geargen.drives.beam_pinion import hardware, keys
+from geargen.drives.dual_pinion import place
+from geargen.drives.kind import DriveKind
+from geargen.model.shafts import beam_pinion_shafts
+
+DRIVE = DriveKind(name=keys.NAME, keys=keys, place=place.place, hardware=hardware.beam_pinion_hardware,
+                  shafts=beam_pinion_shafts, symmetry_line=keys.SYMMETRY_LINE)
