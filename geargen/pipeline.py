@@ -362,7 +362,7 @@ def export_config(design: Design) -> dict[str, Any]:
 
 def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
     """The 2-D layout drawing (a matplotlib ``Figure``) of ``layout`` (``geargen.report.layout``)."""
-    from geargen.profile import tooth_profile
+    from geargen.profile.tooth import tooth_profile
     from geargen.report.layout import LayoutGear, LayoutMesh, layout_figure
     import warnings
     from geargen.design.gear import GearSpec
@@ -394,7 +394,7 @@ def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
     if layout.carriage_x is not None and layout.carriage_travel:
         carriage = ((layout.carriage_x, 0.0), layout.carriage_travel)
     return layout_figure(gears, meshes, layout.design.length_unit, layout.design.name, carriage,
-                         symmetry_line=layout.kind == "dual_pinion")
+                         symmetry_line=layout.drive is not None and layout.drive.symmetry_line)
 
 
 def render(parts, design: Design, settings: dict | None = None, folder: Path | None = None):

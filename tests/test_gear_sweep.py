@@ -91,7 +91,7 @@ def check_one(p: dict) -> tuple[str, str]:
     import warnings
 
     from geargen.errors import DesignError, GeometryError
-    from geargen.profile import UndercutWarning
+    from geargen.profile.tooth import UndercutWarning
     try:
         warnings.simplefilter("ignore", UndercutWarning)
         spec = make_spec(p)

@@ -22,7 +22,7 @@ from geargen.cli import main
 from geargen.commands import new as new_command
 from geargen.core.stiffness import stiffness_summary
 from geargen.design.assembly import load_design
-from geargen.design.reference import key_comment
+from geargen.design.schema import key_comment
 from geargen.design.starters import STARTERS, starter_data, starter_text
 from geargen.design.validate import key_schema
 

@@ -41,7 +41,7 @@ def _layout(tmp_path=None, **changes):
 def test_placed_apexes_coincide_on_the_pitch_cone_models_apex():
     from geargen.core.bevel import bevel_pair_geometry
     from geargen.design.parts import parts_settings
-    from geargen.model.shafts import carriage_shafts
+    from geargen.drives.dual_pinion.shafts import carriage_shafts
     layout = _layout()
     placed = bevel_drive(layout)
     bev = bevel_pair_geometry(15, 30, MODULE, 0.15 * IN)

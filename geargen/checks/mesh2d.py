@@ -53,7 +53,7 @@ import numpy as np
 from geargen.checks.results import INTERFERENCE_CODES, Failure, MeshCheck, MeshSweep
 from geargen.design.gear import GearSpec
 from geargen.errors import GeargenError, GeometryError
-from geargen.profile import UndercutWarning, section_rotation, tooth_profile
+from geargen.profile.tooth import UndercutWarning, section_rotation, tooth_profile
 from geargen.profile.tooth import ToothProfile
 from geargen.units import length_text
 

@@ -38,7 +38,7 @@ import numpy as np
 from geargen.checks.mesh2d import MeshSetup, polar_outline
 from geargen.core.involute import involute
 from geargen.design.gear import GearSpec
-from geargen.profile import section_rotation
+from geargen.profile.tooth import section_rotation
 
 
 def wrap_pi(x):

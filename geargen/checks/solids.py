@@ -33,7 +33,7 @@ import numpy as np
 from geargen.checks.mesh2d import CheckSettings, MeshSetup, interference_failures, mesh_positions
 from geargen.checks.results import Failure, MeshCheck, MeshSweep
 from geargen.design.gear import GearSpec
-from geargen.profile import UndercutWarning
+from geargen.profile.tooth import UndercutWarning
 
 
 @dataclass
@@ -352,7 +352,7 @@ def section_phase_error(sections: GearSections) -> np.ndarray:
     twist puts them at that height (tooth 0 centred at ``section_rotation(spec, z)``): the mean
     polar angle of the tip-land vertices, taken modulo the pitch. Near 0 for sections taken in
     the gear's own face coordinates (face from z = 0)."""
-    from geargen.profile import section_rotation
+    from geargen.profile.tooth import section_rotation
 
     spec = sections.spec
     z = spec.teeth
@@ -382,7 +382,7 @@ def check_mesh_sections(setup: MeshSetup, sections1: GearSections, sections2: Ge
     if positions is None:
         positions = mesh_positions(setup, settings.steps_per_tooth, settings.revolutions)
     positions = np.atleast_1d(np.asarray(positions, dtype=float))
-    from geargen.profile import section_rotation
+    from geargen.profile.tooth import section_rotation
 
     st = setup.states(positions)  # gear 1's plane z = 0 ...
     # ... but each section carries its own gear's twist: place both gears by their rotation at

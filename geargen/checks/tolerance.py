@@ -66,7 +66,7 @@ from geargen.checks.mesh2d import (Eccentricity, MeshSetup, MeshState, free_play
 from geargen.checks.pair_model import HuntingSearch, PairModel, TipExcess
 from geargen.checks.results import CarriageTravelLimits, Failure, ToleranceResult
 from geargen.design.synthesis import GearErrors
-from geargen.profile import section_rotation
+from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
 NO_ERRORS = GearErrors()

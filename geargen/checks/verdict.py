@@ -173,7 +173,7 @@ def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSe
 
     design = layout.design
     rng = np.random.default_rng(settings.seed)
-    if layout.kind == "dual_pinion":
+    if layout.synthesis is not None:  # the loop placed by the centre synthesis: its error budget
         errors = {role: e for role in GEAR_ROLES if (e := gear_errors(design, role)) is not None}
         if not errors or set(LOOP_MESHES) - set(setups):
             return []  # no budget, or the pinions are slid out of mesh (disengaged)

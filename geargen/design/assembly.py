@@ -129,7 +129,7 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
     defaulted: tuple = ()
     if validate:
         from geargen.design.hardware_defaults import default_hardware
-        data, defaulted = default_hardware(data)
+        data, defaulted = default_hardware(data, design_from_dict)
     problems = Problems()
     unknown = [k for k in data if k not in SECTIONS and k not in TOP_KEYS]
     known = list(TOP_KEYS) + list(SECTIONS)

@@ -36,15 +36,19 @@ by :func:`geargen.core.accuracy.gear_errors`; a gear without one has no errors.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from geargen.design.assembly import Design
 from geargen.design.gear import _with_field_prefix
 from geargen.design.schema import Field, check_range, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
+
+if TYPE_CHECKING:  # the type only: the loader imports this module
+    from geargen.design.assembly import Design
 
 
 @dataclass(frozen=True)

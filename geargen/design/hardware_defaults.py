@@ -200,9 +200,10 @@ def _needs_defaults(data: Mapping[str, Any]) -> bool:
             and not data.get("stages"))
 
 
-def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Defaulted, ...]]:
+def default_hardware(data: Mapping[str, Any], read=None) -> tuple[dict[str, Any], tuple[Defaulted, ...]]:
     """``data`` (the parsed design file) completed with the default hardware of its drive, and
-    what was added; unchanged (and nothing added) where the file gives every section, or for a
+    what was added (``read``: the loader's non-validating reader of the file, which gives the gears
+    the rules size from; the loader passes it); unchanged (and nothing added) where the file gives every section, or for a
     drive the defaults do not cover (a split pinion, a beam-spring pinion, [stages]: their files
     give their hardware)."""
     if not isinstance(data, Mapping) or not _needs_defaults(data):
@@ -218,9 +219,10 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
             and not any(k.startswith("bore_diameter") for k in {**defaults_table, **gear_tables[n]})]
     if not wanted and not bare:
         return dict(data), ()
-    from geargen.design.assembly import design_from_dict
+    if read is None:
+        return dict(data), ()
     try:
-        rough = design_from_dict(data)  # the gears as read; the validating load reports any problem
+        rough = read(data)  # the gears as read; the validating load reports any problem
     except DesignError:
         return dict(data), ()
     if any(n not in rough.gears for n in LOOP):

@@ -25,7 +25,7 @@ from __future__ import annotations
 from typing import Any
 
 from geargen.design.schema import Field, read_table, shown
-from geargen.drives import KEYS, LAYOUT_KINDS, kind_of
+from geargen.drives.keys import KEYS, LAYOUT_KINDS, kind_of
 from geargen.drives.dual_pinion.keys import POSITIONS
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES

@@ -13,7 +13,7 @@ from __future__ import annotations
 from typing import Any
 
 from geargen.design.schema import read_table
-from geargen.drives import KEYS, kind_of
+from geargen.drives.keys import KEYS, kind_of
 from geargen.drives.fields import BEARING_CLEARANCE, part_key
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES

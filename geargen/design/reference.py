@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from geargen.design.assembly import SECTIONS
-from geargen.design.schema import (GEAR_NAME_MAX, MAX_FILE_BYTES, MAX_NESTING, NAME_MAX, PLAUSIBLE, Field, _fmt,
+from geargen.design.schema import (key_comment, GEAR_NAME_MAX, MAX_FILE_BYTES, MAX_NESTING, NAME_MAX, PLAUSIBLE, Field, _fmt,
                                    _range_text, plausible)
 from geargen.design.stiffness import (_KIND_KEYS, INTERNAL_UNITS, QUANTITY_SUFFIXES, BeamPinionSpec, ComponentSpec,
                                       FlexureSpec, PreloadSpec, Quantity, SpringSpec, StiffnessSpec)
@@ -336,22 +336,6 @@ def default_text(schema: Field | Quantity, path: tuple[str, ...] = ()) -> str:
     if schema.default is None:
         return ""
     return _value_text(schema.default, schema.kind)
-
-
-def key_comment(schema: Field | Quantity, key: str) -> str:
-    """The one-line comment of ``key`` in a design file: its meaning and the unit it is written in."""
-    suffix = ""
-    if isinstance(schema, Quantity):
-        suffix = key[len(schema.name) + 1:]
-    elif schema.kind in ("length", "angle"):
-        suffix = key[len(schema.name) + 1:]
-    text = schema.help
-    if suffix:
-        text += f" [{suffix}]"
-    elif isinstance(schema, Field) and schema.kind == "string" and schema.choices \
-            and not all(c in text for c in schema.choices):
-        text += ": " + " | ".join(schema.choices)
-    return text
 
 
 # ---------------------------------------------------------------- examples

@@ -543,3 +543,19 @@ def read_toml(path: str | Path) -> tuple[dict[str, Any], bytes]:
 def load_toml(path: str | Path) -> dict[str, Any]:
     """Read a TOML design file (see :func:`read_toml`); errors name the file, the cause and the line."""
     return read_toml(path)[0]
+
+
+def key_comment(schema, key: str) -> str:
+    """The one-line comment of ``key`` in a design file: its meaning and the unit it is written in
+    (``schema``: its :class:`Field`, or a quantity of the stiffness sections, whose key carries its
+    unit family's suffix)."""
+    suffix = ""
+    if not isinstance(schema, Field) or schema.kind in ("length", "angle"):
+        suffix = key[len(schema.name) + 1:]
+    text = schema.help
+    if suffix:
+        text += f" [{suffix}]"
+    elif isinstance(schema, Field) and schema.kind == "string" and schema.choices \
+            and not all(c in text for c in schema.choices):
+        text += ": " + " | ".join(schema.choices)
+    return text

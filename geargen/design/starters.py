@@ -19,7 +19,7 @@ import textwrap
 from dataclasses import dataclass
 from typing import Any
 
-from geargen.design.reference import key_comment
+from geargen.design.schema import key_comment
 from geargen.design.validate import key_schema
 from geargen.errors import DesignError
 

@@ -55,7 +55,7 @@ from typing import Any, Mapping
 
 from geargen.design.schema import (Field, as_float, bound_text, check_name, check_range, raise_unknown_keys, read_table,
                                    shown, unknown_key)
-from geargen.drives import KEYS, kind_of
+from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 

@@ -45,14 +45,18 @@ teeth the tolerances allow, ``min`` with the thickest.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import math
 from dataclasses import dataclass, field
 
-from geargen.design.assembly import Design
 from geargen.design.gear import _with_field_prefix
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
+
+if TYPE_CHECKING:  # the type only: the loader imports this module
+    from geargen.design.assembly import Design
 
 DEG = math.pi / 180.0
 

@@ -56,7 +56,7 @@ from geargen.design.synthesis import (ERROR_FIELDS, GEAR_ROLES, MONTE_CARLO_FIEL
                                       error_table, monte_carlo_settings, synthesis_inputs, validate_error_budget)
 from geargen.design.train import (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, TRAIN_FIELDS, TRAIN_QUANTITIES,
                                   dual_motor_spec, train_settings)
-from geargen.drives import KEYS, kind_of
+from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
 
 #: sections that need the drive type (the stiffness step reads it)

@@ -32,7 +32,8 @@ class DriveKind:
       check: a bevel pair, a planetary stage's ring meshes, rack meshes), each a dict with ``mesh``,
       ``kind`` and its numbers (mm, rad), failures appended to ``result``;
     - ``symmetry_line``: the layout figure draws the line the two paths mirror about;
-    - ``starter``: the commented starter file of ``geargen new`` (metric and inch), or None.
+    - ``starter``: the commented starter file of ``geargen new`` (metric and inch), or None;
+    - ``frame``: how the model's frame lies, for the reports.
     """
 
     name: str
@@ -43,6 +44,7 @@ class DriveKind:
     rows: Callable[..., list] = _no_rows
     symmetry_line: bool = False
     starter: Callable[[str], str] | None = None
+    frame: str = "the output gear's centre at the origin, +x along the symmetry line towards the input"
 
 
 __all__ = ["DriveKind"]

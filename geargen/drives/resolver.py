@@ -34,7 +34,9 @@ def place(design: Design, position: str | None = None) -> Layout:
             raise DesignError("--position", "'disengaged' needs an [engagement] section", "'engaged'")
         settings["position"] = position
     kind = DRIVES[settings["drive"]]
-    return replace(kind.place(design, settings), drive=kind)
+    # the kind goes with the settings: a placement that reads its own drive on the way (the sliding
+    # pinions' engagement from the placed shafts' stiffness) has it
+    return replace(kind.place(design, {**settings, "drive_kind": kind}), drive=kind)
 
 
 def resolve(design: Design, position: str | None = None) -> Layout:

@@ -1423,11 +1423,3 @@ def _side_curvature(phi_rad: np.ndarray, r: np.ndarray) -> tuple[float, float]:
             coef = np.polyfit(p, r[side], 2)
         out.append(float(coef[0]))
     return out[0], out[1]
-
-
-def make_model(meas: Measurement, noise: NoiseEstimate):
-    """The model class for a measurement's kind."""
-    if meas.kind == "transmission_error":
-        from geargen.fit.transmission import TransmissionModel
-        return TransmissionModel(meas, noise)
-    return PreloadModel(meas, noise) if meas.kind == "preload_trace" else TorqueModel(meas, noise)

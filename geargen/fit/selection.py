@@ -54,7 +54,8 @@ import numpy as np
 from geargen.fit.effects import PARAMETER_COUNT
 from geargen.fit.measurement import Measurement, MeasurementError
 from geargen.fit import model as model_module
-from geargen.fit.model import ModelFit, make_model
+from geargen.fit.model import ModelFit, PreloadModel, TorqueModel
+from geargen.fit.transmission import TransmissionModel
 from geargen.fit.noise import (NoiseEstimate, isolated_spikes, noise_of_signal, noise_of_torque_residual,
                                noise_of_transmission, with_stiffness)
 
@@ -188,6 +189,13 @@ class Diagnosis:
             "unexplained": bool(self.unexplained),
             **({"datasheet": _round_tree(self.datasheet)} if self.datasheet is not None else {}),
         }
+
+
+def make_model(meas: Measurement, noise: NoiseEstimate):
+    """The model class for a measurement's kind."""
+    if meas.kind == "transmission_error":
+        return TransmissionModel(meas, noise)
+    return PreloadModel(meas, noise) if meas.kind == "preload_trace" else TorqueModel(meas, noise)
 
 
 def _round(v, digits: int = 6):

@@ -36,32 +36,18 @@ def entered_allowance(spec: GearSpec, where: str | None = None) -> ThicknessAllo
 
 
 def range_fields(layout: Layout, mesh: MeshPlacement) -> tuple[str, str]:
-    """The design keys of ``mesh``'s backlash range (min, max), in the design's length unit."""
+    """The design keys of ``mesh``'s backlash range (min, max), in the design's length unit (the
+    placement names them: :attr:`geargen.model.MeshPlacement.range_keys`)."""
     u = layout.design.length_unit
-    if mesh.name.startswith("stage_"):
-        from geargen.design.stages import stages
-        # a planetary stage's sun-planet meshes are stage_NAME_sun_PLANET: the stage's range
-        name = next((st.name for st in stages(layout.design) if st.kind == "planetary"
-                     and mesh.name.startswith(f"stage_{st.name}_sun_")), mesh.name[len('stage_'):])
-        base = f"stages.{name}.circumferential_backlash_"
-        return f"{base}min_{u}", f"{base}max_{u}"
-    if layout.kind in ("split_pinion", "axial_preload"):
-        return f"layout.circumferential_backlash_min_{u}", f"layout.circumferential_backlash_max_{u}"
-    if layout.kind == "rack_dual_pinion":
-        return f"layout.path_backlash_min_{u}", f"layout.path_backlash_max_{u}"
-    n = mesh.name.split("_")[0][len("mesh"):]  # mesh1_a -> 1
-    return (f"synthesis.circumferential_backlash_min_mesh{n}_{u}",
-            f"synthesis.circumferential_backlash_max_mesh{n}_{u}")
+    return tuple(f"{key}_{u}" for key in mesh.range_keys)
 
 
 def design_centre_distance(layout: Layout, mesh: MeshPlacement) -> float:
     """The operating centre distance (mm) at which the design file states ``mesh``'s backlash
-    range: a dual-pinion loop mesh's ``[synthesis] centre_distance_meshN`` (the preload carriage
-    places mesh 1 where the loop closes, which moves with the teeth made: not a size to tolerance),
-    else where the mesh is placed (a stage's or the split pinion's centre distance)."""
-    if layout.kind == "dual_pinion" and mesh.name.startswith("mesh") and layout.synthesis is not None:
-        return float(layout.synthesis.inputs.centre_distance(int(mesh.name.split("_")[0][len("mesh"):])))
-    return mesh.centre_distance
+    range: where the placement says (a dual-pinion loop mesh's ``[synthesis] centre_distance_meshN``),
+    else where the mesh is placed."""
+    return mesh.range_centre_distance if mesh.range_centre_distance == mesh.range_centre_distance \
+        else mesh.centre_distance
 
 
 def mesh_route(layout: Layout, mesh: MeshPlacement, centre_distance_tolerance: float) -> BacklashRoute:

@@ -156,11 +156,11 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
         return None, "no [stiffness] and [preload] sections"
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
-    # the axial preload places its own lever: the output rotation per mm of the input's slide
-    axial = layout is not None and layout.kind == "axial_preload"
-    lever = layout.drive_report["stiffness"]["lever_rad_per_mm"] if axial else None
-    # its sliding fit's friction widens the preload band
-    friction = layout.drive_report["friction"]["friction_to_preload"] if axial else 0.0
+    # a drive that places its own preload lever (the axial preload: the output rotation per mm of the
+    # input's slide) reports it, and its sliding fit's friction, which widens the preload band
+    report = layout.drive_report if layout is not None else {}
+    lever = report.get("stiffness", {}).get("lever_rad_per_mm")
+    friction = report.get("friction", {}).get("friction_to_preload", 0.0)
     return stiffness_summary(design, travels, components=placed_components(design, layout),
                              beam_supports=beam_supports(layout, layout.engagement if layout else None),
                              placed_lever=lever, placed_friction=friction), note
@@ -177,9 +177,9 @@ def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | No
     from geargen.design.stiffness import stiffness_design
     from geargen.core.stiffness import sized_beam_pinion
     from geargen.model.shafts import drive_column
-    parts = parts_settings(layout.design)
-    if parts["hardware"] != "beam_pinion":
+    if not layout.design.section("beam_pinion"):  # no long pinion: no drive column under its bearings
         return None
+    parts = parts_settings(layout.design)
     sd = stiffness_design(layout.design)
     span = sized_beam_pinion(layout.design, sd.beam_pinion).span
     return drive_column(layout, parts, span, engagement).support_stiffness(sd.beam_pinion.elastic_modulus)

@@ -106,6 +106,10 @@ class MeshPlacement:
     engaged: bool = True
     working_flank: str = ""
     centre_distance: float = math.nan
+    # the design-file keys of the backlash range, without their unit suffix (min, max), and the
+    # centre distance the design states the range at (NaN: where the mesh is placed)
+    range_keys: tuple[str, str] = ("", "")
+    range_centre_distance: float = math.nan
 
 
 @dataclass(frozen=True)

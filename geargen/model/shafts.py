@@ -99,7 +99,7 @@ def bore_of(spec) -> float:
     return s.hub.bore_diameter
 
 
-def _mid(placed, gear) -> float:
+def mid_face(placed, gear) -> float:
     z0, z1 = placed.face_z(gear)
     return (z0 + z1) / 2
 
@@ -120,7 +120,7 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
         diameter = bore_of(members[0].spec)  # the shaft fills the gears' bore
         lower = Bearing(bearing_names[0], z0 - gap - width, width, diameter, outer)
         upper = Bearing(bearing_names[1], z1 + gap, width, diameter, outer)
-        loads = {g.name: _mid(p, g) for p in members for g in p.gears}
+        loads = {g.name: mid_face(p, g) for p in members for g in p.gears}
         return Shaft(name, tuple(members[0].centre), lower.z, upper.z + width, diameter, (lower, upper), loads)
 
     for side in ("a", "b"):
@@ -132,75 +132,6 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
                              parts["output_bearing_width"], parts["output_bearing_outer_diameter"])
     out["input"] = on_shaft("input_shaft", ("input_bearing_lower", "input_bearing_upper"), [by["input"]],
                             parts["input_bearing_width"], parts["input_bearing_outer_diameter"])
-    return out
-
-
-def carriage_arm_top(input_shaft: Shaft, parts: dict[str, Any]) -> float:
-    """Top of the preload carriage's arm, which holds the input's upper bearing from above: where
-    the stage shafts' lower bearings stand."""
-    return max(b.z + b.width for b in input_shaft.bearings) + parts["carriage_plate_thickness"]
-
-
-def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
-    """The robot joint's shafts (Fig. 10): the loop's (:func:`loop_shafts`), the input's running
-    on to the gear that drives it (the bevel gear, or the last of the [stages]), and the stage
-    shafts (:func:`stage_shafts`)."""
-    out = loop_shafts(layout.gears, parts)
-    shaft = out["input"]
-    from geargen.design.stages import stages
-    stage_list = stages(layout.design)
-    if not stage_list:
-        # the input shaft runs on to the bevel gear, whose heel is input_shaft_to_bevel above the input's mid-face
-        bevel_heel = shaft.loads["input"] + parts["input_shaft_to_bevel"]
-        out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, shaft.z_hi, shaft.diameter, shaft.bearings,
-                             {**shaft.loads, "bevel_gear": bevel_heel})
-        return out
-    if stage_list[-1].kind == "planetary":
-        # the input shaft runs up through the carriage arm into the planet carrier's lower plate
-        from geargen.drives.planetary.place import carrier
-        c = carrier(layout, parts, stage_list[-1])
-        out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, c.lower_top, shaft.diameter, shaft.bearings,
-                             {**shaft.loads, c.name: c.z_lower + c.thickness / 2})
-        return out
-    # the input shaft runs up through the carriage arm to the last stage's driven gear
-    last = layout.gear(stage_list[-1].driven)
-    if not math.isclose(bore_of(last.spec), shaft.diameter, rel_tol=1e-9):
-        raise DesignError(f"gears.{last.name}.bore_diameter", f"{bore_of(last.spec):.6g} mm: the gear sits on the input "
-                          "gear's shaft", f"the input's bore, {shaft.diameter:.6g} mm")
-    out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, last.height[1], shaft.diameter, shaft.bearings,
-                         {**shaft.loads, last.name: _mid(last, last.spec)})
-    out.update(stage_shafts(layout, parts, stage_list))
-    return out
-
-
-def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str, Shaft]:
-    """The shafts between the upstream stages (:mod:`geargen.design.stages`): each carries one
-    stage's driven gear and the next stage's driver, from its lower bearing standing on the
-    carriage arm to its upper bearing under the bridge over the highest stage."""
-    gap, width, outer = parts["bearing_clearance"], parts["stage_bearing_width"], parts["stage_bearing_outer_diameter"]
-    by = {p.name: p for p in layout.gears}
-    loop = [p for p in layout.gears if not p.group.startswith("stage_")]
-    z_lower = carriage_arm_top(loop_shafts(loop, parts)["input"], parts)
-    top = max(by[g].height[1] for st in stage_list for g in (st.driver, st.driven))
-    z_upper = top + gap
-    out: dict[str, Shaft] = {}
-    for i, (st, nxt) in enumerate(zip(stage_list, stage_list[1:]), start=1):
-        members = [by[st.driven], by[nxt.driver]]
-        bores = {bore_of(m.spec) for m in members}
-        if len(bores) != 1:
-            raise DesignError(f"gears.{nxt.driver}.bore_diameter", f"{bore_of(members[1].spec):.6g} mm: it shares a shaft "
-                              f"with {st.driven}", f"{bore_of(members[0].spec):.6g} mm, the same bore")
-        diameter = bores.pop()
-        if not diameter > 0:
-            raise DesignError(f"gears.{st.driven}.bore_diameter", "missing: the gear sits on a stage shaft", "> 0")
-        if not outer > diameter:
-            raise DesignError("parts.stage_bearing_outer_diameter", f"not larger than the stage shaft ({diameter:.6g} mm)",
-                              f"> {diameter:.6g} mm")
-        bearings = (Bearing(f"stage_bearing_lower_{i}", z_lower, width, diameter, outer),
-                    Bearing(f"stage_bearing_upper_{i}", z_upper, width, diameter, outer))
-        loads = {m.name: _mid(m, m.spec) for m in members}
-        out[f"stage_{i}"] = Shaft(f"stage_shaft_{i}", tuple(members[0].centre), z_lower, z_upper + width, diameter,
-                                  bearings, loads)
     return out
 
 
@@ -218,7 +149,7 @@ def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft
         upper = Bearing(f"cluster_bearing_upper_{side}", large.height[0] - gap - width, width, diameter, outer)
         lower = Bearing(f"cluster_bearing_lower_{side}", upper.z - parts["cluster_bearing_spacing"], width, diameter, outer)
         z_nut = lower.z - parts["locknut_width"]
-        loads = {g.name: _mid(p, g) for p in (large, small) for g in p.gears}
+        loads = {g.name: mid_face(p, g) for p in (large, small) for g in p.gears}
         out[f"cluster_{side}"] = Shaft(f"cluster_shaft_{side}", tuple(small.centre), z_nut, small.height[1], diameter,
                                        (lower, upper), loads)
     out["input"] = beam_pinion_input_shaft(layout, parts)
@@ -340,7 +271,7 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     # the drive turns the hollow shaft at its lower end, where the collar joins the inner shaft to it:
     # the stiff path twists from there to the stiff pinion's mid-face, the compliant one from the
     # collar's face to the compliant pinion
-    loads = {g.name: _mid(stiff, g) for g in stiff.gears}
+    loads = {g.name: mid_face(stiff, g) for g in stiff.gears}
     hollow = Shaft("hollow_shaft", tuple(stiff.centre), z_hollow0, zs1, d_hollow, pair, loads, bore=bore_hollow,
                    twist=(z_hollow0, next(iter(loads.values()))))
     cw = parts["collar_width"]
@@ -349,24 +280,19 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     outboard = Bearing("compliant_bearing", z_top, parts["compliant_bearing_width"], d_inner,
                        parts["compliant_bearing_outer_diameter"])
     inner = Shaft("inner_shaft", tuple(compl.centre), collar.z, outboard.z + outboard.width, d_inner,
-                  (collar, outboard), {g.name: _mid(compl, g) for g in compl.gears}, twist=(z_hollow0, zc0))
+                  (collar, outboard), {g.name: mid_face(compl, g) for g in compl.gears}, twist=(z_hollow0, zc0))
     return {"hollow": hollow, "inner": inner}
 
 
-#: the shafts of each kind of hardware that the model places
-SHAFT_BUILDERS = {"dual_pinion": carriage_shafts, "beam_pinion": beam_pinion_shafts, "split_pinion": split_pinion_shafts}
-
-
 def shafts(layout: Layout) -> dict[str, Shaft]:
-    """The placed shafts of the resolved drive (empty without a [parts] table)."""
+    """The placed shafts of the resolved drive, as its kind places them (:attr:`geargen.drives.kind.DriveKind.shafts`;
+    empty without a [parts] table or for a kind that places none here)."""
     from geargen.design.parts import parts_settings
-    if not layout.design.section("parts"):
+    if not layout.design.section("parts") or layout.drive is None or layout.drive.shafts is None:
         return {}
-    parts = parts_settings(layout.design)
-    builder = SHAFT_BUILDERS.get(parts["hardware"])
-    return builder(layout, parts) if builder is not None else {}
+    return layout.drive.shafts(layout, parts_settings(layout.design))
 
 
-__all__ = ["Bearing", "Shaft", "DriveColumn", "carriage_shafts", "beam_pinion_shafts", "beam_pinion_bearings",
+__all__ = ["Bearing", "Shaft", "DriveColumn", "loop_shafts", "mid_face", "beam_pinion_shafts", "beam_pinion_bearings",
            "beam_pinion_input_shaft",
-           "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "SHAFT_BUILDERS", "bore_of"]
+           "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "bore_of"]

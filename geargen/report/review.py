@@ -20,6 +20,9 @@ from pathlib import Path
 from typing import Any
 
 
+#: the model frame of a drive whose kind says nothing else (geargen.drives.kind.DriveKind.frame)
+FRAME = "the output gear's centre at the origin, +x along the symmetry line towards the input"
+
 @dataclass
 class Review:
     """What the report shows. ``blocks`` are ``(kind, payload)``: ``("h2", text)``, ``("h3", text)``,
@@ -322,9 +325,7 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     r.h("Key numbers")
     r.table(*key_numbers_table(key_numbers(result)))
     r.p(design.description or design.name)
-    frame = ("the rack's pitch line along x, its teeth toward +y, the symmetry line (the preload carriage's "
-             "motion) on the y axis" if layout.kind == "rack_dual_pinion" else
-             "the output gear's centre at the origin, +x along the symmetry line towards the input")
+    frame = layout.drive.frame if layout.drive is not None else FRAME
     r.p(f"Design file {design.path.name if design.path else '-'}, sha256 {design.sha256}. Lengths in {unit} "
         f"unless marked; the model frame has {frame}, +z along the gear axes. Position modelled: {layout.position}.")
     if not result.ok:

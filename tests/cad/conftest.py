@@ -6,7 +6,7 @@ import warnings
 import pytest
 
 from geargen.design.gear import GearSpec, Hub
-from geargen.profile import UndercutWarning
+from geargen.profile.tooth import UndercutWarning
 
 DP32 = 25.4 / 32
 DEG = math.pi / 180

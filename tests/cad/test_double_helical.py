@@ -20,7 +20,7 @@ from geargen.cad.gear_solid import check_solid, solid_volume
 from geargen.cad.measure import flank_deviation, section
 from geargen.design.gear import GearSpec, Hub
 from geargen.errors import DesignError
-from geargen.profile import section_rotation
+from geargen.profile.tooth import section_rotation
 from geargen.profile.tooth import tooth_profile
 
 pytestmark = pytest.mark.slow

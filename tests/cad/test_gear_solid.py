@@ -9,7 +9,7 @@ from geargen.cad.gear_solid import build_cluster, build_gear, check_solid, solid
 from geargen.cad.measure import flank_deviation, section
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import Hub
-from geargen.profile import section_rotation
+from geargen.profile.tooth import section_rotation
 
 pytestmark = pytest.mark.slow
 
@@ -110,7 +110,7 @@ def test_cluster_gear(gap, make_spec):
     phase = 0.05
     cluster = ClusterSpec(large, small, axial_gap=gap, relative_phase=phase, name="cluster")
     g = build_cluster(cluster, check=True)
-    from geargen.profile import tooth_profile
+    from geargen.profile.tooth import tooth_profile
     p_small = tooth_profile(small)
     spacer = 0.0
     if gap:

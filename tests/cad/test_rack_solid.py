@@ -137,7 +137,7 @@ def test_helical_rack_teeth_follow_the_pinion_of_its_hand(hand):
     hand) carries its lowest tooth's pitch point, r * rotation, so the rack rolls with the pinion
     in every section. Crossing found by bisection on the section's flank points."""
     from geargen.design.gear import GearSpec
-    from geargen.profile import section_rotation
+    from geargen.profile.tooth import section_rotation
 
     beta = math.radians(25)
     spec = RackSpec(teeth=6, module=2.0, pressure_angle=A20, face_width=16.0, pitch_line_height=9.0,

@@ -10,7 +10,7 @@ from matplotlib.path import Path as MplPath
 
 from geargen.checks.mesh2d import MeshSetup, check_mesh, overlap_area, polar_outline, tip_clearance
 from geargen.core.geometry import GearPair, mesh_geometry, tight_mesh_centre_distance
-from geargen.profile import sample_outline
+from geargen.profile.segments import sample_outline
 
 from checks_support import gear, inch_gear, theory_normal_backlash, tight_centre_distance
 

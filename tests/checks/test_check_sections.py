@@ -12,7 +12,7 @@ import pytest
 from geargen.checks.mesh2d import CheckSettings, MeshSetup, check_mesh, mesh_positions, polar_outline
 from geargen.checks.solids import (GearSections, check_mesh_sections, compare_paths, polygon_play,
                                    section_planes, stated_tolerance)
-from geargen.profile import sample_outline
+from geargen.profile.segments import sample_outline
 
 from checks_support import gear, inch_gear, theory_normal_backlash, tight_centre_distance
 
@@ -23,7 +23,7 @@ def _sampled_sections(spec, planes, step):
     """The exact outline sampled ``step`` mm apart as chord segments (no CAD); deviation is the
     largest chord sagitta step^2 / (8 rho_min), rho_min the smallest radius of curvature
     (the rack tip radius on the fillet)."""
-    from geargen.profile import section_rotation
+    from geargen.profile.tooth import section_rotation
 
     prof = polar_outline(spec).profile
     segs = []
@@ -132,7 +132,7 @@ def test_helical_gears_with_offset_faces_agree_and_wrong_frames_are_refused():
 
     g1 = gear(17, 1.5, beta_deg=18, hand="right", face_width=12.0)
     g2 = gear(43, 1.5, beta_deg=18, hand="left", face_width=6.0)
-    from geargen.profile import section_rotation
+    from geargen.profile.tooth import section_rotation
 
     # gear 2's face starts 4 mm up gear 1's: its z = 0 section meets gear 1's section at z = 4
     centred = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + 0.02)

@@ -93,7 +93,7 @@ def test_backlash_measured_on_the_pinion_solid_section(beta):
     from geargen.cad.gear_solid import build_gear
     from geargen.cad.measure import section
     from geargen.core.rack import rack_outline
-    from geargen.profile import section_rotation
+    from geargen.profile.tooth import section_rotation
 
     r = RackSpec(teeth=20, module=2.0, pressure_angle=A20, face_width=20.0, pitch_line_height=12.0,
                  helix_angle=beta, thinning=0.01)

@@ -49,7 +49,7 @@ import numpy as np
 import pytest
 
 from geargen.cli import main
-from geargen.design.assembly import load_design
+from geargen.design.assembly import design_from_dict, load_design
 from geargen.design.schema import MAX_NESTING, Field, plausible
 from geargen.design.stiffness import QUANTITY_SUFFIXES, Quantity
 from geargen.design.validate import key_schema
@@ -215,7 +215,7 @@ def _required(data: dict, path: tuple[str, ...], schema) -> bool:
         from geargen.design.hardware_defaults import default_hardware
         trimmed = {k: (dict(v) if k == "parts" else v) for k, v in data.items()}
         del trimmed["parts"][path[-1]]
-        completed, _ = default_hardware(trimmed)
+        completed, _ = default_hardware(trimmed, design_from_dict)
         return not any(k.startswith(schema.name) for k in completed.get("parts", {}))
     return bool(schema.required)
 

@@ -219,7 +219,8 @@ def test_an_absurd_effect_or_noise_level_makes_the_record_unexplained():
     rotation recorded, or a channel's noise level below its reading error each fail it."""
     from dataclasses import replace as with_values
 
-    from geargen.fit.model import ModelFit, Term, make_model
+    from geargen.fit.model import ModelFit, Term
+    from geargen.fit.selection import make_model
     from geargen.fit.selection import estimate_noise, plausibility
     sim = _simulate("torque_deflection", False, 204, rotation_resolution_urad=2.0)
     m = sim.measurement

@@ -8,7 +8,7 @@ import pytest
 from scipy.interpolate import BSpline
 
 from geargen.design.gear import GearSpec
-from geargen.profile import tooth_profile
+from geargen.profile.tooth import tooth_profile
 from geargen.profile.bspline_fit import fit_rotation, fit_segment, greville
 
 DEG = math.pi / 180

@@ -9,7 +9,7 @@ import pytest
 from geargen.core.involute import tooth_half_angle
 from geargen.design.gear import GearSpec
 from geargen.errors import DesignError, GeometryError
-from geargen.profile import UndercutWarning, section_rotation, tooth_profile, twist_rate
+from geargen.profile.tooth import UndercutWarning, section_rotation, tooth_profile, twist_rate
 from geargen.profile.hermite import hermite_error, hermite_nodes
 from geargen.profile.segments import outline_area, sample_outline
 

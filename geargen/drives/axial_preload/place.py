@@ -78,7 +78,7 @@ from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
 from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, thin_pair,
                                   running_backlash)
-from geargen.model.shafts import Bearing, Shaft, bore_of as _bore, _mid
+from geargen.model.shafts import Bearing, Shaft, bore_of, mid_face
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -151,6 +151,10 @@ def _preload_inputs(design: Design) -> tuple[float, float, float, str]:
                           "shaft along its axis", "preload_spring_stiffness_N_per_mm (linear, along the slide)")
     preload = pre.preload if pre.preload is not None else required_preload(pre.max_output_torque, "type2")
     return preload, pre.preload_spring_linear, sd.stiffness.elastic_modulus, sd.stiffness.mesh_stiffness
+
+
+#: the design keys of each mesh's backlash range
+RANGE_KEYS = ("layout.circumferential_backlash_min", "layout.circumferential_backlash_max")
 
 
 def place_axial_preload(design: Design, s: dict) -> Layout:
@@ -289,7 +293,7 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
         zl = max(gp.face_z(spec[p])[0], go.face_z(spec[o])[0])
         zh = min(gp.face_z(spec[p])[1], go.face_z(spec[o])[1])
         meshes.append(MeshPlacement(m, s[p], spec[p], s[o], spec[o], (zl + zh) / 2, lo, hi, backlash[m], True,
-                                    flank, c))
+                                    flank, c, RANGE_KEYS))
     report: dict[str, Any] = {
         "slide": {"take_up": take_up, "windup": windup, "total": take_up + windup, "turn_rad": theta,
                   "at_backlash_min": slide_range[0], "at_backlash_max": slide_range[1], "stroke": stroke,
@@ -365,12 +369,12 @@ def axial_preload_hardware(layout: Layout, parts: dict[str, Any]) -> AxialPreloa
     shift = layout.axial_shift["input"]
     pin = [layout.gear(st[r]) for r in ("pinion_left", "pinion_right")]
     out = [layout.gear(st[r]) for r in ("output_right", "output_left")]
-    d_in, d_out = _bore(pin[0].spec), _bore(out[0].spec)
+    d_in, d_out = bore_of(pin[0].spec), bore_of(out[0].spec)
     for placed in pin + out:
-        own = _bore(placed.spec)
-        if not own > 0 or own != _bore((pin if placed in pin else out)[0].spec):
+        own = bore_of(placed.spec)
+        if not own > 0 or own != bore_of((pin if placed in pin else out)[0].spec):
             raise DesignError(f"gears.{placed.name}.bore_diameter", f"{own:.6g} mm: the gears on one shaft share its "
-                              "diameter, which their bore gives", f"{_bore((pin if placed in pin else out)[0].spec):.6g} mm")
+                              "diameter, which their bore gives", f"{bore_of((pin if placed in pin else out)[0].spec):.6g} mm")
     ibw, ibod = parts["input_bearing_width"], parts["input_bearing_outer_diameter"]
     obw, obod = parts["output_bearing_width"], parts["output_bearing_outer_diameter"]
     lo_in = min(p.height[0] for p in pin) - shift  # the pinions' faces at the reference position
@@ -386,9 +390,9 @@ def axial_preload_hardware(layout: Layout, parts: dict[str, Any]) -> AxialPreloa
                     Bearing("output_bearing_upper", top[0], obw, d_out, obod))
     c = tuple(pin[0].centre)
     shaft_in = Shaft("input_shaft", c, in_bearings[0].z, in_bearings[1].z + ibw + parts["motor_stub_length"], d_in,
-                     in_bearings, {p.name: _mid(p, p.spec) for p in pin})
+                     in_bearings, {p.name: mid_face(p, p.spec) for p in pin})
     shaft_out = Shaft("output_shaft", tuple(out[0].centre), out_bearings[0].z, out_bearings[1].z + obw, d_out,
-                      out_bearings, {p.name: _mid(p, p.spec) for p in out})
+                      out_bearings, {p.name: mid_face(p, p.spec) for p in out})
     d, mean = parts["spring_wire_diameter"], parts["spring_mean_diameter"]
     if not (mean - d > d_in and mean + d < ibod):
         raise DesignError("parts.spring_mean_diameter", f"{mean:.6g} mm: the coils ({mean - d:.6g} to {mean + d:.6g} mm) "

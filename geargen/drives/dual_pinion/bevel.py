@@ -88,7 +88,7 @@ def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDri
     s = parts_settings(design) if parts is None else parts
     if s.get("bevel_pinion_teeth") is None:
         return None
-    from geargen.model.shafts import carriage_shafts
+    from geargen.drives.dual_pinion.shafts import carriage_shafts
     zp, zg = s["bevel_pinion_teeth"], s["bevel_gear_teeth"]
     module = s["bevel_module"] or 25.4 / s["bevel_diametral_pitch_per_in"]
     thinning = bevel_backlash(layout, s) / 2

@@ -30,7 +30,8 @@ from geargen.model import bodies as B
 from geargen.drives.dual_pinion.bevel import bevel_drive
 from geargen.model.bodies import lowest_x_above
 from geargen.model.components import (ComponentSet, Hardware, Toothed, along_x, analytic_body, at, placed_box)
-from geargen.model.shafts import bore_of, carriage_arm_top, carriage_shafts
+from geargen.drives.dual_pinion.shafts import carriage_arm_top, carriage_shafts
+from geargen.model.shafts import bore_of
 from geargen.units import MM_PER_IN
 
 

@@ -3,7 +3,7 @@
 from geargen.drives.dual_pinion import bevel_verdict, hardware, keys, place
 from geargen.drives.kind import DriveKind
 from geargen.drives.planetary import verdict as planetary_verdict
-from geargen.model.shafts import carriage_shafts
+from geargen.drives.dual_pinion.shafts import carriage_shafts
 
 
 def rows(layout, result) -> list:

@@ -24,7 +24,7 @@ from geargen.units import LENGTH_SUFFIXES
 def place(design: Design, s: dict) -> Layout:
     """The dual pinion placed (``s``: the [layout] settings, their ``position`` the one to place)."""
     wanted = s["position"]
-    layout = _place_dual_pinion(design, {**s, "position": "engaged"}, None)
+    layout = replace(_place_dual_pinion(design, {**s, "position": "engaged"}, None), drive=s.get("drive_kind"))
     if not design.section("engagement"):
         return layout
     # the lead and stops of the sliding pinions come from the stiffness of the drive engaged
@@ -33,6 +33,12 @@ def place(design: Design, s: dict) -> Layout:
     if wanted == "engaged":
         return replace(layout, engagement=engagement)
     return _place_dual_pinion(design, s, engagement)
+
+
+def _range_keys(n: int) -> tuple[str, str]:
+    """The design keys of loop mesh ``n``'s backlash range (the preload carriage places mesh 1 where
+    the loop closes, which moves with the teeth made: its range is stated at the synthesis's centres)."""
+    return f"synthesis.circumferential_backlash_min_mesh{n}", f"synthesis.circumferential_backlash_max_mesh{n}"
 
 
 def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
@@ -169,7 +175,7 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
         c = math.dist(by_name["input"].centre, by_name[name].centre)
         meshes.append(MeshPlacement(f"mesh1_{side}", "input", g_in, name, spec, (lo + hi) / 2, *ranges[1],
                                     running_backlash(g_in, spec, c), True, "input ccw" if side == "a" else "input cw",
-                                    c))
+                                    c, _range_keys(1), inputs.centre_distance(1)))
         # mesh 2: the cluster's small gear (gear 1) against the output
         name, spec = part_of("cluster_small", side)
         lo = max(by_name[name].face_z(spec)[0], by_name["output"].face_z(g_out)[0])
@@ -179,7 +185,8 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
         meshes.append(MeshPlacement(f"mesh2_{side}", name, spec, "output", g_out,
                                     (lo + hi) / 2 if engaged else by_name[name].face_z(spec)[0],
                                     *ranges[2], running_backlash(spec, g_out, c), engaged,
-                                    "cluster cw" if side == "a" else "cluster ccw", c))
+                                    "cluster cw" if side == "a" else "cluster ccw", c, _range_keys(2),
+                                    inputs.centre_distance(2)))
     train = Fraction(g_large.teeth, g_in.teeth) * Fraction(g_out.teeth, g_small.teeth)
     stage_gears, stage_meshes, stage_notes = _place_stages(design, s, gears, rule)
     gears += stage_gears
@@ -206,7 +213,8 @@ def stage_levels(design, loop_gears) -> float:
     (the stage gears turn over it). ``loop_gears``: the placed loop gears (the carriage hardware
     of ``[parts]`` sizes the rest)."""
     from geargen.design.parts import parts_settings
-    from geargen.model.shafts import carriage_arm_top, loop_shafts
+    from geargen.drives.dual_pinion.shafts import carriage_arm_top
+    from geargen.model.shafts import loop_shafts
     p = parts_settings(design)
     for key in ("stage_bearing_width", "input_bearing_width", "carriage_plate_thickness"):
         if p.get(key) is None:
@@ -266,7 +274,9 @@ def _place_stages(design: Design, s: dict, loop_gears: list[GearPlacement], rule
         hi = min(z_driver + driver.face_width, z_driven + driven.face_width)
         meshes.append(MeshPlacement(f"stage_{st.name}", st.driver, driver, st.driven, driven, (lo + hi) / 2,
                                     st.backlash_min, st.backlash_max,
-                                    running_backlash(driver, driven, st.centre_distance), True, "", st.centre_distance))
+                                    running_backlash(driver, driven, st.centre_distance), True, "", st.centre_distance,
+                                    (f"stages.{st.name}.circumferential_backlash_min",
+                                     f"stages.{st.name}.circumferential_backlash_max")))
         if rule != "as_designed":
             notes.append(f"stage {st.name}: thinning derived for {rule}-range backlash: {st.driver} "
                          f"{driver.thinning / LENGTH_SUFFIXES[design.length_unit]:.6g}, {st.driven} "

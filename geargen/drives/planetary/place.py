@@ -117,7 +117,9 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
         gears.append(GearPlacement(name, planet, c, z[planet.name],
                                    r - section_rotation(planet, level - z[planet.name]), group, ("planetary_planet",)))
         meshes.append(MeshPlacement(f"stage_{st.name}_sun_{name}", st.sun, sun, name, planet, (lo + hi) / 2,
-                                    st.backlash_min, st.backlash_max, modelled, True, "", a))
+                                    st.backlash_min, st.backlash_max, modelled, True, "", a,
+                                    (f"stages.{st.name}.circumferential_backlash_min",
+                                     f"stages.{st.name}.circumferential_backlash_max")))
     unit = design.length_unit
     notes.append(f"stage {st.name}: planetary, {len(angles)} planets on the carrier radius "
                  f"{a / LENGTH_SUFFIXES[unit]:.6g} {unit} at "

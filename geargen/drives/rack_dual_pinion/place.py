@@ -261,11 +261,12 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     ]
     plane = z_input + inp.face_width / 2
     c = float(frame.centre_distance(y_c))
+    keys = ("layout.path_backlash_min", "layout.path_backlash_max")
     meshes = (
         MeshPlacement("mesh_input_a", "input", inp, "path_gear_a", path, plane, *path_range,
-                      running_backlash(inp, path, c), True, "input cw", c),
+                      running_backlash(inp, path, c), True, "input cw", c, keys),
         MeshPlacement("mesh_input_b", "input", inp, "path_gear_b", path, plane, *path_range,
-                      running_backlash(inp, path, c), True, "input ccw", c),
+                      running_backlash(inp, path, c), True, "input ccw", c, keys),
     )
     notes = [f"rack drive: carriage (input centre) at y = {y_c * k:.6g} {unit} above the rack's pitch line, "
              f"{(y_c - y_nom) * k:+.3g} {unit} from nominal; the loop closes there (both pinions tight on the rack)",

@@ -129,7 +129,8 @@ def place(design: Design, s: dict) -> Layout:
             raise DesignError("gears.output.face_width", f"the output's face does not reach {part}",
                               f">= {zh:.4g} mm")
         meshes.append(MeshPlacement(f"mesh_{part}", part, spec, "output", out, (zl + zh) / 2, lo, hi,
-                                    running_backlash(spec, out, c), True, flank, c))
+                                    running_backlash(spec, out, c), True, flank, c,
+                                    ("layout.circumferential_backlash_min", "layout.circumferential_backlash_max")))
     notes = []
     thinning = {g.name: {"source": "design"} for g in gears}
     if rule != "as_designed":
