@@ -289,47 +289,48 @@ def stiffness(layout: Layout):
 # ============================================================================ export
 
 
-def rotating_parts(layout: Layout, parts) -> list:
-    """The mass properties of every rotating solid of the built ``parts`` (gears included), each
-    with its rigid body (:func:`structure_check`) and whether the motor turns that body directly
-    (:class:`geargen.model.train.BodyPart`). Bearings, motors and reference parts (the load) are
-    not counted: a bearing's turning ring is not a separate solid, a motor's rotor is its data
+def rotating_parts(layout: Layout) -> list:
+    """The mass properties of every rotating part of the resolved drive (gears included), each with
+    its rigid body (:func:`geargen.checks.structure.drive_structure`) and whether the motor turns
+    that body directly (:class:`geargen.model.train.BodyPart`), from the parts' own geometry
+    (:mod:`geargen.model.mass`: no solid is built). Bearings, motors and reference parts (the load)
+    are not counted: a bearing's turning ring is not a separate part, a motor's rotor is its data
     sheet's inertia."""
-    from geargen.cad.mass import mass_properties
+    from geargen.checks.structure import drive_structure
+    from geargen.model.mass import component_mass, placed_gear_mass
     from geargen.model.train import BodyPart
-    report = structure_check(parts, layout)
+    if layout.hardware is None:
+        return []
+    report = drive_structure(layout)
     body_of = {n: body for body in report.bodies for n in body}
-    kinds = {p.name: p.kind for p in parts.parts}
-    turning = {g.name for g in layout.gears if "planetary_ring" not in g.roles} | set(parts.rotating)
+    components = {c.name: c for c in layout.hardware.components}
+    turning = {g.name for g in layout.gears if "planetary_ring" not in g.roles} | set(layout.hardware.rotating)
     turning_bodies = {body for body in report.bodies if turning & set(body)}
-    motors = {n for n, k in kinds.items() if k == "motor"}
-    driven_by_motor = {n for a, b, _ in parts.intended_contacts for n, m in ((a, b), (b, a)) if m in motors}
-    cache: dict[int, Any] = {}
+    motors = {n for n, c in components.items() if c.kind == "motor"}
+    driven_by_motor = {n for a, b, _ in layout.hardware.contacts for n, m in ((a, b), (b, a)) if m in motors}
     out = []
-    for p in parts.parts:
-        body = body_of.get(p.name, (p.name,))
-        if body not in turning_bodies or p.kind in ("bearing", "motor") or p.role == "reference":
+    parts = [(g.name, "gear", "gear", g) for g in layout.gears] + \
+        [(c.name, c.kind, c.role, c) for c in layout.hardware.components]
+    for name, kind, role, item in parts:
+        body = body_of.get(name, (name,))
+        if body not in turning_bodies or kind in ("bearing", "motor") or role == "reference":
             continue
-        key = id(p.shape)
-        if key not in cache:
-            cache[key] = mass_properties(p.shape, eps=1e-4)  # within 1e-6 of the inertia on the gears, 10x faster than 1e-9
-        m = cache[key]
-        out.append(BodyPart(p.name, m.volume, m.axial_moment, m.off_axis, tuple(body),
+        m = placed_gear_mass(item) if kind == "gear" else component_mass(item)
+        out.append(BodyPart(name, m.volume, m.axial_moment, m.off_axis, tuple(body),
                             on_motor=bool(driven_by_motor & set(body))))
     return out
 
 
 def declared_gear_parts(design: Design) -> list:
-    """The mass properties of the gears a ``[dual_motor]`` names (each built alone, about its own
-    axis), as :class:`geargen.model.train.BodyPart`."""
-    from geargen.cad.gear_solid import build_gear
-    from geargen.cad.mass import mass_properties
+    """The mass properties of the gears a ``[dual_motor]`` names (each about its own axis, from its
+    outline: :func:`geargen.model.mass.gear_mass`), as :class:`geargen.model.train.BodyPart`."""
     from geargen.design.train import dual_motor_spec
+    from geargen.model.mass import gear_mass
     from geargen.model.train import BodyPart
     spec = dual_motor_spec(design)
     out = []
     for name in (*spec.pinions, spec.output):
-        m = mass_properties(build_gear(design.gear(name)).shape, eps=1e-4)
+        m = gear_mass(design.gear(name))
         out.append(BodyPart(name, m.volume, m.axial_moment, m.off_axis, (name,)))
     return out
 

@@ -49,7 +49,7 @@ def run(args) -> int:
 
 def analysis(design):
     """``(kind, analysis)``: the train of a drive (:func:`geargen.model.train.analyse`) or the
-    dual-motor drive (:func:`geargen.model.train.dual_motor_analysis`), from the built solids."""
+    dual-motor drive (:func:`geargen.model.train.dual_motor_analysis`), from the parts' geometry (no solid built)."""
     from geargen import pipeline
     if design.section("dual_motor"):
         from geargen.model.train import dual_motor_analysis
@@ -63,9 +63,8 @@ def analysis(design):
     if summary is None:
         raise DesignError("stiffness", "missing: geargen train needs [stiffness] and [preload] sections",
                           "see assemblies/robot_joint.toml")
-    parts = pipeline.other_parts(layout, pipeline.gear_solids(layout), summary)
     from geargen.model.train import analyse
-    return "drive", analyse(layout, summary, pipeline.rotating_parts(layout, parts))
+    return "drive", analyse(layout, summary, pipeline.rotating_parts(layout))
 
 
 def _run(args, design, output) -> int:

@@ -577,6 +577,33 @@ def _tree_mass(n: _Node):
     return None
 
 
+def _slot_moments(bore: float, outer_diameter: float, slot: float) -> tuple[float, float, float]:
+    """(area, first moment along x, polar moment) of the part of the ring bore/2 < r < D/2 in the
+    radial slot x > 0, |y| < slot/2, in closed form: strips along x between the circles, integrated
+    over y with the antiderivatives of sqrt(R^2 - y^2), y^2 sqrt(R^2 - y^2) and (R^2 - y^2)/2."""
+    def strip(radius: float, y: float) -> np.ndarray:  # the integrals to y of x, x^2/2, x^3/3 + y^2 x at x = sqrt(R^2 - y^2)
+        x = math.sqrt(max(radius * radius - y * y, 0.0))
+        arc = radius * radius * math.asin(min(y / radius, 1.0))
+        area = (y * x + arc) / 2
+        y2x = (y * (2 * y * y - radius * radius) * x + radius * radius * arc) / 8
+        return np.array([area, (radius * radius * y - y ** 3 / 3) / 2, (radius * radius * area + 2 * y2x) / 3])
+
+    a, b = bore / 2, outer_diameter / 2
+    h = min(slot / 2, b)
+    total = 2 * strip(b, h)  # out to the outer circle over the whole slot (symmetric in y)
+    if a > 0:
+        total -= 2 * strip(a, min(h, a))  # less the bore's side, where the slot crosses it
+    return float(total[0]), float(total[1]), float(total[2])
+
+
+def _split_collar_mass(bore: float, outer_diameter: float, width: float, slot: float) -> MassProperties:
+    ring_area = math.pi * (outer_diameter ** 2 - bore ** 2) / 4
+    ring_polar = math.pi * (outer_diameter ** 4 - bore ** 4) / 32
+    area, first_x, polar = _slot_moments(bore, outer_diameter, slot) if slot > 0 else (0.0, 0.0, 0.0)
+    section = ring_area - area
+    return MassProperties(section * width, (-first_x / section, 0.0, width / 2), (ring_polar - polar) * width)
+
+
 def mass_properties(body: Body, cells: int = 96) -> MassProperties:
     """Volume, centre of mass and moment about the own z axis of ``body`` (unit density).
 
@@ -584,6 +611,8 @@ def mass_properties(body: Body, cells: int = 96) -> MassProperties:
     part); otherwise a midpoint integration of the inside of the signed distance on a grid of
     ``cells`` per side of the body's box (the error is of the order of the boundary cells' share,
     ~1/cells)."""
+    if body.kind == "split_collar":
+        return _split_collar_mass(*body.args)
     tree = primitive_tree(body)
     closed = _tree_mass(tree)
     if closed is not None:

@@ -381,5 +381,17 @@ def _undercut_intersection(fillet: FilletCurve, flank: InvoluteCurve, r_b: float
     return theta, roll
 
 
-__all__ = ["ToothProfile", "tooth_profile", "section_rotation", "twist_rate", "FilletCurve",
+#: depth of a double-helical gear's centre-gap groove below the teeth's root circle, over the normal
+#: module. A groove at the root radius itself would coincide with the root lands and touch the
+#: fillets (the kernel's fuse then gave invalid solids); 0.01 m_n deeper it is clear of them, and a
+#: hob or shaper needs the run-out anyway.
+GROOVE_DEPTH_COEFFICIENT = 0.01
+
+
+def centre_gap_radius(spec: GearSpec, profile: ToothProfile) -> float:
+    """Radius of a double-helical gear's blank in its centre gap (mm): the root radius less 0.01 m_n."""
+    return profile.root_radius - GROOVE_DEPTH_COEFFICIENT * spec.module
+
+
+__all__ = ["GROOVE_DEPTH_COEFFICIENT", "centre_gap_radius", "ToothProfile", "tooth_profile", "section_rotation", "twist_rate", "FilletCurve",
            "UndercutWarning", "MIN_TIP_LAND_MODULES"]

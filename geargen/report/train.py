@@ -77,7 +77,7 @@ def format_train(data: dict[str, Any]) -> str:
     """The text report of :func:`train_dict`'s data."""
     t = data["totals"]
     lines = [f"Train of {data['design']}: motor to output {data['motor_speed_over_output']:.6g}:1", "",
-             "Rotating parts (inertia from the solids; reflected = own / ratio_to_motor^2)",
+             "Rotating parts (inertia from the parts' geometry; reflected = own / ratio_to_motor^2)",
              f"  {'part':26s} {'mass kg':>9s} {'J own kg m2':>12s} {'ratio':>8s} {'J at motor':>11s}  turns with"]
     for p in data["parts"]:
         lines.append(f"  {p['name']:26s} {p['mass_kg']:9.4g} {p['inertia_own_axis_kg_m2']:12.4g} "

@@ -9,6 +9,7 @@ from geargen.cad import parts as P
 from geargen.cad.gear_solid import build_gear
 from geargen.cad.mass import mass_properties
 from geargen.design.gear import gear_from_table
+from geargen.model.mass import polygon_moments
 from geargen.profile.segments import sample_outline
 
 STEEL = 7850.0
@@ -31,14 +32,6 @@ def test_hollow_shaft_against_closed_form():
     assert m.inertia(STEEL) == pytest.approx(mass * (0.015 ** 2 + 0.009 ** 2) / 2, rel=1e-9)
 
 
-def _polar_moment(points: np.ndarray) -> float:
-    """Integral of r^2 dA over a closed polygon (exact for the polygon), mm^4."""
-    x, y = points[:, 0], points[:, 1]
-    x1, y1 = np.roll(x, -1), np.roll(y, -1)
-    cross = x * y1 - x1 * y
-    return float(np.sum(cross * (x * x + x * x1 + x1 * x1 + y * y + y * y1 + y1 * y1)) / 12.0)
-
-
 @pytest.mark.slow
 def test_gear_inertia_against_its_exact_outline():
     """Independent geometry: a spur gear's axial moment is the polar moment of its exact transverse
@@ -47,7 +40,7 @@ def test_gear_inertia_against_its_exact_outline():
                             "bore_diameter_mm": 10.0}, where="g", name="g", length_unit="mm")
     solid = build_gear(spec)
     outline = sample_outline(solid.profile.outline(), 5e-4)
-    expected = (abs(_polar_moment(outline)) - math.pi * 5.0 ** 4 / 2) * spec.face_width
+    expected = (abs(polygon_moments(outline)[1]) - math.pi * 5.0 ** 4 / 2) * spec.face_width
     m = mass_properties(solid.shape, eps=1e-4)
     assert m.axial_moment == pytest.approx(expected, rel=1e-5)
     assert m.off_axis < 1e-4  # 0.1 um: the integration at eps 1e-4
