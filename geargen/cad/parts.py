@@ -271,25 +271,23 @@ def blade_flexure(thickness: float, length: float, width: float) -> TopoDS_Shape
     return box(thickness, width, length, (-thickness / 2, -width / 2, 0))
 
 
-def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: float, total_coils: float) -> TopoDS_Shape:
-    """A helical compression spring at ``length`` (installed), ends ground flat, z in [0, length].
-
-    The wire (round, ``wire_diameter``) is swept along a right-hand helix of ``total_coils``
-    turns on ``mean_coil_diameter`` from z = d/2 to length - d/2, then cut to the slab
-    [0, length] (the ground ends). Volume of the swept wire before grinding
-    ``pi d^2/4 * n sqrt((pi D)^2 + p^2)``; grinding removes a little of each end coil.
-    """
+def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: float, total_coils: float,
+                       ground: bool) -> TopoDS_Shape:
+    """A helical compression spring at ``length`` (installed), z in [0, length]: the round wire swept
+    along the helix of :func:`geargen.model.bodies.spring_helix` (``total_coils`` turns), cut to the
+    slab [0, length] (with ``ground`` ends, the cut is the grinding: half the wire off each end).
+    Volume of the swept wire before the cut ``pi d^2/4 * n sqrt((pi D)^2 + p^2)``."""
+    from geargen.model.bodies import spring_helix
     _positive(wire_diameter=wire_diameter, mean_coil_diameter=mean_coil_diameter, length=length,
               total_coils=total_coils)
     d, mean = wire_diameter, mean_coil_diameter
     if not mean > 2 * d:
         raise _internal("mean_coil_diameter", "spring index D/d must exceed 2", f"> {2 * d:.6g} mm")
-    rise = length - d
-    pitch = rise / total_coils
+    z0, pitch = spring_helix((d, mean, length, total_coils, ground))
     if not pitch > d:
         raise _internal("length", f"{length:.6g} mm closes the coils (pitch {pitch:.4g} <= wire {d:.4g} mm)",
-                          f"> {d * (total_coils + 1):.6g} mm")
-    helix = _helix(pitch, rise, mean / 2)
+                        "longer than the solid height")
+    helix = _helix(pitch, pitch * total_coils, mean / 2)
     circle = BRepBuilderAPI_MakeWire(
         BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(mean / 2, 0, 0), gp_Dir(0, 1, 0)), d / 2)).Edge()).Wire()
     sweep = BRepOffsetAPI_MakePipeShell(helix)
@@ -298,7 +296,7 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
     sweep.Add(circle, False, False)
     sweep.Build()
     sweep.MakeSolid()
-    wire = translate(sweep.Shape(), (0, 0, d / 2))
+    wire = translate(sweep.Shape(), (0, 0, z0))
     slab = _cylinder(mean / 2 + d, length)
     return _single(intersect(wire, slab), "compression spring")
 

@@ -112,15 +112,27 @@ def blade_flexure(thickness: float, length: float, width: float) -> Body:
     return Body("blade_flexure", _f(thickness, length, width))
 
 
-def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: float, total_coils: float) -> Body:
-    """A helical compression spring (right hand, ends ground flat) at ``length``, z in [0, length]."""
+def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: float, total_coils: float,
+                       ground: bool) -> Body:
+    """A helical compression spring (right hand) at ``length``, z in [0, length]: the wire swept along
+    a helix of ``total_coils`` turns. Ground ends (``ground``): the helix runs from z = 0 to
+    ``length`` and the slab [0, length] grinds half the wire off each end, so the coils close at
+    d N_t, the solid height of :data:`geargen.design.stiffness.SPRING_ENDS`' ground types; plain
+    ends: from d/2 to length - d/2, closing at d (N_t + 1)."""
     _positive(wire_diameter=wire_diameter, mean_coil_diameter=mean_coil_diameter, length=length,
               total_coils=total_coils)
     if not mean_coil_diameter > 2 * wire_diameter:
         raise ValueError("spring index D/d must exceed 2")
-    if not (length - wire_diameter) / total_coils > wire_diameter:
-        raise ValueError(f"spring length {length:.6g} mm closes its coils")
-    return Body("compression_spring", _f(wire_diameter, mean_coil_diameter, length, total_coils))
+    solid = wire_diameter * (total_coils if ground else total_coils + 1)
+    if not length > solid:
+        raise ValueError(f"spring length {length:.6g} mm closes its coils (solid height {solid:.6g} mm)")
+    return Body("compression_spring", _f(wire_diameter, mean_coil_diameter, length, total_coils) + (bool(ground),))
+
+
+def spring_helix(args) -> tuple[float, float]:
+    """(z of the helix's start, pitch) of a :func:`compression_spring`'s wire centre line."""
+    d, _, length, coils, ground = args
+    return (0.0, length / coils) if ground else (d / 2, (length - d) / coils)
 
 
 def coil_envelope(wire_diameter: float, mean_coil_diameter: float, length: float) -> Body:
@@ -340,7 +352,7 @@ def _node_box(n: _Node) -> tuple[np.ndarray, np.ndarray]:
         r = max(a[0], a[1])
         return np.array([-r, -r, 0.0]), np.array([r, r, a[2]])
     if op == "spring":
-        d, mean, length, _ = a
+        d, mean, length = a[:3]
         r = mean / 2 + d / 2
         return np.array([-r, -r, 0.0]), np.array([r, r, length])
     if op == "rev":
@@ -433,26 +445,27 @@ def _node_sdf(n: _Node, p: np.ndarray) -> np.ndarray:
 
 
 def _spring_sdf(args, p: np.ndarray) -> np.ndarray:
-    """The swept wire of :func:`compression_spring`: distance from the helix of pitch (L - d)/n
-    through (D/2, 0, d/2), less d/2, cut to the slab [0, L]. The helix's nearest point is sought
-    among the turns above and below the point's own angle, each refined by Newton steps."""
-    d, mean, length, coils = args
-    radius, pitch = mean / 2, (length - d) / coils
+    """The swept wire of :func:`compression_spring`: distance from its helix (:func:`spring_helix`)
+    less d/2, cut to the slab [0, L]. The helix's nearest point is sought among the turns above
+    and below the point's own angle, each refined by Newton steps."""
+    d, mean, length, coils = args[:4]
+    z0, pitch = spring_helix(args)
+    radius = mean / 2
     theta = np.arctan2(p[:, 1], p[:, 0]) % (2 * math.pi)
     best = np.full(len(p), np.inf)
-    k0 = np.floor((p[:, 2] - d / 2) / pitch - theta / (2 * math.pi))
+    k0 = np.floor((p[:, 2] - z0) / pitch - theta / (2 * math.pi))
     for dk in (-1.0, 0.0, 1.0, 2.0):
         t = np.clip(theta + 2 * math.pi * (k0 + dk), 0.0, 2 * math.pi * coils)
-        for _ in range(4):  # Newton on the squared distance to (R cos t, R sin t, d/2 + pitch t / 2 pi)
+        for _ in range(4):  # Newton on the squared distance to (R cos t, R sin t, z0 + pitch t / 2 pi)
             c = pitch / (2 * math.pi)
-            hx, hy, hz = radius * np.cos(t), radius * np.sin(t), d / 2 + c * t
+            hx, hy, hz = radius * np.cos(t), radius * np.sin(t), z0 + c * t
             dx, dy, dz = hx - p[:, 0], hy - p[:, 1], hz - p[:, 2]
             g = dx * (-radius * np.sin(t)) + dy * (radius * np.cos(t)) + dz * c
             h = radius * radius + c * c - (dx * radius * np.cos(t) + dy * radius * np.sin(t))
             t = np.clip(t - g / np.where(np.abs(h) < 1e-12, 1e-12, h), 0.0, 2 * math.pi * coils)
         c = pitch / (2 * math.pi)
         dist = np.sqrt((radius * np.cos(t) - p[:, 0]) ** 2 + (radius * np.sin(t) - p[:, 1]) ** 2
-                       + (d / 2 + c * t - p[:, 2]) ** 2)
+                       + (z0 + c * t - p[:, 2]) ** 2)
         best = np.minimum(best, dist)
     wire = best - d / 2
     slab = np.abs(p[:, 2] - length / 2) - length / 2
@@ -688,7 +701,7 @@ def _prim_profile(n: _Node) -> np.ndarray:
         r0, r1, h, bore = n.args
         return np.array([[bore / 2, 0.0], [r0, 0.0], [r1, h], [bore / 2, h]])
     if n.op == "spring":
-        d, mean, length, _ = n.args
+        d, mean, length = n.args[:3]
         return np.array([[mean / 2 - d / 2, 0.0], [mean / 2 + d / 2, 0.0], [mean / 2 + d / 2, length],
                          [mean / 2 - d / 2, length]])
     return np.asarray(n.args, float)  # "rev"
@@ -792,6 +805,6 @@ def describe(body: Body) -> dict[str, Any]:
 
 
 __all__ = ["Body", "KINDS", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "servo_motor",
-           "blade_flexure", "compression_spring", "coil_envelope", "plate_with_holes", "link_tray", "link_cover",
+           "blade_flexure", "compression_spring", "spring_helix", "coil_envelope", "plate_with_holes", "link_tray", "link_cover",
            "quill", "quill_lug_root", "split_collar", "revolve", "fuse", "cut", "translate", "single", "ring_relief", "relieved",
            "primitive_tree", "signed_distance", "distance_function", "polygon_distance", "lowest_x_above", "world_box", "MassProperties", "mass_properties", "describe"]

@@ -67,16 +67,36 @@ def test_split_collar_removes_its_slot():
     assert P.volume(P.split_collar(8.5, 30, 10, 1.5)) == pytest.approx(ring - slot, rel=2e-3)
 
 
-def test_spring_wire_volume_is_the_swept_circle():
+@pytest.mark.parametrize("ground", [True, False])
+def test_spring_wire_volume_is_the_swept_circle(ground):
+    from geargen.model.bodies import spring_helix
     d, mean, length, coils = 1.143, 11.43, 8.89, 6.0
-    pitch = (length - d) / coils
+    z0, pitch = spring_helix((d, mean, length, coils, ground))
+    assert (z0, pitch) == ((0.0, length / coils) if ground else (d / 2, (length - d) / coils))
     wire = math.pi * d * d / 4 * coils * math.hypot(math.pi * mean, pitch)
-    spring = P.compression_spring(d, mean, length, coils)
+    spring = P.compression_spring(d, mean, length, coils, ground)
     assert P.is_valid(spring) and len(P.solids(spring)) == 1
-    lo, hi = P.bounding_box(spring)
-    assert lo[2] == pytest.approx(0.0, abs=1e-6) and hi[2] == pytest.approx(length, abs=1e-6)  # ground ends
-    # grinding the ends removes a little of the first and last coil: between 0 and 10 % of the wire
-    assert 0.9 * wire < P.volume(spring) < wire
+    # within the slab [0, length] and reaching both ends (a kernel box is loose on a trimmed spline face)
+    below, above = P.box_between((-9, -9, -2), (9, 9, 0)), P.box_between((-9, -9, length), (9, 9, length + 2))
+    assert P.volume(P.intersect(spring, below)) == pytest.approx(0.0, abs=1e-9)
+    assert P.volume(P.intersect(spring, above)) == pytest.approx(0.0, abs=1e-9)
+    ends = [P.box_between((-9, -9, z), (9, 9, z + 0.01)) for z in (0.0, length - 0.01)]
+    assert all(P.volume(P.intersect(spring, end)) > 0 for end in ends)
+    # grinding removes at most the half wire along the end coils' rise through d: well under 20 %
+    assert 0.8 * wire < P.volume(spring) < wire
+
+
+def test_ground_spring_is_made_down_to_its_solid_height():
+    """d N_t is the solid height of ground ends (geargen.design.stiffness.SPRING_ENDS): 1 % above it
+    the spring is one valid solid, at it the body is refused with the solid height named."""
+    from geargen.model.bodies import compression_spring
+    d, mean, coils = 1.143, 11.43, 6.0
+    spring = P.compression_spring(d, mean, 1.01 * d * coils, coils, True)
+    assert P.is_valid(spring) and len(P.solids(spring)) == 1
+    with pytest.raises(ValueError, match="solid height 6.858"):
+        compression_spring(d, mean, d * coils, coils, ground=True)
+    with pytest.raises(ValueError, match="solid height 8.001"):
+        compression_spring(d, mean, 1.01 * d * coils, coils, ground=False)
 
 
 def test_intended_contacts_are_verified_not_assumed():
@@ -117,7 +137,7 @@ def test_spring_tube_screens_only_what_cannot_overlap():
     from geargen.cad.assembly import PlacedPart, pairwise_overlaps
 
     d, mean, length = 1.143, 11.43, 8.89
-    helix, tube = P.compression_spring(d, mean, length, 6.0), P.coil_envelope(d, mean, length)
+    helix, tube = P.compression_spring(d, mean, length, 6.0, True), P.coil_envelope(d, mean, length)
     wall = PlacedPart("wall", P.box_between((-10, -10, -5), (10, 10, 0)), np.eye(4), "g", "carriage")
 
     def checked(dz, envelope):

@@ -73,7 +73,7 @@ def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     z0, z1 = hw.spring_z
     # the wire swept along its helix: the active coils and a closed, ground coil at each end
     total_coils = hw.spring_active_coils + 2
-    spring = out.add("preload_spring", B.compression_spring(d, mean, z1 - z0, total_coils), at(x_in, 0, z0),
+    spring = out.add("preload_spring", B.compression_spring(d, mean, z1 - z0, total_coils, ground=True), at(x_in, 0, z0),
                      "housing", "spring", description=f"preload spring: {hw.spring_active_coils:.3g} active coils "
                                                       f"({total_coils:.3g} in all) of {d:.4g} mm wire on {mean:.4g} mm, "
                                                       f"{z1 - z0:.4g} mm long as placed",

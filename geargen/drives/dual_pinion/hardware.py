@@ -170,7 +170,8 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     if s["spring_model"] == "helix":
         # the wire lies within the tube (its section, normal to the helix, stays within d/2 radially)
         spring_shape, spring_envelope = B.compression_spring(sp.wire_diameter, sp.mean_coil_diameter,
-                                                             sp.installed_length, coils), tube
+                                                             sp.installed_length, coils,
+                                                             ground=sp.end_type.endswith("_ground")), tube
     else:
         spring_shape, spring_envelope = tube, None
     z_spring = (z_plate_bot + z_wall_top) / 2
