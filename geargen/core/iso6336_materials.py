@@ -5,7 +5,8 @@ of ISO 6336-2 and ISO 6336-3 (pure math, standard library only).
 straight lines in the surface hardness for each material, heat treatment and quality grade
 (ML: modest demands, MQ: what an experienced maker meets at moderate cost, ME: the highest
 quality); Table 8 gives each line as ``sigma = A x + B`` with ``x`` the hardness (HV here) and
-the hardness range the line is valid in. Those coefficients are encoded in :data:`MATERIALS`;
+the hardness range the line is valid in. Those coefficients live in :data:`geargen.design.iso6336_5.TABLE_8` (the
+design loader checks a file's hardness against the same ranges) and :data:`MATERIALS` builds on them;
 outside a line's hardness range the standard has no value and a :class:`~geargen.errors.DesignError`
 names the range. ``sigma_FE = Y_ST sigma_Flim`` with the stress correction factor of the
 reference test gear ``Y_ST = 2`` (ISO 6336-3).
@@ -29,9 +30,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from geargen.design.iso6336_5 import QUALITY_GRADES, TABLE_8
 from geargen.errors import DesignError
 
-QUALITY_GRADES = ("ML", "MQ", "ME")
 #: stress correction factor of the standard reference test gear, sigma_FE = Y_ST sigma_Flim
 REFERENCE_STRESS_CORRECTION = 2.0
 #: the life factor at 1e10 cycles for normal (not optimum) conditions, ISO 6336-2/-3
@@ -128,47 +129,49 @@ class MaterialClass:
     figure: str
 
 
-def _lines(**rows):
-    return {grade: AllowableLine(*row) for grade, row in rows.items()}
+def _lines(material: str, kind: str) -> dict:
+    """The Table 8 lines of ``material`` (:data:`geargen.design.iso6336_5.TABLE_8`) for ``kind``
+    ("contact" or "bending"), per quality grade."""
+    return {grade: AllowableLine(*row) for grade, row in TABLE_8[material][1][kind].items()}
 
 
-#: ISO 6336-5:2016 Table 8 (A, B, hardness range in HV) for the materials offered. Case
-#: carburised and nitrided numbers are constant (A = 0) over the surface hardness range.
+def _description(material: str) -> str:
+    return TABLE_8[material][0]
+
+
+#: the materials offered, their ISO 6336-5:2016 Table 8 lines (A, B, hardness range in HV; case
+#: carburised and nitrided numbers are constant, A = 0, over the surface hardness range) and what the
+#: factors of ISO 6336-2/-3 need of each
 MATERIALS: dict[str, MaterialClass] = {
     "through_hardened": MaterialClass(
-        "through_hardened", "through hardened wrought alloy steel (quenched and tempered)", "V", False,
-        contact=_lines(ML=(1.313, 188, 200, 360), MQ=(1.313, 373, 200, 360), ME=(2.213, 260, 200, 390)),
-        bending=_lines(ML=(0.423, 104, 200, 360), MQ=(0.425, 187, 200, 360), ME=(0.358, 231, 200, 390)),
+        "through_hardened", _description("through_hardened"), "V", False,
+        contact=_lines("through_hardened", "contact"), bending=_lines("through_hardened", "bending"),
         z_nt=Z_NT_NO_PITTING, y_nt=Y_NT_THROUGH_HARDENED, slip_layer=0.0064,
         slip_layer_source="rho' = 0.0064 mm: ISO 6336-3's value for through hardened steel of 0.2 % proof "
                           "stress 800 N/mm^2, typical of quenched and tempered alloy gear steel",
         figure="ISO 6336-5 Figures 5 and 6 (alloy steels)"),
     "through_hardened_carbon": MaterialClass(
-        "through_hardened_carbon", "through hardened wrought plain carbon steel", "V", False,
-        contact=_lines(ML=(0.963, 283, 135, 210), MQ=(0.925, 360, 135, 210), ME=(0.838, 432, 135, 210)),
-        bending=_lines(ML=(0.250, 108, 115, 215), MQ=(0.240, 163, 115, 215), ME=(0.283, 202, 115, 215)),
+        "through_hardened_carbon", _description("through_hardened_carbon"), "V", False,
+        contact=_lines("through_hardened_carbon", "contact"), bending=_lines("through_hardened_carbon", "bending"),
         z_nt=Z_NT_NO_PITTING, y_nt=Y_NT_THROUGH_HARDENED, slip_layer=0.0281,
         slip_layer_source="rho' = 0.0281 mm: ISO 6336-3's value for through hardened steel of 0.2 % proof "
                           "stress 500 N/mm^2, typical of plain carbon steel",
         figure="ISO 6336-5 Figures 5 and 6 (carbon steels)"),
     "case_carburised": MaterialClass(
-        "case_carburised", "case carburised and hardened wrought steel (core hardness >= 30 HRC)", "Eh", True,
-        contact=_lines(ML=(0.0, 1300, 600, 800), MQ=(0.0, 1500, 660, 800), ME=(0.0, 1650, 660, 800)),
-        bending=_lines(ML=(0.0, 312, 600, 800), MQ=(0.0, 500, 660, 800), ME=(0.0, 525, 660, 800)),
+        "case_carburised", _description("case_carburised"), "Eh", True,
+        contact=_lines("case_carburised", "contact"), bending=_lines("case_carburised", "bending"),
         z_nt=Z_NT_NO_PITTING, y_nt=Y_NT_SURFACE_HARDENED, slip_layer=0.0030,
         slip_layer_source="rho' = 0.0030 mm: ISO 6336-3's value for case hardened steel",
         figure="ISO 6336-5 Figures 9 and 10"),
     "induction_hardened": MaterialClass(
-        "induction_hardened", "induction (or flame) hardened wrought steel, root hardened", "IF", True,
-        contact=_lines(ML=(0.740, 602, 485, 615), MQ=(0.541, 882, 500, 615), ME=(0.505, 1013, 500, 615)),
-        bending=_lines(ML=(0.305, 76, 485, 615), MQ=(0.138, 290, 500, 570), ME=(0.271, 237, 500, 570)),
+        "induction_hardened", _description("induction_hardened"), "IF", True,
+        contact=_lines("induction_hardened", "contact"), bending=_lines("induction_hardened", "bending"),
         z_nt=Z_NT_NO_PITTING, y_nt=Y_NT_SURFACE_HARDENED, slip_layer=0.0030,
         slip_layer_source="rho' = 0.0030 mm: ISO 6336-3's value for induction hardened steel (root hardened)",
         figure="ISO 6336-5 Figures 11 and 12"),
     "nitrided": MaterialClass(
-        "nitrided", "gas nitrided nitriding steel", "NT", True,
-        contact=_lines(ML=(0.0, 1125, 650, 900), MQ=(0.0, 1125, 650, 900), ME=(0.0, 1450, 650, 900)),
-        bending=_lines(ML=(0.0, 270, 650, 900), MQ=(0.0, 420, 650, 900), ME=(0.0, 468, 650, 900)),
+        "nitrided", _description("nitrided"), "NT", True,
+        contact=_lines("nitrided", "contact"), bending=_lines("nitrided", "bending"),
         z_nt=Z_NT_NITRIDED, y_nt=Y_NT_NITRIDED, slip_layer=0.1005,
         slip_layer_source="rho' = 0.1005 mm: ISO 6336-3's value for nitrided steel",
         figure="ISO 6336-5 Figures 13 and 14"),

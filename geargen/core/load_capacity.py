@@ -46,6 +46,7 @@ from dataclasses import dataclass, replace
 from typing import Any, Sequence
 
 from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
+from geargen.design.checks import MINIMUM_SAFETY
 from geargen.errors import DesignError
 
 STANDARD = "ISO 6336-2:2019 / ISO 6336-3:2019, method B"
@@ -80,7 +81,9 @@ class RatingConditions:
     """How the mesh runs and what it must reach. ``speed``: gear 1, rpm; ``life``: hours;
     ``accuracy_grade``: ISO 1328-1:2013 class of both gears; ``roughness``: flank and root R_a, um;
     ``viscosity``: nu_40, mm^2/s; ``tip_relief``: C_a, um (0: none); ``face_load_factor``: K_Hbeta
-    given (None: computed by method C, see the module); ``minimum_safety``: (S_Hmin, S_Fmin)."""
+    given (None: computed by method C, see the module); ``minimum_safety``: (S_Hmin, S_Fmin);
+    ``load_cycles_per_turn``: how often one flank of each gear is loaded per turn (a sun meshing with
+    three planets: 3; a planetary mesh's turns are counted in the carrier's frame)."""
 
     speed: float
     life: float
@@ -90,7 +93,8 @@ class RatingConditions:
     application_factor: float = 1.0
     face_load_factor: float | None = None
     tip_relief: float = 0.0
-    minimum_safety: tuple[float, float] = (1.0, 1.4)
+    minimum_safety: tuple[float, float] = MINIMUM_SAFETY
+    load_cycles_per_turn: tuple[float, float] = (1.0, 1.0)
 
     def __post_init__(self):
         def positive(name, value, unit):
@@ -114,6 +118,9 @@ class RatingConditions:
         for name, value in (("S_Hmin", s_h), ("S_Fmin", s_f)):
             if not (math.isfinite(value) and value > 0):
                 raise DesignError("minimum_safety", f"{name} {value!r} is out of range", "> 0")
+        for value in self.load_cycles_per_turn:
+            if not (math.isfinite(value) and value >= 1):
+                raise DesignError("load_cycles_per_turn", f"{value!r} is out of range", ">= 1")
 
 
 # ---------------------------------------------------------------------------------------------
@@ -799,13 +806,14 @@ def rate_pair(geo: RatingGeometry, tangential_load: float, conditions: RatingCon
     k_prod_h = k_a * k_v * k_hbeta * k_halpha
     sigma_h = (z_b * sigma_h0 * math.sqrt(k_prod_h), z_d * sigma_h0 * math.sqrt(k_prod_h))
 
-    n_l1 = 60.0 * c.speed * c.life
+    turns1 = 60.0 * c.speed * c.life
+    n_l1 = turns1 * c.load_cycles_per_turn[0]
     if geo.kind == "rack":
-        n_l2 = n_l1 * geo.teeth[0] / geo.rack_teeth
+        n_l2 = turns1 * geo.teeth[0] / geo.rack_teeth * c.load_cycles_per_turn[1]
         notes.append("N_L of the rack: every rack tooth meshes once while the pinion travels the rack's whole "
                      "length (z_1/z_rack of the pinion's cycles); a shorter stroke loads the teeth in it more often")
     else:
-        n_l2 = n_l1 / abs(u)
+        n_l2 = turns1 / abs(u) * c.load_cycles_per_turn[1]
     n_l = (n_l1, n_l2)
     z_nt = tuple(cls.z_nt.factor(n) for cls, n in zip(classes, n_l))
     sigma_hlim_min = min(hlim)
@@ -938,29 +946,36 @@ def face_width_for_minimum_safety(geo: RatingGeometry, tangential_load: float, c
     """Solve ``min S_H(b) = S_Hmin`` and ``min S_F(b) = S_Fmin`` for the face width b of the mesh
     ``geo`` (:meth:`RatingGeometry.with_face_width`). Searched from 0.05 m_n to 1000 m_n (brentq on
     log b, the safety factors growing with b)."""
+    def safeties(at_width: RatingGeometry) -> tuple[float, float]:
+        r = rate_pair(at_width, tangential_load, conditions, materials, reversed_bending)
+        return min(r["S_H"]), min(r["S_F"])
+    return _narrowest_face_width(geo, safeties, conditions.minimum_safety)
+
+
+def _narrowest_face_width(geo: RatingGeometry, safeties, minimum_safety: tuple[float, float]) -> FaceWidthSolution:
+    """The face widths at which ``safeties(geometry)`` -> (S_H, S_F) of the weaker gear reach
+    ``minimum_safety`` (brentq on log b from 0.05 m_n to 1000 m_n, the safety factors growing with b)."""
     from scipy.optimize import brentq
 
     m_n = geo.normal_module
     lo, hi = math.log(0.05 * m_n), math.log(1000.0 * m_n)
-    s_hmin, s_fmin = conditions.minimum_safety
 
-    def margin(log_b, key, minimum):
-        r = rate_pair(geo.with_face_width(math.exp(log_b)), tangential_load, conditions, materials, reversed_bending)
-        return min(r[key]) - minimum
+    def margin(log_b, which, minimum):
+        return safeties(geo.with_face_width(math.exp(log_b)))[which] - minimum
 
-    def solve(key, minimum):
+    def solve(which, key, minimum):
         try:
-            a, z = margin(lo, key, minimum), margin(hi, key, minimum)
+            a, z = margin(lo, which, minimum), margin(hi, which, minimum)
         except DesignError as exc:
             return None, f"{key}: {exc}"
         if a >= 0:
             return math.exp(lo), f"{key} reaches {minimum:g} at the narrowest width searched"
         if z < 0:
             return None, f"{key} stays below {minimum:g} up to {math.exp(hi):.4g} mm of face"
-        return math.exp(brentq(margin, lo, hi, args=(key, minimum), xtol=1e-13, rtol=1e-14)), ""
+        return math.exp(brentq(margin, lo, hi, args=(which, minimum), xtol=1e-13, rtol=1e-14)), ""
 
-    b_h, msg_h = solve("S_H", s_hmin)
-    b_f, msg_f = solve("S_F", s_fmin)
+    b_h, msg_h = solve(0, "S_H", minimum_safety[0])
+    b_f, msg_f = solve(1, "S_F", minimum_safety[1])
     return FaceWidthSolution(pitting=b_h, bending=b_f, message="; ".join(m for m in (msg_h, msg_f) if m))
 
 
@@ -1004,6 +1019,14 @@ class SpectrumDamage:
     bending: tuple[float, float]
     pitting_safety: tuple[float, float]
     bending_safety: tuple[float, float]
+
+    def safety(self, kind: str) -> tuple[float, float]:
+        """Per gear the spectrum's safety factor against ``kind`` ("pitting" or "bending"); where the
+        search range (1e-3 to 1e3) holds no D = 1 it is inf (D < 1 even at 1000 times the stresses)
+        or 0 (D > 1 at a thousandth of them)."""
+        damage = self.pitting if kind == "pitting" else self.bending
+        found = self.pitting_safety if kind == "pitting" else self.bending_safety
+        return tuple(s if math.isfinite(s) else (math.inf if d < 1.0 else 0.0) for s, d in zip(found, damage))
 
 
 def _damage(levels, curve, reference_strength):
@@ -1052,16 +1075,38 @@ def spectrum_damage(ratings: Sequence[tuple[LoadCase, PairRating]], flank: str) 
                           bending_safety=tuple(bend_s))
 
 
+def face_width_for_spectrum(geo: RatingGeometry, load_cases: Sequence[LoadCase], conditions: RatingConditions,
+                            materials: tuple[Material, Material],
+                            reversed_bending: tuple[bool, bool] = (False, False)) -> FaceWidthSolution | None:
+    """The narrowest face width at which every flank's ISO 6336-6 spectrum safety factors
+    (:meth:`SpectrumDamage.safety`, the weaker gear's) reach S_Hmin and S_Fmin: what the
+    spectrum cases of ``load_cases`` (those with a share) need; None without any. Searched as
+    :func:`face_width_for_minimum_safety`."""
+    levels = [case for case in load_cases if case.share is not None]
+    if not levels:
+        return None
+
+    def safeties(at_width: RatingGeometry) -> tuple[float, float]:
+        rated = [(case, rate_pair(at_width, case.tangential_load, conditions, materials, reversed_bending))
+                 for case in levels]
+        spectra = [s for s in (spectrum_damage(rated, f) for f in FLANKS) if s is not None]
+        # inf (no D = 1 below 1000 times the stresses) as the search's largest margin
+        return tuple(min(min(min(s.safety(kind)) for s in spectra), 1e3) for kind in ("pitting", "bending"))
+    return _narrowest_face_width(geo, safeties, conditions.minimum_safety)
+
+
 @dataclass(frozen=True)
 class MeshRating:
     """The ratings of one mesh of a drive: one :class:`PairRating` per load case (same order),
-    the damage sum of each flank's spectrum, the face width each load case needs, and ``scope``
-    (None when rated; else why not, naming the standard that would apply)."""
+    the damage sum of each flank's spectrum, the face width each load case needs, the face width
+    the spectrum needs (``spectrum_face_width``, None without spectrum cases), and ``scope`` (None
+    when rated; else why not, naming the standard that would apply)."""
 
     cases: tuple[tuple[LoadCase, PairRating], ...]
     spectra: tuple[SpectrumDamage, ...]
     face_widths: tuple[FaceWidthSolution, ...]
     scope: str | None = None
+    spectrum_face_width: FaceWidthSolution | None = None
 
     @property
     def ok(self) -> bool:
@@ -1086,12 +1131,15 @@ class MeshRating:
                           for (case, r), fw in zip(self.cases, self.face_widths)],
                 "spectra": [{"flank": s.flank, "D_pitting": finite(s.pitting), "D_bending": finite(s.bending),
                              "S_H_spectrum": finite(s.pitting_safety), "S_F_spectrum": finite(s.bending_safety)}
-                            for s in self.spectra]}
+                            for s in self.spectra],
+                "spectrum_face_width_for_minimum_mm": None if self.spectrum_face_width is None else {
+                    "pitting": self.spectrum_face_width.pitting, "bending": self.spectrum_face_width.bending,
+                    "required": self.spectrum_face_width.required, "message": self.spectrum_face_width.message}}
 
 
 def rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: Sequence[LoadCase],
               conditions: RatingConditions, materials: tuple[Material, Material],
-              face_width: float | None = None) -> MeshRating:
+              face_width: float | None = None, reversed_bending: tuple[bool, bool] | None = None) -> MeshRating:
     """Rate one mesh of a drive under its load cases (the API the drive's check calls).
 
     Inputs: ``gear1``/``gear2`` the two gears' specs (:class:`~geargen.design.gear.GearSpec`;
@@ -1101,12 +1149,15 @@ def rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: Sequence[
     reference circle (N) with their source label, flank and spectrum share, ``conditions`` speed
     of gear 1 (rpm), life (h), accuracy grade, lubricant, roughness, K_A, K_Hbeta, minimum safety
     factors, ``materials`` (gear 1, gear 2), ``face_width`` the carrying width (mm; default the
-    narrower gear's).
+    narrower gear's), ``reversed_bending`` per gear whether its teeth are loaded on both flanks
+    (default: both gears when the cases load both flanks of this mesh; a drive passes its own, as a
+    gear shared by two meshes may be loaded on one flank by each).
 
     Output: a :class:`MeshRating`: every case rated alone over the whole life (S_H, S_F per gear on
     that case's flank, every factor by name), the face width at which that case reaches the minimum
-    safety factors, and per flank the ISO 6336-6 damage sums of the cases that carry a share. A gear
-    whose teeth carry load on both flanks (cases on both) has Y_M = 0.7 on its bending strength.
+    safety factors, per flank the ISO 6336-6 damage sums of the cases that carry a share, and the face
+    width at which those spectra reach the minimum safety factors. A gear whose teeth carry load on
+    both flanks has Y_M = 0.7 on its bending strength.
     """
     for spec in (gear1, gear2):
         scope = rating_scope(spec)
@@ -1114,15 +1165,18 @@ def rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: Sequence[
             return MeshRating(cases=(), spectra=(), face_widths=(), scope=scope)
     if not load_cases:
         raise DesignError("load_cases", "a mesh needs at least one load case to rate", ">= 1 case")
-    flanks = {case.flank for case in load_cases}
-    reversed_bending = (len(flanks) > 1, len(flanks) > 1)
+    if reversed_bending is None:
+        flanks = {case.flank for case in load_cases}
+        reversed_bending = (len(flanks) > 1, len(flanks) > 1)
     geo = rating_geometry(gear1, gear2, centre_distance, face_width)
     rated = tuple((case, rate_pair(geo, case.tangential_load, conditions, materials, reversed_bending))
                   for case in load_cases)
     widths = tuple(face_width_for_minimum_safety(geo, case.tangential_load, conditions, materials, reversed_bending)
                    for case in load_cases)
     spectra = tuple(s for s in (spectrum_damage(rated, f) for f in FLANKS) if s is not None)
-    return MeshRating(cases=rated, spectra=spectra, face_widths=widths)
+    return MeshRating(cases=rated, spectra=spectra, face_widths=widths,
+                      spectrum_face_width=face_width_for_spectrum(geo, load_cases, conditions, materials,
+                                                                  reversed_bending))
 
 
 __all__ = ["STANDARD", "RACK_VIRTUAL_TEETH", "rating_scope", "RatingConditions", "RatingGeometry", "rating_geometry",
@@ -1132,5 +1186,5 @@ __all__ = ["STANDARD", "RACK_VIRTUAL_TEETH", "rating_scope", "RatingConditions",
            "dynamic_factor", "face_load_factor_root", "transverse_load_factors", "ToothRootForm", "tooth_root_form",
            "helix_angle_factor_root", "rim_thickness_factor", "deep_tooth_factor", "notch_sensitivity_factor",
            "root_roughness_factor", "size_factor_root", "PairRating", "rate_pair", "FaceWidthSolution",
-           "face_width_for_minimum_safety", "LoadCase", "SpectrumDamage", "spectrum_damage", "MeshRating",
+           "face_width_for_minimum_safety", "face_width_for_spectrum", "LoadCase", "SpectrumDamage", "spectrum_damage", "MeshRating",
            "rate_mesh", "Material"]

@@ -62,6 +62,8 @@ SECTIONS: dict[str, str] = {
     "export": "export settings: STL tolerances, rendered view (geargen.design.export)",
     "train": "materials, motor, load and position loop of the train analysis (geargen.design.train)",
     "dual_motor": "a drive of two motors on one output gear, Fig. 1 (geargen.design.train)",
+    "duty": "the load spectrum, speed, life and lubrication every mesh is rated for (geargen.design.duty)",
+    "materials": "ISO 6336-5 material of each gear, [materials.GEAR] (geargen.design.duty)",
 }
 
 TOP_KEYS = ("name", "description", "length_unit")

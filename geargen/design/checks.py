@@ -21,6 +21,8 @@ Every key is optional::
                                     # each mesh's backlash range (geargen.core.allowance); default 0
     structure = "fail"              # build: how the parts hold together (geargen.checks.structure);
                                     # "report" lists its findings as warnings instead
+    min_S_H = 1.0                   # load capacity (geargen.checks.rating): a mesh fails below these
+    min_S_F = 1.4                   #   safety factors against pitting and tooth root bending
 
     # pairs to check in a design without [synthesis]; centre distance per pair (one number for
     # one pair, or a list), in any length unit
@@ -49,6 +51,11 @@ from geargen.units import LENGTH_SUFFIXES
 
 if TYPE_CHECKING:  # the type only: the loader imports this module
     from geargen.design.assembly import Design
+
+#: S_Hmin, S_Fmin when [checks] gives none: ISO 6336 leaves them to agreement between the parties and
+#: recommends none; these are the usual industrial values (a root fracture ends the drive, a pit does
+#: not at once, hence the larger S_Fmin). geargen.core.load_capacity takes the same defaults.
+MINIMUM_SAFETY = (1.0, 1.4)
 
 
 @dataclass(frozen=True)
@@ -84,6 +91,8 @@ class ChecksSettings:
     centre_distance_tolerance: float = 0.0
     structure: str = "fail"
     meshes: tuple[DeclaredMesh, ...] = field(default=())
+    min_S_H: float = MINIMUM_SAFETY[0]
+    min_S_F: float = MINIMUM_SAFETY[1]
 
     def __post_init__(self):
         for name, lo, hi in (("steps_per_tooth", 2, 10000), ("section_planes", 1, 200), ("sections_planes", 1, 200),
@@ -135,6 +144,12 @@ CHECKS_FIELDS: list[Field] = [
     Field("structure", "string", required=False, default="fail", choices=("fail", "report"),
           help="build: every part grounded through contacts, rotating parts on stationary ones only through "
                "bearings, every bearing seated on both sides; fail the build, or report the findings as warnings"),
+    Field("min_S_H", "number", required=False, default=MINIMUM_SAFETY[0], minimum=0.0, exclusive_minimum=True,
+          maximum=10.0, help="smallest safety factor against pitting S_H a rated mesh may have (ISO 6336-2; the "
+                             "load capacity of every mesh fails below it)"),
+    Field("min_S_F", "number", required=False, default=MINIMUM_SAFETY[1], minimum=0.0, exclusive_minimum=True,
+          maximum=10.0, help="smallest safety factor against tooth root bending S_F a rated mesh may have "
+                             "(ISO 6336-3; the load capacity of every mesh fails below it)"),
     Field("meshes", "list", required=False, default=None,
           help="pairs to check in a design without [synthesis] or [layout]: [[\"gear1\", \"gear2\"], ...], the first "
                "turned"),
@@ -153,7 +168,8 @@ def checks_settings(design: Design) -> ChecksSettings:
     kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
                                 "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",
                                 "seed", "sections", "sections_planes", "stl_chordal_tolerance",
-                                "carriage_travel_limit", "centre_distance_tolerance", "structure")}
+                                "carriage_travel_limit", "centre_distance_tolerance", "structure", "min_S_H",
+                                "min_S_F")}
     return _with_field_prefix("checks.", lambda: ChecksSettings(meshes=meshes, **kwargs), v["_units"])
 
 
@@ -203,4 +219,4 @@ def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) ->
     return tuple(out)
 
 
-__all__ = ["ChecksSettings", "DeclaredMesh", "CHECKS_FIELDS", "checks_settings"]
+__all__ = ["ChecksSettings", "DeclaredMesh", "CHECKS_FIELDS", "MINIMUM_SAFETY", "checks_settings"]

@@ -116,6 +116,25 @@ pressure_angle_deg = 20
 face_width_in = 0.15
 '''
 
+_DUTY_EXAMPLE = '''[duty]
+output_torque_levels_Nm = [5.0, 2.5, 0.5]   # the load spectrum at the output
+level_shares = [0.05, 0.25, 0.70]           # of the life at each level
+direction = "both"                          # each level half its share each way
+output_speed_rpm = 10
+life_hours = 20000
+viscosity_mm2_per_s = 220                   # ISO VG 220
+roughness_Ra_um = 0.4                       # ground flanks
+accuracy_grade = 5
+material = "case_carburised"                # every gear without its own [materials.GEAR]
+quality = "MQ"
+'''
+
+_MATERIALS_EXAMPLE = '''[materials.output]
+material = "through_hardened"
+quality = "MQ"
+hardness_HV = 320
+'''
+
 TABLES: tuple[Table, ...] = (
     Table("Top-level keys", (), "Keys before the first table. Everything is optional.",
           Example("robot_joint.toml", ("",))),
@@ -254,6 +273,21 @@ TABLES: tuple[Table, ...] = (
           "the position loop (a bandwidth with a damping ratio, or the gains at the motor), and what a "
           "[layout] upstream_stages entry (teeth only) has for backlash and stiffness. Every key is optional.",
           Example("robot_joint.toml", ("train",)), sections=("train",)),
+    Table("[duty]", ("duty",),
+          "What the load capacity of every mesh is rated for (ISO 6336-2/-3:2019 method B; a spectrum by ISO "
+          "6336-6, Palmgren-Miner): the drive torques at the output with their shares of the life, the output speed, "
+          "the life, K_A, the lubricant, the roughness, the accuracy grade of gears whose table gives none, and the "
+          "ISO 6336-5 material of gears without a [materials.GEAR] table. Every key is optional: without the section "
+          "a drive is rated for the paper's maximum load ([preload] max_output_torque_*) both ways for the whole "
+          "life, each default below chosen so that nothing is credited the file does not state. Each preloaded mesh "
+          "carries its path's preload plus its share of the drive torque (Eqs. 2-6), upstream stages the drive "
+          "torque; the minimum safety factors are [checks] min_S_H and min_S_F.",
+          example_text=_DUTY_EXAMPLE, sections=("duty",)),
+    Table("[materials.GEAR]", ("materials", "GEAR"),
+          "The ISO 6336-5 material, quality grade and surface hardness of one gear (`GEAR` a [gears] table name), "
+          "over [duty]'s. The hardness is checked against the range the standard's line covers for the material "
+          "and grade (through hardened alloy steel MQ: 200-360 HV; case carburised MQ: 660-800 HV).",
+          example_text=_MATERIALS_EXAMPLE, sections=("materials",)),
     Table("[dual_motor]", ("dual_motor",),
           "Two motors, each with its own pinion on one output gear, and their coordination (Fig. 1): a constant "
           "bias or unidirectional torques. The two meshes and their centre distances are [checks] meshes.",

@@ -20,6 +20,8 @@ section            read and checked by
 [export]           .export.export_settings
 [train]            .train.train_settings
 [dual_motor]       .train.dual_motor_spec ([checks] meshes declare its pairs)
+[duty]             .duty.duty_settings (the spectrum, or [preload]'s maximum load)
+[materials.*]      .duty.gear_materials (gear tables of the file, ISO 6336-5 hardness ranges)
 =================  ==============================================================================
 
 Whether each gear's tooth can be cut is checked where the gear tables are read
@@ -40,6 +42,7 @@ from dataclasses import replace
 from typing import Any, Mapping
 
 from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings
+from geargen.design.duty import DUTY_FIELDS, DUTY_QUANTITIES, MATERIAL_FIELDS, duty_settings, gear_materials
 from geargen.design.export import EXPORT_FIELDS, export_settings
 from geargen.design.gear import GEAR_FIELDS, family_fields
 from geargen.design.layout import check_layout, layout_fields, layout_settings
@@ -133,6 +136,10 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
         run(train_settings, design)
     if "dual_motor" in sections and gears_complete:
         run(dual_motor_spec, design)
+    if "duty" in sections or "materials" in sections:
+        duty = run(duty_settings, design)
+        if duty is not None and "materials" in sections and gears_complete:
+            run(gear_materials, design, duty)
 
 
 # ---------------------------------------------------------------------------------------------
@@ -155,6 +162,7 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
     "export": (EXPORT_FIELDS, []),
     "train": (TRAIN_FIELDS, TRAIN_QUANTITIES),
     "dual_motor": (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES),
+    "duty": (DUTY_FIELDS, DUTY_QUANTITIES),
 }
 
 #: the top-level keys and [drive], as fields (all optional)
@@ -197,6 +205,8 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
             from geargen.drives.planetary.keys import PLANETARY_STAGE_FIELDS
             return PLANETARY_STAGE_FIELDS, []
         return STAGE_FIELDS, []
+    if head == "materials" and len(path) == 2:
+        return MATERIAL_FIELDS, []
     if head == "parts" and len(path) == 1:
         return hardware_fields(kind_of(data)), []
     if len(path) == 1 and head in _TABLE_SCHEMA:

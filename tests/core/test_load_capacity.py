@@ -437,6 +437,36 @@ def test_loads_on_both_flanks_reverse_the_bending_by_y_m_0_7():
     assert r2.S_H == r1.S_H
 
 
+def test_a_spectrum_of_one_level_needs_the_face_width_that_level_needs():
+    # a single level over the whole life is the case rated alone (ISO 6336-6 above), so the width at
+    # which the spectrum reaches the minimum is the width face_width_for_minimum_safety solves for
+    g1, g2 = helical_gears()
+    geo = lc.rating_geometry(g1, g2, 136.0)
+    load = 2 * 160e3 / (19 * 3 / math.cos(22 * DEG))
+    alone = lc.face_width_for_minimum_safety(geo, load, CONDITIONS, CARBURISED)
+    spectrum = lc.face_width_for_spectrum(geo, [lc.LoadCase(load, "level 1", "drive", 1.0)], CONDITIONS, CARBURISED)
+    # 1e-8: both solves stop at 1e-13 on log b; the spectrum's inner solve for S at 1e-12 on log S
+    assert spectrum.pitting == pytest.approx(alone.pitting, rel=1e-8)
+    assert spectrum.bending == pytest.approx(alone.bending, rel=1e-8)
+    assert lc.face_width_for_spectrum(geo, [lc.LoadCase(load, "preload", "drive")], CONDITIONS, CARBURISED) is None
+
+
+def test_load_cycles_per_turn_and_reversed_bending_per_gear():
+    # a sun meshing with three planets: each of its flanks is loaded three times a turn (ISO 6336-2 N_L)
+    g1, g2 = helical_gears()
+    geo = lc.rating_geometry(g1, g2, 136.0)
+    sun = lc.RatingConditions(**{**CONDITIONS.__dict__, "load_cycles_per_turn": (3.0, 1.0)})
+    once, thrice = (lc.rate_pair(geo, 9000.0, c, CARBURISED) for c in (CONDITIONS, sun))
+    assert thrice["N_L"] == pytest.approx((3 * once["N_L"][0], once["N_L"][1]), rel=1e-15)
+    assert thrice["Z_NT"][0] < once["Z_NT"][0] and thrice["Z_NT"][1] == once["Z_NT"][1]
+    # a drive passes per gear whether its teeth see both flanks (a gear shared by two meshes)
+    r = lc.rate_mesh(g1, g2, 136.0, [lc.LoadCase(9000.0, "preload", "drive")], CONDITIONS, CARBURISED,
+                     reversed_bending=(False, True)).cases[0][1]
+    assert r["Y_M"] == (1.0, 0.7)
+    with pytest.raises(DesignError, match="load_cycles_per_turn"):
+        lc.RatingConditions(**{**CONDITIONS.__dict__, "load_cycles_per_turn": (0.5, 1.0)})
+
+
 def test_iso6336_5_lines_and_their_ranges():
     # ISO 6336-5:2016 Table 8: through hardened alloy MQ sigma_Hlim = 1.313 HV + 373, sigma_Flim =
     # 0.425 HV + 187 on 200..360 HV; case carburised MQ 1500 / 500; sigma_FE = 2 sigma_Flim
