@@ -874,7 +874,8 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
             "overlaps": overlaps,
             "rack_meshes": [r for r in rack if r["mesh"] != "carriage"],
             "rack_carriage": next((r for r in rack if r["mesh"] == "carriage"), None),
-            "structure": None if structure is None else structure.to_dict()}
+            "structure": None if structure is None else structure.to_dict(),
+            "load_capacity": None if dc is None or dc.load_capacity is None else dc.load_capacity.to_dict()}
 
 
 def _jsonable(value):

@@ -42,6 +42,14 @@ from geargen.model.mesh_loads import MeshLoads, mesh_loads
 from geargen.units import from_mm
 
 SPECTRUM = "ISO 6336-6 (Palmgren-Miner)"
+
+#: what a failing mesh is rated again with, in this order, the first that meets the minimum safety
+#: factors offered as its fix: each ISO 6336-5 material at quality MQ (a sloped line at the top of its
+#: hardness range), alone and then with ground flanks (ISO 1328 class 5, R_a 0.4 um: what grinding
+#: after hardening holds)
+FIX_MATERIALS = (("through_hardened", "MQ"), ("induction_hardened", "MQ"), ("nitrided", "MQ"),
+                 ("case_carburised", "MQ"), ("case_carburised", "ME"))
+GROUND_FINISH = {"accuracy_grade": 5, "roughness": 0.4e-3}
 LBF = 4.4482216152605  # N per pound-force
 #: how the torque suffixes of a design file are written in a report
 _TORQUE_TEXT = {"Nm": "N·m", "Nmm": "N·mm", "in_lbf": "in·lbf", "ft_lbf": "ft·lbf"}
@@ -119,6 +127,9 @@ class DriveRating:
     reason: str | None = None
     warnings: tuple[str, ...] = ()
     duty_stated: bool = False
+    # when a mesh fails: ({gear table: (material, quality, hardness HV or None)}, ground flanks) with
+    # which every mesh passes, checked (:func:`_drive_fix`); None when no material of FIX_MATERIALS does
+    fix: tuple[dict, bool] | None = None
 
     @property
     def rated(self) -> bool:
@@ -157,6 +168,9 @@ class DriveRating:
                            "nu_40": d.viscosity, "R_a_um": d.roughness * 1e3, "accuracy_grade": d.accuracy_grade,
                            "K_Hbeta_given": d.face_load_factor, "C_a_um": d.tip_relief * 1e3,
                            "defaulted": list(d.defaulted)}
+        out["fix"] = None if self.fix is None else {
+            "materials": {g: {"material": n, "quality": q, "hardness_HV": h} for g, (n, q, h) in self.fix[0].items()},
+            "ground_flanks": self.fix[1], "toml": fix_lines(self.fix)}
         out["meshes"] = [_mesh_dict(m) for m in self.meshes]
         out["gears"] = _weakest_per_gear(self.meshes)
         compliant = self.compliant_path
@@ -165,39 +179,54 @@ class DriveRating:
         return _finite(out)
 
     # ------------------------------------------------------------------ text
-    def lines(self, unit: str | None = None) -> list[str]:
-        """The table a reader sees: lengths in ``unit`` (default the design's), torques in the unit
-        the file wrote its loads in, forces in N (lbf for an inch design)."""
+    def table(self, unit: str | None = None) -> tuple[list[str], list[list[str]]]:
+        """(header, rows): one row per rated mesh and flank, S_H and S_F of gear 1/gear 2; forces in N
+        (lbf for an inch design), face widths in ``unit`` (default the design's)."""
         unit = unit or self.length_unit
         inch = unit == "in"
-        digits = 4 if inch else 2
-        force_unit = "lbf" if inch else "N"
-        torque_unit = self.duty.torque_unit if self.duty is not None else "Nm"
-        t_text = _TORQUE_TEXT.get(torque_unit, torque_unit)
-        t_scale = QUANTITY_SUFFIXES["torque"].get(torque_unit, 1e3)
 
         def force(newtons: float | None) -> str:
             return "-" if newtons is None else f"{newtons / LBF if inch else newtons:.4g}"
 
         def length(mm: float | None) -> str:
-            return "none" if mm is None else f"{from_mm(mm, unit):.{digits}f}"
+            return "none" if mm is None else f"{from_mm(mm, unit):.{4 if inch else 2}f}"
 
-        out = ["", f"Load capacity of every mesh: {STANDARD}; spectrum by {SPECTRUM}"]
+        header = ["mesh", "role", "flank", "preload", "peak F_t", "b", "b needed", "S_H gear 1/2", "S_F gear 1/2"]
+        rows = []
+        for m in self.meshes:
+            if not m.rated:
+                continue
+            for i, fl in enumerate(m.flanks):
+                first = i == 0
+                rows.append([m.name if first else "", m.loads.role if first else "", fl.flank,
+                             force(m.loads.preload) if first else "", force(fl.peak_load),
+                             length(m.face_width) if first else "", length(m.face_width_needed) if first else "",
+                             _pair(fl.S_H), _pair(fl.S_F)])
+        return header, rows
+
+    def _torque(self) -> tuple[str, float]:
+        """(text, N·mm per unit) of the torque unit the file wrote its loads in."""
+        torque_unit = self.duty.torque_unit if self.duty is not None else "Nm"
+        return _TORQUE_TEXT.get(torque_unit, torque_unit), QUANTITY_SUFFIXES["torque"].get(torque_unit, 1e3)
+
+    def preamble(self) -> list[str]:
+        """What the meshes are rated for: the duty, the preload, the minimum safety factors, the materials."""
         if not self.rated:
-            return out + [f"  not rated: {self.reason}"]
+            return [f"not rated: {self.reason}"]
+        t_text, t_scale = self._torque()
         d = self.duty
         levels = ", ".join(f"{t / t_scale:.4g}" for t, _ in d.levels)
         shares = ", ".join(f"{s:.3g}" for _, s in d.levels)
         way = "each level both ways, half its share each" if d.direction == "both" else "signed levels"
-        out.append(f"duty: {levels} {t_text} at the output ({way}; shares {shares}), from {d.levels_source}")
-        out.append(f"  output {d.output_speed:g} rpm, life {d.life:g} h, K_A {d.application_factor:g}, nu_40 "
-                   f"{d.viscosity:g} mm^2/s, R_a {d.roughness * 1e3:g} um"
-                   + ("" if d.face_load_factor is None else f", K_Hbeta {d.face_load_factor:g} given"))
+        out = [f"duty: {levels} {t_text} at the output ({way}; shares {shares}), from {d.levels_source}; "
+               f"output {d.output_speed:g} rpm, life {d.life:g} h, K_A {d.application_factor:g}, nu_40 "
+               f"{d.viscosity:g} mm^2/s, R_a {d.roughness * 1e3:g} um"
+               + ("" if d.face_load_factor is None else f", K_Hbeta {d.face_load_factor:g} given")]
         if not self.duty_stated:
-            out.append("  the file states no [duty] or [materials]: rated for geargen's defaults (docs/design-files.md "
+            out.append("the file states no [duty] or [materials]: rated for geargen's defaults (docs/design-files.md "
                        "says why each)")
         elif d.defaulted:
-            out.append("  [duty] keys at their defaults (docs/design-files.md says why): " + ", ".join(d.defaulted))
+            out.append("[duty] keys at their defaults (docs/design-files.md says why): " + ", ".join(d.defaulted))
         if self.preload is not None:
             out.append(f"loop preload {self.preload / t_scale:.4g} {t_text} at the output (each path at zero drive "
                        "torque)")
@@ -210,26 +239,24 @@ class DriveRating:
                 names = by_material.setdefault(text, [])
                 if gear.name not in names:
                     names.append(gear.name)
-        for text, names in by_material.items():
-            out.append(f"materials: {', '.join(names)}: {text}")
-        rated = [m for m in self.meshes if m.rated]
-        name_w = max([len("mesh")] + [len(m.name) for m in rated]) + 2
-        role_w = max([len("role")] + [len(m.loads.role) for m in rated]) + 2
-        header = (f"{'mesh':<{name_w}}{'role':<{role_w}}{'flank':>5}{'preload':>10}{'peak F_t':>10}{'b':>9}"
-                  f"{'b needed':>10}{'S_H gear 1/2':>16}{'S_F gear 1/2':>16}")
-        out += [f"(forces {force_unit}, face widths {unit}; b needed: the face width at which the spectrum reaches "
-                "the minimum safety factors)", header]
-        for m in rated:
-            for i, fl in enumerate(m.flanks):
-                first = i == 0
-                out.append(f"{m.name if first else '':<{name_w}}{m.loads.role if first else '':<{role_w}}{fl.flank:>5}"
-                           f"{force(m.loads.preload) if first else '':>10}{force(fl.peak_load):>10}"
-                           f"{length(m.face_width) if first else '':>9}"
-                           f"{length(m.face_width_needed) if first else '':>10}"
-                           f"{_pair(fl.S_H):>16}{_pair(fl.S_F):>16}")
+        out += [f"materials: {', '.join(names)}: {text}" for text, names in by_material.items()]
+        return out
+
+    def remarks(self, unit: str | None = None) -> list[str]:
+        """Below the table: the meshes not rated and why, the type 1 compliant path's face width, the
+        warnings, what is below the minimum and the fix."""
+        if not self.rated:
+            return []
+        unit = unit or self.length_unit
+        t_text, t_scale = self._torque()
+
+        def length(mm: float | None) -> str:
+            return "none" if mm is None else f"{from_mm(mm, unit):.{4 if unit == 'in' else 2}f}"
+
+        out = []
         for m in self.meshes:
             if not m.rated:
-                peak = max((abs(t) for t, _ in d.levels), default=0.0) * m.loads.torque_per_output
+                peak = max((abs(t) for t, _ in self.duty.levels), default=0.0) * m.loads.torque_per_output
                 carried = "" if not math.isfinite(peak) else f"; at the peak it carries {peak / t_scale:.4g} {t_text} " \
                                                                "at its first gear"
                 out.append(f"{m.name}: {m.scope}{carried}")
@@ -240,12 +267,34 @@ class DriveRating:
             out.append(f"type 1, compliant path {m.name}: {length(m.face_width_needed)} {unit} of face reaches S_Hmin "
                        f"and S_Fmin (has {length(m.face_width)} {unit}){also}")
         out += [f"warning: {w}" for w in self.warnings]
-        out += [f"FAILED: {f}" for f in self.failures]
+        out += [("FAILED: " if self.duty_stated else "below the minimum (a check once the file states [duty] or "
+                 "[materials]): ") + f for f in self.failures]
+        if self.failures:
+            out.append("fix (every mesh rated again with it passes): " + fix_text(self.fix) if self.fix is not None
+                       else "no ISO 6336-5 material meets the minimum at these loads: a wider face (b needed above) "
+                            "or a lighter [duty]")
         return out
+
+    def lines(self, unit: str | None = None) -> list[str]:
+        """The text a reader sees (``geargen check``): lengths in ``unit`` (default the design's), torques
+        in the unit the file wrote its loads in, forces in N (lbf for an inch design)."""
+        unit = unit or self.length_unit
+        out = ["", f"Load capacity of every mesh: {STANDARD}; spectrum by {SPECTRUM}"] + \
+            [f"  {t}" for t in self.preamble()]
+        if not self.rated:
+            return out
+        header, rows = self.table(unit)
+        out.append(f"(forces {'lbf' if unit == 'in' else 'N'}, face widths {unit}; b needed: the face width at which "
+                   "the spectrum reaches the minimum safety factors)")
+        if rows:
+            widths = [max(len(h), *(len(r[i]) for r in rows)) + 2 for i, h in enumerate(header)]
+            for row in [header] + rows:
+                out.append("".join(f"{c:<{w}}" if i < 2 else f"{c:>{w}}" for i, (c, w) in enumerate(zip(row, widths))))
+        return out + self.remarks(unit)
 
 
 def _pair(values) -> str:
-    return "/".join("inf" if math.isinf(v) else f"{v:.3g}" for v in values)
+    return "/".join("inf" if math.isinf(v) else f"{v:#.3g}" for v in values)
 
 
 def _finite(value):
@@ -333,7 +382,9 @@ def rate_drive(layout, summary=None) -> DriveRating:
         warnings.append(f"a [duty] level ({peak / 1e3:.4g} N·m) is above [preload] max_output_torque "
                         f"({summary.max_output_torque / 1e3:.4g} N·m), for which the preload was chosen")
     rated = tuple(_rate(ml, duty, materials, minimum) for ml in mesh_loads(layout, summary, duty))
-    return DriveRating(duty=duty, meshes=rated, preload=summary.drive.preload, warnings=tuple(warnings), **base)
+    one_piece = {tuple(gear.name for gear in g.gears) for g in layout.gears if len(g.gears) > 1}
+    fix = None if all(m.ok for m in rated) else _drive_fix(rated, duty, materials, minimum, one_piece)
+    return DriveRating(fix=fix, duty=duty, meshes=rated, preload=summary.drive.preload, warnings=tuple(warnings), **base)
 
 
 def _rate(ml: MeshLoads, duty: DutySpec, materials: dict[str, GearMaterial], minimum) -> RatedMesh:
@@ -383,4 +434,97 @@ def _rate(ml: MeshLoads, duty: DutySpec, materials: dict[str, GearMaterial], min
     return RatedMesh(ml, rating, mats, grade, speed, conditions, tuple(flanks), tuple(failures))
 
 
-__all__ = ["SPECTRUM", "FlankRating", "RatedMesh", "DriveRating", "rate_drive"]
+def _mesh_fix(rated: RatedMesh, duty: DutySpec, materials: dict[str, GearMaterial], minimum):
+    """``({gear table: (material, quality, hardness)}, ground)``: the first of :data:`FIX_MATERIALS`
+    (on the mesh's failing gears; with :data:`GROUND_FINISH` when the material alone is not enough)
+    with which the mesh rated again meets the minimum; None when none does."""
+    from dataclasses import replace
+
+    from geargen.design.iso6336_5 import hardness_needed, hardness_range
+    ml = rated.loads
+    failing = [gear.name for i, gear in enumerate((ml.gear1, ml.gear2))
+               if any(f.S_H[i] < minimum[0] or f.S_F[i] < minimum[1] for f in rated.flanks)]
+    for finish in (False, True):
+        for name, quality in FIX_MATERIALS:
+            hardness = hardness_range(name, quality)[1] if hardness_needed(name, quality) else None
+            trial = dict(materials)
+            for gear in failing:
+                trial[gear] = GearMaterial(name, quality, hardness, "fix")
+            tried = _rate(ml, replace(duty, **GROUND_FINISH) if finish else duty, trial, minimum)
+            if tried.rated and tried.ok:
+                return {gear: (name, quality, hardness) for gear in failing}, finish
+    return None
+
+
+def _drive_fix(meshes, duty: DutySpec, materials: dict[str, GearMaterial], minimum,
+               one_piece=()) -> tuple[dict, bool] | None:
+    """The fix of every failing mesh together (each gear the strongest any of its meshes needs, the
+    gear tables of one piece, ``one_piece``, one material), checked by rating every mesh again with
+    it; None when a mesh has no fix or the whole does not pass."""
+    from dataclasses import replace
+    choice: dict[str, tuple] = {}
+    ground = False
+    rank = {m: i for i, m in enumerate(FIX_MATERIALS)}
+    for m in meshes:
+        if m.ok or not m.rated:
+            continue
+        found = _mesh_fix(m, duty, materials, minimum)
+        if found is None:
+            return None
+        for gear, pick in found[0].items():
+            if gear not in choice or rank[pick[:2]] > rank[choice[gear][:2]]:
+                choice[gear] = pick
+        ground |= found[1]
+    for piece in one_piece:
+        picks = [choice[g] for g in piece if g in choice]
+        if picks:
+            strongest = max(picks, key=lambda pick: rank[pick[:2]])
+            choice.update({g: strongest for g in piece})
+    trial = dict(materials)
+    trial.update({g: GearMaterial(*pick, "fix") for g, pick in choice.items()})
+    trial_duty = replace(duty, **GROUND_FINISH) if ground else duty
+    if all(_rate(m.loads, trial_duty, trial, minimum).ok for m in meshes if m.rated):
+        return choice, ground
+    return None
+
+
+def fix_tables(fix: tuple[dict, bool]) -> dict[str, dict]:
+    """A drive fix (:func:`_drive_fix`) as the design file's tables: ``{"materials": {gear: keys},
+    "duty": keys}`` (``duty`` only with ground flanks)."""
+    choice, ground = fix
+    out: dict[str, dict] = {"materials": {}}
+    for gear, (name, quality, hardness) in choice.items():
+        out["materials"][gear] = {"material": name, "quality": quality}
+        if hardness is not None:
+            out["materials"][gear]["hardness_HV"] = hardness
+    if ground:
+        out["duty"] = {"accuracy_grade": GROUND_FINISH["accuracy_grade"],
+                       "roughness_Ra_um": round(GROUND_FINISH["roughness"] * 1e3, 12)}
+    return out
+
+
+def _toml_value(v) -> str:
+    return f'"{v}"' if isinstance(v, str) else f"{v:g}"
+
+
+def fix_text(fix: tuple[dict, bool]) -> str:
+    """A drive fix on one line: each table's keys after its name."""
+    tables = fix_tables(fix)
+    named = [(f"materials.{gear}", keys) for gear, keys in tables["materials"].items()]
+    named += [("duty", tables["duty"])] if "duty" in tables else []
+    return "; ".join(f"[{name}] " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in keys.items())
+                     for name, keys in named)
+
+
+def fix_lines(fix: tuple[dict, bool]) -> list[str]:
+    """A drive fix as the TOML a designer pastes into the file (a [duty] table merged with the file's own)."""
+    tables = fix_tables(fix)
+    named = [(f"materials.{gear}", keys) for gear, keys in tables["materials"].items()]
+    named += [("duty", tables["duty"])] if "duty" in tables else []
+    out = []
+    for name, keys in named:
+        out += [f"[{name}]"] + [f"{k} = {_toml_value(v)}" for k, v in keys.items()]
+    return out
+
+
+__all__ = ["SPECTRUM", "FIX_MATERIALS", "GROUND_FINISH", "fix_tables", "fix_text", "fix_lines", "FlankRating", "RatedMesh", "DriveRating", "rate_drive"]

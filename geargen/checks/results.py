@@ -62,6 +62,8 @@ FAILURE_KINDS: dict[str, str] = {
                                       "centre-distance tolerance leaves the design range",
     "disengaged_overlap": "a pinion slid out of mesh still overlaps its mate axially",
     "ratio_mismatch": "the exact ratio of the train is not one the design requires",
+    "load_capacity": "a safety factor of a mesh under the stated [duty] is below [checks] min_S_H (pitting, "
+                     "ISO 6336-2) or min_S_F (tooth-root bending, ISO 6336-3), the spectrum summed by ISO 6336-6",
     "trochoid_interference": "internal pair: leaving mesh, the pinion's tip corner cuts the ring's tip corner",
     "radial_assembly_fouling": "internal pair: the pinion cannot be moved into mesh along the line of centres",
     "planetary_assembly": "planetary stage: a planet's carrier angle is no assembly angle (2 pi k / (z_s + z_r)): "
@@ -443,6 +445,8 @@ class DesignCheck:
     # resolved [parts] as TOML to paste into the file (geargen.drives.parts_table)
     defaulted: tuple = ()
     parts_table: str = ""
+    # every mesh's load capacity (geargen.checks.rating.DriveRating); None: not a resolved drive
+    load_capacity: Any = None
 
     def table(self, name: str) -> list[dict[str, Any]]:
         """The drive kind's rows of table ``name``."""
@@ -493,6 +497,7 @@ class DesignCheck:
                           for b in self.planetary],
             "rack": [{key: (_num(v * s) if key in _RACK_LENGTHS and v is not None else v) for key, v in b.items()}
                      for b in self.rack],
+            "load_capacity": None if self.load_capacity is None else self.load_capacity.to_dict(),
         }
 
 

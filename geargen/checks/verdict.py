@@ -138,11 +138,35 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
     result.rows = layout.drive.rows(layout, result) if layout.drive is not None else []
     result.defaulted = defaulted(layout)
     result.parts_table = parts_table(layout)
+    _load_capacity(layout, result)
     if layout.hardware is not None:
         _parts(layout, result, settings)
     if settings.tolerances if tolerances is None else tolerances:
         result.tolerances = _tolerances(layout, setups, settings)
     return result
+
+
+def _load_capacity(layout: Layout, result: DesignCheck) -> None:
+    """Every mesh rated (:func:`geargen.checks.rating.rate_drive`). A safety factor below the minimum
+    is a failure when the file states its [duty] or [materials]; on geargen's defaults alone (a
+    material and a duty the file never chose) it is a note saying so, with the same fix."""
+    from geargen.checks.rating import fix_text, rate_drive
+    rating = rate_drive(layout)
+    result.load_capacity = rating
+    if not rating.rated:
+        result.notes.append(f"load capacity not rated: {rating.reason}")
+        return
+    fix = (" (fix, every mesh rated again with it passes: " + fix_text(rating.fix) + ")"
+           if rating.fix is not None else
+           " (no ISO 6336-5 material meets the minimum at these loads: a wider face, as the load capacity table's "
+           "'b needed', or a lighter [duty])")
+    if rating.failures and not rating.duty_stated:
+        result.notes.append(f"load capacity on geargen's default duty and materials (the file states no [duty] or "
+                            f"[materials]; with either this is a check): {len(rating.failures)} safety factor(s) "
+                            f"below the minimum, as the load capacity table shows{fix}")
+        return
+    for mesh in rating.meshes:
+        result.failures += [Failure("load_capacity", mesh.name, text + fix) for text in mesh.failures]
 
 
 def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> None:

@@ -240,6 +240,8 @@ def table(result: DesignCheck) -> str:
                   f"tip clearance {_fmt(b['tip_clearance'], u)}"]
     lines += _planetary_lines(result, u)
     lines += _rack_lines(result.rack, u)
+    if result.load_capacity is not None:
+        lines += result.load_capacity.lines(u)
     if result.tolerances:
         lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND}); MC: the backlash Monte Carlo, "
                   "its samples [checks] monte_carlo_samples (or --samples), not [monte_carlo] (synth's carriage travel)"]

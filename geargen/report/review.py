@@ -265,6 +265,16 @@ def key_numbers(result: Any) -> dict[str, Any]:
         meshes.append({"mesh": m["mesh"], "min_backlash": m["backlash_min"] / scale,
                        "worst_case_min_backlash": None if t is None else t["worst_case_min_backlash"]})
     out["meshes"] = meshes
+    rating = getattr(dc, "load_capacity", None) if dc is not None else None
+    weakest = {}
+    if rating is not None and rating.rated:
+        for what in ("S_H", "S_F"):
+            values = [(v, m.name) for m in rating.meshes for f in m.flanks for v in getattr(f, what)]
+            if values:
+                weakest[what] = min(values)
+    out["load_capacity"] = None if not weakest else {
+        "stated_duty": rating.duty_stated, "ok": rating.ok,
+        **{f"min_{k}": v for k, (v, _) in weakest.items()}, **{f"min_{k}_mesh": n for k, (_, n) in weakest.items()}}
     return out
 
 
@@ -299,6 +309,12 @@ def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str
         worst = m["worst_case_min_backlash"]
         rows.append([f"backlash {m['mesh']}, minimum ({unit})",
                      f"{g(m['min_backlash'])} as built" + ("" if worst is None else f"; {g(worst)} worst case")])
+    lc = numbers.get("load_capacity")
+    if lc is not None:
+        basis = "the stated duty" if lc["stated_duty"] else "geargen's default duty and materials"
+        for what, name in (("S_H", "pitting"), ("S_F", "bending")):
+            if f"min_{what}" in lc:
+                rows.append([f"least {what} ({name}, {basis})", f"{lc[f'min_{what}']:.3g} ({lc[f'min_{what}_mesh']})"])
     rows.append(["warnings", str(numbers["warnings"])])
     rows.append(["failures", str(numbers["failures"])])
     return ["quantity", "value"], rows
@@ -453,6 +469,18 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
                 f"each input mesh at rest, a path unloads at {c['unloading_rack_force']:.4g} N on the rack. "
                 f"Stiffness at the rack: paths {k['k1']:.4g} and {k['k2']:.4g} N/mm, carriage spring k3 "
                 f"{k['k3']:.4g} N/mm, drive (Eq. 5) {k['drive']:.4g} N/mm, loop (Eq. 6) {k['loop']:.4g} N/mm.")
+    rating = getattr(dc, "load_capacity", None) if dc is not None else None
+    if rating is not None:
+        r.h("Load capacity")
+        r.p("Every mesh rated by ISO 6336-2:2019 (pitting) and ISO 6336-3:2019 (tooth-root bending), method B, for "
+            "the preload it carries all its life and its share of the duty (Eqs. 2-6), the spectrum summed by "
+            "ISO 6336-6; S_H and S_F of gear 1 / gear 2 per flank. manifest.json holds every factor by its name "
+            "in the standard.")
+        r.items(rating.preamble())
+        header, rows = rating.table(unit)
+        if rows:
+            r.table(header, rows)
+        r.items(rating.remarks(unit))
     if dc is not None and dc.tolerances:
         r.h("Backlash across the error budget")
         from geargen.design.checks import checks_settings

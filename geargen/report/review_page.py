@@ -30,7 +30,7 @@ VIEWER_FILES = {"review_library": "three-bundle.min.js", "review_library_licence
                 "review_script": "review.js", "review_style": "review.css"}
 #: the report's key sections, shown first and unfolded, in this order
 _KEY = [re.compile(r"key numbers", re.IGNORECASE), re.compile(r"check|backlash", re.IGNORECASE), re.compile(r"stiffness", re.IGNORECASE),
-        re.compile(r"synthesis", re.IGNORECASE)]
+        re.compile(r"synthesis", re.IGNORECASE), re.compile(r"load capacity", re.IGNORECASE)]
 
 
 def sections(review: Review) -> list[dict[str, Any]]:

@@ -32,7 +32,11 @@ HARDENED = ("[duty]\nmaterial = \"case_carburised\"\naccuracy_grade = 5\nroughne
 
 
 def rated(name: str, extra: str = ""):
+    """The shipped drive ``name`` rated on geargen's defaults (its own [duty] and [materials] taken
+    out), with the sections of ``extra``."""
     data = tomllib.loads((ROOT / "assemblies" / f"{name}.toml").read_text())
+    data.pop("duty", None)
+    data.pop("materials", None)
     data.update(tomllib.loads(extra))
     return rate_drive(resolve(design_from_dict(data, validate=True)))
 
@@ -194,3 +198,49 @@ def test_what_iso_6336_does_not_rate_is_named():
     rack = rate_drive(resolve(design_from_dict(tomllib.loads((ROOT / "assemblies" / "rack_drive.toml").read_text()),
                                                validate=True)))
     assert not rack.rated and "[stiffness]" in rack.reason
+
+
+def _verdict(name: str, extra: str = "", tables: dict | None = None):
+    from geargen.checks.verdict import verify
+    data = tomllib.loads((ROOT / "assemblies" / f"{name}.toml").read_text())
+    data.pop("duty", None)
+    data.pop("materials", None)
+    for key, table in {**tomllib.loads(extra), **(tables or {})}.items():
+        data[key] = {**data.get(key, {}), **table}
+    return verify(resolve(design_from_dict(data, validate=True)), tolerances=False)
+
+
+@pytest.mark.parametrize("name", ["robot_joint", "split_pinion_inch"])
+def test_a_stated_duty_makes_the_rating_a_check_and_the_fix_it_names_passes(name):
+    """With a [duty] stated, a safety factor below the minimum is a check failure naming the keys
+    that fix it; the file with those keys pasted in passes (the split pinion's fix needs ground flanks)."""
+    from geargen.checks.rating import fix_lines, fix_tables
+    failing = _verdict(name, "[duty]\nlife_hours = 20000\n")
+    fails = [f for f in failing.failures if f.kind == "load_capacity"]
+    assert fails and not failing.ok
+    rating = failing.load_capacity
+    assert rating.fix is not None
+    assert all("[materials." in f.message and "fix" in f.message for f in fails)
+    tables = fix_tables(rating.fix)
+    assert tomllib.loads("\n".join(fix_lines(rating.fix))) == tables  # what the check prints to paste
+    tables["duty"] = {"life_hours": 20000, **tables.get("duty", {})}
+    fixed = _verdict(name, tables=tables)
+    assert not [f for f in fixed.failures if f.kind == "load_capacity"]
+    assert fixed.load_capacity.ok and fixed.load_capacity.duty_stated
+
+
+def test_on_the_defaults_alone_the_rating_is_a_note_not_a_failure():
+    """A file that states no [duty] or [materials] is rated on geargen's defaults and told so: the
+    shortfall is a note with the fix, the verdict is not refused for a material the file never chose."""
+    result = _verdict("robot_joint")
+    assert not [f for f in result.failures if f.kind == "load_capacity"]
+    assert not result.load_capacity.duty_stated and result.load_capacity.failures
+    (note,) = [n for n in result.notes if n.startswith("load capacity on geargen's default")]
+    assert "case_carburised" in note
+
+
+def test_the_shipped_drives_pass_with_the_materials_they_state():
+    for name in ("robot_joint", "c_axis", "split_pinion", "split_pinion_inch"):
+        rating = rate_drive(resolve(design_from_dict(tomllib.loads((ROOT / "assemblies" / f"{name}.toml").read_text()),
+                                                     validate=True)))
+        assert rating.duty_stated and rating.ok, (name, rating.failures)

@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from geargen.design.assembly import design_from_dict, load_design
+from geargen.design.assembly import design_from_dict
 from geargen.design.checks import checks_settings
 from geargen.design.duty import DEFAULT_LIFE, DEFAULT_OUTPUT_SPEED, duty_settings, gear_materials
 from geargen.design.iso6336_5 import TABLE_8, hardness_range
@@ -18,13 +18,16 @@ NMM_PER_IN_LBF = 4.4482216152605 * 25.4  # N per lbf (exact by definition) times
 
 
 def robot_with(extra: str):
+    """The shipped robot joint without its [duty] and [materials] (geargen's defaults), plus ``extra``."""
     data = tomllib.loads(ROBOT.read_text())
+    data.pop("duty", None)
+    data.pop("materials", None)
     data.update(tomllib.loads(extra))
     return design_from_dict(data, validate=True)
 
 
 def test_without_duty_the_spectrum_is_the_papers_maximum_load_for_the_whole_life():
-    duty = duty_settings(load_design(ROBOT))
+    duty = duty_settings(robot_with(""))
     assert duty.levels == ((5000.0, 1.0),)  # [preload] max_output_torque_Nm = 5.0
     assert "max_output_torque_Nm" in duty.levels_source and duty.torque_unit == "Nm"
     assert (duty.life, duty.output_speed) == (DEFAULT_LIFE, DEFAULT_OUTPUT_SPEED)
@@ -32,7 +35,7 @@ def test_without_duty_the_spectrum_is_the_papers_maximum_load_for_the_whole_life
     assert 60 * DEFAULT_OUTPUT_SPEED * DEFAULT_LIFE > 5e7
     # both ways, half the life each
     assert duty.signed_levels() == ((5000.0, 0.5, 1), (-5000.0, 0.5, 1))
-    mats = gear_materials(load_design(ROBOT))
+    mats = gear_materials(robot_with(""))
     assert set(mats) == {"input", "cluster_large", "cluster_small", "output"}
     assert {(m.name, m.quality, m.hardness) for m in mats.values()} == {("through_hardened", "MQ", 300.0)}
 

@@ -315,6 +315,29 @@ def test_key_numbers_are_the_stiffness_and_check_commands_numbers(built_assembli
     assert md.index("## Key numbers") < md.index("## Warnings")
 
 
+def test_load_capacity_of_the_build_is_the_checks(built_assemblies):
+    """The build's manifest, key numbers and report carry the load capacity ``geargen check --json``
+    gives (one rating, read three ways): every mesh's S_H and S_F per flank, the least of each."""
+    design = ROOT / "assemblies/robot_joint.toml"
+    folder = built_assemblies["robot_joint"]
+    manifest = json.loads((folder / "manifest.json").read_text())
+    check = _run(["check", str(design), "--json", "-"])["load_capacity"]
+    built = manifest["checks"]["load_capacity"]
+    assert built["duty_stated"] and built["ok"] and check["ok"]
+    def flanks(lc):
+        return {(m["name"], f["flank"]): (tuple(f["S_H"]), tuple(f["S_F"])) for m in lc["meshes"]
+                for f in m.get("flanks", ())}
+
+    assert flanks(built) == flanks(check) and len(flanks(built)) == 4
+    least = min(v for s_h, _ in flanks(built).values() for v in s_h)
+    assert manifest["key_numbers"]["load_capacity"]["min_S_H"] == pytest.approx(least, rel=1e-12)
+    md = (folder / "report.md").read_text()
+    block = md.split("## Load capacity", 1)[1].split("\n## ", 1)[0]
+    assert "| mesh | role | flank | preload | peak F_t | b | b needed | S_H gear 1/2 | S_F gear 1/2 |" in block
+    s_h = flanks(built)[("mesh2_a", "cw")][0]
+    assert f"{s_h[0]:#.3g}/{s_h[1]:#.3g}" in block
+
+
 _NUMBER = re.compile(r"(?<![\w.])[-+]?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
 
 
