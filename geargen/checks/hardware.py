@@ -236,25 +236,27 @@ def read_pair(a: AnalyticPart, b: AnalyticPart, resolution: float = 0.05, margin
 
 
 def closest_approach(a: AnalyticPart, b: AnalyticPart, starts: np.ndarray, radius: float,
-                     rng: np.random.Generator | None = None) -> float:
+                     rng: np.random.Generator | None = None, rounds: int = 20) -> float:
     """The least of max(d_a, d_b) (mm) near the points ``starts``: about half the gap between two
-    parts that are apart, 0 where they touch. A shrinking cloud: around the best point so far,
-    ``radius`` wide, 256 points at a time, the radius times 0.6 each round, 40 rounds (the last
-    cloud is 1e-9 of the first)."""
+    parts that are apart, 0 where they touch. A shrinking cloud around each start's best point so
+    far, all starts at once: ``radius`` wide, 256 points a start, the radius times 0.6 each round,
+    ``rounds`` rounds (the last cloud 3.7e-5 of the first: 0.015 um for the parts check's 0.4 mm,
+    1/70 of its contact tolerance)."""
     rng = rng if rng is not None else np.random.default_rng(0)
-    best_value = math.inf
-    for start in starts:
-        best, r = np.asarray(start, float), radius
-        value = float(np.maximum(a.distance(best[None]), b.distance(best[None]))[0])
-        for _ in range(40):
-            cloud = best + r * rng.uniform(-1.0, 1.0, size=(256, 3))
-            values = np.maximum(a.distance(cloud), b.distance(cloud))
-            i = int(np.argmin(values))
-            if values[i] < value:
-                best, value = cloud[i], float(values[i])
-            r *= 0.6
-        best_value = min(best_value, value)
-    return best_value
+    best = np.asarray(starts, float).reshape(-1, 3)
+    if not len(best):
+        return math.inf
+    value = np.maximum(a.distance(best), b.distance(best))
+    r = radius
+    for _ in range(rounds):
+        cloud = best[:, None, :] + r * rng.uniform(-1.0, 1.0, size=(len(best), 256, 3))
+        values = np.maximum(a.distance(cloud.reshape(-1, 3)), b.distance(cloud.reshape(-1, 3))).reshape(len(best), 256)
+        i = np.argmin(values, axis=1)
+        found = values[np.arange(len(best)), i]
+        better = found < value
+        best[better], value[better] = cloud[np.arange(len(best)), i][better], found[better]
+        r *= 0.6
+    return float(np.min(value))
 
 
 # ============================================================================ the check

@@ -269,7 +269,10 @@ def _planetary(layout, train, st, levels, carrier_sense: str) -> list[MeshLoads]
     relative = sun_speed - carrier  # the sun in the carrier's frame: the same sense as the carrier
     out = []
     for i, planet in enumerate(planets):
-        m = next(mm for mm in layout.meshes if mm.name.startswith(f"stage_{st.name}_sun_") and mm.part2 == planet.name)
+        m = next((mm for mm in layout.meshes if mm.name.startswith(f"stage_{st.name}_sun_")
+                  and mm.part2 == planet.name), None)
+        if m is None:  # a planet not placed in mesh with the sun carries nothing
+            continue
         # the sun's torque, |T| / n_sun, shared by the k planets at the sun's reference radius
         to_force = 1.0 / (sun_speed * m.gear1.reference_radius * k)
         loads = _level_loads(levels, carrier_sense, to_force)
