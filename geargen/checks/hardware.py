@@ -25,6 +25,7 @@ from typing import Any, Callable
 import numpy as np
 
 from geargen.design.cluster import ClusterSpec
+from geargen.errors import GeometryError
 from geargen.model.bodies import distance_function, polygon_distance, world_box
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
@@ -85,8 +86,11 @@ def gear_section(spec) -> tuple[np.ndarray, float, float]:
 def _section_distance(spec, p: np.ndarray) -> np.ndarray:
     """Signed 2-D distance of gear-frame points from the outline of :func:`gear_section` (a bound
     outside the tooth band, where the nearest of the root and tip circles stands in)."""
-    polygon, start, pitch = gear_section(spec)
     r = np.hypot(p[:, 0], p[:, 1])
+    try:
+        polygon, start, pitch = gear_section(spec)
+    except GeometryError:  # teeth that cannot be drawn (the mesh check names why): read by their tip circle
+        return r - spec.tip_radius  # an internal gear's hole: its tip circle
     # outside the tooth band the nearest circle bounds the distance (sign exact): no polygon needed
     root, tip = float(np.min(np.hypot(*polygon[1:].T))), float(np.max(np.hypot(*polygon[1:].T)))
     d2 = np.where(r < root, r - root, r - tip)

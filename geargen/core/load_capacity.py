@@ -369,8 +369,13 @@ def single_pair_contact_factors(geo: RatingGeometry) -> tuple[float, float]:
     roll_pitch = rb1 * math.tan(geo.working_pressure_angle)
     start = roll_tip - geo.eps_alpha * p_bt  # A, where the mate's tip meets the pinion
     pitch = geo.curvature(roll_pitch)
-    m_b = math.sqrt(geo.curvature(roll_tip - p_bt) / pitch)
-    m_d = math.sqrt(geo.curvature(start + p_bt) / pitch)
+    at_b, at_d = geo.curvature(roll_tip - p_bt), geo.curvature(start + p_bt)
+    if not (pitch > 0 and at_b > 0 and at_d > 0):  # a point of single contact off the involutes
+        raise DesignError("centre_distance", "the points of single contact fall off the involutes (the pair "
+                          "cannot mesh conjugately at this centre distance): ISO 6336-2 cannot rate it",
+                          "a centre distance at which the pair meshes on its involutes")
+    m_b = math.sqrt(at_b / pitch)
+    m_d = math.sqrt(at_d / pitch)
 
     def reduce(m):
         if geo.eps_beta >= 1.0:
