@@ -208,6 +208,19 @@ def fit_rotation(rate: float, length: float, tolerance: float, degree: int = FIT
     return SplineFit(degree, knots, mults, poles, err, length, (0.0, rate * length))
 
 
+def fit_function(point, deriv, t0: float, t1: float, tolerance: float, degree: int = FIT_DEGREE,
+                 max_spans: int = 64) -> SplineFit:
+    """Fit a smooth parametric curve ``point(t)`` ``(n, d)`` (with ``deriv(t)``, d/dt) for t in
+    [t0, t1], t0 < t1, to ``tolerance`` (mm, the distance at the same parameter); the spline's
+    parameter is t itself (its knots run from t0 to t1). Exact at both ends, with the exact end
+    tangents. Raises ValueError if ``max_spans`` spans do not reach ``tolerance``."""
+    def shifted(f):
+        return lambda s: f(t0 + np.asarray(s, dtype=float))
+
+    poles, knots, mults, err = _fit(shifted(point), shifted(deriv), t1 - t0, tolerance, degree, max_spans)
+    return SplineFit(degree, knots + t0, mults, poles, err, t1 - t0, (t0, t1))
+
+
 def greville(fit: SplineFit) -> np.ndarray:
     """Greville abscissae ``(n,)`` of ``fit``'s basis: the poles of the identity function s -> s
     (so a spline with these as its z poles has z(s) = s exactly)."""
@@ -216,4 +229,4 @@ def greville(fit: SplineFit) -> np.ndarray:
     return np.array([t[i + 1:i + p + 1].mean() for i in range(len(t) - p - 1)])
 
 
-__all__ = ["SplineFit", "fit_segment", "fit_rotation", "greville", "FIT_DEGREE"]
+__all__ = ["SplineFit", "fit_segment", "fit_rotation", "fit_function", "greville", "FIT_DEGREE"]
