@@ -24,11 +24,11 @@ accuracy needs:
   exact curve (:mod:`geargen.profile.bspline_fit`; an involute takes one to four spans, 8-11
   poles, a fillet 9-12). Along the axis a spur gear's surfaces are linear (two rows of poles); a
   helical gear's fillets are the profile poles turned by a fitted rotation ``(cos kz, sin kz)``:
-  one span of the lowest degree within 0.01 um at the tip over the whole face, 5-8 rows;
+  one span of the lowest degree within 0.02 nm at the tip over the whole face, 5-8 rows;
 - a helical gear's involute flank is ruled (:class:`_RuledFlank`): the involute helicoid is swept
   by the lines tangent to the base helix, so its surface is two rows of poles (the tangents at
-  the flank's start and tip circles, along the base helix: the fitted rotation again), 7-9 x 2
-  poles within 0.01 um of the exact helicoid everywhere; its end edges are the surface's own
+  the flank's start and tip circles, along the base helix: the fitted rotation again), 8-10 x 2
+  poles within 0.001 nm of the exact helicoid everywhere; its end edges are the surface's own
   curves along the z = 0 and z = b lines of its parameter plane. Against the 8 x 15 poles of the
   profile turned row by row, the 21-tooth bench gear's flank has 9 x 2, its STEP file is 27 %
   smaller and OCCT meshes the flank at 1 um into 1 400 triangles instead of 3 300.
@@ -353,15 +353,16 @@ def _bspline2d(poles: np.ndarray, knots, mults, degree: int) -> Geom2d_BSplineCu
     return Geom2d_BSplineCurve(arr, *_occ_knots(knots, mults), degree)
 
 
-def _bspline_surface(poles: np.ndarray, fit: SplineFit, axial: _Axial) -> Geom_BSplineSurface:
+def _bspline_surface_of(poles: np.ndarray, u_knots, u_mults, u_degree: int, v_knots, v_mults,
+                        v_degree: int) -> Geom_BSplineSurface:
     nu, nv = poles.shape[:2]
     arr = TColgp_Array2OfPnt(1, nu, 1, nv)
     for i, row in enumerate(poles.tolist()):
         for j, (x, y, z) in enumerate(row):
             arr.SetValue(i + 1, j + 1, gp_Pnt(x, y, z))
-    ku, mu = _occ_knots(fit.knots, fit.mults)
-    kv, mv = _occ_knots(axial.knots, axial.mults)
-    return Geom_BSplineSurface(arr, ku, kv, mu, mv, fit.degree, axial.degree)
+    ku, mu = _occ_knots(u_knots, u_mults)
+    kv, mv = _occ_knots(v_knots, v_mults)
+    return Geom_BSplineSurface(arr, ku, kv, mu, mv, u_degree, v_degree)
 
 
 def _line2d(u: float, v: float, du: float, dv: float) -> Geom2d_Line:
@@ -436,52 +437,113 @@ def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
 # ---------------------------------------------------------------- the toothed body
 
 
-def _canonical(curve: _Curve, axial: _Axial, length: float):
-    """Tooth 0's geometry of one curve: (side surface, bottom and top 3-D curves, pcurve on the
-    end planes, pcurves on the side surface of the bottom, top, start and end edges)."""
+def _turned(points: np.ndarray, angle: float, grid: float = 0.0, interior: int | None = None) -> np.ndarray:
+    """``points`` (..., 2 or 3) turned counter-clockwise by ``angle`` about the axis. With ``grid``
+    (:func:`_grid`), the points strictly inside along axis ``interior`` (the poles that no
+    neighbouring face's edge passes through) are then put on the grid; the end ones stay exact,
+    so neighbouring faces still meet edge for edge."""
+    if angle:
+        c, s = math.cos(angle), math.sin(angle)
+        points = points.copy()
+        x, y = points[..., 0].copy(), points[..., 1].copy()
+        points[..., 0], points[..., 1] = c * x - s * y, s * x + c * y
+    if grid and interior is not None:
+        inside = [slice(None)] * points.ndim
+        inside[interior] = slice(1, -1)
+        points = points.copy()
+        points[tuple(inside)] = np.round(points[tuple(inside)] / grid) * grid
+    return points
+
+
+def _grid(spec: GearSpec, tolerance: float) -> float:
+    """The spacing (mm) the spline poles inside a face are rounded to: the largest power of ten in
+    the file's length unit (mm or inch) within 0.035 nm and 0.057 x ``tolerance``, so rounding
+    moves a surface by at most 0.05 x the tolerance. A STEP file writes each coordinate to 12
+    decimals, trailing zeros dropped: on the grid 4 to 6 digits fewer (the 60-tooth helical ring's
+    file 6 % smaller). The poles an edge passes through stay exact (:func:`_turned`)."""
+    unit = 25.4 if spec.length_unit == "in" else 1.0
+    return unit * 10.0 ** math.floor(math.log10(min(3.5e-8, 0.057 * tolerance) / unit))
+
+
+@dataclass(frozen=True)
+class _Side:
+    """Tooth 0's geometry of one side face and how to turn it to another tooth.
+
+    A spline face (fillet, flank): ``surface`` (poles ``(n, m, 3)``, u basis, v basis) and its
+    ``bottom``/``top`` edge curves (poles ``(k, 3)`` - None: the surface's first and last rows -,
+    basis); a land: ``land`` (cylinder, bottom
+    circle, top circle, cap circle) of tooth 0. ``pcurves``: the edges' curves on the face
+    (bottom, top, start, end), the same for every tooth.
+    """
+
+    pcurves: tuple
+    surface: tuple | None = None
+    bottom: tuple | None = None
+    top: tuple | None = None
+    land: tuple | None = None
+
+    def instance(self, angle: float, grid: float, twist: float):
+        """(surface, bottom curve, top curve, their curves on the end planes) of the tooth turned
+        by ``angle``; the top plane's frame is turned by ``twist``."""
+        if self.land is not None:
+            surf, bottom, top, cap = self.land
+            if angle:
+                surf, bottom, top = (g.Rotated(_Z_AXIS, angle) for g in (surf, bottom, top))
+                cap = cap.Rotated(_ORIGIN_2D, angle)
+            return surf, bottom, top, (cap, cap)
+        poles, (uk, um, ud), (vk, vm, vd), ruled = self.surface
+        if ruled:  # every pole of a ruled flank is on its edges with the fillet or the land: exact
+            poles = _turned(poles, angle)
+        else:  # the fillet's edge curves are its first and last rows of poles: the same numbers
+            poles = _turned(poles, angle, grid, interior=0)
+        surf = _bspline_surface_of(poles, uk, um, ud, vk, vm, vd)
+        bottom, top = (poles[:, 0, :], poles[:, -1, :]) if not ruled else (
+            _turned(self.bottom[0], angle, grid, interior=0), _turned(self.top[0], angle, grid, interior=0))
+        basis = self.bottom[1:]
+        top_xy = _turned(top[:, :2], -twist)  # the top edge in the top plane's frame
+        return (surf, _bspline3d(bottom, *basis), _bspline3d(top, *basis),
+                (_bspline2d(bottom[:, :2], *basis), _bspline2d(top_xy, *basis)))
+
+
+def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
+    """Tooth 0's geometry of one curve (:class:`_Side`)."""
     twist = math.atan2(axial.s[-1], axial.c[-1])
+    c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     if curve.ruled is not None:
         r = curve.ruled
-        surf = _bspline_surface(r.poles, SplineFit(r.degree, r.knots, r.mults, r.poles, 0.0, 0.0, (0.0, 0.0)),
-                                _Axial(1, np.array(r.v_range), (2, 2), np.ones(2), np.zeros(2), np.zeros(2), 0.0))
         poles, knots, mults, degree = r.bottom
         zero = np.column_stack([poles[:, :2], np.zeros(len(poles))])
-        c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
         # the top edge is the bottom one turned by the twist (exactly, as the caps' frames are):
         # on the surface within twice its error
         top = np.column_stack([c_top * poles[:, 0] - s_top * poles[:, 1], s_top * poles[:, 0] + c_top * poles[:, 1],
                                np.full(len(poles), length)])
-        bottom, top = _bspline3d(zero, knots, mults, degree), _bspline3d(top, knots, mults, degree)
-        cap = _bspline2d(poles[:, :2], knots, mults, degree)
         (ta, tb), span = r.t_ends, [0.0, r.length]
-        pc_bottom = _bspline2d(np.array([r.uv(ta, 0.0), r.uv(tb, 0.0)]), span, [2, 2], 1)
-        pc_top = _bspline2d(np.array([r.uv(ta, length), r.uv(tb, length)]), span, [2, 2], 1)
-        pc_start = _bspline2d(np.array([r.uv(ta, 0.0), r.uv(ta, length)]), [0.0, length], [2, 2], 1)
-        pc_end = _bspline2d(np.array([r.uv(tb, 0.0), r.uv(tb, length)]), [0.0, length], [2, 2], 1)
-        return surf, bottom, top, cap, (pc_bottom, pc_top, pc_start, pc_end)
+        pcurves = (_bspline2d(np.array([r.uv(ta, 0.0), r.uv(tb, 0.0)]), span, [2, 2], 1),
+                   _bspline2d(np.array([r.uv(ta, length), r.uv(tb, length)]), span, [2, 2], 1),
+                   _bspline2d(np.array([r.uv(ta, 0.0), r.uv(ta, length)]), [0.0, length], [2, 2], 1),
+                   _bspline2d(np.array([r.uv(tb, 0.0), r.uv(tb, length)]), [0.0, length], [2, 2], 1))
+        return _Side(pcurves, (r.poles, (r.knots, r.mults, r.degree), (r.v_range, (2, 2), 1), True),
+                     (zero, knots, mults, degree), (top, knots, mults, degree))
     if curve.fit is not None:
         fit = curve.fit
         poles = axial.rows(fit.poles)
-        zero = np.column_stack([fit.poles, np.zeros(len(fit.poles))])
-        surf = _bspline_surface(poles, fit, axial)
-        bottom = _bspline3d(zero, fit.knots, fit.mults, fit.degree)
-        top = _bspline3d(poles[:, -1, :], fit.knots, fit.mults, fit.degree)
-        cap = _bspline2d(fit.poles, fit.knots, fit.mults, fit.degree)
         u0, u1 = curve.range
         pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(0.0, length, 1.0, 0.0),
                    _line2d(u0, 0.0, 0.0, 1.0), _line2d(u1, 0.0, 0.0, 1.0))
-        return surf, bottom, top, cap, pcurves
+        basis = (fit.knots, fit.mults, fit.degree)
+        # the edges' curves are the surface's first and last rows of poles (the same numbers)
+        return _Side(pcurves, (poles, basis, (axial.knots, axial.mults, axial.degree), False), (None, *basis),
+                     (None, *basis))
     # a land: the exact cylinder, circles at both ends, helices (lines u = angle + twist z / L)
     r = curve.radius
-    x_top = gp_Dir(float(axial.c[-1]), float(axial.s[-1]), 0.0)
     surf = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
     bottom = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
-    top = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), x_top), r)
+    top = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0.0)), r)
     cap = Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), r)
     a0, a1 = curve.angles
     pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(twist, length, 1.0, 0.0),
                _helix_pcurve(a0, twist, length), _helix_pcurve(a1, twist, length))
-    return surf, bottom, top, cap, pcurves
+    return _Side(pcurves, land=(surf, bottom, top, cap))
 
 
 def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
@@ -492,7 +554,7 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     poles turned row by row by the axial basis (:class:`_Axial`), a land an exact cylinder, a flank
     the profile spline's poles turned (spur) or the ruled surface of :class:`_RuledFlank`
     (helical). 90 % of ``tolerance`` goes to the profile fit; the rotation's share (at most
-    0.01 um, a tenth of the edge tolerance, so helices stay on the land cylinders) the rest.
+    0.02 nm, a fifth of the edge tolerance, so helices stay on the land cylinders) the rest.
 
     ``mirror`` (gap, groove radius): a double-helical gear whose first half is ``spec`` (z in [0, h]):
     the second half is the first's mirror image in the plane z = h + gap / 2, every face and edge
@@ -502,16 +564,19 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     """
     builder = BRep_Builder()
     length = spec.face_width
-    # a ruled flank's edges are its own curves, the helices the axial basis's: both within a tenth of
-    # the edge tolerance of the exact surface (and of the stated tolerance)
-    exact = min(0.1 * tolerance, 0.1 * KERNEL_TOLERANCE)
-    ruled = (twist_rate(spec), length, exact) if spec.is_helical else None
+    # a ruled flank's edges are its own curves, the helices the axial basis's: each within a fifth of
+    # the edge tolerance of the exact surface (so within 0.4 of it of each other), and within a tenth
+    # of the stated tolerance
+    exact = min(0.1 * tolerance, 0.2 * KERNEL_TOLERANCE)
+    # a ruled flank has only two rows: its rotation to 0.001 nm costs one or two poles along it
+    ruled = (twist_rate(spec), length, min(0.1 * tolerance, 0.01 * KERNEL_TOLERANCE)) if spec.is_helical else None
     curves = _tooth_curves(profile, 0.9 * tolerance, ruled)
     reach = max(float(np.max(np.hypot(*c.fit.poles.T))) for c in curves if c.fit is not None)
     reach = max(reach, profile.tip_radius)
     axial = _axial(spec, exact / reach)
     c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     n = len(curves)
+    grid = _grid(spec, tolerance)
     joints = _joints(profile, np.array([c.end for c in curves]))
 
     # vertices at both ends of every joint and the joint's helix (straight line on a spur gear):
@@ -526,16 +591,11 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
 
     loc = TopLoc_Location()
     tol = KERNEL_TOLERANCE
-    canon = [_canonical(c, axial, length) for c in curves]
+    canon = [_side(c, axial, length) for c in curves]
     sides = []  # per face of the first half: (surface, bottom curve, top curve, cap curve, its range)
     for i in range(len(joints)):
         tooth, j = divmod(i, n)
-        surf, bottom, top, cap, _ = canon[j]
-        if tooth:
-            angle = tooth * profile.pitch_angle
-            surf, bottom, top = (g.Rotated(_Z_AXIS, angle) for g in (surf, bottom, top))
-            cap = cap.Rotated(_ORIGIN_2D, angle)
-        sides.append((surf, bottom, top, cap, curves[j].range))
+        sides.append((*canon[j].instance(tooth * profile.pitch_angle, grid, math.atan2(s_top, c_top)), curves[j].range))
 
     def half(surfaces, bottoms, tops, helix_curves, vb, vt, reverse):
         """One half's side faces: ``bottoms``/``tops`` the 3-D curves of the edges at parameter
@@ -544,7 +604,7 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
         helix_e = [_edge(builder, c, vb[i], vt[i], 0.0, length) for i, c in enumerate(helix_curves)]
         for i, surf in enumerate(surfaces):
             j = i % n
-            pc_bottom, pc_top, pc_start, pc_end = canon[j][4]
+            pc_bottom, pc_top, pc_start, pc_end = canon[j].pcurves
             u0, u1 = sides[i][4]
             eb = _edge(builder, bottoms[i], vb[i - 1], vb[i], u0, u1)
             et = tops[i] if isinstance(tops[i], TopoDS_Edge) else _edge(builder, tops[i], vt[i - 1], vt[i], u0, u1)
@@ -571,8 +631,10 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
             return Geom_Plane(gp_Ax3(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0)))
         return Geom_Plane(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1))
 
+    # (plane, edges, z, faces +z, [hole]); the edges' curves on the plane: index 0 the bottom
+    # edges' (untwisted frame), 1 the top edges' (the frame turned by the twist)
     caps.append((plane_at(0.0, False), bottom_edges, 0.0, False))  # the bottom, turned over to face -z
-    far = length
+    far, far_edges = length, None
     extra = []
     if mirror is None:
         caps.append((plane_at(length, True), top_edges, length, True))
@@ -611,8 +673,9 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
             exp.Next()
     cap_faces = []
     for plane, edges, z, up, *ring in caps:
+        which = 0 if edges is bottom_edges or edges is far_edges else 1
         for i, e in enumerate(edges):
-            builder.UpdateEdge(e, sides[i][3], plane, loc, tol)
+            builder.UpdateEdge(e, sides[i][3][which], plane, loc, tol)
         face = TopoDS_Face()
         builder.MakeFace(face, plane, loc, tol)
         builder.Add(face, _wire(builder, edges))
