@@ -113,7 +113,7 @@ def evaluate_design(design_path: str, data: dict[str, Any], values: dict[str, An
 def _evaluate(design, row: dict[str, Any], rejected: Callable) -> DesignOutcome:
     from geargen.checks.verdict import verify
     from geargen.design.synthesis import monte_carlo_settings
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import loop_error_travels, stiffness
 
     try:

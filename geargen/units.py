@@ -30,6 +30,11 @@ def from_mm(value_mm, unit: str):
     return value_mm / LENGTH_SUFFIXES[unit]
 
 
+def length_text(value_mm: float, unit: str, digits: int = 4) -> str:
+    """A length (mm) as text in the design's ``unit``: ``"0.02033 in"``."""
+    return f"{from_mm(value_mm, unit):.{digits}g} {unit}"
+
+
 def module_from_diametral_pitch(diametral_pitch_per_in: float) -> float:
     """Module in mm of a diametral pitch in teeth per inch of pitch diameter (m = 25.4 / P)."""
     return MM_PER_IN / diametral_pitch_per_in

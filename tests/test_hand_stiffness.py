@@ -34,7 +34,7 @@ from pathlib import Path
 import pytest
 
 from geargen.design.assembly import load_design
-from geargen.model import resolve
+from geargen.drives import resolve
 from geargen.model.analysis import stiffness
 
 pytestmark = pytest.mark.slow

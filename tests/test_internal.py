@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from geargen.checks.internal_pair import (RingMaterial, check_internal, free_play, involute_margin, overlap_depth,
-                                          radial_assembly_margin, tip_margin, trochoid_margin)
+                                          radial_assembly_margin, tip_margin, trochoid_margin, undercut_recess)
 from geargen.core.internal import internal_pair_geometry
 from geargen.core.involute import involute
 from geargen.design.gear import GearSpec, gear_from_table
@@ -154,6 +154,33 @@ def test_involute_interference():
     assert overlap_depth(g, p1, p2, np.linspace(0.0, 2 * math.pi / 30, 41)).max() < 1e-9
     kinds = [f.kind for f in check_internal(pinion(24), ring(40), radial_assembly=False).failures]
     assert "involute_interference" in kinds
+
+
+def test_an_undercut_recess_is_not_interference():
+    """Issue 31: the KHK / SDP-SI textbook pair (m 3, 16 / 24, x2 +0.516) failed for involute
+    interference by 0.1248 mm. By hand: the ring's tip crosses the line of action
+    sqrt(ra2^2 - rb2^2) - (rb2 - rb1) tan(a_w) = sqrt(34.548^2 - 33.829^2) - 11.276 tan 31.321 deg
+    = 0.1502 mm past the pinion's base tangent point, above its base circle (KHK's rule holds);
+    the 16-tooth pinion is undercut, its involute starting 0.2750 mm along the line (rb1 x its
+    start roll), and the old margin was their difference. Below that start the undercut lies inside
+    the involute (measured: 0 to 0.04 um deep where the ring's tip runs), so the ring's tip touches
+    nothing: the exact outlines over one pitch (81 phases) overlap by none."""
+    g, p1, p2 = pair_parts(16, 0.0, 24, 0.516, m=3.0)
+    rb1, rb2, ra2 = g.pinion.base_radius, g.ring.base_radius, p2.tip_radius
+    ring_tip = math.sqrt(ra2 ** 2 - rb2 ** 2) - (rb2 - rb1) * math.tan(g.working_pressure_angle)
+    assert ring_tip == pytest.approx(0.1502, abs=5e-5)
+    assert p1.undercut and rb1 * p1.involute_start_roll == pytest.approx(0.2750, abs=5e-5)
+    assert ring_tip - rb1 * p1.involute_start_roll == pytest.approx(-0.1248, abs=5e-5)  # the old margin
+    assert involute_margin(g, p1) == pytest.approx(ring_tip, rel=1e-12)
+    recess = undercut_recess(p1, math.hypot(rb1, ring_tip), p1.involute_start_radius)
+    assert -1e-9 < recess[0] and recess[1] < 5e-5  # mm: inside the involute, by at most 0.05 um
+    # the exact outlines: no overlap (1e-9 mm: the outline's round-off; a real overlap is the 0.1 mm)
+    assert overlap_depth(g, p1, p2, np.linspace(0.0, 2 * math.pi / 16, 81)).max() < 1e-9
+    result = check_internal(g.pinion, g.ring, radial_assembly=False)
+    assert result.ok
+    # the contact stops at the pinion's involute start: 0.1248 mm less of the line of action
+    p_bt = 2 * math.pi * rb1 / 16
+    assert any(f"contact ratio {g.contact_ratio - 0.12481 / p_bt:.4f}" in n for n in result.notes)
 
 
 def test_tip_interference():

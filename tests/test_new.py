@@ -159,7 +159,7 @@ def test_split_pinion_preload_band_matches_closed_forms(starters):
     meshes (Eq. 1), the shafts in torsion, each pinion on its shaft and supports (a beam on elastic
     supports by superposition; the compliant pinion's lower support is the collar on the hollow
     shaft's overhung end)."""
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import stiffness
 
     data = starter_data("split_pinion", "x")

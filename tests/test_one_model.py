@@ -11,7 +11,7 @@ from pathlib import Path
 import pytest
 
 from geargen.design.assembly import load_design
-from geargen.model import resolve
+from geargen.drives import resolve
 from geargen.model.analysis import stiffness
 
 pytestmark = pytest.mark.slow
@@ -311,34 +311,35 @@ def _unseated(part_set, *pairs):
     return replace(part_set, intended_contacts=[c for c in part_set.intended_contacts if frozenset(c[:2]) not in gone])
 
 
-def test_structure_check_fails_the_build_unless_reported(tmp_path):
-    """A C-axis whose upper bearing of pinion A has lost its seat in the quill (that contact taken out
-    of the built parts: the bearing then joins nothing to anything) is one structure finding: a
-    warning where the design file says structure = "report", a failure with the default "fail". The
-    shipped C-axis passes with the default."""
-    from geargen.pipeline import _all_checks, CheckOutcome, gear_solids
+def test_structure_check_fails_the_check_unless_reported(tmp_path):
+    """A C-axis whose upper bearing of pinion A has lost its seat in the quill (that joint taken out
+    of the resolved drive: the bearing then joins nothing to anything) is one structure finding of
+    the verdict check and build share: a note where the design file says structure = "report", a
+    failure with the default "fail". The shipped C-axis passes with the default."""
+    from dataclasses import replace
+    from geargen.checks.verdict import verify
 
     def outcome_of(path, *unseat):
-        design = load_design(path)
-        gears = gear_solids(resolve(design))
-        layout, _, part_set = _placed(design, gears)
-        return _all_checks(layout, gears, _unseated(part_set, *unseat), CheckOutcome(meshes=[]))
+        layout = resolve(load_design(path))
+        gone = {frozenset(p) for p in unseat}
+        hardware = replace(layout.hardware, joints=tuple(j for j in layout.hardware.joints
+                                                         if frozenset((j.a, j.b)) not in gone))
+        return verify(replace(layout, hardware=hardware), tolerances=False)
 
     shipped = ROOT / "assemblies/c_axis.toml"
     assert "[checks]" not in shipped.read_text()  # the default: structure = "fail"
     finding = "cluster_bearing_upper_a touches only cluster_shaft_a: it joins nothing to anything"
     failed = outcome_of(shipped, ("quill_a", "cluster_bearing_upper_a"))
-    assert [f for f in failed.failures if f.startswith("structure")] == \
-        [f"structure: {finding} (no seat on its other side)"]
+    assert [f.message for f in failed.all_failures if f.kind == "structure"] == [f"{finding} (no seat on its other side)"]
     reporting = tmp_path / "c_axis.toml"
     reporting.write_text(shipped.read_text() + '\n[checks]\nstructure = "report"\n')
     reported = outcome_of(reporting, ("quill_a", "cluster_bearing_upper_a"))
-    assert not any(f.startswith("structure") for f in reported.failures)
-    assert [w for w in reported.warnings if w.startswith("structure")] == \
+    assert not any(f.kind == "structure" for f in reported.all_failures)
+    assert [n for n in reported.notes if n.startswith("structure")] == \
         [f'structure ([checks] structure = "report"): {finding} (no seat on its other side)']
-    # the bearing still touches the quill: taking the contact out is no overlap, the structure is all
-    assert reported.failures == [] and reported.overlaps.ok
-    assert outcome_of(shipped).failures == []
+    # the bearing still touches the quill: taking the joint out is no overlap, the structure is all
+    assert reported.all_failures == [] and reported.parts.ok
+    assert outcome_of(shipped).all_failures == []
 
 
 def test_c_axis_quills_hold_the_bearings_and_meet_the_stops():

@@ -139,7 +139,7 @@ def test_gear_data_of_an_assembly_gear_is_the_resolved_gear(tmp_path, capsys):
     """`geargen gear DESIGN --gear NAME` writes the gear the assembly builds: the C-axis derives its
     thinning for mid-range backlash, and the gear data says so, with the same number."""
     from geargen.design.assembly import load_design
-    from geargen.model import resolve
+    from geargen.drives import resolve
 
     layout = resolve(load_design(DESIGNS["c_axis"]))
     want = next(g for p in layout.gears for g in p.gears if g.name == "output").thinning

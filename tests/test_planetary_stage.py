@@ -20,7 +20,7 @@ from geargen.checks.verdict import verify
 from geargen.core.planetary import planet_phases, ring_phase_error
 from geargen.design.assembly import load_design
 from geargen.errors import DesignError
-from geargen.model import resolve
+from geargen.drives import resolve
 from geargen.profile.tooth import tooth_profile
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -139,8 +139,12 @@ def test_planets_that_break_the_assembly_condition_are_refused_by_name(tmp_path)
     assert [round(k) for k in steps] == [0, 14, 29, 43, 58]  # round(i 72 / 5)
     assert steps == pytest.approx([round(k) for k in steps], abs=1e-9)
     result = verify(moved, tolerances=False)
-    # every planet meshes both sun and ring; but five planets of 18.72 mm do not fit round a 15 T sun
-    assert {(f.kind, f.mesh) for f in result.failures} == {("planet_neighbour_clearance", "stage_planetary")}
+    # every planet meshes both sun and ring; but five planets of 18.72 mm do not fit round a 15 T sun:
+    # the stage's rule says so, and the parts check finds the neighbours' solids overlapping
+    assert {(f.kind, f.mesh) for f in result.failures} == {("planet_neighbour_clearance", "stage_planetary"),
+                                                           ("parts_overlap", "parts")}
+    overlapping = {frozenset((f.part1, f.part2)) for f in result.parts.findings}
+    assert overlapping and all(all(n.startswith("planet_") for n in pair) for pair in overlapping)
 
 
 def test_the_stage_counts_its_ratio_and_it_is_the_kinematics_of_the_phases(layout):

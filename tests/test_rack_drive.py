@@ -11,6 +11,7 @@ shafts moved apart, and the bad variants fail with their named failure kinds.
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -23,7 +24,7 @@ from geargen.core.drive import TwoPathDrive
 from geargen.core.rack_drive import RackDriveFrame, solve_carriage
 from geargen.design.assembly import load_design
 from geargen.errors import DesignError
-from geargen.model import resolve
+from geargen.drives import resolve
 from geargen.model.layout import running_backlash
 from geargen.model.rack_drive import report
 
@@ -319,11 +320,78 @@ def test_one_home_spacing_and_spring_rate_move_the_parts(tmp_path, layout):
     assert wide.part("path_shaft_b").matrix[0, 3] == pytest.approx(-58.0)
     stiff = non_gear_parts(resolve(_variant(tmp_path, "carriage_spring_rate_N_per_mm = 50",
                                             "carriage_spring_rate_N_per_mm = 80")))
-    g, d, mean = 79.3e3, 4.0, 20.0
+    g, d, mean = 79.3e3, 5.0, 25.0
     for parts, rate in ((base, 50.0), (stiff, 80.0)):
         coils = parts.dimensions["carriage_spring"]["active_coils"]
         assert coils == pytest.approx(g * d ** 4 / (8 * mean ** 3 * rate), rel=1e-12)
-        assert parts.dimensions["carriage_spring"]["free"] == pytest.approx(40.0 + 800.0 / rate, rel=1e-12)
+        assert parts.dimensions["carriage_spring"]["free"] == pytest.approx(55.0 + 800.0 / rate, rel=1e-12)
+
+
+SPRING_KEYS = ("spring_wire_diameter_mm = 5", "spring_mean_diameter_mm = 25", "spring_installed_length_mm = 55")
+
+
+def _spring_variant(tmp_path, wire, mean, installed):
+    text = DESIGN.read_text()
+    for key, value in zip(SPRING_KEYS, (wire, mean, installed)):
+        assert key in text
+        text = text.replace(key, f"{key.split(' = ')[0]} = {value}")
+    path = tmp_path / "rack_drive.toml"
+    path.write_text(text)
+    return load_design(path)
+
+
+def _spring_failure(design):
+    from geargen.checks.rack_drive import carriage_spring_failure
+    from geargen.design.parts import parts_settings
+    return carriage_spring_failure(resolve(design).placement, parts_settings(design), "mm")
+
+
+def test_issue31_carriage_spring_stress_by_hand(tmp_path):
+    """The design as it shipped: 4 mm music wire on 20 mm (C = 5), 800 N at 40 mm, 50 N/mm. By hand
+    (Shigley): K_W = (4C - 1)/(4C - 4) + 0.615/C = 19/16 + 0.123 = 1.3105 (the file said 1.25);
+    tau = K_W 8 F D / (pi d^3) = 1.3105 x 8 x 800 x 20 / (pi 64) = 834.3 MPa; 0.45 S_ut = 0.45 x 2211 /
+    4^0.145 = 813.8 MPa. Active coils G d^4 / (8 D^3 k) = 79.3e3 x 256 / (8 x 8000 x 50) = 6.344,
+    solid (6.344 + 2) x 4 = 33.38 mm, free 40 + 16 = 56 mm: closed solid 50 x 22.62 = 1131 N, 1179.5 MPa.
+    The check fails naming the wire, and its suggested change passes."""
+    c = 5.0
+    wahl = (4 * c - 1) / (4 * c - 4) + 0.615 / c
+    assert wahl == pytest.approx(1.3105, abs=5e-5)
+    tau = wahl * 8 * 800 * 20 / (math.pi * 4 ** 3)
+    allowed = 0.45 * 2211 / 4 ** 0.145
+    coils = 79.3e3 * 4 ** 4 / (8 * 20 ** 3 * 50)
+    solid_force = 50 * (56 - (coils + 2) * 4)
+    assert (tau, allowed, solid_force) == pytest.approx((834.3, 813.8, 1131.0), abs=0.5)
+    old = _spring_variant(tmp_path, 4, 20, 40)
+    failure = _spring_failure(old)
+    assert failure.kind == "spring_overstressed" and failure.limit == pytest.approx(allowed, rel=1e-12)
+    assert failure.value == pytest.approx(tau * solid_force / 800, rel=1e-12)  # 1179.5 MPa closed solid
+    assert "834.3 MPa at the preload" in failure.message and "Wahl 1.3105" in failure.message
+    # the fix it names: the thinnest stock wire at index 5 that passes (4.5 mm carries 800 N at 659 MPa of
+    # 800 but would close solid within 3.4 mm, less than its own 4.5 mm pitch): 5 mm on 25 mm
+    fix = re.search(r"parts\.spring_wire_diameter_mm = ([\d.]+) with spring_mean_diameter_mm = ([\d.]+) \(index 5 "
+                    r"kept\) and spring_installed_length_mm ([\d.]+) to ([\d.]+)", failure.message)
+    assert fix and (float(fix[1]), float(fix[2])) == (5.0, 25.0)
+    lo, hi = float(fix[3]), float(fix[4])
+    assert _spring_failure(_spring_variant(tmp_path, 5, 25, round((lo + hi) / 2, 2))) is None
+    # the verdict: geargen check lists it
+    result, _ = check_design(old)
+    assert ("carriage_spring", "spring_overstressed") in {(f.mesh, f.kind) for f in result.all_failures}
+
+
+def test_a_spring_installed_too_long_names_the_installed_length(tmp_path):
+    """The shipped 5 mm spring installed at 60 mm: free 76 mm, solid (7.93 + 2) x 5 = 49.65 mm, closed
+    solid 50 x 26.35 = 1317 N, 1.3105 x 8 x 1317 x 25 / (pi 125) = 879 MPa over 0.45 x 2211 / 5^0.145 =
+    787.9. At most 49.65 + (787.9 / 534.0 x 800 - 800) / 50 = 57.26 mm, and at least 5 mm over solid."""
+    failure = _spring_failure(_spring_variant(tmp_path, 5, 25, 60))
+    assert failure.value == pytest.approx(879.0, abs=0.5)
+    fix = re.search(r"parts\.spring_installed_length_mm: ([\d.]+) to ([\d.]+) mm", failure.message)
+    coils = 79.3e3 * 5 ** 4 / (8 * 25 ** 3 * 50)
+    solid = (coils + 2) * 5
+    per_newton = (19 / 16 + 0.123) * 8 * 25 / (math.pi * 125)
+    longest = solid + (0.45 * 2211 / 5 ** 0.145 / per_newton - 800) / 50
+    assert (float(fix[1]), float(fix[2])) == pytest.approx((solid + 5, longest), abs=0.005)  # printed to 4 digits
+    assert _spring_failure(_spring_variant(tmp_path, 5, 25, 56)) is None
+    assert _spring_failure(load_design(DESIGN)) is None  # shipped: 534 MPa installed, 712 MPa closed solid
 
 
 def test_rack_length_is_the_travel_plus_the_pinions_span(layout):

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from geargen.design.assembly import load_design
-from geargen.model import resolve
+from geargen.drives import resolve
 from geargen.model.bevel_drive import bevel_drive
 
 ROBOT = Path(__file__).resolve().parents[1] / "assemblies/robot_joint.toml"
@@ -39,7 +39,7 @@ def _layout(tmp_path=None, **changes):
 
 
 def test_placed_apexes_coincide_on_the_pitch_cone_models_apex():
-    from geargen.cad.parts import bevel_pair_geometry
+    from geargen.core.bevel import bevel_pair_geometry
     from geargen.design.parts import parts_settings
     from geargen.model.shafts import carriage_shafts
     layout = _layout()
@@ -109,11 +109,13 @@ def test_moving_the_bevel_moves_the_solids_and_the_stiffness_together(tmp_path):
         return c.length
 
     base = _layout()
-    up = _layout(tmp_path, input_shaft_to_bevel_in=0.625)
+    # 0.075 in up (0.1 in puts the bevel gear's heel above the link cover's plane over the cluster
+    # bearings: refused, test_a_bevel_too_high_is_refused_with_fixes_that_work)
+    up = _layout(tmp_path, input_shaft_to_bevel_in=0.6)
     a, b = bevel_drive(base), bevel_drive(up)
-    assert b.apex[2] - a.apex[2] == pytest.approx(0.1 * IN, abs=1e-12)
-    assert np.allclose(b.pinion_matrix[:3, 3] - a.pinion_matrix[:3, 3], [0, 0, 0.1 * IN], atol=1e-12)
-    assert shaft_length(up) - shaft_length(base) == pytest.approx(0.1 * IN, abs=1e-12)
+    assert b.apex[2] - a.apex[2] == pytest.approx(0.075 * IN, abs=1e-12)
+    assert np.allclose(b.pinion_matrix[:3, 3] - a.pinion_matrix[:3, 3], [0, 0, 0.075 * IN], atol=1e-12)
+    assert shaft_length(up) - shaft_length(base) == pytest.approx(0.075 * IN, abs=1e-12)
 
     wide = _layout(tmp_path, bevel_face_width_in=0.2)
     w = bevel_drive(wide)
@@ -126,13 +128,28 @@ def test_moving_the_bevel_moves_the_solids_and_the_stiffness_together(tmp_path):
     assert _bevel_stiffness(wide, 15, 30, 1.0) > _bevel_stiffness(base, 15, 30, 1.0)
 
 
-def test_a_bevel_heel_into_the_carriage_arm_is_refused(tmp_path):
-    from geargen.cad.assembly import carriage_parts
-    from geargen.design.parts import parts_settings
-    from geargen.errors import DesignError
-    layout = _layout(tmp_path, input_shaft_to_bevel_in=0.50)
-    with pytest.raises(DesignError, match="input_shaft_to_bevel"):
-        carriage_parts(layout, parts_settings(layout.design))
+@pytest.mark.parametrize("value, rule", [(0.50, "bevel_above_arm"), (0.625, "link_cover_room")])
+def test_a_bevel_too_low_or_too_high_is_refused_with_fixes_that_work(tmp_path, value, rule):
+    """The rules are the hardware's, evaluated when the drive is resolved (check refuses as build
+    does). Too low, the bevel gear's back runs into the carriage arm; too high, its heel rises above
+    the link cover's plane where the cover must seat the cluster bearings. Each refusal offers
+    values found by laying the drive out again: each, written into the file, lets the drive resolve
+    (or at least changes the refusal)."""
+    from geargen.drives.rules import RuleBroken
+    with pytest.raises(RuleBroken) as e:
+        _layout(tmp_path, input_shaft_to_bevel_in=value)
+    assert e.value.rule == rule and e.value.fixes and "input_shaft_to_bevel_in" in str(e.value)
+    for key, fixed in e.value.fixes.items():
+        text = (tmp_path / "robot_joint.toml").read_text()
+        name = key.split(".", 1)[1]
+        text, n = re.subn(rf"^{name} = [^ #\n]+", f"{name} = {fixed}", text, flags=re.M)
+        assert n == 1, key
+        path = tmp_path / "fixed.toml"
+        path.write_text(text)
+        try:
+            resolve(load_design(path))
+        except RuleBroken as again:
+            assert again.rule != rule, (key, fixed, str(again))
 
 
 @pytest.mark.slow

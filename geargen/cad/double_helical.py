@@ -35,9 +35,15 @@ from OCP.TopTools import TopTools_ListOfShape
 
 from geargen.cad.gear_solid import GearSolid, _hub_body, _single_solid, _toothed_body, check_solid, default_tolerance
 from geargen.design.gear import GearSpec, Hub
-from geargen.errors import BuildError, DesignError
+from geargen.errors import BuildError
 from geargen.profile.tessellate import Layer
 from geargen.profile.tooth import ToothProfile, tooth_profile, twist_rate
+
+
+def _internal(field: str, problem: str, allowed: str = "") -> ValueError:
+    """Numbers no builder can make: the resolved drive checks its parts before the CAD layer sees
+    them (geargen.model.bodies), so reaching here is a bug, not bad input."""
+    return ValueError(f"{field}: {problem}" + (f" (allowed: {allowed})" if allowed else ""))
 
 
 #: depth of the centre gap's relief groove below the teeth's root circle, over the normal module. The
@@ -57,7 +63,7 @@ def half_spec(spec: GearSpec) -> GearSpec:
     :attr:`~GearSpec.half_face_width`, the spec's hand, bore and keyway but no hub (the hub belongs
     to the whole gear), no accuracy grade (the grade's scope is the whole gear's face width)."""
     if spec.kind != "double_helical":
-        raise DesignError("kind", f"{spec.kind!r} is not a double_helical gear", "'double_helical'")
+        raise _internal("kind", f"{spec.kind!r} is not a double_helical gear", "'double_helical'")
     hub = Hub(spec.hub.bore_diameter, spec.hub.keyway_width, spec.hub.keyway_depth)
     return replace(spec, kind="external", centre_gap=0.0, face_width=spec.half_face_width, hub=hub,
                    accuracy_grade=None, accuracy_standard=None)

@@ -148,12 +148,12 @@ def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: 
     t0 = time.perf_counter()
     triangles, mesher = solid_triangles(solid, chordal_tolerance, angular_tolerance, transform)
     with atomic_path(Path(path)) as tmp:
-        write_stl(tmp, triangles)
+        written = write_stl(tmp, triangles)
     size = Path(path).stat().st_size
     return ExportRecord(Path(path), "stl", "mm", time.perf_counter() - t0, size,
                         chordal_tolerance=chordal_tolerance,
                         angular_tolerance=angular_tolerance if mesher == "occt" else None,
-                        triangles=len(triangles), mesher=mesher)
+                        triangles=written, mesher=mesher)
 
 
 def solid_triangles(solid, chordal_tolerance: float, angular_tolerance: float = 0.5, transform=None,
@@ -211,18 +211,50 @@ def kernel_triangles(shape, chordal_tolerance: float, angular_tolerance: float, 
         trsf = loc.Transformation()
         nodes = np.array([[p.X(), p.Y(), p.Z()] for p in
                           (tri.Node(i + 1).Transformed(trsf) for i in range(tri.NbNodes()))])
+        _collapse_degenerate_edges(face, nodes)
         idx = np.array([tri.Triangle(i + 1).Get() for i in range(tri.NbTriangles())]) - 1
         if face.Orientation() == TopAbs_REVERSED:
             idx = idx[:, ::-1]
         out.append(nodes[idx])
         exp.Next()
-    return np.concatenate(out) if out else np.zeros((0, 3, 3))
+    return _without_repeated_vertices(np.concatenate(out)) if out else np.zeros((0, 3, 3))
 
 
-def write_stl(path, triangles) -> None:
-    """Binary STL of ``triangles`` ``(n, 3, 3)`` (facet normals from the vertex order)."""
+def _collapse_degenerate_edges(face, nodes) -> None:
+    """Put the mesh nodes of ``face`` that lie on a degenerated edge (a sphere's pole) exactly on its
+    vertex. The kernel's mesher evaluates the surface at each node of such an edge, so the pole
+    comes out as several points ~1e-16 mm apart, and the triangles between them, of zero area, leave
+    edges that no other triangle shares: an STL that is not watertight (issue 31)."""
     import numpy as np
-    tri = np.asarray(triangles, dtype=float)
+    from OCP.TopAbs import TopAbs_EDGE
+    from OCP.TopExp import TopExp
+    exp = TopExp_Explorer(face, TopAbs_EDGE)
+    while exp.More():
+        edge = TopoDS.Edge_s(exp.Current())
+        exp.Next()
+        if not BRep_Tool.Degenerated_s(edge):
+            continue
+        vertex = TopExp.FirstVertex_s(edge)
+        p = BRep_Tool.Pnt_s(vertex)
+        point = np.array([p.X(), p.Y(), p.Z()])
+        near = np.linalg.norm(nodes - point, axis=1) <= BRep_Tool.Tolerance_s(vertex)
+        nodes[near] = point
+
+
+def _without_repeated_vertices(triangles):
+    """``triangles`` less those with two equal corners (zero area: their two other edges cancel,
+    so leaving them out keeps a closed mesh closed and removes the zero-length edge)."""
+    t = triangles
+    repeated = (t[:, 0] == t[:, 1]).all(1) | (t[:, 1] == t[:, 2]).all(1) | (t[:, 2] == t[:, 0]).all(1)
+    return t[~repeated]
+
+
+def write_stl(path, triangles) -> int:
+    """Binary STL of ``triangles`` ``(n, 3, 3)`` (facet normals from the vertex order); returns the
+    number written: a triangle two of whose corners are the same point in the file's single
+    precision is left out (see :func:`_without_repeated_vertices`)."""
+    import numpy as np
+    tri = _without_repeated_vertices(np.asarray(triangles, dtype=np.float32)).astype(float)
     normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
     length = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = normals / np.where(length > 0, length, 1.0)
@@ -234,6 +266,7 @@ def write_stl(path, triangles) -> None:
         fh.write(header)
         fh.write(np.uint32(len(tri)).tobytes())
         fh.write(rec.tobytes())
+    return len(tri)
 
 
 def write_json(path, data) -> None:

@@ -33,7 +33,15 @@ def build_part(spec, check: bool = False):
     valid closed solid)."""
     kind = part_kind(spec)
     if kind not in BUILDERS:
-        from geargen.errors import DesignError
-        raise DesignError("kind", f"{kind!r} has no solid builder", ", ".join(map(repr, BUILDERS)))
+        raise ValueError(f"{kind!r} has no solid builder (the design reader knows {', '.join(map(repr, BUILDERS))})")
     module, function = BUILDERS[kind].split(":")
     return getattr(importlib.import_module(module), function)(spec, check=check)
+
+
+def build_toothed(toothed):
+    """The solid of a toothed component of a drive's hardware (:class:`geargen.model.components.Toothed`):
+    its family's solid, a bevel gear with the back the component asks for."""
+    if getattr(toothed.spec, "kind", "") == "bevel":
+        from geargen.cad.bevel_solid import build_bevel
+        return build_bevel(toothed.spec, check=True, back=toothed.back).shape
+    return build_part(toothed.spec, check=True).shape

@@ -24,8 +24,14 @@ from OCP.TopoDS import TopoDS, TopoDS_Shell, TopoDS_Solid
 
 from geargen.cad.gear_solid import GearSolid, _toothed_body, check_solid, default_tolerance
 from geargen.design.gear import GearSpec
-from geargen.errors import BuildError, DesignError
+from geargen.errors import BuildError
 from geargen.profile.internal import InternalProfile, internal_profile
+
+
+def _internal(field: str, problem: str, allowed: str = "") -> ValueError:
+    """Numbers no builder can make: the resolved drive checks its parts before the CAD layer sees
+    them (geargen.model.bodies), so reaching here is a bug, not bad input."""
+    return ValueError(f"{field}: {problem}" + (f" (allowed: {allowed})" if allowed else ""))
 
 
 def build_hole(spec: GearSpec, profile: InternalProfile, tolerance: float):
@@ -119,7 +125,7 @@ def build_internal(spec: GearSpec, tolerance: float | None = None, check: bool =
     (:func:`geargen.profile.internal.internal_profile`).
     """
     if spec.kind != "internal":
-        raise DesignError("kind", f"{spec.kind!r}: build_internal builds internal gears", "'internal'")
+        raise _internal("kind", f"{spec.kind!r}: build_internal builds internal gears", "'internal'")
     if tolerance is None:
         tolerance = default_tolerance(spec)
     profile = internal_profile(spec)

@@ -43,13 +43,20 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 from OCP.TopTools import TopTools_ListOfShape
 
-from geargen.errors import BuildError, DesignError
+from geargen.core.bevel import BevelPairGeometry
+from geargen.errors import BuildError
+
+
+def _internal(field: str, problem: str, allowed: str = "") -> ValueError:
+    """Numbers no builder can make: the resolved drive checks its parts before the CAD layer sees
+    them (geargen.model.bodies), so reaching here is a bug, not bad input."""
+    return ValueError(f"{field}: {problem}" + (f" (allowed: {allowed})" if allowed else ""))
 
 
 def _positive(**values) -> None:
     for name, v in values.items():
         if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
-            raise DesignError(name, f"{v!r} is out of range", "> 0 mm")
+            raise _internal(name, f"{v!r} is out of range", "> 0 mm")
 
 
 # ---------------------------------------------------------------- shape queries and operations
@@ -181,7 +188,7 @@ def cylinder(diameter: float, height: float, bore: float = 0.0) -> TopoDS_Shape:
     """A (hollow) cylinder on +z, z in [0, height]. Volume ``pi/4 (d^2 - bore^2) h``."""
     _positive(diameter=diameter, height=height)
     if not 0 <= bore < diameter:
-        raise DesignError("bore", f"{bore!r} mm is out of range", f"[0, {diameter:.6g}) mm")
+        raise _internal("bore", f"{bore!r} mm is out of range", f"[0, {diameter:.6g}) mm")
     solid = _cylinder(diameter / 2, height)
     if bore > 0:
         solid = cut(solid, _cylinder(bore / 2, height))
@@ -206,7 +213,7 @@ def frustum(bottom_radius: float, top_radius: float, height: float, bore: float 
     """
     _positive(bottom_radius=bottom_radius, top_radius=top_radius, height=height)
     if not 0 <= bore < 2 * min(bottom_radius, top_radius):
-        raise DesignError("bore", f"{bore!r} mm is out of range", "smaller than both end diameters")
+        raise _internal("bore", f"{bore!r} mm is out of range", "smaller than both end diameters")
     solid = BRepPrimAPI_MakeCone(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), bottom_radius, top_radius, height,
                                  2 * math.pi).Shape()
     if bore > 0:
@@ -225,71 +232,8 @@ def shaft(diameter: float, length: float, bore: float = 0.0) -> TopoDS_Shape:
 def bearing(bore: float, outer_diameter: float, width: float) -> TopoDS_Shape:
     """A rolling bearing as its envelope ring: ``bore`` to ``outer_diameter``, z in [0, width]."""
     if not outer_diameter > bore:
-        raise DesignError("outer_diameter", f"{outer_diameter!r} mm is not larger than the bore", f"> {bore:.6g} mm")
+        raise _internal("outer_diameter", f"{outer_diameter!r} mm is not larger than the bore", f"> {bore:.6g} mm")
     return cylinder(outer_diameter, width, bore)
-
-
-@dataclass(frozen=True)
-class BevelPairGeometry:
-    """Pitch cones of a bevel pair with intersecting axes (mm, rad).
-
-    ``pitch_angle_*`` is each gear's pitch-cone half angle (they add up to the shaft angle),
-    ``pitch_radius_*`` the pitch radius at the heel (outer end of the face), ``cone_distance``
-    the slant length from the common apex to the heel. A gear's frustum runs from its heel
-    (radius ``pitch_radius``) a ``face_width`` along the cone towards the apex.
-    """
-
-    pinion_teeth: int
-    gear_teeth: int
-    module: float
-    face_width: float
-    shaft_angle: float
-    pitch_angle_pinion: float
-    pitch_angle_gear: float
-    pitch_radius_pinion: float
-    pitch_radius_gear: float
-    cone_distance: float
-
-    @property
-    def ratio(self) -> float:
-        return self.gear_teeth / self.pinion_teeth
-
-    def apex_height(self, which: str) -> float:
-        """Distance along the axis from a gear's heel plane to the common apex (mm)."""
-        r, g = self._cone(which)
-        return r / math.tan(g)
-
-    def axial_height(self, which: str) -> float:
-        """Axial length of a gear's frustum (mm): face width times cos(pitch angle)."""
-        return self.face_width * math.cos(self._cone(which)[1])
-
-    def toe_radius(self, which: str) -> float:
-        r, g = self._cone(which)
-        return r - self.face_width * math.sin(g)
-
-    def _cone(self, which: str) -> tuple[float, float]:
-        if which == "pinion":
-            return self.pitch_radius_pinion, self.pitch_angle_pinion
-        if which == "gear":
-            return self.pitch_radius_gear, self.pitch_angle_gear
-        raise ValueError("which must be 'pinion' or 'gear'")
-
-
-def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_width: float,
-                        shaft_angle: float = math.pi / 2) -> BevelPairGeometry:
-    """Pitch cones of a bevel pair: ``tan(gamma_p) = sin(S) / (z_g/z_p + cos(S))``, gamma_g = S - gamma_p,
-    heel pitch radii ``z m / 2``, cone distance ``r_p / sin(gamma_p)``."""
-    _positive(module=module, face_width=face_width, shaft_angle=shaft_angle)
-    if pinion_teeth < 4 or gear_teeth < 4:
-        raise DesignError("teeth", f"{pinion_teeth}, {gear_teeth} are too few", ">= 4 each")
-    ratio = gear_teeth / pinion_teeth
-    gp = math.atan2(math.sin(shaft_angle), ratio + math.cos(shaft_angle))
-    gg = shaft_angle - gp
-    rp, rg = pinion_teeth * module / 2, gear_teeth * module / 2
-    cone = rp / math.sin(gp)
-    if not face_width < cone:
-        raise DesignError("face_width", f"{face_width:.6g} mm exceeds the cone distance", f"< {cone:.6g} mm")
-    return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
 
 
 def bevel_pitch_cone(geometry: BevelPairGeometry, which: str, bore: float = 0.0) -> TopoDS_Shape:
@@ -313,7 +257,7 @@ def servo_motor(body_diameter: float, body_length: float, flange_width: float, f
     _positive(body_diameter=body_diameter, body_length=body_length, flange_width=flange_width,
               flange_thickness=flange_thickness, shaft_diameter=shaft_diameter, shaft_length=shaft_length)
     if not shaft_diameter < min(body_diameter, flange_width):
-        raise DesignError("shaft_diameter", "the shaft is not thinner than the motor", "< body diameter")
+        raise _internal("shaft_diameter", "the shaft is not thinner than the motor", "< body diameter")
     flange = box(flange_width, flange_width, flange_thickness, (-flange_width / 2, -flange_width / 2, 0))
     body = translate(cylinder(body_diameter, body_length), (0, 0, flange_thickness))
     stub = translate(cylinder(shaft_diameter, shaft_length), (0, 0, -shaft_length))
@@ -339,11 +283,11 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
               total_coils=total_coils)
     d, mean = wire_diameter, mean_coil_diameter
     if not mean > 2 * d:
-        raise DesignError("mean_coil_diameter", "spring index D/d must exceed 2", f"> {2 * d:.6g} mm")
+        raise _internal("mean_coil_diameter", "spring index D/d must exceed 2", f"> {2 * d:.6g} mm")
     rise = length - d
     pitch = rise / total_coils
     if not pitch > d:
-        raise DesignError("length", f"{length:.6g} mm closes the coils (pitch {pitch:.4g} <= wire {d:.4g} mm)",
+        raise _internal("length", f"{length:.6g} mm closes the coils (pitch {pitch:.4g} <= wire {d:.4g} mm)",
                           f"> {d * (total_coils + 1):.6g} mm")
     helix = _helix(pitch, rise, mean / 2)
     circle = BRepBuilderAPI_MakeWire(
@@ -404,7 +348,7 @@ def link_tray(radius: float, length: float, height: float, wall: float, floor: f
     """
     _positive(radius=radius, length=length, height=height, wall=wall, floor=floor)
     if not (wall < radius and floor < height):
-        raise DesignError("wall", "walls and floor leave no room inside", "wall < radius, floor < height")
+        raise _internal("wall", "walls and floor leave no room inside", "wall < radius, floor < height")
 
     def outline(r: float, z0: float, h: float) -> TopoDS_Shape:
         disc = _cylinder(r, h, (0, 0, z0))
@@ -427,7 +371,7 @@ def _relieved(bosses) -> list[tuple[float, float, float, float, float]]:
     out = [tuple(b) + (0.0,) * (5 - len(b)) for b in bosses]
     for _, _, d, _, r in out:
         if not 0 <= r < d:
-            raise DesignError("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
+            raise _internal("relief", f"{r!r} mm leaves no boss around it", f"[0, {d:.6g}) mm")
     return out
 
 
@@ -463,7 +407,7 @@ def link_cover(radius: float, wall: float, x_end: float, thickness: float,
     _positive(radius=radius, wall=wall, x_end=x_end, thickness=thickness)
     r = radius - wall
     if not r > 0:
-        raise DesignError("wall", "walls leave no room inside", "wall < radius")
+        raise _internal("wall", "walls leave no room inside", "wall < radius")
     disc = _cylinder(r, thickness)
     rect = _box(x_end, 2 * r, thickness, (0.0, -r, 0.0))
     cover = intersect(union(disc, rect), _box(x_end + r, 2 * r, thickness, (-r, -r, 0.0)))
@@ -501,16 +445,16 @@ def quill(outer_diameter: float, length: float, bores: list[tuple[float, float, 
     spans = sorted(bores)
     for (z0, z1, d), following in zip(spans, spans[1:] + [(length, length, 0.0)]):
         if not (0 <= z0 < z1 <= following[0] and 0 < d < outer_diameter):
-            raise DesignError("bores", f"({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range",
+            raise _internal("bores", f"({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range",
                               f"apart, inside [0, {length:.6g}] mm, diameters in (0, {outer_diameter:.6g}) mm")
     if not lug_width < outer_diameter:
-        raise DesignError("lug_width", f"{lug_width:.6g} mm is not narrower than the sleeve", f"< {outer_diameter:.6g} mm")
+        raise _internal("lug_width", f"{lug_width:.6g} mm is not narrower than the sleeve", f"< {outer_diameter:.6g} mm")
     # the lug's root: the middle of the wall around the widest bore at the lug's height
     widest = max((d for z0, z1, d in spans if z0 < lug_thickness), default=0.0)
     root = (widest / 2 + radius) / 2
     # the root's corners inside the outer cylinder: the lug meets the sleeve across its whole section
     if not math.hypot(root, lug_width / 2) < radius:
-        raise DesignError("lug_width", f"{lug_width:.6g} mm is too wide for the sleeve's wall",
+        raise _internal("lug_width", f"{lug_width:.6g} mm is too wide for the sleeve's wall",
                           f"< {2 * math.sqrt(radius ** 2 - root ** 2):.6g} mm")
     solid = _cylinder(radius, length)
     solid = cut(solid, *[_cylinder(d / 2, z1 - z0, (0.0, 0.0, z0)) for z0, z1, d in spans]) if spans else solid
@@ -542,7 +486,6 @@ def split_collar(bore: float, outer_diameter: float, width: float, slot: float) 
 
 
 __all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
-           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "BevelPairGeometry",
-           "bevel_pair_geometry", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
+           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
            "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
            "link_cover_volume", "ring_relief", "quill", "quill_volume", "split_collar"]

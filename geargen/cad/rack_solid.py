@@ -304,11 +304,11 @@ class _HelicalRack:
         a, bc = float(origin @ self.teeth_dir) + cx * along, r * along
         u0, u1 = record.angles
         key = (round(bc, 12), round(u0, 12), round(u1, 12))
-        if key not in self.pcurve_cache:
-            fit = fit_function(lambda u: np.column_stack([u, bc * np.cos(u)]),
-                               lambda u: np.column_stack([np.ones_like(u), -bc * np.sin(u)]), u0, u1,
+        if key not in self.pcurve_cache:  # the fit's parameter s runs from 0: u = u0 + s
+            fit = fit_function(lambda s: np.column_stack([u0 + s, bc * np.cos(u0 + s)]),
+                               lambda s: np.column_stack([np.ones_like(s), -bc * np.sin(u0 + s)]), u1 - u0,
                                1e-3 * KERNEL_TOLERANCE)
-            self.pcurve_cache[key] = _bspline2d(fit.poles, fit.knots, fit.mults, fit.degree)
+            self.pcurve_cache[key] = _bspline2d(fit.poles, fit.knots + u0, fit.mults, fit.degree)
         return self.pcurve_cache[key].Translated(gp_Vec2d(0.0, a))
 
     def _face(self, surface, records: list[_EdgeRecord], pcurves: list, points: dict, normal_hint: np.ndarray,

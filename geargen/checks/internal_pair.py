@@ -9,9 +9,14 @@ The named interferences of an internal pair, each with its published rule (KHK "
 Reference", section 4.6 "Interference in internal gearing"; the same formulas in SDP/SI "Elements
 of Metric Gear Technology", section 5.2) and a margin (positive: passes):
 
-- ``involute_interference``: the ring's tip engages the pinion below its usable involute (at least
-  below its base circle: ``z1 / z2 >= 1 - tan(a_a2) / tan(a_w)``; here against the pinion's real
-  form radius, undercut or fillet included). Margin: mm along the line of action.
+- ``involute_interference``: the ring's tip engages the pinion where the pinion's flank stands
+  proud of its involute, or below its base circle (KHK: ``z1 / z2 >= 1 - tan(a_a2) / tan(a_w)``).
+  Stricter than KHK: a generated fillet stands proud of the involute extended below the form
+  circle, so against a fillet joint the limit is the pinion's form radius. An undercut is a
+  recess (the rack tip cut into the involute): the ring's tip runs over it without touching, so
+  against an undercut pinion the limit is the base circle (:func:`undercut_recess` measures the
+  recess on the exact outline; contact stops at the involute's start, which a note says). Margin:
+  mm along the line of action.
 - ``tip_to_root_interference``: the pinion's tip engages the ring beyond its usable involute (its
   cutter-generated fillet), or a tip circle reaches the mate's root circle (radial clearance).
   Margin: mm.
@@ -186,12 +191,51 @@ def _alpha(rb: float, r: float) -> float:
     return math.acos(min(1.0, rb / r))
 
 
-def involute_margin(pair: InternalPairGeometry, pinion: ToothProfile) -> float:
-    """mm along the line of action from the pinion's form point to where the ring's tip engages."""
+def ring_tip_roll_length(pair: InternalPairGeometry) -> float:
+    """mm along the line of action from the pinion's base tangent point to where the ring's tip
+    circle crosses it: sqrt(ra2^2 - rb2^2) - (rb2 - rb1) tan(a_w)."""
     rb1, rb2 = pair.pinion.base_radius, pair.ring.base_radius
     ra2 = pair.ring.tip_radius
-    ring_tip = math.sqrt(max(ra2 ** 2 - rb2 ** 2, 0.0)) - (rb2 - rb1) * math.tan(pair.working_pressure_angle)
-    return ring_tip - rb1 * pinion.involute_start_roll
+    return math.sqrt(max(ra2 ** 2 - rb2 ** 2, 0.0)) - (rb2 - rb1) * math.tan(pair.working_pressure_angle)
+
+
+#: a pinion flank closer to its involute than this (mm) counts as on it (the exact outline's round-off)
+ON_INVOLUTE = 1e-9
+
+
+def undercut_recess(pinion: ToothProfile, r_lo: float, r_hi: float, samples: int = 200001) -> tuple[float, float] | None:
+    """(least, deepest) recess (mm, positive: the flank lies inside the involute) of the pinion's
+    flank below its involute's start, between radii ``r_lo`` and ``r_hi``, on the exact fillet
+    (the undercut) sampled ``samples`` times along its parameter; None when none of its points lies
+    there. The involute's half-angle at radius r: psi_b - inv(acos(r_b / r))."""
+    fillet = next(seg for seg in pinion.segments if seg.kind == "fillet" and seg.side == "upper")
+    pts = fillet.point(np.linspace(fillet.t0, fillet.t1, samples))
+    r = np.hypot(pts[:, 0], pts[:, 1])
+    inside = (r >= max(r_lo, pinion.base_radius)) & (r <= r_hi)
+    if not inside.any():
+        return None
+    alpha = np.arccos(pinion.base_radius / r[inside])
+    recess = r[inside] * (pinion.base_half_angle - (np.tan(alpha) - alpha) - np.abs(np.arctan2(pts[inside, 1],
+                                                                                              pts[inside, 0])))
+    return float(recess.min()), float(recess.max())
+
+
+def usable_roll(pair: InternalPairGeometry, pinion: ToothProfile) -> float:
+    """The lowest roll angle of the pinion's flank the ring's tip may reach without interference:
+    its involute's start against a fillet joint (the fillet stands proud of the involute extended
+    below it); its base circle under an undercut that lies inside the involute all the way down
+    to where the ring's tip engages (measured: :func:`undercut_recess`)."""
+    if not pinion.undercut:
+        return pinion.involute_start_roll
+    engage = math.hypot(pair.pinion.base_radius, max(ring_tip_roll_length(pair), 0.0))
+    recess = undercut_recess(pinion, engage, pinion.involute_start_radius)
+    return 0.0 if recess is None or recess[0] >= -ON_INVOLUTE else pinion.involute_start_roll
+
+
+def involute_margin(pair: InternalPairGeometry, pinion: ToothProfile) -> float:
+    """mm along the line of action from the lowest usable point of the pinion's flank
+    (:func:`usable_roll`) to where the ring's tip engages."""
+    return ring_tip_roll_length(pair) - pair.pinion.base_radius * usable_roll(pair, pinion)
 
 
 def tip_margin(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalProfile) -> tuple[float, str]:
@@ -270,9 +314,20 @@ def check_internal(pinion: GearSpec, ring: GearSpec, centre_distance: float | No
     failures = []
     margins = {}
     margins["involute_interference_mm"] = m = involute_margin(pair, p1)
+    notes = []
     if m < 0:
         failures.append(Failure("involute_interference", mesh, "the ring's tip engages the pinion below its usable "
                                 "involute (KHK 4.6: z1/z2 >= 1 - tan a_a2 / tan a_w)", "interference_depth", -m, 0.0))
+    short = pair.pinion.base_radius * p1.involute_start_roll - ring_tip_roll_length(pair)
+    if m >= 0 and short > 0:
+        # the ring's tip runs into the pinion's undercut: no interference, but no contact there
+        engage = math.hypot(pair.pinion.base_radius, ring_tip_roll_length(pair))
+        recess = undercut_recess(p1, engage, p1.involute_start_radius)
+        p_bt = 2 * math.pi * pair.pinion.base_radius / pair.pinion.teeth
+        notes.append(f"the ring's tip runs {short:.4g} mm along the line of action over the pinion's undercut "
+                     f"(recessed up to {recess[1] * 1e3:.2g} um from its involute: no interference); contact stops at "
+                     f"the involute's start, contact ratio {pair.contact_ratio - short / p_bt:.4f} "
+                     f"(not {pair.contact_ratio:.4f})")
     m, what = tip_margin(pair, p1, p2)
     margins["tip_interference_mm"] = m
     if m < 0:
@@ -287,7 +342,7 @@ def check_internal(pinion: GearSpec, ring: GearSpec, centre_distance: float | No
             failures.append(Failure("radial_assembly_fouling", mesh, "the pinion cannot be moved into mesh along "
                                     "the line of centres at any phase (assemble it axially)", "interference_depth",
                                     -m, 0.0))
-    return InternalCheck(pair, margins, tuple(failures), minimum_tooth_difference(pinion, ring))
+    return InternalCheck(pair, margins, tuple(failures), minimum_tooth_difference(pinion, ring), tuple(notes))
 
 
 def minimum_tooth_difference(pinion: GearSpec, ring: GearSpec) -> int | None:
@@ -309,4 +364,4 @@ def minimum_tooth_difference(pinion: GearSpec, ring: GearSpec) -> int | None:
 
 
 __all__ = ["RingMaterial", "InternalPlay", "InternalCheck", "free_play", "overlap_depth", "check_internal",
-           "involute_margin", "tip_margin", "trochoid_margin", "radial_assembly_margin", "minimum_tooth_difference"]
+           "involute_margin", "ring_tip_roll_length", "undercut_recess", "usable_roll", "tip_margin", "trochoid_margin", "radial_assembly_margin", "minimum_tooth_difference"]

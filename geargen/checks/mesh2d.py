@@ -55,6 +55,7 @@ from geargen.design.gear import GearSpec
 from geargen.errors import GeargenError, GeometryError
 from geargen.profile import UndercutWarning, section_rotation, tooth_profile
 from geargen.profile.tooth import ToothProfile
+from geargen.units import length_text
 
 #: segment kind codes of sampled boundary points
 ROOT, FILLET, INVOLUTE, TIP = 0, 1, 2, 3
@@ -852,7 +853,8 @@ def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> 
     kind_of_limit = np.array([0, 2, 1])  # CONJUGATE -> none, NON_CONJUGATE -> involute, ROOT_BODY -> tip-to-root
 
     def intrusion(conj, full, limit):
-        dep = rb1 * (conj - full)  # turn back from running contact until the feature clears
+        with np.errstate(invalid="ignore"):  # inf - inf where nothing touches: no intrusion (NaN, dropped below)
+            dep = rb1 * (conj - full)  # turn back from running contact until the feature clears
         # a tip in the mate's root: the radial depth under the tip circle says more than the turn
         return np.where((limit == ROOT_BODY) & (clear < 0), -clear, dep), kind_of_limit[limit]
 
@@ -965,8 +967,9 @@ def _static_failures(setup: MeshSetup, settings: CheckSettings):
         minimum = settings.min_tip_land_modules * g.module
         if o.profile.tip_land < minimum:
             fails.append(Failure("pointed_tooth", setup.name,
-                                 f"{g.name}: tip land {o.profile.tip_land:.4g} mm is below {minimum:.4g} mm "
-                                 f"({settings.min_tip_land_modules:g} m_n)", "tip_land", o.profile.tip_land, minimum))
+                                 f"{g.name}: tip land {length_text(o.profile.tip_land, g.length_unit)} is below "
+                                 f"{length_text(minimum, g.length_unit)} ({settings.min_tip_land_modules:g} m_n)",
+                                 "tip_land", o.profile.tip_land, minimum))
         if o.profile.undercut:
             notes.append(f"{g.name} is undercut: its involute starts at radius {o.r_start:.6g} mm")
     try:
@@ -1008,9 +1011,11 @@ def check_mesh(setup: MeshSetup, settings: CheckSettings = CheckSettings()) -> M
             kind = {"pointed_tooth": "pointed_tooth", "no_involute": "undercut"}.get(exc.kind)
             if kind is None:
                 raise
+            text = str(exc).removeprefix(f"{exc.kind}: ")  # the failure line says its kind
+            text = text if text.startswith(f"{g.name}: ") else f"{g.name}: {text}"
             return MeshCheck(mesh=setup.name, gear1=setup.gear1.name, gear2=setup.gear2.name, path="exact_2d",
                              centre_distance=setup.centre_distance, sweep=empty_sweep(),
-                             failures=[Failure(kind, setup.name, f"{g.name}: {exc}")])
+                             failures=[Failure(kind, setup.name, text)])
     fails, notes, geo = _static_failures(setup, settings)
     pos = mesh_positions(setup, settings.steps_per_tooth, settings.revolutions)
     sw = sweep_mesh(setup, pos, setup.planes(settings.planes))
@@ -1021,7 +1026,9 @@ def check_mesh(setup: MeshSetup, settings: CheckSettings = CheckSettings()) -> M
         fails.append(Failure("low_contact_ratio", setup.name,
                              f"contact ratio {total:.4g} (measured transverse {eps:.4g}) is below "
                              f"{settings.min_contact_ratio:g}", "contact_ratio", total, settings.min_contact_ratio))
-    if settings.require_backlash and not any(f.kind == "flank_interference" for f in fails):
+    # where the teeth never touch there is no backlash to measure (the contact ratio says so)
+    if settings.require_backlash and not any(f.kind == "flank_interference" for f in fails) \
+            and np.isfinite(sw.normal_backlash).any():
         jmin = float(np.nanmin(sw.normal_backlash))
         if jmin <= INTERFERENCE_TOLERANCE:
             i = int(np.nanargmin(sw.normal_backlash))

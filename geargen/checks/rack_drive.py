@@ -11,7 +11,9 @@ base circle's tangent point on the line of action, the closed form of
 design range or is not the placed value, ``preload_contact_lost`` when a pinion does not stand
 a loaded flank gap from its working flank (the loop is not closed as placed) or the drive force
 unloads a path, ``flank_interference`` when a placed pinion's free flank overlaps the rack, ``carriage_travel_exceeded`` when the carriage's stroke cannot take its
-placement's offset, the anticipated loop error and teeth made anywhere in the backlash ranges.
+placement's offset, the anticipated loop error and teeth made anywhere in the backlash ranges,
+``spring_overstressed`` when the carriage spring's wire stress passes 0.45 of its tensile
+strength at the preload force or closed solid (:func:`carriage_spring_failure`).
 """
 
 from __future__ import annotations
@@ -64,6 +66,55 @@ def placed_rack_gaps(rack, pinion, centre_offset: float, pinion_x: float, pinion
     down, _ = _extreme(pair, theta, lambda X, Y: pair.half_width(Y) - pair.offset(X), below_tips, u_grid, k_grid)
     # seen from the pinion, the placed rack stands `shift` further toward +x than the pair's
     return float(up - shift), float(down + shift)
+
+
+def carriage_spring_failure(placed, parts: dict, unit: str) -> Failure | None:
+    """The carriage spring (``[parts]`` wire, mean diameter, installed length; ``[layout]`` force
+    and rate) against its allowable stress (:func:`geargen.core.flexures.spring_for_rate`): at the
+    preload force, and closed solid (a spring that takes a set when closed loses its preload). The
+    failure names the key to change and a change that passes: the installed length when the wire
+    carries the working force and a shorter spring keeps it off solid stress, else the thinnest
+    stock music wire (geargen.design.hardware_defaults.WIRE_DIAMETERS) at the same spring index with
+    its installed length. Installed at least max(d, 15 % of the working deflection, the carriage's
+    stroke) above solid: the swept coils' pitch, Shigley's clash allowance, the carriage's travel."""
+    from geargen.core.flexures import smallest_spring_wire, spring_for_rate, spring_installed_range
+    from geargen.design.hardware_defaults import WIRE_DIAMETERS
+    force, rate = placed.spring_force, placed.spring_rate
+    d, mean, installed = parts["spring_wire_diameter"], parts["spring_mean_diameter"], parts["spring_installed_length"]
+    shear = parts["spring_shear_modulus_GPa"] * 1e3
+    spring = spring_for_rate(force, rate, d, mean, installed, shear)
+    allowed = spring.allowable_shear_stress
+    if spring.installed_stress <= allowed and spring.solid_stress <= allowed:
+        return None
+    k = LENGTH_SUFFIXES[unit]
+
+    def clearance(wire: float) -> float:
+        return max(wire, 0.15 * force / rate, placed.carriage_travel)
+
+    stress = (f"carriage spring ({d / k:.4g} {unit} wire on {mean / k:.4g} {unit}, index {spring.index:.3g}, Wahl "
+              f"{spring.wahl_factor:.4f}): {spring.installed_stress:.4g} MPa at the preload's {force:.4g} N, "
+              f"{spring.solid_stress:.4g} MPa closed solid ({spring.solid_force:.4g} N), against 0.45 S_ut = "
+              f"{allowed:.4g} MPa")
+    lo, hi = spring_installed_range(spring, clearance(d))
+    if spring.installed_stress <= allowed and lo < hi:
+        fix = (f"parts.spring_installed_length_{unit}: {lo / k:.4g} to {hi / k:.4g} {unit} (solid at "
+               f"{spring.solid_height / k:.4g} {unit})")
+    else:
+        found = smallest_spring_wire(force, rate, spring.index, shear, clearance, [w for w in WIRE_DIAMETERS if w >= d])
+        if found is None:
+            fix = (f"parts.spring_wire_diameter_{unit}: no music wire up to {WIRE_DIAMETERS[-1]:.4g} mm at index "
+                   f"{spring.index:.3g} carries it; a smaller [layout] carriage_preload_force_N or a softer "
+                   "carriage_spring_rate_N_per_mm")
+        else:
+            better, (lo, hi) = found
+            fix = (f"parts.spring_wire_diameter_{unit} = {better.wire_diameter / k:.4g} with "
+                   f"spring_mean_diameter_{unit} = {better.mean_coil_diameter / k:.4g} (index {spring.index:.3g} "
+                   f"kept) and spring_installed_length_{unit} {lo / k:.4g} to {hi / k:.4g} ({better.installed_stress:.4g} "
+                   f"MPa installed; installed at {better.installed_length / k:.4g} {unit}, {better.solid_stress:.4g} "
+                   f"MPa closed solid; of {better.allowable_shear_stress:.4g} MPa)")
+    worst = max(spring.installed_stress, spring.solid_stress)
+    return Failure("spring_overstressed", "carriage_spring", f"{stress}; change {fix}", "shear_stress_MPa", worst,
+                   allowed)
 
 
 def rack_meshes(layout, result: DesignCheck) -> list[dict]:
@@ -141,6 +192,10 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
                                        f"{values['unloading_rack_force']:.4g} N: the carriage spring's "
                                        f"{placed.spring_force:.4g} N is too weak (Fig. 9)", "rack_force_N",
                                        placed.max_rack_force, values["unloading_rack_force"]))
+    from geargen.design.parts import parts_settings
+    spring = carriage_spring_failure(placed, parts_settings(layout.design), unit)
+    if spring is not None:
+        result.failures.append(spring)
     rows.append(dict(mesh="carriage", gear1="input", gear2="", carriage_y=placed.carriage_y,
                      carriage_deviation=placed.carriage_deviation, carriage_needed=needed,
                      carriage_travel=placed.carriage_travel, **{k_: v for k_, v in values.items()
@@ -149,4 +204,4 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
     return rows
 
 
-__all__ = ["rack_meshes", "placed_rack_gaps", "RACK_BACKLASH_TOLERANCE"]
+__all__ = ["rack_meshes", "carriage_spring_failure", "placed_rack_gaps", "RACK_BACKLASH_TOLERANCE"]

@@ -68,6 +68,14 @@ FAILURE_KINDS: dict[str, str] = {
                           "it cannot mesh both the sun and the ring",
     "planetary_coaxiality": "planetary stage: the sun-planet and planet-ring working centre distances differ",
     "planet_neighbour_clearance": "planetary stage: neighbouring planets' tip circles do not clear",
+    "parts_overlap": "two parts with no joint between them share volume (the resolved drive's components, read "
+                     "analytically; the build intersects the solids too)",
+    "parts_interpenetrating": "two parts meant to touch run into each other",
+    "contact_missing": "two parts meant to touch (a joint of the drive) are apart",
+    "structure": "a part is not held to the ground, a rotating body is joined rigidly to a stationary one, or a "
+                 "joint element joins nothing",
+    "spring_overstressed": "a preload spring's wire shear stress (Wahl-corrected) exceeds its allowable, 0.45 of "
+                           "the music wire's tensile strength, at its working force or closed solid",
 }
 
 #: kinds that are interference (teeth overlapping), in the order they are reported
@@ -430,6 +438,14 @@ class DesignCheck:
     planetary: list[dict[str, Any]] = field(default_factory=list)
     # the rack meshes and carriage of a rack dual-pinion drive (geargen.checks.rack_drive, mm, N)
     rack: list[dict[str, Any]] = field(default_factory=list)
+    # the resolved drive's parts read against each other (geargen.checks.hardware.PartsReport) and how
+    # they hold together (geargen.checks.structure.StructureReport); None: the drive has no hardware
+    parts: Any = None
+    structure: Any = None
+    # the values the file does not give as the drive uses them (geargen.drives.defaulted) and the
+    # resolved [parts] as TOML to paste into the file (geargen.drives.parts_table)
+    defaulted: tuple = ()
+    parts_table: str = ""
 
     @property
     def all_failures(self) -> list[Failure]:

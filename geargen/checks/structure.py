@@ -110,4 +110,16 @@ def structure_check(kinds: Mapping[str, str], contacts: Iterable[tuple[str, str]
     return StructureReport(bodies, ungrounded, tuple(clashes), tuple(one_sided))
 
 
-__all__ = ["JOINT_KINDS", "StructureReport", "structure_check"]
+def drive_structure(layout) -> StructureReport:
+    """:func:`structure_check` of a resolved drive: its gears and hardware components, joined by
+    the hardware's joints (meshes and rolling pairs hold nothing together); the gears turn, a
+    planetary ring excepted (it is held)."""
+    hardware = layout.hardware
+    rolling = {frozenset(p) for p in hardware.rolling}
+    contacts = [(a, b) for a, b, _ in hardware.contacts if frozenset((a, b)) not in rolling]
+    rotating = [g.name for g in layout.gears if "planetary_ring" not in g.roles] + list(hardware.rotating)
+    kinds = {g.name: "gear" for g in layout.gears} | {c.name: c.kind for c in hardware.components}
+    return structure_check(kinds, contacts, hardware.ground, hardware.stationary, rotating)
+
+
+__all__ = ["JOINT_KINDS", "StructureReport", "structure_check", "drive_structure"]

@@ -21,13 +21,16 @@ from dataclasses import replace
 
 import numpy as np
 
+from geargen.checks.hardware import parts_check
 from geargen.checks.mesh2d import CheckSettings, MeshSetup, check_mesh
 from geargen.checks.results import DesignCheck, Failure
+from geargen.checks.structure import drive_structure
 from geargen.core.accuracy import gear_errors
 from geargen.design.assembly import Design
 from geargen.design.checks import ChecksSettings, checks_settings
 from geargen.errors import DesignError
-from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive, resolve
+from geargen.model import BACKLASH_KIND, Layout, MeshPlacement, is_drive
+from geargen.drives import defaulted, parts_table, resolve
 from geargen.units import LENGTH_SUFFIXES
 
 #: below this the design range is met (mm): the path-1 numbers carry ~1e-12 mm of round-off
@@ -120,13 +123,15 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
                                                               RANGE_TOLERANCE)
     except DesignError as exc:  # no allowance meets a range: reported (naming the key), the rest still checked
         ranges, range_notes = [], []
-        range_failures = [Failure("allowance_range_outside_design", "", f"no tooth-thickness allowance meets the "
+        # the allowances are found for the drive's meshes together: the failure names them all
+        engaged = ", ".join(m.name for m in layout.meshes if m.engaged) or "drive"
+        range_failures = [Failure("allowance_range_outside_design", engaged, f"no tooth-thickness allowance meets the "
                                   f"backlash range: {exc}")]
     result.backlash_range = ranges
     result.failures += range_failures
     result.notes += range_notes
     if layout.ratio and not layout.ratio["ok"]:
-        result.failures.append(Failure("ratio_mismatch", "",
+        result.failures.append(Failure("ratio_mismatch", "train",
                                        f"ratio {layout.ratio['what']} is {layout.ratio['total']}, not one of "
                                        f"{layout.ratio['required']} ({layout.ratio['text']})"))
     result.bevel = _bevel_meshes(layout, result)
@@ -134,9 +139,34 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
     result.planetary = planetary_meshes(layout, result)
     from geargen.checks.rack_drive import rack_meshes
     result.rack = rack_meshes(layout, result)
+    result.defaulted = defaulted(layout)
+    result.parts_table = parts_table(layout)
+    if layout.hardware is not None:
+        _parts(layout, result, settings)
     if settings.tolerances if tolerances is None else tolerances:
         result.tolerances = _tolerances(layout, setups, settings)
     return result
+
+
+def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> None:
+    """The resolved drive's parts against each other (:func:`geargen.checks.hardware.parts_check`)
+    and how they hold together (:func:`geargen.checks.structure.drive_structure`), as failures."""
+    report = parts_check(layout)
+    result.parts = report
+    kinds = {"overlap": "parts_overlap", "interpenetrating": "parts_interpenetrating",
+             "missing_contact": "contact_missing"}
+    fixes = layout.hardware.fixes
+    scale = LENGTH_SUFFIXES[layout.design.length_unit]
+    for f in report.findings:
+        offered = [fixes[p] for p in (f.part1, f.part2) if f.kind == "overlap" and p in fixes]
+        hint = "".join(f" (fix: {key} = {value / scale:.6g}: {why})" for key, value, why in offered)
+        result.failures.append(Failure(kinds[f.kind], "parts", f.message + hint))
+    structure = drive_structure(layout)
+    result.structure = structure
+    if settings.structure == "fail":
+        result.failures += [Failure("structure", "parts", text) for text in structure.failures]
+    else:
+        result.notes += [f"structure ([checks] structure = \"report\"): {text}" for text in structure.failures]
 
 
 #: the placed bevel pair's measured backlash may differ from its design value (t1 + t2) by this

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import sys
 import time
+from pathlib import Path
 
 from geargen.pipeline import POSITIONS, BuildFailed, build
 
@@ -38,6 +39,12 @@ def add_arguments(p) -> None:
                    help="sliding pinions engaged or disengaged (overrides [layout] position)")
 
 
+def files_written(folder: Path) -> int:
+    """The files a build wrote: exports, drawings, figures, report, review page and manifest (once the
+    build is swapped into place its folder holds nothing else)."""
+    return sum(1 for p in Path(folder).rglob("*") if p.is_file())
+
+
 def run(args) -> int:
     t0 = time.perf_counter()
     try:
@@ -49,7 +56,7 @@ def run(args) -> int:
     total = time.perf_counter() - t0  # the steps' times overlap (the mesh checks run alongside)
     if not args.quiet:
         status = "ok" if result.ok else "FAILING (written with --force)"
-        print(f"{result.design.name}: {status}, {len(result.files.get('records', {}))} files in {result.out_dir} "
+        print(f"{result.design.name}: {status}, {files_written(result.out_dir)} files in {result.out_dir} "
               f"({total:.1f} s)", file=sys.stderr)
     print(result.out_dir)
     return 0 if result.ok else 1

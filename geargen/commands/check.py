@@ -241,7 +241,8 @@ def table(result: DesignCheck) -> str:
     lines += _planetary_lines(result, u)
     lines += _rack_lines(result.rack, u)
     if result.tolerances:
-        lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND})"]
+        lines += ["", f"minimum backlash across the error budget ({BACKLASH_KIND}); MC: the backlash Monte Carlo, "
+                  "its samples [checks] monte_carlo_samples (or --samples), not [monte_carlo] (synth's carriage travel)"]
         head = f"{'mesh':<16}{'meant for':<11}{'nominal':>12}{'worst case':>12}{'MC min':>12}{'MC 1%':>12}{'samples':>9}  failure"
         lines += [head, "-" * len(head)]
         for t in result.tolerances:
@@ -277,8 +278,10 @@ def run(args: argparse.Namespace) -> int:
     result = check_design(design, settings, sections=args.sections or None, exported=args.exported,
                           tolerances=False if args.no_tolerances else None, position=args.position)
     data = result.to_dict(arrays=args.arrays)
-    if design.defaulted:
-        data["defaulted"] = {d.key: {"value": d.value, "why": d.why} for d in design.defaulted}
+    if result.defaulted:
+        data["defaulted"] = {d.key: {"value": d.value, "why": d.why} for d in result.defaulted}
+    if result.parts_table:
+        data["parts_toml"] = result.parts_table
     if args.plots:
         from geargen.report.checks import write_check_plots
         data["plots"] = [str(p) for p in write_check_plots(result, args.plots)]
@@ -287,10 +290,13 @@ def run(args: argparse.Namespace) -> int:
         sys.stdout.write("\n")
     else:
         print(table(result))
-        if design.defaulted:
-            print(f"\ndefault hardware ({len(design.defaulted)} values the file does not give; the build's report "
+        if result.defaulted:
+            print(f"\ndefault hardware ({len(result.defaulted)} values the file does not give; the build's report "
                   "lists them):")
-            print("\n".join(f"  {d}" for d in design.defaulted))
+            print("\n".join(f"  {d}" for d in result.defaulted))
+        if result.parts_table:
+            print("\nthe hardware as resolved (paste into the design file and change what you like):\n")
+            print(result.parts_table)
         if args.json:
             Path(args.json).parent.mkdir(parents=True, exist_ok=True)
             Path(args.json).write_text(json.dumps(data, indent=2) + "\n")

@@ -273,7 +273,8 @@ def assembly_gear(design, name: str, layout=None) -> tuple[GearSpec, str]:
     """``[gears.NAME]`` of an assembly as the assembly builds it, and where its thinning comes from:
     in a drive the resolved one (``layout``, or :func:`geargen.model.resolve`: the thinning the
     design states, or the one derived for its backlash), else the table as written."""
-    from geargen.model import is_drive, resolve
+    from geargen.model import is_drive
+    from geargen.drives import resolve
 
     spec = design.gear(name)  # names the key when there is no such gear
     if not is_drive(design):
@@ -292,7 +293,8 @@ def drive_layout(args):
     if not (args.design and args.gear) or _given(args):
         return None  # spec_from_args says what is wrong
     from geargen.design.assembly import load_design
-    from geargen.model import is_drive, resolve
+    from geargen.model import is_drive
+    from geargen.drives import resolve
     design = load_design(args.design)
     return resolve(design) if is_drive(design) else None
 

@@ -33,6 +33,7 @@ from __future__ import annotations
 import json
 import math
 import sys
+from dataclasses import replace
 
 from geargen.design.gear import GearSpec, gear_from_table
 from geargen.errors import DesignError
@@ -76,19 +77,68 @@ def add_arguments(p) -> None:
                    help="F_t K_A: transverse tangential load at the reference circle times the application factor, "
                         "N (needs --face-width); below 100 N/mm of face ISO 6336 lowers c' (default: no load "
                         "correction)")
+    p.add_argument("--rack-tip-radius", type=float, default=None, metavar="RHO",
+                   help="tip radius of the generating basic rack over the normal module, both gears (default 0.38 "
+                        "or the largest that fits); shapes the root fillet and ISO 6336-3's Y_F and Y_S")
+    rating = p.add_argument_group(
+        "load capacity (ISO 6336-2:2019 pitting and ISO 6336-3:2019 tooth root bending, method B)",
+        "Given --torque, the pair is rated and the 'load_capacity' block added; it needs --face-width, --speed, "
+        "--life, --material, --accuracy-grade, --roughness and --viscosity. Exit status 1 when a safety factor is "
+        "below its minimum.")
+    rating.add_argument("--torque", type=float, default=None, metavar="T",
+                        help="nominal torque on gear 1: N m (in lbf for an inch pair)")
+    rating.add_argument("--speed", type=float, default=None, metavar="N", help="speed of gear 1, rpm")
+    rating.add_argument("--life", type=float, default=None, metavar="H", help="required life, hours")
+    rating.add_argument("--material", nargs="+", default=None, metavar="M",
+                        help="ISO 6336-5 material and heat treatment of gear 1 [and gear 2]: "
+                             + ", ".join(_material_names()))
+    rating.add_argument("--hardness", type=float, nargs="+", default=None, metavar="HV",
+                        help="surface hardness of gear 1 [and gear 2], HV (needed where ISO 6336-5's allowable "
+                             "stress is a sloped line in it: through and induction hardened)")
+    rating.add_argument("--quality", nargs="+", default=None, metavar="Q",
+                        help="ISO 6336-5 material quality ML, MQ or ME of gear 1 [and gear 2] (default MQ)")
+    rating.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
+                        help="ISO 1328-1:2013 flank tolerance class of both gears (drives K_v, K_Halpha, K_Hbeta)")
+    rating.add_argument("--application-factor", type=float, default=1.0, metavar="K_A", help="K_A (default 1.0)")
+    rating.add_argument("--face-load-factor", type=float, default=None, metavar="K_HBETA",
+                        help="K_Hbeta, given instead of computed (default: ISO 6336-1 method C for a pinion centred "
+                             "between its bearings on a stiff shaft, without helix correction: method C needs shaft "
+                             "data a pair has not)")
+    rating.add_argument("--roughness", type=float, default=None, metavar="RA",
+                        help="flank and root roughness R_a, um (R_z taken as 6 R_a)")
+    rating.add_argument("--viscosity", type=float, default=None, metavar="NU40",
+                        help="lubricant kinematic viscosity at 40 deg C, mm^2/s")
+    rating.add_argument("--tip-relief", type=float, default=0.0, metavar="C_A", help="tip relief C_a, um (default 0)")
+    rating.add_argument("--minimum-safety", type=float, nargs=2, default=None, metavar=("S_HMIN", "S_FMIN"),
+                        help="minimum safety factors for pitting and bending; the pair fails (exit 1) below them. "
+                             f"Default {DEFAULT_MINIMUM_SAFETY[0]:g} and {DEFAULT_MINIMUM_SAFETY[1]:g}: ISO 6336 leaves "
+                             "the values to agreement between the parties and recommends none; these are the usual "
+                             "industrial values (a root fracture ends the drive, a pit does not at once, hence the "
+                             "larger S_Fmin)")
     p.add_argument("--json", metavar="FILE", default=None, help="write the numbers as JSON ('-' for standard output)")
     p.add_argument("--internal", action="store_true",
                    help="gear 2 is an internal gear (a ring, same hand as gear 1): internal pair geometry and checks")
+
+
+#: S_Hmin, S_Fmin when --minimum-safety is not given (see its help)
+DEFAULT_MINIMUM_SAFETY = (1.0, 1.4)
+#: N m per in lbf
+NM_PER_INLBF = 0.1129848290276167
+
+
+def _material_names() -> list[str]:
+    from geargen.core.iso6336_materials import MATERIALS
+    return list(MATERIALS)
 
 
 #: gear-table key (without a unit suffix) -> the option that sets it
 _FLAGS = {"teeth": "--teeth", "module_mm": "--module", "diametral_pitch_per_in": "--diametral-pitch",
           "pressure_angle_deg": "--pressure-angle", "helix_angle_deg": "--helix-angle", "hand": "--hand",
           "profile_shift": "--profile-shift", "face_width": "--face-width", "thinning_circumferential": "--thinning",
-          "dedendum_coefficient": "--dedendum-coefficient"}
+          "dedendum_coefficient": "--dedendum-coefficient", "rack_tip_radius_coefficient": "--rack-tip-radius"}
 #: options given once for both gears: their messages need not say which gear
 _COMMON = {"--module", "--diametral-pitch", "--pressure-angle", "--helix-angle", "--face-width",
-           "--dedendum-coefficient"}
+           "--dedendum-coefficient", "--rack-tip-radius"}
 
 
 def _flag(key: str) -> str:
@@ -124,6 +174,8 @@ def gears_from_args(args) -> tuple[GearSpec, GearSpec, str]:
             table["kind"] = "internal"
         if args.dedendum_coefficient is not None:
             table["dedendum_coefficient"] = args.dedendum_coefficient
+        if getattr(args, "rack_tip_radius", None) is not None:
+            table["rack_tip_radius_coefficient"] = args.rack_tip_radius
         if args.module is not None:
             table["module_mm"] = args.module
         else:
@@ -198,6 +250,90 @@ def stiffness_inputs(args) -> tuple[float | None, float | None]:
     return modulus, args.load
 
 
+#: rating options -> their flags; given without --torque they are refused (they would do nothing)
+_RATING_FLAGS = {"speed": "--speed", "life": "--life", "material": "--material", "hardness": "--hardness",
+                 "quality": "--quality", "accuracy_grade": "--accuracy-grade", "face_load_factor": "--face-load-factor",
+                 "roughness": "--roughness", "viscosity": "--viscosity", "minimum_safety": "--minimum-safety"}
+#: what the rating's own fields are called on this command line
+_RATING_FIELD_FLAGS = {**_RATING_FLAGS, "tangential_load": "--torque", "application_factor": "--application-factor",
+                       "tip_relief": "--tip-relief", "grade": "--accuracy-grade",
+                       "reference_diameter": "--accuracy-grade", "normal_module": "--accuracy-grade",
+                       "face_width": "--face-width", "rack_tip_radius": "--rack-tip-radius"}
+
+
+def _per_gear(args, name: str, values, default=None):
+    """A one-or-two-value option as (gear 1, gear 2): one value serves both gears."""
+    if values is None:
+        return default, default
+    if len(values) > 2:
+        raise DesignError(_RATING_FLAGS[name], f"{len(values)} values given", "one (both gears) or two (gear 1, gear 2)")
+    return (values[0], values[-1])
+
+
+def rating_requested(args) -> bool:
+    """True with --torque; the other rating options without it are refused by name."""
+    if getattr(args, "torque", None) is not None:
+        return True
+    extra = [flag for key, flag in _RATING_FLAGS.items() if getattr(args, key, None) is not None]
+    if getattr(args, "application_factor", 1.0) != 1.0:
+        extra.append("--application-factor")
+    if getattr(args, "tip_relief", 0.0) != 0.0:
+        extra.append("--tip-relief")
+    if extra:
+        raise DesignError(extra[0], "rates the pair's load capacity, which needs the torque it carries",
+                          "give --torque with it")
+    return False
+
+
+def rate_from_args(args, gear1: GearSpec, gear2: GearSpec, centre_distance_mm: float | None, unit: str):
+    """The load capacity block of ``--torque`` and its companions: (the rating's dict, the face
+    widths reaching the minimum safety factors in the pair's unit, ok)."""
+    from geargen.core.iso6336_materials import Material
+    from geargen.core.load_capacity import (RatingConditions, face_width_for_minimum_safety, rate_pair,
+                                            rating_geometry)
+
+    missing = [flag for key, flag in (("face_width", "--face-width"), ("speed", "--speed"), ("life", "--life"),
+                                      ("material", "--material"), ("accuracy_grade", "--accuracy-grade"),
+                                      ("roughness", "--roughness"), ("viscosity", "--viscosity"))
+               if getattr(args, key) is None]
+    if missing:
+        raise DesignError(missing[0], "missing: rating the load capacity (--torque) needs it",
+                          "--face-width, --speed, --life, --material, --accuracy-grade, --roughness, --viscosity")
+    if not (math.isfinite(args.torque) and args.torque > 0):
+        raise DesignError("--torque", f"{args.torque!r} is out of range", f"> 0 {'in lbf' if unit == 'in' else 'N m'}")
+    torque_nmm = args.torque * (NM_PER_INLBF if unit == "in" else 1.0) * 1e3
+    try:
+        names = _per_gear(args, "material", args.material)
+        hardness = _per_gear(args, "hardness", args.hardness)
+        quality = _per_gear(args, "quality", args.quality, "MQ")
+        materials = tuple(Material(names[i], quality[i], hardness[i]) for i in (0, 1))
+        conditions = RatingConditions(
+            speed=args.speed, life=args.life, accuracy_grade=args.accuracy_grade, roughness=args.roughness,
+            viscosity=args.viscosity, application_factor=args.application_factor,
+            face_load_factor=args.face_load_factor, tip_relief=args.tip_relief,
+            minimum_safety=tuple(args.minimum_safety or DEFAULT_MINIMUM_SAFETY))
+        geo = rating_geometry(gear1, gear2, centre_distance_mm)
+        load = 2 * torque_nmm / geo.reference_diameters[0]
+        rating = rate_pair(geo, load, conditions, materials)
+        widths = face_width_for_minimum_safety(geo, load, conditions, materials)
+    except DesignError as exc:
+        flag = _RATING_FIELD_FLAGS.get(exc.field.split(".")[-1])
+        if flag is None:
+            raise
+        raise DesignError(flag, exc.problem, exc.allowed) from None
+    block = rating.to_dict()
+    block["torque"] = args.torque
+    block["torque_unit"] = "in lbf" if unit == "in" else "N m"
+    width = {"pitting": None if widths.pitting is None else from_mm(widths.pitting, unit),
+             "bending": None if widths.bending is None else from_mm(widths.bending, unit),
+             "required": None if widths.required is None else from_mm(widths.required, unit),
+             "unit": unit, "message": widths.message,
+             "meaning": "narrowest face width at which the weaker gear reaches S_Hmin (pitting) and S_Fmin "
+                        "(bending) at this load; required: the larger"}
+    block["face_width_for_minimum_safety"] = width
+    return block, width, rating.ok
+
+
 def run_internal(args, pinion: GearSpec, ring: GearSpec, unit: str) -> int:
     """``--internal``: the internal pair's geometry and named checks, printed and as JSON."""
     from geargen.checks.internal_pair import check_internal
@@ -234,20 +370,28 @@ def run_internal(args, pinion: GearSpec, ring: GearSpec, unit: str) -> int:
     for key, value in result.margins.items():
         lines.append(f"    {key:34s} {value:.6g}")
     lines += [f"  FAIL {f.kind}: {f.message}" for f in result.failures] or ["  all checks pass"]
+    lines += [f"  note: {n}" for n in result.notes]
     from geargen import __version__
     data = {"generator": "geargen pair", "version": __version__, "kind": "internal", "length_unit": "mm",
             **result.to_dict()}
+    rated_ok = True
+    if rating_requested(args):
+        from geargen.report.load_capacity import format_load_capacity
+        block, width, rated_ok = rate_from_args(args, pinion, ring, g.centre_distance, unit)
+        data["load_capacity"] = block
+        lines += format_load_capacity(block, unit, width)
     print("\n".join(lines), file=sys.stderr if args.json == "-" else sys.stdout)
     if args.json:
         from geargen.outputs import json_default, write_text
         write_text(args.json, json.dumps(data, indent=2, allow_nan=False, default=json_default) + "\n", "--json")
-    return 0 if result.ok else 1
+    return 0 if result.ok and rated_ok else 1
 
 
 def run(args) -> int:
     from geargen.report.pair import format_pair, pair_data
 
     gear1, gear2, unit = gears_from_args(args)
+    rated = rating_requested(args)
     if getattr(args, "internal", False):
         return run_internal(args, gear1, gear2, unit)
     centre_distance = check_centre_distance(args, gear1, gear2, unit)
@@ -274,9 +418,21 @@ def run(args) -> int:
                                                       "helix_angle", "hand", "profile_shift", "face_width",
                                                       "centre_distance", "thinning", "dedendum_coefficient",
                                                       "elastic_modulus", "load")}
-    print(format_pair(data), file=sys.stderr if args.json == "-" else sys.stdout)
+    rated_ok = True
+    text = format_pair(data)
+    if rated:
+        from geargen.report.load_capacity import format_load_capacity
+        shifted = tuple(replace(g, profile_shift=x) for g, x in zip((gear1, gear2), data["profile_shift"]))
+        block, width, rated_ok = rate_from_args(args, *shifted, to_mm(data["centre_distance"]["operating"], unit),
+                                                unit)
+        data["load_capacity"] = block
+        text += "\n" + "\n".join(format_load_capacity(block, unit, width))
+    for key in ("rack_tip_radius", "torque", "speed", "life", "material", "hardness", "quality", "accuracy_grade",
+                "application_factor", "face_load_factor", "roughness", "viscosity", "tip_relief", "minimum_safety"):
+        data["options"][key] = getattr(args, key)
+    print(text, file=sys.stderr if args.json == "-" else sys.stdout)
     if args.json:
         from geargen.outputs import json_default, write_text
         write_text(args.json, json.dumps(data, indent=2, allow_nan=False, default=json_default) + "\n", "--json")
-    return 0
+    return 0 if rated_ok else 1
 

@@ -22,7 +22,8 @@ from pathlib import Path
 
 from geargen.design.assembly import load_design
 from geargen.errors import DesignError
-from geargen.model import is_drive, resolve
+from geargen.model import is_drive
+from geargen.drives import resolve
 from geargen.model.analysis import stiffness
 
 

@@ -42,7 +42,7 @@ def compute(design: Design, run_monte_carlo: bool = False, samples: int | None =
 
     The synthesis and the placement are those of the resolved drive (:func:`geargen.model.resolve`),
     so the centres and backlash printed here are the ones check, build and the exports use."""
-    from geargen.model import resolve
+    from geargen.drives import resolve
 
     if not design.section("synthesis"):
         raise DesignError("synthesis", "missing: geargen synth places a dual-pinion drive",

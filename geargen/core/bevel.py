@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from geargen.design.bevel import BevelGearSpec
-from geargen.errors import GeometryError
+from geargen.errors import DesignError, GeometryError
 
 
 def pitch_cone_angles(teeth: int, mate_teeth: int, shaft_angle: float) -> tuple[float, float]:
@@ -195,6 +195,219 @@ def check_tooth(spec: BevelGearSpec) -> None:
                             "(its flank below the base cone is not generated)")
 
 
+@dataclass(frozen=True)
+class ToothOutline:
+    """Tooth 0's outline on the unit sphere about the apex (rad), the data a solid is built from.
+
+    The tooth is centred on azimuth 0; its lower flank (negative azimuth) is the spherical
+    involute of :func:`spherical_involute_points` turned by ``-involute_offset``, from the roll
+    angle ``roll_start`` (on the root cone, or 0 on the base cone) to ``roll_tip`` (on the tip
+    cone); the upper flank is its mirror image in the xz plane. Below the base cone (``meridian``:
+    the root cone lies inside it) each flank continues along the meridian at azimuth
+    -/+ ``root_half_angle`` down to the root cone."""
+
+    root: float  # polar angle of the root cone, delta_f
+    flank_start: float  # polar angle where the involute starts: max(delta_f, delta_b)
+    tip: float  # polar angle of the tip cone, delta_a
+    base_cone: float
+    root_half_angle: float  # half the tooth's azimuth at flank_start (and along the meridian below it)
+    tip_half_angle: float
+    involute_offset: float  # phi_0 = s / d + inv_s(delta): the half angle the involute turns back from
+    roll_start: float
+    roll_tip: float
+
+    @property
+    def meridian(self) -> bool:
+        return self.flank_start > self.root
+
+
+def involute_roll(polar, base_cone: float):
+    """The rolling angle t (about the axis) at which the spherical involute of ``base_cone`` reaches
+    ``polar``: t = psi / sin delta_b (:func:`spherical_involute_roll`)."""
+    return spherical_involute_roll(polar, base_cone) / math.sin(base_cone)
+
+
+def tooth_outline(spec: BevelGearSpec) -> ToothOutline:
+    g = bevel_geometry(spec)
+    start = max(g.root_cone_angle, g.base_cone_angle)
+    return ToothOutline(
+        root=g.root_cone_angle, flank_start=start, tip=g.tip_cone_angle, base_cone=g.base_cone_angle,
+        root_half_angle=tooth_half_angle(spec, start), tip_half_angle=tooth_half_angle(spec, g.tip_cone_angle),
+        involute_offset=tooth_half_angle(spec, g.base_cone_angle),
+        roll_start=float(involute_roll(start, g.base_cone_angle)),
+        roll_tip=float(involute_roll(g.tip_cone_angle, g.base_cone_angle)))
+
+
+def lower_flank_points(outline: ToothOutline, roll) -> tuple[np.ndarray, np.ndarray]:
+    """Unit vectors ``(n, 3)`` of tooth 0's lower flank at the rolling angles ``roll``, and their
+    derivatives d/dt. From the involute's definition: dP/dt = sin psi cos delta_b (cos delta_b cos t,
+    cos delta_b sin t, -sin delta_b) (zero on the base cone, where the involute starts), turned
+    with the point by -phi_0 about the axis."""
+    t = np.atleast_1d(np.asarray(roll, dtype=float))
+    sb, cb = math.sin(outline.base_cone), math.cos(outline.base_cone)
+    p = spherical_involute_points(t, outline.base_cone)
+    speed = np.sin(t * sb) * cb
+    d = speed[:, None] * np.stack([cb * np.cos(t), cb * np.sin(t), np.full_like(t, -sb)], axis=-1)
+    c, s = math.cos(outline.involute_offset), math.sin(outline.involute_offset)
+    turn = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])  # rotation by -phi_0
+    return p @ turn.T, d @ turn.T
+
+
+def back_plane_distance(spec: BevelGearSpec) -> float:
+    """Distance from the apex, along the axis, of the plane through the heel's root circle (a flat
+    back): every tooth lies nearer the apex than it, only the spherical cap inside the root cone
+    reaches beyond."""
+    return spec.cone_distance * math.cos(bevel_geometry(spec).root_cone_angle)
+
+
+#: the backs a bevel gear solid is built with
+BACKS = ("spherical", "flat")
+
+
+@dataclass(frozen=True)
+class BevelCore:
+    """The axisymmetric part of a bevel gear solid inside its root cone (mm, rad; z along the axis
+    from the apex, rho from the axis), for the back ``back``:
+
+    - ``"spherical"``: between the toe and heel spheres, less the bore;
+    - ``"flat"``: the same cut by the plane z = ``back_z`` through the heel root circle
+      (:func:`back_plane_distance`). When the toe sphere lies beyond that plane (R_i >= back_z, a
+      gear of large cone angle) nothing would join the toothed ring to the axis: a web (``web``)
+      does, a disc rho <= ``web_rim`` from z = ``web_z`` = (R_i + R_e)/2 cos delta_f to the back
+      plane, its rim half way between the toe sphere and the root cone at that height, so it stays
+      inside the root cone and runs into the ring.
+
+    ``toe_inner``: polar angle of the toe face's inner circle (0: the face reaches the axis),
+    ``toe_inner_face`` the face beyond it (``"bore"``, ``"web"``, or None); ``heel_inner`` the same
+    on the heel sphere (spherical back); ``bore_z`` the bore's (z_low, z_high), None without a bore."""
+
+    back: str
+    back_z: float | None
+    web: bool
+    web_z: float | None
+    web_rim: float | None
+    toe_inner: float
+    toe_inner_face: str | None
+    heel_inner: float | None
+    bore_z: tuple[float, float] | None
+
+
+def bevel_core(spec: BevelGearSpec, back: str = "spherical") -> BevelCore:
+    """The core of ``spec``'s solid with ``back`` (one of :data:`BACKS`, else a DesignError naming it)."""
+    if back not in BACKS:
+        raise DesignError("back", f"{back!r} is not a bevel gear back", ", ".join(map(repr, BACKS)))
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    rb = spec.bore_diameter / 2
+    root = bevel_geometry(spec).root_cone_angle
+    toe_bore = math.asin(rb / ri)
+    bore_low = math.sqrt(ri * ri - rb * rb)
+    if back == "spherical":
+        return BevelCore(back, None, False, None, None, toe_bore, "bore" if rb > 0 else None,
+                         math.asin(rb / re), (bore_low, math.sqrt(re * re - rb * rb)) if rb > 0 else None)
+    plane = back_plane_distance(spec)
+    if ri < plane:
+        return BevelCore(back, plane, False, None, None, toe_bore, "bore" if rb > 0 else None, None,
+                         (bore_low, plane) if rb > 0 else None)
+    web_z = (ri + re) / 2 * math.cos(root)
+    rim = (math.sqrt(ri * ri - web_z * web_z) + web_z * math.tan(root)) / 2
+    web_meets_toe = math.sqrt(ri * ri - web_z * web_z)  # the web's face at web_z ends on the toe sphere
+    if rb >= web_meets_toe:  # the bore takes the web's face away: the bore runs to the toe sphere
+        return BevelCore(back, plane, True, web_z, rim, toe_bore, "bore", None, (bore_low, plane))
+    return BevelCore(back, plane, True, web_z, rim, math.acos(web_z / ri), "web", None,
+                     (web_z, plane) if rb > 0 else None)
+
+
+def _revolved(pieces) -> float:
+    """Volume of the region of the (rho, z) half plane bounded counter-clockwise by ``pieces``,
+    turned about the z axis: pi times the loop integral of rho^2 dz (Green). A piece is
+    ``("line", (rho0, z0), (rho1, z1))``, on which the integral is (z1 - z0)(rho0^2 + rho0 rho1 +
+    rho1^2) / 3, or ``("arc", R, theta0, theta1)`` about the origin (rho = R sin theta, z = R cos
+    theta), where it is -R^3 [cos^3 theta / 3 - cos theta] from theta0 to theta1."""
+    total = 0.0
+    for piece in pieces:
+        if piece[0] == "line":
+            (r0, z0), (r1, z1) = piece[1], piece[2]
+            total += (z1 - z0) * (r0 * r0 + r0 * r1 + r1 * r1) / 3
+        else:
+            _, radius, t0, t1 = piece
+
+            def f(t):
+                return math.cos(t) ** 3 / 3 - math.cos(t)
+            total -= radius ** 3 * (f(t1) - f(t0))
+    return math.pi * total
+
+
+def _revolved_moment(pieces) -> float:
+    """The integral of rho^2 dV (mm^5) over the region of :func:`_revolved` turned about the z axis:
+    2 pi times the area integral of rho^3, which is pi / 2 times the loop integral of rho^4 dz
+    (Green). On a line rho^4 integrates to (z1 - z0)(rho1^5 - rho0^5) / (5 (rho1 - rho0)); on an arc
+    rho = R sin theta, z = R cos theta, to -R^5 times the integral of sin^5."""
+    total = 0.0
+    for piece in pieces:
+        if piece[0] == "line":
+            (r0, z0), (r1, z1) = piece[1], piece[2]
+            if abs(r1 - r0) < 1e-15:
+                total += (z1 - z0) * r0 ** 4
+            else:
+                total += (z1 - z0) * (r1 ** 5 - r0 ** 5) / (5 * (r1 - r0))
+        else:
+            _, radius, t0, t1 = piece
+
+            def f(t):  # an antiderivative of sin^5
+                c = math.cos(t)
+                return -c + 2 * c ** 3 / 3 - c ** 5 / 5
+            total -= radius ** 5 * (f(t1) - f(t0))
+    return math.pi / 2 * total
+
+
+def _core_pieces(spec: BevelGearSpec, back: str) -> list:
+    """The meridian outline of the core of :func:`bevel_core` (counter-clockwise pieces)."""
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    rb = spec.bore_diameter / 2
+    root = bevel_geometry(spec).root_cone_angle
+    core = bevel_core(spec, back)
+    toe_root, heel_root = (ri * math.sin(root), ri * math.cos(root)), (re * math.sin(root), re * math.cos(root))
+    pieces = [("line", toe_root, heel_root)]
+    if core.back == "spherical":
+        pieces.append(("arc", re, root, core.heel_inner))
+        if rb > 0:
+            pieces.append(("line", (rb, core.bore_z[1]), (rb, core.bore_z[0])))
+    else:
+        pieces.append(("line", heel_root, (rb, core.back_z)))
+        if rb > 0:
+            pieces.append(("line", (rb, core.back_z), (rb, core.bore_z[0])))
+        if core.toe_inner_face == "web":
+            pieces.append(("line", (rb, core.web_z), (ri * math.sin(core.toe_inner), core.web_z)))
+    pieces.append(("arc", ri, core.toe_inner, root))
+    return pieces
+
+
+def bevel_axial_moment(spec: BevelGearSpec, back: str = "spherical", points: int = 4001) -> float:
+    """The integral of r^2 dV (mm^5) about the axis of the bevel gear solid with ``back``: the teeth,
+    z (R_e^5 - R_i^5) / 5 times the integral of 2 phi(theta) sin^3 theta from delta_f to delta_a
+    (r = R sin theta, dV = R^2 sin theta dR dtheta dphi), plus the core's (:func:`_revolved_moment`)."""
+    from scipy.integrate import simpson
+    g = bevel_geometry(spec)
+    lo, hi = g.root_cone_angle, g.tip_cone_angle
+    cuts = [lo] + ([g.base_cone_angle] if lo < g.base_cone_angle < hi else []) + [hi]
+    angular = 0.0
+    for a, b in zip(cuts[:-1], cuts[1:]):
+        th = np.linspace(a, b, points)
+        angular += simpson(2 * tooth_half_angle(spec, th) * np.sin(th) ** 3, x=th)
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    return spec.teeth * angular * (re ** 5 - ri ** 5) / 5 + _revolved_moment(_core_pieces(spec, back))
+
+
+def bevel_volume(spec: BevelGearSpec, back: str = "spherical") -> float:
+    """Volume (mm^3) of the bevel gear solid with the back ``back`` (:func:`bevel_core`), independent
+    of the CAD kernel: the teeth, z times the tooth's solid angle (:func:`tooth_solid_angle`) times
+    (R_e^3 - R_i^3) / 3 (every tooth lies between the spheres and nearer the apex than the flat back),
+    plus the core inside the root cone, the revolution of its meridian outline (:func:`_revolved`):
+    root cone, back (heel sphere or plane), bore, web, toe sphere."""
+    ri, re = spec.toe_cone_distance, spec.cone_distance
+    return spec.teeth * tooth_solid_angle(spec) * (re ** 3 - ri ** 3) / 3 + _revolved(_core_pieces(spec, back))
+
+
 def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:
     """Transverse contact ratio of the back-cone (Tredgold) equivalent spur pair at the heel:
     (sqrt(R_va1^2 - R_vb1^2) + sqrt(R_va2^2 - R_vb2^2) - (R_v1 + R_v2) sin alpha) / (pi m cos alpha),
@@ -241,6 +454,97 @@ def spherical_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = N
     return path / (2 * math.pi * math.sin(base_cone_angle(d1, a)) / spec.teeth)
 
 
-__all__ = ["spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+def flat_back_envelope(spec: BevelGearSpec, points: int = 48) -> list[np.ndarray]:
+    """Closed (rho, z) profiles (mm; z along the axis from the apex) whose revolutions hold the
+    flat-backed bevel gear solid (:func:`bevel_core` with ``back = "flat"``): between the toe and heel
+    spheres, inside the tip cone, outside the bore, nearer the apex than the back plane; and its web
+    when it has one. An envelope: the teeth reach the tip cone only at their tips."""
+    g = bevel_geometry(spec)
+    core = bevel_core(spec, "flat")
+    ri, re, da = g.toe_cone_distance, g.cone_distance, g.tip_cone_angle
+    back, rb = core.back_z, spec.bore_diameter / 2
+    outline = [(ri * math.sin(da), ri * math.cos(da))]
+    heel = np.linspace(da, math.acos(min(back / re, 1.0)), points)
+    outline += [(re * math.sin(p), re * math.cos(p)) for p in heel]  # heel sphere, tip cone to the back
+    if not core.web:
+        outline += [(rb, back), (rb, math.sqrt(max(ri * ri - rb * rb, 0.0)))]
+        toe = np.linspace(math.asin(min(rb / ri, 1.0)), da, points)
+    else:  # the toe sphere lies beyond the back: the ring ends on the back plane
+        inner = math.sqrt(ri * ri - back * back)
+        outline += [(inner, back)]
+        toe = np.linspace(math.asin(inner / ri), da, points)
+    outline += [(ri * math.sin(p), ri * math.cos(p)) for p in toe[:-1]]  # toe sphere back to the start
+    profiles = [np.array(outline)]
+    if core.web:
+        profiles.append(np.array([(rb, core.web_z), (core.web_rim, core.web_z), (core.web_rim, back), (rb, back)]))
+    return profiles
+
+
+@dataclass(frozen=True)
+class BevelPairGeometry:
+    """Pitch cones of a bevel pair with intersecting axes (mm, rad).
+
+    ``pitch_angle_*`` is each gear's pitch-cone half angle (they add up to the shaft angle),
+    ``pitch_radius_*`` the pitch radius at the heel (outer end of the face), ``cone_distance``
+    the slant length from the common apex to the heel. A gear's frustum runs from its heel
+    (radius ``pitch_radius``) a ``face_width`` along the cone towards the apex.
+    """
+
+    pinion_teeth: int
+    gear_teeth: int
+    module: float
+    face_width: float
+    shaft_angle: float
+    pitch_angle_pinion: float
+    pitch_angle_gear: float
+    pitch_radius_pinion: float
+    pitch_radius_gear: float
+    cone_distance: float
+
+    @property
+    def ratio(self) -> float:
+        return self.gear_teeth / self.pinion_teeth
+
+    def apex_height(self, which: str) -> float:
+        """Distance along the axis from a gear's heel plane to the common apex (mm)."""
+        r, g = self._cone(which)
+        return r / math.tan(g)
+
+    def axial_height(self, which: str) -> float:
+        """Axial length of a gear's frustum (mm): face width times cos(pitch angle)."""
+        return self.face_width * math.cos(self._cone(which)[1])
+
+    def toe_radius(self, which: str) -> float:
+        r, g = self._cone(which)
+        return r - self.face_width * math.sin(g)
+
+    def _cone(self, which: str) -> tuple[float, float]:
+        if which == "pinion":
+            return self.pitch_radius_pinion, self.pitch_angle_pinion
+        if which == "gear":
+            return self.pitch_radius_gear, self.pitch_angle_gear
+        raise ValueError("which must be 'pinion' or 'gear'")
+
+
+def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_width: float,
+                        shaft_angle: float = math.pi / 2) -> BevelPairGeometry:
+    """Pitch cones of a bevel pair: ``tan(gamma_p) = sin(S) / (z_g/z_p + cos(S))``, gamma_g = S - gamma_p,
+    heel pitch radii ``z m / 2``, cone distance ``r_p / sin(gamma_p)``."""
+    for name, v in (("module", module), ("face_width", face_width), ("shaft_angle", shaft_angle)):
+        if not (math.isfinite(v) and v > 0):
+            raise DesignError(name, f"{v!r} is out of range", "> 0")
+    if pinion_teeth < 4 or gear_teeth < 4:
+        raise DesignError("teeth", f"{pinion_teeth}, {gear_teeth} are too few", ">= 4 each")
+    gp, gg = pitch_cone_angles(pinion_teeth, gear_teeth, shaft_angle)
+    rp, rg = pinion_teeth * module / 2, gear_teeth * module / 2
+    cone = rp / math.sin(gp)
+    if not face_width < cone:
+        raise DesignError("face_width", f"{face_width:.6g} mm exceeds the cone distance", f"< {cone:.6g} mm")
+    return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
+
+
+__all__ = ["bevel_axial_moment", "flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
            "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
-           "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio"]
+           "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio",
+           "ToothOutline", "involute_roll", "tooth_outline", "lower_flank_points", "back_plane_distance", "BACKS",
+           "BevelCore", "bevel_core", "bevel_volume"]

@@ -231,6 +231,50 @@ def spring_shear_stress(force, wire_diameter: float, mean_coil_diameter: float, 
     return k * 8.0 * np.asarray(force, dtype=float) * mean_coil_diameter / (math.pi * wire_diameter ** 3)
 
 
+def music_wire_allowable_shear(wire_diameter: float) -> float:
+    """Static allowable wire shear stress of music wire (ASTM A228), MPa: 0.45 of its tensile strength
+    S_ut = A / d^m (A 2211 MPa mm^m, m 0.145, d mm; Shigley's Table 10-4), set not removed."""
+    from geargen.design.hardware_defaults import MUSIC_WIRE_A, MUSIC_WIRE_M
+    return 0.45 * MUSIC_WIRE_A / wire_diameter ** MUSIC_WIRE_M
+
+
+def spring_for_rate(force: float, rate: float, wire_diameter: float, mean_coil_diameter: float,
+                    installed_length: float, shear_modulus: float) -> CompressionSpring:
+    """The music-wire compression spring (squared and ground ends) of ``rate`` (N/mm) pushing with
+    ``force`` (N) at ``installed_length``: its active coils G d^4 / (8 D^3 k), its free length the
+    installed one plus F / k; allowable :func:`music_wire_allowable_shear`."""
+    _require_positive(force=force, rate=rate, wire_diameter=wire_diameter, mean_coil_diameter=mean_coil_diameter)
+    coils = shear_modulus * wire_diameter ** 4 / (8.0 * mean_coil_diameter ** 3 * rate)
+    return compression_spring(wire_diameter, mean_coil_diameter, coils, installed_length + force / rate, shear_modulus,
+                              music_wire_allowable_shear(wire_diameter), installed_length=installed_length)
+
+
+def spring_installed_range(spring: CompressionSpring, clearance: float) -> tuple[float, float]:
+    """(shortest, longest) installed length (mm) of ``spring`` at its installed force: at least
+    ``clearance`` above its solid height, and short enough that closed solid its stress stays within
+    the allowable (the force rises by k per mm from the installed length to solid)."""
+    solid_force = spring.allowable_shear_stress / float(spring_shear_stress(1.0, spring.wire_diameter,
+                                                                            spring.mean_coil_diameter))
+    return (spring.solid_height + clearance,
+            spring.solid_height + (solid_force - spring.installed_force) / spring.rate)
+
+
+def smallest_spring_wire(force: float, rate: float, index: float, shear_modulus: float, clearance,
+                         wires) -> tuple[CompressionSpring, tuple[float, float]] | None:
+    """The thinnest of ``wires`` (mm, ascending) that makes a spring of ``rate`` and spring index
+    ``index`` carry ``force`` within its allowable stress both installed and closed solid, at an
+    installed length ``clearance(d)`` above solid at least: (the spring, installed in the middle of
+    its range; the range); None when none does."""
+    for d in wires:
+        coils = shear_modulus * d / (8.0 * index ** 3 * rate)  # G d^4 / (8 D^3 k) at D = C d
+        shortest = spring_solid_height(d, coils) + clearance(d)
+        trial = spring_for_rate(force, rate, d, index * d, shortest, shear_modulus)
+        lo, hi = spring_installed_range(trial, clearance(d))
+        if trial.installed_stress <= trial.allowable_shear_stress and lo < hi:
+            return spring_for_rate(force, rate, d, index * d, (lo + hi) / 2, shear_modulus), (lo, hi)
+    return None
+
+
 @dataclass(frozen=True)
 class CompressionSpring:
     """One helical compression spring evaluated at its installed length (mm, N, MPa)."""
@@ -649,7 +693,8 @@ __all__ = [
     "round_section_second_moment", "round_section_modulus",
     "blade_stiffness_along", "blade_stiffness_lateral", "blade_stiffness_axial", "blade_max_stress",
     "blade_parasitic_shortening", "BladeFlexure", "blade_flexure", "BladeDesign", "design_blade_flexure",
-    "SPRING_ENDS", "spring_index", "wahl_factor", "spring_rate", "spring_total_coils", "spring_solid_height",
+    "SPRING_ENDS", "spring_index", "wahl_factor", "spring_rate", "music_wire_allowable_shear", "spring_for_rate",
+    "spring_installed_range", "smallest_spring_wire", "spring_total_coils", "spring_solid_height",
     "spring_shear_stress", "CompressionSpring", "compression_spring",
     "simply_supported_deflection", "simply_supported_slope", "simply_supported_moment", "zero_slope_position",
     "beam_stiffness_at_load", "span_for_stiffness", "BeamPinion", "beam_pinion",

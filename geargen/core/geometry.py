@@ -26,6 +26,7 @@ from geargen.core.involute import (involute, inverse_involute, pointed_tip_radiu
                                    tooth_thickness_at_radius)
 from geargen.design.gear import GearSpec
 from geargen.errors import DesignError, GeometryError
+from geargen.units import length_text
 
 __all__ = [
     "GearPair", "MeshGeometry", "MeshBacklash", "Undercut", "TipLand", "SpanMeasurement", "PinMeasurement",
@@ -585,10 +586,13 @@ def check_tip_land(spec: GearSpec, minimum_thickness: float = 0.0) -> TipLand:
     thinner than ``minimum_thickness`` (mm; 0 rejects only pointed teeth)."""
     land = tip_land(spec)
     if land.thickness <= 0 or land.thickness < minimum_thickness:
-        what = "pointed" if land.thickness <= 0 else f"only {land.thickness:.6g} mm thick at the tip"
-        raise GeometryError("pointed_tooth", f"{spec.name}: the tooth is {what} (tip radius {land.tip_radius:.6g} mm, "
-                            f"flanks meet at {land.pointed_radius:.6g} mm, required tip land "
-                            f">= {minimum_thickness:.6g} mm); reduce profile_shift, addendum_coefficient or thinning")
+        unit = spec.length_unit
+        what = "pointed" if land.thickness <= 0 else f"only {length_text(land.thickness, unit, 6)} thick at the tip"
+        raise GeometryError("pointed_tooth", f"{spec.name}: the tooth is {what} (tip radius "
+                            f"{length_text(land.tip_radius, unit, 6)}, flanks meet at "
+                            f"{length_text(land.pointed_radius, unit, 6)}, required tip land >= "
+                            f"{length_text(minimum_thickness, unit, 6)}); reduce profile_shift, addendum_coefficient "
+                            "or thinning")
     return land
 
 

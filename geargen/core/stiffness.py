@@ -561,7 +561,10 @@ class LoopError:
 
 @dataclass(frozen=True)
 class PreloadVariation:
-    """Preload band caused by a loop error (N·mm at the output, rad)."""
+    """Preload band caused by a loop error (N·mm at the output, rad) and, where the preload device
+    slides on a fit with friction (``friction_to_preload`` rho: the friction force over the spring
+    force, :mod:`geargen.core.axial_preload`), by that friction: the spring force sets the preload
+    only to within ``1 / (1 +- rho)``, the shaft sticking anywhere between."""
 
     label: str
     loop_error: float
@@ -569,19 +572,28 @@ class PreloadVariation:
     preload: float
     carriage_travel: float | None = None
     source: str = "design"
+    friction_to_preload: float = 0.0
 
     @property
-    def range(self) -> float:
-        """Peak-to-peak preload change ``k_L delta_L`` (Eq. 3/6)."""
+    def loop_range(self) -> float:
+        """Peak-to-peak preload change from the loop error alone, ``k_L delta_L`` (Eq. 3/6): the
+        spring force's change."""
         return self.loop_stiffness * self.loop_error
 
     @property
+    def range(self) -> float:
+        """Peak-to-peak preload: the loop error's band widened by the friction band."""
+        return self.high - self.low
+
+    @property
     def low(self) -> float:
-        return self.preload - self.range / 2.0
+        return (self.preload - self.loop_range / 2.0) / (1.0 + self.friction_to_preload)
 
     @property
     def high(self) -> float:
-        return self.preload + self.range / 2.0
+        if self.friction_to_preload >= 1.0:  # the fit locks: the spring no longer bounds the preload
+            return math.inf
+        return (self.preload + self.loop_range / 2.0) / (1.0 - self.friction_to_preload)
 
     @property
     def relative(self) -> float:
@@ -595,10 +607,13 @@ class PreloadVariation:
 
 
 def preload_variation(drive: TwoPathDrive, loop_error, label: str = "loop error",
-                      carriage_travel: float | None = None, source: str = "design") -> PreloadVariation:
-    """Preload band of ``drive`` for a peak-to-peak loop error (rad at the drive's reference)."""
+                      carriage_travel: float | None = None, source: str = "design",
+                      friction_to_preload: float = 0.0) -> PreloadVariation:
+    """Preload band of ``drive`` for a peak-to-peak loop error (rad at the drive's reference) and
+    the preload device's friction (see :class:`PreloadVariation`)."""
     return PreloadVariation(label=label, loop_error=float(loop_error), loop_stiffness=drive.loop_stiffness,
-                            preload=drive.preload, carriage_travel=carriage_travel, source=source)
+                            preload=drive.preload, carriage_travel=carriage_travel, source=source,
+                            friction_to_preload=friction_to_preload)
 
 
 @dataclass(frozen=True)
@@ -798,8 +813,9 @@ class StiffnessSummary:
                 {"label": v.label, "source": v.source,
                  "carriage_travel_mm": v.carriage_travel, "loop_error_urad": v.loop_error * 1e6,
                  "range_Nm": v.range * nm, "low_Nm": v.low * nm, "high_Nm": v.high * nm,
-                 "relative": v.relative,
-                 "carriage_force_range_N": None if self.lever is None else float(carriage_force(v.range, self.lever))}
+                 "relative": v.relative, "loop_error_range_Nm": v.loop_range * nm,
+                 "friction_to_preload": v.friction_to_preload,
+                 "carriage_force_range_N": None if self.lever is None else float(carriage_force(v.loop_range, self.lever))}
                 for v in self.variations],
             "headline_budget": self.headline_budget,
             "warnings": list(self.warnings),
@@ -872,7 +888,7 @@ def loop_errors_from_travels(travels: Mapping[str, float], lever: float, source:
 def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = None,
                       travel_source: str = "synthesis", components=None,
                       beam_supports: tuple[float, float] | None = None,
-                      placed_lever: float | None = None) -> StiffnessSummary:
+                      placed_lever: float | None = None, placed_friction: float = 0.0) -> StiffnessSummary:
     """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
 
     ``beam_supports``: radial stiffness (N/mm) of the structure under the long pinion's lower and
@@ -885,7 +901,8 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     (:func:`geargen.model.analysis.placed_components`); default: as the design gives them.
     ``placed_lever`` (rad/mm): output rotation of each path per unit preload motion where the
     resolved drive places it rather than a dual-pinion train (the axial preload's slide,
-    :mod:`geargen.model.axial_drive`).
+    :mod:`geargen.model.axial_drive`); ``placed_friction``: the friction force of its sliding fit
+    over the spring force (the preload band then includes the friction's, :class:`PreloadVariation`).
     """
     sd = stiffness_design(design)
     if sd.preload is None:
@@ -1035,7 +1052,8 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     else:
         errors = _design_loop_errors(sd, lever)
         headline = "design" if errors else None
-    variations = tuple(preload_variation(drive, e.rotation, e.label, e.carriage_travel, e.source) for e in errors)
+    variations = tuple(preload_variation(drive, e.rotation, e.label, e.carriage_travel, e.source, placed_friction)
+                       for e in errors)
     for v in variations:
         if v.unloads:
             warnings.append(f"loop error ({v.label}) unloads the preload: band {v.low * 1e-3:.4g} to {v.high * 1e-3:.4g} N·m")

@@ -207,6 +207,8 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
     if not isinstance(data, Mapping) or not _needs_defaults(data):
         return dict(data) if isinstance(data, Mapping) else data, ()
     wanted = [s for s in ("parts", "preload", "flexures", "springs", "stiffness") if s not in data]
+    if isinstance(data.get("parts"), Mapping):
+        wanted.append("parts")  # a partial [parts]: the keys it leaves out are defaulted
     gear_tables = data.get("gears") or {}
     defaults_table = data.get("gear_defaults") or {}
     if not all(isinstance(t, Mapping) for t in gear_tables.values()):
@@ -228,6 +230,8 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
     sfx = unit  # length keys end in the design's unit
 
     def put(section: str, key: str, value: Any, why: str) -> None:
+        if section == "parts" and _given(data.get("parts") or {}, key):
+            return  # the file's value stands
         table = out.setdefault(section, {})
         if "." in key:  # a sub-table (stiffness.components.NAME)
             sub, key = key.rsplit(".", 1)
@@ -245,15 +249,22 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
     bearings = {}
     for shaft, members in shafts.items():
         given = [m.hub.bore_diameter for m in members if m.name not in bare and m.hub.bore_diameter > 0]
+        file_parts = data.get("parts") if isinstance(data.get("parts"), Mapping) else {}
+        od = _given_number(file_parts, f"{shaft}_bearing_outer_diameter", unit)
+        width = _given_number(file_parts, f"{shaft}_bearing_width", unit)
         if given:
             bore = given[0]
             found = standard_bearing(bore, unit)
             if found is None or abs(found[0] - bore) > 1e-6:
-                if "parts" in wanted:
-                    raise DesignError(f"gears.{members[0].name}.bore_diameter", f"{_in_unit(bore, unit):g} {unit} "
-                                      "is no standard bearing bore, and the file gives no [parts] table",
-                                      ", ".join(f"{b[0]:g}" for b in (METRIC_BEARINGS if unit == 'mm' else INCH_BEARINGS))
-                                      + f" {unit}, or a [parts] table")
+                if "parts" in wanted and (od is None or width is None):
+                    key = f"parts.{shaft}_bearing_outer_diameter_{unit}" if od is None else \
+                        f"parts.{shaft}_bearing_width_{unit}"
+                    raise DesignError(key, f"missing, and the {shaft} shaft's bore {_in_unit(bore, unit):g} {unit} "
+                                      f"(gears.{members[0].name}) is no standard bearing bore to size it from",
+                                      "the bearing's outer diameter and width, or a standard bore: "
+                                      + ", ".join(f"{b[0]:g}" for b in (METRIC_BEARINGS if unit == 'mm' else INCH_BEARINGS))
+                                      + f" {unit}")
+                found = (bore, od, width, "the file's bearing")
             bearings[shaft] = found
         else:
             bearings[shaft] = shaft_bearing(members, unit, shaft)
@@ -347,8 +358,50 @@ def default_hardware(data: Mapping[str, Any]) -> tuple[dict[str, Any], tuple[Def
     return out, tuple(added)
 
 
+#: [parts] keys that say the same thing in two ways: giving one gives the other
+_SYNONYMS = {"bevel_module": "bevel_diametral_pitch", "bevel_diametral_pitch": "bevel_module"}
+
+
+def _field_name(key: str) -> str:
+    """A [parts] key without its unit suffix (``motor_flange_mm`` -> ``motor_flange``)."""
+    for suffix in ("_mm", "_in", "_per_in"):
+        if key.endswith(suffix):
+            return key[: -len(suffix)]
+    return key
+
+
+def _given(table: Mapping[str, Any], key: str) -> bool:
+    """Whether the file's ``[parts]`` gives ``key`` in any unit (or its synonym)."""
+    name = _field_name(key)
+    names = {_field_name(k) for k in table}
+    return name in names or _SYNONYMS.get(name) in names
+
+
+def _given_number(table: Mapping[str, Any], name: str, unit: str) -> float | None:
+    """The file's value of the [parts] length or count ``name`` (mm for a length), or None."""
+    from geargen.units import LENGTH_SUFFIXES
+    for k, v in table.items():
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            continue
+        if k == name:
+            return float(v)
+        for suffix, scale in LENGTH_SUFFIXES.items():
+            if k == f"{name}_{suffix}":
+                return float(v) * scale
+    if name == "bevel_module" and isinstance(table.get("bevel_diametral_pitch_per_in"), (int, float)):
+        return MM_PER_IN / float(table["bevel_diametral_pitch_per_in"])
+    return None
+
+
 def _default_parts(put, g, unit: str, bearings, max_torque: float, plate: float, gap: float, out, spring) -> None:
-    """The carriage hardware's [parts] (see the module's rules)."""
+    """The carriage hardware's [parts] (see the module's rules): every key the file's [parts]
+    leaves out, each sized from what the file gives."""
+    given = out.get("parts") or {}
+
+    def number(name, default):
+        value = _given_number(given, name, unit)
+        return default if value is None else value
+
     m1 = g["input"].module
     for shaft in ("cluster", "input", "output"):
         d, od, w, name = bearings[shaft]
@@ -357,8 +410,10 @@ def _default_parts(put, g, unit: str, bearings, max_torque: float, plate: float,
         put("parts", f"{shaft}_bearing_width_{unit}", _in_unit(w, unit), why)
     put("parts", f"bearing_clearance_{unit}", _round(gap, unit), "axial gap between a bearing and a gear face")
     # the bevel pair: 15:30 of the input's module, face a third of the cone distance
-    zp, zg = BEVEL_TEETH
-    module = m1
+    zp, zg = (int(number("bevel_pinion_teeth", BEVEL_TEETH[0])), int(number("bevel_gear_teeth", BEVEL_TEETH[1])))
+    module = number("bevel_module", m1)
+    plate = number("carriage_plate_thickness", plate)
+    gap = number("bearing_clearance", gap)
     cone = math.hypot(zp, zg) * module / 2
     ratio = g["output"].teeth / g["cluster_small"].teeth * g["cluster_large"].teeth / g["input"].teeth
     motor_torque = max_torque / (ratio * zg / zp) * 1e-3

@@ -163,7 +163,7 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         _L("output_bearing_outer_diameter", help="outer diameter of the output shaft's bearings"),
         _L("output_bearing_width", help="width of the output shaft's bearings"),
     ],
-    # the rack dual-pinion drive (geargen.cad.rack_drive_parts): path shafts on a bearing each side of
+    # the rack dual-pinion drive (geargen.drives.rack_dual_pinion.hardware): path shafts on a bearing each side of
     # their gears in two housing plates, the input shaft in the preload carriage on a linear guide
     "rack_drive": _COMMON + [
         _L("path_bearing_outer_diameter", help="outer diameter of the path shafts' bearings (bore: the pinion's)"),
@@ -184,7 +184,7 @@ HARDWARE_FIELDS: dict[str, list[Field]] = {
         Field("spring_shear_modulus_GPa", "number", required=False, default=79.3, minimum=1.0,
               help="shear modulus of the spring wire (music wire: 79.3)"),
     ],
-    # geargen.model.axial_drive / geargen.cad.axial_parts: the sliding input shaft and its spring
+    # geargen.model.axial_drive / geargen.drives.axial_preload.hardware: the sliding input shaft and its spring
     "axial_preload": _COMMON + [
         _L("input_bearing_outer_diameter",
            help="outer diameter of the input shaft's two bearings (bore: the pinions' bore); their outer rings "

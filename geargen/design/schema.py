@@ -299,20 +299,24 @@ def read_table(data: Mapping[str, Any], fields: list[Field], where: str = "",
         raise_unknown_keys([unknown_key(prefix + k, k, known, allowed) for k in unknown])
     out: dict[str, Any] = {}
     units: dict[str, str] = {}
+    problems = Problems()  # every problem of the table at once, not one per run
     for f in fields:
         present = [k for k in f.keys() if k in data]
         if len(present) > 1:
-            raise DesignError(prefix + present[1], f"given twice, also as {present[0]}", "one spelling")
+            problems.add(DesignError(prefix + present[1], f"given twice, also as {present[0]}", "one spelling"))
+            continue
         if not present:
             if f.required:
-                raise DesignError(prefix + f.keys()[0] if len(f.keys()) == 1 else prefix + f.name,
-                                  "missing", " or ".join(f.keys()))
+                problems.add(DesignError(prefix + f.keys()[0] if len(f.keys()) == 1 else prefix + f.name,
+                                         "missing", " or ".join(f.keys())))
             out[f.name] = f.default
             continue
         key = present[0]
-        out[f.name] = _convert(f, key, data[key], prefix + key)
+        out[f.name] = problems.run(_convert, f, key, data[key], prefix + key)
         if f.kind in _UNIT_SUFFIXES:
             units[f.name] = key[len(f.name) + 1:]
+    if problems.errors:
+        raise problems.errors[0] if len(problems.errors) == 1 else DesignErrors(problems.errors)
     out["_units"] = units
     return out
 

@@ -112,7 +112,7 @@ def budget_of(assembly: Path, declared_values: dict, amplitude_se: float = 0.0) 
     """(rows of :func:`compare_with_budget`, note) for the design at ``assembly``; no rows and why
     when the design gives no error budget."""
     from geargen.design.assembly import load_design
-    from geargen.model.layout import resolve
+    from geargen.drives import resolve
     design = load_design(assembly)
     run = resolve(design).synthesis
     if run is None or run.errors is None:

@@ -124,7 +124,7 @@ def design_from_text(text: str, path: Path):
 def preload_band(design) -> dict | None:
     """The design's headline preload variation (N·m): its loop-error band, or None without one."""
     from geargen.model.analysis import stiffness
-    from geargen.model.layout import resolve
+    from geargen.drives import resolve
     summary, _ = stiffness(design, resolve(design))
     if summary is None or summary.headline is None:
         return None

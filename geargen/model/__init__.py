@@ -1,8 +1,8 @@
-"""The resolved drive (pure data, no CAD kernel): :func:`resolve` decides every gear's teeth,
+"""The resolved drive (pure data, no CAD kernel): :func:`geargen.drives.resolve` decides every gear's teeth,
 centre, height and phase once; every command and every export reads that one model."""
 
 from geargen.model.layout import (BACKLASH_KIND, LAYOUT_KINDS, MODEL_BACKLASH, POSITIONS, GearPlacement, Layout,
-                                  MeshPlacement, is_drive, layout_settings, resolve, running_backlash)
+                                  MeshPlacement, is_drive, layout_settings, place, running_backlash)
 
 __all__ = ["BACKLASH_KIND", "LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "GearPlacement", "Layout", "MeshPlacement",
-           "is_drive", "layout_settings", "resolve", "running_backlash"]
+           "is_drive", "layout_settings", "place", "running_backlash"]

@@ -15,6 +15,7 @@ is only checked (:mod:`geargen.checks.allowance`).
 from __future__ import annotations
 
 from geargen.core.allowance import BacklashRoute, ThicknessAllowance, allowances_for_backlash
+from geargen.errors import DesignError
 from geargen.design.gear import GearSpec, with_changes
 from geargen.model.layout import Layout, MeshPlacement
 from geargen.units import LENGTH_SUFFIXES
@@ -73,9 +74,12 @@ def mesh_route(layout: Layout, mesh: MeshPlacement, centre_distance_tolerance: f
                          lo_key, hi_key, f"{TOLERANCE_KEY}_{u}", u, LENGTH_SUFFIXES[u])
 
 
-def drive_allowances(layout: Layout, centre_distance_tolerance: float = 0.0) -> dict[str, ThicknessAllowance]:
+def drive_allowances(layout: Layout, centre_distance_tolerance: float = 0.0,
+                     strict: bool = True) -> dict[str, ThicknessAllowance]:
     """Gear name (``GearSpec.name``) -> allowance, for every gear of ``layout`` that has one
-    (entered, or chosen from a mesh's backlash range; see the module docstring)."""
+    (entered, or chosen from a mesh's backlash range; see the module docstring). A mesh whose
+    range no allowance meets raises the DesignError naming it; with ``strict`` False its gears are
+    left without one (the drawings then say so; the check's verdict has the failure)."""
     out: dict[str, ThicknessAllowance] = {}
     for placed in layout.gears:
         for g in placed.gears:
@@ -88,9 +92,14 @@ def drive_allowances(layout: Layout, centre_distance_tolerance: float = 0.0) -> 
         g1, g2 = mesh.gear1, mesh.gear2
         if g1.name in out and g2.name in out:
             continue
-        a1, a2 = allowances_for_backlash(with_changes(g1, thinning=0.0), with_changes(g2, thinning=0.0),
-                                         mesh_route(layout, mesh, centre_distance_tolerance),
-                                         out.get(g1.name), out.get(g2.name))
+        try:
+            a1, a2 = allowances_for_backlash(with_changes(g1, thinning=0.0), with_changes(g2, thinning=0.0),
+                                             mesh_route(layout, mesh, centre_distance_tolerance),
+                                             out.get(g1.name), out.get(g2.name))
+        except DesignError:
+            if strict:
+                raise
+            continue
         out.setdefault(g1.name, a1)
         out.setdefault(g2.name, a2)
     return out

@@ -157,11 +157,13 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
     # the axial preload places its own lever: the output rotation per mm of the input's slide
-    lever = layout.drive_report["stiffness"]["lever_rad_per_mm"] if layout is not None and \
-        layout.kind == "axial_preload" else None
+    axial = layout is not None and layout.kind == "axial_preload"
+    lever = layout.drive_report["stiffness"]["lever_rad_per_mm"] if axial else None
+    # its sliding fit's friction widens the preload band
+    friction = layout.drive_report["friction"]["friction_to_preload"] if axial else 0.0
     return stiffness_summary(design, travels, components=placed_components(design, layout),
                              beam_supports=beam_supports(layout, layout.engagement if layout else None),
-                             placed_lever=lever), note
+                             placed_lever=lever, placed_friction=friction), note
 
 
 def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | None:
@@ -193,8 +195,8 @@ def drive_from_design(design: Design, location: str = "output"):
     "common" are in series with the drive and not part of this model (``StiffnessSummary.common``).
     """
     from geargen.errors import DesignError
-    from geargen.model.layout import is_drive, resolve
-    summary, _ = stiffness(design, resolve(design) if is_drive(design) else None)
+    from geargen.model.layout import is_drive, place
+    summary, _ = stiffness(design, place(design) if is_drive(design) else None)
     if summary is None:
         raise DesignError("stiffness", "missing: the drive model needs [stiffness] and [preload] sections",
                           "see assemblies/robot_joint.toml")

@@ -48,13 +48,17 @@ Stiffness (Eqs. 5 and 6). The spring of axial stiffness ``k_a`` acts on the loop
 lever ``lambda`` on each path, so it is ``k_3 = k_a / lambda^2 = k_a (r_2 / tan(beta))^2`` at the
 output (:func:`geargen.core.stiffness.preload_spring_at_output`).
 
-Friction. The meshes' forces on the input shaft: the two tangential forces cancel and the two
-separating components add (the output gears are coaxial: ``phi = 0`` of
-:func:`geargen.core.axial_preload.lateral_force_factor`), a lateral load ``2 (P / r_b2) sin(alpha_wt)``
-(``2 F_t tan(alpha_wt)`` at standard centres) on the sliding fit; its friction over the spring
-force is then ``mu tan(alpha_wt) / tan(beta)``,
-which grows as the helix angle shrinks (the paper's warning): a design whose ratio exceeds
-``max_friction_to_preload`` is refused, naming the helix angle.
+Friction. The input shaft slides in its two bearings (their outer rings in the plates' bores,
+placed by ``[parts]``: :func:`input_bearing_faces`), and each ring's friction is mu times its
+radial reaction (:func:`geargen.core.axial_preload.input_bearing_reactions`). The meshes' forces
+on the shaft: the two separating components ``(P / r_b2) sin(alpha_wt)`` add; the two tangential
+ones cancel as forces but, a face and the pinions' gap apart, make a couple; the two axial forces
+``F_t tan(beta)``, at the working pitch radius on the output's side, make a second couple. The
+bearings carry the net force and both couples, so the friction is mu (R_lower + R_upper), more
+than mu times the net side force. Over the spring force that is the friction-to-preload ratio;
+it grows as the helix angle shrinks (the paper's warning): a design whose ratio exceeds
+``max_friction_to_preload`` is refused, naming the helix angle and the smallest that passes (at
+its standard centre distance, which the message gives).
 """
 
 from __future__ import annotations
@@ -64,8 +68,8 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, preload_band,
-                                        smallest_helix_angle)
+from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, input_bearing_reactions,
+                                        preload_band, smallest_helix_angle)
 from geargen.core.drive import TwoPathDrive
 from geargen.core.stiffness import gear_mesh_stiffness, preload_spring_at_output, torsional_from_linear
 from geargen.core.synthesis import mate_rotation
@@ -74,7 +78,7 @@ from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
 from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, _modelled_backlash, _ratio_check, _thin_pair,
                                   running_backlash)
-from geargen.model.shafts import Bearing, Shaft, _bore, _mid
+from geargen.model.shafts import Bearing, Shaft, bore_of as _bore, _mid
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -100,6 +104,14 @@ def turn_for_backlash(backlash_left: float, backlash_right: float, pinion_refere
 def axial_lever(helix_angle: float, output_reference_radius: float) -> float:
     """``lambda``: output rotation of each path per mm of the input's slide (rad/mm)."""
     return math.tan(helix_angle) / output_reference_radius
+
+
+def input_bearing_faces(lowest_face: float, highest_face: float, parts: dict[str, Any]) \
+        -> tuple[tuple[float, float], tuple[float, float]]:
+    """The z ranges (mm) of the input shaft's lower and upper bearing at the reference position (no
+    slide): a ``bearing_clearance`` beyond the lowest and highest gear face of the drive."""
+    gap, width = parts["bearing_clearance"], parts["input_bearing_width"]
+    return (lowest_face - gap - width, lowest_face - gap), (highest_face + gap, highest_face + gap + width)
 
 
 def _windup_slide(preload: float, k1: float, k2: float, lever: float) -> float:
@@ -211,26 +223,58 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
                           f"{stroke / k:.6g} {unit} is shorter than the slide the preload needs with the largest "
                           f"backlash ({needed / k:.6g} {unit}: take-up {(needed - windup) / k:.6g} + windup "
                           f"{windup / k:.6g})", f">= {needed / k:.6g} {unit}")
-    # friction of the sliding fit against the preload
+    # friction of the sliding fit against the preload: the outer rings of the input's two bearings
+    # slide in their bores, each pressed by its reaction to the meshes' forces and couples
+    from geargen.design.parts import parts_settings
+    if not design.section("parts"):
+        raise DesignError("parts", "missing: the sliding fit's friction acts on the input shaft's two bearings, "
+                          "which [parts] places", "a [parts] table sizing the axial_preload hardware "
+                          "(bearing_clearance_*, input_bearing_width_*, ...)")
     alpha_wt = math.acos((pl.base_radius + o_r.base_radius) / c)
     mu = s["sliding_friction_coefficient"]
-    # the lateral load on the sliding fit: the two mesh forces (P / r_b2 each, along lines of action
-    # mirrored about the centre line) add their separating components 2 (P / r_b2) sin(alpha_wt); over
-    # the reference tangential preload F_t. At standard centres it is lateral_force_factor(0, alpha_wt)
-    # = 2 tan(alpha_wt) (the output gears are coaxial: their centres 0 apart)
-    lateral = 2 * (preload / o_r.base_radius) * math.sin(alpha_wt) / (preload / r_o)
+    # at the reference position (the slide, tens of um, moves the arms by less than 0.1 %): each mesh
+    # at the middle of its faces' overlap
+    bearings = tuple(sum(faces) / 2 for faces in input_bearing_faces(
+        min(z_pl, z_or), max(z_pr + pr.face_width, z_ol + o_l.face_width), parts_settings(design)))
+    mesh_z = ((max(z_pl, z_or) + min(z_pl + pl.face_width, z_or + o_r.face_width)) / 2,
+              (max(z_pr, z_ol) + min(z_pr + pr.face_width, z_ol + o_l.face_width)) / 2)
+
+    def lateral_at(helix: float, alpha_t: float | None = None, alpha_w: float | None = None,
+                   pitch_radius: float | None = None) -> float:
+        """k: the bearings' reactions over the reference tangential preload F_t = P / r_2. Each mesh
+        pushes along its line of action with P / r_b2 = F_t / cos(alpha_t) (separating part
+        sin(alpha_wt), tangential cos(alpha_wt)) and axially with F_t tan(beta) at the pinion's working
+        pitch radius. Other helix angles: standard centres, the same teeth, module and faces."""
+        if alpha_t is None:
+            alpha_t = math.atan(math.tan(pl.pressure_angle) / math.cos(helix))
+            alpha_w, pitch_radius = alpha_t, pl.teeth * pl.module / (2 * math.cos(helix))
+        line = 1 / math.cos(alpha_t)
+        return sum(input_bearing_reactions(mesh_z, bearings, line * math.cos(alpha_w), line * math.sin(alpha_w),
+                                           math.tan(helix), pitch_radius))
+
+    lateral = lateral_at(beta, pl.transverse_pressure_angle, alpha_wt, c * pl.base_radius / (pl.base_radius + o_r.base_radius))
     ratio = friction_to_preload_ratio(mu, beta, lateral)
     limit = s["max_friction_to_preload"]
-    smallest = smallest_helix_angle(mu, lateral, limit)
+    smallest = smallest_helix_angle(mu, lateral_at, limit)
     if ratio > limit:
+        if smallest is None:
+            allowed = (f"no helix angle reaches it with these bearings and mu {mu:.3g}: a longer bearing span "
+                       f"([parts] bearing_clearance_{unit}), a lower sliding_friction_coefficient (a ball bushing) or a larger limit")
+        else:
+            # rounded up so that the angle given passes; its standard centre distance goes with it
+            deg = math.ceil(math.degrees(smallest) * 100) / 100
+            standard = (pl.teeth + o_r.teeth) * pl.module / (2 * math.cos(math.radians(deg)))
+            allowed = (f">= {deg:.2f} deg (all four gears), with layout.centre_distance_{unit} "
+                       f"{standard / k:.6g} (standard there)")
         raise DesignError(f"gears.{s['pinion_left']}.helix_angle_deg",
                           f"{math.degrees(beta):.4g} deg: the sliding fit's friction is {ratio:.3g} of the spring force "
-                          f"(mu {mu:.3g}, lateral load {lateral:.3g} F_t), above layout.max_friction_to_preload "
-                          f"{limit:.3g}", f">= {math.degrees(smallest):.4g} deg (all four gears)")
+                          f"(mu {mu:.3g}; the input bearings' reactions {lateral:.3g} F_t, from the meshes' forces "
+                          f"and couples over their {(bearings[1] - bearings[0]) / k:.4g} {unit} span), above "
+                          f"layout.max_friction_to_preload {limit:.3g}", allowed)
     band = preload_band(spring_force, beta, mu, lateral)
     table = [dict(helix_angle_deg=row.helix_angle_deg, friction_to_preload=row.friction_to_preload,
                   hysteresis=row.hysteresis, tangential_preload_per_spring_force=row.preload_per_spring_force)
-             for row in helix_angle_table(mu, pl.pressure_angle, lateral)]
+             for row in helix_angle_table(mu, pl.pressure_angle, lateral_at)]
 
     gears = [
         GearPlacement(s["output_right"], o_r, (0.0, 0.0), z_or, rot_or, "output", ("output",)),
@@ -273,7 +317,9 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
         f"{preload / 1e3:.4g} N m at the output (F_t {tangential:.4g} N per path); spring compressed "
         f"{spring_force / k_axial / k:.4g} {unit} at {k_axial:.4g} N/mm",
         f"axial preload: friction-to-preload {ratio:.3g} at helix {math.degrees(beta):.4g} deg (mu {mu:.3g}, "
-        f"lateral load {lateral:.3g} F_t; limit {limit:.3g} needs >= {math.degrees(smallest):.4g} deg); preload band "
+        f"input bearings' reactions {lateral * tangential:.4g} N = {lateral:.3g} F_t; limit {limit:.3g} needs "
+        + ("a longer bearing span or less friction" if smallest is None else f">= {math.degrees(smallest):.4g} deg")
+        + f"); preload band "
         f"{band.low:.4g} to {band.high:.4g} N of F_t; by helix angle: " + ", ".join(
             f"{row['helix_angle_deg']:.0f} deg {row['friction_to_preload']:.3g}" for row in table),
         f"axial preload: stiffness at the output, meshes only: k1 = k2 = {drive.k1 / 1e3:.4g} N m/rad, "
@@ -333,8 +379,9 @@ def axial_preload_hardware(layout: Layout, parts: dict[str, Any]) -> AxialPreloa
     plate_t = min(ibw, obw)
     bottom = (min(lo_in, lo_out) - gap - plate_t, min(lo_in, lo_out) - gap)
     top = (max(hi_in, hi_out) + gap, max(hi_in, hi_out) + gap + plate_t)
-    in_bearings = (Bearing("input_bearing_lower", bottom[1] - ibw + shift, ibw, d_in, ibod),
-                   Bearing("input_bearing_upper", top[0] + shift, ibw, d_in, ibod))
+    lower, upper = input_bearing_faces(min(lo_in, lo_out), max(hi_in, hi_out), parts)
+    in_bearings = (Bearing("input_bearing_lower", lower[0] + shift, ibw, d_in, ibod),
+                   Bearing("input_bearing_upper", upper[0] + shift, ibw, d_in, ibod))
     out_bearings = (Bearing("output_bearing_lower", bottom[1] - obw, obw, d_out, obod),
                     Bearing("output_bearing_upper", top[0], obw, d_out, obod))
     c = tuple(pin[0].centre)
@@ -358,5 +405,5 @@ def axial_preload_hardware(layout: Layout, parts: dict[str, Any]) -> AxialPreloa
                                 top[1] + layout.settings["input_stroke"])
 
 
-__all__ = ["MESHES", "slide_for_backlash", "turn_for_backlash", "axial_lever", "place_axial_preload",
+__all__ = ["MESHES", "input_bearing_faces", "slide_for_backlash", "turn_for_backlash", "axial_lever", "place_axial_preload",
            "AxialPreloadHardware", "axial_preload_hardware"]

@@ -138,6 +138,9 @@ class Layout:
     # what a drive kind placed by its own module reports about itself (mm, rad, N; e.g. the axial
     # preload's slide, spring force and stiffnesses): written beside every export, in internal units
     drive_report: dict[str, Any] = field(default_factory=dict)
+    # the non-gear parts and every joint (geargen.model.components.Hardware), laid out by the
+    # drive kind's hardware when the drive is resolved (geargen.drives.resolve); None: no hardware
+    hardware: Any = None
 
     def gear(self, name: str) -> GearPlacement:
         for g in self.gears:
@@ -178,7 +181,8 @@ class Layout:
                 "carriage_x": None if self.carriage_x is None else self.carriage_x * k,
                 "gears": gears, "meshes": meshes, "notes": list(self.notes),
                 "defaulted": {d.key: d.value for d in self.design.defaulted},
-                **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {})}
+                **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {}),
+                **({"hardware": self.hardware.to_dict(1.0 / k)} if self.hardware is not None else {})}
 
 
 #: the one kind of backlash the resolved model, the checks' design range and the reports share
@@ -251,9 +255,10 @@ def is_drive(design: Design) -> bool:
     return bool(design.section("layout") or design.section("synthesis"))
 
 
-def resolve(design: Design, position: str | None = None) -> Layout:
-    """The resolved drive (:class:`Layout`): final teeth, centres, heights and rotations of every
-    gear, and the meshes to check. ``position`` overrides ``[layout] position``."""
+def place(design: Design, position: str | None = None) -> Layout:
+    """The gears of the drive placed (:class:`Layout` without its hardware): final teeth, centres,
+    heights and rotations of every gear, and the meshes to check. ``position`` overrides ``[layout]
+    position``. :func:`geargen.drives.resolve` adds the hardware."""
     settings = layout_settings(design)
     if position is not None:
         if position not in POSITIONS:
@@ -559,6 +564,60 @@ def _engagement(layout: Layout):
                       f"{engagement.lead:.6g} mm)", "a stiffer column: parts.drive_column_thickness_mm")
 
 
+def _split_pinion_centre_range(design: Design, s: dict, pinions, out: GearSpec) -> None:
+    """Refuse a split pinion's ``layout.centre_distance`` outside the range its teeth can be placed
+    at (naming the key, the cause and the range in the file's unit, and a distance in it): above
+    the base circles' sum and below the tip circles' (beyond, the teeth do not reach each other);
+    with a ``model_backlash`` rule, where the pinions, thinned at most to a quarter pitch (half their
+    tooth), reach the modelled backlash (below: the teeth interfere even then) and where they are
+    not already looser than it as designed (above). The backlash rises with the centre distance
+    (B = T + 2 C_std (inv alpha_w - inv alpha)), so each bound is one root."""
+    from scipy.optimize import brentq
+
+    from geargen.core.synthesis import backlash_from_thickness_deficit
+    c = s["centre_distance"]
+    unit = design.length_unit
+    k = LENGTH_SUFFIXES[unit]
+    key = f"layout.centre_distance_{s['_units'].get('centre_distance', unit)}"
+    standard = (pinions[0].teeth + out.teeth) * out.transverse_module / 2
+    alpha = out.transverse_pressure_angle
+    base = max(p.base_radius for p in pinions) + out.base_radius
+    tips = min(p.tip_radius for p in pinions) + out.tip_radius
+    lo_c, hi_c = base * (1 + 1e-12), tips * (1 - 1e-12)
+    why_lo = why_hi = ""
+    rule = s["model_backlash"]
+    if rule != "as_designed":
+        target = _modelled_backlash(s["circumferential_backlash_min"], s["circumferential_backlash_max"], rule)
+        for p in pinions:
+            present = p.transverse_pitch - reference_tooth_thickness(p) - reference_tooth_thickness(out)
+            deepest = present + p.transverse_pitch / 4 - p.thinning  # thinned to a quarter pitch
+
+            def short(x, deficit):
+                return float(backlash_from_thickness_deficit(deficit, x, standard, alpha)) - target
+            if short(lo_c, deepest) < 0 < short(hi_c, deepest):
+                root = brentq(short, lo_c, hi_c, args=(deepest,), xtol=1e-12)
+                if root > lo_c:
+                    lo_c, why_lo = root, (f"below it {p.name}'s teeth, thinned even to a quarter pitch, do not "
+                                          f"reach the modelled {target / k:.6g} {unit} of backlash (they interfere)")
+            if short(lo_c, present) < 0 < short(hi_c, present):
+                root = brentq(short, lo_c, hi_c, args=(present,), xtol=1e-12)
+                if root < hi_c:
+                    hi_c, why_hi = root, (f"above it {p.name}'s teeth as designed already have more than the "
+                                          f"modelled {target / k:.6g} {unit} of backlash ({rule}-range)")
+    if lo_c <= c <= hi_c:
+        return
+    below = c < lo_c
+    if below:
+        cause = why_lo or f"at or inside the base circles' sum {base / k:.6g} {unit}: the teeth have no involute action"
+    else:
+        cause = why_hi or f"at or beyond the tip circles' sum {tips / k:.6g} {unit}: the teeth do not reach each other"
+    fix = min(max(standard, lo_c), hi_c)
+    raise DesignError(key, f"{c / k:.6g} {unit} is {'below' if below else 'above'} the range the split pinion can be "
+                      f"placed in: {cause}",
+                      f"[{lo_c / k:.6g}, {hi_c / k:.6g}] {unit}, e.g. {key} = {fix / k:.6g} "
+                      + ("(standard)" if fix == standard else "(nearest the standard)"))
+
+
 def _place_split_pinion(design: Design, s: dict) -> Layout:
     from geargen.core.synthesis import backlash_from_thickness_deficit as backlash_at_centre_distance, mate_rotation
     stiff, compliant, out = (design.gear(s[k]) for k in ("pinion_stiff", "pinion_compliant", "output"))
@@ -567,6 +626,7 @@ def _place_split_pinion(design: Design, s: dict) -> Layout:
     rule = s["model_backlash"]
     standard = (stiff.teeth + out.teeth) * out.transverse_module / 2
     alpha = out.transverse_pressure_angle
+    _split_pinion_centre_range(design, s, (stiff, compliant), out)
     if rule == "as_designed":
         def b_of(p):
             t = p.transverse_pitch - reference_tooth_thickness(p) - reference_tooth_thickness(out)
@@ -581,9 +641,9 @@ def _place_split_pinion(design: Design, s: dict) -> Layout:
             p = stiff if label == "stiff" else compliant
             present = p.transverse_pitch - reference_tooth_thickness(p) - reference_tooth_thickness(out)
             extra = need - present
-            if extra < -1e-12:
+            if extra < -1e-12:  # the centre distance's range (above) keeps it out
                 raise DesignError(f"gears.{p.name}", "already thinner than the modelled backlash allows",
-                                  "model_backlash = 'as_designed'")
+                                  "a smaller layout.centre_distance")
             p = with_changes(p, thinning=p.thinning + max(extra, 0.0))
             if label == "stiff":
                 stiff = p
@@ -633,4 +693,4 @@ def _place_split_pinion(design: Design, s: dict) -> Layout:
 
 
 __all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
-           "layout_settings", "is_drive", "resolve", "running_backlash"]
+           "layout_settings", "is_drive", "place", "running_backlash"]

@@ -122,7 +122,7 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
     notes.append(f"stage {st.name}: planetary, {len(angles)} planets on the carrier radius "
                  f"{a / LENGTH_SUFFIXES[unit]:.6g} {unit} at "
                  + ", ".join(f"{math.degrees(phi):.6g}" for phi in angles) + " deg; its meshes are not in the "
-                 "stiffness model (taken as rigid), geargen train does not model it")
+                 "loop's stiffness model (taken as rigid); geargen train gives its lost motion and stiffness")
     return PlacedPlanetary(gears, meshes, notes, plate + gap + height + gap + plate)
 
 
@@ -157,7 +157,7 @@ class Carrier:
 def carrier(layout, parts, st) -> Carrier:
     """The carrier of the planetary stage ``st`` as ``layout`` places it (sizes: [parts] plate
     thickness and clearance, the planets' bore, the input's and the sun's bores)."""
-    from geargen.model.shafts import _bore
+    from geargen.model.shafts import bore_of as _bore
     plate, gap = parts["carriage_plate_thickness"], parts["bearing_clearance"]
     sun = layout.gear(st.sun)
     planets = [g for g in layout.gears if g.group == f"stage_{st.name}" and "planetary_planet" in g.roles]

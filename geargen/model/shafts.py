@@ -94,7 +94,7 @@ class Shaft:
         return abs(self.loads[gear_a] - self.loads[gear_b])
 
 
-def _bore(spec) -> float:
+def bore_of(spec) -> float:
     s = spec.large if isinstance(spec, ClusterSpec) else spec
     return s.hub.bore_diameter
 
@@ -117,7 +117,7 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
     def on_shaft(name, bearing_names, members, width, outer):
         z0 = min(p.height[0] for p in members)
         z1 = max(p.height[1] for p in members)
-        diameter = _bore(members[0].spec)  # the shaft fills the gears' bore
+        diameter = bore_of(members[0].spec)  # the shaft fills the gears' bore
         lower = Bearing(bearing_names[0], z0 - gap - width, width, diameter, outer)
         upper = Bearing(bearing_names[1], z1 + gap, width, diameter, outer)
         loads = {g.name: _mid(p, g) for p in members for g in p.gears}
@@ -164,8 +164,8 @@ def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
         return out
     # the input shaft runs up through the carriage arm to the last stage's driven gear
     last = layout.gear(stage_list[-1].driven)
-    if not math.isclose(_bore(last.spec), shaft.diameter, rel_tol=1e-9):
-        raise DesignError(f"gears.{last.name}.bore_diameter", f"{_bore(last.spec):.6g} mm: the gear sits on the input "
+    if not math.isclose(bore_of(last.spec), shaft.diameter, rel_tol=1e-9):
+        raise DesignError(f"gears.{last.name}.bore_diameter", f"{bore_of(last.spec):.6g} mm: the gear sits on the input "
                           "gear's shaft", f"the input's bore, {shaft.diameter:.6g} mm")
     out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, last.height[1], shaft.diameter, shaft.bearings,
                          {**shaft.loads, last.name: _mid(last, last.spec)})
@@ -186,10 +186,10 @@ def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str,
     out: dict[str, Shaft] = {}
     for i, (st, nxt) in enumerate(zip(stage_list, stage_list[1:]), start=1):
         members = [by[st.driven], by[nxt.driver]]
-        bores = {_bore(m.spec) for m in members}
+        bores = {bore_of(m.spec) for m in members}
         if len(bores) != 1:
-            raise DesignError(f"gears.{nxt.driver}.bore_diameter", f"{_bore(members[1].spec):.6g} mm: it shares a shaft "
-                              f"with {st.driven}", f"{_bore(members[0].spec):.6g} mm, the same bore")
+            raise DesignError(f"gears.{nxt.driver}.bore_diameter", f"{bore_of(members[1].spec):.6g} mm: it shares a shaft "
+                              f"with {st.driven}", f"{bore_of(members[0].spec):.6g} mm, the same bore")
         diameter = bores.pop()
         if not diameter > 0:
             raise DesignError(f"gears.{st.driven}.bore_diameter", "missing: the gear sits on a stage shaft", "> 0")
@@ -316,7 +316,7 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     gap = parts["bearing_clearance"]
     stiff, compl = layout.gear(layout.settings["pinion_stiff"]), layout.gear(layout.settings["pinion_compliant"])
     output = layout.gear(layout.settings["output"])
-    d_hollow, d_inner = parts["hollow_shaft_outer_diameter"], _bore(compl.spec)
+    d_hollow, d_inner = parts["hollow_shaft_outer_diameter"], bore_of(compl.spec)
     if not d_inner > 0:
         raise DesignError(f"gears.{compl.name}.bore_diameter", "missing: the inner shaft fills the compliant "
                           "pinion's bore", "bore_diameter_* > 0")
@@ -369,4 +369,4 @@ def shafts(layout: Layout) -> dict[str, Shaft]:
 
 __all__ = ["Bearing", "Shaft", "DriveColumn", "carriage_shafts", "beam_pinion_shafts", "beam_pinion_bearings",
            "beam_pinion_input_shaft",
-           "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "SHAFT_BUILDERS"]
+           "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "SHAFT_BUILDERS", "bore_of"]

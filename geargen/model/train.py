@@ -86,6 +86,7 @@ class TrainStage:
     lost_motion: float | None
     lost_motion_max: float | None
     loss_factor: float
+    lost_motion_min: float | None = None  # at the design's smallest backlash
     components: tuple[str, ...] = ()
     source: str = ""
     pressure_angle: float = math.radians(20.0)
@@ -344,8 +345,17 @@ def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
 
     # --- which gear each rotating body turns with
     gear_names = {g.name: [b.name for b in g.gears] for g in layout.gears}
+    orbits = _planet_motions(layout, train)
     inertias = []
     for bp in parts:
+        if bp.name in orbits:
+            # a planet (or its pin) turns about its own axis and orbits with the carrier: its kinetic
+            # energy is J_own w_own^2 / 2 plus m a^2 w_carrier^2 / 2, two rows (its mass counted once)
+            own, carrier, radius = orbits[bp.name]
+            body = _part_inertia(bp, settings, own, motor_speed, "carrier" if own == carrier else f"{bp.name} (spin)")
+            inertias += [body, PartInertia(f"{bp.name} orbit", body.material, 0.0, body.mass_kg * radius ** 2 * 1e-6,
+                                           carrier, motor_speed / carrier, "carrier (m a^2)")]
+            continue
         turns_with, speed = None, None
         for member in bp.body:
             for gname in gear_names.get(member, ()):
@@ -378,6 +388,28 @@ def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
         warnings.append("no motor_rotor_inertia_* in [train]: the inertia at the motor leaves the rotor out")
     return TrainAnalysis(design.name, motor_speed, tuple(inertias), tuple(stages), settings, summary,
                          loop_spring_compliance=spring, warnings=tuple(warnings), notes=tuple(notes))
+
+
+def _planet_motions(layout, train) -> dict[str, tuple[float, float, float]]:
+    """Each planet and planet pin of a planetary stage, by part name: (its speed about its own
+    axis, its carrier's speed, both over the output's, and its carrier radius, mm). Ring fixed:
+    relative to the carrier the ring turns at -w_c and the planet at -w_c z_r / z_p (an internal
+    mesh turns both one way), so its spin is w_c (1 - z_r / z_p), a speed |1 - z_r / z_p| times the
+    carrier's; a pin, fixed in the carrier, turns with it."""
+    from geargen.design.stages import stages as design_stages
+    out = {}
+    for st in design_stages(layout.design):
+        if st.kind != "planetary":
+            continue
+        group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
+        ring = next(g for g in group if "planetary_ring" in g.roles)
+        carrier = train.gear_ratio(st.sun) / float(st.ratio(layout.design))
+        planets = [g for g in group if "planetary_planet" in g.roles]
+        for i, g in enumerate(planets, start=1):
+            radius = math.dist(g.centre, ring.centre)
+            out[g.name] = (carrier * abs(1 - ring.spec.teeth / g.spec.teeth), carrier, radius)
+            out[f"carrier_{st.name}_pin_{i}"] = (carrier, carrier, radius)  # geargen.model.planetary_stage.carrier
+    return out
 
 
 def _part_inertia(bp: BodyPart, settings: TrainSettings, speed: float, motor_speed: float,
@@ -426,17 +458,62 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         at_output = 1.0 / (a.reference_radius * speed)
         return dict(name=name, driver=a.name, driven=b.name, ratio=b.teeth / a.teeth, speed=speed,
                     driven_speed=driven_speed, preloaded=preloaded, lost_motion=mesh.modelled_backlash * at_output,
-                    lost_motion_max=mesh.backlash_max * at_output, loss_factor=mesh_loss_factor(mu, a.teeth, b.teeth),
+                    lost_motion_min=mesh.backlash_min * at_output, lost_motion_max=mesh.backlash_max * at_output, loss_factor=mesh_loss_factor(mu, a.teeth, b.teeth),
                     pressure_angle=a.transverse_pressure_angle, driven_base_radius=b.base_radius,
                     runout_tir=runout(a.name, b.name), source=source)
+
+    def planetary_stage(st) -> dict:
+        """The planetary stage (ring fixed, sun in, carrier out) as one stage.
+
+        Lost motion: with the sun held, the carrier turns freely while each planet takes up both its
+        meshes' play; along the lines of action, which lie r_bs and r_br from the axis, the carrier's
+        turn phi moves the planet by phi r_bs at the sun and phi r_br at the ring, and the planet's
+        spin shares the take-up between them, so phi (r_bs + r_br) = j_bt,sp + j_bt,pr: in
+        circumferential backlash at the reference circles (j_t = j_bt / cos(alpha_t)),
+        phi = (j_sp + j_pr) / (r_s + r_r). Then at the output, / (the carrier's speed over the output's).
+        Stiffness: each planet's two meshes in series (equal forces on the planet: its spin balances
+        them), Eq. 1 or ISO 6336 as [stiffness] says, acting at r_bs and r_br: per planet
+        (r_bs + r_br)^2 / (1/k_sp + 1/k_pr); the planets in parallel sharing the torque equally (a
+        floating sun's ideal: with position errors fewer carry at small torques); the carrier, its pins
+        and the ring's mounting rigid. Loss: both meshes' losses in the carrier's frame, z_r / (z_s + z_r)
+        of the input power."""
+        from geargen.core.stiffness import gear_mesh_stiffness, reflect
+        from geargen.design.stiffness import stiffness_design
+        from geargen.model.planetary_stage import internal_backlash
+        group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
+        sun, planet, ring = (next(g.spec for g in group if role in g.roles)
+                             for role in ("planetary_sun", "planetary_planet", "planetary_ring"))
+        planets = sum("planetary_planet" in g.roles for g in group)
+        sun_mesh = next(m for m in layout.meshes if m.name.startswith(f"stage_{st.name}_sun_"))
+        a = sun_mesh.centre_distance
+        carrier_speed = train.gear_ratio(st.sun) / float(st.ratio(design))
+        at_output = 1.0 / ((sun.reference_radius + ring.reference_radius) * carrier_speed)
+        backlash = sun_mesh.modelled_backlash + internal_backlash(planet, ring, a)
+        spec = stiffness_design(design).stiffness
+        k_sp = gear_mesh_stiffness(sun, planet, min(sun.face_width, planet.face_width), spec.elastic_modulus,
+                                   spec.mesh_stiffness, f"stages.{st.name}")[0]
+        k_pr = gear_mesh_stiffness(planet, ring, min(planet.face_width, ring.face_width), spec.elastic_modulus,
+                                   "eq1", f"stages.{st.name}")[0]  # ISO 6336's pair model is external: Eq. 1
+        arm = sun.base_radius + ring.base_radius
+        at_carrier = planets * arm ** 2 / (1.0 / k_sp + 1.0 / k_pr)
+        loss = (mesh_loss_factor(mu, sun.teeth, planet.teeth)
+                + mesh_loss_factor(mu, planet.teeth, -ring.teeth)) * ring.teeth / (sun.teeth + ring.teeth)
+        return dict(name=f"stage {st.name} ({st.sun}-{st.planet} x{planets}-{st.ring})", driver=st.sun,
+                    driven="carrier", ratio=float(st.ratio(design)), speed=train.gear_ratio(st.sun),
+                    driven_speed=carrier_speed, preloaded=False, lost_motion=backlash * at_output,
+                    lost_motion_min=2 * st.backlash_min * at_output, lost_motion_max=2 * st.backlash_max * at_output,
+                    loss_factor=loss, fixed_stiffness=float(reflect(at_carrier, carrier_speed)),
+                    pressure_angle=sun.transverse_pressure_angle, driven_base_radius=math.nan,
+                    runout_tir=None, source="planetary: sun-planet and planet-ring backlash at the carrier; "
+                    f"stiffness: {planets} planets, each its two meshes in series, sharing equally")
 
     # upstream stages
     st_list = design_stages(design)
     if st_list:
         for st in st_list:
             if st.kind == "planetary":
-                raise DesignError(f"stages.{st.name}.kind", "geargen train does not model a planetary stage yet "
-                                  "(its planets' lost motion and stiffness in series)", "'pair' stages")
+                out.append(planetary_stage(st))
+                continue
             out.append(mesh_stage(layout.mesh(f"stage_{st.name}"), f"stage {st.name} ({st.driver}-{st.driven})",
                                   train.gear_ratio(st.driven), False,
                                   "backlash: the modelled teeth at the placed centres"))
@@ -453,13 +530,18 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
                 if stiff is not None:
                     source = "stiffness: Eq. 1 on the bevel pair of [parts] at its mean radius"
             if lost is None:
-                warnings.append(f"upstream stage {z1}:{z2}: backlash not known (give [train] upstream_backlash_arcmin)")
+                lost = _bevel_lost_motion(layout, z1, z2, driven_speed)
+                if lost is not None:
+                    source += "; backlash: the bevel pair's as cut ([parts] bevel_backlash)"
+            if lost is None:
+                warnings.append(f"upstream stage {z1}:{z2}: backlash not known (give [train] upstream_backlash_arcmin, "
+                                "or [parts] bevel_backlash_* for the robot joint's bevel pair)")
             if stiff is None:
                 warnings.append(f"upstream stage {z1}:{z2}: stiffness not known (give [train] "
                                 "upstream_stiffness_Nm_per_arcmin); taken as rigid")
             out.append(dict(name=f"upstream {z1}:{z2}", driver=f"{z1} T", driven=f"{z2} T", ratio=z2 / z1,
                             speed=speed, driven_speed=driven_speed, preloaded=False, lost_motion=lost,
-                            lost_motion_max=lost, loss_factor=mesh_loss_factor(mu, z1, z2), fixed_stiffness=stiff,
+                            lost_motion_min=lost, lost_motion_max=lost, loss_factor=mesh_loss_factor(mu, z1, z2), fixed_stiffness=stiff,
                             source=source))
             speed = driven_speed
 
@@ -470,9 +552,10 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         out.append(mesh_stage(mesh, f"split pinion ({pinions} - {mesh.gear2.name})", 1.0, True,
                               "loop: both pinions preloaded"))
     else:
+        # "loop stage n": mesh n with the parts on its driven shaft (geargen stiffness's "mesh n" is the mesh alone)
         for label in ("mesh1", "mesh2"):
             mesh = next(m for m in layout.meshes if m.name.startswith(label) and m.engaged)
-            out.append(mesh_stage(mesh, f"{label[:-1]} {label[-1]} ({mesh.gear1.name}-{mesh.gear2.name})",
+            out.append(mesh_stage(mesh, f"loop stage {label[-1]} ({mesh.gear1.name}-{mesh.gear2.name})",
                                   train.gear_ratio(mesh.gear2.name), True, "loop: preloaded"))
 
     # components to stages: a stage holds the components on its driven shaft (same speed)
@@ -517,6 +600,17 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         stages.append(TrainStage(stiffness=stiffness, single_path_stiffness=1.0 / c1 if c1 > 0 else None,
                                  single_path_mesh_compliance=cm, components=tuple(names), **d))
     return stages, paths_c
+
+
+def _bevel_lost_motion(layout, z1: int, z2: int, driven_speed: float) -> float | None:
+    """The robot joint's bevel pair's backlash as placed (:func:`geargen.model.bevel_drive.bevel_drive`:
+    circumferential at the gear's heel pitch circle, what its teeth are cut to) as an angle at the
+    output: / the heel pitch radius / the driven shaft's speed; None without a bevel pair of these teeth."""
+    from geargen.model.bevel_drive import bevel_drive
+    placed = bevel_drive(layout)
+    if placed is None or (placed.pinion.teeth, placed.gear.teeth) != (z1, z2):
+        return None
+    return placed.backlash / (placed.gear.reference_diameter / 2) / driven_speed
 
 
 def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | None:

@@ -192,6 +192,16 @@ def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: 
     return SplineFit(degree, knots, mults, poles, err, length, (t0, t1), mapped is not None)
 
 
+def fit_function(point, deriv, length: float, tolerance: float, degree: int = FIT_DEGREE,
+                 max_spans: int = 64) -> SplineFit:
+    """Fit any smooth curve ``point(s)`` ``(n, d)`` for s in [0, ``length``] (``deriv`` its d/ds) the
+    same way as a segment (exact ends and end tangents, fewest uniform spans within ``tolerance`` at
+    the same parameter); its columns may mix coordinates, e.g. a 3-D curve with its curve on a
+    surface, which then share knots and parameter."""
+    poles, knots, mults, err = _fit(point, deriv, length, tolerance, degree, max_spans)
+    return SplineFit(degree, knots, mults, poles, err, length, (0.0, length))
+
+
 def fit_rotation(rate: float, length: float, tolerance: float, degree: int | None = FIT_DEGREE,
                  max_spans: int = 64) -> SplineFit:
     """Fit ``(cos(rate z), sin(rate z))`` for z in [0, length] (mm; ``rate`` rad/mm) to
@@ -218,19 +228,6 @@ def fit_rotation(rate: float, length: float, tolerance: float, degree: int | Non
     return SplineFit(degree, knots, mults, poles, err, length, (0.0, rate * length))
 
 
-def fit_function(point, deriv, t0: float, t1: float, tolerance: float, degree: int = FIT_DEGREE,
-                 max_spans: int = 64) -> SplineFit:
-    """Fit a smooth parametric curve ``point(t)`` ``(n, d)`` (with ``deriv(t)``, d/dt) for t in
-    [t0, t1], t0 < t1, to ``tolerance`` (mm, the distance at the same parameter); the spline's
-    parameter is t itself (its knots run from t0 to t1). Exact at both ends, with the exact end
-    tangents. Raises ValueError if ``max_spans`` spans do not reach ``tolerance``."""
-    def shifted(f):
-        return lambda s: f(t0 + np.asarray(s, dtype=float))
-
-    poles, knots, mults, err = _fit(shifted(point), shifted(deriv), t1 - t0, tolerance, degree, max_spans)
-    return SplineFit(degree, knots + t0, mults, poles, err, t1 - t0, (t0, t1))
-
-
 def greville(fit: SplineFit) -> np.ndarray:
     """Greville abscissae ``(n,)`` of ``fit``'s basis: the poles of the identity function s -> s
     (so a spline with these as its z poles has z(s) = s exactly)."""
@@ -239,4 +236,4 @@ def greville(fit: SplineFit) -> np.ndarray:
     return np.array([t[i + 1:i + p + 1].mean() for i in range(len(t) - p - 1)])
 
 
-__all__ = ["SplineFit", "fit_segment", "fit_rotation", "fit_function", "greville", "FIT_DEGREE"]
+__all__ = ["SplineFit", "fit_segment", "fit_function", "fit_rotation", "greville", "FIT_DEGREE"]

@@ -39,6 +39,7 @@ from geargen.core.involute import involute, inverse_involute
 from geargen.design.gear import MIN_RIM_WALL_MODULES, GearSpec
 from geargen.errors import GeometryError
 from geargen.profile.segments import ArcCurve, InvoluteCurve, Segment, outline_area
+from geargen.units import length_text
 
 #: the ring's tooth land (transverse arc at the tip circle) must be at least this many normal modules
 MIN_TIP_LAND_MODULES = 1e-3
@@ -296,8 +297,10 @@ def _cut_by(spec: GearSpec, z0: int) -> InternalProfile:
     half_pitch = math.pi / z
     land = ra2 * (2 * half_pitch - 2 * psi_a)
     if land < MIN_TIP_LAND_MODULES * m_n:
-        raise GeometryError("pointed_tooth", f"the ring's tooth land {land:.4g} mm at its tip circle is below "
-                            f"{MIN_TIP_LAND_MODULES:g} m_n: lower the profile shift or the thinning")
+        raise GeometryError("pointed_tooth", f"{spec.name}: the ring's tooth land {length_text(land, spec.length_unit)} at "
+                            f"its tip circle is below {MIN_TIP_LAND_MODULES:g} m_n "
+                            f"({length_text(MIN_TIP_LAND_MODULES * m_n, spec.length_unit)}): lower the profile shift "
+                            "or the thinning")
     flank = InvoluteCurve(rb2, psi_b)
     segs = (
         Segment("involute", "lower", flank, t_tip, t_form, mirrored=True),

@@ -13,6 +13,7 @@ the export folder at the end.
 from __future__ import annotations
 
 import html
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -263,12 +264,24 @@ def key_numbers(result: Any) -> dict[str, Any]:
     return out
 
 
-def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str]]]:
-    """:func:`key_numbers` as a two-column table (quantity, value)."""
-    unit = numbers["length_unit"]
+def plain_number(value: float | None, digits: int = 5) -> str:
+    """One format for the numbers a reviewer reads first: positional (no exponent), at most
+    ``digits`` significant digits, whole numbers whole, no trailing zeros (a stiffness of 1305030
+    N·m/rad, a backlash of 0.0012345 or 0.00005)."""
+    from geargen.report.synthesis import fixed
+    if value is None:
+        return "-"
+    if value == 0 or not math.isfinite(value):
+        return f"{value:g}"
+    text = fixed(value, max(0, digits - 1 - math.floor(math.log10(abs(value)))))
+    return text.rstrip("0").rstrip(".") if "." in text else text
 
-    def g(v, digits=5):
-        return "-" if v is None else f"{v:.{digits}g}"
+
+def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str]]]:
+    """:func:`key_numbers` as a two-column table (quantity, value), every number in one format
+    (:func:`plain_number`)."""
+    unit = numbers["length_unit"]
+    g = plain_number
     rows = [["ratio", "-" if numbers["ratio"] is None else
              f"{numbers['ratio']}" + ("" if numbers["ratio_ok"] else " (NOT an allowed ratio)")],
             ["drive stiffness k_D (N·m/rad)", g(numbers["drive_stiffness_Nm_per_rad"])],
@@ -277,7 +290,7 @@ def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str
             ["preload (N·m)", g(numbers["preload_Nm"])]]
     v = numbers["preload_variation"]
     rows.append(["preload variation, p-p (N·m)", "-" if v is None else
-                 f"{v['range_Nm']:.4g} ({100 * v['relative']:.2f} %, {v['budget']} budget)"])
+                 f"{g(v['range_Nm'], 4)} ({100 * v['relative']:.2f} %, {v['budget']} budget)"])
     for m in numbers["meshes"]:
         worst = m["worst_case_min_backlash"]
         rows.append([f"backlash {m['mesh']}, minimum ({unit})",
@@ -297,8 +310,6 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     ``figures``: figure key (``"render"``, ``"layout"``, ``"preload_diagram"``) -> the PNG's
     path relative to the report (:func:`write_figures`); ``notes`` on figures not drawn."""
     figures = figures or {}
-    import math
-
     from geargen.units import LENGTH_SUFFIXES
 
     design = result.design
@@ -442,9 +453,16 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
                 f"{k['k3']:.4g} N/mm, drive (Eq. 5) {k['drive']:.4g} N/mm, loop (Eq. 6) {k['loop']:.4g} N/mm.")
     if dc is not None and dc.tolerances:
         r.h("Backlash across the error budget")
+        from geargen.design.checks import checks_settings
+        checks = checks_settings(result.design)
+        mc = result.design.section("monte_carlo")
         r.p("Minimum backlash of each mesh with every error of the [errors.*] budget: the worst case and the "
-            f"Monte Carlo minimum (lengths in {unit}).")
-        r.table(["mesh", "meant for", "nominal", "worst case", "Monte Carlo min", "samples", "result"],
+            f"minimum of the backlash Monte Carlo, {checks.monte_carlo_samples} builds per mesh ([checks] "
+            f"monte_carlo_samples) (lengths in {unit})."
+            + (f" The design's [monte_carlo] samples = {mc['samples']} is another Monte Carlo, the centre "
+               "synthesis's carriage travel (geargen synth), not this one." if mc.get("samples") is not None else ""))
+        r.table(["mesh", "meant for", "nominal", "worst case", "backlash Monte Carlo min",
+                 "builds ([checks] monte_carlo_samples)", "result"],
                 [[t.mesh, t.meant_for, _len(t.nominal_min_backlash, scale), _len(t.worst_case_min_backlash, scale),
                   _len(t.monte_carlo_minimum, scale) if t.samples else "-", t.samples,
                   "ok" if t.ok else "; ".join(f.message for f in t.failures)] for t in dc.tolerances])

@@ -104,10 +104,15 @@ def format_summary(s: StiffnessSummary, loop_error_note: str = "") -> str:
                      f" {'carriage force':>15}")
         for v in s.variations:
             travel = "-" if v.carriage_travel is None else f"{v.carriage_travel / per_unit:.5g} {unit} ({v.carriage_travel * 1e3:.4g} µm)"
-            force = "-" if s.lever is None else f"±{float(carriage_force(v.range, s.lever)) / 2:.3g} N"
+            force = "-" if s.lever is None else f"±{float(carriage_force(v.loop_range, s.lever)) / 2:.3g} N"
             mark = " *" if v.label == s.headline_budget and len(s.variations) > 1 else ""
             lines.append(f"  {v.label + mark:<8} {travel:>22} {v.loop_error * URAD:>8.4g} µrad "
                          f"{v.low * NM:>9.4g} .. {v.high * NM:<7.4g} N·m {100 * v.relative:>7.2f} % {force:>15}")
+        friction = s.variations[0].friction_to_preload
+        if friction:
+            lines.append(f"  with the sliding fit's friction ({friction:.3g} of the spring force): the preload sticks "
+                         f"anywhere in F / (1 ± {friction:.3g}); the loop error alone changes it "
+                         + ", ".join(f"{100 * v.loop_range / v.preload:.2f} %" for v in s.variations) + " p-p")
     lines.append("")
 
     if s.flexure is not None:
@@ -237,7 +242,7 @@ def summary_tables(s: StiffnessSummary) -> list[tuple[str, list[str] | None, lis
         for v in s.variations:
             travel = "-" if v.carriage_travel is None else \
                 f"{v.carriage_travel / per_unit:.5g} {unit} ({v.carriage_travel * 1e3:.4g} µm)"
-            force = "-" if s.lever is None else f"±{float(carriage_force(v.range, s.lever)) / 2:.3g} N"
+            force = "-" if s.lever is None else f"±{float(carriage_force(v.loop_range, s.lever)) / 2:.3g} N"
             mark = " (headline)" if v.label == s.headline_budget and len(s.variations) > 1 else ""
             rows.append([v.label + mark, travel, f"{v.loop_error * URAD:.4g}", f"{v.low * NM:.4g} .. {v.high * NM:.4g}",
                          f"{100 * v.relative:.2f} %", force])

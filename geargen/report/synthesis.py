@@ -189,7 +189,9 @@ def monte_carlo_table(run: SynthesisRun) -> str:
         return ""
     u = run.length_unit
     L = run.length
-    head = (f"Monte Carlo: {mc.samples} samples, model {mc.model!r}, error shape {mc.error_shape!r}"
+    # named apart from geargen check's backlash Monte Carlo ([checks] monte_carlo_samples)
+    head = (f"Carriage-travel Monte Carlo ([monte_carlo]): {mc.samples} samples, model {mc.model!r}, error shape "
+            f"{mc.error_shape!r}"
             + (f", seed {run.monte_carlo_settings.seed}" if run.monte_carlo_settings else "")
             + (f", {run.monte_carlo_seconds:.2f} s" if run.monte_carlo_seconds is not None else ""))
     lines = [head, "Carriage travel from the synthesised position (+ away from the output)."]

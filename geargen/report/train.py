@@ -38,6 +38,7 @@ def train_dict(a) -> dict[str, Any]:
                        "stiffness_at_output_Nm_per_rad": _nm(s.stiffness),
                        "single_path_stiffness_at_output_Nm_per_rad": _nm(s.single_path_stiffness),
                        "lost_motion_at_output_urad": _urad(s.lost_motion),
+                       "lost_motion_min_at_output_urad": _urad(s.lost_motion_min),
                        "lost_motion_max_at_output_urad": _urad(s.lost_motion_max),
                        "lost_motion_left_urad": 0.0 if s.preloaded else _urad(s.lost_motion),
                        "share_of_lost_motion": (s.lost_motion / total_lost) if s.lost_motion and total_lost else 0.0,
@@ -80,13 +81,19 @@ def format_train(data: dict[str, Any]) -> str:
         lines.append(f"  {p['name']:26s} {p['mass_kg']:9.4g} {p['inertia_own_axis_kg_m2']:12.4g} "
                      f"{p['ratio_to_motor']:8.4g} {p['reflected_to_motor_kg_m2']:11.4g}  {p['turns_with']}")
     lines += ["", "Stages, motor first (stiffness and lost motion at the output)",
-              f"  {'stage':40s} {'ratio':>6s} {'N·m/rad':>11s} {'compl.':>7s} {'backlash urad':>13s} {'share':>6s}"
-              f" {'left urad':>9s}"]
+              f"  {'stage':40s} {'ratio':>6s} {'N·m/rad':>11s} {'compl.':>7s} {'backlash urad':>13s} {'design range':>13s}"
+              f" {'share':>6s} {'left urad':>9s}"]
     for s in data["stages"]:
+        lo, hi = s["lost_motion_min_at_output_urad"], s["lost_motion_max_at_output_urad"]
+        span = "-" if lo is None or hi is None else f"{lo:.1f}-{hi:.1f}"
         lines.append(f"  {s['name']:40s} {s['ratio']:6.4g} {_fmt(s['stiffness_at_output_Nm_per_rad'], '11.5g'):>11s} "
-                     f"{s['compliance_share']:7.1%} {_fmt(s['lost_motion_at_output_urad'], '13.1f'):>13s} "
+                     f"{s['compliance_share']:7.1%} {_fmt(s['lost_motion_at_output_urad'], '13.1f'):>13s} {span:>13s} "
                      f"{s['share_of_lost_motion']:6.1%} {_fmt(s['lost_motion_left_urad'], '9.1f'):>9s}"
                      + ("  preloaded" if s["preloaded"] else ""))
+    lines.append("  each stage is its mesh with the parts on its driven shaft (geargen stiffness's components):")
+    for s in data["stages"]:
+        if s["components"]:
+            lines.append(f"    {s['name'].split(' (')[0]}: " + ", ".join(s["components"]))
     lines += ["", f"Totals: inertia at the motor {t['inertia_at_motor_kg_m2']:.4g} kg m^2 (rotor "
               f"{_fmt(t['motor_rotor_inertia_kg_m2'])}, parts {t['parts_inertia_at_motor_kg_m2']:.4g}, load "
               f"{t['load_inertia_at_motor_kg_m2']:.4g}); stiffness at the output {_fmt(t['stiffness_at_output_Nm_per_rad'], '.6g')} "

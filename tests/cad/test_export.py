@@ -127,3 +127,16 @@ def test_stl_transform_places_the_exact_mesh(helical21, tmp_path):
     a = read_stl(export_stl(helical21, tmp_path / "a.stl").path)
     b = read_stl(export_stl(helical21, tmp_path / "b.stl", transform=m).path)
     np.testing.assert_allclose(b, a @ m[:3, :3].T + m[:3, 3], atol=1e-5)  # float32 STL
+
+
+def test_kernel_stl_of_a_sphere_is_watertight(tmp_path):
+    # issue 31: the kernel meshes a sphere's poles (degenerated edges) into zero-area triangles whose
+    # corners lie ~1e-16 mm apart; once an STL reader merges them, each pole leaves an open edge
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeSphere
+    rec = export_stl(BRepPrimAPI_MakeSphere(10.0).Shape(), tmp_path / "ball.stl", 1e-2)
+    tri = read_stl(tmp_path / "ball.stl")
+    assert rec.triangles == len(tri)
+    assert _edges_are_manifold(tri)
+    # no triangle lost but the degenerate ones: the mesh (vertices on the sphere, chords inside it
+    # by at most the 0.01 mm tolerance) encloses a volume between the balls of radius 9.99 and 10
+    assert 4 / 3 * math.pi * 9.99 ** 3 < mesh_volume(tri) < 4 / 3 * math.pi * 10 ** 3

@@ -4,6 +4,8 @@ import math
 
 import pytest
 
+from geargen.core.bevel import bevel_pair_geometry
+
 pytestmark = pytest.mark.slow
 
 P = pytest.importorskip("geargen.cad.parts")
@@ -25,7 +27,7 @@ def test_frustum_volume():
 
 
 def test_bevel_pitch_cones_meet_at_one_apex():
-    g = P.bevel_pair_geometry(15, 30, 0.79375, 3.81)
+    g = bevel_pair_geometry(15, 30, 0.79375, 3.81)
     assert g.pitch_angle_pinion + g.pitch_angle_gear == pytest.approx(math.pi / 2, rel=1e-15)
     assert math.tan(g.pitch_angle_gear) == pytest.approx(2.0, rel=1e-14)  # ratio 2 at 90 deg shaft angle
     # both heels lie on the same cone distance from the common apex
@@ -145,7 +147,6 @@ def test_link_cover_volume_matches_formula():
 def test_quill_volume_matches_formula():
     """The C-axis quill: a sleeve bored to two bearing seats with a shoulder between them, and a lug
     at its lower end; the lug adds its box less the circular segment inside the sleeve's cylinder."""
-    from geargen.errors import DesignError
     bores = [(0.0, 100.0, 55.0), (100.0, 117.0, 42.5), (117.0, 130.0, 55.0)]
     args = (75.0, 130.0, bores, 35.0, 12.0, 12.0)
     quill = P.quill(*args)
@@ -159,7 +160,8 @@ def test_quill_volume_matches_formula():
     lo, hi = P.bounding_box(quill)
     assert hi[0] == pytest.approx(r + 35.0, abs=1e-6) and lo[0] == pytest.approx(-r, abs=1e-6)
     assert lo[2] == pytest.approx(0.0, abs=1e-6) and hi[2] == pytest.approx(130.0, abs=1e-6)
-    with pytest.raises(DesignError):
+    # impossible numbers are the resolved drive's to refuse (geargen.model.bodies): here a bug
+    with pytest.raises(ValueError):
         P.quill(75.0, 130.0, [(0.0, 130.0, 80.0)], 35.0, 12.0, 12.0)  # bored through its wall
-    with pytest.raises(DesignError):
+    with pytest.raises(ValueError):
         P.quill(75.0, 130.0, bores, 35.0, 40.0, 12.0)  # a lug wider than the wall can hold

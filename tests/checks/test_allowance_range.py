@@ -14,7 +14,7 @@ from geargen.checks.verdict import verify
 from geargen.core.allowance import BacklashRoute, allowances_for_backlash, mesh_backlash_range, thickest, thinnest
 from geargen.core.geometry import GearPair
 from geargen.design.assembly import design_from_dict, load_design
-from geargen.model import resolve
+from geargen.drives import resolve
 
 ROOT = Path(__file__).resolve().parents[2]
 UM = 1e-3

@@ -89,7 +89,7 @@ def test_pair_tolerance_fails_a_mesh_whose_backlash_is_eaten():
 @pytest.fixture(scope="module")
 def joint(robot_joint):
     from geargen.checks.verdict import mesh_setup
-    from geargen.model import resolve
+    from geargen.drives import resolve
 
     layout = resolve(robot_joint)
     return robot_joint, [mesh_setup(layout, m) for m in layout.meshes], layout

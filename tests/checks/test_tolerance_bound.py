@@ -56,7 +56,7 @@ def _loop(designs, name):
         from geargen.checks.verdict import mesh_setup
         from geargen.core.accuracy import gear_errors
         from geargen.design.synthesis import GEAR_ROLES
-        from geargen.model import resolve
+        from geargen.drives import resolve
 
         d = load_design(designs[name])
         layout = resolve(d)  # the drive as check and build place it

@@ -10,7 +10,7 @@ from scipy.linalg import solve
 from scipy.optimize import brentq, root
 
 from geargen.core.axial_preload import (axial_travel_for_backlash, friction_to_preload_ratio, helix_angle_table,
-                                        lateral_force_factor, preload_band, preload_torque, smallest_helix_angle,
+                                        input_bearing_reactions, lateral_force_factor, preload_band, preload_torque, smallest_helix_angle,
                                         tangential_preload)
 from geargen.errors import DesignError
 
@@ -132,6 +132,33 @@ def test_small_helix_angle_locks_and_table_falls_with_angle():
     assert math.isinf(rows[0].hysteresis) and rows[-1].hysteresis < 0.5
     beta = smallest_helix_angle(0.2, k, 0.25)
     assert friction_to_preload_ratio(0.2, beta, k) == pytest.approx(0.25)
+
+
+def test_bearing_reactions_by_hand():
+    """Bearings in the meshes' own planes each carry their own mesh, hypot(F_r, F_t), and the axial
+    forces' moment 2 F_a r moves 2 F_a r / span from one to the other in the plane of centres.
+    Hand numbers: F_t 100, F_r 40, F_a 30 N at r 10 mm; meshes at z 0 and 20."""
+    lower, upper = input_bearing_reactions((0.0, 20.0), (0.0, 20.0), 100.0, 40.0, 0.0, 10.0)
+    assert (lower, upper) == pytest.approx((math.hypot(40, 100), math.hypot(40, 100)), rel=1e-15)
+    # with the axial forces: 2 x 30 x 10 / 20 = 30 N moved in the plane of centres, to the lower one
+    lower, upper = input_bearing_reactions((0.0, 20.0), (0.0, 20.0), 100.0, 40.0, 30.0, 10.0)
+    assert (lower, upper) == pytest.approx((math.hypot(70, 100), math.hypot(10, 100)), rel=1e-15)
+    # bearings 10 mm beyond each mesh (span 40): the tangential couple 100 x 20 / 40 = 50 N each
+    lower, upper = input_bearing_reactions((0.0, 20.0), (-10.0, 30.0), 100.0, 40.0, 30.0, 10.0)
+    assert (lower, upper) == pytest.approx((math.hypot(55, 50), math.hypot(25, 50)), rel=1e-15)
+
+
+def test_smallest_helix_angle_of_a_helix_dependent_load():
+    """k a function of the helix angle: the first angle whose ratio meets the limit (bisection to
+    1e-9 rad), the closed form when k is constant; None when k grows faster than tan(beta)."""
+    k = lateral_force_factor(math.pi, 20 * DEG)
+    assert smallest_helix_angle(0.2, lambda beta: k, 0.25) == pytest.approx(smallest_helix_angle(0.2, k, 0.25),
+                                                                            abs=1e-8)
+    # k = 1 + 2 tan(beta): ratio mu (1 / (2 tan) + 1) never falls below mu = 0.2
+    assert smallest_helix_angle(0.2, lambda beta: 1 + 2 * math.tan(beta), 0.15) is None
+    # k = 1 + tan(beta): mu (1 / (2 tan) + 1 / 2) = 0.15 at tan(beta) = 0.1 / (0.15 - 0.1) = 2
+    assert smallest_helix_angle(0.2, lambda beta: 1 + math.tan(beta), 0.15) == pytest.approx(math.atan(2.0),
+                                                                                              abs=1e-8)
 
 
 def test_refusals_name_the_field():

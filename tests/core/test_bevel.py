@@ -111,6 +111,32 @@ def test_tooth_thickness_at_the_pitch_cone_and_solid_angle():
     assert 0.3 * ring < teeth < 0.7 * ring
 
 
+def test_volumes_of_the_two_backs_by_hand():
+    from geargen.core.bevel import back_plane_distance, bevel_core, bevel_volume
+    spec = gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 22,
+                            "bore_diameter_mm": 12})
+    ri, re, rb = spec.toe_cone_distance, spec.cone_distance, 6.0
+    g = bevel_geometry(spec)
+    # spherical back: the solid angle of teeth and cap times (R_e^3 - R_i^3) / 3, less the bore's
+    # cylinder inside the shell, (2 pi / 3)(R^3 - (R^2 - r_b^2)^(3/2)) between R_i and R_e
+    def bore(r):
+        return 2 * math.pi / 3 * (r ** 3 - (r * r - rb * rb) ** 1.5)
+    spherical = gear_solid_angle(spec) * (re ** 3 - ri ** 3) / 3 - (bore(re) - bore(ri))
+    assert bevel_volume(spec) == pytest.approx(spherical, rel=1e-12)
+    # flat back (the toe sphere in front of it: no web): less the heel ball's cap beyond the plane,
+    # pi h^2 (3 R_e - h) / 3, of which the bore had taken the cylinder up to z1 and the cap above z1
+    back = re * math.cos(g.root_cone_angle)
+    assert back_plane_distance(spec) == pytest.approx(back, rel=1e-15) and ri < back
+    assert not bevel_core(spec, "flat").web
+    h, z1 = re - back, math.sqrt(re * re - rb * rb)
+    cap = math.pi * h * h * (3 * re - h) / 3
+    bore_in_cap = math.pi * rb * rb * (z1 - back) + math.pi * (re - z1) ** 2 * (2 * re + z1) / 3
+    cap -= bore_in_cap
+    assert bevel_volume(spec, "flat") == pytest.approx(spherical - cap, rel=1e-12)
+    with pytest.raises(DesignError, match="back"):
+        bevel_volume(spec, "conical")
+
+
 def test_refusals_are_named():
     with pytest.raises(DesignError, match="gear.face_width_mm"):
         gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 60})

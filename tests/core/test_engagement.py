@@ -351,7 +351,7 @@ def test_opening_rate_matches_the_kinematic_solve(hands, betas):
 def c_axis():
     from geargen.design.assembly import load_design
     from geargen.model.analysis import stiffness
-    from geargen.model.layout import resolve
+    from geargen.drives import resolve
     design = load_design(C_AXIS)
     layout = resolve(design)
     return design, layout, stiffness(design, layout)[0]
@@ -457,7 +457,7 @@ def test_c_axis_engagement_too_short_for_the_preload_windup_is_refused():
     # windup of 300 N m (the drive as resolved, its pinions on their placed quills) needs more
     import tomllib
     from geargen.design.assembly import design_from_dict
-    from geargen.model.layout import resolve
+    from geargen.drives import resolve
     data = tomllib.loads(C_AXIS.read_text())
     data["engagement"]["engagement_length_mm"] = 2
     design = design_from_dict(data, validate=True)

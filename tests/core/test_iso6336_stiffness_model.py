@@ -84,7 +84,7 @@ def test_robot_joint_kD_with_iso6336_by_hand_from_the_file():
     reflected through R2 = 112/21; mesh 2, 21/112 teeth, the output's 0.25 in face, at the output's
     base radius. The paths' other components are the same under either method, so each path's
     compliance changes by the two meshes' compliance changes, and k_D follows Eq. 5 with k3 as it is."""
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import placed_components
 
     summaries = {}

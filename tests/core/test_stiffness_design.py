@@ -89,7 +89,7 @@ def test_preload_section_needs_the_max_load():
 def _robot_joint_summary():
     """The robot joint's summary with the lengths of its from_geometry components from the resolved
     drive's placed shafts (as every command computes it), and the [preload] loop error."""
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import placed_components
     design = load_design(ROBOT)
     return stiffness_summary(design, components=placed_components(design, resolve(design)))
@@ -130,7 +130,7 @@ def test_robot_joint_summary_matches_a_hand_computation_from_the_file():
     # both mesh forces on the shaft, per unit output torque 1 / (R2 r_b) each, along the working lines
     # of action at the placed centres: the input's on the large gear turns cluster a clockwise (the
     # input's ccw flank works), the output's on the small gear counter-clockwise
-    from geargen.model import resolve
+    from geargen.drives import resolve
     layout = resolve(load_design(ROBOT))
     c_cl, c_in, c_out = (layout.gear(n).centre for n in ("cluster_small_a", "input", "output"))
 
@@ -204,7 +204,7 @@ def test_a_torsion_sits_on_the_shaft_of_the_gear_it_names():
 
 
 def test_robot_joint_with_a_synthesis_budget():
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import placed_components
     design = load_design(ROBOT)
     travels = {"sum": 0.0121648 * IN, "rss": 0.0068853 * IN, "mean": 0.00952505 * IN}
@@ -334,7 +334,7 @@ def test_preload_set_twice_is_an_error():
     raw["preload"] = {**raw["preload"], "preload_Nm": 3.0}  # the springs' installed length also sets it
     twice = design_from_dict({"name": "rj", "length_unit": "in", "drive": {"type": "type2", "preload": "radial"},
                               "gears": {n: _gear_table(g) for n, g in design.gears.items()}, **raw})
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import stiffness
     with pytest.raises(DesignError) as info:
         stiffness(twice, resolve(twice))

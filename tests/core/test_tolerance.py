@@ -236,7 +236,7 @@ def test_command_runs_monte_carlo_with_histogram_and_json(tmp_path, capsys):
     assert main(["synth", str(ROBOT), "--samples", "20000", "--seed", "3", "--spring-rate-n-per-mm", "5.66",
                  "--preload-n", "64.8", "--histogram", str(png), "--sensitivity", "--json", str(out)]) == 0
     text = capsys.readouterr().out
-    assert "Monte Carlo: 20000 samples, model 'exact'" in text and "Which tolerance to buy" in text
+    assert "Carriage-travel Monte Carlo ([monte_carlo]): 20000 samples, model 'exact'" in text and "Which tolerance to buy" in text
     head = png.read_bytes()[:24]
     assert head[:8] == b"\x89PNG\r\n\x1a\n" and struct.unpack(">II", head[16:24])[0] > 400
     import json

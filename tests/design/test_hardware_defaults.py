@@ -13,7 +13,7 @@ from geargen.design.hardware_defaults import (INCH_BEARINGS, METRIC_BEARINGS, PR
                                               STEEL_BENDING_ALLOWABLE_MPA, default_hardware, lewis_form_factor,
                                               standard_bearing)
 from geargen.errors import DesignError
-from geargen.model import resolve
+from geargen.drives import resolve
 from geargen.model.analysis import stiffness
 
 ROOT = Path(__file__).resolve().parents[2]

@@ -272,7 +272,7 @@ def test_layout_parts_and_export_rules(tmp_path):
 def test_a_split_pinions_speeds_come_from_its_teeth(tmp_path, capsys):
     """Every component of the split pinion turns at the speed its teeth give (80 / 20 = 4 on the
     pinions' shaft, 1 at the output's mesh); a typed ratio, wrong or right, is refused naming the key."""
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import stiffness
 
     design = load_design(SPLIT)

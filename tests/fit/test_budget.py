@@ -13,7 +13,7 @@ from geargen.design.assembly import load_design
 from geargen.design.synthesis import GEAR_ROLES
 from geargen.fit.measurement import read_measurement
 from geargen.fit.selection import diagnose
-from geargen.model.layout import resolve
+from geargen.drives import resolve
 
 ROOT = Path(__file__).resolve().parents[2]
 ROBOT = ROOT / "assemblies/robot_joint.toml"

@@ -17,6 +17,7 @@ from geargen import pipeline as pl
 from geargen.cli import main
 from geargen.outputs import inspect_folder
 from geargen.report.labels import boxes_overlap, circle_crosses_box, text_boxes, text_extent
+from geargen.report.review import plain_number
 
 ROOT = Path(__file__).resolve().parents[2]
 # the shipped assemblies `geargen build` makes (dual_motor.toml is a drive for `geargen train`, no layout)
@@ -247,6 +248,32 @@ def _run(argv) -> dict:
     return json.loads(out.getvalue())
 
 
+def test_plain_number_has_one_format():
+    """Positional, at most 5 significant digits, whole numbers whole, no trailing zeros."""
+    assert [plain_number(v) for v in (1305026.4, 37101.44, 77.1423, 5.0, 0.00123456, 5e-5, None)] == \
+        ["1305026", "37101", "77.142", "5", "0.0012346", "0.00005", "-"]
+
+
+@pytest.mark.slow
+def test_the_build_counts_the_files_it_writes_and_names_each_monte_carlo(built_assemblies):
+    """Issue 31: the build said "ok, 59 files" and wrote 93 (it counted the exports only): the count is
+    every file of the folder, which is the manifest's list and the manifest. The robot joint's
+    [monte_carlo] samples = 1000000 (synth's carriage travel) beside the report's backlash Monte Carlo
+    of [checks] monte_carlo_samples (400 by default): the report says which setting each uses."""
+    from geargen.commands.build import files_written
+    folder = built_assemblies["robot_joint"]
+    manifest = json.loads((folder / "manifest.json").read_text())
+    exports = sum(1 for v in manifest["files"].values() if v.get("role") is None)
+    assert files_written(folder) == len(manifest["files"]) + 1 > exports
+    md = (folder / "report.md").read_text()
+    section = md.split("## Backlash across the error budget", 1)[1].split("\n## ", 1)[0]
+    assert "backlash Monte Carlo, 400 builds per mesh ([checks] monte_carlo_samples)" in section
+    assert "[monte_carlo] samples = 1000000 is another Monte Carlo, the centre synthesis's carriage travel" in section
+    assert "builds ([checks] monte_carlo_samples)" in section
+    rows = [line for line in section.splitlines() if line.startswith("| mesh1") or line.startswith("| mesh2")]
+    assert rows and all("| 400 |" in line for line in rows)
+
+
 @pytest.mark.slow
 def test_key_numbers_are_the_stiffness_and_check_commands_numbers(built_assemblies):
     design = ROOT / "assemblies/robot_joint.toml"
@@ -273,14 +300,17 @@ def test_key_numbers_are_the_stiffness_and_check_commands_numbers(built_assembli
     assert numbers["ratio"] == "30/15 x 16 = 32" or "32" in numbers["ratio"]
     md = (folder / "report.md").read_text()
     block = md.split("## Key numbers", 1)[1].split("\n## ", 1)[0]
-    assert f"| drive stiffness k_D (N·m/rad) | {numbers['drive_stiffness_Nm_per_rad']:.5g} |" in block
-    assert (f"| drive stiffness with common parts (N·m/rad) | {numbers['drive_stiffness_with_common_Nm_per_rad']:.5g} |"
+    # one number format (issue 31: scientific notation stood beside plain numbers)
+    g = plain_number
+    assert f"| drive stiffness k_D (N·m/rad) | {g(numbers['drive_stiffness_Nm_per_rad'])} |" in block
+    assert (f"| drive stiffness with common parts (N·m/rad) | {g(numbers['drive_stiffness_with_common_Nm_per_rad'])} |"
             in block)
-    assert f"| loop stiffness k_L (N·m/rad) | {numbers['loop_stiffness_Nm_per_rad']:.5g} |" in block
-    assert f"| preload (N·m) | {numbers['preload_Nm']:.5g} |" in block
-    assert f"{head['range_Nm']:.4g} ({100 * head['relative']:.2f} %" in block
+    assert f"| loop stiffness k_L (N·m/rad) | {g(numbers['loop_stiffness_Nm_per_rad'])} |" in block
+    assert f"| preload (N·m) | {g(numbers['preload_Nm'])} |" in block
+    assert f"{g(head['range_Nm'], 4)} ({100 * head['relative']:.2f} %" in block
     for m in numbers["meshes"]:
-        assert f"{worst[m['mesh']]:.5g} worst case" in block
+        assert f"{g(worst[m['mesh']])} worst case" in block
+    assert not re.search(r"\d[eE][+-]\d", block)
     assert f"| warnings | {numbers['warnings']} |" in block
     assert md.index("## Key numbers") < md.index("## Warnings")
 

@@ -42,7 +42,7 @@ def test_robot_joint_mesh1_line_of_action_is_parallel_to_the_symmetry_line():
     from pathlib import Path
 
     from geargen.design.assembly import load_design
-    from geargen.model import resolve
+    from geargen.drives import resolve
 
     layout = resolve(load_design(Path(__file__).resolve().parents[2] / "assemblies/robot_joint.toml"))
     mesh = layout.mesh("mesh1_a")

@@ -25,7 +25,7 @@ IN = 25.4
 def _summary(design, travels=None):
     """The stiffness summary as the commands compute it: from-geometry components sized by the
     resolved drive's placed shafts (geargen.model.analysis)."""
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import placed_components
     return stiffness_summary(design, travels, components=placed_components(design, resolve(design)))
 
@@ -179,7 +179,7 @@ def test_loop_error_falls_back_to_preload_section_without_synthesis():
 
 
 def test_synthesis_budget_is_the_appendix_travel():
-    from geargen.model import resolve
+    from geargen.drives import resolve
     from geargen.model.analysis import loop_error_travels
     travels, note = loop_error_travels(resolve(load_design(ROBOT)))
     assert "synthesis error budget" in note

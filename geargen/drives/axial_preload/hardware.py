@@ -1,4 +1,4 @@
-"""The non-gear parts of an axial-preload drive (``[layout] kind = "axial_preload"``), built where
+"""The hardware of an axial-preload drive (``[layout] kind = "axial_preload"``), built where
 :func:`geargen.model.axial_drive.axial_preload_hardware` places them: the input shaft through
 both helical pinions on two bearings whose outer rings slide in the housing plates' bores (the
 shaft slid by the placement's take-up), the
@@ -10,43 +10,42 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from geargen.cad import parts as P
-from geargen.cad.assembly import PartSet, _at, _Parts
+from geargen.model import bodies as B
+from geargen.model.axial_drive import axial_preload_hardware
+from geargen.model.components import ComponentSet, Hardware, at
 
 
 def _cup(bore: float, wall: float, depth: float):
     """A cup on +z: a floor ``wall`` thick under a tube of ``bore``, its rim at z = depth + wall."""
-    tube = P.translate(P.cylinder(bore + 2 * wall, depth, bore), (0.0, 0.0, wall))
-    return P.fuse([P.cylinder(bore + 2 * wall, wall), tube], "spring cup")
+    tube = B.translate(B.cylinder(bore + 2 * wall, depth, bore), (0.0, 0.0, wall))
+    return B.fuse([B.cylinder(bore + 2 * wall, wall), tube], "spring cup")
 
 
-def axial_preload_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
-    """The parts of the module docstring, with their intended contacts and how they hold together."""
-    from geargen.model.axial_drive import axial_preload_hardware
-
+def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
+    """The parts of the module docstring, with their joints and how they hold together."""
     hw = axial_preload_hardware(layout, dict(s))
-    out = _Parts()
+    out = ComponentSet()
     ish, osh = hw.input, hw.output
     x_in = ish.centre[0]
-    shaft_in = out.add(ish.name, P.shaft(ish.diameter, ish.length), _at(x_in, 0, ish.z_lo), "input", "shaft",
+    shaft_in = out.add(ish.name, B.shaft(ish.diameter, ish.length), at(x_in, 0, ish.z_lo), "input", "shaft",
                        description=f"input shaft d {ish.diameter:.4g} mm, slid {hw.shift * 1e3:.4g} um along +z by the "
                                    "preload spring (the placement's take-up)")
     for name in ish.loads:
-        out.touch(shaft_in, name, "pinion on the input shaft")
+        out.join(shaft_in, name, "pinion on the input shaft")
     for b in ish.bearings:
-        part = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(x_in, 0, b.z), "input",
+        part = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(x_in, 0, b.z), "input",
                        "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm, outer ring "
-                                              "sliding in its bore")
-        out.touch(part, shaft_in, "bearing on the input shaft")
+                                              "sliding in its bore", shared=True)
+        out.join(part, shaft_in, "bearing on the input shaft", kind="bearing")
     for b in osh.bearings:
-        part = out.add(b.name, out.shared(P.bearing, b.bore, b.outer_diameter, b.width), _at(0, 0, b.z), "output",
-                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm")
-    shaft_out = out.add(osh.name, P.shaft(osh.diameter, osh.length), _at(0, 0, osh.z_lo), "output", "shaft",
+        part = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(0, 0, b.z), "output",
+                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm", shared=True)
+    shaft_out = out.add(osh.name, B.shaft(osh.diameter, osh.length), at(0, 0, osh.z_lo), "output", "shaft",
                         description=f"output shaft d {osh.diameter:.4g} mm; the two output gears clamped on it")
     for name in osh.loads:
-        out.touch(shaft_out, name, "output gear on the output shaft")
+        out.join(shaft_out, name, "output gear on the output shaft")
     for b in osh.bearings:
-        out.touch(b.name, shaft_out, "bearing on the output shaft")
+        out.join(b.name, shaft_out, "bearing on the output shaft", kind="bearing")
     # the housing: a plate at each level of bearings, holding both shafts' bearings (the ground)
     margin = s["housing_margin"]
     lower_in, upper_in = ish.supports()
@@ -56,47 +55,48 @@ def axial_preload_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet
     x0, x1 = -od_out / 2 - margin, x_in + od_in / 2 + s["spring_cup_wall"] + margin
     for name, (z0, z1), held in (("bottom_plate", hw.bottom_plate, (lower_in, lower_out)),
                                  ("top_plate", hw.top_plate, (upper_in, upper_out))):
-        plate = out.add(name, P.plate_with_holes(x1 - x0, 2 * half_y, z1 - z0, [(0.0, 0.0, od_out), (x_in, 0.0, od_in)],
-                                                 corner=(x0, -half_y, 0.0)), _at(0, 0, z0), "housing", "housing",
+        plate = out.add(name, B.plate_with_holes(x1 - x0, 2 * half_y, z1 - z0, [(0.0, 0.0, od_out), (x_in, 0.0, od_in)],
+                                                 corner=(x0, -half_y, 0.0)), at(0, 0, z0), "housing", "housing",
                         description=f"housing plate, {z1 - z0:.4g} mm: the bearings' seats (the input's a sliding fit)")
         for b in held:
-            out.touch(plate, b.name, "bearing seated in the plate" if b in (lower_out, upper_out)
-                      else "bearing's outer ring sliding in the plate's bore")
+            out.join(plate, b.name, "bearing seated in the plate" if b in (lower_out, upper_out)
+                     else "bearing's outer ring sliding in the plate's bore", kind="bearing")
         out.ground.append(plate)
     # the preload spring, in its cup under the bottom plate, on the lower input bearing's face
     wall = s["spring_cup_wall"]
     depth = hw.bottom_plate[0] - hw.cup_floor_z
-    cup = out.add("spring_cup", _cup(od_in, wall, depth), _at(x_in, 0, hw.cup_floor_z - wall), "housing", "housing",
+    cup = out.add("spring_cup", _cup(od_in, wall, depth), at(x_in, 0, hw.cup_floor_z - wall), "housing", "housing",
                   description=f"spring cup, bore {od_in:.4g} mm, bolted under the bottom plate")
-    out.touch(cup, "bottom_plate", "cup bolted under the plate")
+    out.join(cup, "bottom_plate", "cup bolted under the plate")
     out.stationary.append(cup)
     d, mean = s["spring_wire_diameter"], s["spring_mean_diameter"]
     z0, z1 = hw.spring_z
     # the wire swept along its helix: the active coils and a closed, ground coil at each end
     total_coils = hw.spring_active_coils + 2
-    spring = out.add("preload_spring", P.compression_spring(d, mean, z1 - z0, total_coils), _at(x_in, 0, z0),
+    spring = out.add("preload_spring", B.compression_spring(d, mean, z1 - z0, total_coils), at(x_in, 0, z0),
                      "housing", "spring", description=f"preload spring: {hw.spring_active_coils:.3g} active coils "
                                                       f"({total_coils:.3g} in all) of {d:.4g} mm wire on {mean:.4g} mm, "
                                                       f"{z1 - z0:.4g} mm long as placed",
-                     envelope=P.coil_envelope(d, mean, z1 - z0))
-    out.touch(spring, cup, "spring on the cup's floor")
-    out.touch(spring, lower_in.name, "spring on the lower input bearing's outer ring")
+                     envelope=B.coil_envelope(d, mean, z1 - z0))
+    out.join(spring, cup, "spring on the cup's floor", kind="spring")
+    out.join(spring, lower_in.name, "spring on the lower input bearing's outer ring", kind="spring")
     # the stroke: a stop over the upper input bearing's outer ring, input_stroke above its face at the
     # reference position (a spacer tube on the top plate, then a lip over the ring)
     lip_bore = (upper_in.outer_diameter + upper_in.bore) / 2
-    spacer = P.cylinder(od_in + 2 * wall, hw.stroke_z - hw.top_plate[1], od_in + 1.0)
-    lip = P.translate(P.cylinder(od_in + 2 * wall, wall, lip_bore), (0.0, 0.0, hw.stroke_z - hw.top_plate[1]))
-    stop = out.add("stroke_stop", P.fuse([spacer, lip], "stroke stop"), _at(x_in, 0, hw.top_plate[1]), "housing",
+    spacer = B.cylinder(od_in + 2 * wall, hw.stroke_z - hw.top_plate[1], od_in + 1.0)
+    lip = B.translate(B.cylinder(od_in + 2 * wall, wall, lip_bore), (0.0, 0.0, hw.stroke_z - hw.top_plate[1]))
+    stop = out.add("stroke_stop", B.fuse([spacer, lip], "stroke stop"), at(x_in, 0, hw.top_plate[1]), "housing",
                    "stop", description=f"stop of the input's slide: {layout.settings['input_stroke']:.4g} mm above the "
                                        "upper bearing's reference position")
-    out.touch(stop, "top_plate", "stop bolted on the top plate")
+    out.join(stop, "top_plate", "stop bolted on the top plate")
     out.stationary.append(stop)
     travel = hw.stroke_z - (upper_in.z + upper_in.width)
-    out.dims["axial_preload"] = dict(shift=hw.shift, spring_length=z1 - z0, spring_active_coils=hw.spring_active_coils,
+    out.dimensions["axial_preload"] = dict(shift=hw.shift, spring_length=z1 - z0, spring_active_coils=hw.spring_active_coils,
                                      stroke_left=travel)
     out.notes.append(f"axial preload: input shaft slid {hw.shift * 1e3:.4g} um; spring {z1 - z0:.4g} mm long "
                      f"({hw.spring_active_coils:.3g} active coils); {travel:.4g} mm of stroke left")
-    return out.done()
+    return out.freeze()
 
 
-__all__ = ["axial_preload_parts"]
+__all__ = ["axial_hardware"]
+

@@ -16,17 +16,18 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping
 
-from geargen.cad import parts as P
 from geargen.errors import DesignError
+from geargen.model import bodies as B
+from geargen.model.components import ComponentSet, at
+from geargen.model.planetary_stage import carrier
+from geargen.model.shafts import bore_of
+from geargen.profile.internal import internal_profile
 
 
-def planetary_drive(out, layout, s: Mapping[str, Any], placed_shafts, st, post_x0: float) -> dict[str, Any]:
-    """Add the stage's hardware to ``out`` (a :class:`geargen.cad.assembly._Parts`); returns what
-    :func:`geargen.cad.assembly.carriage_parts` reads of a stage drive."""
-    from geargen.cad.assembly import _at
-    from geargen.model.planetary_stage import carrier
-    from geargen.model.shafts import _bore
-    from geargen.profile.internal import internal_profile
+def planetary_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shafts, st,
+                    post_x0: float) -> dict[str, Any]:
+    """Add the stage's hardware to ``out``; returns what the carriage
+    (:func:`geargen.drives.dual_pinion.hardware.carriage_hardware`) reads of its motor drive."""
 
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     c = carrier(layout, s, st)
@@ -37,18 +38,18 @@ def planetary_drive(out, layout, s: Mapping[str, Any], placed_shafts, st, post_x
     # the carrier: the input's shaft ends in the lower plate's bore, the motor's shaft passes the upper's hole
     pins = [(x - cx, y - cy, c.pin_diameter) for x, y in c.pins]
     for which, z0, hole in (("lower", c.z_lower, c.bore), ("upper", c.z_upper, c.hole)):
-        plate = P._single(P.cut(P.cylinder(2 * c.radius, c.thickness, hole),
-                                *[P.translate(P.cylinder(d, c.thickness), (x, y, 0.0)) for x, y, d in pins]),
+        plate = B.single(B.cut(B.cylinder(2 * c.radius, c.thickness, hole),
+                                *[B.translate(B.cylinder(d, c.thickness), (x, y, 0.0)) for x, y, d in pins]),
                           "carrier plate")
-        out.add(f"{c.name}_{which}", plate, _at(cx, cy, z0), group, "carrier",
+        out.add(f"{c.name}_{which}", plate, at(cx, cy, z0), group, "carrier",
                 description=f"planet carrier {which} plate, {len(pins)} pins on r {math.dist(c.pins[0], c.centre):.5g} mm")
-    out.touch("input_shaft", f"{c.name}_lower", "input shaft in the carrier's bore")
+    out.join("input_shaft", f"{c.name}_lower", "input shaft in the carrier's bore")
     for i, (p, (x, y)) in enumerate(zip(planets, c.pins), start=1):
-        pin = out.add(f"{c.name}_pin_{i}", out.shared(P.shaft, c.pin_diameter, c.top - c.z_lower), _at(x, y, c.z_lower),
-                      group, "shaft", description=f"planet pin d {c.pin_diameter:.4g} mm")
-        out.touch(pin, p.name, "planet on its pin")
+        pin = out.add(f"{c.name}_pin_{i}", B.shaft(c.pin_diameter, c.top - c.z_lower), at(x, y, c.z_lower),
+                      group, "shaft", description=f"planet pin d {c.pin_diameter:.4g} mm", shared=True)
+        out.join(pin, p.name, "planet on its pin")
         for which in ("lower", "upper"):
-            out.touch(pin, f"{c.name}_{which}", "pin pressed in the carrier plate")
+            out.join(pin, f"{c.name}_{which}", "pin pressed in the carrier plate")
     # the frame: the bridge a clearance over the carrier, the ring tube down to the ring's top face
     rim = ring.spec.rim_diameter
     root = 2 * internal_profile(ring.spec).root_radius
@@ -61,7 +62,7 @@ def planetary_drive(out, layout, s: Mapping[str, Any], placed_shafts, st, post_x
     z_ring_top = ring.height[1]
     z_bridge0 = c.top + gap
     z_bridge1 = z_bridge0 + t
-    d_motor = _bore(sun.spec)
+    d_motor = bore_of(sun.spec)
     if not d_motor > 0:
         raise DesignError(f"gears.{st.sun}.bore_diameter", "missing: the sun sits on the motor shaft", "> 0")
     reach_y = abs(cy) + rim / 2
@@ -72,31 +73,31 @@ def planetary_drive(out, layout, s: Mapping[str, Any], placed_shafts, st, post_x
                              if p.group.startswith("cluster_") or p.group == "output"])
     x_b0 = min(cx - rim / 2 - gap, cx - s["motor_flange"] / 2 - gap)
     x_b1 = max(cx + rim / 2 + gap, cx + s["motor_flange"] / 2 + gap, x_col + t)
-    bridge = P.box_between((x_b0, -half, z_bridge0), (x_b1, half, z_bridge1))
-    tube = P.translate(P.cylinder(rim, z_bridge0 - z_ring_top, root + 2 * gap), (cx, cy, z_ring_top))
-    frame = P._single(P.cut(P.fuse([bridge, tube], "planetary frame"),
-                            P.translate(P.cylinder(d_motor + 2 * gap, t), (cx, cy, z_bridge0))), "planetary frame")
-    frame_name = out.add(f"frame_{st.name}", frame, _at(), group, "housing",
+    bridge = B.box_between((x_b0, -half, z_bridge0), (x_b1, half, z_bridge1))
+    tube = B.translate(B.cylinder(rim, z_bridge0 - z_ring_top, root + 2 * gap), (cx, cy, z_ring_top))
+    frame = B.single(B.cut(B.fuse([bridge, tube], "planetary frame"),
+                            B.translate(B.cylinder(d_motor + 2 * gap, t), (cx, cy, z_bridge0))), "planetary frame")
+    frame_name = out.add(f"frame_{st.name}", frame, at(), group, "housing",
                          description="holds the fixed ring and the motor; on the carriage's columns")
     out.stationary.append(frame_name)
     out.stationary.append(st.ring)  # the ring is fixed: the reaction member
-    out.touch(frame_name, st.ring, "ring fixed in its frame")
-    out.touch(frame_name, "carriage", "frame on the carriage's columns")
+    out.join(frame_name, st.ring, "ring fixed in its frame")
+    out.join(frame_name, "carriage", "frame on the carriage's columns")
     stub = z_bridge1 - sun.height[0]
-    motor = out.add("servo_motor", P.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
+    motor = out.add("servo_motor", B.servo_motor(s["motor_body_diameter"], s["motor_body_length"], s["motor_flange"],
                                                  s["motor_flange_thickness"], d_motor, stub),
-                    _at(cx, cy, z_bridge1), group, "motor",
+                    at(cx, cy, z_bridge1), group, "motor",
                     description="servo motor with encoder (envelope), standing on the planetary stage's frame")
-    out.touch(motor, st.sun, "sun on the motor shaft")
-    out.touch(motor, frame_name, "motor on its mount")
+    out.join(motor, st.sun, "sun on the motor shaft", kind="motor")
+    out.join(motor, frame_name, "motor on its mount", kind="motor")
     # the carriage's columns rise from its base plate, beside the ring's rim, to the bridge
     z_plate_top = placed_shafts["input"].supports()[0].z
     pieces = []
     for sign in (1, -1):
         y0, y1 = sorted((sign * y_col, sign * half))
-        pieces.append(P.box_between((x_col, y0, z_plate_top - t), (x_col + t, y1, z_bridge0)))
+        pieces.append(B.box_between((x_col, y0, z_plate_top - t), (x_col + t, y1, z_bridge0)))
     # the base plate reaches out under the columns only (the loop's bearing bosses stand beside it)
-    pieces.append(P.box_between((x_col, -half, z_plate_top - t), (x_col + t, half, z_plate_top)))
+    pieces.append(B.box_between((x_col, -half, z_plate_top - t), (x_col + t, half, z_plate_top)))
     return dict(pieces=pieces, holes=[], arm=[], x_end=x_b1, z_top=z_bridge1, input_top=c.lower_top,
                 over_cover=[f"{c.name}_lower", f"{c.name}_upper", frame_name, motor]
                 + [f"{c.name}_pin_{i}" for i in range(1, len(planets) + 1)],
@@ -105,3 +106,4 @@ def planetary_drive(out, layout, s: Mapping[str, Any], placed_shafts, st, post_x
 
 
 __all__ = ["planetary_drive"]
+

@@ -1,4 +1,4 @@
-"""The non-gear parts of the Type 2 rack drive (:mod:`geargen.model.rack_drive`), placed from its
+"""The hardware of the Type 2 rack drive (:mod:`geargen.model.rack_drive`), placed from its
 resolved layout and the ``[parts]`` sizes of the "rack_drive" hardware.
 
 * each path shaft (the pinion's bore) runs through its pinion and path gear, on a bearing below
@@ -21,21 +21,17 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping
 
-from geargen.cad import parts as P
-from geargen.cad.assembly import PartSet, _at, _Parts, transform
+from geargen.core.flexures import spring_for_rate
 from geargen.errors import DesignError
+from geargen.model import bodies as B
+from geargen.model.components import ComponentSet, Hardware, at, transform
+from geargen.model.rack_drive import rack_drive
 
 
-def spring_coils(rate: float, wire: float, mean: float, shear_modulus: float) -> float:
-    """Active coils of a helical compression spring of ``rate`` (N/mm): ``G d^4 / (8 D^3 k)``."""
-    return shear_modulus * wire ** 4 / (8 * mean ** 3 * rate)
-
-
-def rack_drive_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
-    """The parts listed in the module docstring, placed, with their intended contacts."""
-    from geargen.model.rack_drive import rack_drive
+def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
+    """The parts listed in the module docstring, placed, with their joints."""
     placed = rack_drive(layout)
-    out = _Parts()
+    out = ComponentSet()
     gap = s["bearing_clearance"]
     margin = s["housing_margin"]
     g = {p.name: p for p in layout.gears}
@@ -50,15 +46,15 @@ def rack_drive_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     out.rotating += ["rack"]  # the slide moves it: held by the machine, not by this housing
     for side in ("a", "b"):
         x, y = g[f"pinion_{side}"].centre
-        shaft = out.add(f"path_shaft_{side}", out.shared(P.shaft, d_path, z_top + bw - z_low), _at(x, y, z_low),
-                        f"path_{side}", "shaft", description=f"path shaft {side}, d {d_path:.4g} mm")
-        out.touch(shaft, f"pinion_{side}", "rack pinion on its path shaft")
-        out.touch(shaft, f"path_gear_{side}", "path gear keyed on its path shaft (timing mark)")
+        shaft = out.add(f"path_shaft_{side}", B.shaft(d_path, z_top + bw - z_low), at(x, y, z_low),
+                        f"path_{side}", "shaft", description=f"path shaft {side}, d {d_path:.4g} mm", shared=True)
+        out.join(shaft, f"pinion_{side}", "rack pinion on its path shaft")
+        out.join(shaft, f"path_gear_{side}", "path gear keyed on its path shaft (timing mark)")
         for where, z in (("lower", z_low), ("upper", z_top)):
-            b = out.add(f"path_bearing_{side}_{where}", out.shared(P.bearing, d_path, bod, bw), _at(x, y, z),
-                        f"path_{side}", "bearing", description=f"{d_path:.4g} x {bod:.4g} x {bw:.4g} mm")
-            out.touch(b, shaft, "bearing on the path shaft")
-        out.meshing.append((f"pinion_{side}", "rack", "rack mesh: checked by geargen.checks.rack_drive"))
+            b = out.add(f"path_bearing_{side}_{where}", B.bearing(d_path, bod, bw), at(x, y, z),
+                        f"path_{side}", "bearing", description=f"{d_path:.4g} x {bod:.4g} x {bw:.4g} mm", shared=True)
+            out.join(b, shaft, "bearing on the path shaft", kind="bearing")
+        out.join(f"pinion_{side}", "rack", "rack mesh: checked by geargen.checks.rack_drive", kind="mesh")
     xa, ys = g["pinion_a"].centre
     xi, yi = g["input"].centre
     d_in = placed.input.hub.bore_diameter
@@ -81,7 +77,8 @@ def rack_drive_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     # the spring pushes the carriage toward the shafts (-y) from a post beyond its +y face
     spring_d, spring_mean = s["spring_wire_diameter"], s["spring_mean_diameter"]
     rate = placed.spring_rate
-    coils = spring_coils(rate, spring_d, spring_mean, s["spring_shear_modulus_GPa"] * 1e3)
+    coils = spring_for_rate(placed.spring_force, rate, spring_d, spring_mean, s["spring_installed_length"],
+                            s["spring_shear_modulus_GPa"] * 1e3).active_coils
     installed = s["spring_installed_length"]
     total = coils + 2  # squared and ground ends
     if not installed > spring_d * (total + 1):
@@ -95,54 +92,55 @@ def rack_drive_parts(layout, s: Mapping[str, Any], stiffness=None) -> PartSet:
     holes_bottom = [(-xa, ys, bod), (xa, ys, bod)]
     holes_top = holes_bottom + [(xi, yi, clearance_hole)]
     for name, z, holes in (("bottom_plate", z_low, holes_bottom), ("top_plate", z_top, holes_top)):
-        plate = out.add(name, P.plate_with_holes(x1 - x0, y1 - y0, bw, holes, corner=(x0, y0, 0.0)), _at(0, 0, z),
+        plate = out.add(name, B.plate_with_holes(x1 - x0, y1 - y0, bw, holes, corner=(x0, y0, 0.0)), at(0, 0, z),
                         "housing", "housing", description=f"housing plate, {bw:.4g} mm, holds the path bearings")
         for side in ("a", "b"):
-            out.touch(plate, f"path_bearing_{side}_{'lower' if name == 'bottom_plate' else 'upper'}",
-                      "bearing seated in the plate")
+            out.join(plate, f"path_bearing_{side}_{'lower' if name == 'bottom_plate' else 'upper'}",
+                      "bearing seated in the plate", kind="bearing")
         out.ground.append(plate)
-    rail = out.add("guide_rail", P.box(rail_w, 2 * (carriage_half_y + placed.carriage_travel) + block_l, rail_h,
+    rail = out.add("guide_rail", B.box(rail_w, 2 * (carriage_half_y + placed.carriage_travel) + block_l, rail_h,
                                        (rail_x - rail_w / 2, yi - carriage_half_y - placed.carriage_travel - block_l / 2,
                                         0.0)),
-                   _at(0, 0, z_plate_top), "carriage", "housing", description="linear guide rail, bolted to the top plate")
-    out.touch(rail, "top_plate", "rail bolted to the top plate")
-    block = out.add("guide_block", P.box(rail_w + 2 * margin, block_l, block_h,
+                   at(0, 0, z_plate_top), "carriage", "housing", description="linear guide rail, bolted to the top plate")
+    out.join(rail, "top_plate", "rail bolted to the top plate")
+    block = out.add("guide_block", B.box(rail_w + 2 * margin, block_l, block_h,
                                          (rail_x - rail_w / 2 - margin, yi - block_l / 2, 0.0)),
-                    _at(0, 0, z_plate_top + rail_h), "carriage", "bearing",
+                    at(0, 0, z_plate_top + rail_h), "carriage", "bearing",
                     description="the linear guide's sliding block (rolling elements): the carriage's one freedom")
-    out.touch(block, rail, "guide block on its rail")
-    carriage = out.add("carriage", P.plate_with_holes(carriage_x1 - carriage_x0, 2 * carriage_half_y, carriage_h,
+    out.join(block, rail, "guide block on its rail", kind="sliding")
+    carriage = out.add("carriage", B.plate_with_holes(carriage_x1 - carriage_x0, 2 * carriage_half_y, carriage_h,
                                                       [(xi, yi, ibod)], corner=(carriage_x0, yi - carriage_half_y, 0.0)),
-                       _at(0, 0, z_carriage), "carriage", "carriage",
+                       at(0, 0, z_carriage), "carriage", "carriage",
                        description=f"preload carriage: {placed.carriage_travel:.4g} mm stroke either way along the "
                                    "symmetry line")
-    out.touch(carriage, block, "carriage bolted to the guide block")
+    out.join(carriage, block, "carriage bolted to the guide block")
     out.stationary.append(carriage)
-    shaft = out.add("input_shaft", out.shared(P.shaft, d_in, z_carriage + carriage_h - g["input"].z),
-                    _at(xi, yi, g["input"].z), "input", "shaft", description=f"input (motor) shaft, d {d_in:.4g} mm")
-    out.touch(shaft, "input", "input gear on the motor's shaft")
+    shaft = out.add("input_shaft", B.shaft(d_in, z_carriage + carriage_h - g["input"].z),
+                    at(xi, yi, g["input"].z), "input", "shaft", description=f"input (motor) shaft, d {d_in:.4g} mm", shared=True)
+    out.join(shaft, "input", "input gear on the motor's shaft")
     for i, z in enumerate((z_carriage, z_carriage + carriage_h - ibw)):
-        b = out.add(f"input_bearing_{i + 1}", out.shared(P.bearing, d_in, ibod, ibw), _at(xi, yi, z), "input",
-                    "bearing", description=f"{d_in:.4g} x {ibod:.4g} x {ibw:.4g} mm")
-        out.touch(b, shaft, "bearing on the input shaft")
-        out.touch(b, carriage, "bearing seated in the carriage")
+        b = out.add(f"input_bearing_{i + 1}", B.bearing(d_in, ibod, ibw), at(xi, yi, z), "input",
+                    "bearing", description=f"{d_in:.4g} x {ibod:.4g} x {ibw:.4g} mm", shared=True)
+        out.join(b, shaft, "bearing on the input shaft", kind="bearing")
+        out.join(b, carriage, "bearing seated in the carriage", kind="bearing")
     # the spring along -y: local +z turned onto world -y (a quarter turn about +x)
     spring_matrix = transform((xi, y_post, z_spring), (1, 0, 0), math.pi / 2)
-    spring = out.add("carriage_spring", P.coil_envelope(spring_d, spring_mean, installed), spring_matrix, "carriage",
+    spring = out.add("carriage_spring", B.coil_envelope(spring_d, spring_mean, installed), spring_matrix, "carriage",
                      "spring", description=f"compression spring d {spring_d:.4g} x D {spring_mean:.4g} mm, "
                                            f"{coils:.3g} active coils ({rate:.4g} N/mm), installed {installed:.4g} mm, "
                                            f"free {installed + placed.spring_force / rate:.4g} mm: "
                                            f"{placed.spring_force:.4g} N")
-    post = out.add("spring_post", P.box(2 * (spring_mean / 2 + spring_d + margin), post_t, z_spring + spring_mean / 2
+    post = out.add("spring_post", B.box(2 * (spring_mean / 2 + spring_d + margin), post_t, z_spring + spring_mean / 2
                                         + spring_d + margin - z_plate_top,
                                         (xi - spring_mean / 2 - spring_d - margin, y_post, 0.0)),
-                   _at(0, 0, z_plate_top), "housing", "housing", description="spring post on the top plate")
-    out.touch(post, "top_plate", "post bolted to the top plate")
-    out.touch(spring, post, "spring seated on the post")
-    out.touch(spring, carriage, "spring pushing the carriage toward the path shafts")
-    out.dims["carriage_spring"] = dict(active_coils=coils, installed=installed,
+                   at(0, 0, z_plate_top), "housing", "housing", description="spring post on the top plate")
+    out.join(post, "top_plate", "post bolted to the top plate")
+    out.join(spring, post, "spring seated on the post", kind="spring")
+    out.join(spring, carriage, "spring pushing the carriage toward the path shafts", kind="spring")
+    out.dimensions["carriage_spring"] = dict(active_coils=coils, installed=installed,
                                        free=installed + placed.spring_force / rate)
-    return out.done()
+    return out.freeze()
 
 
-__all__ = ["rack_drive_parts", "spring_coils"]
+__all__ = ["rack_drive_hardware"]
+

@@ -1,0 +1,768 @@
+"""What a non-gear part is made of, as numbers: the body of a component of the resolved drive.
+
+A :class:`Body` is a small expression (a kind and its numbers, mm, in the part's own frame) that
+two readers evaluate: the CAD layer turns it into a solid (:mod:`geargen.cad.components`, one
+builder per kind) and the checks, the structure and the train read its geometry here without a
+kernel: its bounding box, its signed distance (:func:`signed_distance`: negative inside), whether
+two bodies share volume or touch (:mod:`geargen.checks.hardware`), its volume and moment about
+its own axis (:func:`mass_properties`). Both readers see the same numbers, so a collision
+``geargen check`` reports is the one ``geargen build`` finds on the solids.
+
+Kinds mirror the machine elements of the drives (a shaft, a bearing ring, a motor envelope, a
+plate with holes, the robot link's tray and cover, a quill, a clamp collar, a compression spring)
+and the few operations composite parts are made of (fuse, cut, translate). A composite kind is
+expanded (:func:`primitive_tree`) into boxes, cylinders and frusta for the analytic readers;
+the CAD layer builds it with the kernel's own primitives, as it always has.
+
+Constructors check their numbers and raise ``ValueError`` for impossible ones (a bore wider
+than its cylinder): a hardware rule that lets such numbers through is a bug, and the resolver
+turns the error into a :class:`~geargen.errors.DesignError` naming the part (the hardware rules
+are meant to refuse first, naming the key).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class Body:
+    """A part's geometry as data: ``kind`` (see :data:`KINDS`) and its numbers ``args`` (mm,
+    nested tuples of floats, bodies for the operations). Hashable: equal bodies build one solid."""
+
+    kind: str
+    args: tuple
+
+    def aabb(self) -> tuple[np.ndarray, np.ndarray]:
+        """The axis-aligned box holding the body, in its own frame: ``(lo (3,), hi (3,))`` mm."""
+        return _aabb(self)
+
+
+def _f(*values) -> tuple[float, ...]:
+    return tuple(float(v) for v in values)
+
+
+def _positive(**values) -> None:
+    for name, v in values.items():
+        if not (math.isfinite(v) and v > 0):
+            raise ValueError(f"{name} = {v!r} must be a positive length")
+
+
+# ============================================================================ constructors
+
+
+def cylinder(diameter: float, height: float, bore: float = 0.0) -> Body:
+    """A (hollow) cylinder on +z, z in [0, height]."""
+    _positive(diameter=diameter, height=height)
+    if not 0 <= bore < diameter:
+        raise ValueError(f"bore {bore!r} mm must lie in [0, {diameter:.6g}) mm")
+    return Body("cylinder", _f(diameter, height, bore))
+
+
+def box(size_x: float, size_y: float, size_z: float, corner=(0.0, 0.0, 0.0)) -> Body:
+    """An axis-aligned box with its lowest corner at ``corner``."""
+    _positive(size_x=size_x, size_y=size_y, size_z=size_z)
+    return Body("box", (_f(*corner), _f(size_x, size_y, size_z)))
+
+
+def box_between(lo, hi) -> Body:
+    """The axis-aligned box from corner ``lo`` to corner ``hi``."""
+    return box(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], lo)
+
+
+def frustum(bottom_radius: float, top_radius: float, height: float, bore: float = 0.0) -> Body:
+    """A cone frustum on +z: radius ``bottom_radius`` at z = 0, ``top_radius`` at ``height``."""
+    _positive(bottom_radius=bottom_radius, top_radius=top_radius, height=height)
+    if not 0 <= bore < 2 * min(bottom_radius, top_radius):
+        raise ValueError(f"bore {bore!r} mm must be smaller than both end diameters")
+    return Body("frustum", _f(bottom_radius, top_radius, height, bore))
+
+
+def shaft(diameter: float, length: float, bore: float = 0.0) -> Body:
+    """A round (hollow) shaft on +z, z in [0, length]."""
+    return Body("shaft", cylinder(diameter, length, bore).args)
+
+
+def bearing(bore: float, outer_diameter: float, width: float) -> Body:
+    """A rolling bearing as its envelope ring, z in [0, width]."""
+    if not outer_diameter > bore:
+        raise ValueError(f"bearing outer diameter {outer_diameter!r} mm is not larger than its bore {bore!r} mm")
+    return Body("bearing", _f(bore, outer_diameter, width))
+
+
+def servo_motor(body_diameter: float, body_length: float, flange_width: float, flange_thickness: float,
+                shaft_diameter: float, shaft_length: float) -> Body:
+    """A servo-motor envelope: square flange z in [0, t], round body z in [t, t + L], shaft stub
+    z in [-shaft_length, 0]."""
+    _positive(body_diameter=body_diameter, body_length=body_length, flange_width=flange_width,
+              flange_thickness=flange_thickness, shaft_diameter=shaft_diameter, shaft_length=shaft_length)
+    if not shaft_diameter < min(body_diameter, flange_width):
+        raise ValueError("the motor's shaft is not thinner than the motor")
+    return Body("servo_motor", _f(body_diameter, body_length, flange_width, flange_thickness, shaft_diameter,
+                                  shaft_length))
+
+
+def blade_flexure(thickness: float, length: float, width: float) -> Body:
+    """A blade: ``thickness`` along x, ``width`` along y, ``length`` along z from 0; centred on x = y = 0."""
+    _positive(thickness=thickness, length=length, width=width)
+    return Body("blade_flexure", _f(thickness, length, width))
+
+
+def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: float, total_coils: float) -> Body:
+    """A helical compression spring (right hand, ends ground flat) at ``length``, z in [0, length]."""
+    _positive(wire_diameter=wire_diameter, mean_coil_diameter=mean_coil_diameter, length=length,
+              total_coils=total_coils)
+    if not mean_coil_diameter > 2 * wire_diameter:
+        raise ValueError("spring index D/d must exceed 2")
+    if not (length - wire_diameter) / total_coils > wire_diameter:
+        raise ValueError(f"spring length {length:.6g} mm closes its coils")
+    return Body("compression_spring", _f(wire_diameter, mean_coil_diameter, length, total_coils))
+
+
+def coil_envelope(wire_diameter: float, mean_coil_diameter: float, length: float) -> Body:
+    """A spring as its envelope tube: inner diameter D - d, outer D + d, z in [0, length]."""
+    return cylinder(mean_coil_diameter + wire_diameter, length, mean_coil_diameter - wire_diameter)
+
+
+def plate_with_holes(size_x: float, size_y: float, thickness: float, holes, corner=(0.0, 0.0, 0.0)) -> Body:
+    """An axis-aligned plate from ``corner`` with through holes ``(x, y, diameter)`` along z."""
+    _positive(size_x=size_x, size_y=size_y, thickness=thickness)
+    holes = tuple(_f(*h) for h in holes)
+    for x, y, d in holes:
+        _positive(hole_diameter=d)
+    return Body("plate_with_holes", (_f(size_x, size_y, thickness), holes, _f(*corner)))
+
+
+def relieved(bosses) -> tuple[tuple[float, ...], ...]:
+    """Bosses ``(x, y, diameter, height[, relief])`` with their relief (0: none), checked."""
+    out = tuple(_f(*b) + (0.0,) * (5 - len(b)) for b in bosses)
+    for _, _, d, _, r in out:
+        if not 0 <= r < d:
+            raise ValueError(f"relief {r!r} mm leaves no boss around it")
+    return out
+
+
+def link_tray(radius: float, length: float, height: float, wall: float, floor: float, bosses=()) -> Body:
+    """The robot link as an open-top tray (:func:`geargen.cad.parts.link_tray`)."""
+    _positive(radius=radius, length=length, height=height, wall=wall, floor=floor)
+    if not (wall < radius and floor < height):
+        raise ValueError("the link's walls and floor leave no room inside")
+    return Body("link_tray", (_f(radius, length, height, wall, floor), relieved(bosses)))
+
+
+def link_cover(radius: float, wall: float, x_end: float, thickness: float, seats=()) -> Body:
+    """The cover over the link's round end (:func:`geargen.cad.parts.link_cover`)."""
+    _positive(radius=radius, wall=wall, x_end=x_end, thickness=thickness)
+    if not radius - wall > 0:
+        raise ValueError("the link's walls leave no room inside")
+    return Body("link_cover", (_f(radius, wall, x_end, thickness), tuple(_f(*s) for s in seats)))
+
+
+def quill(outer_diameter: float, length: float, bores, lug_length: float, lug_width: float,
+          lug_thickness: float) -> Body:
+    """A bearing quill with stepped bores and a lug (:func:`geargen.cad.parts.quill`)."""
+    _positive(outer_diameter=outer_diameter, length=length, lug_length=lug_length, lug_width=lug_width,
+              lug_thickness=lug_thickness)
+    spans = tuple(sorted(_f(*b) for b in bores))
+    radius = outer_diameter / 2
+    for (z0, z1, d), following in zip(spans, spans[1:] + ((length, length, 0.0),)):
+        if not (0 <= z0 < z1 <= following[0] and 0 < d < outer_diameter):
+            raise ValueError(f"quill bore ({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range")
+    if not lug_width < outer_diameter:
+        raise ValueError("the quill's lug is not narrower than its sleeve")
+    if not math.hypot(quill_lug_root(outer_diameter, spans, lug_thickness), lug_width / 2) < radius:
+        raise ValueError("the quill's lug is too wide for the sleeve's wall")
+    return Body("quill", (_f(outer_diameter, length), spans, _f(lug_length, lug_width, lug_thickness)))
+
+
+def quill_lug_root(outer_diameter: float, bores, lug_thickness: float) -> float:
+    """Where the quill's lug starts (its root, inside the sleeve's wall): the middle of the wall
+    around the widest bore at the lug's height."""
+    widest = max((d for z0, z1, d in bores if z0 < lug_thickness), default=0.0)
+    return (widest / 2 + outer_diameter / 2) / 2
+
+
+def split_collar(bore: float, outer_diameter: float, width: float, slot: float) -> Body:
+    """A clamp collar: a ring with one radial slot of width ``slot`` on +x, z in [0, width]."""
+    cylinder(outer_diameter, width, bore)
+    return Body("split_collar", _f(bore, outer_diameter, width, slot))
+
+
+def revolve(profile) -> Body:
+    """A body of revolution about the local z axis: the closed polygon ``profile`` ``(r, z)`` (r >= 0)
+    turned a full turn. An analytic envelope only (a toothed part's blank: the CAD layer builds the
+    part itself by its family), read by the checks."""
+    pts = tuple(_f(r, z) for r, z in profile)
+    if len(pts) < 3 or any(r < 0 for r, _ in pts):
+        raise ValueError("a revolved profile needs three or more points at r >= 0")
+    return Body("revolve", pts)
+
+
+def fuse(bodies, what: str = "fused part") -> Body:
+    """Touching or overlapping bodies made one part."""
+    bodies = tuple(bodies)
+    if not bodies:
+        raise ValueError("nothing to fuse")
+    return Body("fuse", (bodies, what))
+
+
+def cut(body: Body, *tools: Body) -> Body:
+    """``body`` less ``tools``."""
+    return Body("cut", (body, tuple(tools)))
+
+
+def translate(body: Body, vector) -> Body:
+    """``body`` moved by ``vector`` (mm)."""
+    return Body("translate", (body, _f(*vector)))
+
+
+def single(body: Body, what: str) -> Body:
+    """``body``, which must be one solid (the CAD layer checks it)."""
+    return Body("single", (body, what))
+
+
+def ring_relief(outer_diameter: float, bore: float) -> float:
+    """Diameter of the relief under a bearing seated by its outer ring: the ring's middle
+    diameter, so the seat bears on the outer ring only (inner ring and shaft end run clear)."""
+    return (outer_diameter + bore) / 2
+
+
+KINDS = ("cylinder", "box", "frustum", "shaft", "bearing", "servo_motor", "blade_flexure", "compression_spring",
+         "plate_with_holes", "link_tray", "link_cover", "quill", "split_collar", "revolve", "fuse", "cut", "translate",
+         "single")
+
+
+# ============================================================================ the analytic readers
+#
+# Every kind is expanded into a tree of three primitives (box, cylinder, frustum; a cylinder may be
+# hollow) joined by union, intersection and difference, translated: the readers below need only those.
+
+
+@dataclass(frozen=True)
+class _Node:
+    op: str  # "box" | "cyl" | "cone" | "union" | "inter" | "diff" | "move" | "spring"
+    args: tuple
+
+
+def primitive_tree(body: Body) -> _Node:
+    """``body`` as primitives joined by set operations (the analytic readers' form)."""
+    k, a = body.kind, body.args
+    if k in ("cylinder", "shaft"):
+        return _Node("cyl", a)
+    if k == "box":
+        (x, y, z), (sx, sy, sz) = a
+        return _Node("box", ((x, y, z), (x + sx, y + sy, z + sz)))
+    if k == "frustum":
+        return _Node("cone", a)
+    if k == "revolve":
+        return _Node("rev", a)
+    if k == "bearing":
+        bore, od, w = a
+        return _Node("cyl", (od, w, bore))
+    if k == "servo_motor":
+        d, length, w, t, ds, ls = a
+        return _Node("union", (_Node("box", ((-w / 2, -w / 2, 0.0), (w / 2, w / 2, t))),
+                               _Node("move", (_Node("cyl", (d, length, 0.0)), (0.0, 0.0, t))),
+                               _Node("move", (_Node("cyl", (ds, ls, 0.0)), (0.0, 0.0, -ls)))))
+    if k == "blade_flexure":
+        t, length, w = a
+        return _Node("box", ((-t / 2, -w / 2, 0.0), (t / 2, w / 2, length)))
+    if k == "compression_spring":
+        return _Node("spring", a)
+    if k == "plate_with_holes":
+        (sx, sy, t), holes, (x0, y0, z0) = a
+        plate = _Node("box", ((x0, y0, z0), (x0 + sx, y0 + sy, z0 + t)))
+        if not holes:
+            return plate
+        return _Node("diff", (plate, tuple(_Node("move", (_Node("cyl", (d, t, 0.0)), (x, y, z0))) for x, y, d in holes)))
+    if k == "link_tray":
+        (radius, length, height, wall, floor), bosses = a
+
+        def outline(r, z0, h):
+            return _Node("union", (_Node("move", (_Node("cyl", (2 * r, h, 0.0)), (0.0, 0.0, z0))),
+                                   _Node("box", ((0.0, -r, z0), (length - (radius - r), r, z0 + h)))))
+        tray = _Node("diff", (outline(radius, 0.0, height), (outline(radius - wall, floor, height - floor),)))
+        extra = tuple(_Node("move", (_Node("cyl", (d, h, 0.0)), (x, y, floor))) for x, y, d, h, _ in bosses)
+        if extra:
+            tray = _Node("union", (tray,) + extra)
+        reliefs = tuple(_Node("move", (_Node("cyl", (r, h, 0.0)), (x, y, floor))) for x, y, d, h, r in bosses if r > 0)
+        return _Node("diff", (tray, reliefs)) if reliefs else tray
+    if k == "link_cover":
+        (radius, wall, x_end, t), seats = a
+        r = radius - wall
+        cover = _Node("inter", (_Node("union", (_Node("cyl", (2 * r, t, 0.0)), _Node("box", ((0.0, -r, 0.0), (x_end, r, t))))),
+                                _Node("box", ((-r, -r, 0.0), (x_end, r, t)))))
+        bosses = tuple(_Node("move", (_Node("cyl", (d, depth, 0.0)), (x, y, -depth))) for x, y, d, depth, _ in seats
+                       if depth > 0)
+        if bosses:
+            cover = _Node("union", (cover,) + bosses)
+        bores = tuple(_Node("move", (_Node("cyl", (rl, t + depth, 0.0)), (x, y, -depth))) for x, y, _, depth, rl in seats
+                      if rl > 0)
+        return _Node("diff", (cover, bores)) if bores else cover
+    if k == "quill":
+        (d_out, length), spans, (lug_l, lug_w, lug_t) = a
+        sleeve = _Node("cyl", (d_out, length, 0.0))
+        if spans:
+            sleeve = _Node("diff", (sleeve, tuple(_Node("move", (_Node("cyl", (d, z1 - z0, 0.0)), (0.0, 0.0, z0)))
+                                                  for z0, z1, d in spans)))
+        root = quill_lug_root(d_out, spans, lug_t)
+        lug = _Node("box", ((root, -lug_w / 2, 0.0), (d_out / 2 + lug_l, lug_w / 2, lug_t)))
+        return _Node("union", (sleeve, lug))
+    if k == "split_collar":
+        bore, d_out, w, slot = a
+        ring = _Node("cyl", (d_out, w, bore))
+        if slot <= 0:
+            return ring
+        return _Node("diff", (ring, (_Node("box", ((0.0, -slot / 2, 0.0), (d_out, slot / 2, w))),)))
+    if k == "fuse":
+        return _Node("union", tuple(primitive_tree(b) for b in a[0]))
+    if k == "cut":
+        return _Node("diff", (primitive_tree(a[0]), tuple(primitive_tree(t) for t in a[1])))
+    if k == "translate":
+        return _Node("move", (primitive_tree(a[0]), a[1]))
+    if k == "single":
+        return primitive_tree(a[0])
+    raise ValueError(f"unknown body kind {k!r}")
+
+
+def _node_box(n: _Node) -> tuple[np.ndarray, np.ndarray]:
+    op, a = n.op, n.args
+    if op == "box":
+        return np.array(a[0], float), np.array(a[1], float)
+    if op == "cyl":
+        r = a[0] / 2
+        return np.array([-r, -r, 0.0]), np.array([r, r, a[1]])
+    if op == "cone":
+        r = max(a[0], a[1])
+        return np.array([-r, -r, 0.0]), np.array([r, r, a[2]])
+    if op == "spring":
+        d, mean, length, _ = a
+        r = mean / 2 + d / 2
+        return np.array([-r, -r, 0.0]), np.array([r, r, length])
+    if op == "rev":
+        pr = np.asarray(a)
+        r = float(pr[:, 0].max())
+        return np.array([-r, -r, pr[:, 1].min()]), np.array([r, r, pr[:, 1].max()])
+    if op == "move":
+        lo, hi = _node_box(a[0])
+        return lo + np.asarray(a[1]), hi + np.asarray(a[1])
+    if op == "union":
+        boxes = [_node_box(c) for c in a]
+        return np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+    if op == "inter":
+        boxes = [_node_box(c) for c in a]
+        return np.max([b[0] for b in boxes], axis=0), np.min([b[1] for b in boxes], axis=0)
+    if op == "diff":
+        return _node_box(a[0])
+    raise ValueError(op)
+
+
+def _aabb(body: Body) -> tuple[np.ndarray, np.ndarray]:
+    return _node_box(primitive_tree(body))
+
+
+def _rect_sdf(qx: np.ndarray, qz: np.ndarray) -> np.ndarray:
+    """Signed distance of a 2-D rectangle given the per-axis distances past its sides (negative inside)."""
+    outside = np.hypot(np.maximum(qx, 0.0), np.maximum(qz, 0.0))
+    return outside + np.minimum(np.maximum(qx, qz), 0.0)
+
+
+def polygon_distance(px, py, poly) -> np.ndarray:
+    """Signed distance (negative inside) of points (px, py) from the closed polygon ``poly`` (m, 2)."""
+    d = np.full(px.shape, np.inf)
+    inside = np.zeros(px.shape, bool)
+    m = len(poly)
+    for i in range(m):
+        ax, ay = poly[i]
+        bx, by = poly[(i + 1) % m]
+        ex, ey = bx - ax, by - ay
+        wx, wy = px - ax, py - ay
+        length2 = ex * ex + ey * ey
+        t = np.clip((wx * ex + wy * ey) / length2, 0.0, 1.0) if length2 > 0 else 0.0
+        d = np.minimum(d, np.hypot(wx - t * ex, wy - t * ey))
+        crosses = (ay > py) != (by > py)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xc = ax + (py - ay) * ex / np.where(ey == 0, 1.0, ey)
+        inside ^= crosses & (px < xc)
+    return np.where(inside, -d, d)
+
+
+def _node_sdf(n: _Node, p: np.ndarray) -> np.ndarray:
+    """Signed distance (mm, negative inside) of points ``p`` (k, 3). Exact for the primitives;
+    for unions, intersections and differences the usual min/max bound (exact in sign, a lower
+    bound of the distance outside)."""
+    op, a = n.op, n.args
+    if op == "box":
+        lo, hi = np.asarray(a[0]), np.asarray(a[1])
+        c, h = (lo + hi) / 2, (hi - lo) / 2
+        q = np.abs(p - c) - h
+        return np.linalg.norm(np.maximum(q, 0.0), axis=1) + np.minimum(np.max(q, axis=1), 0.0)
+    if op == "cyl":
+        d, height, bore = a
+        r = np.hypot(p[:, 0], p[:, 1])
+        qr = r - d / 2
+        if bore > 0:
+            qr = np.maximum(qr, bore / 2 - r)
+        qz = np.abs(p[:, 2] - height / 2) - height / 2
+        return _rect_sdf(qr, qz)
+    if op == "cone":
+        r0, r1, height, bore = a
+        r = np.hypot(p[:, 0], p[:, 1])
+        poly = np.array([[bore / 2, 0.0], [r0, 0.0], [r1, height], [bore / 2, height]])
+        return polygon_distance(r, p[:, 2], poly)
+    if op == "spring":
+        return _spring_sdf(a, p)
+    if op == "rev":
+        return polygon_distance(np.hypot(p[:, 0], p[:, 1]), p[:, 2], np.asarray(a))
+    if op == "move":
+        return _node_sdf(a[0], p - np.asarray(a[1]))
+    if op == "union":
+        return np.min([_node_sdf(c, p) for c in a], axis=0)
+    if op == "inter":
+        return np.max([_node_sdf(c, p) for c in a], axis=0)
+    if op == "diff":
+        out = _node_sdf(a[0], p)
+        for t in a[1]:
+            out = np.maximum(out, -_node_sdf(t, p))
+        return out
+    raise ValueError(op)
+
+
+def _spring_sdf(args, p: np.ndarray) -> np.ndarray:
+    """The swept wire of :func:`compression_spring`: distance from the helix of pitch (L - d)/n
+    through (D/2, 0, d/2), less d/2, cut to the slab [0, L]. The helix's nearest point is sought
+    among the turns above and below the point's own angle, each refined by Newton steps."""
+    d, mean, length, coils = args
+    radius, pitch = mean / 2, (length - d) / coils
+    theta = np.arctan2(p[:, 1], p[:, 0]) % (2 * math.pi)
+    best = np.full(len(p), np.inf)
+    k0 = np.floor((p[:, 2] - d / 2) / pitch - theta / (2 * math.pi))
+    for dk in (-1.0, 0.0, 1.0, 2.0):
+        t = np.clip(theta + 2 * math.pi * (k0 + dk), 0.0, 2 * math.pi * coils)
+        for _ in range(4):  # Newton on the squared distance to (R cos t, R sin t, d/2 + pitch t / 2 pi)
+            c = pitch / (2 * math.pi)
+            hx, hy, hz = radius * np.cos(t), radius * np.sin(t), d / 2 + c * t
+            dx, dy, dz = hx - p[:, 0], hy - p[:, 1], hz - p[:, 2]
+            g = dx * (-radius * np.sin(t)) + dy * (radius * np.cos(t)) + dz * c
+            h = radius * radius + c * c - (dx * radius * np.cos(t) + dy * radius * np.sin(t))
+            t = np.clip(t - g / np.where(np.abs(h) < 1e-12, 1e-12, h), 0.0, 2 * math.pi * coils)
+        c = pitch / (2 * math.pi)
+        dist = np.sqrt((radius * np.cos(t) - p[:, 0]) ** 2 + (radius * np.sin(t) - p[:, 1]) ** 2
+                       + (d / 2 + c * t - p[:, 2]) ** 2)
+        best = np.minimum(best, dist)
+    wire = best - d / 2
+    slab = np.abs(p[:, 2] - length / 2) - length / 2
+    return np.maximum(wire, slab)
+
+
+def signed_distance(body: Body, points: np.ndarray) -> np.ndarray:
+    """Signed distance (mm; negative inside) of ``points`` (k, 3), in the body's own frame."""
+    return distance_function(body)(points)
+
+
+def distance_function(body: Body):
+    """:func:`signed_distance` of ``body`` as a function of the points (the body read once)."""
+    tree = primitive_tree(body)
+    return lambda points: _node_sdf(tree, np.asarray(points, dtype=float).reshape(-1, 3))
+
+
+# ---------------------------------------------------------------- mass properties
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    """Of a body of unit density in its own frame (mm): ``volume`` mm^3, ``centre`` mm,
+    ``axial_moment`` = integral of r^2 dV about the local z axis (mm^5)."""
+
+    volume: float
+    centre: tuple[float, float, float]
+    axial_moment: float
+
+    @property
+    def off_axis(self) -> float:
+        return math.hypot(self.centre[0], self.centre[1])
+
+
+def _prim_mass(n: _Node) -> tuple[float, np.ndarray, float] | None:
+    """(volume, first moment (3,), axial moment) of a primitive or a tree of disjoint pieces;
+    None when the tree's pieces may overlap (then integrated numerically)."""
+    op, a = n.op, n.args
+    if op == "cyl":
+        d, h, bore = a
+        v = math.pi / 4 * (d * d - bore * bore) * h
+        return v, np.array([0.0, 0.0, v * h / 2]), math.pi * h * ((d / 2) ** 4 - (bore / 2) ** 4) / 2
+    if op == "box":
+        lo, hi = np.asarray(a[0]), np.asarray(a[1])
+        s = hi - lo
+        v = float(np.prod(s))
+        c = (lo + hi) / 2
+        ix = s[0] ** 2 / 12 + c[0] ** 2
+        iy = s[1] ** 2 / 12 + c[1] ** 2
+        return v, v * c, v * (ix + iy)
+    if op == "cone":
+        r0, r1, h, bore = a
+        if bore > 0:
+            return None
+        v = math.pi * h * (r0 * r0 + r0 * r1 + r1 * r1) / 3
+        # integral of z dV and of r^2 dV over the frustum, r(z) = r0 + (r1 - r0) z / h
+        zs, w = np.polynomial.legendre.leggauss(8)
+        z = (zs + 1) * h / 2
+        r = r0 + (r1 - r0) * z / h
+        mz = float(np.sum(w * math.pi * r * r * z) * h / 2)
+        jz = float(np.sum(w * math.pi * r ** 4 / 2) * h / 2)
+        return v, np.array([0.0, 0.0, mz]), jz
+    if op == "move":
+        inner = _prim_mass(a[0])
+        if inner is None:
+            return None
+        v, m, j = inner
+        t = np.asarray(a[1])
+        c = m / v if v else np.zeros(3)
+        # parallel axis about z: shift of the centre in x, y
+        cx, cy = c[0] + t[0], c[1] + t[1]
+        j_new = j + v * ((cx * cx + cy * cy) - (c[0] ** 2 + c[1] ** 2))
+        return v, m + v * t, j_new
+    return None
+
+
+def _disjoint(nodes) -> bool:
+    boxes = [_node_box(c) for c in nodes]
+    for i in range(len(boxes)):
+        for j in range(i + 1, len(boxes)):
+            lo = np.maximum(boxes[i][0], boxes[j][0])
+            hi = np.minimum(boxes[i][1], boxes[j][1])
+            if np.all(hi - lo > 1e-12):
+                return False
+    return True
+
+
+def _tree_mass(n: _Node):
+    own = _prim_mass(n)
+    if own is not None:
+        return own
+    if n.op == "diff":
+        base = _tree_mass(n.args[0])
+        lo, hi = _node_box(n.args[0])
+        tools = n.args[1]
+        if base is None:
+            return None
+        v, m, j = base
+        base_node = n.args[0]
+        bore = base_node.args[2] if base_node.op == "cyl" else 0.0
+        if base_node.op not in ("box", "cyl"):
+            return None
+        for t in tools:
+            tm = _tree_mass(t)
+            tlo, thi = _node_box(t)
+            # a tool removes exactly its own mass only where the base is solid: inside the base's
+            # box and, for a hollow cylinder, clear of its bore (the box's nearest point to the axis)
+            if tm is None or np.any(tlo < lo - 1e-9) or np.any(thi > hi + 1e-9):
+                return None
+            near = np.hypot(max(tlo[0], 0.0, -thi[0]), max(tlo[1], 0.0, -thi[1]))
+            if bore > 0 and near < bore / 2:
+                return None
+            v, m, j = v - tm[0], m - tm[1], j - tm[2]
+        if not _disjoint(tools):
+            return None
+        return v, m, j
+    if n.op == "union" and _disjoint(n.args):
+        parts = [_tree_mass(c) for c in n.args]
+        if any(p is None for p in parts):
+            return None
+        return sum(p[0] for p in parts), sum(p[1] for p in parts), sum(p[2] for p in parts)
+    return None
+
+
+def mass_properties(body: Body, cells: int = 96) -> MassProperties:
+    """Volume, centre of mass and moment about the own z axis of ``body`` (unit density).
+
+    Closed form for primitives and for pieces that do not overlap (bores and holes inside their
+    part); otherwise a midpoint integration of the inside of the signed distance on a grid of
+    ``cells`` per side of the body's box (the error is of the order of the boundary cells' share,
+    ~1/cells)."""
+    tree = primitive_tree(body)
+    closed = _tree_mass(tree)
+    if closed is not None:
+        v, m, j = closed
+        c = m / v
+        return MassProperties(float(v), (float(c[0]), float(c[1]), float(c[2])), float(j))
+    lo, hi = _node_box(tree)
+    axes = [np.linspace(lo[i], hi[i], cells + 1) for i in range(3)]
+    mids = [(ax[1:] + ax[:-1]) / 2 for ax in axes]
+    cell = float(np.prod((hi - lo) / cells))
+    total_v, total_m, total_j = 0.0, np.zeros(3), 0.0
+    gx, gy = np.meshgrid(mids[0], mids[1], indexing="ij")
+    for z in mids[2]:
+        pts = np.column_stack([gx.ravel(), gy.ravel(), np.full(gx.size, z)])
+        inside = _node_sdf(tree, pts) < 0
+        q = pts[inside]
+        total_v += cell * len(q)
+        total_m += cell * q.sum(axis=0)
+        total_j += cell * float(np.sum(q[:, 0] ** 2 + q[:, 1] ** 2))
+    c = total_m / total_v
+    return MassProperties(total_v, (float(c[0]), float(c[1]), float(c[2])), total_j)
+
+
+# ---------------------------------------------------------------- extents
+
+
+def _axis_map(placement: np.ndarray) -> tuple[int, float]:
+    """(world axis index, sign) that a placement turns the local z axis onto; ValueError when it
+    is not a world axis (a round part's extent is exact only along the world's axes)."""
+    axis = np.asarray(placement, float)[:3, 2]
+    i = int(np.argmax(np.abs(axis)))
+    if not abs(abs(axis[i]) - 1.0) < 1e-12:
+        raise ValueError("a round part's extent is exact only when its axis is a world axis")
+    return i, float(np.sign(axis[i]))
+
+
+def _profile_extent(profile: np.ndarray, h: float, largest: bool) -> float | None:
+    """Over the region of the closed polygon ``profile`` (r, s) where r > h: the smallest (or
+    ``largest``) s. None when no part of it reaches beyond r = h."""
+    found = []
+    m = len(profile)
+    for i in range(m):
+        (r0, s0), (r1, s1) = profile[i], profile[(i + 1) % m]
+        if r0 > h:
+            found.append(s0)
+        if (r0 - h) * (r1 - h) < 0:
+            found.append(s0 + (h - r0) * (s1 - s0) / (r1 - r0))
+    if not found:
+        return None
+    return max(found) if largest else min(found)
+
+
+def _max_radius_in(profile: np.ndarray, lo: float, hi: float) -> float | None:
+    """The largest r of the polygon ``profile`` (r, s) between s = lo and s = hi (None: none there)."""
+    found = []
+    m = len(profile)
+    for i in range(m):
+        (r0, s0), (r1, s1) = profile[i], profile[(i + 1) % m]
+        if lo <= s0 <= hi:
+            found.append(r0)
+        for cut_s in (lo, hi):
+            if (s0 - cut_s) * (s1 - cut_s) < 0:
+                found.append(r0 + (cut_s - s0) * (r1 - r0) / (s1 - s0))
+    return max(found) if found else None
+
+
+def _prim_profile(n: _Node) -> np.ndarray:
+    """A round primitive's (r, s) profile along its own axis (s: local z)."""
+    if n.op == "cyl":
+        d, h, bore = n.args
+        return np.array([[bore / 2, 0.0], [d / 2, 0.0], [d / 2, h], [bore / 2, h]])
+    if n.op == "cone":
+        r0, r1, h, bore = n.args
+        return np.array([[bore / 2, 0.0], [r0, 0.0], [r1, h], [bore / 2, h]])
+    if n.op == "spring":
+        d, mean, length, _ = n.args
+        return np.array([[mean / 2 - d / 2, 0.0], [mean / 2 + d / 2, 0.0], [mean / 2 + d / 2, length],
+                         [mean / 2 - d / 2, length]])
+    return np.asarray(n.args, float)  # "rev"
+
+
+def _lowest_x(n: _Node, m: np.ndarray, z_min: float) -> float:
+    op, a = n.op, n.args
+    if op == "move":
+        t = np.eye(4)
+        t[:3, 3] = a[1]
+        return _lowest_x(a[0], m @ t, z_min)
+    if op == "union":
+        return min(_lowest_x(c, m, z_min) for c in a)
+    if op == "inter":
+        return max(_lowest_x(c, m, z_min) for c in a)
+    if op == "diff":  # what a cut removes is not subtracted: a bound from below
+        return _lowest_x(a[0], m, z_min)
+    if op == "box":  # the box cut by the plane z = z_min: its corners above and its edges' crossings
+        idx = [(i, j, k) for i in (0, 1) for j in (0, 1) for k in (0, 1)]
+        corners = {c: (np.array([a[c[0]][0], a[c[1]][1], a[c[2]][2], 1.0]) @ m.T)[:3] for c in idx}
+        points = [p for p in corners.values() if p[2] > z_min]
+        for c in idx:
+            for axis in range(3):
+                if c[axis] == 0:
+                    d = list(c)
+                    d[axis] = 1
+                    p, q = corners[c], corners[tuple(d)]
+                    if (p[2] - z_min) * (q[2] - z_min) < 0:
+                        points.append(p + (z_min - p[2]) / (q[2] - p[2]) * (q - p))
+        return float(min(p[0] for p in points)) if points else math.inf
+    axis, sign = _axis_map(m)
+    t = m[:3, 3]
+    prof = _prim_profile(n)
+    if axis == 2:  # round in x and y: its widest radius over the heights above z_min
+        s_lo = (z_min - t[2]) * sign
+        lo, hi = (s_lo, math.inf) if sign > 0 else (-math.inf, s_lo)
+        r = _max_radius_in(prof, lo, hi)
+        return math.inf if r is None else float(t[0] - r)
+    if axis == 0:  # along x: the end of the part nearest -x that reaches above z_min
+        s = _profile_extent(prof, z_min - t[2], largest=sign < 0)
+        return math.inf if s is None else float(t[0] + sign * s)
+    # along y: round in x and z
+    h = z_min - t[2]
+    r = float(prof[:, 0].max())
+    if h <= 0:
+        return float(t[0] - r)
+    return float(t[0] - math.sqrt(r * r - h * h)) if h < r else math.inf
+
+
+def lowest_x_above(body: Body, placement: np.ndarray, z_min: float) -> float:
+    """The smallest world x of ``body``'s material above world height ``z_min`` (inf: none there),
+    ``body`` placed by ``placement``. Exact for boxes in any placement and for round primitives
+    whose axis is a world axis (ValueError for one that is not); what a cut removes is not
+    subtracted (a bound from below)."""
+    return _lowest_x(primitive_tree(body), np.asarray(placement, float), z_min)
+
+
+def _world_box(n: _Node, m: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    op, a = n.op, n.args
+    if op == "move":
+        t = np.eye(4)
+        t[:3, 3] = a[1]
+        return _world_box(a[0], m @ t)
+    if op in ("union", "inter"):
+        boxes = [_world_box(c, m) for c in a]
+        if op == "union":
+            return np.min([b[0] for b in boxes], axis=0), np.max([b[1] for b in boxes], axis=0)
+        return np.max([b[0] for b in boxes], axis=0), np.min([b[1] for b in boxes], axis=0)
+    if op == "diff":
+        return _world_box(a[0], m)
+    if op == "box":
+        corners = np.array([[x, y, z, 1.0] for x in (a[0][0], a[1][0]) for y in (a[0][1], a[1][1])
+                            for z in (a[0][2], a[1][2])]) @ m.T
+        return corners[:, :3].min(axis=0), corners[:, :3].max(axis=0)
+    # round: each end circle (s, radius) of the profile spans +-r sqrt(1 - a_i^2) about its centre
+    axis = m[:3, 2]
+    spread = np.sqrt(np.clip(1.0 - axis * axis, 0.0, 1.0))
+    lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
+    for r, z in _prim_profile(n):
+        c = (m @ np.array([0.0, 0.0, z, 1.0]))[:3]
+        lo, hi = np.minimum(lo, c - r * spread), np.maximum(hi, c + r * spread)
+    return lo, hi
+
+
+def world_box(body: Body, placement: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The axis-aligned box (world, mm) of ``body`` placed by ``placement``: exact for boxes and for
+    round primitives in any placement (each piece's own box, not the box of the body's box turned);
+    what a cut removes is not subtracted."""
+    return _world_box(primitive_tree(body), np.asarray(placement, float))
+
+
+def describe(body: Body) -> dict[str, Any]:
+    """The body as JSON-able data (kind and numbers), for ``resolved.json``."""
+    def plain(v):
+        if isinstance(v, Body):
+            return describe(v)
+        if isinstance(v, tuple):
+            return [plain(x) for x in v]
+        return v
+    return {"kind": body.kind, "args": plain(body.args)}
+
+
+__all__ = ["Body", "KINDS", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "servo_motor",
+           "blade_flexure", "compression_spring", "coil_envelope", "plate_with_holes", "link_tray", "link_cover",
+           "quill", "quill_lug_root", "split_collar", "revolve", "fuse", "cut", "translate", "single", "ring_relief", "relieved",
+           "primitive_tree", "signed_distance", "distance_function", "polygon_distance", "lowest_x_above", "world_box", "MassProperties", "mass_properties", "describe"]
