@@ -199,3 +199,15 @@ def test_command_builds_a_double_helical_gear(tmp_path):
     data = json.loads((tmp_path / "o" / "double_helical_13.json").read_text())
     assert data["double_helical"] == {"centre_gap": 1.0, "half_face_width": 2.5, "half_hands": ["left", "right"]}
     assert (tmp_path / "o" / "double_helical_13.step").stat().st_size > 0
+
+
+def test_put_together_without_split_faces(gapped):
+    """Face by face, no boolean: per half every tooth has exactly its profile's faces (none split at
+    the apex or cut by a fuse), plus the two ends, the halves' two inner ends, the groove and the
+    bore."""
+    count = 0
+    exp = TopExp_Explorer(gapped.shape, TopAbs_FACE)
+    while exp.More():
+        count += 1
+        exp.Next()
+    assert count == 2 * len(gapped.faces) * gapped.spec.teeth + 2 + 2 + 1 + 1
