@@ -41,6 +41,7 @@ the same way (:func:`_toothed_body`). Only hubs and clusters use a boolean fuse.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -331,6 +332,12 @@ _ORIGIN_2D = gp_Pnt2d(0, 0)
 
 
 def _occ_knots(knots, mults):
+    return _occ_knots_of(tuple(float(t) for t in knots), tuple(int(m) for m in mults))
+
+
+@functools.lru_cache(maxsize=256)
+def _occ_knots_of(knots: tuple, mults: tuple):
+    """The kernel's knot and multiplicity arrays (shared: the kernel copies them into each spline)."""
     k = TColStd_Array1OfReal(1, len(knots))
     m = TColStd_Array1OfInteger(1, len(knots))
     for i, (t, mult) in enumerate(zip(knots, mults)):
@@ -437,22 +444,22 @@ def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
 # ---------------------------------------------------------------- the toothed body
 
 
-def _turned(points: np.ndarray, angle: float, grid: float = 0.0, interior: int | None = None) -> np.ndarray:
-    """``points`` (..., 2 or 3) turned counter-clockwise by ``angle`` about the axis. With ``grid``
-    (:func:`_grid`), the points strictly inside along axis ``interior`` (the poles that no
-    neighbouring face's edge passes through) are then put on the grid; the end ones stay exact,
-    so neighbouring faces still meet edge for edge."""
-    if angle:
-        c, s = math.cos(angle), math.sin(angle)
-        points = points.copy()
-        x, y = points[..., 0].copy(), points[..., 1].copy()
-        points[..., 0], points[..., 1] = c * x - s * y, s * x + c * y
+def _turned(points: np.ndarray, angle, grid: float = 0.0, interior: int | None = None) -> np.ndarray:
+    """``points`` (..., 2 or 3) turned counter-clockwise by ``angle`` about the axis (an array of
+    angles: one copy each, stacked first). With ``grid`` (:func:`_grid`), the points strictly inside
+    along axis ``interior`` of ``points`` (the poles that no neighbouring face's edge passes through)
+    are then put on the grid; the end ones stay exact, so neighbouring faces still meet edge for edge."""
+    angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
+    flat = points.reshape(-1, points.shape[-1])
+    out = np.broadcast_to(flat, angle.shape + flat.shape).copy()
+    out[..., 0], out[..., 1] = c * flat[:, 0] - s * flat[:, 1], s * flat[:, 0] + c * flat[:, 1]
+    out = out.reshape(angle.shape + points.shape)
     if grid and interior is not None:
-        inside = [slice(None)] * points.ndim
-        inside[interior] = slice(1, -1)
-        points = points.copy()
-        points[tuple(inside)] = np.round(points[tuple(inside)] / grid) * grid
-    return points
+        inside = [slice(None)] * out.ndim
+        inside[angle.ndim + interior] = slice(1, -1)
+        out[tuple(inside)] = np.round(out[tuple(inside)] / grid) * grid
+    return out
 
 
 def _grid(spec: GearSpec, tolerance: float) -> float:
@@ -469,11 +476,10 @@ def _grid(spec: GearSpec, tolerance: float) -> float:
 class _Side:
     """Tooth 0's geometry of one side face and how to turn it to another tooth.
 
-    A spline face (fillet, flank): ``surface`` (poles ``(n, m, 3)``, u basis, v basis) and its
-    ``bottom``/``top`` edge curves (poles ``(k, 3)`` - None: the surface's first and last rows -,
-    basis); a land: ``land`` (cylinder, bottom
-    circle, top circle, cap circle) of tooth 0. ``pcurves``: the edges' curves on the face
-    (bottom, top, start, end), the same for every tooth.
+    A spline face (fillet, flank): ``surface`` (poles ``(n, m, 3)``, u basis, v basis, ruled) and
+    its ``bottom``/``top`` edge curves (poles ``(k, 3)`` - None: the surface's first and last rows -,
+    basis); a land: ``land`` (cylinder, bottom circle, top circle, cap circles) of tooth 0.
+    ``pcurves``: the edges' curves on the face (bottom, top, start, end), the same for every tooth.
     """
 
     pcurves: tuple
@@ -482,27 +488,37 @@ class _Side:
     top: tuple | None = None
     land: tuple | None = None
 
-    def instance(self, angle: float, grid: float, twist: float):
-        """(surface, bottom curve, top curve, their curves on the end planes) of the tooth turned
-        by ``angle``; the top plane's frame is turned by ``twist``."""
-        if self.land is not None:
-            surf, bottom, top, cap = self.land
-            if angle:
-                surf, bottom, top = (g.Rotated(_Z_AXIS, angle) for g in (surf, bottom, top))
-                cap = cap.Rotated(_ORIGIN_2D, angle)
-            return surf, bottom, top, (cap, cap)
+    def instances(self, angles: np.ndarray, grid: float, twist: float) -> list[tuple]:
+        """(surface, bottom curve, top curve, their curves on the end planes) of the tooth turned by
+        each of ``angles``; the top plane's frame is turned by ``twist``. Without a ``grid`` (a spur
+        gear: its files are small already) tooth 0's kernel objects turned, with one each tooth's
+        poles turned and put on the grid."""
+        if self.land is not None or not grid:
+            base = self.land if self.land is not None else self.built(twist, np.zeros(1), 0.0)[0]
+            out = [base]
+            surf, bottom, top, (cap, cap_top) = base
+            for angle in angles[1:]:
+                out.append((surf.Rotated(_Z_AXIS, angle), bottom.Rotated(_Z_AXIS, angle), top.Rotated(_Z_AXIS, angle),
+                            (cap.Rotated(_ORIGIN_2D, angle), cap_top.Rotated(_ORIGIN_2D, angle))))
+            return out
+        return self.built(twist, angles, grid)
+
+    def built(self, twist: float, angles: np.ndarray, grid: float) -> list[tuple]:
+        """The spline face's kernel objects turned by each of ``angles`` (see :meth:`instances`)."""
         poles, (uk, um, ud), (vk, vm, vd), ruled = self.surface
-        if ruled:  # every pole of a ruled flank is on its edges with the fillet or the land: exact
-            poles = _turned(poles, angle)
-        else:  # the fillet's edge curves are its first and last rows of poles: the same numbers
-            poles = _turned(poles, angle, grid, interior=0)
-        surf = _bspline_surface_of(poles, uk, um, ud, vk, vm, vd)
-        bottom, top = (poles[:, 0, :], poles[:, -1, :]) if not ruled else (
-            _turned(self.bottom[0], angle, grid, interior=0), _turned(self.top[0], angle, grid, interior=0))
+        # a ruled flank's poles all lie on its edges with the fillet or the land: exact; a fillet's
+        # edge curves are its first and last rows of poles: the same numbers
+        poles = _turned(poles, angles) if ruled else _turned(poles, angles, grid, interior=0)
+        if ruled:
+            bottoms = _turned(self.bottom[0], angles, grid, interior=0)
+            tops = _turned(self.top[0], angles, grid, interior=0)
+        else:
+            bottoms, tops = poles[:, :, 0, :], poles[:, :, -1, :]
+        tops_xy = _turned(tops[..., :2], -twist) if twist else tops[..., :2]  # in the top plane's frame
         basis = self.bottom[1:]
-        top_xy = _turned(top[:, :2], -twist)  # the top edge in the top plane's frame
-        return (surf, _bspline3d(bottom, *basis), _bspline3d(top, *basis),
-                (_bspline2d(bottom[:, :2], *basis), _bspline2d(top_xy, *basis)))
+        return [(_bspline_surface_of(p, uk, um, ud, vk, vm, vd), _bspline3d(b, *basis), _bspline3d(t, *basis),
+                 (_bspline2d(b[:, :2], *basis), _bspline2d(t_xy, *basis)))
+                for p, b, t, t_xy in zip(poles, bottoms, tops, tops_xy)]
 
 
 def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
@@ -543,7 +559,7 @@ def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
     a0, a1 = curve.angles
     pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(twist, length, 1.0, 0.0),
                _helix_pcurve(a0, twist, length), _helix_pcurve(a1, twist, length))
-    return _Side(pcurves, land=(surf, bottom, top, cap))
+    return _Side(pcurves, land=(surf, bottom, top, (cap, cap)))
 
 
 def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
@@ -553,8 +569,9 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     Side faces: one per curve of :func:`_tooth_curves` per tooth; a fillet is the profile spline's
     poles turned row by row by the axial basis (:class:`_Axial`), a land an exact cylinder, a flank
     the profile spline's poles turned (spur) or the ruled surface of :class:`_RuledFlank`
-    (helical). 90 % of ``tolerance`` goes to the profile fit; the rotation's share (at most
-    0.02 nm, a fifth of the edge tolerance, so helices stay on the land cylinders) the rest.
+    (helical). 90 % of ``tolerance`` goes to the profile fit, 5 % to the rotation (at most 0.02 nm,
+    a fifth of the edge tolerance, so helices stay on the land cylinders) and 5 % to the grid the
+    poles inside a face are rounded to (:func:`_grid`).
 
     ``mirror`` (gap, groove radius): a double-helical gear whose first half is ``spec`` (z in [0, h]):
     the second half is the first's mirror image in the plane z = h + gap / 2, every face and edge
@@ -565,18 +582,18 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     builder = BRep_Builder()
     length = spec.face_width
     # a ruled flank's edges are its own curves, the helices the axial basis's: each within a fifth of
-    # the edge tolerance of the exact surface (so within 0.4 of it of each other), and within a tenth
-    # of the stated tolerance
-    exact = min(0.1 * tolerance, 0.2 * KERNEL_TOLERANCE)
+    # the edge tolerance of the exact surface (so within 0.4 of it of each other), and within 5 % of
+    # the stated tolerance (the profile fit has 90 %, the grid of the poles the last 5 %: _grid)
+    exact = min(0.05 * tolerance, 0.2 * KERNEL_TOLERANCE)
     # a ruled flank has only two rows: its rotation to 0.001 nm costs one or two poles along it
-    ruled = (twist_rate(spec), length, min(0.1 * tolerance, 0.01 * KERNEL_TOLERANCE)) if spec.is_helical else None
+    ruled = (twist_rate(spec), length, min(0.05 * tolerance, 0.01 * KERNEL_TOLERANCE)) if spec.is_helical else None
     curves = _tooth_curves(profile, 0.9 * tolerance, ruled)
     reach = max(float(np.max(np.hypot(*c.fit.poles.T))) for c in curves if c.fit is not None)
     reach = max(reach, profile.tip_radius)
     axial = _axial(spec, exact / reach)
     c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     n = len(curves)
-    grid = _grid(spec, tolerance)
+    grid = _grid(spec, tolerance) if spec.is_helical else 0.0
     joints = _joints(profile, np.array([c.end for c in curves]))
 
     # vertices at both ends of every joint and the joint's helix (straight line on a spur gear):
@@ -592,10 +609,10 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     loc = TopLoc_Location()
     tol = KERNEL_TOLERANCE
     canon = [_side(c, axial, length) for c in curves]
-    sides = []  # per face of the first half: (surface, bottom curve, top curve, cap curve, its range)
-    for i in range(len(joints)):
-        tooth, j = divmod(i, n)
-        sides.append((*canon[j].instance(tooth * profile.pitch_angle, grid, math.atan2(s_top, c_top)), curves[j].range))
+    angles = profile.pitch_angle * np.arange(profile.teeth)
+    per_tooth = [c.instances(angles, grid, math.atan2(s_top, c_top)) for c in canon]
+    # per face of the first half: (surface, bottom curve, top curve, its curves on the caps, its range)
+    sides = [(*per_tooth[j][tooth], curves[j].range) for tooth, j in (divmod(i, n) for i in range(len(joints)))]
 
     def half(surfaces, bottoms, tops, helix_curves, vb, vt, reverse):
         """One half's side faces: ``bottoms``/``tops`` the 3-D curves of the edges at parameter
