@@ -16,22 +16,22 @@ How: every tooth has its own face for each flank, each fillet, the tip land and 
 (when the rack's tip line cuts a root circle), so a CAM or inspection program can pick a flank
 by itself. The lands are exact cylinders (for helical gears too: their edges are helices on
 them), the ends planes, and the flanks and fillets B-spline surfaces with as few poles as their
-accuracy needs:
+accuracy needs: each profile segment is one clamped degree-7 B-spline on uniform knots,
+parametrised by arc length, exact at its ends with the exact end tangents and least-squares
+fitted in between, with as few spans as keep it within the tolerance of the exact curve
+(:mod:`geargen.profile.bspline_fit`; an involute takes one to four spans, 8-15 poles, a fillet
+9-12). Along the axis a spur gear's surfaces are linear (two rows of poles); a helical gear's are
+the profile poles turned by a fitted rotation ``(cos kz, sin kz)``: one span of the lowest degree
+within 0.02 nm at the tip over the whole face (5-8 rows), so the helicoid's error is that of the
+profile fit plus at most 0.02 nm. A helical gear's poles inside a face are rounded to a 1e-8 mm
+grid (:func:`_grid`: its STEP file 4-6 % smaller).
 
-- a profile segment (a fillet; a spur gear's involute) is one clamped degree-7 B-spline on
-  uniform knots, parametrised by arc length, exact at its ends with the exact end tangents and
-  least-squares fitted in between, with as few spans as keep it within the tolerance of the
-  exact curve (:mod:`geargen.profile.bspline_fit`; an involute takes one to four spans, 8-11
-  poles, a fillet 9-12). Along the axis a spur gear's surfaces are linear (two rows of poles); a
-  helical gear's fillets are the profile poles turned by a fitted rotation ``(cos kz, sin kz)``:
-  one span of the lowest degree within 0.02 nm at the tip over the whole face, 5-8 rows;
-- a helical gear's involute flank is ruled (:class:`_RuledFlank`): the involute helicoid is swept
-  by the lines tangent to the base helix, so its surface is two rows of poles (the tangents at
-  the flank's start and tip circles, along the base helix: the fitted rotation again), 8-10 x 2
-  poles within 0.001 nm of the exact helicoid everywhere; its end edges are the surface's own
-  curves along the z = 0 and z = b lines of its parameter plane. Against the 8 x 15 poles of the
-  profile turned row by row, the 21-tooth bench gear's flank has 9 x 2, its STEP file is 27 %
-  smaller and OCCT meshes the flank at 1 um into 1 400 triangles instead of 3 300.
+The flanks are not the ruled surfaces the involute helicoid also is (swept by the base helix's
+tangents: two rows of poles, 8-10 x 2 against 8-15 x 5-8, and OCCT meshes them in 1 400 triangles
+instead of 3 300 at 1 um): a ruled surface's parameter lines are its rulings, which cross the end
+planes, so the face's parameter box reaches far beyond it (on the 30-tooth bench gear 43 mm above
+and below a 20 mm face) and every fast bounding box of the part (BRepBndLib.Add: the poles over the
+face's parameter box, what OCCT readers and geargen's contact checks use) with it.
 
 Tooth 0's curves and surfaces are built once and turned for the other teeth; neighbouring faces
 share their boundary curves, so the solid is put together edge by edge (BRep_Builder) without
@@ -139,45 +139,10 @@ class _Curve:
     fit: SplineFit | None = None
     radius: float = 0.0
     angles: tuple[float, float] = (0.0, 0.0)
-    ruled: "_RuledFlank | None" = None
 
     @property
     def range(self) -> tuple[float, float]:
-        if self.ruled is not None:
-            return (0.0, self.ruled.length)
         return (0.0, self.fit.length) if self.fit is not None else self.angles
-
-
-@dataclass(frozen=True)
-class _RuledFlank:
-    """A helical involute flank as the ruled surface it is: the involute helicoid is swept by the
-    lines tangent to the base helix. The ruling of angle phi (the base-circle point it touches)
-    through the z = 0 flank point of roll parameter t (``phi = theta0 + sigma t``) holds the points
-    ``(R(phi) (r_b, lambda), (phi - theta0 - sigma t) / k)`` with ``lambda = -sigma r_b t``: linear
-    in t, so two rows of poles - the base-helix tangents at the flank's start and tip radii, each a
-    circle turned by the fitted rotation ``R(phi)`` - give the surface (u = phi, v = tau t, tau = +-1
-    so that the surface's own normal points out of the tooth). ``bottom`` is the surface along the
-    z = 0 line of its parameter plane (a spline of one degree more, exactly on the surface), over
-    ``s`` in [0, length] with t linear in s; ``max_error`` bounds the surface's distance from the
-    exact helicoid (the rotation's error times the largest radius)."""
-
-    poles: np.ndarray  # (n, 2, 3): along u, the two rows v = v_lo, v_hi
-    knots: np.ndarray
-    mults: tuple[int, ...]
-    degree: int
-    v_range: tuple[float, float]
-    theta0: float
-    sigma: float
-    tau: float
-    rate: float
-    t_ends: tuple[float, float]  # roll parameter at the flank's start and end (traversal order)
-    length: float
-    bottom: tuple  # (poles (m, 3), knots, mults, degree)
-    max_error: float
-
-    def uv(self, t: float, z: float) -> tuple[float, float]:
-        """Surface parameters of the flank point of roll parameter t in the section at height z."""
-        return self.theta0 + self.sigma * t + self.rate * z, self.tau * t
 
 
 @dataclass(frozen=True)
@@ -208,19 +173,14 @@ def default_tolerance(spec: GearSpec) -> float:
     return DEFAULT_TOLERANCE * min(1.0, spec.module)
 
 
-def _tooth_curves(profile: ToothProfile, tolerance: float, ruled: tuple[float, float, float] | None = None
-                  ) -> list[_Curve]:
+def _tooth_curves(profile: ToothProfile, tolerance: float) -> list[_Curve]:
     """Tooth 0's pitch sector, counter-clockwise: lower fillet, lower flank, tip land, upper
     flank, upper fillet[, root land to tooth 1]; one curve (and face) each. Fitted neighbours
-    share their joint point bit for bit. ``ruled`` (twist rate, face width, tolerance): the
-    involutes of a helical gear become ruled flanks (:class:`_RuledFlank`) within that tolerance."""
+    share their joint point bit for bit."""
     out: list[_Curve] = []
     for s in profile.pitch_segments():
         if s.kind in ("tip_arc", "root_arc"):
             out.append(_Curve(s.kind, s.side, s.end, radius=s.curve.radius, angles=(s.t0, s.t1)))
-        elif s.kind == "involute" and ruled is not None:
-            rate, length, tol = ruled
-            out.append(_Curve(s.kind, s.side, s.end, ruled=_ruled_flank(s, rate, length, tol, profile.spec.name)))
         else:
             try:
                 fit = fit_segment(s, tolerance, by_length=True)
@@ -244,80 +204,6 @@ def _axial(spec: GearSpec, tolerance: float) -> _Axial:
         return _Axial(1, np.array([0.0, length]), (2, 2), np.ones(2), np.zeros(2), np.array([0.0, length]), 0.0)
     fit = fit_rotation(twist_rate(spec), length, tolerance, degree=None)
     return _Axial(fit.degree, fit.knots, fit.mults, fit.poles[:, 0], fit.poles[:, 1], greville(fit), fit.max_error)
-
-
-def _ruled_flank(segment, rate: float, length: float, tolerance: float, name: str) -> _RuledFlank:
-    """The ruled surface of a helical involute flank (:class:`_RuledFlank`), within ``tolerance``
-    (mm) of the exact helicoid over the whole parameter box."""
-    involute = segment.curve
-    rb, psi = involute.base_radius, involute.base_half_angle
-    sigma = 1.0 if segment.mirrored else -1.0
-    theta0 = segment.rotation + (-psi if segment.mirrored else psi)
-    t0, t1 = float(segment.t0), float(segment.t1)
-    # the section's flank point of roll t is R(theta0 + sigma t) (r_b, -sigma r_b t): check it is
-    for t in (t0, t1):
-        a, lam = theta0 + sigma * t, -sigma * rb * t
-        if math.dist((rb * math.cos(a) - lam * math.sin(a), rb * math.sin(a) + lam * math.cos(a)),
-                     segment.point(t)[0]) > 1e-9 * rb:
-            raise BuildError(f"{name}: the {segment.side} flank is not the involute it is built as")
-    at_zero = (theta0 + sigma * t0, theta0 + sigma * t1)
-    lo = min(at_zero) + min(0.0, rate * length)
-    hi = max(at_zero) + max(0.0, rate * length)
-    reach = rb * math.hypot(1.0, max(abs(t0), abs(t1)))
-    fit = fit_rotation(1.0, hi - lo, tolerance / reach, degree=None)
-    c0, s0 = math.cos(lo), math.sin(lo)
-    cos_u = c0 * fit.poles[:, 0] - s0 * fit.poles[:, 1]
-    sin_u = s0 * fit.poles[:, 0] + c0 * fit.poles[:, 1]
-    knots = fit.knots + lo
-    heights = lo + greville(fit)
-
-    def row(t):
-        lam = -sigma * rb * t
-        return np.column_stack([cos_u * rb - sin_u * lam, sin_u * rb + cos_u * lam,
-                                (heights - theta0 - sigma * t) / rate])
-
-    # tau: the surface's own normal S_u x S_v must point out of the tooth (the outline's traversal
-    # is counter-clockwise: out is its tangent turned clockwise)
-    t_mid = 0.5 * (t0 + t1)
-    a, lam = theta0 + sigma * t_mid, -sigma * rb * t_mid
-    ca, sa = math.cos(a), math.sin(a)
-    s_u = np.array([-sa * rb - ca * lam, ca * rb - sa * lam, 1.0 / rate])
-    s_t = np.array([sa * sigma * rb, -ca * sigma * rb, -sigma / rate])
-    tangent = segment.tangent(t_mid)[0]
-    tau = 1.0 if float(np.cross(s_u, s_t) @ np.array([tangent[1], -tangent[0], 0.0])) > 0 else -1.0
-    v_lo, v_hi = sorted((tau * t0, tau * t1))
-    poles = np.stack([row(tau * v_lo), row(tau * v_hi)], axis=1)
-    arc = rb * abs(t1 * t1 - t0 * t0) / 2  # the parameter s of the flank's edges runs over its arc length
-    bottom = _compose_on_line(poles, knots, fit.mults, fit.degree, (v_lo, v_hi), at_zero, (tau * t0, tau * t1), arc)
-    return _RuledFlank(poles, knots, fit.mults, fit.degree, (v_lo, v_hi), theta0, sigma, tau, rate, (t0, t1), arc,
-                       bottom, fit.max_error * reach)
-
-
-def _compose_on_line(poles, knots, mults, degree, v_range, u_ends, v_ends, length):
-    """The curve ``S(u(s), v(s))``, s in [0, length], of the surface with poles ``(n, 2, 3)``
-    (degree ``degree`` on ``knots`` in u, linear in v over ``v_range``) along the straight line
-    from (u, v) = (u_ends[0], v_ends[0]) to (u_ends[1], v_ends[1]): a spline of degree + 1 whose
-    breaks are the knots the line crosses, exactly (collocation at its Greville abscissae, where it
-    is reproduced to rounding). Returns (poles (m, 3), distinct knots, multiplicities, degree)."""
-    from scipy.interpolate import BSpline
-    full = np.repeat(knots, mults)
-    rows = [BSpline(full, poles[:, j, :], degree) for j in (0, 1)]
-    (u0, u1), (v0, v1) = u_ends, v_ends
-    w0, w1 = [(v - v_range[0]) / (v_range[1] - v_range[0]) for v in (v0, v1)]
-    p = degree + 1
-    lo, hi = min(u0, u1), max(u0, u1)
-    inner = [k for k in knots[1:-1] if lo + 1e-12 * (hi - lo) < k < hi - 1e-12 * (hi - lo)]
-    breaks = sorted(length * (k - u0) / (u1 - u0) for k in inner)
-    s_knots = np.array([0.0, *breaks, length])
-    s_mults = (p + 1,) + (2,) * len(breaks) + (p + 1,)  # C^(degree - 1) at the knots, as the surface
-    t_full = np.repeat(s_knots, s_mults)
-    n = len(t_full) - p - 1
-    s = np.clip([t_full[i + 1:i + p + 1].mean() for i in range(n)], 0.0, length)  # the mean may round past the end
-    f = s / length
-    u, w = u0 + (u1 - u0) * f, w0 + (w1 - w0) * f
-    points = (1.0 - w)[:, None] * rows[0](u) + w[:, None] * rows[1](u)
-    design = BSpline.design_matrix(s, t_full, p).toarray()
-    return np.linalg.solve(design, points), s_knots, s_mults, p
 
 
 def _joints(profile: ToothProfile, ends: np.ndarray) -> np.ndarray:
@@ -446,46 +332,50 @@ def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
 
 def _turned(points: np.ndarray, angle, grid: float = 0.0, interior: int | None = None) -> np.ndarray:
     """``points`` (..., 2 or 3) turned counter-clockwise by ``angle`` about the axis (an array of
-    angles: one copy each, stacked first). With ``grid`` (:func:`_grid`), the points strictly inside
-    along axis ``interior`` of ``points`` (the poles that no neighbouring face's edge passes through)
-    are then put on the grid; the end ones stay exact, so neighbouring faces still meet edge for edge."""
+    angles: one copy each, stacked first), then put on the ``grid`` (:func:`_grid`). With
+    ``interior``, the points at both ends along that axis of ``points`` (the poles an edge passes
+    through, which neighbouring faces share) go on a grid ten times finer, as the vertices and
+    helices do: they stay within a tenth of the edge tolerance of the exact land cylinders."""
     angle = np.asarray(angle, dtype=float)
     c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
     flat = points.reshape(-1, points.shape[-1])
     out = np.broadcast_to(flat, angle.shape + flat.shape).copy()
     out[..., 0], out[..., 1] = c * flat[:, 0] - s * flat[:, 1], s * flat[:, 0] + c * flat[:, 1]
     out = out.reshape(angle.shape + points.shape)
-    if grid and interior is not None:
-        inside = [slice(None)] * out.ndim
-        inside[angle.ndim + interior] = slice(1, -1)
+    if grid and interior is None:
+        out = np.round(out / grid) * grid
+    elif grid:
+        ends, inside = [slice(None)] * out.ndim, [slice(None)] * out.ndim
+        ends[angle.ndim + interior], inside[angle.ndim + interior] = [0, -1], slice(1, -1)
+        out[tuple(ends)] = np.round(out[tuple(ends)] / (0.1 * grid)) * (0.1 * grid)
         out[tuple(inside)] = np.round(out[tuple(inside)] / grid) * grid
     return out
 
 
 def _grid(spec: GearSpec, tolerance: float) -> float:
     """The spacing (mm) the spline poles inside a face are rounded to: the largest power of ten in
-    the file's length unit (mm or inch) within 0.035 nm and 0.057 x ``tolerance``, so rounding
-    moves a surface by at most 0.05 x the tolerance. A STEP file writes each coordinate to 12
-    decimals, trailing zeros dropped: on the grid 4 to 6 digits fewer (the 60-tooth helical ring's
-    file 6 % smaller). The poles an edge passes through stay exact (:func:`_turned`)."""
+    the file's length unit (mm or inch) within 0.057 x ``tolerance`` (1e-7 mm at the default 2 nm),
+    so rounding moves a surface by at most 0.05 x the tolerance (a B-spline stays within its
+    poles' moves). Only the poles no edge passes through are rounded (:func:`_turned`), so the
+    faces still meet edge for edge. A STEP file writes each coordinate to 12 decimals, trailing
+    zeros dropped: on the grid 5 digits fewer."""
     unit = 25.4 if spec.length_unit == "in" else 1.0
-    return unit * 10.0 ** math.floor(math.log10(min(3.5e-8, 0.057 * tolerance) / unit))
+    return unit * 10.0 ** math.floor(math.log10(0.057 * tolerance / unit))
 
 
 @dataclass(frozen=True)
 class _Side:
     """Tooth 0's geometry of one side face and how to turn it to another tooth.
 
-    A spline face (fillet, flank): ``surface`` (poles ``(n, m, 3)``, u basis, v basis, ruled) and
-    its ``bottom``/``top`` edge curves (poles ``(k, 3)`` - None: the surface's first and last rows -,
-    basis); a land: ``land`` (cylinder, bottom circle, top circle, cap circles) of tooth 0.
+    A spline face (fillet, flank): ``surface`` (poles ``(n, m, 3)``, u basis, v basis), whose first
+    and last rows of poles are its bottom and top edges' curves, ``basis`` their u basis; a land:
+    ``land`` (cylinder, bottom circle, top circle, cap circles) of tooth 0.
     ``pcurves``: the edges' curves on the face (bottom, top, start, end), the same for every tooth.
     """
 
     pcurves: tuple
     surface: tuple | None = None
-    bottom: tuple | None = None
-    top: tuple | None = None
+    basis: tuple | None = None
     land: tuple | None = None
 
     def instances(self, angles: np.ndarray, grid: float, twist: float) -> list[tuple]:
@@ -505,19 +395,14 @@ class _Side:
 
     def built(self, twist: float, angles: np.ndarray, grid: float) -> list[tuple]:
         """The spline face's kernel objects turned by each of ``angles`` (see :meth:`instances`)."""
-        poles, (uk, um, ud), (vk, vm, vd), ruled = self.surface
-        # a ruled flank's poles all lie on its edges with the fillet or the land: exact; a fillet's
-        # edge curves are its first and last rows of poles: the same numbers
-        poles = _turned(poles, angles) if ruled else _turned(poles, angles, grid, interior=0)
-        if ruled:
-            bottoms = _turned(self.bottom[0], angles, grid, interior=0)
-            tops = _turned(self.top[0], angles, grid, interior=0)
-        else:
-            bottoms, tops = poles[:, :, 0, :], poles[:, :, -1, :]
+        poles, (uk, um, ud), (vk, vm, vd) = self.surface
+        # the poles the face's edges pass through (its first and last columns) stay exact; its edge
+        # curves at the ends are its first and last rows of poles: the same numbers
+        poles = _turned(poles, angles, grid, interior=0)
+        bottoms, tops = poles[:, :, 0, :], poles[:, :, -1, :]
         tops_xy = _turned(tops[..., :2], -twist) if twist else tops[..., :2]  # in the top plane's frame
-        basis = self.bottom[1:]
-        return [(_bspline_surface_of(p, uk, um, ud, vk, vm, vd), _bspline3d(b, *basis), _bspline3d(t, *basis),
-                 (_bspline2d(b[:, :2], *basis), _bspline2d(t_xy, *basis)))
+        return [(_bspline_surface_of(p, uk, um, ud, vk, vm, vd), _bspline3d(b, *self.basis),
+                 _bspline3d(t, *self.basis), (_bspline2d(b[:, :2], *self.basis), _bspline2d(t_xy, *self.basis)))
                 for p, b, t, t_xy in zip(poles, bottoms, tops, tops_xy)]
 
 
@@ -525,21 +410,6 @@ def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
     """Tooth 0's geometry of one curve (:class:`_Side`)."""
     twist = math.atan2(axial.s[-1], axial.c[-1])
     c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
-    if curve.ruled is not None:
-        r = curve.ruled
-        poles, knots, mults, degree = r.bottom
-        zero = np.column_stack([poles[:, :2], np.zeros(len(poles))])
-        # the top edge is the bottom one turned by the twist (exactly, as the caps' frames are):
-        # on the surface within twice its error
-        top = np.column_stack([c_top * poles[:, 0] - s_top * poles[:, 1], s_top * poles[:, 0] + c_top * poles[:, 1],
-                               np.full(len(poles), length)])
-        (ta, tb), span = r.t_ends, [0.0, r.length]
-        pcurves = (_bspline2d(np.array([r.uv(ta, 0.0), r.uv(tb, 0.0)]), span, [2, 2], 1),
-                   _bspline2d(np.array([r.uv(ta, length), r.uv(tb, length)]), span, [2, 2], 1),
-                   _bspline2d(np.array([r.uv(ta, 0.0), r.uv(ta, length)]), [0.0, length], [2, 2], 1),
-                   _bspline2d(np.array([r.uv(tb, 0.0), r.uv(tb, length)]), [0.0, length], [2, 2], 1))
-        return _Side(pcurves, (r.poles, (r.knots, r.mults, r.degree), (r.v_range, (2, 2), 1), True),
-                     (zero, knots, mults, degree), (top, knots, mults, degree))
     if curve.fit is not None:
         fit = curve.fit
         poles = axial.rows(fit.poles)
@@ -547,9 +417,7 @@ def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
         pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(0.0, length, 1.0, 0.0),
                    _line2d(u0, 0.0, 0.0, 1.0), _line2d(u1, 0.0, 0.0, 1.0))
         basis = (fit.knots, fit.mults, fit.degree)
-        # the edges' curves are the surface's first and last rows of poles (the same numbers)
-        return _Side(pcurves, (poles, basis, (axial.knots, axial.mults, axial.degree), False), (None, *basis),
-                     (None, *basis))
+        return _Side(pcurves, (poles, basis, (axial.knots, axial.mults, axial.degree)), basis)
     # a land: the exact cylinder, circles at both ends, helices (lines u = angle + twist z / L)
     r = curve.radius
     surf = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
@@ -566,12 +434,11 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
                   mirror: tuple[float, float] | None = None) -> tuple[TopoDS_Shape, list[ToothFace]]:
     """The gear body (teeth, bore, keyway; no hub) put together face by face, and tooth 0's faces.
 
-    Side faces: one per curve of :func:`_tooth_curves` per tooth; a fillet is the profile spline's
-    poles turned row by row by the axial basis (:class:`_Axial`), a land an exact cylinder, a flank
-    the profile spline's poles turned (spur) or the ruled surface of :class:`_RuledFlank`
-    (helical). 90 % of ``tolerance`` goes to the profile fit, 5 % to the rotation (at most 0.02 nm,
+    Side faces: one per curve of :func:`_tooth_curves` per tooth; a flank or fillet is the
+    profile spline's poles turned row by row by the axial basis (:class:`_Axial`), a land an exact
+    cylinder. 90 % of ``tolerance`` goes to the profile fit, 5 % to the rotation (at most 0.02 nm,
     a fifth of the edge tolerance, so helices stay on the land cylinders) and 5 % to the grid the
-    poles inside a face are rounded to (:func:`_grid`).
+    poles inside a helical gear's face are rounded to (:func:`_grid`).
 
     ``mirror`` (gap, groove radius): a double-helical gear whose first half is ``spec`` (z in [0, h]):
     the second half is the first's mirror image in the plane z = h + gap / 2, every face and edge
@@ -581,30 +448,37 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     """
     builder = BRep_Builder()
     length = spec.face_width
-    # a ruled flank's edges are its own curves, the helices the axial basis's: each within a fifth of
-    # the edge tolerance of the exact surface (so within 0.4 of it of each other), and within 5 % of
-    # the stated tolerance (the profile fit has 90 %, the grid of the poles the last 5 %: _grid)
-    exact = min(0.05 * tolerance, 0.2 * KERNEL_TOLERANCE)
-    # a ruled flank has only two rows: its rotation to 0.001 nm costs one or two poles along it
-    ruled = (twist_rate(spec), length, min(0.05 * tolerance, 0.01 * KERNEL_TOLERANCE)) if spec.is_helical else None
-    curves = _tooth_curves(profile, 0.9 * tolerance, ruled)
+    curves = _tooth_curves(profile, 0.9 * tolerance)
     reach = max(float(np.max(np.hypot(*c.fit.poles.T))) for c in curves if c.fit is not None)
     reach = max(reach, profile.tip_radius)
-    axial = _axial(spec, exact / reach)
+    # the helices (the axial basis's) within a fifth of the edge tolerance of the exact ones on the
+    # land cylinders, and within 5 % of the stated tolerance (the profile fit has 90 %, the grid of
+    # the poles the last 5 %: _grid)
+    axial = _axial(spec, min(0.05 * tolerance, 0.2 * KERNEL_TOLERANCE) / reach)
     c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     n = len(curves)
     grid = _grid(spec, tolerance) if spec.is_helical else 0.0
     joints = _joints(profile, np.array([c.end for c in curves]))
 
     # vertices at both ends of every joint and the joint's helix (straight line on a spur gear):
-    # tooth 0's built once, the others turned copies
-    helices = [_bspline3d(axial.rows(c.end[None, :])[0], axial.knots, axial.mults, axial.degree) for c in curves]
-    bottom_v, top_v, helix_c = [], [], []
-    for i, (x, y) in enumerate(joints):
-        tooth, j = divmod(i, n)
-        bottom_v.append(_vertex(builder, x, y, 0.0))
-        top_v.append(_vertex(builder, c_top * x - s_top * y, s_top * x + c_top * y, length))
-        helix_c.append(helices[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else helices[j])
+    # a spur gear's tooth 0 built once, the others turned copies
+    helices = [axial.rows(c.end[None, :])[0] for c in curves]
+    if grid:  # a helical gear: each tooth's helices turned and on the fine grid (_turned), as the faces' edges
+        turned = [_turned(h, profile.pitch_angle * np.arange(profile.teeth), 0.1 * grid) for h in helices]
+        helix_c = [_bspline3d(turned[j][tooth], axial.knots, axial.mults, axial.degree)
+                   for tooth, j in (divmod(i, n) for i in range(len(joints)))]
+        bottom, top = (_turned(np.column_stack([joints, np.full(len(joints), z)]), 0.0, 0.1 * grid)
+                       for z in (0.0, length))
+        top = _turned(top, math.atan2(s_top, c_top), 0.1 * grid)
+    else:
+        base = [_bspline3d(h, axial.knots, axial.mults, axial.degree) for h in helices]
+        helix_c = [base[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else base[j]
+                   for tooth, j in (divmod(i, n) for i in range(len(joints)))]
+        bottom = np.column_stack([joints, np.zeros(len(joints))])
+        top = np.column_stack([c_top * joints[:, 0] - s_top * joints[:, 1], s_top * joints[:, 0] + c_top * joints[:, 1],
+                               np.full(len(joints), length)])
+    bottom_v = [_vertex(builder, *p) for p in bottom.tolist()]
+    top_v = [_vertex(builder, *p) for p in top.tolist()]
 
     loc = TopLoc_Location()
     tol = KERNEL_TOLERANCE
@@ -709,8 +583,7 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     solid = TopoDS_Solid()
     builder.MakeSolid(solid)
     builder.Add(solid, shell)
-    info = [ToothFace(c.kind, c.side, (len(c.ruled.poles), 2), c.ruled.max_error) if c.ruled is not None else
-            ToothFace(c.kind, c.side, (len(c.fit.poles), len(axial.z)) if c.fit is not None else (0, 0),
+    info = [ToothFace(c.kind, c.side, (len(c.fit.poles), len(axial.z)) if c.fit is not None else (0, 0),
                       c.fit.max_error if c.fit is not None else 0.0) for c in curves]
     return solid, info
 

@@ -267,37 +267,3 @@ def test_step_read_back_keeps_the_faces_and_the_volume(helical21, tmp_path):
         (4 * z, 2 * z, 2)
     assert default_volume(shape) == pytest.approx(expected_volume(helical21.spec, helical21.profile), rel=1e-6)
 
-
-def test_helical_flanks_are_ruled_by_the_base_helix_tangents(helical21):
-    """The involute helicoid is swept by the lines tangent to the base helix, and the builder makes
-    each helical flank that ruled surface: a B-spline of two rows of poles (degree 1 across), whose
-    lines (u fixed) are tangent to the base cylinder (their distance from the axis is r_b) at the
-    base helix angle (tan beta_b = tan beta r_b / r). Every point of the surface over its whole
-    parameter box, not only the face, lies on the exact involute helicoid within 1e-8 mm: the
-    rotation is fitted within 0.001 nm, rounding to 1e-16 of the 10 mm radii leaves 0.01 nm."""
-    p, spec = helical21.profile, helical21.spec
-    beta_b = math.atan(math.tan(spec.helix_angle) * p.base_radius / p.reference_radius)
-    flanks = 0
-    for face in faces_of(helical21.shape):
-        ad = BRepAdaptor_Surface(face)
-        if ad.GetType() != GeomAbs_BSplineSurface:
-            continue
-        surface = ad.BSpline()
-        if surface.NbVPoles() != 2:
-            continue  # a fillet: the profile's poles turned row by row
-        flanks += 1
-        assert surface.VDegree() == 1
-        u0, u1, v0, v1 = surface.Bounds()
-        pts = []
-        for u in np.linspace(u0, u1, 12):
-            a, b = surface.Value(float(u), v0), surface.Value(float(u), v1)
-            d = np.array([b.X() - a.X(), b.Y() - a.Y(), b.Z() - a.Z()])
-            assert abs(a.X() * d[1] - a.Y() * d[0]) / math.hypot(d[0], d[1]) == pytest.approx(p.base_radius, abs=1e-8)
-            assert math.atan2(math.hypot(d[0], d[1]), abs(d[2])) == pytest.approx(beta_b, abs=1e-9)
-            for v in np.linspace(v0, v1, 12):
-                q = surface.Value(float(u), float(v))
-                pts.append((q.X(), q.Y(), q.Z()))
-        pts = np.array(pts)
-        dev = [involute_deviation(p, float(z), np.array([xy]))[0] for *xy, z in pts.tolist()]
-        assert np.max(np.abs(dev)) <= 1e-8
-    assert flanks == 2 * spec.teeth
