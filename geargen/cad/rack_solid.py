@@ -25,10 +25,8 @@ from dataclasses import dataclass
 
 import numpy as np
 from OCP.BRep import BRep_Builder
-from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
-from OCP.GC import GC_MakeArcOfCircle
-from OCP.Geom import Geom_CylindricalSurface, Geom_Ellipse, Geom_Line, Geom_Plane
+from OCP.Geom import Geom_Circle, Geom_CylindricalSurface, Geom_Ellipse, Geom_Line, Geom_Plane
 from OCP.Geom2d import Geom2d_Line
 from OCP.GeomAPI import GeomAPI
 from OCP.gp import gp_Ax2, gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec, gp_Vec2d
@@ -93,39 +91,51 @@ def _shift(seg, dx):
     return ("arc", (seg[1][0] + dx, seg[1][1]), (seg[2][0] + dx, seg[2][1]), (seg[3][0] + dx, seg[3][1]), seg[4])
 
 
-def _section_face(spec: RackSpec, segments: list[tuple], beta: float, s0: float):
-    """The planar face of the normal section through ``s0`` along the tooth direction: 2D
-    ``(x_n, y)`` maps to ``x_n (cos b, 0, -sin b) + y (0, 1, 0) + s0 (sin b, 0, cos b)``."""
-    cb, sb = math.cos(beta), math.sin(beta)
-
-    def P(xn, y):
-        return gp_Pnt(xn * cb + s0 * sb, y, -xn * sb + s0 * cb)
-
-    wire = BRepBuilderAPI_MakeWire()
+def _section_face(spec: RackSpec, segments: list[tuple]):
+    """The spur rack's section at z = 0 as a planar face (its normal -z, the outward one of the
+    rack's end there), put together edge by edge (BRep_Builder): the top of the section from
+    ``segments`` (lines and arcs, left to right), then down the right end, back along the back
+    face, up the left end; each edge a line or the arc's exact circle."""
+    builder = BRep_Builder()
     x_left, x_right = segments[0][1][0], segments[-1][2][0]
     closing = [("line", (x_right, segments[-1][2][1]), (x_right, 0.0)), ("line", (x_right, 0.0), (x_left, 0.0)),
                ("line", (x_left, 0.0), (x_left, segments[0][1][1]))]
-    for seg in segments + closing:
-        a, b = P(*seg[1]), P(*seg[2])
+    loop = segments + closing
+    vertices = []
+    for seg in loop:
+        v = TopoDS_Vertex()
+        builder.MakeVertex(v, gp_Pnt(seg[1][0], seg[1][1], 0.0), KERNEL_TOLERANCE)
+        vertices.append(v)
+    # clockwise seen from +z (the teeth on top, left to right): counter-clockwise about -z
+    plane = Geom_Plane(gp_Ax3(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, 0.0, -1.0), gp_Dir(1.0, 0.0, 0.0)))
+    pln = plane.Pln()
+    loc = TopLoc_Location()
+    wire = TopoDS_Wire()
+    builder.MakeWire(wire)
+    for k, seg in enumerate(loop):
+        v0, v1 = vertices[k], vertices[(k + 1) % len(loop)]
+        (x0, y0), (x1, y1) = seg[1], seg[2]
         if seg[0] == "line":
-            edge = BRepBuilderAPI_MakeEdge(a, b).Edge()
-        else:  # through the arc's middle point (the arcs are less than a half circle)
-            (x0, y0), (x1, y1), (cx, cy), r = seg[1], seg[2], seg[3], seg[4]
+            length = math.hypot(x1 - x0, y1 - y0)
+            curve = Geom_Line(gp_Pnt(x0, y0, 0.0), gp_Dir((x1 - x0) / length, (y1 - y0) / length, 0.0))
+            edge, forward = _make_edge(builder, curve, v0, v1, 0.0, length), True
+        else:  # the arc (less than a half circle) on its circle, angles counter-clockwise about +z
+            (cx, cy), r = seg[3], seg[4]
             a0, a1 = math.atan2(y0 - cy, x0 - cx), math.atan2(y1 - cy, x1 - cx)
-            if a1 - a0 > math.pi:
-                a1 -= 2 * math.pi
-            elif a0 - a1 > math.pi:
-                a1 += 2 * math.pi
-            am = 0.5 * (a0 + a1)
-            edge = BRepBuilderAPI_MakeEdge(GC_MakeArcOfCircle(a, P(cx + r * math.cos(am), cy + r * math.sin(am)),
-                                                              b).Value()).Edge()
-        wire.Add(edge)
-    if not wire.IsDone():
-        raise BuildError(f"rack {spec.name}: the section outline does not close")
-    face = BRepBuilderAPI_MakeFace(wire.Wire(), True)
-    if not face.IsDone():
-        raise BuildError(f"rack {spec.name}: no planar face from the section outline")
-    return face.Face()
+            if abs(a1 - a0) > math.pi:
+                a1 += -2 * math.pi if a1 > a0 else 2 * math.pi
+            curve = Geom_Circle(gp_Ax2(gp_Pnt(cx, cy, 0.0), gp_Dir(0.0, 0.0, 1.0), gp_Dir(1.0, 0.0, 0.0)), r)
+            forward = a0 < a1
+            lo, hi = min(a0, a1), max(a0, a1)
+            shift = 2 * math.pi * math.floor(lo / (2 * math.pi))  # the circle's parameter runs over [0, 2 pi)
+            edge = _make_edge(builder, curve, v0 if forward else v1, v1 if forward else v0, lo - shift, hi - shift)
+        builder.UpdateEdge(edge, GeomAPI.To2d_s(curve, pln), plane, loc, KERNEL_TOLERANCE)
+        builder.Add(wire, edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
+    wire.Closed(True)
+    face = TopoDS_Face()
+    builder.MakeFace(face, plane, loc, KERNEL_TOLERANCE)
+    builder.Add(face, wire)
+    return face
 
 
 def build_rack(spec: RackSpec, check: bool = False) -> RackSolid:
@@ -133,7 +143,7 @@ def build_rack(spec: RackSpec, check: bool = False) -> RackSolid:
     outline = rack_outline(spec)
     if spec.signed_helix_angle == 0.0:
         segments = section_segments(spec, outline, 0, spec.teeth)
-        shape = BRepPrimAPI_MakePrism(_section_face(spec, segments, 0.0, 0.0), gp_Vec(0, 0, spec.face_width)).Shape()
+        shape = BRepPrimAPI_MakePrism(_section_face(spec, segments), gp_Vec(0, 0, spec.face_width)).Shape()
     else:
         shape = _HelicalRack(spec, outline).solid()
     solid = RackSolid(shape=shape, name=spec.name, spec=spec, outline=outline, length_unit=spec.length_unit)
