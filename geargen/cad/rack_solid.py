@@ -157,6 +157,10 @@ def build_rack(spec: RackSpec, check: bool = False) -> RackSolid:
 # ---------------------------------------------------------------- the helical rack, face by face
 
 
+def _dot(a, b) -> float:
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
 @dataclass(frozen=True)
 class _WallPoint:
     """A point of the teeth's top boundary on the box's walls (plan view ``x``, ``z``): a corner of
@@ -212,7 +216,7 @@ class _HelicalRack:
         self.segments = section_segments(spec, outline, math.floor(min(xn) / p) - 1, math.ceil(max(xn) / p) + 1)
         self.joints = [seg[1] for seg in self.segments[1:]]  # joint j: where segment j meets segment j + 1
         self.starts = [seg[1][0] for seg in self.segments]
-        self.teeth_dir = np.array([self.sb, 0.0, self.cb])
+        self.teeth_dir = (self.sb, 0.0, self.cb)
         self.pcurve_cache: dict[tuple, object] = {}
 
     # -- the section and the plan view
@@ -236,13 +240,13 @@ class _HelicalRack:
         above = 0.5 * (y0 + y1) > cy  # a tip arc lies above its centre, a root fillet below
         return cy + (1.0 if above else -1.0) * math.sqrt(max(r * r - (xn - cx) ** 2, 0.0))
 
-    def _wall_map(self, wall: int) -> tuple[np.ndarray, np.ndarray]:
+    def _wall_map(self, wall: int) -> tuple[tuple, tuple]:
         """(origin, e): the point (xn, y) of the section, carried along the teeth into the wall, is
-        ``origin + xn e + (0, y, 0)``."""
+        ``origin + xn e + (0, y, 0)`` (plain floats: a few hundred small vectors)."""
         cb, sb, L, b = self.cb, self.sb, self.length, self.width
         if wall in (0, 2):
-            return np.array([b * sb / cb if wall == 2 else 0.0, 0.0, b if wall == 2 else 0.0]), np.array([1 / cb, 0, 0])
-        return np.array([L if wall == 1 else 0.0, 0.0, L * cb / sb if wall == 1 else 0.0]), np.array([0, 0, -1 / sb])
+            return (b * sb / cb if wall == 2 else 0.0, 0.0, b if wall == 2 else 0.0), (1 / cb, 0.0, 0.0)
+        return (L if wall == 1 else 0.0, 0.0, L * cb / sb if wall == 1 else 0.0), (0.0, 0.0, -1 / sb)
 
     def _perimeter(self) -> list[_WallPoint]:
         """Corners and joint crossings around the box's top, in order (a joint through a corner is
@@ -262,16 +266,15 @@ class _HelicalRack:
 
     # -- kernel objects
 
-    def _vertex(self, p: np.ndarray) -> TopoDS_Vertex:
+    def _vertex(self, p: tuple) -> TopoDS_Vertex:
         v = TopoDS_Vertex()
-        self.builder.MakeVertex(v, gp_Pnt(*map(float, p)), KERNEL_TOLERANCE)
+        self.builder.MakeVertex(v, gp_Pnt(*p), KERNEL_TOLERANCE)
         return v
 
-    def _line(self, p: np.ndarray, q: np.ndarray, ends: tuple, vertices: dict) -> _EdgeRecord:
+    def _line(self, p: tuple, q: tuple, ends: tuple, vertices: dict) -> _EdgeRecord:
         """A straight edge from p to q, parameter the distance from p."""
-        d = q - p
-        length = float(np.linalg.norm(d))
-        curve = Geom_Line(gp_Pnt(*map(float, p)), gp_Dir(*map(float, d / length)))
+        length = math.dist(p, q)
+        curve = Geom_Line(gp_Pnt(*p), gp_Dir(*((b - a) / length for a, b in zip(p, q))))
         return _EdgeRecord(_make_edge(self.builder, curve, vertices[ends[0]], vertices[ends[1]], 0.0, length), curve,
                            ends)
 
@@ -279,9 +282,9 @@ class _HelicalRack:
         """The wall's image of the arc of ``seg``: an ellipse whose parameter is the section's angle u."""
         origin, e = self._wall_map(wall)
         (cx, cy), r = seg[3], seg[4]
-        centre = origin + cx * e + np.array([0.0, cy, 0.0])
-        stretch = float(np.linalg.norm(e))
-        x_dir = e / stretch
+        centre = (origin[0] + cx * e[0], cy, origin[2] + cx * e[2])
+        stretch = math.hypot(*e)
+        x_dir = tuple(c / stretch for c in e)
         normal = (-x_dir[2], 0.0, x_dir[0])  # x_dir x (0, 1, 0): the ellipse's own y axis is then +y
         return Geom_Ellipse(gp_Ax2(gp_Pnt(*centre), gp_Dir(*normal), gp_Dir(*x_dir)), r * stretch, r)
 
@@ -310,8 +313,8 @@ class _HelicalRack:
         2-D spline (u, B cos u) is fitted once per B and range (the teeth repeat) and moved by A."""
         origin, e = self._wall_map(record.wall)
         (cx, _), r = seg[3], seg[4]
-        along = float(e @ self.teeth_dir)
-        a, bc = float(origin @ self.teeth_dir) + cx * along, r * along
+        along = _dot(e, self.teeth_dir)
+        a, bc = _dot(origin, self.teeth_dir) + cx * along, r * along
         u0, u1 = record.angles
         key = (round(bc, 12), round(u0, 12), round(u1, 12))
         if key not in self.pcurve_cache:  # the fit's parameter s runs from 0: u = u0 + s
@@ -321,7 +324,7 @@ class _HelicalRack:
             self.pcurve_cache[key] = _bspline2d(fit.poles, fit.knots + u0, fit.mults, fit.degree)
         return self.pcurve_cache[key].Translated(gp_Vec2d(0.0, a))
 
-    def _face(self, surface, records: list[_EdgeRecord], pcurves: list, points: dict, normal_hint: np.ndarray,
+    def _face(self, surface, records: list[_EdgeRecord], pcurves: list, points: dict, normal_hint: tuple,
               forward: bool) -> TopoDS_Face:
         """A face of ``surface`` bounded by ``records`` (one closed loop), each edge given its curve
         on the surface (``pcurves``; None: computed, planes only). ``normal_hint``: a direction on the
@@ -344,8 +347,8 @@ class _HelicalRack:
             forward_edge = rec.ends[0] == at
             loop.append((rec, forward_edge))
             at = rec.ends[1] if forward_edge else rec.ends[0]
-        corners = [points[r.ends[0] if fwd else r.ends[1]].tolist() for r, fwd in loop]
-        hx, hy, hz = normal_hint.tolist()
+        corners = [points[r.ends[0] if fwd else r.ends[1]] for r, fwd in loop]
+        hx, hy, hz = normal_hint
         area = 0.0  # twice the loop's area about normal_hint (sum of p x q . hint), plain floats: few points
         for (px, py, pz), (qx, qy, qz) in zip(corners, corners[1:] + corners[:1]):
             area += (py * qz - pz * qy) * hx + (pz * qx - px * qz) * hy + (px * qy - py * qx) * hz
@@ -368,9 +371,9 @@ class _HelicalRack:
         for k, pt in enumerate(perimeter):
             y = (self.joints[pt.joint][1] if pt.joint is not None
                  else self._height(self._segment_at(pt.xn), pt.xn))
-            points["top", k] = np.array([pt.x, y, pt.z])
+            points["top", k] = (pt.x, y, pt.z)
             if pt.corner:
-                points["bottom", k] = np.array([pt.x, 0.0, pt.z])
+                points["bottom", k] = (pt.x, 0.0, pt.z)
         for key, p in points.items():
             vertices[key] = self._vertex(p)
         corner_k = [k for k, pt in enumerate(perimeter) if pt.corner]
@@ -407,9 +410,9 @@ class _HelicalRack:
                 continue  # a joint that only touches the box at a corner bounds no face
             ka, kc = sorted(ks, key=lambda k: perimeter[k].z)
             pa, pc = points["top", ka], points["top", kc]
-            sa, sc = float(pa @ self.teeth_dir), float(pc @ self.teeth_dir)
-            origin = pa - sa * self.teeth_dir  # the line's parameter is then s
-            curve = Geom_Line(gp_Pnt(*map(float, origin)), gp_Dir(*map(float, self.teeth_dir)))
+            sa, sc = _dot(pa, self.teeth_dir), _dot(pc, self.teeth_dir)
+            origin = tuple(a - sa * d for a, d in zip(pa, self.teeth_dir))  # the line's parameter is then s
+            curve = Geom_Line(gp_Pnt(*origin), gp_Dir(*self.teeth_dir))
             edge = _make_edge(self.builder, curve, vertices["top", ka], vertices["top", kc], sa, sc)
             joints[j] = _EdgeRecord(edge, curve, (("top", ka), ("top", kc)), joint=j)
 
@@ -419,7 +422,7 @@ class _HelicalRack:
         bottoms = [self._line(points["bottom", ka], points["bottom", kc], (("bottom", ka), ("bottom", kc)), vertices)
                    for ka, kc in zip(corner_k, corner_k[1:] + corner_k[:1])]
 
-        up = np.array([0.0, 1.0, 0.0])
+        up, down = (0.0, 1.0, 0.0), (0.0, -1.0, 0.0)
         faces = []
         by_segment: dict[int, list[_EdgeRecord]] = {}
         for r in tops:
@@ -439,15 +442,15 @@ class _HelicalRack:
                     else:
                         pcurves.append(self._arc_wall_pcurve(r, seg))
             # every side face's own normal has an upward part when it points out of the rack
-            faces.append(self._face(surface, records, pcurves, points, up if own_normal_out else -up, own_normal_out))
+            faces.append(self._face(surface, records, pcurves, points, up if own_normal_out else down, own_normal_out))
         for w in range(self.WALLS):
             ka, kc = corner_k[w], corner_k[(w + 1) % self.WALLS]
-            normal = np.array(self.NORMALS[w])
+            normal = self.NORMALS[w]
             plane = Geom_Plane(gp_Pnt(*points["bottom", ka]), gp_Dir(*normal))
             records = [r for r in tops if r.wall == w] + [bottoms[w], verticals[ka], verticals[kc]]
             faces.append(self._face(plane, records, [None] * len(records), points, normal, True))
         back = Geom_Plane(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, -1.0, 0.0))
-        faces.append(self._face(back, bottoms, [None] * 4, points, -up, True))
+        faces.append(self._face(back, bottoms, [None] * 4, points, down, True))
 
         shell = TopoDS_Shell()
         self.builder.MakeShell(shell)
