@@ -38,8 +38,8 @@ each library's own):
 
 Every build runs in a fresh process (geargen: this script with ``--worker``; a peer:
 make_peer_family.py in the peers' venv), ``--repeat`` times (once when a build takes over
-``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import is
-measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
+``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import, the
+family's own module included on both sides, is measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
 reads the case's design table with the family's reader (geargen.design.gear.gear_from_table, or
 the reader a family registers in FAMILY_READERS) and builds it with
 geargen.cad.families.build_part, so a family's row works as soon as it registers; until then the
@@ -147,10 +147,15 @@ def read_spec(table: dict, name: str):
 def geargen_worker(table: dict, name: str, out: str) -> dict:
     """One fresh-process build of a case (see the module docstring); a JSON-able dict."""
     t0 = time.perf_counter()
+    import importlib
+
     from geargen.cad.export import export_step
-    from geargen.cad.families import build_part
+    from geargen.cad.families import BUILDERS, build_part
     from geargen.cad.gear_solid import check_solid
     from geargen.errors import DesignError, GeometryError
+    # the family's builder module too (build_part imports it on first use): the peers' import time
+    # holds theirs
+    importlib.import_module(BUILDERS[table.get("kind", "external")].split(":")[0])
     t_import = time.perf_counter() - t0
     try:
         t0 = time.perf_counter()
