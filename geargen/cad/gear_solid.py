@@ -330,12 +330,13 @@ def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
 # ---------------------------------------------------------------- the toothed body
 
 
-def _turned(points: np.ndarray, angle, grid: float = 0.0, interior: int | None = None) -> np.ndarray:
+def _turned(points: np.ndarray, angle, grid: float = 0.0, interior: int | None = None,
+            fine: float = 0.0) -> np.ndarray:
     """``points`` (..., 2 or 3) turned counter-clockwise by ``angle`` about the axis (an array of
     angles: one copy each, stacked first), then put on the ``grid`` (:func:`_grid`). With
     ``interior``, the points at both ends along that axis of ``points`` (the poles an edge passes
-    through, which neighbouring faces share) go on a grid ten times finer, as the vertices and
-    helices do: they stay within a tenth of the edge tolerance of the exact land cylinders."""
+    through, which neighbouring faces share) go on the ``fine`` grid (:func:`_fine_grid`), as the
+    vertices and helices do."""
     angle = np.asarray(angle, dtype=float)
     c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
     flat = points.reshape(-1, points.shape[-1])
@@ -347,9 +348,17 @@ def _turned(points: np.ndarray, angle, grid: float = 0.0, interior: int | None =
     elif grid:
         ends, inside = [slice(None)] * out.ndim, [slice(None)] * out.ndim
         ends[angle.ndim + interior], inside[angle.ndim + interior] = [0, -1], slice(1, -1)
-        out[tuple(ends)] = np.round(out[tuple(ends)] / (0.1 * grid)) * (0.1 * grid)
+        out[tuple(ends)] = np.round(out[tuple(ends)] / fine) * fine
         out[tuple(inside)] = np.round(out[tuple(inside)] / grid) * grid
     return out
+
+
+def _fine_grid(spec: GearSpec, grid: float) -> float:
+    """The grid of the poles an edge passes through, the helices and the vertices of a helical gear:
+    a tenth of :func:`_grid`, at most 0.025 nm (a power of ten in the file's unit): they stay within
+    a tenth of the edge tolerance of the exact land cylinders and circles."""
+    unit = 25.4 if spec.length_unit == "in" else 1.0
+    return min(0.1 * grid, unit * 10.0 ** math.floor(math.log10(2.5e-8 / unit)))
 
 
 def _grid(spec: GearSpec, tolerance: float) -> float:
@@ -378,7 +387,7 @@ class _Side:
     basis: tuple | None = None
     land: tuple | None = None
 
-    def instances(self, angles: np.ndarray, grid: float, twist: float) -> list[tuple]:
+    def instances(self, angles: np.ndarray, grid: float, fine: float, twist: float) -> list[tuple]:
         """(surface, bottom curve, top curve, their curves on the end planes) of the tooth turned by
         each of ``angles``; the top plane's frame is turned by ``twist``. Without a ``grid`` (a spur
         gear: its files are small already) tooth 0's kernel objects turned, with one each tooth's
@@ -391,14 +400,16 @@ class _Side:
                 out.append((surf.Rotated(_Z_AXIS, angle), bottom.Rotated(_Z_AXIS, angle), top.Rotated(_Z_AXIS, angle),
                             (cap.Rotated(_ORIGIN_2D, angle), cap_top.Rotated(_ORIGIN_2D, angle))))
             return out
-        return self.built(twist, angles, grid)
+        return self.built(twist, angles, grid, fine)
 
-    def built(self, twist: float, angles: np.ndarray, grid: float) -> list[tuple]:
+    def built(self, twist: float, angles: np.ndarray, grid: float, fine: float = 0.0) -> list[tuple]:
         """The spline face's kernel objects turned by each of ``angles`` (see :meth:`instances`)."""
         poles, (uk, um, ud), (vk, vm, vd) = self.surface
         # the poles the face's edges pass through (its first and last columns) stay exact; its edge
         # curves at the ends are its first and last rows of poles: the same numbers
-        poles = _turned(poles, angles, grid, interior=0)
+        z_ends = poles[:, [0, -1], 2]
+        poles = _turned(poles, angles, grid, interior=0, fine=fine)
+        poles[:, :, [0, -1], 2] = z_ends  # the end rows stay in the end planes
         bottoms, tops = poles[:, :, 0, :], poles[:, :, -1, :]
         tops_xy = _turned(tops[..., :2], -twist) if twist else tops[..., :2]  # in the top plane's frame
         return [(_bspline_surface_of(p, uk, um, ud, vk, vm, vd), _bspline3d(b, *self.basis),
@@ -458,18 +469,19 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     n = len(curves)
     grid = _grid(spec, tolerance) if spec.is_helical else 0.0
+    fine = _fine_grid(spec, grid) if grid else 0.0
     joints = _joints(profile, np.array([c.end for c in curves]))
 
     # vertices at both ends of every joint and the joint's helix (straight line on a spur gear):
     # a spur gear's tooth 0 built once, the others turned copies
     helices = [axial.rows(c.end[None, :])[0] for c in curves]
     if grid:  # a helical gear: each tooth's helices turned and on the fine grid (_turned), as the faces' edges
-        turned = [_turned(h, profile.pitch_angle * np.arange(profile.teeth), 0.1 * grid) for h in helices]
+        turned = [_turned(h, profile.pitch_angle * np.arange(profile.teeth), fine) for h in helices]
         helix_c = [_bspline3d(turned[j][tooth], axial.knots, axial.mults, axial.degree)
                    for tooth, j in (divmod(i, n) for i in range(len(joints)))]
-        bottom, top = (_turned(np.column_stack([joints, np.full(len(joints), z)]), 0.0, 0.1 * grid)
+        bottom, top = (_turned(np.column_stack([joints, np.full(len(joints), z)]), 0.0, fine)
                        for z in (0.0, length))
-        top = _turned(top, math.atan2(s_top, c_top), 0.1 * grid)
+        top = _turned(top, math.atan2(s_top, c_top), fine)
     else:
         base = [_bspline3d(h, axial.knots, axial.mults, axial.degree) for h in helices]
         helix_c = [base[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else base[j]
@@ -484,7 +496,7 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     tol = KERNEL_TOLERANCE
     canon = [_side(c, axial, length) for c in curves]
     angles = profile.pitch_angle * np.arange(profile.teeth)
-    per_tooth = [c.instances(angles, grid, math.atan2(s_top, c_top)) for c in canon]
+    per_tooth = [c.instances(angles, grid, fine, math.atan2(s_top, c_top)) for c in canon]
     # per face of the first half: (surface, bottom curve, top curve, its curves on the caps, its range)
     sides = [(*per_tooth[j][tooth], curves[j].range) for tooth, j in (divmod(i, n) for i in range(len(joints)))]
 
