@@ -38,8 +38,8 @@ each library's own):
 
 Every build runs in a fresh process (geargen: this script with ``--worker``; a peer:
 make_peer_family.py in the peers' venv), ``--repeat`` times (once when a build takes over
-``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import is
-measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
+``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import, the
+family's own module included on both sides, is measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
 reads the case's design table with the family's reader (geargen.design.gear.gear_from_table, or
 the reader a family registers in FAMILY_READERS) and builds it with
 geargen.cad.families.build_part, so a family's row works as soon as it registers; until then the
@@ -50,12 +50,25 @@ The same checks for every STEP, in this process after the runs: the last run's f
 (geargen.cad.export.read_step) and checked by geargen.cad.gear_solid.check_solid (one solid,
 BRepCheck valid, positive volume) and its volume integrated by solid_volume (Gauss-Kronrod,
 relative 1e-7); ``vol/geargen`` is a peer's volume over geargen's for the same case (rims, root
-fillets and wheel throats differ by design, so this is a sanity column, not a score). For the
-bevel cases ``flank um`` is the flank's form deviation from the exact spherical involute on that
-STEP, every source measured alike (:func:`bevel_flank_accuracy`), with the tooth's mean thickness
-offset from the case's zero-backlash tooth in brackets.
+fillets and wheel throats differ by design, so this is a sanity column, not a score). The flank
+accuracy of every STEP read back, beside its size, every source measured alike, in ``flank um
+(offset um)``: for the cylindrical gears the largest deviation of section points on the usable
+involute from geargen's exact involute helicoid, after one phase for the whole gear and the mean
+offset of each flank side removed (the offset, a thicker or thinner tooth, in brackets;
+:func:`gear_flank_form`); for the racks the flatness of the flanks and lands
+(:func:`rack_flank_form`); for the bevel cases the flank's form deviation from the exact spherical
+involute (:func:`bevel_flank_accuracy`), with the tooth's mean thickness offset from the case's
+zero-backlash tooth in brackets; the worm rows are measured by their own bench.
 
-Measured (this machine, load ~10 on 2 cores from other agents, median of 3): bevel pinion geargen
+Measured (this machine, load ~6 on 2 cores from other agents, median of 3; build s / STEP kB /
+flank um, geargen against the fastest peer): external spur 0.026 / 692 / 0.00075 against
+py_gearworks 0.121 / 1065 / 0.42; external helical 0.070 / 1050 / 0.00095 against bd_warehouse
+0.590 / 2490 / 0.11 (py_gearworks 1193 kB); internal spur 0.072 / 1151 / 0.0006 against 0.366 /
+2042 / 6.5; internal helical 0.112 / 1548 / 0.0003 against 0.755 / 1575 / 0.17; rack spur 0.013 /
+264 against bd_warehouse 0.061 / 464; rack helical 0.049 / 288 against py_gearworks 0.181 / 477
+(every rack's flanks exact planes); herringbone 0.099 / 2175 / 0.0009 against py_gearworks 2.64 /
+1065 / 2000 (its herringbone=True STEP is a straight extrusion, no twist: not a peer for size);
+double helical with a 6 mm gap 0.106 / 2070 (no peer). Bevel pinion geargen
 0.066 s, STEP 305 kB, flank 8e-9 um against py_gearworks 5.9 s, 1195 kB, 0.29 um; bevel gear
 geargen 0.086 s, 381 kB, 6e-8 um against 5.0 s, 977 kB, 1.3 um (the boolean build was 16.5 s /
 7.7 s, 795 / 724 kB, 4e-6 / 1e-5 um on the same load).
@@ -142,10 +155,15 @@ def read_spec(table: dict, name: str):
 def geargen_worker(table: dict, name: str, out: str) -> dict:
     """One fresh-process build of a case (see the module docstring); a JSON-able dict."""
     t0 = time.perf_counter()
+    import importlib
+
     from geargen.cad.export import export_step
-    from geargen.cad.families import build_part
+    from geargen.cad.families import BUILDERS, build_part
     from geargen.cad.gear_solid import check_solid
     from geargen.errors import DesignError, GeometryError
+    # the family's builder module too (build_part imports it on first use): the peers' import time
+    # holds theirs
+    importlib.import_module(BUILDERS[table.get("kind", "external")].split(":")[0])
     t_import = time.perf_counter() - t0
     try:
         t0 = time.perf_counter()
@@ -207,6 +225,121 @@ def step_check(path: Path) -> tuple[str, float | None]:
     except Exception:  # a shape OCCT cannot integrate: the row says so
         volume = None
     return ("valid" if problem is None else problem), volume
+
+
+def gear_flank_form(shape, profile, heights, apparent_height=lambda z: z) -> tuple[float, float]:
+    """(form deviation um, mean offset um) of a gear's flanks read back from a STEP file: sections
+    at ``heights`` (geargen.cad.measure.section), the points on the usable involute band of
+    geargen's ``profile`` (0.1 m_n above its start, 0.05 m_n below its tip) compared with the exact
+    involute helicoid (geargen.cad.measure.involute_deviation; ``apparent_height(z)``: the height
+    of the first helical half whose section the one at z is, for a double-helical gear). A peer's
+    teeth may sit at another phase or thickness: the sections are first turned, all by the same
+    angle, so their tooth centres fall on geargen's (the mean polar offset of the band's points,
+    folded into one pitch: a constant phase, so a wrong twist along the face still shows), then per
+    section and flank side the mean deviation is removed and reported apart (``offset``, + = the
+    tooth, or a ring's space, wider than geargen's); the form deviation is what remains."""
+    import math
+
+    import numpy as np
+
+    from geargen.cad.measure import _polar_in_tooth_frame, involute_deviation, section
+    from geargen.profile.tooth import section_rotation
+    m = profile.spec.module
+    bands, phase = [], []
+    for z in heights:
+        at = apparent_height(z)
+        cut = section(shape, float(z), 64)
+        rad = np.hypot(cut.points[:, 0], cut.points[:, 1])
+        sel = (rad > profile.involute_start_radius + 0.1 * m) & (rad < profile.tip_radius - 0.05 * m)
+        ang = np.arctan2(cut.points[sel, 1], cut.points[sel, 0]) - section_rotation(profile.spec, at)
+        bands.append((at, cut.points[sel]))
+        phase.append(np.exp(1j * profile.teeth * ang))
+    shift = float(np.angle(np.mean(np.concatenate(phase)))) / profile.teeth
+
+    def measured(shift):
+        c, s = math.cos(-shift), math.sin(-shift)
+        form, offsets = 0.0, []
+        for at, band in bands:
+            pts = band @ np.array([[c, s], [-s, c]])
+            dev = involute_deviation(profile, at, pts)
+            _, _, local = _polar_in_tooth_frame(profile, at, pts)
+            for side in (local > 0, local < 0):
+                if np.any(side):
+                    mean = float(np.mean(dev[side]))
+                    offsets.append(mean)
+                    form = max(form, float(np.max(np.abs(dev[side] - mean))))
+        return form * 1e3, float(np.mean(offsets)) * 1e3
+
+    # the band's two flanks lie either side of a tooth centre and of a space centre alike: the mean
+    # finds one of the two, half a pitch apart; the right one fits
+    return min(measured(shift), measured(shift + profile.pitch_angle / 2))
+
+
+def rack_flank_form(shape, module: float) -> float:
+    """Flatness (um) of a rack's flanks read back from a STEP file: every plane or B-spline face
+    sampled on a 12 x 12 grid of its parameters, a plane fitted to each (least squares); over the
+    faces within 0.005 m_n of their plane (the flanks and lands; a fillet or tip arc bows out by
+    more), the largest distance of a sample from its plane. Exact planes give 0."""
+    import numpy as np
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.BRepTools import BRepTools
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+    from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Plane
+    worst = 0.0
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        face = TopoDS.Face_s(exp.Current())
+        exp.Next()
+        ad = BRepAdaptor_Surface(face)
+        if ad.GetType() not in (GeomAbs_Plane, GeomAbs_BSplineSurface):
+            continue  # an arc's cylinder: a fillet or a tip, not a flank
+        u0, u1, v0, v1 = BRepTools.UVBounds_s(face)
+        pts = np.array([[(p := ad.Value(float(u), float(v))).X(), p.Y(), p.Z()]
+                        for u in np.linspace(u0, u1, 12) for v in np.linspace(v0, v1, 12)])
+        centred = pts - pts.mean(axis=0)
+        normal = np.linalg.svd(centred, full_matrices=False)[2][-1]
+        residual = float(np.max(np.abs(centred @ normal)))
+        if residual < 0.005 * module:
+            worst = max(worst, residual)
+    return worst * 1e3
+
+
+def flank_accuracy(table: dict, name: str, source: str, path: Path) -> str:
+    """``form (offset)`` in um of the case's STEP file as text (module docstring), "" where not
+    measured here (the worm rows: their own bench)."""
+    import numpy as np
+
+    from geargen.cad.export import read_step
+    kind = table.get("kind", "external")
+    if kind == "bevel":
+        if source not in BEVEL_FRAMES:
+            return ""
+        flank = bevel_flank_accuracy(path, table, source)
+        return "" if flank["form_um"] is None else f"{flank['form_um']:.2g} ({flank['thickness_um']:+.3g})"
+    if kind not in ("external", "internal", "double_helical", "rack"):
+        return ""
+    shape = read_step(path).shape
+    spec = read_spec(table, name)
+    if kind == "rack":
+        return f"{rack_flank_form(shape, spec.module):.2g}"
+    b = spec.face_width
+    heights = np.linspace(0.05, 0.95, 5) * b
+    if kind == "internal":
+        from geargen.profile.internal import internal_profile
+        form, offset = gear_flank_form(shape, internal_profile(spec).flank_frame(), heights)
+    elif kind == "double_helical":
+        from geargen.cad.double_helical import half_spec
+        from geargen.profile.tooth import tooth_profile
+        h = spec.half_face_width
+        heights = [z for z in heights if z <= h or z >= b - h]  # not in the centre gap
+        form, offset = gear_flank_form(shape, tooth_profile(half_spec(spec)), heights,
+                                       lambda z: z if z <= h else b - z)
+    else:
+        from geargen.profile.tooth import tooth_profile
+        form, offset = gear_flank_form(shape, tooth_profile(spec), heights)
+    return f"{form:.2g} ({offset:+.3g})"
 
 
 #: where each source's bevel gear has its apex and axis, to bring its STEP into geargen's frame (apex at
@@ -300,20 +433,22 @@ def main(argv=None) -> int:
             if "failed" not in r and "refused" not in r:
                 r["valid"], r["volume"] = step_check(r["path"])
                 r["kb"] = r["path"].stat().st_size / 1e3
-                if table.get("kind") == "bevel" and source in BEVEL_FRAMES:
-                    r["flank"] = bevel_flank_accuracy(r["path"], table, source)
+                try:
+                    r["flank"] = flank_accuracy(table, case.name, source, r["path"])
+                except Exception as exc:  # a peer's surface the section cannot follow: say so, keep the row
+                    r["flank"] = f"n/a ({type(exc).__name__})"
             rows.append((case, source, r))
             print(f"{case.name} / {source}: {({k: v for k, v in r.items() if k != 'path'})}", file=sys.stderr)
 
     print(f"\nBuild times, fresh process each, median of {args.repeat}; STEP files in {out}")
-    header = ("case", "source", "import s", "build s", "STEP s", "STEP kB", "STEP read back", "volume mm3",
-              "vol/geargen", "flank um (thickness um)", "what was built")
+    header = ("case", "source", "import s", "build s", "STEP s", "STEP kB", "flank um (offset um)", "STEP read back",
+              "volume mm3", "vol/geargen", "what was built")
     print(" | ".join(header))
     print(" | ".join("---" for _ in header))
     geargen_volume = {case.name: r.get("volume") for case, source, r in rows if source == "geargen"}
     for case, source, r in rows:
         if "failed" in r or "refused" in r:
-            print(" | ".join([case.name, source, "", "", "", "", "", "", "", "", r.get("failed") or r["refused"]]))
+            print(" | ".join([case.name, source] + [""] * (len(header) - 3) + [r.get("failed") or r["refused"]]))
             continue
         ref = geargen_volume.get(case.name)
         ratio = f"{r['volume'] / ref:.4f}" if source != "geargen" and ref and r["volume"] else ""
@@ -322,12 +457,9 @@ def main(argv=None) -> int:
             note += f"; {case.note}"
         if r.get("runs", args.repeat) < args.repeat:
             note += f" ({r['runs']} runs)"
-        flank = r.get("flank") or {}
-        accuracy = (f"{flank['form_um']:.2g} ({flank['thickness_um']:+.3g})" if flank.get("form_um") is not None
-                    else "")
         print(" | ".join([case.name, source, f"{r['import_s']:.2f}", f"{r['build_s']:.3f}", f"{r['step_s']:.3f}",
-                          f"{r['kb']:.0f}", r["valid"], f"{r['volume']:.1f}" if r["volume"] else "n/a", ratio, accuracy,
-                          note]))
+                          f"{r['kb']:.0f}", r.get("flank", ""), r["valid"],
+                          f"{r['volume']:.1f}" if r["volume"] else "n/a", ratio, note]))
     return 0
 
 

@@ -38,6 +38,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 HERE = Path(__file__).resolve().parent
 DP32 = 25.4 / 32
@@ -94,32 +95,13 @@ def measure(path: Path, deflection: float, angle: float, repeat: int) -> dict:
 
 
 def flank_form(path: Path) -> tuple[float, float]:
-    """(form deviation um, mean thickness offset um) of the STEP's flanks (module docstring)."""
+    """(form deviation um, mean thickness offset um) of the STEP's flanks (module docstring;
+    bench_families.gear_flank_form)."""
     import numpy as np
+    from bench_families import gear_flank_form
     from geargen.cad.export import read_step
-    from geargen.cad.measure import _polar_in_tooth_frame, involute_deviation, section
-    from geargen.profile import section_rotation, tooth_profile
-    profile = tooth_profile(spec())
-    shape = read_step(path).shape
-    form, offsets = 0.0, []
-    for z in np.linspace(0.05, 0.95, 5) * FACE:
-        cut = section(shape, float(z), 64)
-        rad, _, local = _polar_in_tooth_frame(profile, float(z), cut.points)
-        sel = (rad > profile.involute_start_radius + 0.1 * MODULE) & (rad < profile.tip_radius - 0.05 * MODULE)
-        # a peer's teeth may sit at another phase: turn the section so its tooth centres fall on
-        # geargen's (the mean polar offset of the band's points, folded into one pitch)
-        ang = np.arctan2(cut.points[sel, 1], cut.points[sel, 0]) - section_rotation(profile.spec, float(z))
-        shift = float(np.angle(np.mean(np.exp(1j * TEETH * ang)))) / TEETH
-        c, s = math.cos(-shift), math.sin(-shift)
-        pts = cut.points[sel] @ np.array([[c, s], [-s, c]])
-        dev = involute_deviation(profile, float(z), pts)
-        _, _, local = _polar_in_tooth_frame(profile, float(z), pts)
-        for side in (local > 0, local < 0):
-            if np.any(side):
-                mean = float(np.mean(dev[side]))
-                offsets.append(mean)
-                form = max(form, float(np.max(np.abs(dev[side] - mean))))
-    return form * 1e3, float(np.mean(offsets)) * 1e3
+    from geargen.profile.tooth import tooth_profile
+    return gear_flank_form(read_step(path).shape, tooth_profile(spec()), np.linspace(0.05, 0.95, 5) * FACE)
 
 
 def main(argv=None) -> int:

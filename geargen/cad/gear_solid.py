@@ -15,26 +15,39 @@ Conventions (the synthesis and assembly steps rotate and place from these):
 How: every tooth has its own face for each flank, each fillet, the tip land and the root land
 (when the rack's tip line cuts a root circle), so a CAM or inspection program can pick a flank
 by itself. The lands are exact cylinders (for helical gears too: their edges are helices on
-them), the ends planes, and the flanks and fillets B-spline surfaces: each profile segment is
-one clamped degree-7 B-spline on uniform knots, parametrised by arc length, exact at its ends
-with the exact end tangents and least-squares fitted in between, with as few spans as keep it
-within the tolerance of the exact curve (:mod:`geargen.profile.bspline_fit`; an involute
-takes one or two spans, 8-15 poles, a fillet 9-11). Along the axis a spur gear's surfaces are linear (two rows of poles); a
-helical gear's are the profile poles turned by a fitted rotation ``(cos kz, sin kz)`` - one
-degree-7 span, 8 rows, within 1 nm at the tip over a whole face - so the helicoid's error is
-that of the profile fit plus at most 1 nm. Tooth 0's curves and surfaces are built once and
-turned for the other teeth; neighbouring faces share their boundary curves, so the solid is
-put together edge by edge (BRep_Builder) without sewing or booleans. Only hubs and clusters use
-a boolean fuse.
+them), the ends planes, and the flanks and fillets B-spline surfaces with as few poles as their
+accuracy needs: each profile segment is one clamped degree-7 B-spline on uniform knots,
+parametrised by arc length, exact at its ends with the exact end tangents and least-squares
+fitted in between, with as few spans as keep it within the tolerance of the exact curve
+(:mod:`geargen.profile.bspline_fit`; an involute takes one to four spans, 8-15 poles, a fillet
+9-12). Along the axis a spur gear's surfaces are linear (two rows of poles); a helical gear's are
+the profile poles turned by a fitted rotation ``(cos kz, sin kz)``: one span of the lowest degree
+within 0.02 nm at the tip over the whole face (5-8 rows), so the helicoid's error is that of the
+profile fit plus at most 0.02 nm. A helical gear's poles inside a face are rounded to a 1e-8 mm
+grid (:func:`_grid`: its STEP file 4-6 % smaller).
+
+The flanks are not the ruled surfaces the involute helicoid also is (swept by the base helix's
+tangents: two rows of poles, 8-10 x 2 against 8-15 x 5-8, and OCCT meshes them in 1 400 triangles
+instead of 3 300 at 1 um): a ruled surface's parameter lines are its rulings, which cross the end
+planes, so the face's parameter box reaches far beyond it (on the 30-tooth bench gear 43 mm above
+and below a 20 mm face) and every fast bounding box of the part (BRepBndLib.Add: the poles over the
+face's parameter box, what OCCT readers and geargen's contact checks use) with it.
+
+Tooth 0's curves and surfaces are built once and turned for the other teeth; neighbouring faces
+share their boundary curves, so the solid is put together edge by edge (BRep_Builder) without
+sewing or booleans; a double-helical gear's second half is the first's mirror image, put together
+the same way (:func:`_toothed_body`). Only hubs and clusters use a boolean fuse.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from OCP.BRep import BRep_Builder
+from OCP.BRep import BRep_Builder, BRep_Tool
+from OCP.BRepAdaptor import BRepAdaptor_Surface
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
 from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire,
                                 BRepBuilderAPI_Transform)
@@ -171,8 +184,14 @@ def _tooth_curves(profile: ToothProfile, tolerance: float) -> list[_Curve]:
         else:
             try:
                 fit = fit_segment(s, tolerance, by_length=True)
-            except ValueError as exc:
-                raise BuildError(f"{profile.spec.name}: {s.side} {s.kind}: {exc}") from exc
+            except ValueError:
+                # a fillet whose speed grows steeply toward its end (a trochoid near its cusp) fits in
+                # its own parameter where the arc-length map needs too many spans (64: 20 spans on the
+                # m 18, x -0.5 sweep case of seed 4187320065)
+                try:
+                    fit = fit_segment(s, tolerance)
+                except ValueError as exc:
+                    raise BuildError(f"{profile.spec.name}: {s.side} {s.kind}: {exc}") from exc
             out.append(_Curve(s.kind, s.side, fit.poles[-1], fit=fit))
     for prev, cur in zip(out[:-1], out[1:]):
         if prev.fit is not None and cur.fit is not None:
@@ -189,7 +208,7 @@ def _axial(spec: GearSpec, tolerance: float) -> _Axial:
         # makes the 112-tooth STEP 15 % smaller, but OCCT re-tessellates it at 1 um 4x slower
         # (945 912 triangles in 10.8 s against 21 500 in 2.4 s; bench/bench_step.py --worker)
         return _Axial(1, np.array([0.0, length]), (2, 2), np.ones(2), np.zeros(2), np.array([0.0, length]), 0.0)
-    fit = fit_rotation(twist_rate(spec), length, tolerance)
+    fit = fit_rotation(twist_rate(spec), length, tolerance, degree=None)
     return _Axial(fit.degree, fit.knots, fit.mults, fit.poles[:, 0], fit.poles[:, 1], greville(fit), fit.max_error)
 
 
@@ -205,6 +224,12 @@ _ORIGIN_2D = gp_Pnt2d(0, 0)
 
 
 def _occ_knots(knots, mults):
+    return _occ_knots_of(tuple(float(t) for t in knots), tuple(int(m) for m in mults))
+
+
+@functools.lru_cache(maxsize=256)
+def _occ_knots_of(knots: tuple, mults: tuple):
+    """The kernel's knot and multiplicity arrays (shared: the kernel copies them into each spline)."""
     k = TColStd_Array1OfReal(1, len(knots))
     m = TColStd_Array1OfInteger(1, len(knots))
     for i, (t, mult) in enumerate(zip(knots, mults)):
@@ -227,15 +252,16 @@ def _bspline2d(poles: np.ndarray, knots, mults, degree: int) -> Geom2d_BSplineCu
     return Geom2d_BSplineCurve(arr, *_occ_knots(knots, mults), degree)
 
 
-def _bspline_surface(poles: np.ndarray, fit: SplineFit, axial: _Axial) -> Geom_BSplineSurface:
+def _bspline_surface_of(poles: np.ndarray, u_knots, u_mults, u_degree: int, v_knots, v_mults,
+                        v_degree: int) -> Geom_BSplineSurface:
     nu, nv = poles.shape[:2]
     arr = TColgp_Array2OfPnt(1, nu, 1, nv)
     for i, row in enumerate(poles.tolist()):
         for j, (x, y, z) in enumerate(row):
             arr.SetValue(i + 1, j + 1, gp_Pnt(x, y, z))
-    ku, mu = _occ_knots(fit.knots, fit.mults)
-    kv, mv = _occ_knots(axial.knots, axial.mults)
-    return Geom_BSplineSurface(arr, ku, kv, mu, mv, fit.degree, axial.degree)
+    ku, mu = _occ_knots(u_knots, u_mults)
+    kv, mv = _occ_knots(v_knots, v_mults)
+    return Geom_BSplineSurface(arr, ku, kv, mu, mv, u_degree, v_degree)
 
 
 def _line2d(u: float, v: float, du: float, dv: float) -> Geom2d_Line:
@@ -310,123 +336,266 @@ def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
 # ---------------------------------------------------------------- the toothed body
 
 
-def _canonical(curve: _Curve, axial: _Axial, length: float):
-    """Tooth 0's geometry of one curve: (side surface, bottom and top 3-D curves, pcurve on the
-    end planes, pcurves on the side surface of the bottom, top, start and end edges)."""
+def _turned(points: np.ndarray, angle, grid: float = 0.0, interior: int | None = None,
+            fine: float = 0.0) -> np.ndarray:
+    """``points`` (..., 2 or 3) turned counter-clockwise by ``angle`` about the axis (an array of
+    angles: one copy each, stacked first), then put on the ``grid`` (:func:`_grid`). With
+    ``interior``, the points at both ends along that axis of ``points`` (the poles an edge passes
+    through, which neighbouring faces share) go on the ``fine`` grid (:func:`_fine_grid`), as the
+    vertices and helices do."""
+    angle = np.asarray(angle, dtype=float)
+    c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
+    flat = points.reshape(-1, points.shape[-1])
+    out = np.broadcast_to(flat, angle.shape + flat.shape).copy()
+    out[..., 0], out[..., 1] = c * flat[:, 0] - s * flat[:, 1], s * flat[:, 0] + c * flat[:, 1]
+    out = out.reshape(angle.shape + points.shape)
+    if grid and interior is None:
+        out = np.round(out / grid) * grid
+    elif grid:
+        ends, inside = [slice(None)] * out.ndim, [slice(None)] * out.ndim
+        ends[angle.ndim + interior], inside[angle.ndim + interior] = [0, -1], slice(1, -1)
+        out[tuple(ends)] = np.round(out[tuple(ends)] / fine) * fine
+        out[tuple(inside)] = np.round(out[tuple(inside)] / grid) * grid
+    return out
+
+
+def _fine_grid(spec: GearSpec, grid: float) -> float:
+    """The grid of the poles an edge passes through, the helices and the vertices of a helical gear:
+    a tenth of :func:`_grid`, at most 0.025 nm (a power of ten in the file's unit): they stay within
+    a tenth of the edge tolerance of the exact land cylinders and circles."""
+    unit = 25.4 if spec.length_unit == "in" else 1.0
+    return min(0.1 * grid, unit * 10.0 ** math.floor(math.log10(2.5e-8 / unit)))
+
+
+def _grid(spec: GearSpec, tolerance: float) -> float:
+    """The spacing (mm) the spline poles inside a face are rounded to: the largest power of ten in
+    the file's length unit (mm or inch) within 0.057 x ``tolerance`` (1e-7 mm at the default 2 nm),
+    so rounding moves a surface by at most 0.05 x the tolerance (a B-spline stays within its
+    poles' moves). Only the poles no edge passes through are rounded (:func:`_turned`), so the
+    faces still meet edge for edge. A STEP file writes each coordinate to 12 decimals, trailing
+    zeros dropped: on the grid 5 digits fewer."""
+    unit = 25.4 if spec.length_unit == "in" else 1.0
+    return unit * 10.0 ** math.floor(math.log10(0.057 * tolerance / unit))
+
+
+@dataclass(frozen=True)
+class _Side:
+    """Tooth 0's geometry of one side face and how to turn it to another tooth.
+
+    A spline face (fillet, flank): ``surface`` (poles ``(n, m, 3)``, u basis, v basis), whose first
+    and last rows of poles are its bottom and top edges' curves, ``basis`` their u basis; a land:
+    ``land`` (cylinder, bottom circle, top circle, cap circles) of tooth 0.
+    ``pcurves``: the edges' curves on the face (bottom, top, start, end), the same for every tooth.
+    """
+
+    pcurves: tuple
+    surface: tuple | None = None
+    basis: tuple | None = None
+    land: tuple | None = None
+
+    def instances(self, angles: np.ndarray, grid: float, fine: float, twist: float) -> list[tuple]:
+        """(surface, bottom curve, top curve, their curves on the end planes) of the tooth turned by
+        each of ``angles``; the top plane's frame is turned by ``twist``. Without a ``grid`` (a spur
+        gear: its files are small already) tooth 0's kernel objects turned, with one each tooth's
+        poles turned and put on the grid."""
+        if self.land is not None or not grid:
+            base = self.land if self.land is not None else self.built(twist, np.zeros(1), 0.0)[0]
+            out = [base]
+            surf, bottom, top, (cap, cap_top) = base
+            for angle in angles[1:]:
+                out.append((surf.Rotated(_Z_AXIS, angle), bottom.Rotated(_Z_AXIS, angle), top.Rotated(_Z_AXIS, angle),
+                            (cap.Rotated(_ORIGIN_2D, angle), cap_top.Rotated(_ORIGIN_2D, angle))))
+            return out
+        return self.built(twist, angles, grid, fine)
+
+    def built(self, twist: float, angles: np.ndarray, grid: float, fine: float = 0.0) -> list[tuple]:
+        """The spline face's kernel objects turned by each of ``angles`` (see :meth:`instances`)."""
+        poles, (uk, um, ud), (vk, vm, vd) = self.surface
+        # the poles the face's edges pass through (its first and last columns) stay exact; its edge
+        # curves at the ends are its first and last rows of poles: the same numbers
+        z_ends = poles[:, [0, -1], 2]
+        poles = _turned(poles, angles, grid, interior=0, fine=fine)
+        poles[:, :, [0, -1], 2] = z_ends  # the end rows stay in the end planes
+        bottoms, tops = poles[:, :, 0, :], poles[:, :, -1, :]
+        tops_xy = _turned(tops[..., :2], -twist) if twist else tops[..., :2]  # in the top plane's frame
+        return [(_bspline_surface_of(p, uk, um, ud, vk, vm, vd), _bspline3d(b, *self.basis),
+                 _bspline3d(t, *self.basis), (_bspline2d(b[:, :2], *self.basis), _bspline2d(t_xy, *self.basis)))
+                for p, b, t, t_xy in zip(poles, bottoms, tops, tops_xy)]
+
+
+def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
+    """Tooth 0's geometry of one curve (:class:`_Side`)."""
     twist = math.atan2(axial.s[-1], axial.c[-1])
+    c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     if curve.fit is not None:
         fit = curve.fit
         poles = axial.rows(fit.poles)
-        zero = np.column_stack([fit.poles, np.zeros(len(fit.poles))])
-        surf = _bspline_surface(poles, fit, axial)
-        bottom = _bspline3d(zero, fit.knots, fit.mults, fit.degree)
-        top = _bspline3d(poles[:, -1, :], fit.knots, fit.mults, fit.degree)
-        cap = _bspline2d(fit.poles, fit.knots, fit.mults, fit.degree)
         u0, u1 = curve.range
         pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(0.0, length, 1.0, 0.0),
                    _line2d(u0, 0.0, 0.0, 1.0), _line2d(u1, 0.0, 0.0, 1.0))
-        return surf, bottom, top, cap, pcurves
+        basis = (fit.knots, fit.mults, fit.degree)
+        return _Side(pcurves, (poles, basis, (axial.knots, axial.mults, axial.degree)), basis)
     # a land: the exact cylinder, circles at both ends, helices (lines u = angle + twist z / L)
     r = curve.radius
-    x_top = gp_Dir(float(axial.c[-1]), float(axial.s[-1]), 0.0)
     surf = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
     bottom = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
-    top = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), x_top), r)
+    top = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0.0)), r)
     cap = Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), r)
     a0, a1 = curve.angles
     pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(twist, length, 1.0, 0.0),
                _helix_pcurve(a0, twist, length), _helix_pcurve(a1, twist, length))
-    return surf, bottom, top, cap, pcurves
+    return _Side(pcurves, land=(surf, bottom, top, (cap, cap)))
 
 
-def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float) -> tuple[TopoDS_Shape, list[ToothFace]]:
+def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
+                  mirror: tuple[float, float] | None = None) -> tuple[TopoDS_Shape, list[ToothFace]]:
     """The gear body (teeth, bore, keyway; no hub) put together face by face, and tooth 0's faces.
 
     Side faces: one per curve of :func:`_tooth_curves` per tooth; a flank or fillet is the
-    profile spline's poles turned row by row by the axial basis (:class:`_Axial`), a land an
-    exact cylinder. 90 % of ``tolerance`` goes to the profile fit; the rotation's share (at most
-    1 nm, so helices stay on the land cylinders well inside the edge tolerance) the rest.
+    profile spline's poles turned row by row by the axial basis (:class:`_Axial`), a land an exact
+    cylinder. 90 % of ``tolerance`` goes to the profile fit, 5 % to the rotation (at most 0.02 nm,
+    a fifth of the edge tolerance, so helices stay on the land cylinders) and 5 % to the grid the
+    poles inside a helical gear's face are rounded to (:func:`_grid`).
+
+    ``mirror`` (gap, groove radius): a double-helical gear whose first half is ``spec`` (z in [0, h]):
+    the second half is the first's mirror image in the plane z = h + gap / 2, every face and edge
+    of it mirrored (a mirror turns the helix's hand and keeps the sections), sharing the first
+    half's edges at z = h when there is no gap; with a gap the blank between the halves is the
+    groove cylinder of that radius between two annular end faces. The bore runs through.
     """
     builder = BRep_Builder()
     length = spec.face_width
     curves = _tooth_curves(profile, 0.9 * tolerance)
     reach = max(float(np.max(np.hypot(*c.fit.poles.T))) for c in curves if c.fit is not None)
     reach = max(reach, profile.tip_radius)
-    axial = _axial(spec, min(0.1 * tolerance, 1e-9) / reach)
+    # the helices (the axial basis's) within a fifth of the edge tolerance of the exact ones on the
+    # land cylinders, and within 5 % of the stated tolerance (the profile fit has 90 %, the grid of
+    # the poles the last 5 %: _grid)
+    axial = _axial(spec, min(0.05 * tolerance, 0.2 * KERNEL_TOLERANCE) / reach)
     c_top, s_top = float(axial.c[-1]), float(axial.s[-1])
     n = len(curves)
+    grid = _grid(spec, tolerance) if spec.is_helical else 0.0
+    fine = _fine_grid(spec, grid) if grid else 0.0
     joints = _joints(profile, np.array([c.end for c in curves]))
 
     # vertices at both ends of every joint and the joint's helix (straight line on a spur gear):
-    # tooth 0's built once, the others turned copies
-    helices = [_bspline3d(axial.rows(c.end[None, :])[0], axial.knots, axial.mults, axial.degree) for c in curves]
-    bottom_v, top_v, helix_e = [], [], []
-    for i, (x, y) in enumerate(joints):
-        tooth, j = divmod(i, n)
-        vb = _vertex(builder, x, y, 0.0)
-        vt = _vertex(builder, c_top * x - s_top * y, s_top * x + c_top * y, length)
-        curve = helices[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else helices[j]
-        bottom_v.append(vb)
-        top_v.append(vt)
-        helix_e.append(_edge(builder, curve, vb, vt, 0.0, length))
+    # a spur gear's tooth 0 built once, the others turned copies
+    helices = [axial.rows(c.end[None, :])[0] for c in curves]
+    if grid:  # a helical gear: each tooth's helices turned and on the fine grid (_turned), as the faces' edges
+        turned = [_turned(h, profile.pitch_angle * np.arange(profile.teeth), fine) for h in helices]
+        helix_c = [_bspline3d(turned[j][tooth], axial.knots, axial.mults, axial.degree)
+                   for tooth, j in (divmod(i, n) for i in range(len(joints)))]
+        bottom, top = (_turned(np.column_stack([joints, np.full(len(joints), z)]), 0.0, fine)
+                       for z in (0.0, length))
+        top = _turned(top, math.atan2(s_top, c_top), fine)
+    else:
+        base = [_bspline3d(h, axial.knots, axial.mults, axial.degree) for h in helices]
+        helix_c = [base[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else base[j]
+                   for tooth, j in (divmod(i, n) for i in range(len(joints)))]
+        bottom = np.column_stack([joints, np.zeros(len(joints))])
+        top = np.column_stack([c_top * joints[:, 0] - s_top * joints[:, 1], s_top * joints[:, 0] + c_top * joints[:, 1],
+                               np.full(len(joints), length)])
+    bottom_v = [_vertex(builder, *p) for p in bottom.tolist()]
+    top_v = [_vertex(builder, *p) for p in top.tolist()]
 
-    top_plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0)))
-    bottom_plane = Geom_Plane(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
     loc = TopLoc_Location()
     tol = KERNEL_TOLERANCE
-    canon = [_canonical(c, axial, length) for c in curves]
-    faces, bottom_edges, top_edges = [], [], []
-    for i in range(len(joints)):
-        tooth, j = divmod(i, n)
-        surf, bottom, top, cap, (pc_bottom, pc_top, pc_start, pc_end) = canon[j]
-        u0, u1 = curves[j].range
-        if tooth:
-            angle = tooth * profile.pitch_angle
-            surf, bottom, top = (g.Rotated(_Z_AXIS, angle) for g in (surf, bottom, top))
-            cap = cap.Rotated(_ORIGIN_2D, angle)
-        eb = _edge(builder, bottom, bottom_v[i - 1], bottom_v[i], u0, u1)
-        et = _edge(builder, top, top_v[i - 1], top_v[i], u0, u1)
-        builder.UpdateEdge(eb, pc_bottom, surf, loc, tol)
-        builder.UpdateEdge(eb, cap, bottom_plane, loc, tol)
-        builder.UpdateEdge(et, pc_top, surf, loc, tol)
-        builder.UpdateEdge(et, cap, top_plane, loc, tol)
-        # the joint helices: this face's end and the next face's start
-        builder.UpdateEdge(helix_e[i], pc_end, surf, loc, tol)
-        builder.UpdateEdge(helix_e[i - 1], pc_start, surf, loc, tol)
-        face = TopoDS_Face()
-        builder.MakeFace(face, surf, loc, tol)
-        builder.Add(face, _wire(builder, [eb, helix_e[i], et, helix_e[i - 1]],
-                                [TopAbs_FORWARD, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_REVERSED]))
-        faces.append(face)
-        bottom_edges.append(eb)
-        top_edges.append(et)
+    canon = [_side(c, axial, length) for c in curves]
+    angles = profile.pitch_angle * np.arange(profile.teeth)
+    per_tooth = [c.instances(angles, grid, fine, math.atan2(s_top, c_top)) for c in canon]
+    # per face of the first half: (surface, bottom curve, top curve, its curves on the caps, its range)
+    sides = [(*per_tooth[j][tooth], curves[j].range) for tooth, j in (divmod(i, n) for i in range(len(joints)))]
 
-    # caps: the top cap is a face of +z normal (outer wire counter-clockwise); the bottom cap
-    # is the same construction at z = 0, reversed
+    def half(surfaces, bottoms, tops, helix_curves, vb, vt, reverse):
+        """One half's side faces: ``bottoms``/``tops`` the 3-D curves of the edges at parameter
+        v = 0 and v = length of the surfaces (None: already built, given as edges in ``tops``)."""
+        faces, edges_b, edges_t = [], [], []
+        helix_e = [_edge(builder, c, vb[i], vt[i], 0.0, length) for i, c in enumerate(helix_curves)]
+        for i, surf in enumerate(surfaces):
+            j = i % n
+            pc_bottom, pc_top, pc_start, pc_end = canon[j].pcurves
+            u0, u1 = sides[i][4]
+            eb = _edge(builder, bottoms[i], vb[i - 1], vb[i], u0, u1)
+            et = tops[i] if isinstance(tops[i], TopoDS_Edge) else _edge(builder, tops[i], vt[i - 1], vt[i], u0, u1)
+            builder.UpdateEdge(eb, pc_bottom, surf, loc, tol)
+            builder.UpdateEdge(et, pc_top, surf, loc, tol)
+            # the joint helices: this face's end and the next face's start
+            builder.UpdateEdge(helix_e[i], pc_end, surf, loc, tol)
+            builder.UpdateEdge(helix_e[i - 1], pc_start, surf, loc, tol)
+            face = TopoDS_Face()
+            builder.MakeFace(face, surf, loc, tol)
+            builder.Add(face, _wire(builder, [eb, helix_e[i], et, helix_e[i - 1]],
+                                    [TopAbs_FORWARD, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_REVERSED]))
+            faces.append(face.Reversed() if reverse else face)
+            edges_b.append(eb)
+            edges_t.append(et)
+        return faces, edges_b, edges_t
+
+    faces, bottom_edges, top_edges = half([x[0] for x in sides], [x[1] for x in sides], [x[2] for x in sides],
+                                          helix_c, bottom_v, top_v, False)
+    caps = []  # (plane, outer edges with their curves on it, z of the plane, inner wire or None, turn over)
+
+    def plane_at(z, twisted):
+        if twisted:  # the frame of the section at z = length: its curves are tooth 0's caps
+            return Geom_Plane(gp_Ax3(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0)))
+        return Geom_Plane(gp_Pnt(0, 0, z), gp_Dir(0, 0, 1))
+
+    # (plane, edges, z, faces +z, [hole]); the edges' curves on the plane: index 0 the bottom
+    # edges' (untwisted frame), 1 the top edges' (the frame turned by the twist)
+    caps.append((plane_at(0.0, False), bottom_edges, 0.0, False))  # the bottom, turned over to face -z
+    far, far_edges = length, None
+    extra = []
+    if mirror is None:
+        caps.append((plane_at(length, True), top_edges, length, True))
+    else:
+        gap, groove = mirror
+        far = 2 * length + gap
+        plane = _mirror_ax2(far)
+        # the second half: every curve, surface and vertex mirrored; v = 0 is now its far end z = far
+        vb2 = [_vertex(builder, *_mirror_point(v, far)) for v in bottom_v]
+        vt2 = top_v if gap == 0 else [_vertex(builder, *_mirror_point(v, far)) for v in top_v]
+        tops2 = top_edges if gap == 0 else [x[2].Mirrored(plane) for x in sides]
+        faces2, far_edges, near_edges = half([x[0].Mirrored(plane) for x in sides], [x[1].Mirrored(plane) for x in sides],
+                                             tops2, [c.Mirrored(plane) for c in helix_c], vb2, vt2, True)
+        faces += faces2
+        caps.append((plane_at(far, False), far_edges, far, True))
+        if gap > 0:
+            # the groove between the halves: a cylinder from z = length up by gap, and the halves'
+            # inner ends as annuli around it
+            circle = BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1)), groove)).Edge()
+            prism = BRepPrimAPI_MakePrism(circle, gp_Vec(0, 0, gap), True)
+            ring_low = BRepBuilderAPI_MakeWire(TopoDS.Edge_s(prism.FirstShape())).Wire()
+            ring_high = BRepBuilderAPI_MakeWire(TopoDS.Edge_s(prism.LastShape())).Wire()
+            caps.append((plane_at(length, True), top_edges, length, True, ring_low))
+            caps.append((plane_at(length + gap, True), near_edges, length + gap, False, ring_high))
+            extra.append(_outward_face(prism.Shape()))
+
+    # caps: faces of +z normal (outer wire counter-clockwise, holes clockwise), those facing -z turned over
+    bore_faces, bores = [], {}
     bore0 = _bore_wire(spec, 0.0)
-    bore_faces = []
-    bore1 = None
     if bore0 is not None:
-        prism = BRepPrimAPI_MakePrism(bore0, gp_Vec(0, 0, length), True)
-        bore0 = TopoDS.Wire_s(prism.FirstShape())  # the prism's copy, whose edges its faces share
-        bore1 = TopoDS.Wire_s(prism.LastShape())
+        prism = BRepPrimAPI_MakePrism(bore0, gp_Vec(0, 0, far), True)
+        bores = {0.0: TopoDS.Wire_s(prism.FirstShape()), far: TopoDS.Wire_s(prism.LastShape())}
         exp = TopExp_Explorer(prism.Shape(), TopAbs_FACE)
         while exp.More():
             bore_faces.append(exp.Current().Reversed())
             exp.Next()
-    caps = []
-    for plane, edges, hole in ((bottom_plane, bottom_edges, bore0), (top_plane, top_edges, bore1)):
+    cap_faces = []
+    for plane, edges, z, up, *ring in caps:
+        which = 0 if edges is bottom_edges or edges is far_edges else 1
+        for i, e in enumerate(edges):
+            builder.UpdateEdge(e, sides[i][3][which], plane, loc, tol)
         face = TopoDS_Face()
         builder.MakeFace(face, plane, loc, tol)
         builder.Add(face, _wire(builder, edges))
+        hole = ring[0].Reversed() if ring else bores.get(z)
         if hole is not None:
             builder.Add(face, hole)
-        caps.append(face)
-    caps[0] = caps[0].Reversed()
+        cap_faces.append(face if up else face.Reversed())
 
     shell = TopoDS_Shell()
     builder.MakeShell(shell)
-    for f in faces + caps + bore_faces:
+    for f in faces + cap_faces + bore_faces + extra:
         builder.Add(shell, f)
     shell.Closed(True)
     solid = TopoDS_Solid()
@@ -435,6 +604,31 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float) -> tu
     info = [ToothFace(c.kind, c.side, (len(c.fit.poles), len(axial.z)) if c.fit is not None else (0, 0),
                       c.fit.max_error if c.fit is not None else 0.0) for c in curves]
     return solid, info
+
+
+def _mirror_ax2(far: float) -> gp_Ax2:
+    """The plane z = far / 2, which mirrors [0, far] onto itself."""
+    return gp_Ax2(gp_Pnt(0, 0, far / 2), gp_Dir(0, 0, 1))
+
+
+def _mirror_point(vertex: TopoDS_Vertex, far: float) -> tuple[float, float, float]:
+    p = BRep_Tool.Pnt_s(vertex)
+    return p.X(), p.Y(), far - p.Z()
+
+
+def _outward_face(shape: TopoDS_Shape) -> TopoDS_Shape:
+    """The one face of ``shape`` (an edge swept into a cylinder), oriented with its normal away
+    from the axis."""
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    face = TopoDS.Face_s(exp.Current())
+    ad = BRepAdaptor_Surface(face)
+    u, v = ad.FirstUParameter(), 0.5 * (ad.FirstVParameter() + ad.LastVParameter())
+    p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
+    ad.D1(u, v, p, du, dv)
+    normal = du.Crossed(dv)
+    if face.Orientation() == TopAbs_REVERSED:
+        normal.Reverse()
+    return face if normal.X() * p.X() + normal.Y() * p.Y() > 0 else face.Reversed()
 
 
 def _hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:

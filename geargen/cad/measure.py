@@ -63,6 +63,7 @@ class SectionCurve:
         s = self._guess
         p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
         span = self.s1 - self.s0
+        last = math.inf
         for _ in range(40):
             u, v = (t, s) if self.along_u else (s, t)
             self.surface.D1(u, v, p, du, dv)
@@ -72,8 +73,12 @@ class SectionCurve:
                 return None
             step = f / dz
             s = min(max(s - step, self.s0 - 0.01 * span), self.s1 + 0.01 * span)
-            if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15:
+            # converged, or down to rounding: a step no smaller than the last one once it is below
+            # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
+            if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
+                    (abs(step) >= last and abs(step) <= 1e-12 * max(1.0, abs(span))):
                 break
+            last = abs(step)
         else:
             return None
         if not (self.s0 - 1e-12 * max(1.0, abs(span)) <= s <= self.s1 + 1e-12 * max(1.0, abs(span))):

@@ -202,18 +202,28 @@ def fit_function(point, deriv, length: float, tolerance: float, degree: int = FI
     return SplineFit(degree, knots, mults, poles, err, length, (0.0, length))
 
 
-def fit_rotation(rate: float, length: float, tolerance: float, degree: int = FIT_DEGREE,
+def fit_rotation(rate: float, length: float, tolerance: float, degree: int | None = FIT_DEGREE,
                  max_spans: int = 64) -> SplineFit:
     """Fit ``(cos(rate z), sin(rate z))`` for z in [0, length] (mm; ``rate`` rad/mm) to
     ``tolerance`` (unitless: the distance on the unit circle, which is also the operator norm of
     the error of the rotation matrix built from it). Exact at both ends (end poles ``(1, 0)`` and
-    ``(cos, sin)(rate length)``)."""
+    ``(cos, sin)(rate length)``). ``degree`` None: the fewest poles, one span of degree 3 to
+    :data:`FIT_DEGREE` if one reaches ``tolerance`` (a small twist: 5-7 poles where degree 7 has 8),
+    else spans of degree :data:`FIT_DEGREE`."""
     def point(z):
         return np.column_stack([np.cos(rate * z), np.sin(rate * z)])
 
     def deriv(z):
         return rate * np.column_stack([-np.sin(rate * z), np.cos(rate * z)])
 
+    if degree is None:
+        for low in range(3, FIT_DEGREE):
+            try:
+                poles, knots, mults, err = _fit(point, deriv, length, tolerance, low, 1)
+            except ValueError:
+                continue
+            return SplineFit(low, knots, mults, poles, err, length, (0.0, rate * length))
+        degree = FIT_DEGREE
     poles, knots, mults, err = _fit(point, deriv, length, tolerance, degree, max_spans)
     return SplineFit(degree, knots, mults, poles, err, length, (0.0, rate * length))
 

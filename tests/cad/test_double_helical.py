@@ -14,7 +14,8 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS
 
-from geargen.cad.double_helical import build_double_helical, groove_radius, half_spec
+from geargen.cad.double_helical import build_double_helical, half_spec
+from geargen.profile.tooth import centre_gap_radius
 from geargen.cad.families import build_part
 from geargen.cad.gear_solid import check_solid, solid_volume
 from geargen.cad.measure import flank_deviation, section
@@ -63,7 +64,7 @@ def expected_volume(spec, profile) -> float:
     """Profile area x toothed length + groove disc x gap - bore x face width, plus the hub. A helical
     half has the volume of its spur twin (every transverse section is the same outline, turned)."""
     hub = spec.hub
-    vol = profile.area() * (spec.face_width - spec.centre_gap) + math.pi * groove_radius(spec, profile) ** 2 * spec.centre_gap
+    vol = profile.area() * (spec.face_width - spec.centre_gap) + math.pi * centre_gap_radius(spec, profile) ** 2 * spec.centre_gap
     vol -= bore_area(hub) * spec.face_width
     vol += (math.pi * hub.hub_diameter ** 2 / 4 - bore_area(hub)) * hub.hub_length
     return vol
@@ -199,3 +200,15 @@ def test_command_builds_a_double_helical_gear(tmp_path):
     data = json.loads((tmp_path / "o" / "double_helical_13.json").read_text())
     assert data["double_helical"] == {"centre_gap": 1.0, "half_face_width": 2.5, "half_hands": ["left", "right"]}
     assert (tmp_path / "o" / "double_helical_13.step").stat().st_size > 0
+
+
+def test_put_together_without_split_faces(gapped):
+    """Face by face, no boolean: per half every tooth has exactly its profile's faces (none split at
+    the apex or cut by a fuse), plus the two ends, the halves' two inner ends, the groove and the
+    bore."""
+    count = 0
+    exp = TopExp_Explorer(gapped.shape, TopAbs_FACE)
+    while exp.More():
+        count += 1
+        exp.Next()
+    assert count == 2 * len(gapped.faces) * gapped.spec.teeth + 2 + 2 + 1 + 1

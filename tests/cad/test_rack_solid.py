@@ -177,3 +177,34 @@ def test_helical_rack_teeth_follow_the_pinion_of_its_hand(hand):
     assert abs((moved - expected) - pt * round((moved - expected) / pt)) < 1e-9
     wrong = moved + expected  # what a rack of the other hand would give: not a whole number of pitches
     assert abs(wrong - pt * round(wrong / pt)) > 0.1
+
+
+@pytest.mark.parametrize("case", [c for c in CASES if "helical" in c or CASES[c].get("helix_angle")])
+def test_helical_rack_faces_are_exact_prism_faces(case):
+    """A helical rack put together face by face keeps every face exact: planes, and cylinders whose
+    axes run along the teeth ((sin beta, 0, cos beta), signed by hand) with the section's arc radii;
+    one face per section segment whose strip meets the box, plus the four walls and the back."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_Cylinder, GeomAbs_Plane
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+    spec = spec_of(case)
+    rack = build_rack(spec)
+    beta = spec.signed_helix_angle
+    teeth = np.array([math.sin(beta), 0.0, math.cos(beta)])
+    radii = {round(r, 9) for r in (rack.outline.tip_radius, rack.outline.root_radius) if r > 0}
+    kinds = []
+    exp = TopExp_Explorer(rack.shape, TopAbs_FACE)
+    while exp.More():
+        ad = BRepAdaptor_Surface(TopoDS.Face_s(exp.Current()))
+        kinds.append(ad.GetType())
+        if ad.GetType() == GeomAbs_Cylinder:
+            axis = ad.Cylinder().Axis().Direction()
+            assert abs(abs(np.dot([axis.X(), axis.Y(), axis.Z()], teeth)) - 1) < 1e-14
+            assert round(ad.Cylinder().Radius(), 9) in radii
+        exp.Next()
+    assert set(kinds) <= {GeomAbs_Plane, GeomAbs_Cylinder}
+    # every tooth's arcs (two a rounded tip, two a root fillet; the ends may cut one off)
+    arcs = 2 * (rack.outline.tip_radius > 0) + 2 * (rack.outline.root_radius > 0)
+    assert kinds.count(GeomAbs_Cylinder) >= arcs * (spec.teeth - 1)

@@ -99,3 +99,20 @@ def test_rotation_fit_and_greville_heights():
     zz = BSpline(np.repeat(fit.knots, fit.mults), greville(fit), fit.degree)(z)
     assert np.max(np.abs(zz - z)) <= 1e-13
     assert len(fit.poles) <= 8  # one span: the helical surfaces have 8 rows of poles
+
+
+@pytest.mark.parametrize("twist", [0.05, 0.17, 0.52, 1.5])
+def test_rotation_fit_of_fewest_poles(twist):
+    """``degree=None`` takes the lowest degree (one span) that reaches the tolerance: within it at
+    10 001 points, exact at the ends, and one degree lower (same span) would miss it - so no pole is
+    spent that the accuracy does not need. Tolerance 3e-10: 0.01 nm at a 33 mm radius."""
+    tol = 3e-10
+    fit = fit_rotation(twist, 1.0, tol, degree=None)
+    z = np.linspace(0.0, 1.0, 10001)
+    err = np.linalg.norm(spline(fit, z) - np.column_stack([np.cos(twist * z), np.sin(twist * z)]), axis=1)
+    assert err.max() <= tol
+    assert fit.poles[-1].tolist() == [math.cos(twist), math.sin(twist)]
+    if len(fit.knots) == 2 and fit.degree > 3:  # one span: the degree below misses
+        with pytest.raises(ValueError):
+            fit_rotation(twist, 1.0, tol, degree=fit.degree - 1, max_spans=1)
+    assert len(fit.poles) <= len(fit_rotation(twist, 1.0, tol).poles)  # never more than degree 7's
