@@ -133,9 +133,9 @@ def check_one(p: dict) -> tuple[str, str]:
             return "ok", "sections and pair check"
         from geargen.cad.worm_solid import build_worm
         from geargen.design.worm import WormSpec
-        worm = build_worm(WormSpec(s), points_per_turn=32)
-        # 32 interpolation points a turn: helix chord error ~ r dtheta^4 / 384, relative ~1e-6
-        failure = _solid_failure(worm.shape, exact_worm_volume(s), 1e-5, "")
+        worm = build_worm(WormSpec(s))
+        # the 0.01 nm helices: measured within 2e-9 of the closed form (quad's own error ~1e-12)
+        failure = _solid_failure(worm.shape, exact_worm_volume(s), 1e-7, "")
         if failure:
             return failure
         from geargen.cad.worm_wheel_solid import build_worm_wheel

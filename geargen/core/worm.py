@@ -241,5 +241,58 @@ def space_width_at_radius(section: WheelSection, radius: float) -> float:
     return (angles[0] - angles[1]) * radius
 
 
+@dataclass(frozen=True)
+class HelixSpline:
+    """The unit circle (cos t, sin t), t from ``t0`` to at least ``t1``, as a B-spline of degree
+    ``degree`` on uniform simple knots ``knots`` (unclamped: the curve runs from knots[degree] =
+    t0 to knots[-degree - 1]), ``poles`` (n, 2) on a circle, pole j at the angle of knot j turned
+    and scaled by one complex factor; ``greville`` (n,) the Greville abscissae (poles of t -> t:
+    a helix's z poles are p greville + offset, exactly linear). ``max_error``: the largest distance
+    from the unit circle at the same parameter (the radial ripple of period one span)."""
+
+    degree: int
+    knots: np.ndarray
+    poles: np.ndarray
+    greville: np.ndarray
+    max_error: float
+
+
+def _circle_ripple(spans_per_turn: int, degree: int, samples: int = 64):
+    """The complex factor that centres a uniform periodic B-spline with poles e^(i t_j) (t_j its
+    knots) on the unit circle, and the distance left (its curve is e^(it) times a factor of period
+    one span; measured on ``samples`` points of a middle span)."""
+    from scipy.interpolate import BSpline
+    h = 2 * math.pi / spans_per_turn
+    n = 3 * degree
+    knots = np.arange(n + degree + 1) * h
+    angles = knots[:n]
+    curve = BSpline(knots, np.column_stack([np.cos(angles), np.sin(angles)]), degree)
+    t = knots[n // 2] + h * np.arange(samples) / samples
+    xy = curve(t)
+    factor = (xy[:, 0] + 1j * xy[:, 1]) * np.exp(-1j * t)
+    scale = 1 / np.mean(factor)
+    return scale, float(np.max(np.abs(scale * factor - 1)))
+
+
+def helix_spline(t0: float, t1: float, tolerance: float, degree: int = 7) -> HelixSpline:
+    """The unit circle over [t0, t1] within ``tolerance`` (relative: a helix of radius r is within
+    r tolerance): the fewest uniform spans a turn (from 8) whose periodic B-spline, its poles on a
+    circle, stays within it. Every span is the same, so the cost and the error do not grow with
+    the number of turns (a least-squares fit over 60 turns would)."""
+    for spans in range(8, 257):
+        scale, error = _circle_ripple(spans, degree)
+        if error <= tolerance:
+            break
+    else:
+        raise ValueError(f"no uniform B-spline of degree {degree} within {tolerance:g} of the circle")
+    h = 2 * math.pi / spans
+    n = int(math.ceil((t1 - t0) / h - 1e-12)) + degree
+    knots = t0 + (np.arange(n + degree + 1) - degree) * h
+    unit = scale * np.exp(1j * knots[:n])
+    greville = np.array([knots[j + 1:j + degree + 1].mean() for j in range(n)])
+    return HelixSpline(degree, knots, np.column_stack([unit.real, unit.imag]), greville, error)
+
+
 __all__ = ["WormGeometry", "worm_geometry", "worm_flank_point", "worm_flank_normal", "contact_point",
-           "wheel_angle", "to_wheel", "WheelSection", "wheel_section", "space_width_at_radius", "flank_axial_offset"]
+           "wheel_angle", "to_wheel", "WheelSection", "wheel_section", "space_width_at_radius", "flank_axial_offset",
+           "HelixSpline", "helix_spline"]
