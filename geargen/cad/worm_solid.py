@@ -33,7 +33,7 @@ import numpy as np
 
 from geargen.core.worm import WormGeometry, flank_axial_offset, helix_spline, worm_geometry
 from geargen.design.worm import WormSpec
-from geargen.errors import BuildError
+from geargen.errors import KernelFailure
 
 
 @dataclass
@@ -55,13 +55,22 @@ class WormPartSolid:
         from geargen.cad.gear_solid import check_solid
         return check_solid(self.shape) is None
 
+    def exact_triangles(self, chordal_tolerance: float):
+        """The closed triangle mesh (n, 3, 3) of the part from its exact geometry, within
+        ``chordal_tolerance`` mm (geargen.profile.worm_tessellate; the STL export's mesher)."""
+        from geargen.profile.worm_tessellate import wheel_triangles, worm_triangles
+        mesh = worm_triangles if self.spec.kind == "worm" else wheel_triangles
+        return mesh(self.spec.set, chordal_tolerance)
+
 
 def _checked(shape, name: str, check: bool):
+    """``shape``, checked when ``check``: a worm or wheel built from a valid set that is not one
+    valid closed solid is geargen's failure, not the input's (KernelFailure: exit status 4)."""
     from geargen.cad.gear_solid import check_solid
     if check:
         problem = check_solid(shape)
         if problem is not None:
-            raise BuildError(f"{name}: not one valid closed solid: {problem}")
+            raise KernelFailure(f"{name}: the solid built is not one valid closed solid ({problem})")
     return shape
 
 
@@ -237,9 +246,9 @@ def _loop(edges):
                 loop.append((remaining.pop(i), rev))
                 break
         else:
-            raise BuildError("worm: a face's boundary does not close")
+            raise KernelFailure("worm: a face's boundary does not close")
     if not ends(*loop[-1])[1].IsSame(ends(*loop[0])[0]):
-        raise BuildError("worm: a face's boundary does not close")
+        raise KernelFailure("worm: a face's boundary does not close")
     return loop
 
 
