@@ -4,12 +4,12 @@ Each set is either refused with a DesignError / an expected GeometryError (a whe
 undercuts), or: its wheel's envelope sections are computed across the face, the pair check at
 the design centre distance measures the design backlash within 2 um with no interference, and the
 worm is built as one valid closed solid whose volume matches the exact screw-solid formula, and so
-is the wheel (its volume against Gauss-Legendre over z of the exact section areas).
-Otherwise a tagged failure: ``backlash``, ``interference``, ``invalid``, ``not_one_solid``,
-``wrong_volume`` (``wheel_`` before the last three for the wheel), ``timeout``,
-``crash:<exception type>``. The solids are built for a tenth of the sets in CI,
-``GEARGEN_SWEEP_SOLID_FRACTION=1`` for all; the wheel at a coarse grid (its sub-micron accuracy at
-the default grid is tests/cad/test_worm_wheel_solid.py's).
+is the wheel (its volume against Gauss-Legendre over z of the exact section areas); each is
+exported as the gear command does: its STEP, read back, is one valid solid of that volume, and its
+STL (1 um) is closed. Otherwise a tagged failure: ``backlash``, ``interference``, ``invalid``,
+``not_one_solid``, ``wrong_volume``, ``step_invalid``, ``step_volume``, ``stl_open`` (``wheel_``
+before them for the wheel), ``timeout``, ``crash:<exception type>``. The solids are built for a
+tenth of the sets in CI, ``GEARGEN_SWEEP_SOLID_FRACTION=1`` for all.
 
 More by hand: ``GEARGEN_SWEEP_COUNT=2000 GEARGEN_SWEEP_SEED=7 pytest tests/test_worm_sweep.py -s``.
 """
@@ -31,8 +31,8 @@ from sweep_support import assert_sweep, run_sweep  # noqa: E402
 COUNT = int(os.environ.get("GEARGEN_SWEEP_COUNT", "100"))
 SEED = int(os.environ.get("GEARGEN_SWEEP_SEED", "20261124"))
 SOLID_FRACTION = float(os.environ.get("GEARGEN_SWEEP_SOLID_FRACTION", "0.1"))
-#: a set with solids builds and checks two (worm 5-40 s, wheel 3-30 s with its BRepCheck on a busy
-#: 2-core machine): more than the runner's default 60 s per set
+#: a set with solids builds, checks and exports two (each 1-10 s on a busy 2-core machine, the
+#: wheel's 1 um STL the most): more than the runner's default 60 s per set
 TIMEOUT = float(os.environ.get("GEARGEN_SWEEP_TIMEOUT", "150"))
 
 #: refusals that are the right answer for impossible parameters
@@ -54,7 +54,7 @@ def random_parameters(rng: np.random.Generator) -> dict:
         "backlash_modules": float(rng.uniform(0.0, 0.05)) if rng.random() < 0.7 else 0.0,
         "backlash_on": str(rng.choice(["wheel", "worm"])),
         "face_fraction": float(rng.uniform(0.2, 1.0)),
-        # the worm and wheel solids (5-40 s a build) for one set in ten: the sweep's CI time; all by hand
+        # the worm and wheel solids and their exports for one set in ten: the sweep's CI time; all by hand
         "build_solid": bool(rng.random() < SOLID_FRACTION),
     }
 
@@ -97,8 +97,30 @@ def exact_worm_volume(s) -> float:
     return math.pi * rf * rf * L + L * thread / g.axial_pitch
 
 
-#: the wheel's grid in the sweep: coarse (CI time); validity and volume are checked, not accuracy
-WHEEL_ROWS_PER_MODULE = 2.0
+def _export_failure(part, expected_volume: float, tag: str) -> tuple[str, str] | None:
+    """The tagged failure of ``part``'s exports as the gear command writes them (issue 31: STEPs
+    that read back with the wrong volume, STLs that were not closed), or None."""
+    import tempfile
+
+    import trimesh
+
+    from geargen.cad.export import export_step, export_stl, read_step
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    with tempfile.TemporaryDirectory() as folder:
+        export_step(part, Path(folder) / "part.step")
+        shape = read_step(Path(folder) / "part.step").shape
+        problem = check_solid(shape)
+        if problem:
+            return tag + "step_invalid", problem
+        vol = solid_volume(shape, 1e-9)
+        # the in-memory solid's tolerance: measured within 2e-8 of the closed forms, read back too
+        if abs(vol / expected_volume - 1) > 1e-7:
+            return tag + "step_volume", f"{vol!r} vs {expected_volume!r} ({vol / expected_volume - 1:.2e})"
+        export_stl(part, Path(folder) / "part.stl")
+        mesh = trimesh.load(Path(folder) / "part.stl")
+        if not (mesh.is_watertight and mesh.is_winding_consistent):
+            return tag + "stl_open", f"{len(mesh.faces)} triangles"
+    return None
 
 
 def _wheel_volume(s) -> float:
@@ -134,17 +156,21 @@ def check_one(p: dict) -> tuple[str, str]:
         from geargen.cad.worm_solid import build_worm
         from geargen.design.worm import WormSpec
         worm = build_worm(WormSpec(s))
+        exact = exact_worm_volume(s)
         # the 0.01 nm helices: measured within 2e-9 of the closed form (quad's own error ~1e-12)
-        failure = _solid_failure(worm.shape, exact_worm_volume(s), 1e-7, "")
+        failure = _solid_failure(worm.shape, exact, 1e-7, "") or _export_failure(worm, exact, "")
         if failure:
             return failure
         from geargen.cad.worm_wheel_solid import build_worm_wheel
         from geargen.design.worm import WormWheelSpec
-        wheel = build_worm_wheel(WormWheelSpec(s), rows_per_module=WHEEL_ROWS_PER_MODULE, n_flank=16, n_trochoid=8)
-        # the coarse grid's surface is within a few um of the envelope: relative volume error ~1e-6
-        failure = _solid_failure(wheel.shape, _wheel_volume(s), 2e-5, "wheel_")
+        wheel = build_worm_wheel(WormWheelSpec(s))
+        exact = _wheel_volume(s)
+        # the surfaces within 0.25 um of the envelope: measured within 4e-8 of the exact volume
+        failure = _solid_failure(wheel.shape, exact, 1e-7, "wheel_") or _export_failure(wheel, exact, "wheel_")
         if failure:
             return failure
+    except GeometryError as exc:  # the wheel's fit samples more planes than the pair check's five
+        return f"geometry_error:{exc.kind}", str(exc)[:120]
     except Exception as exc:  # noqa: BLE001
         return f"crash:{type(exc).__name__}", traceback.format_exc(limit=3)[-300:]
     return "ok", ""

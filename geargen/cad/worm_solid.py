@@ -46,6 +46,8 @@ class WormPartSolid:
     geometry: WormGeometry
     length_unit: str
     profile: object = None  # the cylindrical gears' ToothProfile; none here
+    #: the largest distance (mm) of the flanks from the exact surface, as the builder measured it
+    flank_error: float = 0.0
 
     def volume(self) -> float:
         from geargen.cad.gear_solid import solid_volume
@@ -133,12 +135,14 @@ def _helices(builder, g: WormGeometry, p: float, starts: int, half: float):
     knots = TColStd_Array1OfReal(1, curve.NbKnots())
     curve.Knots(knots)
     axis = SimpleNamespace(knots=[knots.Value(i) for i in range(1, curve.NbKnots() + 1)],
-                           mults=[curve.Multiplicity(i) for i in range(1, curve.NbKnots() + 1)], degree=spline.degree)
+                           mults=[curve.Multiplicity(i) for i in range(1, curve.NbKnots() + 1)], degree=spline.degree,
+                           error=spline.max_error * ra)
     return helices, theta0, axis
 
 
 def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
-    """The worm's closed shell (see the module docstring): per pair of consecutive helices a
+    """The worm's closed shell (see the module docstring) and its helices' largest distance (mm)
+    from the exact ones (the flanks' from the helicoid): per pair of consecutive helices a
     flank (ruled B-spline surface, parameters (s, v) with v 0 .. 1 from one helix to the next) or a
     tip or root face (cylinder, parameters (theta, z)), each bounded by its two helices and its
     two end edges; the two end planes bounded by the end edges."""
@@ -226,7 +230,7 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
     for face in faces:
         builder.Add(shell, face)
     shell.Closed(True)
-    return shell
+    return shell, axis.error
 
 
 def _loop(edges):
@@ -301,9 +305,10 @@ def build_worm(spec: WormSpec, check: bool = False) -> WormPartSolid:
     solid = TopoDS_Solid()
     builder = BRep_Builder()
     builder.MakeSolid(solid)
-    builder.Add(solid, _worm_shell(g, s.hand_sign * g.screw_parameter, s.starts, s.worm_face_length))
+    shell, error = _worm_shell(g, s.hand_sign * g.screw_parameter, s.starts, s.worm_face_length)
+    builder.Add(solid, shell)
     BRepLib.OrientClosedSolid_s(solid)
-    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit)
+    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=error)
 
 
 def worm_to_mesh(points, centre_distance: float):

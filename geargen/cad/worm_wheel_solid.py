@@ -319,9 +319,7 @@ def build_worm_wheel(spec: WormWheelSpec, check: bool = False, tolerance: float 
     g = worm_geometry(s)
     fit = fit_wheel(s, g, tolerance)
     solid = _wheel_solid(fit, s.wheel_teeth, s.wheel_face_width / 2)
-    part = WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit)
-    part.fit = fit
-    return part
+    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=fit.max_error)
 
 
 __all__ = ["build_worm_wheel", "fit_wheel", "WheelFit", "z_ranges", "rim_radius", "crease_height", "DEGREE",

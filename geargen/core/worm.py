@@ -331,7 +331,8 @@ def outside_radius_limit(s: WormGearSet, g: WormGeometry, land: float) -> float:
 
 def wheel_outline(s: WormGearSet, g: WormGeometry, z, u_flank, u_trochoid, u_arc) -> dict:
     """The wheel's outline in planes ``z`` (nz,) for the tooth space centred on +Y, exact, as point
-    runs (nz, n, 2) at the same parameters in every plane: ``("flank", side)`` from the rim
+    runs (nz, n, 2) at the same parameters in every plane (GeometryError ``wheel_undercut`` where a
+    flank folds back or a trochoid cuts it, as :func:`wheel_section`): ``("flank", side)`` from the rim
     (u_flank 0) to the flank's lower end at the hob tip edge (1), the worm radius linear in
     u_flank; ``("trochoid", side)`` the hob tip edge's path from there (u_trochoid 0) to the root
     circle on the line of centres (1), the worm angle linear; ``"root"`` the root arc from the +1
@@ -356,6 +357,7 @@ def wheel_outline(s: WormGearSet, g: WormGeometry, z, u_flank, u_trochoid, u_arc
             flank[:, 0] *= (rim_radius(g, z) / np.hypot(flank[:, 0, 0], flank[:, 0, 1]))[:, None]
         if u_flank[0, -1] == 1.0 and u_trochoid[0, 0] == 0.0:
             trochoid[:, 0] = flank[:, -1]  # the same point (the contact at the edge), to rounding
+        _check_no_fold(flank, trochoid, side, z)
         out["flank", side], out["trochoid", side] = flank, trochoid
 
     def arc(radius, start, end):
@@ -373,14 +375,17 @@ def wheel_outline(s: WormGearSet, g: WormGeometry, z, u_flank, u_trochoid, u_arc
 
 def _check_no_fold(flank, trochoid, side, z):
     """The flank's radius must fall monotonically from the rim to its lower end, and the trochoid
-    must stay inside the space (on the space side of the flank's lower end), or it is undercut."""
-    rad = np.hypot(flank[:, 0], flank[:, 1])
-    if np.any(np.diff(rad) >= 0):
-        raise GeometryError("wheel_undercut", f"the wheel flank folds back in plane z = {z:.4g} mm")
+    must stay inside the space (on the space side of the flank's lower end), or it is undercut.
+    ``flank``, ``trochoid`` (..., n, 2) in the planes ``z`` (...)."""
+    rad = np.hypot(flank[..., 0], flank[..., 1])
+    folds = np.any(np.diff(rad, axis=-1) >= 0, axis=-1)
+    if np.any(folds):
+        raise GeometryError("wheel_undercut", f"the wheel flank folds back in plane z = {float(np.ravel(z)[np.argmax(np.ravel(folds))]):.4g} mm")
     # polar angle measured from +Y toward +X (the space centre is 0, side +1 positive)
-    ang = np.arctan2(trochoid[:, 0], trochoid[:, 1]) * side
-    if np.any(np.diff(ang) > 1e-12):
-        raise GeometryError("wheel_undercut", f"the hob tip edge cuts the flank in plane z = {z:.4g} mm")
+    ang = np.arctan2(trochoid[..., 0], trochoid[..., 1]) * side
+    cuts = np.any(np.diff(ang, axis=-1) > 1e-12, axis=-1)
+    if np.any(cuts):
+        raise GeometryError("wheel_undercut", f"the hob tip edge cuts the flank in plane z = {float(np.ravel(z)[np.argmax(np.ravel(cuts))]):.4g} mm")
 
 
 def space_width_at_radius(section: WheelSection, radius: float) -> float:

@@ -149,10 +149,14 @@ def ring_mesh(grid: np.ndarray, sectors: int) -> np.ndarray:
     ``grid`` (nz, nc, 3): rows at increasing z, each a ring of ``nc`` points counterclockwise round
     the z axis (the last joined to the first), ``sectors``-fold (nc / sectors columns a sector),
     with flat ends in the first and last rows' planes. Each quad is split along its shorter
-    diagonal. The points are rounded to single precision (an STL's) first and triangles whose
-    corners then coincide are left out (where a run shrinks to a point, e.g. a trochoid of zero
-    length in some plane): what is written is closed."""
+    diagonal. The points are rounded to single precision (an STL's) first, neighbours closer than
+    a nanometre made one, and triangles whose corners then coincide left out (where a run shrinks
+    to a point, e.g. a trochoid of no length in some plane): what is written is closed."""
     grid = grid.astype(np.float32).astype(float)
+    # neighbours in a row closer than a nanometre (a run that shrinks to a point) are one point
+    close = np.argwhere(np.linalg.norm(np.diff(grid, axis=1), axis=-1) < 1e-6)
+    for i, j in close:  # in order: a chain of them takes its first
+        grid[i, j + 1] = grid[i, j]
     a, b = grid[:-1], np.roll(grid[:-1], -1, axis=1)
     c, d = np.roll(grid[1:], -1, axis=1), grid[1:]
     rising = _rising(a, b, c, d)[..., None, None]
@@ -177,7 +181,10 @@ def _cap(ring: np.ndarray, sectors: int, arc_nodes: int = 4) -> np.ndarray:
     # sector 0: the outline from column 0 to column ``per`` (the next sector's first), the circle back
     outline = np.arange(per + 1)
     arc = np.arange(arc_nodes)[::-1]
-    tris = ear_clip(np.concatenate([ring[outline % nc, :2], circle[arc % steps, :2]]))
+    # a run shrunk to a point (a trochoid of no length at a face end) repeats a point: once is enough
+    poly = np.concatenate([ring[outline % nc, :2], circle[arc % steps, :2]])
+    keep = np.concatenate([[True], np.any(poly[1:] != poly[:-1], axis=1)])
+    tris = np.flatnonzero(keep)[ear_clip(poly[keep])]
     ids = np.concatenate([np.concatenate([(outline + k * per) % nc, nc + (arc + k * (arc_nodes - 1)) % steps])[tris]
                           for k in range(sectors)])
     points = np.concatenate([ring, circle])
@@ -249,6 +256,10 @@ def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     extra = (ends.ravel()[:, None] + turn * np.arange(-whole, whole + 1)[None, :]).ravel()
     thetas = np.unique(np.concatenate([grid, extra]))
     thetas = thetas[(thetas >= lo - 1e-12) & (thetas <= hi + 1e-12)]
+    # angles a rounding apart (a helix end on the grid, two ends a turn apart) are one row: two rows
+    # that close would make the same points twice in an STL's single precision
+    eps = 1e-6 * d_theta
+    thetas = thetas[np.concatenate([[True], np.diff(thetas) > eps])]
 
     points, count = [], [0]  # the vertex pool
 
@@ -265,7 +276,7 @@ def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     on_helix = []
     for i, (r, c) in enumerate(helices[:-1]):
         t0, t1 = sorted(ends[i])
-        ts = thetas[(thetas >= t0 - 1e-12) & (thetas <= t1 + 1e-12)]
+        ts = thetas[(thetas >= t0 - eps) & (thetas <= t1 + eps)]
         xyz = helix_point(r, c, ts)
         xyz[np.argmin(np.abs(ts - ends[i][0])), 2], xyz[np.argmin(np.abs(ts - ends[i][1])), 2] = -half, half
         on_helix.append((ts, add(xyz)))
@@ -275,7 +286,7 @@ def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     def helix_vertex(i, theta):
         ts, ids = on_helix[i]
         k = int(np.argmin(np.abs(ts - theta)))
-        if abs(ts[k] - theta) > 1e-9:
+        if abs(ts[k] - theta) > eps:
             raise AssertionError(f"a row missed a helix vertex {i} {theta} {ts.min()} {ts.max()} {ts[k]}")
         return ids[k]
 
@@ -292,21 +303,27 @@ def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
         # the rows' v interval: the end planes cut theta = (-+L/2 - c(v)) / p, c(v) = ca + v (cb - ca)
         t_lo = lambda v, e: (e * half - ca - v * (cb - ca)) / p  # noqa: E731
         span = sorted([t_lo(0, -1), t_lo(0, 1), t_lo(1, -1), t_lo(1, 1)])
-        rows = thetas[(thetas >= span[0] - 1e-12) & (thetas <= span[-1] + 1e-12)]
+        rows = thetas[(thetas >= span[0] - eps) & (thetas <= span[-1] + eps)]
         row_ids, row_vs = [], []
         for theta in rows:
             # v where z(theta, v) = p theta + ca + v (cb - ca) stays within -+L/2
             z0, dz = p * theta + ca, cb - ca
             v_a, v_b = sorted([(-half - z0) / dz, (half - z0) / dz])
             v0, v1 = max(0.0, v_a), min(1.0, v_b)
-            if v1 < v0 - 1e-12:
+            if v1 < v0 - 1e-6:
                 continue
-            vs = np.concatenate([[v0], inner[(inner > v0 + 1e-9) & (inner < v1 - 1e-9)], [v1]]) if v1 > v0 + 1e-12 else np.array([v0])
+            # within a millionth of a helix, on it; an interval that short is a corner's row (the end
+            # line meets the helix there): the corner alone
+            v0, v1 = (0.0 if v0 < 1e-6 else v0), (1.0 if v1 > 1 - 1e-6 else v1)
+            if v1 - v0 < 1e-6:
+                vs = np.array([0.0 if v0 == 0.0 else 1.0])
+            else:
+                vs = np.concatenate([[v0], inner[(inner > v0 + 1e-6) & (inner < v1 - 1e-6)], [v1]])
             ids = []
             for v in vs:
-                if v <= 1e-12:
+                if v == 0.0:
                     ids.append(helix_vertex(j, theta))
-                elif v >= 1 - 1e-12:
+                elif v == 1.0:
                     ids.append(helix_vertex(j + 1, theta))
                 else:
                     r = ra_ + v * (rb - ra_)
