@@ -297,7 +297,6 @@ def build_worm(spec: WormSpec, check: bool = False) -> WormPartSolid:
     z = p t + s (t_x/2 - (r - r1) tan alpha_x) (thread k shifted by k p_x): the core's fixed frame
     at phi1 = 0 with X = z, Y = a - x, Z = -y (:func:`worm_to_mesh`)."""
     from OCP.BRep import BRep_Builder
-    from OCP.BRepLib import BRepLib
     from OCP.TopoDS import TopoDS_Solid
 
     s = spec.set
@@ -305,9 +304,9 @@ def build_worm(spec: WormSpec, check: bool = False) -> WormPartSolid:
     solid = TopoDS_Solid()
     builder = BRep_Builder()
     builder.MakeSolid(solid)
+    # every face is oriented outward as it is made (_outward): no classification needed
     shell, error = _worm_shell(g, s.hand_sign * g.screw_parameter, s.starts, s.worm_face_length)
     builder.Add(solid, shell)
-    BRepLib.OrientClosedSolid_s(solid)
     return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=error)
 
 

@@ -21,7 +21,10 @@ sharp. Spans are added (per run in u, per z range in v) until the surface is wit
 share one v basis and the tip face's edge columns ARE the space faces' (turned by a pitch), so
 neighbouring faces have identical boundary curves; tooth 0's geometry is turned z2 times.
 
-Measured (tests/cad/test_worm_wheel_solid.py, bench/bench_families.py): see :data:`FIT_TOLERANCE`.
+Measured (tests/cad/test_worm_wheel_solid.py, bench/bench_families.py): exact envelope points lie
+within 0.023 um (KHK set: m_x 3, z1 2, z2 30, d1 44, face 28) and 0.064 um (bench set: q 11, z2 40,
+face 24) of the solid; volume within 2e-8 of Gauss-Legendre over the exact sections; the bench set
+builds in ~0.1 s into 82 faces and a 3.15 MB STEP (the 542 interpolated patches sewn: 1.2 s, 22 MB).
 """
 
 from __future__ import annotations
@@ -34,12 +37,13 @@ import numpy as np
 from scipy.interpolate import BSpline
 
 from geargen.cad.worm_solid import WormPartSolid, _checked
-from geargen.core.worm import WormGeometry, crease_height, rim_radius, wheel_outline, worm_geometry
+from geargen.core.worm import WormGeometry, wheel_outline, worm_geometry, z_ranges
 from geargen.design.worm import WormGearSet, WormWheelSpec
 from geargen.errors import KernelFailure
 
 #: B-spline degree of the wheel's surfaces, both ways: the runs are analytic, so the error falls
-#: like h^6 and one span of degree 5 holds a whole flank within ~0.1 um on the KHK set
+#: like h^(degree + 1); one span of degree 6 holds every run and z range within 0.05 um (KHK set)
+#: and 0.13 um (the bench's: q 11, z2 40), where degree 5 needed 3 spans on its flanks (more poles)
 DEGREE = 6
 #: largest distance (mm) of the fitted surfaces from the exact envelope at the check parameters
 #: (half-way between the fitted ones, both ways): 0.25 um, a quarter of the 1 um the wheel may
@@ -52,17 +56,6 @@ _CHECK_PER_SPAN = 2 * DEGREE + 1
 #: the runs of the space face, in u order (run i spans u in [i, i + 1])
 _SPACE_RUNS = (("flank", 1), ("trochoid", 1), "root", ("trochoid", -1), ("flank", -1))
 _MAX_SPANS = 12
-
-
-def z_ranges(s: WormGearSet, g: WormGeometry) -> list[tuple[float, float]]:
-    """The face split at +-z_c (only the ranges inside the face; a sliver under 1e-6 m_x is dropped
-    and its neighbour carried to the end, where the rim's kink is then below any tolerance; an
-    outside diameter equal to the throat diameter makes the rim the cylinder alone)."""
-    half, zc, tiny = s.wheel_face_width / 2, crease_height(g), 1e-6 * s.axial_module
-    if zc < tiny:  # the outside cylinder is the throat's tangent at z = 0: no crease
-        return [(-half, half)]
-    cuts = [-half] + [c for c in (-zc, zc) if -half + tiny < c < half - tiny] + [half]
-    return list(zip(cuts[:-1], cuts[1:]))
 
 
 def _nodes(spans: int, per_span: int, chebyshev: bool) -> np.ndarray:
@@ -322,5 +315,4 @@ def build_worm_wheel(spec: WormWheelSpec, check: bool = False, tolerance: float 
     return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=fit.max_error)
 
 
-__all__ = ["build_worm_wheel", "fit_wheel", "WheelFit", "z_ranges", "rim_radius", "crease_height", "DEGREE",
-           "FIT_TOLERANCE"]
+__all__ = ["build_worm_wheel", "fit_wheel", "WheelFit", "z_ranges", "DEGREE", "FIT_TOLERANCE"]

@@ -1,19 +1,23 @@
 """Triangle meshes of the worm and the worm wheel straight from the exact geometry (numpy only).
 
-Both bodies are a ring of runs repeated round the axis and swept along it: the worm's transverse
-outline (per thread: flank, tip arc, flank, root arc; turning with z at the lead), the wheel's
-(per tooth: flank, trochoid, root arc, trochoid, flank, rim arc; changing with z). The side is
-one grid - a row per plane z, a column per ring point, the last column joined to the first - and
-the ends are flat: one sector between the outline and a circle inside it ear-clipped and repeated
-(by index, on the ring's own points), a fan inside the circle. Every vertex is an exact surface
-point and every shared vertex one array entry, so the mesh is closed (watertight) by construction.
+Used for their STL (the kernel's mesher with deflection control took 20-170 s for them at 1 um,
+and its wheel mesh was not closed). Every vertex is an exact surface point and every vertex that
+faces share is one array entry; the points are rounded to single precision (an STL's) and
+triangles that then collapse left out, so what is written is closed (watertight).
 
-Spacing (:func:`refine`): points per run and rows per z range grow until, at every edge's midpoint
-and every quad's centre, the exact point lies within half ``chordal_tolerance`` of the chord or
-of the quad's split diagonal (a quad's twist is what limits a helical side); a flat triangle
-strays from a smooth surface at most ~4/3 of its worst edge-midpoint sag, so every triangle is
-within the tolerance. Used for the worm and wheel STL: the kernel's mesher with deflection control
-took 20-170 s for them at 1 um, and its wheel mesh was not closed.
+- The worm (:func:`worm_triangles`): its faces are ruled between helices at equal angles, so the
+  mesh's rows are those rulings (straight: the flank's generator, an axial line on the tip and
+  root), at angles a step apart for the helix's sag, the flank rows split for the helicoid's
+  twist, cut by the end planes; the ends are fans from the axis.
+- The wheel (:func:`wheel_triangles`): a row per plane z, a column per point of the ring of runs
+  round the axis (per tooth: flank, trochoid, root arc, trochoid, flank, rim arc), the last column
+  joined to the first (:func:`ring_mesh`), each quad split along its shorter diagonal; the ends are
+  one sector between the outline and a circle inside it, ear-clipped and repeated by index on the
+  ring's own points, and a fan inside the circle. :func:`refine` spaces the points (per kind of run,
+  on a map that crowds them where the run bends) and the rows (per z range) until, at every edge's
+  midpoint and every quad's centre, the exact point lies within 3/4 of ``chordal_tolerance`` of
+  the chord or the split diagonal (along the surface normal): a flat triangle strays from a
+  quadratic surface at most 4/3 of its worst edge-midpoint sag.
 """
 
 from __future__ import annotations
@@ -23,7 +27,7 @@ from typing import Callable
 
 import numpy as np
 
-from geargen.core.worm import WormGeometry, flank_axial_offset, wheel_outline, worm_geometry
+from geargen.core.worm import WormGeometry, flank_axial_offset, wheel_outline, worm_geometry, z_ranges
 from geargen.design.worm import WormGearSet
 from geargen.profile.tessellate import TessellationError, ear_clip
 
@@ -162,7 +166,11 @@ def ring_mesh(grid: np.ndarray, sectors: int) -> np.ndarray:
     rising = _rising(a, b, c, d)[..., None, None]
     first = np.where(rising, np.stack([a, b, c], axis=2), np.stack([a, b, d], axis=2)).reshape(-1, 3, 3)
     second = np.where(rising, np.stack([a, c, d], axis=2), np.stack([b, c, d], axis=2)).reshape(-1, 3, 3)
-    tris = np.concatenate([first, second, _cap(grid[0], sectors)[:, ::-1], _cap(grid[-1], sectors)])
+    return _uncollapsed(np.concatenate([first, second, _cap(grid[0], sectors)[:, ::-1], _cap(grid[-1], sectors)]))
+
+
+def _uncollapsed(tris: np.ndarray) -> np.ndarray:
+    """The triangles whose three corners are distinct points."""
     same = (np.all(tris[:, 0] == tris[:, 1], axis=1) | np.all(tris[:, 1] == tris[:, 2], axis=1)
             | np.all(tris[:, 0] == tris[:, 2], axis=1))
     return tris[~same]
@@ -286,8 +294,8 @@ def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     def helix_vertex(i, theta):
         ts, ids = on_helix[i]
         k = int(np.argmin(np.abs(ts - theta)))
-        if abs(ts[k] - theta) > eps:
-            raise AssertionError(f"a row missed a helix vertex {i} {theta} {ts.min()} {ts.max()} {ts[k]}")
+        if abs(ts[k] - theta) > eps:  # every row angle is on every helix it reaches, by construction
+            raise TessellationError(f"worm mesh: no vertex of helix {i} at the row angle {theta:.9g}")
         return ids[k]
 
     tris, end_vertices = [], {-1: [], 1: []}
@@ -364,11 +372,7 @@ def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
         centre = int(add([0.0, 0.0, e * half])[0])
         fan = np.column_stack([np.full(len(ring), centre), ring, np.roll(ring, -1)])
         out.append(fan if e > 0 else fan[:, ::-1])
-    pts = np.concatenate(points).astype(np.float32).astype(float)
-    tris = pts[np.concatenate(out)]
-    same = (np.all(tris[:, 0] == tris[:, 1], axis=1) | np.all(tris[:, 1] == tris[:, 2], axis=1)
-            | np.all(tris[:, 0] == tris[:, 2], axis=1))
-    return tris[~same]
+    return _uncollapsed(np.concatenate(points).astype(np.float32).astype(float)[np.concatenate(out)])
 
 
 # ---------------------------------------------------------------- the wheel
@@ -390,13 +394,9 @@ def wheel_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     """The worm wheel's closed mesh (n, 3, 3), mm, outward normals, within ``chordal_tolerance``
     (mm), in the frame of geargen.cad.worm_wheel_solid (axis Z, mid plane z = 0, a space on +Y).
     Rows at the crease (z = +-z_c, the rim's kink) and at both faces."""
-    from geargen.core.worm import crease_height
     g = worm_geometry(s)
-    half, zc = s.wheel_face_width / 2, crease_height(g)
-    cuts = [-half] + [c for c in (-zc, zc) if -half + 1e-6 * s.axial_module < c < half - 1e-6 * s.axial_module] + [half]
     kinds = {run: run[0] if isinstance(run, tuple) else "arc" for run in _WHEEL_RUNS}
-    z, params, _ = refine(lambda zz, prm: _wheel_rows(s, g, zz, prm), kinds, list(zip(cuts[:-1], cuts[1:])),
-                          chordal_tolerance)
+    z, params, _ = refine(lambda zz, prm: _wheel_rows(s, g, zz, prm), kinds, z_ranges(s, g), chordal_tolerance)
     # the range joins appear twice in z (the end of one range, the start of the next): once is enough
     keep = np.concatenate([[True], np.diff(z) > 0])
     z = z[keep]
