@@ -50,6 +50,12 @@ class BuildError(GeargenError, RuntimeError):
     """The CAD kernel produced something unusable (invalid solid, failed export)."""
 
 
+class KernelFailure(RuntimeError):
+    """The CAD kernel made an unusable shape (not one valid closed solid) from input that was
+    checked and valid: a bug in geargen, not bad input (the CLI's exit status 4, with this
+    message), so not a GeargenError."""
+
+
 class EnvironmentProblem(GeargenError):
     """The machine, not the input, stops the command: an output that cannot be written, a missing
     input file, a folder where a file is expected. ``subject`` is the flag or path concerned

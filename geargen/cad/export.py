@@ -180,7 +180,14 @@ def solid_triangles(solid, chordal_tolerance: float, angular_tolerance: float = 
     import numpy as np
     triangles, mesher = None, "occt"
     layers = getattr(solid, "layers", None)
-    if layers:
+    exact = getattr(solid, "exact_triangles", None)  # a family's own exact mesher (the worm's, the wheel's)
+    if exact is not None:
+        from geargen.profile.tessellate import TessellationError
+        try:
+            triangles, mesher = exact(chordal_tolerance), "exact"
+        except TessellationError:
+            triangles = None
+    elif layers:
         from geargen.profile.tessellate import TessellationError, tessellate_layers
         hub = solid.spec.large.hub if hasattr(solid.spec, "large") else solid.spec.hub
         try:

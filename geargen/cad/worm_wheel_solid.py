@@ -1,265 +1,319 @@
 """The throated worm wheel's solid, generated from its worm (geargen.core.worm gives the exact
-transverse geometry: the envelope flanks, the hob tip's trochoids and the root circle).
+transverse geometry: the envelope flanks, the hob tip's trochoids, the root and the rim).
 
-No boolean: every face of the wheel is built where it belongs. In each transverse plane z the
-wheel's real outline is, per tooth space: the flank (the envelope, from the rim r(z) down), the
-hob tip's trochoid, the root arc, the other trochoid and flank, then the tip arc at r(z) to the
-next space, with r(z) = min(outside radius, a - sqrt(r_i^2 - z^2)) (the throat torus capped by the
-outside cylinder). Each of those six faces of one space is a B-spline surface interpolating a
-(profile parameter x z) grid of exact points: every row is interpolated at the same profile
-parameters (so the rows share their knots) and the rows' poles are interpolated over z at the same
-heights in every face, so neighbouring faces have identical boundary curves. The rim has a crease
-where the torus meets the cylinder (z = +-z_c): the faces are built separately over [-b/2, -z_c],
-[-z_c, z_c], [z_c, b/2] (the ranges that exist), each with rows AT +-z_c, so the crease stays sharp.
-The space's faces are turned z2 times, two planar end caps added, and all are sewn into one shell.
+No boolean and no sewing: the wheel is two faces a tooth, put together edge by edge.
 
-Measured on the KHK set (m_x 3, z1 2, z2 30, d1 44, face 28; tests/cad/test_worm_wheel_solid.py) at
-the defaults (rows 13 + 26 + 13 over the three z ranges, 24 flank and 10 trochoid points a row):
-built in 1.0-1.7 s (the earlier loft cut by the blank: 20-75 s), one valid solid (542 faces); 1176
-exact envelope points half-way between rows lie within 0.048 um of it (0.050 um with 40 and 16
-points: the error is the rows' spacing); volume -1.7e-8 relative to Gauss-Legendre over z of the
-exact section areas.
+- The SPACE face: the whole tooth space, one B-spline surface over u (around the space: flank +1
+  from the rim down, trochoid +1, root arc, trochoid -1, flank -1 up to the rim; one u unit each,
+  joined at knots of full multiplicity, so each run has its own polynomial pieces and the faces
+  meet only the exact joint points) and v = z (the face width).
+- The TIP face: the rim between two spaces (throat torus, capped by the outside cylinder).
+- Two planar end faces.
+
+Every surface is a least-squares fit (degree :data:`DEGREE` both ways, uniform spans, end poles
+the exact ends) of exact points of :func:`geargen.core.worm.wheel_outline`; row by row over u, then
+the rows' poles column by column over z (for points on a grid that is the tensor-product
+least-squares fit). The z poles are the Greville abscissae, so v IS z: every isoline v = z lies in
+its plane and the end rows are planar. The rim's crease where the torus meets the outside cylinder
+(z = +-z_c) is a knot of full multiplicity in v: the faces' spans end there and the crease stays
+sharp. Spans are added (per run in u, per z range in v) until the surface is within
+:data:`FIT_TOLERANCE` of the exact points at check parameters between the fitted ones. All faces
+share one v basis and the tip face's edge columns ARE the space faces' (turned by a pitch), so
+neighbouring faces have identical boundary curves; tooth 0's geometry is turned z2 times.
+
+Measured (tests/cad/test_worm_wheel_solid.py, bench/bench_families.py): exact envelope points lie
+within 0.023 um (KHK set: m_x 3, z1 2, z2 30, d1 44, face 28) and 0.064 um (bench set: q 11, z2 40,
+face 24) of the solid; volume within 2e-8 of Gauss-Legendre over the exact sections; the bench set
+builds in ~0.1 s into 82 faces and a 3.15 MB STEP (the 542 interpolated patches sewn: 1.2 s, 22 MB).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
+from types import SimpleNamespace
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.interpolate import BSpline
 
 from geargen.cad.worm_solid import WormPartSolid, _checked
-from geargen.core.worm import WormGeometry, contact_point, wheel_angle, to_wheel, worm_geometry
+from geargen.core.worm import WormGeometry, wheel_outline, worm_geometry, z_ranges
 from geargen.design.worm import WormGearSet, WormWheelSpec
-from geargen.errors import BuildError, GeometryError
+from geargen.errors import KernelFailure
 
-#: rows (transverse planes of exact points) of the face grid per axial module of face width. The
-#: surface's error between rows falls as the rows' spacing to the 4th power and scales with the set's
-#: size; on the KHK set (m_x 3, face 28) 1.5, 3, 4.5, 6 rows per module put it 1.23, 0.24, 0.075,
-#: 0.023 um from the exact envelope half-way between rows (tests/cad/test_worm_wheel_solid.py)
-DEFAULT_ROWS_PER_MODULE = 5.0
-
-
-def rim_radius(g: WormGeometry, z: float) -> float:
-    """The wheel's outer radius in plane z: the throat torus (minor radius r_i about the worm axis
-    at the centre distance), capped by the outside cylinder."""
-    return min(g.wheel_outside_diameter / 2, g.centre_distance - math.sqrt(max(g.throat_radius ** 2 - z * z, 0.0)))
-
-
-def crease_height(g: WormGeometry) -> float:
-    """z_c: where the throat torus meets the outside cylinder (0 if the rim is all cylinder)."""
-    return math.sqrt(max(g.throat_radius ** 2 - (g.centre_distance - g.wheel_outside_diameter / 2) ** 2, 0.0))
-
-
-def z_ranges(s: WormGearSet, g: WormGeometry) -> list[tuple[float, float]]:
-    """The face split at +-z_c (only the ranges inside the face; a sliver under 1e-6 m_x is dropped
-    and its neighbour carried to the end, where the rim's kink is then below any tolerance; an
-    outside diameter equal to the throat diameter makes the rim the cylinder alone)."""
-    half, zc, tiny = s.wheel_face_width / 2, crease_height(g), 1e-6 * s.axial_module
-    if zc < tiny:  # the outside cylinder is the throat's tangent at z = 0: no crease
-        return [(-half, half)]
-    cuts = [-half] + [c for c in (-zc, zc) if -half + tiny < c < half - tiny] + [half]
-    return list(zip(cuts[:-1], cuts[1:]))
+#: B-spline degree of the wheel's surfaces, both ways: the runs are analytic, so the error falls
+#: like h^(degree + 1); one span of degree 6 holds every run and z range within 0.05 um (KHK set)
+#: and 0.13 um (the bench's: q 11, z2 40), where degree 5 needed 3 spans on its flanks (more poles)
+DEGREE = 6
+#: largest distance (mm) of the fitted surfaces from the exact envelope at the check parameters
+#: (half-way between the fitted ones, both ways): 0.25 um, a quarter of the 1 um the wheel may
+#: stray (issue 28); the measured distance of exact points is below it
+FIT_TOLERANCE = 0.25e-3
+#: exact points a span is fitted to (Chebyshev-spaced), and check points a span (evenly spaced,
+#: none a fitted one)
+_FIT_PER_SPAN = 3 * DEGREE
+_CHECK_PER_SPAN = 2 * DEGREE + 1
+#: the runs of the space face, in u order (run i spans u in [i, i + 1])
+_SPACE_RUNS = (("flank", 1), ("trochoid", 1), "root", ("trochoid", -1), ("flank", -1))
+_MAX_SPANS = 12
 
 
-def row_heights(s: WormGearSet, g: WormGeometry, rows_per_module: float | None = None) -> list[np.ndarray]:
-    """The heights of the face grid's rows in each z range (evenly spaced, both ends included)."""
-    density = (DEFAULT_ROWS_PER_MODULE if rows_per_module is None else rows_per_module) / s.axial_module
-    return [np.linspace(lo, hi, max(4, int(math.ceil((hi - lo) * density)) + 1)) for lo, hi in z_ranges(s, g)]
+def _nodes(spans: int, per_span: int, chebyshev: bool) -> np.ndarray:
+    """Parameters in [0, 1]: both ends and ``per_span`` points inside each of ``spans`` uniform
+    spans (Chebyshev-spaced, denser at the span ends, or evenly spaced without either end)."""
+    k = np.arange(per_span)
+    frac = 0.5 - 0.5 * np.cos(math.pi * (k + 0.5) / per_span) if chebyshev else (k + 1) / (per_span + 1)
+    inner = ((np.arange(spans)[:, None] + frac[None, :]) / spans).ravel()
+    return np.concatenate([[0.0], inner, [1.0]]) if chebyshev else inner
 
 
-def _turn(xy: np.ndarray, angle: float) -> np.ndarray:
+def _clamped(spans: int) -> np.ndarray:
+    """Knots (flat) of a clamped B-spline of ``spans`` uniform spans on [0, 1]."""
+    return np.concatenate([np.zeros(DEGREE), np.linspace(0.0, 1.0, spans + 1), np.ones(DEGREE)])
+
+
+def _fit(data: np.ndarray, params: np.ndarray, spans: int) -> np.ndarray:
+    """Poles (m, spans + DEGREE, d) of the clamped uniform B-splines fitting ``data`` (m, n, d) at
+    ``params`` (n,) in [0, 1] by least squares, each with its end poles the data's end points."""
+    design = BSpline.design_matrix(params, _clamped(spans), DEGREE).toarray()
+    n = spans + DEGREE
+    poles = np.empty((data.shape[0], n, data.shape[2]))
+    poles[:, 0], poles[:, -1] = data[:, 0], data[:, -1]
+    rhs = data - design[None, :, :1] @ poles[:, :1] - design[None, :, -1:] @ poles[:, -1:]
+    inner = np.linalg.lstsq(design[:, 1:-1], rhs.transpose(1, 0, 2).reshape(len(params), -1), rcond=None)[0]
+    poles[:, 1:-1] = inner.reshape(n - 2, data.shape[0], data.shape[2]).transpose(1, 0, 2)
+    return poles
+
+
+def _value(poles: np.ndarray, params: np.ndarray, spans: int) -> np.ndarray:
+    """The B-splines of ``poles`` (m, n, d) at ``params``: (m, len(params), d)."""
+    return np.einsum("pi,mid->mpd", BSpline.design_matrix(params, _clamped(spans), DEGREE).toarray(), poles)
+
+
+@dataclass
+class WheelFit:
+    """Tooth 0's surfaces: ``space`` and ``tip`` poles (nu, nv, 3) on the u bases ``space_u`` and
+    ``tip_u`` and the common v basis ``v`` (knots on z, multiplicities, degree); ``spans_u`` per
+    kind of run (flank, trochoid, arc), ``spans_v`` per z range; ``max_error`` (mm) at the check
+    parameters."""
+
+    space: np.ndarray
+    tip: np.ndarray
+    space_u: SimpleNamespace
+    tip_u: SimpleNamespace
+    v: SimpleNamespace
+    spans_u: dict
+    spans_v: list
+    max_error: float
+
+
+def _kind(run) -> str:
+    return run[0] if isinstance(run, tuple) else "arc"
+
+
+def _basis(spans: list[int], cuts=None) -> SimpleNamespace:
+    """Runs of ``spans`` uniform spans each, run i on [cuts[i], cuts[i + 1]] (default [i, i + 1]),
+    joined at knots of full multiplicity."""
+    cuts = list(range(len(spans) + 1)) if cuts is None else list(cuts)
+    knots, mults = [float(cuts[0])], [DEGREE + 1]
+    for i, k in enumerate(spans):
+        knots += list(np.linspace(cuts[i], cuts[i + 1], k + 1)[1:])
+        mults += [1] * (k - 1) + [DEGREE]
+    mults[-1] = DEGREE + 1
+    return SimpleNamespace(knots=knots, mults=mults, degree=DEGREE)
+
+
+def _join(parts: list[np.ndarray]) -> np.ndarray:
+    """Pole arrays of consecutive runs joined along their first axis, each joint pole once."""
+    return np.concatenate([parts[0]] + [part[1:] for part in parts[1:]])
+
+
+def fit_wheel(s: WormGearSet, g: WormGeometry, tolerance: float = FIT_TOLERANCE) -> WheelFit:
+    """Tooth 0's space and tip surfaces (module docstring), spans added until within ``tolerance``."""
+    runs = list(_SPACE_RUNS) + ["tip"]
+    ranges = z_ranges(s, g)
+    spans_u = {"flank": 1, "trochoid": 1, "arc": 1}
+    spans_v = [1] * len(ranges)
+    for _ in range(_MAX_SPANS):
+        z_fit = [lo + (hi - lo) * _nodes(k, _FIT_PER_SPAN, True) for (lo, hi), k in zip(ranges, spans_v)]
+        z_check = [lo + (hi - lo) * _nodes(k, _CHECK_PER_SPAN, False) for (lo, hi), k in zip(ranges, spans_v)]
+        u_fit = {kind: _nodes(k, _FIT_PER_SPAN, True) for kind, k in spans_u.items()}
+        u_check = {kind: _nodes(k, _CHECK_PER_SPAN, False) for kind, k in spans_u.items()}
+        rows = np.concatenate(z_fit)
+        fitted = wheel_outline(s, g, rows, u_fit["flank"], u_fit["trochoid"], u_fit["arc"])
+        # u checked on the fitted rows (the ends kept: the later runs start from the flank's end)
+        ends = {kind: np.concatenate([[0.0], u, [1.0]]) for kind, u in u_check.items()}
+        between = wheel_outline(s, g, rows, ends["flank"], ends["trochoid"], ends["arc"])
+        # v checked on rows between the fitted ones
+        exact_v = wheel_outline(s, g, np.concatenate(z_check), u_fit["flank"], u_fit["trochoid"], u_fit["arc"])
+        error_u = dict.fromkeys(spans_u, 0.0)
+        error_v = [0.0] * len(ranges)
+        columns = {}
+        for run in runs:
+            kind = _kind(run)
+            k_u = spans_u[kind]
+            row_poles = _fit(fitted[run], u_fit[kind], k_u)  # (rows, nu, 2)
+            error_u[kind] = max(error_u[kind], float(np.max(np.linalg.norm(
+                _value(row_poles, u_check[kind], k_u) - between[run][:, 1:-1], axis=-1))))
+            basis_u = BSpline.design_matrix(u_fit[kind], _clamped(k_u), DEGREE).toarray()
+            columns[run], start, check_start = [], 0, 0
+            for i, ((lo, hi), k_v, zf, zc) in enumerate(zip(ranges, spans_v, z_fit, z_check)):
+                col = _fit(row_poles[start:start + len(zf)].transpose(1, 0, 2), (zf - lo) / (hi - lo), k_v)
+                columns[run].append(col)  # (nu, nv, 2)
+                at_checks = np.einsum("pi,ivd->vpd", basis_u, _value(col, (zc - lo) / (hi - lo), k_v))
+                error_v[i] = max(error_v[i], float(np.max(np.linalg.norm(
+                    at_checks - exact_v[run][check_start:check_start + len(zc)], axis=-1))))
+                start += len(zf)
+                check_start += len(zc)
+        bad_u = [kind for kind, e in error_u.items() if e > tolerance / 2]
+        bad_v = [i for i, e in enumerate(error_v) if e > tolerance]
+        if not bad_u and not bad_v:
+            break
+        for kind in bad_u:
+            spans_u[kind] += 1
+        for i in bad_v:
+            spans_v[i] += 1
+    else:
+        raise KernelFailure(f"worm wheel: no surface fit within {tolerance * 1e3:.3g} um on {_MAX_SPANS} spans")
+
+    cuts = [lo for lo, _ in ranges] + [ranges[-1][1]]
+    v = _basis(spans_v, cuts)  # v = z: each range's spans on its own z interval
+    flat = np.repeat(v.knots, v.mults)
+    greville = np.array([flat[j + 1:j + DEGREE + 1].mean() for j in range(len(flat) - DEGREE - 1)])
+
+    def poles(run):  # (nu, nv, 3): the ranges joined over v, z = the Greville abscissae (exactly linear)
+        xy = _join([c.transpose(1, 0, 2) for c in columns[run]]).transpose(1, 0, 2)
+        if isinstance(run, tuple) and run[1] == -1:
+            xy = xy[::-1]  # the -1 runs are fitted from the rim down; the space runs them upward
+        return np.concatenate([xy, np.broadcast_to(greville[None, :, None], xy.shape[:2] + (1,))], axis=2)
+
+    space = _join([poles(run) for run in _SPACE_RUNS])
+    tip = poles("tip")
+    # the tip's edge columns ARE this space's flank -1 top and the next space's flank +1 top
+    pitch = 2 * math.pi / s.wheel_teeth
+    c, sn = math.cos(pitch), math.sin(pitch)
+    tip[0] = space[-1]
+    tip[-1] = np.stack([c * space[0, :, 0] - sn * space[0, :, 1], sn * space[0, :, 0] + c * space[0, :, 1],
+                        space[0, :, 2]], axis=-1)
+    space_u = _basis([spans_u[_kind(run)] for run in _SPACE_RUNS])
+    return WheelFit(space, tip, space_u, _basis([spans_u["arc"]]), v, spans_u, spans_v,
+                    max(max(error_u.values()), max(error_v)))
+
+
+def _rotated_poles(poles: np.ndarray, angle: float) -> np.ndarray:
     c, sn = math.cos(angle), math.sin(angle)
-    return np.stack([c * xy[..., 0] - sn * xy[..., 1], sn * xy[..., 0] + c * xy[..., 1]], axis=-1)
+    return np.stack([c * poles[..., 0] - sn * poles[..., 1], sn * poles[..., 0] + c * poles[..., 1], poles[..., 2]],
+                    axis=-1)
 
 
-def _flank(s: WormGearSet, g: WormGeometry, z: float, side: int, radii):
-    """Wheel-frame points (n, 2) of the envelope flank ``side`` in plane z generated by the hob's
-    flank at worm radii ``radii`` (the construction of core.worm.wheel_section, point by point),
-    with the contact's worm angles (n,)."""
-    radii = np.asarray(radii, float)
-    theta = math.pi - np.arcsin(z / radii)
-    pts, phi1 = contact_point(s, g, side, radii, theta)
-    w = to_wheel(pts, wheel_angle(s, g, phi1))[:, :2]
-    return _turn(w, -side * g.wheel_thinning / g.wheel_reference_diameter), pts, phi1
-
-
-def _rim_worm_radius(s: WormGearSet, g: WormGeometry, z: float, side: int) -> float:
-    """The hob radius whose envelope point lies on the rim r(z): the flank's upper end in plane z."""
-    rim, rho = rim_radius(g, z), g.hob_tip_radius
-    # at the worm radius reaching the rim on the line of centres the contact (X != 0) is outside it
-    lo = max(math.hypot(g.centre_distance - rim, z), abs(z) * (1 + 1e-9) + 1e-12)
-
-    def excess(r):
-        return float(np.hypot(*_flank(s, g, z, side, [r])[0][0])) - rim
-
-    if excess(lo) < 0 or excess(rho) > 0:
-        raise GeometryError("worm_envelope", f"the wheel flank in plane z = {z:.4g} mm does not span the rim")
-    return brentq(excess, lo, rho, xtol=1e-14, rtol=1e-15)
-
-
-def _arc(radius: float, start: np.ndarray, end: np.ndarray, n: int) -> np.ndarray:
-    """n points on the circle ``radius`` from ``start``'s angle to ``end``'s (the short way)."""
-    a0, a1 = math.atan2(start[1], start[0]), math.atan2(end[1], end[0])
-    d = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
-    ang = a0 + d * np.linspace(0.0, 1.0, n)
-    pts = np.stack([radius * np.cos(ang), radius * np.sin(ang)], axis=-1)
-    pts[0], pts[-1] = start, end
-    return pts
-
-
-def space_outline(s: WormGearSet, g: WormGeometry, z: float, n_flank: int = 40, n_trochoid: int = 16,
-                  n_arc: int = 9) -> list[np.ndarray]:
-    """The wheel's outline in plane z for the tooth space centred on +Y, six point runs in order
-    (counterclockwise, each run's last point the next run's first): flank +1 (rim to lower end),
-    trochoid +1, root arc, trochoid -1, flank -1 (lower end to rim), tip arc at r(z) to the next
-    space's flank +1 (turned by one pitch). Every plane gives the same runs at the same parameters."""
-    rho, a = g.hob_tip_radius, g.centre_distance
-    p = s.hand_sign * g.screw_parameter
-    u = 1 - np.cos(np.linspace(0, math.pi / 2, n_flank))  # denser at the hob tip edge, as the core
-    flanks, trochoids = {}, {}
-    for side in (1, -1):
-        r_top = _rim_worm_radius(s, g, z, side)
-        flank, pts, phi1 = _flank(s, g, z, side, r_top + (rho - r_top) * u)
-        flank[0] *= rim_radius(g, z) / math.hypot(*flank[0])  # on the rim to rounding
-        # the hob tip edge from its contact instant until it crosses the line of centres (X = 0)
-        x_c, phi_c = pts[-1, 0], phi1[-1]
-        phis = np.linspace(phi_c, phi_c + x_c / p, n_trochoid)
-        edge = np.stack([x_c - p * (phis - phi_c), np.full_like(phis, a + rho * math.cos(math.pi - math.asin(z / rho))),
-                         np.full_like(phis, z)], axis=-1)
-        thinning_turn = -side * g.wheel_thinning / g.wheel_reference_diameter
-        tr = _turn(to_wheel(edge, wheel_angle(s, g, phis))[:, :2], thinning_turn)
-        tr[0] = flank[-1]
-        flanks[side], trochoids[side] = flank, tr
-    root = _arc(a - math.sqrt(rho * rho - z * z), trochoids[1][-1], trochoids[-1][-1], n_arc)
-    nxt = _turn(flanks[1][0], 2 * math.pi / s.wheel_teeth)
-    tip = _arc(rim_radius(g, z), flanks[-1][0], nxt, n_arc)
-    return [flanks[1], trochoids[1], root, trochoids[-1][::-1], flanks[-1][::-1], tip]
-
-
-def _interpolate(points: np.ndarray, params: np.ndarray):
-    """A cubic B-spline through ``points`` (n, 3) at ``params`` (fixed: every call with the same
-    params gives the same knots). Two points: the line."""
-    from OCP.GeomAPI import GeomAPI_Interpolate
-    from OCP.gp import gp_Pnt
-    from OCP.TColgp import TColgp_HArray1OfPnt
-    from OCP.TColStd import TColStd_HArray1OfReal
-    n = len(points)
-    pts, par = TColgp_HArray1OfPnt(1, n), TColStd_HArray1OfReal(1, n)
-    for i, (x, y, zz) in enumerate(points, 1):
-        pts.SetValue(i, gp_Pnt(float(x), float(y), float(zz)))
-        par.SetValue(i, float(params[i - 1]))
-    interp = GeomAPI_Interpolate(pts, par, False, 1e-12)
-    interp.Perform()
-    if not interp.IsDone():
-        raise BuildError("worm_wheel: B-spline interpolation failed")
-    return interp.Curve()
-
-
-def _grid_surface(grid: np.ndarray, zs: np.ndarray):
-    """The tensor-product cubic B-spline surface interpolating ``grid`` (rows over z, columns over
-    the profile, 3): each row interpolated at uniform profile parameters, then each column of the
-    rows' poles interpolated at the heights ``zs`` (interpolation is linear in the data, so the
-    surface passes through every grid point; its boundaries are the interpolants of the boundary
-    rows and columns alone, shared exactly with the neighbouring faces)."""
-    from OCP.Geom import Geom_BSplineSurface
-    from OCP.gp import gp_Pnt
-    from OCP.TColgp import TColgp_Array2OfPnt
-    from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
-    n_rows, n_cols = grid.shape[:2]
-    u = np.linspace(0.0, 1.0, n_cols)
-    rows = [_interpolate(grid[i], u) for i in range(n_rows)]
-    n_u = rows[0].NbPoles()
-    row_poles = np.array([[(c.Pole(j).X(), c.Pole(j).Y(), c.Pole(j).Z()) for j in range(1, n_u + 1)] for c in rows])
-    columns = [_interpolate(row_poles[:, j], zs) for j in range(n_u)]
-    n_v = columns[0].NbPoles()
-    poles = TColgp_Array2OfPnt(1, n_u, 1, n_v)
-    for j, col in enumerate(columns, 1):
-        for k in range(1, n_v + 1):
-            poles.SetValue(j, k, col.Pole(k))
-
-    def knots(curve):
-        kn, mu = TColStd_Array1OfReal(1, curve.NbKnots()), TColStd_Array1OfInteger(1, curve.NbKnots())
-        for i in range(1, curve.NbKnots() + 1):
-            kn.SetValue(i, curve.Knot(i))
-            mu.SetValue(i, curve.Multiplicity(i))
-        return kn, mu
-
-    (uk, um), (vk, vm) = knots(rows[0]), knots(columns[0])
-    return Geom_BSplineSurface(poles, uk, vk, um, vm, rows[0].Degree(), columns[0].Degree())
-
-
-def space_faces(s: WormGearSet, g: WormGeometry, zs: np.ndarray, **counts) -> list:
-    """The six B-spline surfaces of the +Y tooth space over the heights ``zs`` (one z range)."""
-    outlines = [space_outline(s, g, float(z), **counts) for z in zs]
-    surfaces = []
-    for k in range(6):
-        grid = np.array([np.column_stack([o[k], np.full(len(o[k]), z)]) for o, z in zip(outlines, zs)])
-        surfaces.append(_grid_surface(grid, zs))
-    return surfaces, outlines
-
-
-def _cap(outline: list[np.ndarray], z: float, z2: int):
-    """The planar end face at height z bounded by the full outline (the space's runs turned z2 times)."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire
-    wire = BRepBuilderAPI_MakeWire()
-    for t in range(z2):
-        for run in outline:
-            pts = _turn(run, 2 * math.pi * t / z2)
-            wire.Add(BRepBuilderAPI_MakeEdge(_interpolate(np.column_stack([pts, np.full(len(pts), z)]),
-                                                          np.linspace(0.0, 1.0, len(pts)))).Edge())
-            if not wire.IsDone():
-                raise BuildError("worm_wheel: the end outline's edges do not join")
-    face = BRepBuilderAPI_MakeFace(wire.Wire(), True)
-    if not face.IsDone():
-        raise BuildError("worm_wheel: the end face failed")
-    return face.Face()
-
-
-def build_worm_wheel(spec: WormWheelSpec, check: bool = False, rows_per_module: float | None = None,
-                     n_flank: int = 24, n_trochoid: int = 10) -> WormPartSolid:
-    """The throated wheel, axis Z, mid plane z = 0, a tooth space centred on +Y: the core's fixed
-    mesh frame at wheel angle 0 (the worm's axis is the line (t, a, 0) along X). ``rows_per_module``
-    transverse planes of exact points per axial module of face (default
-    :data:`DEFAULT_ROWS_PER_MODULE`, at least 4 per z range: :func:`row_heights`),
-    ``n_flank``/``n_trochoid`` exact points per flank/trochoid in each."""
+def _wheel_solid(fit: WheelFit, teeth: int, half: float):
+    """The wheel's closed solid from tooth 0's surfaces: per tooth the space and tip faces (tooth 0's
+    turned), their edges made once: the rim curves (u isolines, shared by a space and a tip face),
+    the end curves (v = -+half isolines, shared with an end plane)."""
     from OCP.BRep import BRep_Builder
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeSolid, BRepBuilderAPI_Sewing, \
-        BRepBuilderAPI_Transform
     from OCP.BRepLib import BRepLib
-    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf
-    from OCP.TopAbs import TopAbs_SHELL
-    from OCP.TopExp import TopExp_Explorer
-    from OCP.TopoDS import TopoDS, TopoDS_Compound
+    from OCP.Geom import Geom_Plane
+    from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
+    from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
+    from OCP.TopoDS import TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
+    from geargen.cad.gear_solid import KERNEL_TOLERANCE as tol
+    from geargen.cad.gear_solid import _bspline2d, _bspline3d, _bspline_surface_of, _edge, _vertex, _wire
+
+    builder = BRep_Builder()
+    pitch = 2 * math.pi / teeth
+    v_lo, v_hi = fit.v.knots[0], fit.v.knots[-1]
+
+    def line(a, b, knots):
+        """The straight pcurve a -> b, its parameter running over ``knots`` (the surface's along
+        it): the kernel's integrals (volume, area) take one knot span at a time."""
+        ts = np.asarray(knots, float)
+        poles = np.asarray(a, float) + np.outer((ts - ts[0]) / (ts[-1] - ts[0]), np.subtract(b, a))
+        return _bspline2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
+
+    # per tooth t: the rim at the top of its space's flank +1 (u = 0 of the space face, u = end of
+    # the previous tip face) and of its flank -1 (u = end of the space face, u = 0 of its tip face),
+    # an edge per z range (a kink at the crease is then an edge's end: the readers' integrals,
+    # which rebuild the curves on the faces without its knot, take it)
+    u_end = {"space": fit.space_u.knots[-1], "tip": fit.tip_u.knots[-1]}
+    cuts = [k for k, m in zip(fit.v.knots, fit.v.mults) if m >= DEGREE]  # the range ends in v
+    pieces = []  # per range: (its first pole, its number of poles, knots, mults), clamped at its ends
+    start = 0
+    for lo, hi in zip(cuts[:-1], cuts[1:]):
+        inside = [(k, m) for k, m in zip(fit.v.knots, fit.v.mults) if lo <= k <= hi]
+        mults = [DEGREE + 1] + [m for _, m in inside[1:-1]] + [DEGREE + 1]
+        count = sum(mults) - DEGREE - 1
+        pieces.append((start, count, [k for k, _ in inside], mults))
+        start += count - 1  # the next range starts at this one's last pole (the crease row)
+    rims, corners = {}, {}
+    for t in range(teeth):
+        for which, column in (("+", fit.space[0]), ("-", fit.space[-1])):
+            col = _rotated_poles(column, t * pitch)
+            vertices = [_vertex(builder, *col[0])] + [_vertex(builder, *col[first + count - 1])
+                                                      for first, count, _, _ in pieces]
+            edges = []
+            for (first, count, knots, mults), a, b in zip(pieces, vertices[:-1], vertices[1:]):
+                curve = _bspline3d(col[first:first + count], knots, mults, DEGREE)
+                edges.append(_edge(builder, curve, a, b, knots[0], knots[-1]))
+            rims[t, which] = edges
+            corners[t, which] = [vertices[0], vertices[-1]]
+    faces, ends = [], {v_lo: [], v_hi: []}
+    for t in range(teeth):
+        for which, poles, basis in (("space", fit.space, fit.space_u), ("tip", fit.tip, fit.tip_u)):
+            turned = _rotated_poles(poles, t * pitch)
+            surface = _bspline_surface_of(turned, basis.knots, basis.mults, basis.degree, fit.v.knots, fit.v.mults,
+                                          fit.v.degree)
+            face = TopoDS_Face()
+            builder.MakeFace(face, surface, tol)
+            u1 = u_end[which]
+            left, right = (rims[t, "+"], rims[t, "-"]) if which == "space" else (rims[t, "-"], rims[(t + 1) % teeth, "+"])
+            for (_, _, knots, _), e_left, e_right in zip(pieces, left, right):
+                builder.UpdateEdge(e_left, line((0.0, knots[0]), (0.0, knots[-1]), knots), face, tol)
+                builder.UpdateEdge(e_right, line((u1, knots[0]), (u1, knots[-1]), knots), face, tol)
+            l_ends = corners[t, "+"] if which == "space" else corners[t, "-"]
+            r_ends = corners[t, "-"] if which == "space" else corners[(t + 1) % teeth, "+"]
+            row_edges = []
+            for k, v in ((0, v_lo), (-1, v_hi)):
+                curve = _bspline3d(turned[:, k], basis.knots, basis.mults, basis.degree)
+                edge = _edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
+                builder.UpdateEdge(edge, line((0.0, v), (u1, v), [0.0, u1]), face, tol)  # dv = 0: no volume
+                ends[v].append(edge)
+                row_edges.append(edge)
+            # counterclockwise in (u, v): the bottom row, the right rim up, the top row back, the
+            # left rim down; the normal S_u x S_v points out (u runs counterclockwise round the
+            # wheel, v = z)
+            loop = [row_edges[0]] + right + [row_edges[1]] + left[::-1]
+            orient = [TopAbs_FORWARD] * (1 + len(right)) + [TopAbs_REVERSED] * (1 + len(left))
+            builder.Add(face, _wire(builder, loop, orient))
+            faces.append(face)
+    for v, edges in ends.items():
+        plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, v), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)))
+        face = TopoDS_Face()
+        builder.MakeFace(face, plane, tol)
+        for edge in edges:
+            BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
+        builder.Add(face, _wire(builder, edges))  # counterclockwise seen from +z
+        faces.append(face if v == v_hi else face.Reversed())
+    shell = TopoDS_Shell()
+    builder.MakeShell(shell)
+    for face in faces:
+        builder.Add(shell, face)
+    shell.Closed(True)
+    solid = TopoDS_Solid()
+    builder.MakeSolid(solid)
+    builder.Add(solid, shell)
+    return solid
+
+
+def build_worm_wheel(spec: WormWheelSpec, check: bool = False, tolerance: float = FIT_TOLERANCE) -> WormPartSolid:
+    """The throated wheel, axis Z, mid plane z = 0, a tooth space centred on +Y: the core's fixed
+    mesh frame at wheel angle 0 (the worm's axis is the line (t, a, 0) along X); its surfaces within
+    ``tolerance`` (mm) of the exact envelope (:func:`fit_wheel`)."""
     s = spec.set
     g = worm_geometry(s)
-    counts = dict(n_flank=n_flank, n_trochoid=n_trochoid)
-    one_space = BRep_Builder()
-    compound = TopoDS_Compound()
-    one_space.MakeCompound(compound)
-    ends = {}
-    for zs in row_heights(s, g, rows_per_module):
-        surfaces, outlines = space_faces(s, g, zs, **counts)
-        for surface in surfaces:
-            one_space.Add(compound, BRepBuilderAPI_MakeFace(surface, 1e-7).Face())
-        ends.setdefault("bottom", (outlines[0], float(zs[0])))
-        ends["top"] = (outlines[-1], float(zs[-1]))
-    sewing = BRepBuilderAPI_Sewing(1e-6)
-    for t in range(s.wheel_teeth):
-        turn = gp_Trsf()
-        turn.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), 2 * math.pi * t / s.wheel_teeth)
-        sewing.Add(BRepBuilderAPI_Transform(compound, turn, True).Shape())
-    for outline, z in ends.values():
-        sewing.Add(_cap(outline, z, s.wheel_teeth))
-    sewing.Perform()
-    exp = TopExp_Explorer(sewing.SewedShape(), TopAbs_SHELL)
-    if not exp.More():
-        raise BuildError(f"{spec.name}: the wheel's faces did not sew into a shell")
-    solid = BRepBuilderAPI_MakeSolid(TopoDS.Shell_s(exp.Current())).Solid()
-    BRepLib.OrientClosedSolid_s(solid)
-    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit)
+    fit = fit_wheel(s, g, tolerance)
+    solid = _wheel_solid(fit, s.wheel_teeth, s.wheel_face_width / 2)
+    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=fit.max_error)
 
 
-__all__ = ["build_worm_wheel", "rim_radius", "crease_height", "z_ranges", "row_heights", "space_outline",
-           "DEFAULT_ROWS_PER_MODULE"]
+__all__ = ["build_worm_wheel", "fit_wheel", "WheelFit", "z_ranges", "DEGREE", "FIT_TOLERANCE"]

@@ -34,7 +34,8 @@ def add_arguments(group) -> None:
                        help="length of the worm's thread")
     group.add_argument("--wheel-width", dest="wheel_face_width", type=float, metavar="LEN", help="wheel face width")
     group.add_argument("--wheel-outside-diameter", type=float, metavar="LEN",
-                       help="outside diameter of the wheel rim (default: throat diameter + m_x)")
+                       help="outside diameter of the wheel rim (default: throat diameter + m_x, less where the "
+                            "teeth would keep under 0.1 m_x of tip land at the face ends)")
     group.add_argument("--wheel-profile-shift", type=float, metavar="X2", help="wheel profile shift coefficient")
     group.add_argument("--pressure-angle-system", choices=("normal", "axial"),
                        help="whether --pressure-angle is the thread's normal (default) or axial angle")

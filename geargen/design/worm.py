@@ -45,7 +45,9 @@ class WormGearSet:
     ``backlash`` is circumferential at the wheel reference circle; ``backlash_on`` says whether the
     wheel's teeth or the worm's thread are thinned by it (at the worm reference cylinder an axial
     length equals that wheel arc). ``wheel_outside_diameter`` bounds the throated rim; None: the
-    throat diameter plus one axial module (the rim of the KHK example, Table 4.17)."""
+    throat diameter plus one axial module (the rim of the KHK example, Table 4.17), turned down
+    where the teeth would keep less than 0.1 m_x of tip land at the face ends
+    (geargen.core.worm.worm_geometry)."""
 
     axial_module: float
     starts: int
@@ -156,7 +158,8 @@ WORM_FIELDS: list[Field] = [
     Field("wheel_face_width", "length", minimum=0.0, exclusive_minimum=True, maximum=5000.0,
           help="face width of the wheel"),
     Field("wheel_outside_diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
-          maximum=10000.0, help="outside diameter of the throated wheel rim (default: throat diameter + m_x)"),
+          maximum=10000.0, help="outside diameter of the throated wheel rim (default: throat diameter + m_x, less where that "
+                             "leaves the teeth under 0.1 m_x of tip land at the face ends)"),
     Field("wheel_profile_shift", "number", required=False, default=0.0, minimum=-1.0, maximum=1.0,
           help="wheel profile shift coefficient x2 (centre distance a = (d1 + d2)/2 + x2 m_x)"),
     Field("addendum_coefficient", "number", required=False, default=1.0, minimum=0.5, maximum=1.5,

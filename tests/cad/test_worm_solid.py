@@ -69,3 +69,56 @@ def test_worm_solid_valid_volume_and_helicoid_flanks(hand):
                         rng.uniform(-1.5, 1.5, 12)):
             pts.append((r * math.cos(t), r * math.sin(t), p * t + float(flank_axial_offset(g, side, r))))
     assert _boundary_distance(solid.shape, pts).max() < 1e-4
+
+
+@pytest.mark.parametrize("starts, hand", [(2, "right"), (1, "left")])
+def test_worm_step_reads_back_to_the_exact_volume(tmp_path, starts, hand):
+    """Issue 31: the KHK worm's STEP (z1 2, L 45) read back had 76,543 mm^3 against the exact
+    68,363 (the reader re-projected helical strips on the periodic tip cylinder onto the wrong
+    turn). Read back, the solid is valid and its volume is the closed form's, by the adaptive
+    integral and by the kernel's default fixed-order one that other readers call."""
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+
+    from geargen.cad.export import export_step, read_step
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    from geargen.cad.worm_solid import build_worm
+
+    s = _set(starts=starts, hand=hand, worm_face_length=45.0)
+    worm = build_worm(WormSpec(s), check=True)
+    export_step(worm, tmp_path / "worm.step")
+    shape = read_step(tmp_path / "worm.step").shape
+    assert check_solid(shape) is None
+    exact = exact_worm_volume(s)
+    # measured within 2e-9 (the 1 nm helices, and quad's own 1e-12): 1e-7 is 7 mm^3 on 68,363,
+    # a thousandth of the 8,180 mm^3 the faulty read-back added
+    assert solid_volume(shape, 1e-9) == pytest.approx(exact, rel=1e-7)
+    default = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, default)
+    # the fixed-order rule integrates one pcurve knot span at a time: measured within 1e-10 (with
+    # one span per helix it was off by 9.4e-4 on the 1-start worm, 30 rad in one face)
+    assert default.Mass() == pytest.approx(exact, rel=1e-7)
+
+
+def test_worm_is_ten_faces_built_without_booleans():
+    """One face per flank, tip and root strip (4 z1) and two end planes; the flanks are B-spline
+    surfaces of degree 1 across (the straight ZA generator) and the tip and root exact cylinders."""
+    from OCP.BRepAdaptor import BRepAdaptor_Surface
+    from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_Plane
+    from OCP.TopAbs import TopAbs_FACE
+    from OCP.TopExp import TopExp_Explorer
+    from OCP.TopoDS import TopoDS
+
+    from geargen.cad.worm_solid import build_worm
+
+    s = _set(starts=3)
+    kinds = []
+    exp = TopExp_Explorer(build_worm(WormSpec(s), check=True).shape, TopAbs_FACE)
+    while exp.More():
+        surface = BRepAdaptor_Surface(TopoDS.Face_s(exp.Current()))
+        kinds.append(surface.GetType())
+        if surface.GetType() == GeomAbs_BSplineSurface:
+            assert surface.UDegree() == 1  # across: the ruling
+        exp.Next()
+    assert kinds.count(GeomAbs_BSplineSurface) == 2 * 3 and kinds.count(GeomAbs_Cylinder) == 2 * 3
+    assert kinds.count(GeomAbs_Plane) == 2 and len(kinds) == 14

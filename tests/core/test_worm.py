@@ -117,3 +117,24 @@ def test_table_reader_and_validation():
                                  "pressure_angle_system": "axial", "worm_face_length_mm": 60,
                                  "wheel_face_width_mm": 28})
     assert math.degrees(axial.set.pressure_angle) == pytest.approx(20.0, abs=1e-5)
+
+
+@pytest.mark.parametrize("tolerance", [4e-10, 1e-6])
+def test_helix_spline_stays_on_the_circle_over_many_turns(tolerance):
+    """The helix B-spline (geargen.core.worm.helix_spline) over 60 turns, evaluated independently
+    (scipy's BSpline on its knots and poles) at 200,000 parameters: within its stated error and the
+    tolerance of (cos t, sin t) at the same t; its Greville abscissae reproduce t (a helix's z)."""
+    from scipy.interpolate import BSpline
+
+    from geargen.core.worm import helix_spline
+
+    t0, t1 = -2.0, 2.0 + 120 * math.pi
+    h = helix_spline(t0, t1, tolerance)
+    assert h.knots[h.degree] == pytest.approx(t0) and h.knots[-h.degree - 1] >= t1
+    t = np.linspace(t0, t1, 200_001)
+    xy = BSpline(h.knots, h.poles, h.degree)(t)
+    err = np.hypot(xy[:, 0] - np.cos(t), xy[:, 1] - np.sin(t)).max()
+    # the stated error is measured on one span; every span is the same (uniform, poles on a circle),
+    # so the 60 turns' error is it to rounding (1e-12 of the unit circle)
+    assert err <= h.max_error + 1e-12 and h.max_error <= tolerance
+    assert np.abs(BSpline(h.knots, h.greville, h.degree)(t) - t).max() < 1e-9  # t up to 379: 1e-9 is rounding
