@@ -484,13 +484,21 @@ def design_files_markdown(root: Path = ASSEMBLIES) -> str:
 
 
 def _default_hardware_section() -> list[str]:
-    """The rules of :mod:`geargen.design.hardware_defaults`, from its docstring."""
+    """The default hardware of every drive kind: the rules of its ``defaults.py``, from its docstring
+    (its first paragraph the heading's subject)."""
     import inspect
 
-    from geargen.design import hardware_defaults
-    text = inspect.getdoc(hardware_defaults).split("\n\n", 1)[1]
-    return ["## Default hardware", "", text.replace("Pure arithmetic on the parsed file: no CAD kernel.", "").rstrip(),
-            ""]
+    from geargen.drives.keys import KEYS
+    out = ["## Default hardware", "",
+           "A file may leave out its `[parts]` table, or any of its keys: geargen sizes what is missing by the "
+           "rules of the drive's kind below, each value with the rule that chose it. `geargen check` prints them "
+           "and the resolved `[parts]` as a table to paste into the file; a value the file gives is never "
+           "changed.", ""]
+    for kind in KEYS.values():
+        title, rules = inspect.getdoc(kind.defaults).split("\n\n", 1)
+        out += [f"### {kind.NAME}", "", title.strip(), "",
+                rules.replace("Pure arithmetic on the parsed file: no CAD kernel.", "").rstrip(), ""]
+    return out
 
 
 def documented_sections() -> set[str]:
