@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from types import ModuleType
-from typing import Any, Callable
+from typing import Any, Callable, Mapping
 
 
 def _no_rows(layout, result) -> list[dict[str, Any]]:
@@ -50,7 +50,8 @@ class DriveKind:
       under a beam-spring pinion's bearings, or None (no beam-spring pinion: rigid);
     - ``carriage_error_budget``: the synthesis error budget is a travel of its preload carriage
       (a radial or axial carriage sets the preload; the beam-spring pinion's does not);
-    - ``starter``: the commented starter file of ``geargen new`` (metric and inch), or None;
+    - ``starters``: its ``geargen new`` starters by length unit (``{"mm": Starter, "in": Starter}``,
+      :class:`geargen.design.starters.Starter`), or None;
     - ``frame``: how the model's frame lies, for the reports.
     """
 
@@ -64,7 +65,7 @@ class DriveKind:
     loop_stages: Callable[..., list] = two_loop_meshes
     beam_supports: Callable[..., Any] | None = None
     carriage_error_budget: bool = True
-    starter: Callable[[str], str] | None = None
+    starters: Mapping[str, Any] | None = None
     frame: str = "the output gear's centre at the origin, +x along the symmetry line towards the input"
 
 

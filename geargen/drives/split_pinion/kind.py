@@ -1,7 +1,7 @@
 """The concentric Type 1 split pinion (Fig. 8)."""
 
 from geargen.drives.kind import DriveKind
-from geargen.drives.split_pinion import hardware, keys, place
+from geargen.drives.split_pinion import hardware, keys, place, starter
 from geargen.drives.split_pinion.shafts import split_pinion_shafts
 
 
@@ -13,4 +13,5 @@ def loop_stages(layout, gear_ratio) -> list:
 
 
 DRIVE = DriveKind(name=keys.NAME, keys=keys, place=place.place, hardware=hardware.split_pinion_hardware,
-                  shafts=split_pinion_shafts, symmetry_line=keys.SYMMETRY_LINE, loop_stages=loop_stages)
+                  shafts=split_pinion_shafts, symmetry_line=keys.SYMMETRY_LINE, loop_stages=loop_stages,
+                  starters=starter.STARTERS)
