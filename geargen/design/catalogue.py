@@ -325,17 +325,23 @@ def parts_wanted(data: Mapping[str, Any], fields: list) -> bool:
     return "parts" not in data or partial_table(data["parts"], fields)
 
 
-def read_rough(data: Mapping[str, Any], readers: Readers, gears: tuple[str, ...] = ()):
-    """The file as the defaults size from (its gears read, its ``[layout]`` settings), or None when
-    it cannot be read so (the validating load then reports the problem)."""
+def completing(data: Mapping[str, Any], readers: Readers, fields: list, gears: tuple[str, ...] = (),
+               roles: tuple[str, ...] = ()):
+    """Where a kind's rules start: ``(design, layout settings, gears, Completion)``, the file as read
+    (its gears, its ``[layout]``), the gears named by ``gears`` and by the ``[layout]`` keys ``roles``,
+    and the completion to put the defaults in; None when the file gives its whole [parts] (``fields``:
+    the kind's) or cannot be read so (the validating load then reports the problem)."""
+    if not parts_wanted(data, fields):
+        return None
     try:
-        rough = readers.design(data)
-        settings = readers.layout(rough)
+        design = readers.design(data)
+        settings = readers.layout(design)
     except DesignError:
         return None
-    if any(n not in rough.gears for n in gears):
-        return None
-    return rough, settings
+    names = list(gears) + [settings.get(role) for role in roles]
+    if any(n not in design.gears for n in names):
+        return None  # a missing gear: the validating load says which
+    return design, settings, [design.gears[n] for n in names], Completion(data, unit=design.length_unit)
 
 
 __all__ = ["METRIC_SERIES", "METRIC_BEARINGS", "INCH_BEARINGS", "WIRE_DIAMETERS", "MUSIC_WIRE_A", "MUSIC_WIRE_M",
@@ -343,4 +349,4 @@ __all__ = ["METRIC_SERIES", "METRIC_BEARINGS", "INCH_BEARINGS", "WIRE_DIAMETERS"
            "in_unit", "metric_or_inch", "bearing_table", "standard_bearing", "bearing_for_bore", "standard_bores",
            "series_name", "put_bearing",
            "music_wire_allowable", "wahl_stress_per_newton", "coil_rate", "motor_for", "put_motor", "field_name",
-           "given", "given_number", "partial_table", "parts_wanted", "read_rough"]
+           "given", "given_number", "partial_table", "parts_wanted", "completing"]

@@ -8,9 +8,6 @@ shipped value follows the rule the resolved value equals it; where the shipped f
 otherwise the rule's value and why the file differs are stated here (:data:`WHOLE`,
 :data:`SINGLE`). Values are compared exactly: the rules round to 0.5 mm (1/32 in) or copy a
 catalogue, so the same inputs give the same numbers to the last bit.
-
-Not covered: a dual pinion with [stages] (metric_dual_pinion, planetary_dual_pinion), whose
-[parts] the defaults do not size (its file gives it; a missing key is refused, naming it).
 """
 
 from __future__ import annotations
@@ -31,7 +28,8 @@ from geargen.drives.resolver import resolve
 from geargen.errors import DesignError
 
 ROOT = Path(__file__).resolve().parents[2]
-DESIGNS = ("robot_joint", "c_axis", "split_pinion", "split_pinion_inch", "axial_preload", "rack_drive")
+DESIGNS = ("robot_joint", "metric_dual_pinion", "planetary_dual_pinion", "c_axis", "split_pinion",
+           "split_pinion_inch", "axial_preload", "rack_drive")
 
 #: bearings on a bore no standard bearing has (16 and 8.5 mm): the file must give them, and leaving
 #: one out is refused naming it
@@ -43,6 +41,9 @@ GIVEN = {"split_pinion": ("bearing_outer_diameter_mm", "bearing_width_mm", "comp
 _PAPER_MOTOR = "the shipped motor is the designer's (a small servo), the rule's the smallest NEMA frame for the load"
 _THIN_OUTPUT = "the shipped output bearing is a thin-section 1 x 1.5 x 0.25 in, the rule's the R series (R16)"
 _C_AXIS_MOTOR = "the shipped 110 mm servo with its gearhead is the designer's; the rule's NEMA 34 covers 2.78 N·m"
+_STAGED_MOTOR = "the shipped motor is a small servo; the rule's NEMA 14 covers the load through loop and stages"
+_SERIES_18 = "the rule's series 18 bearing of the 5 mm input shaft (685, 5 x 11 x 5); the file's is a 695"
+_LINK = "the rule's link encloses the gears at any cluster angle with 3 mm walls; the file's is tighter"
 
 #: the whole [parts] left out (but :data:`GIVEN`): file key -> (the rule's value, why the file differs)
 WHOLE = {
@@ -58,8 +59,19 @@ WHOLE = {
         "link_radius_in": (3.125, "the rule encloses every gear at any cluster angle; the file's link is tighter"),
         "link_wall_in": (0.125, "3 mm rounded to 1/32 in"), "link_floor_in": (0.1875, "a wall plus 1 mm"),
         "link_top_clearance_in": (0.125, "2.5 mm rounded to 1/32 in"),
-        "spring_y_offset_in": (0.40625, "the rule's springs side by side; the file's stand wider apart"),
+        "spring_y_offset_in": (0.4375, "the rule's springs side by side; the file's stand wider apart"),
     },
+    "metric_dual_pinion": {
+        "motor_body_diameter_mm": (35.5, _STAGED_MOTOR), "motor_body_length_mm": (34.0, _STAGED_MOTOR),
+        "motor_flange_mm": (35.5, _STAGED_MOTOR),
+        "input_bearing_outer_diameter_mm": (11.0, _SERIES_18), "input_bearing_width_mm": (5.0, _SERIES_18),
+        "carriage_plate_thickness_mm": (3.0, "2.5 mesh-1 modules, at least 3 mm; the file's plates are 4 mm"),
+        "carriage_width_mm": (32.0, "the input and two 3 mm plates either side; the file's carriage is 30 mm"),
+        "link_radius_mm": (124.0, _LINK), "link_wall_mm": (3.0, _LINK), "link_floor_mm": (4.0, _LINK),
+        "link_top_clearance_mm": (2.5, _LINK),
+        "spring_y_offset_mm": (12.0, "the springs side by side; the file's stand wider apart"),
+    },
+    "planetary_dual_pinion": {},  # as the metric one, and the stage bearing (below)
     "c_axis": {
         "locknut_width_mm": (7.5, "a quarter of the shaft; the file's KM6 locknut is 7 mm"),
         "stop_lug_length_mm": (34.0, "a stop, a clearance and a lug's width; the file rounds up to 35"),
@@ -85,6 +97,8 @@ WHOLE = {
     },
     "rack_drive": {},
 }
+WHOLE["planetary_dual_pinion"] = {**WHOLE["metric_dual_pinion"], "stage_bearing_outer_diameter_mm": (
+    11.0, "no stage shaft: the series 18 bearing of the motor shaft's 5 mm (685); the file names a 686")}
 
 #: one key left out: file key -> (the value the drive gets, why it differs from the file's); a key the
 #: file gives with a complete table otherwise takes the schema's default where it has one
@@ -115,6 +129,12 @@ SINGLE = {
                       "spring_installed_length_mm": (42.0, "solid and two wires of the file's 3.4 mm wire (8.3 coils)")},
     "rack_drive": {},
 }
+SINGLE["metric_dual_pinion"] = {**{k: WHOLE["metric_dual_pinion"][k] for k in WHOLE["metric_dual_pinion"]
+                                   if k not in ("motor_body_diameter_mm", "carriage_width_mm")},
+                                "motor_body_length_mm": (34.0, _STAGED_MOTOR),
+                                "carriage_width_mm": (36.0, "the input and the file's 4 mm plates, two either side")}
+SINGLE["planetary_dual_pinion"] = {**SINGLE["metric_dual_pinion"], "stage_bearing_outer_diameter_mm":
+                                   WHOLE["planetary_dual_pinion"]["stage_bearing_outer_diameter_mm"]}
 
 
 def _path(name: str) -> Path:

@@ -25,8 +25,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from geargen.design.catalogue import (STEEL_G_GPA, WIRE_DIAMETERS, Completion, Readers, coil_rate, metric_or_inch,
-                                      parts_wanted, put_bearing, read_rough)
+from geargen.design.catalogue import (STEEL_G_GPA, WIRE_DIAMETERS, Completion, Readers, coil_rate, completing,
+                                      metric_or_inch, put_bearing)
 from geargen.errors import DesignError
 
 #: the fewest active coils of a default preload spring: fewer make no spring of even pitch
@@ -34,20 +34,12 @@ MIN_ACTIVE_COILS = 6.0
 
 
 def complete(data: Mapping[str, Any], readers: Readers, fields: list) -> tuple[dict[str, Any], tuple]:
-    """``data`` completed with the module's rules (``fields``: the kind's [parts] fields), and what
-    was added; unchanged when the file gives its whole [parts] or cannot be read (the validating
-    load reports why)."""
-    if not parts_wanted(data, fields):
+    """The module's rules on ``data`` (``fields``: the kind's [parts] fields): the file completed,
+    and what was added (nothing where :func:`geargen.design.catalogue.completing` says so)."""
+    start = completing(data, readers, fields, roles=("pinion_left", "output_right"))
+    if start is None:
         return dict(data), ()
-    found = read_rough(data, readers)
-    if found is None:
-        return dict(data), ()
-    design, s = found
-    roles = ("pinion_left", "output_right")
-    if any(s.get(role) not in design.gears for role in roles):
-        return dict(data), ()  # the layout names a missing gear: the validating load says which
-    pinion, output = (design.gears[s[role]] for role in roles)
-    c = Completion(data, unit=design.length_unit)
+    design, s, (pinion, output), c = start
     c.stated("bearing_clearance", 0.5, 0.02, "0.5 mm (0.02 in) between a bearing and a gear face")
     d_in = pinion.hub.bore_diameter
     od_in, _ = put_bearing(c, c.unit, "input_bearing", d_in, "10", pinion.name,

@@ -37,8 +37,8 @@ from __future__ import annotations
 import math
 from typing import Any, Mapping
 
-from geargen.design.catalogue import (Completion, Readers, given, metric_or_inch, motor_for, parts_wanted, put_bearing,
-                                      put_motor, read_rough)
+from geargen.design.catalogue import (Readers, completing, given, metric_or_inch, motor_for, put_bearing,
+                                      put_motor)
 from geargen.drives.dual_pinion.keys import cluster_axial_gap
 from geargen.errors import DesignError
 
@@ -46,17 +46,12 @@ GEARS = ("input", "cluster_large", "cluster_small", "output")
 
 
 def complete(data: Mapping[str, Any], readers: Readers, fields: list) -> tuple[dict[str, Any], tuple]:
-    """``data`` completed with the module's rules (``fields``: the kind's [parts] fields), and what
-    was added; unchanged when the file gives its whole [parts] or cannot be read (the validating
-    load reports why)."""
-    if not parts_wanted(data, fields):
+    """The module's rules on ``data`` (``fields``: the kind's [parts] fields): the file completed,
+    and what was added (nothing where :func:`geargen.design.catalogue.completing` says so)."""
+    start = completing(data, readers, fields, gears=GEARS)
+    if start is None:
         return dict(data), ()
-    found = read_rough(data, readers, GEARS)
-    if found is None:
-        return dict(data), ()
-    design, s = found
-    inp, large, small, out = (design.gears[n] for n in GEARS)
-    c = Completion(data, unit=design.length_unit)
+    design, s, (inp, large, small, out), c = start
     gap = c.length("bearing_clearance", max(metric_or_inch(0.5, 0.02, c.unit), inp.module),
                    "the long pinion's module, at least 0.5 mm (0.02 in)")
     c.length("spindle_diameter", out.hub.bore_diameter, f"the bore of gears.{out.name}", exact=True)

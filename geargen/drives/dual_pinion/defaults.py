@@ -7,7 +7,7 @@ stiffness components. Where the file gives none of a section ([parts], [preload]
 below, each value with the rule that chose it: `geargen check` prints them, the build's report
 and `resolved.json` list them, and a designer copies a line into the file to change it. A
 section or bore the file gives is never changed; a partial [parts] is completed key by key. A
-dual pinion with [stages] gives its own hardware.
+dual pinion with [stages] gets its [parts] only (its file gives the other sections).
 
 Rules (lengths in mm; inch designs are rounded to 1/32 in and use inch bearings):
 
@@ -26,7 +26,12 @@ Rules (lengths in mm; inch designs are rounded to 1/32 in and use inch bearings)
   allowable stress at the 0.5 mm (0.02 in) travel; plates 2.5 mesh-1 modules thick, at least 3 mm;
 - motor: the smallest NEMA frame whose torque covers the motor's share of the rated load (the
   designer adds for acceleration), through a 15:30 bevel pair of the input's module, the bevel
-  gear high enough on the input shaft for the motor to clear the carriage plate;
+  gear high enough on the input shaft for the motor to clear the carriage plate; with [stages],
+  through the stages instead (their ratios, a planetary's 1 + ring / sun), and the stage shafts'
+  bearings (`stage_bearing_*`) the series 18 bearing of the stage shafts' bore (with no stage
+  shaft, of the motor shaft's, the first driver's bore);
+- the springs' offset from the symmetry line: side by side, from the file's [springs] where it
+  gives them;
 - stiffness: each cluster shaft twisting and bending on its bearings (10 N/um each) and the input
   shaft, all from the placed shafts' lengths, the meshes from the gears.
 
@@ -40,7 +45,8 @@ from typing import Any, Mapping
 
 from geargen.design.catalogue import (STEEL_E_GPA, STEEL_G_GPA, WIRE_DIAMETERS, Completion, Readers, coil_rate,
                                       given_number, in_unit, motor_for, music_wire_allowable, partial_table,
-                                      put_motor, rounded, standard_bearing, standard_bores, wahl_stress_per_newton)
+                                      put_bearing, put_motor, rounded, standard_bearing, standard_bores,
+                                      wahl_stress_per_newton)
 from geargen.design.schema import PLAUSIBLE
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
@@ -123,6 +129,14 @@ def _spring(force_each: float) -> dict[str, float]:
                       f"{WIRE_DIAMETERS[-1]} mm music wire of the default springs", "a [springs] table")
 
 
+def _file_spring(table: Any) -> dict[str, float] | None:
+    """The file's [springs] wire and mean coil diameter (mm), or None when it does not give both."""
+    if not isinstance(table, Mapping):
+        return None
+    wire, mean = given_number(table, "wire_diameter"), given_number(table, "mean_coil_diameter")
+    return dict(wire=wire, mean=mean) if wire is not None and mean is not None else None
+
+
 def _needs_defaults(data: Mapping[str, Any]) -> bool:
     drive = data.get("drive") or {}
     layout = data.get("layout") or {}
@@ -130,20 +144,21 @@ def _needs_defaults(data: Mapping[str, Any]) -> bool:
                                                                "preload")):
         return False  # malformed: the validating load names the problem
     return (drive.get("type") == "type2" and drive.get("preload") == "radial" and "synthesis" in data
-            and layout.get("kind", "dual_pinion") == "dual_pinion" and not data.get("beam_pinion")
-            and not data.get("stages"))
+            and layout.get("kind", "dual_pinion") == "dual_pinion" and not data.get("beam_pinion"))
 
 
 def complete(data: Mapping[str, Any], readers: Readers, fields: list) -> tuple[dict[str, Any], tuple]:
     """``data`` (the parsed design file) completed with the dual pinion's default hardware (the
     module's rules), and what was added (:class:`geargen.design.catalogue.Defaulted`); ``fields``:
-    the kind's [parts] fields. Unchanged (and nothing added) where the file gives every section, or
-    for a dual pinion the defaults do not cover (with [stages]: its file gives its hardware)."""
+    the kind's [parts] fields. Unchanged (and nothing added) where the file gives every section. A
+    drive with [stages] gets its [parts] only: its file gives the other sections."""
     if not isinstance(data, Mapping) or not _needs_defaults(data):
         return dict(data) if isinstance(data, Mapping) else data, ()
     wanted = [s for s in ("parts", "preload", "flexures", "springs", "stiffness") if s not in data]
     if partial_table(data.get("parts"), fields):
         wanted.append("parts")  # a partial [parts]: the keys it leaves out are defaulted
+    if data.get("stages") and (set(wanted) - {"parts"} or not isinstance(data["stages"], Mapping)):
+        return dict(data), ()  # the stages' own sections are the file's: the validating load names what is missing
     gear_tables = data.get("gears") or {}
     defaults_table = data.get("gear_defaults") or {}
     if not all(isinstance(t, Mapping) for t in gear_tables.values()):
@@ -216,8 +231,9 @@ def complete(data: Mapping[str, Any], readers: Readers, fields: list) -> tuple[d
     m1 = g["input"].module
     gap = 0.5
     plate = max(3.0, 2.5 * m1)
-    # --- springs and blades
-    spring = _spring(force_on_carriage / 2)
+    # --- springs and blades (the file's springs, where it gives them, set the springs' offset)
+    spring = _file_spring(data.get("springs")) if "springs" not in wanted else None
+    spring = spring or _spring(force_on_carriage / 2)
     if "springs" in wanted:
         why = (f"two springs give {force_on_carriage:.3g} N on the carriage: preload {PRELOAD_FRACTION:g} x the rated "
                "torque")
@@ -294,11 +310,38 @@ def _default_parts(completion: Completion, g, unit: str, bearings, max_torque: f
         put("parts", f"{shaft}_bearing_outer_diameter_{unit}", in_unit(od, unit), why)
         put("parts", f"{shaft}_bearing_width_{unit}", in_unit(w, unit), why)
     put("parts", f"bearing_clearance_{unit}", rounded(gap, unit), "axial gap between a bearing and a gear face")
+    plate = number("carriage_plate_thickness", plate)
+    gap = number("bearing_clearance", gap)
+    inp = g["input"]
+    if completion.data.get("stages"):
+        _stage_drive(completion, g, unit, max_torque)
+    else:
+        _bevel_drive(completion, g, unit, bearings, max_torque, plate, gap, number)
+    put("parts", f"carriage_plate_thickness_{unit}", rounded(plate, unit), "2.5 mesh-1 modules, at least 3 mm")
+    d_in = max(2 * inp.tip_radius, bearings["input"][1])
+    put("parts", f"carriage_width_{unit}", rounded(d_in + 4 * plate, unit), "the input gear and its bearing seats "
+        "with two plates either side")
+    # the link's round end encloses every gear with a wall's clearance
+    reach = _loop_reach(completion.data, g)
+    wall = max(3.0, 2.0 * m1)
+    put("parts", f"link_wall_{unit}", rounded(wall, unit), "two mesh-1 modules, at least 3 mm")
+    put("parts", f"link_floor_{unit}", rounded(wall + 1.0, unit), "a wall plus 1 mm: the bosses stand on it")
+    put("parts", f"link_radius_{unit}", rounded(reach + 2 * gap + wall + 2.0, unit), "the gears' reach from the "
+        "symmetry line, 2 mm inside the walls")
+    put("parts", f"link_top_clearance_{unit}", rounded(2.5, unit), "above the highest part")
+    outer = spring["mean"] + spring["wire"]
+    put("parts", f"spring_y_offset_{unit}", rounded(0.75 * outer + 1.0, unit), "the two springs side by side, "
+        "clear of each other")
+
+
+def _bevel_drive(completion: Completion, g, unit: str, bearings, max_torque: float, plate: float, gap: float,
+                 number) -> None:
+    """The motor driving the input through the 15:30 bevel pair (see the module's rules)."""
+    put = completion.put
+    m1 = g["input"].module
     # the bevel pair: 15:30 of the input's module, face a third of the cone distance
     zp, zg = (int(number("bevel_pinion_teeth", BEVEL_TEETH[0])), int(number("bevel_gear_teeth", BEVEL_TEETH[1])))
     module = number("bevel_module", m1)
-    plate = number("carriage_plate_thickness", plate)
-    gap = number("bearing_clearance", gap)
     cone = math.hypot(zp, zg) * module / 2
     ratio = g["output"].teeth / g["cluster_small"].teeth * g["cluster_large"].teeth / g["input"].teeth
     motor_torque = max_torque / (ratio * zg / zp) * 1e-3
@@ -332,21 +375,38 @@ def _default_parts(completion: Completion, g, unit: str, bearings, max_torque: f
     put("parts", f"motor_shaft_diameter_{unit}", in_unit(shaft_d, unit) if unit == "mm" else
         round(shaft_d / MM_PER_IN, 4), f"{frame[0]} envelope: the smallest frame for {motor_torque:.3g} N·m at the motor")
     put("parts", f"motor_shaft_length_{unit}", rounded(3.0, unit), "the stub from the flange to the bevel pinion")
-    put("parts", f"carriage_plate_thickness_{unit}", rounded(plate, unit), "2.5 mesh-1 modules, at least 3 mm")
-    d_in = max(2 * inp.tip_radius, bearings["input"][1])
-    put("parts", f"carriage_width_{unit}", rounded(d_in + 4 * plate, unit), "the input gear and its bearing seats "
-        "with two plates either side")
-    # the link's round end encloses every gear with a wall's clearance
-    reach = _loop_reach(completion.data, g)
-    wall = max(3.0, 2.0 * m1)
-    put("parts", f"link_wall_{unit}", rounded(wall, unit), "two mesh-1 modules, at least 3 mm")
-    put("parts", f"link_floor_{unit}", rounded(wall + 1.0, unit), "a wall plus 1 mm: the bosses stand on it")
-    put("parts", f"link_radius_{unit}", rounded(reach + 2 * gap + wall + 2.0, unit), "the gears' reach from the "
-        "symmetry line, 2 mm inside the walls")
-    put("parts", f"link_top_clearance_{unit}", rounded(2.5, unit), "above the highest part")
-    outer = spring["mean"] + spring["wire"]
-    put("parts", f"spring_y_offset_{unit}", rounded(0.75 * outer + 1.0, unit), "the two springs side by side, "
-        "clear of each other")
+
+
+def _stage_drive(completion: Completion, g, unit: str, max_torque: float) -> None:
+    """The motor driving the input through the design's [stages] standing on the carriage (see the
+    module's rules): the stage shafts' bearings and the motor's envelope."""
+    stages = [t for t in completion.data["stages"].values() if isinstance(t, Mapping)]
+    ratio = g["output"].teeth / g["cluster_small"].teeth * g["cluster_large"].teeth / g["input"].teeth
+    shafts = []  # the gears on each stage shaft: a stage's driven gear with the next stage's driver
+    first = None
+    for i, st in enumerate(stages):
+        if st.get("kind") == "planetary":
+            sun, ring = g.get(st.get("sun")), g.get(st.get("ring"))
+            if sun is None or ring is None:
+                return  # the validating load names the stage's missing gear
+            ratio *= 1 + ring.teeth / sun.teeth
+            first = first or sun
+            continue
+        driver, driven = g.get(st.get("driver")), g.get(st.get("driven"))
+        if driver is None or driven is None:
+            return
+        ratio *= driven.teeth / driver.teeth
+        first = first or driver
+        if i + 1 < len(stages) and stages[i + 1].get("kind") != "planetary":
+            shafts.append(driven)
+    # a stage shaft's bearing, or with none the motor shaft's (the first driver's bore)
+    shaft_gear = max(shafts, key=lambda gear: gear.hub.bore_diameter) if shafts else first
+    if shaft_gear is None:
+        return
+    put_bearing(completion, unit, "stage_bearing", shaft_gear.hub.bore_diameter, "18", shaft_gear.name,
+                "the stage shafts' bearings" if shafts else "no stage shaft: the motor shaft's size")
+    motor_torque = max_torque / ratio * 1e-3
+    put_motor(completion, motor_for(motor_torque), motor_torque)
 
 
 def _loop_reach(data, gears) -> float:

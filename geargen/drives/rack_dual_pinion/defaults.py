@@ -27,9 +27,8 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from geargen.design.catalogue import (STEEL_G_GPA, WIRE_DIAMETERS, Completion, Readers, coil_rate,
-                                      music_wire_allowable, parts_wanted, put_bearing, read_rough, rounded,
-                                      wahl_stress_per_newton)
+from geargen.design.catalogue import (STEEL_G_GPA, WIRE_DIAMETERS, Completion, Readers, coil_rate, completing,
+                                      music_wire_allowable, put_bearing, rounded, wahl_stress_per_newton)
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
@@ -40,17 +39,12 @@ RAIL_WIDTHS = (7.0, 9.0, 12.0, 15.0)
 
 
 def complete(data: Mapping[str, Any], readers: Readers, fields: list) -> tuple[dict[str, Any], tuple]:
-    """``data`` completed with the module's rules (``fields``: the kind's [parts] fields), and what
-    was added; unchanged when the file gives its whole [parts] or cannot be read (the validating
-    load reports why)."""
-    if not parts_wanted(data, fields):
+    """The module's rules on ``data`` (``fields``: the kind's [parts] fields): the file completed,
+    and what was added (nothing where :func:`geargen.design.catalogue.completing` says so)."""
+    start = completing(data, readers, fields, gears=("pinion", "input"))
+    if start is None:
         return dict(data), ()
-    found = read_rough(data, readers, ("pinion", "input"))
-    if found is None:
-        return dict(data), ()
-    design, s = found
-    pinion, inp = design.gears["pinion"], design.gears["input"]
-    c = Completion(data, unit=design.length_unit)
+    design, s, (pinion, inp), c = start
     c.stated("bearing_clearance", 0.5, 0.02, "0.5 mm (0.02 in) between a bearing and a gear face")
     put_bearing(c, c.unit, "path_bearing", pinion.hub.bore_diameter, "19", pinion.name, "the path shafts' bearings")
     od_in, _ = put_bearing(c, c.unit, "input_bearing", inp.hub.bore_diameter, "10", inp.name,

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 from typing import Any, Mapping
 
-from geargen.design.catalogue import Completion, Readers, parts_wanted, put_bearing, read_rough
+from geargen.design.catalogue import Readers, completing, put_bearing
 
 #: the bearing series of every shaft: thin section, the pinions close to the output
 SERIES = "19"
@@ -35,19 +35,12 @@ TWIST_DIAMETERS = 10.0
 
 
 def complete(data: Mapping[str, Any], readers: Readers, fields: list) -> tuple[dict[str, Any], tuple]:
-    """``data`` completed with the module's rules (``fields``: the kind's [parts] fields), and what
-    was added; unchanged when the file gives its whole [parts] or cannot be read (the validating
-    load reports why)."""
-    if not parts_wanted(data, fields):
+    """The module's rules on ``data`` (``fields``: the kind's [parts] fields): the file completed,
+    and what was added (nothing where :func:`geargen.design.catalogue.completing` says so)."""
+    start = completing(data, readers, fields, roles=("pinion_stiff", "pinion_compliant", "output"))
+    if start is None:
         return dict(data), ()
-    found = read_rough(data, readers)
-    if found is None:
-        return dict(data), ()
-    design, s = found
-    if any(s.get(role) not in design.gears for role in ("pinion_stiff", "pinion_compliant", "output")):
-        return dict(data), ()  # the layout names a missing gear: the validating load says which
-    stiff, compliant, output = (design.gears[s[role]] for role in ("pinion_stiff", "pinion_compliant", "output"))
-    c = Completion(data, unit=design.length_unit)
+    design, s, (stiff, compliant, output), c = start
     gap = c.stated("bearing_clearance", 0.5, 0.02, "0.5 mm (0.02 in) between a bearing and a gear face")
     d_hollow = c.length("hollow_shaft_outer_diameter", stiff.hub.bore_diameter,
                         f"the bore of gears.{stiff.name}, which the hollow shaft fills", exact=True)
