@@ -383,12 +383,18 @@ def test_too_short_a_stroke_is_refused(tmp_path):
     assert ">= 0.065287" in err.value.allowed  # 0.06 / (2 tan 25 deg) = 0.06434 + the windup 0.00095
 
 
-def test_a_drive_without_its_bearings_is_refused(tmp_path):
-    """The friction acts on the placed input bearings: without [parts] the ratio cannot be found."""
+def test_a_drive_without_its_bearings_gets_the_default_ones(tmp_path, layout):
+    """The friction acts on the placed input bearings: without [parts] the default hardware places
+    them (geargen.drives.axial_preload.defaults: the 6001 the shipped file names, 12 x 28 x 8 mm, a
+    clearance beyond the gears), so the friction ratio is the shipped design's. (It was refused
+    before the drive kinds had default hardware.)"""
     path = variant(tmp_path, (r"^\[parts\]\n(.*\n)*?(?=\[export\])", ""))
-    with pytest.raises(DesignError) as err:
-        pl.place(pl.load(path))
-    assert err.value.field == "parts" and "friction" in err.value.problem
+    design = pl.load(path)
+    assert {"parts.input_bearing_outer_diameter_mm": 28.0, "parts.input_bearing_width_mm": 8.0} \
+        .items() <= {d.key: d.value for d in design.defaulted}.items()
+    got = pl.place(design).drive_report["friction"]["friction_to_preload"]
+    # the same bearings at the same heights: the same ratio to the last bit
+    assert got == layout.drive_report["friction"]["friction_to_preload"]
 
 
 def test_too_small_a_helix_angle_is_refused(tmp_path):

@@ -1,6 +1,7 @@
-"""``geargen new KIND FILE.toml`` (issue 11): a commented starter design that loads, checks and
-builds; every key commented with its meaning and unit from the schema; an existing file is never
-overwritten (exit status 3), and the file appears whole or not at all.
+"""``geargen new KIND FILE.toml [--units in]`` (issues 11, 26): a commented starter design, metric
+or inch, that loads, checks and builds; every key commented with its meaning and unit from the
+schema; an existing file is never overwritten (exit status 3), and the file appears whole or not
+at all.
 
 The numbers the starters' comments claim (spring rate and force, blade stiffness and stress,
 the split pinion's preload band) are recomputed here from closed forms and compared with the
@@ -23,11 +24,22 @@ from geargen.commands import new as new_command
 from geargen.core.stiffness import stiffness_summary
 from geargen.design.assembly import load_design
 from geargen.design.schema import key_comment
-from geargen.design.starters import STARTERS, starter_data, starter_text
+from geargen.commands.new import STARTERS
+from geargen.design.starters import starter_data as data_of, starter_text as text_of
 from geargen.design.validate import key_schema
 
 ROOT = Path(__file__).resolve().parents[1]
 KINDS = sorted(STARTERS)
+#: every starter: (kind, length unit)
+VARIANTS = [(kind, units) for kind in KINDS for units in sorted(STARTERS[kind])]
+
+
+def starter_data(kind: str, name: str, units: str = "mm") -> dict:
+    return data_of(STARTERS[kind][units], name)
+
+
+def starter_text(kind: str, name: str, units: str = "mm") -> str:
+    return text_of(STARTERS[kind][units], name)
 
 
 def _env() -> dict:
@@ -45,33 +57,41 @@ def _new(tmp_path: Path, kind: str, capsys, name: str = "starter") -> Path:
 
 
 @pytest.fixture(scope="module")
-def starters(tmp_path_factory) -> dict[str, Path]:
-    """Each starter written once by the command."""
+def starters(tmp_path_factory) -> dict:
+    """Each starter written once by the command: by kind (metric) and by (kind, units)."""
     folder = tmp_path_factory.mktemp("starters")
     out = {}
-    for kind in KINDS:
-        path = folder / f"my_{kind}.toml"
-        assert main(["new", kind, str(path)]) == 0
-        out[kind] = path
+    for kind, units in VARIANTS:
+        path = folder / f"my_{kind}_{units}.toml"
+        assert main(["new", kind, str(path), "--units", units]) == 0
+        out[kind, units] = path
+        if units == "mm":
+            out[kind] = path
     return out
 
 
 # ------------------------------------------------------------------ what is written
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_starter_reads_back_as_its_data_and_loads(kind, starters):
-    path = starters[kind]
-    assert tomllib.loads(path.read_text()) == starter_data(kind, f"my_{kind}")
+@pytest.mark.parametrize("kind, units", VARIANTS)
+def test_starter_reads_back_as_its_data_and_loads(kind, units, starters):
+    path = starters[kind, units]
+    assert tomllib.loads(path.read_text()) == starter_data(kind, f"my_{kind}_{units}", units)
     design = load_design(path)
-    assert design.name == f"my_{kind}"
-    assert design.length_unit == "mm"
-    assert all(g.length_unit == "mm" and g.module == 1.0 for g in design.gears.values())
+    assert design.name == f"my_{kind}_{units}"
+    assert design.length_unit == units
+    assert design.defaulted == ()  # a starter gives all its hardware
+    # metric: module 1 mm; inch: a whole diametral pitch (the robot joint's 32, the split pinion's 20)
+    modules = {g.module if units == "mm" else round(25.4 / g.module, 9) for g in design.gears.values()}
+    assert modules == ({1.0} if units == "mm" else {32.0} if kind == "dual_pinion" else {20.0})
+    assert all(g.length_unit == units for g in design.gears.values())
+    if units == "in":
+        assert f"`geargen new {kind} --units in`" in path.read_text()
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_every_key_is_commented_with_its_meaning_and_unit(kind, starters):
-    lines = starters[kind].read_text().splitlines()
-    data = starter_data(kind, "x")
+@pytest.mark.parametrize("kind, units", VARIANTS)
+def test_every_key_is_commented_with_its_meaning_and_unit(kind, units, starters):
+    lines = starters[kind, units].read_text().splitlines()
+    data = starter_data(kind, "x", units)
     table: tuple[str, ...] = ()
     seen = 0
     for i, line in enumerate(lines):
@@ -114,9 +134,9 @@ def _leaves(node):
             yield value
 
 
-@pytest.mark.parametrize("kind", KINDS)
-def test_starter_passes_geargen_check(kind, starters, capsys):
-    assert main(["check", str(starters[kind]), "--json", "-"]) == 0
+@pytest.mark.parametrize("kind, units", VARIANTS)
+def test_starter_passes_geargen_check(kind, units, starters, capsys):
+    assert main(["check", str(starters[kind, units]), "--json", "-"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert result["ok"] and not result["failures"]
 
@@ -226,18 +246,18 @@ def test_split_pinion_preload_band_matches_closed_forms(starters):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("kind", KINDS)
-def test_starter_builds(kind, tmp_path):
+@pytest.mark.parametrize("kind, units", VARIANTS)
+def test_starter_builds(kind, units, tmp_path):
     path = tmp_path / f"{kind}.toml"
     cli = [sys.executable, "-m", "geargen.cli"]
-    subprocess.run(cli + ["new", kind, str(path)], env=_env(), check=True, capture_output=True)
+    subprocess.run(cli + ["new", kind, str(path), "--units", units], env=_env(), check=True, capture_output=True)
     run = subprocess.run(cli + ["build", str(path), "--out", str(tmp_path / "out"), "--quiet"], env=_env(),
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     manifest = json.loads((tmp_path / "out" / "manifest.json").read_text())
     assert manifest["generator"] == "geargen build"
     assert "**Status: PASS**" in (tmp_path / "out" / "report.md").read_text()
-    gears = set(starter_data(kind, kind)["gears"])
+    gears = set(starter_data(kind, kind, units)["gears"])
     assert all(any(f.startswith(g) and f.endswith(".step") for f in manifest["files"]) for g in gears)
 
 

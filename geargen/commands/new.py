@@ -1,7 +1,8 @@
-"""``geargen new KIND FILE.toml``: write a commented starter design that builds.
+"""``geargen new KIND FILE.toml [--units mm|in]``: write a commented starter design that builds.
 
-KIND is one of :data:`geargen.design.starters.STARTERS` (``dual_pinion``, ``split_pinion``);
-the design's ``name`` is the file's name. The file is never overwritten: an existing FILE is
+KIND is a drive kind with starters (:data:`STARTERS`, from each kind's
+:attr:`geargen.drives.kind.DriveKind.starters`: ``dual_pinion``, ``split_pinion``), metric or, with
+``--units in``, inch; the design's ``name`` is the file's name. The file is never overwritten: an existing FILE is
 refused with exit status 3, naming it. It is written atomically (a temporary file beside it,
 linked into place only if FILE still does not exist), with the user's umask; missing folders
 above it are created.
@@ -14,14 +15,22 @@ import os
 import tempfile
 from pathlib import Path
 
-from geargen.design.starters import STARTERS, starter_text
+from geargen.design.starters import starter_text
+from geargen.drives.registry import DRIVES
 from geargen.errors import DesignError, EnvironmentProblem, OutputRefused
 from geargen.outputs import file_mode
+
+
+#: each drive kind's starters by length unit, by the kind's name
+STARTERS = {d.name: d.starters for d in DRIVES.values() if d.starters}
+UNITS = ("mm", "in")
 
 
 def add_arguments(p: argparse.ArgumentParser) -> None:
     p.add_argument("kind", choices=sorted(STARTERS), help="the drive to start from")
     p.add_argument("file", metavar="FILE.toml", help="the design file to write (never overwritten)")
+    p.add_argument("--units", choices=UNITS, default="mm",
+                   help="the starter's lengths: mm (metric, modules) or in (inch, diametral pitch; default mm)")
 
 
 def write_new_file(path: Path, text: str) -> None:
@@ -75,10 +84,11 @@ def run(args: argparse.Namespace) -> int:
     if not name or name.startswith(".") or "\\" in name:
         raise DesignError("FILE", f"{args.file!r} does not give the design a name", "NAME.toml, NAME not starting "
                           "with a dot")
-    write_new_file(path, starter_text(args.kind, name))
-    print(f"wrote {path}: a {args.kind} starter design named {name!r}")
+    starter = STARTERS[args.kind][args.units]
+    write_new_file(path, starter_text(starter, name))
+    print(f"wrote {path}: a {args.kind} starter design ({starter.units}) named {name!r}")
     print(f"next: geargen check {path}   then   geargen build {path}")
     return 0
 
 
-__all__ = ["add_arguments", "run", "write_new_file"]
+__all__ = ["STARTERS", "UNITS", "add_arguments", "run", "write_new_file"]

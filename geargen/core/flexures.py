@@ -234,8 +234,8 @@ def spring_shear_stress(force, wire_diameter: float, mean_coil_diameter: float, 
 def music_wire_allowable_shear(wire_diameter: float) -> float:
     """Static allowable wire shear stress of music wire (ASTM A228), MPa: 0.45 of its tensile strength
     S_ut = A / d^m (A 2211 MPa mm^m, m 0.145, d mm; Shigley's Table 10-4), set not removed."""
-    from geargen.design.hardware_defaults import MUSIC_WIRE_A, MUSIC_WIRE_M
-    return 0.45 * MUSIC_WIRE_A / wire_diameter ** MUSIC_WIRE_M
+    from geargen.design.catalogue import music_wire_allowable
+    return music_wire_allowable(wire_diameter)
 
 
 def spring_for_rate(force: float, rate: float, wire_diameter: float, mean_coil_diameter: float,

@@ -892,7 +892,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
 
     ``beam_supports``: radial stiffness (N/mm) of the structure under the long pinion's lower and
-    upper bearing (:meth:`geargen.model.shafts.DriveColumn.support_stiffness`); the beam pinion's
+    upper bearing (:meth:`geargen.drives.beam_pinion.shafts.DriveColumn.support_stiffness`); the beam pinion's
     spring is then the beam in series with them through its reactions. Default: rigid supports.
 
     ``carriage_travels`` (mm, peak-to-peak; e.g. the synthesis error budget by label) replace

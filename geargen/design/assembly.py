@@ -30,14 +30,19 @@ from __future__ import annotations
 
 import hashlib
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
+from geargen.design.catalogue import Defaulted, Readers
 from geargen.design.feasibility import check_tooth
 from geargen.design.gear import GearSpec, gear_from_table, gear_keys_written
 from geargen.design.schema import (GEAR_NAME_MAX, STRING_MAX, DesignErrors, Problems, check_name, read_toml, shown,
                                    unknown_key)
+from geargen.design.layout import layout_settings
+from geargen.design.parts import hardware_fields
+from geargen.design.stiffness import QUANTITY_SUFFIXES, preload_spec_from_table
+from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS
 
@@ -84,7 +89,7 @@ class Design:
     preload_method: str | None = None
     path: Path | None = None
     sha256: str = ""
-    #: the values the file did not give and the default hardware chose (geargen.design.hardware_defaults)
+    #: the values the file did not give and the default hardware chose (geargen/drives/<kind>/defaults.py)
     defaulted: tuple = ()
     #: gear table key -> the label its ``name`` key gives it (only gears whose label differs from the
     #: key): for reports and exports; the key stays the gear's identity (``gears``, every section)
@@ -130,8 +135,7 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         raise DesignError("<top>", "expected a table")
     defaulted: tuple = ()
     if validate:
-        from geargen.design.hardware_defaults import default_hardware
-        data, defaulted = default_hardware(data, design_from_dict)
+        data, defaulted = default_hardware(data)
     problems = Problems()
     unknown = [k for k in data if k not in SECTIONS and k not in TOP_KEYS]
     known = list(TOP_KEYS) + list(SECTIONS)
@@ -234,6 +238,21 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         validate_sections(design, problems, len(gears) == len(gear_tables), tuple(gear_tables))
     problems.raise_any(path.name if path else None)
     return design
+
+
+def default_hardware(data: Mapping[str, Any]) -> tuple[Any, tuple[Defaulted, ...]]:
+    """``data`` (the parsed file) completed with the default hardware of its drive kind (the rules
+    of ``geargen/drives/<kind>/defaults.py``, reached through the kind's keys module), and what was
+    added; unchanged where the file gives its hardware."""
+    if not isinstance(data, Mapping):
+        return data, ()
+    kind = KEYS[kind_of(data)]
+    readers = Readers(design=design_from_dict, layout=layout_settings, preload=preload_spec_from_table,
+                      torque_units=QUANTITY_SUFFIXES["torque"])
+    # the keys the file must give: the required ones and those its kind needs of this file
+    needed = getattr(kind, "parts_needed", lambda sections: ())(data)
+    fields = [replace(f, required=True) if f.name in needed else f for f in hardware_fields(kind.NAME)]
+    return kind.defaults.complete(data, readers, fields)
 
 
 def _name_clashes(gear_tables: Mapping[str, Any], labels: Mapping[str, str]) -> list[DesignError]:

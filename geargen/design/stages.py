@@ -145,9 +145,10 @@ def shaft_speeds(design, stage_list: tuple[Stage, ...], input_speed: float) -> d
     return speeds
 
 
-def check_stages(design, layout_kind: str) -> None:
-    """Stages drive the input gear of a dual-pinion loop."""
-    if design.section("stages") and layout_kind != "dual_pinion":
+def check_stages(design, takes_stages: bool) -> None:
+    """Stages drive the input gear of a drive whose kind takes them (``TAKES_STAGES`` of its keys:
+    the dual pinion's loop)."""
+    if design.section("stages") and not takes_stages:
         raise DesignError("stages", "stages drive the input gear of a dual-pinion drive", "a [synthesis] drive")
 
 

@@ -122,8 +122,8 @@ def validate_sections(design, problems: Problems, gears_complete: bool = True,
             run(check_layout, design, settings)
     if "stages" in sections and gears_complete:
         if run(stages, design) is not None:
-            kind = settings["kind"] if settings is not None else None
-            run(check_stages, design, kind)
+            # a [layout] that cannot be read names no drive that takes stages
+            run(check_stages, design, settings is not None and KEYS[kind_of(design)].TAKES_STAGES)
     if "parts" in sections:
         settings = run(parts_settings, design)
         if settings is not None and gears_complete:

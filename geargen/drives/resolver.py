@@ -90,9 +90,9 @@ def with_hardware(layout: Layout) -> Layout:
 
 def defaulted(layout: Layout) -> tuple:
     """The values the design file does not give, as the resolved drive uses them: the design's
-    defaults (:mod:`geargen.design.hardware_defaults`), those the hardware sized from the placed
+    defaults (its kind's ``defaults.py``), those the hardware sized from the placed
     drive replacing theirs (:attr:`geargen.model.components.Hardware.defaults`)."""
-    from geargen.design.hardware_defaults import Defaulted
+    from geargen.design.catalogue import Defaulted
     design = layout.design
     sized = {key: (value / design.mm_per_unit, why) for key, value, why in
              (layout.hardware.defaults if layout.hardware is not None else ())}

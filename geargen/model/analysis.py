@@ -18,7 +18,8 @@ def loop_error_travels(layout: Layout | None) -> tuple[dict[str, float] | None, 
     design = layout.design if layout is not None else None
     if run is None or run.budget is None:
         return None, "loop error from the design's [preload] (no [synthesis] with [errors] budget)"
-    if design.preload_method not in ("radial", "axial") or design.section("beam_pinion"):
+    if design.preload_method not in ("radial", "axial") or (layout.drive is not None
+                                                            and not layout.drive.carriage_error_budget):
         return None, ("loop error from the design's [preload]: the synthesis budget is a carriage travel, and this "
                       "drive's preload is not set by a sliding carriage")
     b = run.budget
@@ -167,22 +168,13 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
 
 
 def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | None:
-    """Radial stiffness (N/mm) of the structure under the long pinion's two bearings: the drive
-    column (:func:`geargen.model.shafts.drive_column`) where the design builds one and the sliding
-    pinions' strokes (``engagement``, which set the housing block's height) are known; else None
-    (rigid supports)."""
-    if layout is None or engagement is None or not layout.design.section("parts"):
+    """Radial stiffness (N/mm) of the structure under a beam-spring pinion's two bearings, as the
+    drive kind gives it (:attr:`geargen.drives.kind.DriveKind.beam_supports`: the C-axis's drive
+    column, once the sliding pinions' strokes, ``engagement``, are known); None for rigid supports
+    or a drive without a beam-spring pinion."""
+    if layout is None or layout.drive is None or layout.drive.beam_supports is None:
         return None
-    from geargen.design.parts import parts_settings
-    from geargen.design.stiffness import stiffness_design
-    from geargen.core.stiffness import sized_beam_pinion
-    from geargen.model.shafts import drive_column
-    if not layout.design.section("beam_pinion"):  # no long pinion: no drive column under its bearings
-        return None
-    parts = parts_settings(layout.design)
-    sd = stiffness_design(layout.design)
-    span = sized_beam_pinion(layout.design, sd.beam_pinion).span
-    return drive_column(layout, parts, span, engagement).support_stiffness(sd.beam_pinion.elastic_modulus)
+    return layout.drive.beam_supports(layout, engagement)
 
 
 __all__ = ["loop_error_travels", "placed_components", "stiffness", "beam_supports"]

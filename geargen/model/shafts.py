@@ -3,7 +3,8 @@ model share (bearing positions, spans, where each gear loads its shaft, shaft di
 
 The CAD layer builds the shafts and bearing rings at exactly these positions, and
 :mod:`geargen.model.analysis` sizes the shaft components of the stiffness model from them, so
-moving a bearing in the design moves the solid and changes the stiffness together.
+moving a bearing in the design moves the solid and changes the stiffness together. A drive kind
+places its own shafts with these (``geargen/drives/<kind>/shafts.py``, :attr:`DriveKind.shafts`).
 
 Frame as :mod:`geargen.model.layout` (mm, z along the gear axes). A bearing is a ring of
 ``width`` whose lower face is at ``z``; it supports the shaft at its mid-width.
@@ -11,12 +12,10 @@ Frame as :mod:`geargen.model.layout` (mm, z along the gear axes). A bearing is a
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
 
 from geargen.design.cluster import ClusterSpec
-from geargen.errors import DesignError
 from geargen.model.layout import Layout
 
 
@@ -135,155 +134,6 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
     return out
 
 
-def beam_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
-    """The C-axis dual pinions' shafts (Fig. 12): each slides in a quill whose two bearings,
-    ``cluster_bearing_spacing`` apart, sit a ``bearing_clearance`` below the large gear; the
-    large gear and, beyond it, the pinion meshing the bull gear are overhung above them. The
-    shaft runs from its locknut (against the lower bearing's inner ring) to the pinion's top."""
-    gap = parts["bearing_clearance"]
-    width, outer = parts["cluster_bearing_width"], parts["cluster_bearing_outer_diameter"]
-    out: dict[str, Shaft] = {}
-    for side in ("a", "b"):
-        large, small = layout.gear(f"cluster_large_{side}"), layout.gear(f"cluster_small_{side}")
-        diameter = parts["cluster_shaft_diameter"]
-        upper = Bearing(f"cluster_bearing_upper_{side}", large.height[0] - gap - width, width, diameter, outer)
-        lower = Bearing(f"cluster_bearing_lower_{side}", upper.z - parts["cluster_bearing_spacing"], width, diameter, outer)
-        z_nut = lower.z - parts["locknut_width"]
-        loads = {g.name: mid_face(p, g) for p in (large, small) for g in p.gears}
-        out[f"cluster_{side}"] = Shaft(f"cluster_shaft_{side}", tuple(small.centre), z_nut, small.height[1], diameter,
-                                       (lower, upper), loads)
-    out["input"] = beam_pinion_input_shaft(layout, parts)
-    return out
-
-
-def beam_pinion_input_shaft(layout: Layout, parts: dict[str, Any]) -> Shaft:
-    """The long pinion's shaft: on its two bearings (:func:`beam_pinion_bearings`, at the span the
-    beam-spring helper sizes), up through the upper one and a ``bearing_clearance`` into the
-    coupling, which it fills for half the coupling's length. The motor's torque enters along that
-    half and leaves at the meshes with the large gears: it twists from the middle of the one to the
-    large gears' mid-face (engaged)."""
-    from geargen.core.stiffness import sized_beam_pinion
-    from geargen.design.stiffness import stiffness_design
-    spec = stiffness_design(layout.design).beam_pinion
-    if spec is None:
-        raise DesignError("beam_pinion", "missing: the long pinion's span comes from it", "a [beam_pinion] section")
-    span = sized_beam_pinion(layout.design, spec).span
-    width, outer, diameter = parts["input_bearing_width"], parts["input_bearing_outer_diameter"], \
-        parts["input_shaft_diameter"]
-    z_lo, z_hi = beam_pinion_bearings(layout, parts, span)
-    lower = Bearing("input_bearing_lower", z_lo, width, diameter, outer)
-    upper = Bearing("input_bearing_upper", z_hi, width, diameter, outer)
-    in_coupling = parts["coupling_length"] / 2
-    top = z_hi + width + parts["bearing_clearance"] + in_coupling
-    z_mesh = z_lo + width / 2 + span / 2
-    return Shaft("input_shaft", tuple(layout.gear("input").centre), z_lo, top, diameter, (lower, upper),
-                 {"input": z_mesh}, twist=(z_mesh, top - in_coupling / 2))
-
-
-def beam_pinion_bearings(layout: Layout, parts: dict[str, Any], span: float) -> tuple[float, float]:
-    """Lower faces (z) of the long pinion's two bearings: ``span`` apart (the beam-spring helper's),
-    symmetric about the large gears' engaged mid-face, so the slope at the mesh is zero."""
-    large = layout.gear("cluster_large_a")
-    z_mesh = sum(large.height) / 2 - layout.axial_shift.get("cluster_a", 0.0)
-    width = parts["input_bearing_width"]
-    return z_mesh - span / 2 - width / 2, z_mesh + span / 2 - width / 2
-
-
-def housing_heights(layout: Layout, parts: dict[str, Any], engagement) -> tuple[float, float]:
-    """(bottom, top) of the C-axis housing block the quills slide in: its top a clearance below the
-    lowest a large gear comes (the trailer retracted, ``engagement``'s strokes), its thickness
-    ``housing_thickness``."""
-    strokes = {"a": -engagement.leader_retracted_stop, "b": -engagement.trailer_retracted_stop}
-    top = min(layout.gear(f"cluster_large_{side}").height[0] - layout.axial_shift.get(f"cluster_{side}", 0.0)
-              - strokes[side] for side in ("a", "b")) - parts["bearing_clearance"]
-    return top - parts["housing_thickness"], top
-
-
-@dataclass(frozen=True)
-class DriveColumn:
-    """The C-axis drive column: a bar ``width`` x ``thickness`` (the thickness along the preload
-    motion, x) bolted to the housing block's end face over ``clamp`` (z range), carrying the long
-    pinion's bearing plates at ``supports`` (their mid-widths, lower and upper)."""
-
-    width: float
-    thickness: float
-    clamp: tuple[float, float]
-    supports: tuple[float, float]
-
-    def support_stiffness(self, elastic_modulus: float) -> tuple[float, float]:
-        """Radial stiffness (N/mm, along x) the column gives each bearing: a cantilever from the
-        clamp's nearer edge, ``3 E I / h^3`` with ``I = width thickness^3 / 12``; the bearing plates
-        (loaded in their plane) and the bolted joint taken as rigid. Infinite inside the clamp."""
-        second_moment = self.width * self.thickness ** 3 / 12
-        out = []
-        for z in self.supports:
-            h = max(self.clamp[0] - z, z - self.clamp[1], 0.0)
-            out.append(math.inf if h == 0.0 else 3 * elastic_modulus * second_moment / h ** 3)
-        return out[0], out[1]
-
-
-def drive_column(layout: Layout, parts: dict[str, Any], span: float, engagement) -> DriveColumn:
-    """The column as the solids are built (:func:`beam_pinion_bearings`, :func:`housing_heights`)."""
-    width = parts["input_bearing_width"]
-    return DriveColumn(parts["drive_column_width"], parts["drive_column_thickness"],
-                       housing_heights(layout, parts, engagement),
-                       tuple(z + width / 2 for z in beam_pinion_bearings(layout, parts, span)))
-
-
-def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
-    """The split pinion's two concentric shafts (Fig. 8).
-
-    ``hollow``: the stiff pinion's shaft (its bore, so the inner shaft clears it by a
-    ``bearing_clearance`` all round), ``hollow_shaft_length`` from the stiff pinion's far face
-    down, on its bearing pair (``bearing_spacing`` apart) just below the stiff pinion, which it
-    overhangs. The drive turns it at its lower end; it twists from there to the stiff pinion's
-    mid-face.
-    ``inner``: the compliant pinion's shaft (the pinion's bore), from the clamp collar below the
-    hollow shaft's end, up through it and the compliant pinion to an outboard bearing a
-    ``bearing_clearance`` above the compliant pinion and the output gear (the plate that holds
-    it clears both). It is carried by the collar (on the hollow shaft) and the outboard bearing,
-    so the compliant pinion sits between two supports; it twists from the collar's face to the
-    compliant pinion's face."""
-    gap = parts["bearing_clearance"]
-    stiff, compl = layout.gear(layout.settings["pinion_stiff"]), layout.gear(layout.settings["pinion_compliant"])
-    output = layout.gear(layout.settings["output"])
-    d_hollow, d_inner = parts["hollow_shaft_outer_diameter"], bore_of(compl.spec)
-    if not d_inner > 0:
-        raise DesignError(f"gears.{compl.name}.bore_diameter", "missing: the inner shaft fills the compliant "
-                          "pinion's bore", "bore_diameter_* > 0")
-    bore_hollow = d_inner + 2 * gap
-    if not bore_hollow < d_hollow:
-        raise DesignError("parts.hollow_shaft_outer_diameter", f"{d_hollow:.6g} mm leaves no wall around the inner "
-                          f"shaft ({d_inner:.6g} mm + {gap:.6g} mm clearance all round)", f"> {bore_hollow:.6g} mm")
-    zs0, zs1 = stiff.height
-    zc0, zc1 = compl.height
-    bw, bod = parts["bearing_width"], parts["bearing_outer_diameter"]
-    z_hollow0 = zs1 - parts["hollow_shaft_length"]
-    spacing = parts.get("bearing_spacing") or (bw + gap)
-    if not spacing >= bw + gap:
-        raise DesignError("parts.bearing_spacing", f"{spacing:.6g} mm puts the two bearings into each other",
-                          f">= {bw + gap:.6g} mm (a bearing width and a bearing_clearance)")
-    upper = Bearing("pinion_bearing_1", zs0 - gap - bw, bw, d_hollow, bod)
-    pair = (Bearing("pinion_bearing_2", upper.z - spacing, bw, d_hollow, bod), upper)
-    if not z_hollow0 < pair[0].z:
-        raise DesignError("parts.hollow_shaft_length", f"{parts['hollow_shaft_length']:.6g} mm does not reach "
-                          "through the bearing pair", f"> {zs1 - pair[0].z:.6g} mm")
-    # the drive turns the hollow shaft at its lower end, where the collar joins the inner shaft to it:
-    # the stiff path twists from there to the stiff pinion's mid-face, the compliant one from the
-    # collar's face to the compliant pinion
-    loads = {g.name: mid_face(stiff, g) for g in stiff.gears}
-    hollow = Shaft("hollow_shaft", tuple(stiff.centre), z_hollow0, zs1, d_hollow, pair, loads, bore=bore_hollow,
-                   twist=(z_hollow0, next(iter(loads.values()))))
-    cw = parts["collar_width"]
-    collar = Bearing("friction_collar", z_hollow0 - cw, cw, d_inner, parts["collar_outer_diameter"], via=hollow.name)
-    z_top = max(zc1, output.height[1]) + gap
-    outboard = Bearing("compliant_bearing", z_top, parts["compliant_bearing_width"], d_inner,
-                       parts["compliant_bearing_outer_diameter"])
-    inner = Shaft("inner_shaft", tuple(compl.centre), collar.z, outboard.z + outboard.width, d_inner,
-                  (collar, outboard), {g.name: mid_face(compl, g) for g in compl.gears}, twist=(z_hollow0, zc0))
-    return {"hollow": hollow, "inner": inner}
-
-
 def shafts(layout: Layout) -> dict[str, Shaft]:
     """The placed shafts of the resolved drive, as its kind places them (:attr:`geargen.drives.kind.DriveKind.shafts`;
     empty without a [parts] table or for a kind that places none here)."""
@@ -293,6 +143,4 @@ def shafts(layout: Layout) -> dict[str, Shaft]:
     return layout.drive.shafts(layout, parts_settings(layout.design))
 
 
-__all__ = ["Bearing", "Shaft", "DriveColumn", "loop_shafts", "mid_face", "beam_pinion_shafts", "beam_pinion_bearings",
-           "beam_pinion_input_shaft",
-           "drive_column", "housing_heights", "split_pinion_shafts", "shafts", "bore_of"]
+__all__ = ["Bearing", "Shaft", "loop_shafts", "mid_face", "shafts", "bore_of"]

@@ -33,6 +33,7 @@ import numpy as np
 from geargen.core.servo import TwoMass, chain_modes, closed_loop, gains_for, mesh_loss_factor
 from geargen.core.stiffness import series
 from geargen.design.train import TrainSettings, train_settings
+from geargen.drives.kind import two_loop_meshes
 from geargen.errors import DesignError
 
 NM = 1e3  # N·mm per N·m
@@ -545,18 +546,10 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
                             source=source))
             speed = driven_speed
 
-    # the loop (preloaded)
-    if layout.kind == "split_pinion":
-        mesh = layout.meshes[0]
-        pinions = ", ".join(m.gear1.name for m in layout.meshes)
-        out.append(mesh_stage(mesh, f"split pinion ({pinions} - {mesh.gear2.name})", 1.0, True,
-                              "loop: both pinions preloaded"))
-    else:
-        # "loop stage n": mesh n with the parts on its driven shaft (geargen stiffness's "mesh n" is the mesh alone)
-        for label in ("mesh1", "mesh2"):
-            mesh = next(m for m in layout.meshes if m.name.startswith(label) and m.engaged)
-            out.append(mesh_stage(mesh, f"loop stage {label[-1]} ({mesh.gear1.name}-{mesh.gear2.name})",
-                                  train.gear_ratio(mesh.gear2.name), True, "loop: preloaded"))
+    # the loop (preloaded), as its drive kind stages it (geargen.drives.kind.DriveKind.loop_stages)
+    loop_stages = layout.drive.loop_stages if layout.drive is not None else two_loop_meshes
+    for mesh, name, ratio, source in loop_stages(layout, train.gear_ratio):
+        out.append(mesh_stage(mesh, name, ratio, True, source))
 
     # components to stages: a stage holds the components on its driven shaft (same speed)
     speeds = [d["driven_speed"] for d in out]

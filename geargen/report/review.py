@@ -352,7 +352,7 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     if design.defaulted:
         r.h("Default hardware")
         r.p("The design file gives none of these: geargen sized them by its default rules "
-            "(geargen.design.hardware_defaults). Copy a line into the file to change it.")
+            "(geargen/drives/<kind>/defaults.py). Copy a line into the file to change it.")
         r.table(["key", "value", "why"], [[d.key, d.value, d.why] for d in design.defaulted])
 
     r.h("Assembly")

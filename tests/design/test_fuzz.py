@@ -212,10 +212,13 @@ def _required(data: dict, path: tuple[str, ...], schema) -> bool:
         return any(not _gear_field_given(data, g, schema, path) for g in gears)
     if path[0] == "parts" and schema.required:
         # a [parts] key the default hardware sizes when the file leaves it out is not missing
-        from geargen.design.hardware_defaults import default_hardware
+        from geargen.design.assembly import default_hardware
         trimmed = {k: (dict(v) if k == "parts" else v) for k, v in data.items()}
         del trimmed["parts"][path[-1]]
-        completed, _ = default_hardware(trimmed, design_from_dict)
+        try:
+            completed, _ = default_hardware(trimmed)
+        except DesignError:
+            return True  # the defaults refuse it missing (a bearing of a bore no standard bearing has)
         return not any(k.startswith(schema.name) for k in completed.get("parts", {}))
     return bool(schema.required)
 

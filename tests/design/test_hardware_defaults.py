@@ -8,10 +8,9 @@ from pathlib import Path
 
 import pytest
 
-from geargen.design.assembly import design_from_dict, load_design
-from geargen.design.hardware_defaults import (INCH_BEARINGS, METRIC_BEARINGS, PRELOAD_FRACTION,
-                                              STEEL_BENDING_ALLOWABLE_MPA, default_hardware, lewis_form_factor,
-                                              standard_bearing)
+from geargen.design.assembly import default_hardware, load_design
+from geargen.design.catalogue import INCH_BEARINGS, METRIC_BEARINGS, standard_bearing
+from geargen.drives.dual_pinion.defaults import PRELOAD_FRACTION, STEEL_BENDING_ALLOWABLE_MPA, lewis_form_factor
 from geargen.errors import DesignError
 from geargen.drives.resolver import resolve
 from geargen.model.analysis import stiffness
@@ -105,7 +104,7 @@ def test_a_file_that_gives_its_hardware_gets_nothing_added():
 def test_a_given_section_is_kept_and_only_the_missing_ones_are_sized():
     data = tomllib.loads(GEARS_ONLY.read_text())
     data["preload"] = {"max_output_torque_Nm": 5}
-    out, added = default_hardware(data, design_from_dict)
+    out, added = default_hardware(data)
     assert out["preload"] == {"max_output_torque_Nm": 5}
     assert not any(d.key.startswith("preload.") for d in added)
     # the springs are sized for 0.6 x 5 N·m, not for the Lewis rating
@@ -124,10 +123,10 @@ def test_a_bore_that_is_no_standard_bearing_needs_its_bearing_given():
     text = GEARS_ONLY.read_text().replace("[gears.input]\n", "[gears.input]\nbore_diameter_mm = 5.5\n")
     data = tomllib.loads(text)
     with pytest.raises(DesignError, match="no standard bearing bore") as exc:
-        default_hardware(data, design_from_dict)
+        default_hardware(data)
     assert exc.value.field == "parts.input_bearing_outer_diameter_mm"
     data["parts"] = {"input_bearing_outer_diameter_mm": 14.0, "input_bearing_width_mm": 5.0}
-    completed, added = default_hardware(data, design_from_dict)
+    completed, added = default_hardware(data)
     assert completed["parts"]["input_bearing_outer_diameter_mm"] == 14.0  # the file's values stand
     assert "parts.input_bearing_outer_diameter_mm" not in {d.key for d in added}
     assert {"parts.cluster_bearing_outer_diameter_mm", "parts.motor_body_diameter_mm"} <= {d.key for d in added}
@@ -141,7 +140,7 @@ def test_an_inch_design_gets_inch_bearings_and_inch_keys():
     for gear in data["gears"].values():
         for key in [k for k in gear if k.startswith(("bore_", "hub_", "keyway_"))]:
             del gear[key]
-    out, added = default_hardware(data, design_from_dict)
+    out, added = default_hardware(data)
     keys = {d.key for d in added}
     assert "parts.cluster_bearing_outer_diameter_in" in keys and "preload.max_output_torque_in_lbf" in keys
     inch_bores = {b[0] for b in INCH_BEARINGS}

@@ -16,6 +16,7 @@ import math
 from typing import Any
 
 from geargen.design.schema import Field
+from geargen.drives.axial_preload import defaults  # noqa: F401  (its default hardware, the loader's)
 from geargen.drives.fields import positive_length
 from geargen.errors import DesignError
 
@@ -116,6 +117,8 @@ def check_axial_gears(design, v: dict[str, Any]) -> None:
                               f"{gears[a].teeth}: the two turn together on one shaft", f"{gears[a].teeth}")
 
 
+#: whether [stages] may drive its input gear (the motor couples to the sliding input shaft)
+TAKES_STAGES = False
 #: the [stiffness] train it requires (None: the file's, dual_pinion by default, or custom)
 STIFFNESS_TRAIN = None
 REQUIRED = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max", "input_stroke")

@@ -17,7 +17,8 @@ import numpy as np
 from geargen.errors import DesignError
 from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, Hardware, at, placed_box, transform
-from geargen.model.shafts import beam_pinion_shafts, bore_of, housing_heights
+from geargen.drives.beam_pinion.shafts import beam_pinion_shafts, housing_heights
+from geargen.model.shafts import bore_of
 
 
 def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from geargen.drives.beam_pinion import defaults  # noqa: F401  (its default hardware, the loader's)
 from geargen.drives.fields import part_key, positive_length
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
@@ -60,6 +61,8 @@ PARTS_FIELDS = [
 ]
 
 
+#: whether [stages] may drive its input gear (a gearhead drives the long pinion: [layout] upstream_stages)
+TAKES_STAGES = False
 #: the [stiffness] train it requires (None: the file's, dual_pinion by default, or custom)
 STIFFNESS_TRAIN = None
 REQUIRED = ()

@@ -3,7 +3,8 @@
 from geargen.drives.beam_pinion import hardware, keys
 from geargen.drives.dual_pinion import place
 from geargen.drives.kind import DriveKind
-from geargen.model.shafts import beam_pinion_shafts
+from geargen.drives.beam_pinion.shafts import beam_pinion_shafts, beam_supports
 
 DRIVE = DriveKind(name=keys.NAME, keys=keys, place=place.place, hardware=hardware.beam_pinion_hardware,
-                  shafts=beam_pinion_shafts, symmetry_line=keys.SYMMETRY_LINE)
+                  shafts=beam_pinion_shafts, symmetry_line=keys.SYMMETRY_LINE,
+                  beam_supports=beam_supports, carriage_error_budget=False)

@@ -6,6 +6,7 @@ import math
 from typing import Any
 
 from geargen.design.schema import Field
+from geargen.drives.dual_pinion import defaults  # noqa: F401  (its default hardware, the loader's)
 from geargen.drives.fields import part_key, positive_length
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
@@ -87,6 +88,8 @@ PARTS_FIELDS = [
 ]
 
 
+#: whether [stages] may drive its input gear (its input gear may be driven through [stages] standing on the carriage)
+TAKES_STAGES = True
 #: the [stiffness] train it requires (None: the file's, dual_pinion by default, or custom)
 STIFFNESS_TRAIN = None
 #: [layout] keys it must give (a dual pinion takes its centres and ranges from [synthesis])
@@ -107,6 +110,13 @@ MUST_EXCEED = (("cluster_bearing_outer_diameter", "gears.cluster_small"),
 SYMMETRY_LINE = True
 
 
+def cluster_axial_gap(settings, large, small) -> float:
+    """The axial gap between a cluster's large and small gear (mm): ``[layout] cluster_axial_gap``,
+    else a quarter of the narrower face."""
+    gap = settings.get("cluster_axial_gap")
+    return 0.25 * min(large.face_width, small.face_width) if gap is None else gap
+
+
 def check_layout(design, v) -> None:
     """A dual pinion is placed by the centre synthesis: it needs a [synthesis]."""
     if not design.section("synthesis"):
@@ -118,6 +128,17 @@ def check_layout(design, v) -> None:
 _BEVEL_KEYS = ("bevel_pinion_teeth", "bevel_gear_teeth", "bevel_face_width", "input_shaft_to_bevel",
                "motor_shaft_diameter", "motor_shaft_length")
 _STAGE_KEYS = ("stage_bearing_outer_diameter", "stage_bearing_width")
+
+
+def parts_needed(sections) -> tuple[str, ...]:
+    """The optional [parts] keys a file (its parsed sections) must still give: its motor drive's,
+    the bevel pair's or, with [stages], the stage bearings'. A file that leaves one out gives a
+    partial [parts], which the default hardware completes."""
+    if sections.get("stages"):
+        return _STAGE_KEYS
+    table = sections.get("parts") if isinstance(sections.get("parts"), dict) else {}
+    pitch = any(k.startswith(("bevel_module_", "bevel_diametral_pitch_")) for k in table)
+    return _BEVEL_KEYS if pitch else _BEVEL_KEYS + ("bevel_module",)
 
 
 def _check_motor_drive(design, v: dict[str, Any]) -> None:

@@ -1,6 +1,6 @@
 """The dual pinion with a radial-motion preload carriage (the robot joint, Fig. 10)."""
 
-from geargen.drives.dual_pinion import bevel_verdict, hardware, keys, place
+from geargen.drives.dual_pinion import bevel_verdict, hardware, keys, place, starter
 from geargen.drives.kind import DriveKind
 from geargen.drives.planetary import verdict as planetary_verdict
 from geargen.drives.dual_pinion.shafts import carriage_shafts
@@ -12,4 +12,5 @@ def rows(layout, result) -> list:
 
 
 DRIVE = DriveKind(name=keys.NAME, keys=keys, place=place.place, hardware=hardware.carriage_hardware,
-                  shafts=carriage_shafts, rows=rows, symmetry_line=keys.SYMMETRY_LINE)
+                  shafts=carriage_shafts, rows=rows, symmetry_line=keys.SYMMETRY_LINE,
+                  starters=starter.STARTERS)

@@ -14,6 +14,7 @@ from geargen.core.involute import reference_tooth_thickness
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
+from geargen.drives.dual_pinion.keys import cluster_axial_gap
 from geargen.errors import DesignError
 from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, running_backlash,
                                   thin_pair)
@@ -114,9 +115,7 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
 
     # heights: the cluster's large gear from z = 0, the input centred on it (or offset), the
     # output centred on the cluster's small gear
-    gap = s["cluster_axial_gap"]
-    if gap is None:
-        gap = 0.25 * min(g_large.face_width, g_small.face_width)
+    gap = cluster_axial_gap(s, g_large, g_small)
     cluster = ClusterSpec(g_large, g_small, axial_gap=gap, relative_phase=0.0, name="cluster")
     z_large = 0.0
     z_small = cluster.small_gear_z

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from geargen.design.schema import Field
 from geargen.drives.fields import positive_length
+from geargen.drives.rack_dual_pinion import defaults  # noqa: F401  (its default hardware, the loader's)
 
 NAME = "rack_dual_pinion"
 #: the [layout] kind that selects the drive
@@ -76,6 +77,8 @@ PARTS_FIELDS = [
 ]
 
 
+#: whether [stages] may drive its input gear (the motor stands on the carriage over the input shaft)
+TAKES_STAGES = False
 #: the [stiffness] train it requires (None: the file's, dual_pinion by default, or custom)
 STIFFNESS_TRAIN = None
 REQUIRED = ("pinion_spacing", "input_centre_distance", "rack_backlash_min", "rack_backlash_max",

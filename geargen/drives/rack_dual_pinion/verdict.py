@@ -74,11 +74,11 @@ def carriage_spring_failure(placed, parts: dict, unit: str) -> Failure | None:
     preload force, and closed solid (a spring that takes a set when closed loses its preload). The
     failure names the key to change and a change that passes: the installed length when the wire
     carries the working force and a shorter spring keeps it off solid stress, else the thinnest
-    stock music wire (geargen.design.hardware_defaults.WIRE_DIAMETERS) at the same spring index with
+    stock music wire (geargen.design.catalogue.WIRE_DIAMETERS) at the same spring index with
     its installed length. Installed at least max(d, 15 % of the working deflection, the carriage's
     stroke) above solid: the swept coils' pitch, Shigley's clash allowance, the carriage's travel."""
     from geargen.core.flexures import smallest_spring_wire, spring_for_rate, spring_installed_range
-    from geargen.design.hardware_defaults import WIRE_DIAMETERS
+    from geargen.design.catalogue import WIRE_DIAMETERS
     force, rate = placed.spring_force, placed.spring_rate
     d, mean, installed = parts["spring_wire_diameter"], parts["spring_mean_diameter"], parts["spring_installed_length"]
     shear = parts["spring_shear_modulus_GPa"] * 1e3

@@ -4,7 +4,7 @@
 on the hollow shaft, the output shaft and bearings, and the housing's two plates that hold every
 bearing.
 
-Shafts and bearings stand where :func:`geargen.model.shafts.split_pinion_shafts` places them:
+Shafts and bearings stand where :func:`geargen.drives.split_pinion.shafts.split_pinion_shafts` places them:
 the stiffness model reads the same shafts (the inner shaft's torsion, each pinion's support).
 """
 
@@ -15,7 +15,8 @@ from typing import Any, Mapping
 from geargen.errors import DesignError
 from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, Hardware, at
-from geargen.model.shafts import bore_of, split_pinion_shafts
+from geargen.drives.split_pinion.shafts import split_pinion_shafts
+from geargen.model.shafts import bore_of
 
 
 def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from geargen.design.schema import Field
 from geargen.drives.fields import positive_length
+from geargen.drives.split_pinion import defaults  # noqa: F401  (its default hardware, the loader's)
 from geargen.errors import DesignError
 
 NAME = "split_pinion"
@@ -54,6 +55,8 @@ PARTS_FIELDS = [
 ]
 
 
+#: whether [stages] may drive its input gear (the pinions turn with the input: no stages before them)
+TAKES_STAGES = False
 #: the [stiffness] train it requires (its own, and the only one it takes)
 STIFFNESS_TRAIN = "split_pinion"
 REQUIRED = ("centre_distance", "circumferential_backlash_min", "circumferential_backlash_max")
