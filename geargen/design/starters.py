@@ -216,8 +216,8 @@ _DUAL_PINION = Starter(
         ), "Two helical compression springs push the carriage towards the output."),
         Table("layout", (
             Key("kind", "dual_pinion"),
-            Key("model_backlash", "mid", "the model's teeth thinned to the middle of each backlash range "
-                "(geargen check notes the thinning)"),
+            Key("model_tooth_thickness", "mid_tolerance", "each gear of the model made at the middle of its "
+                "tooth-thickness allowance (taken from its mesh's backlash range where the mesh runs)"),
             Key("loaded_flank_gap_mm", 0.0005, "0.5 um, so that the solids do not touch"),
             Key("cluster", "separate", "large gear bonded on the small gear's shaft: two parts"),
             Key("cluster_axial_gap_mm", 1.5),
@@ -360,7 +360,7 @@ _SPLIT_PINION = Starter(
         )),
         Table("layout", (
             Key("kind", "split_pinion"),
-            Key("model_backlash", "mid"),
+            Key("model_tooth_thickness", "mid_tolerance"),
             Key("loaded_flank_gap_mm", 0.0005, "0.5 um, so that the solids do not touch"),
             Key("centre_distance_mm", 60.0, "standard (24 + 96) x 1 / 2"),
             Key("pinion_axial_gap_mm", 2),
