@@ -364,8 +364,7 @@ _SPLIT_PINION = Starter(
             Key("loaded_flank_gap_mm", 0.0005, "0.5 um, so that the solids do not touch"),
             Key("centre_distance_mm", 60.0, "standard (24 + 96) x 1 / 2"),
             Key("pinion_axial_gap_mm", 2),
-            Key("circumferential_backlash_min_mm", 0.04, "each pinion's own mesh with the output (thinned "
-                "pinions)"),
+            Key("circumferential_backlash_min_mm", 0.04, "each pinion's own mesh with the output"),
             Key("circumferential_backlash_max_mm", 0.08),
         ), "The assembly model (geargen build): placement, the other parts, exports."),
         Table("parts", (
