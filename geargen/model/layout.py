@@ -118,8 +118,8 @@ class Layout:
     satisfy (mm, rad). Immutable: every command reads the same one (see the module docstring).
 
     ``thinning``: per gear part name, the circumferential tooth thinning at the reference circle
-    the solids are built with (mm) and where it comes from (``"design"`` or ``"derived for <rule>
-    backlash"``). ``placement``: the synthesis' placement of the modelled gears
+    the solids are built with (mm) and where it comes from (``"design"``, or the point of its
+    allowance: :func:`geargen.model.allowance.model_source`). ``placement``: the synthesis' placement of the modelled gears
     (:class:`geargen.core.synthesis.Placement`) for a dual-pinion drive.
     """
 
