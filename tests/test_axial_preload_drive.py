@@ -423,7 +423,7 @@ def test_gears_that_cannot_share_the_slide_are_refused(tmp_path, edit, field):
 def test_teeth_outside_the_backlash_range_fail_the_check(tmp_path):
     """Pinions as designed with 0.07 mm of backlash per mesh (range 0.03 .. 0.06): the slide still
     closes the loop, and the check names the failure on both meshes."""
-    path = variant(tmp_path, (r'^model_backlash = "mid"', 'model_backlash = "as_designed"'),
+    path = variant(tmp_path, (r'^model_tooth_thickness = "mid_tolerance"', 'model_tooth_thickness = "as_designed"'),
                    (r"^(\[gears\.pinion_left\])", r"\1\nthinning_circumferential_mm = 0.07"),
                    (r"^(\[gears\.pinion_right\])", r"\1\nthinning_circumferential_mm = 0.07"))
     result, layout = check_design(pl.load(path), tolerances=False)
@@ -496,7 +496,7 @@ def test_unequal_backlash_is_shared_by_the_shafts_turn(tmp_path):
     """Pinions as designed with 0.035 and 0.055 mm of backlash: the slide takes up their mean, the
     shaft's turn (j_l - j_r) / (4 r) the difference; the exact outlines show the loaded flank gap
     on both working flanks, and the root finder on the outlines finds the same slide and turn."""
-    path = variant(tmp_path, (r'^model_backlash = "mid"', 'model_backlash = "as_designed"'),
+    path = variant(tmp_path, (r'^model_tooth_thickness = "mid_tolerance"', 'model_tooth_thickness = "as_designed"'),
                    (r"^(\[gears\.pinion_left\])", r"\1\nthinning_circumferential_mm = 0.035"),
                    (r"^(\[gears\.pinion_right\])", r"\1\nthinning_circumferential_mm = 0.055"))
     layout = pl.place(pl.load(path))

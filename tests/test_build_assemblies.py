@@ -268,7 +268,8 @@ def test_collected_checks_are_those_of_the_build_in_order():
 def test_failing_build_writes_nothing_unless_forced(tmp_path, parallel):
     """With the mesh checks in a second process the exports are written meanwhile: they must go too."""
     from geargen.cli import main
-    text = DESIGNS["split_pinion"].read_text().replace('model_backlash = "mid"', 'model_backlash = "as_designed"')
+    text = DESIGNS["split_pinion"].read_text().replace('model_tooth_thickness = "mid_tolerance"',
+                                                       'model_tooth_thickness = "as_designed"')
     bad = tmp_path / "split_pinion.toml"
     bad.write_text(text)  # unthinned pinions at the standard centre distance: no backlash at all
     out = tmp_path / "out"

@@ -136,8 +136,8 @@ def test_check_refuses_an_exported_folder_of_another_design(built_assemblies, ca
 
 
 def test_gear_data_of_an_assembly_gear_is_the_resolved_gear(tmp_path, capsys):
-    """`geargen gear DESIGN --gear NAME` writes the gear the assembly builds: the C-axis derives its
-    thinning for mid-range backlash, and the gear data says so, with the same number."""
+    """`geargen gear DESIGN --gear NAME` writes the gear the assembly builds: the C-axis makes its
+    gears at the middle of their allowances, and the gear data says so, with the same number."""
     from geargen.design.assembly import load_design
     from geargen.drives.resolver import resolve
 
@@ -146,4 +146,4 @@ def test_gear_data_of_an_assembly_gear_is_the_resolved_gear(tmp_path, capsys):
     assert main(["gear", str(DESIGNS["c_axis"]), "--gear", "output", "--out", str(tmp_path / "g"), "--no-stl"]) == 0
     data = json.loads((tmp_path / "g" / "output.json").read_text())
     assert data["thinning_circumferential"] == pytest.approx(want, abs=NM) and want > 0.03
-    assert data["thinning_source"].startswith("derived for mid-range backlash")
+    assert data["thinning_source"].startswith("mid_tolerance: the middle of its tooth-thickness tolerance")

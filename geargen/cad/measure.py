@@ -359,7 +359,9 @@ def over_balls_on_section(shape: TopoDS_Shape, profile: ToothProfile, diameter: 
         def gap(radius):
             return cut.closest_point(radius * u, cands)[0] - need
 
-        r_lo, r_hi = profile.root_radius, profile.tip_radius + diameter
+        # a centre nearer the root circle than the ball's radius would put the ball into the root: below
+        # it the flanks' distance (they start at the involute) need not fall with the radius
+        r_lo, r_hi = profile.root_radius + need, profile.tip_radius + diameter
         if gap(r_lo) >= 0 or gap(r_hi) <= 0:
             raise ValueError(f"a ball of {diameter} mm does not sit between the flanks of space {space}")
         rc = brentq(gap, r_lo, r_hi, xtol=1e-14, rtol=1e-15)

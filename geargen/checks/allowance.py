@@ -11,12 +11,18 @@ errors an involute pair's play is the same in every section and position; the mi
 maximum over the positions are taken). Both in the resolved model's kind
 (:data:`geargen.model.BACKLASH_KIND`).
 
+The range is taken at the centre distance each mesh's allowances were decided at
+(:func:`geargen.model.allowance.mesh_range`: where the mesh runs with its gears made at the middle of
+their allowances; a dual pinion's carriage mesh where the loop then closes).
+
 Verdict: ``allowance_range_disagrees`` when measured and analytic differ by more than
 :data:`AGREEMENT_TOLERANCE`; ``allowance_range_outside_design`` when the range leaves the design
-range (by more than :data:`geargen.checks.verdict.RANGE_TOLERANCE`). A gear whose modelled
-thinning lies outside its allowance is a note, not a failure: the model is one nominal part and
-the split of a mesh's thinning between its gears is the design's choice (the split pinion thins
-only its pinions); what the gears must do together is the mesh's range, which is checked.
+range (by more than :data:`geargen.checks.verdict.RANGE_TOLERANCE`); ``thinning_outside_allowance``
+when a gear's modelled thinning (its solids, STEP, STL, DXF and gear data) lies outside its own
+allowance: the exported gear would fail its own drawing's inspection. That failure names the
+gear table's thinning key and the value at the middle of the allowance (a fix that works: the
+allowance is decided from the unthinned teeth, so it stays where it is), or leaving every
+``thinning_*`` out (the model is then made at ``[layout] model_tooth_thickness`` of each allowance).
 """
 
 from __future__ import annotations
@@ -30,11 +36,11 @@ from geargen.checks.mesh2d import MeshSetup, mesh_positions, sweep_mesh
 from geargen.checks.results import Failure
 from geargen.core.allowance import ThicknessAllowance, mesh_backlash_range, thickest, thinnest
 from geargen.design.gear import GearSpec
-from geargen.model.allowance import design_centre_distance, drive_allowances
+from geargen.model.allowance import design_tolerance, drive_allowances, mesh_range
 from geargen.model.layout import Layout
 from geargen.units import LENGTH_SUFFIXES
 
-__all__ = ["AGREEMENT_TOLERANCE", "measured_backlash_range", "backlash_ranges"]
+__all__ = ["AGREEMENT_TOLERANCE", "measured_backlash_range", "backlash_ranges", "thinning_outside_allowances"]
 
 #: analytic and measured backlash ranges must agree within this (mm): path 1 resolves the play to
 #: ~1e-9 mm (EXACT_TOLERANCE); 1e-6 mm leaves room for the refinement on coarse tooth cycles
@@ -60,23 +66,24 @@ def measured_backlash_range(gear1: GearSpec, allowance1: ThicknessAllowance, gea
     return out[0], out[1]
 
 
-def backlash_ranges(layout: Layout, centre_distance_tolerance: float = 0.0,
-                    range_tolerance: float = 1e-6) -> tuple[list[dict[str, Any]], list[Failure], list[str]]:
-    """Per engaged mesh with allowances on both gears: its ``backlash_range`` record (mm), the
-    failures and the notes (see the module docstring). Meshes of the same gears at the same
-    centre distance (the two loops of a dual pinion) are measured once."""
+def backlash_ranges(layout: Layout, centre_distance_tolerance: float | None = None,
+                    range_tolerance: float = 1e-6) -> tuple[list[dict[str, Any]], list[Failure]]:
+    """Per engaged mesh with allowances on both gears: its ``backlash_range`` record (mm), and the
+    failures (see the module docstring); ``centre_distance_tolerance`` None: the design's (the one
+    its model was made with). Meshes of the same gears at the same centre distance (the two loops
+    of a dual pinion) are measured once."""
     unit = layout.design.length_unit
     k = LENGTH_SUFFIXES[unit]
-    allowances = drive_allowances(layout, centre_distance_tolerance)
-    records, failures, notes = [], [], []
+    f = design_tolerance(layout.design) if centre_distance_tolerance is None else centre_distance_tolerance
+    allowances = drive_allowances(layout, f)
+    records, failures = [], []
     seen: dict[tuple, tuple] = {}
-    f = centre_distance_tolerance
     for mesh in layout.meshes:
         g1, g2 = mesh.gear1, mesh.gear2
         if not mesh.engaged or g1.name not in allowances or g2.name not in allowances:
             continue
         a1, a2 = allowances[g1.name], allowances[g2.name]
-        a = design_centre_distance(layout, mesh)
+        a = mesh_range(mesh).centre_distance  # where its allowances were taken
         key = (g1.name, g2.name, a)
         if key not in seen:
             seen[key] = (mesh_backlash_range(g1, a1, g2, a2, a, f), measured_backlash_range(g1, a1, g2, a2, a, f))
@@ -102,14 +109,38 @@ def backlash_ranges(layout: Layout, centre_distance_tolerance: float = 0.0,
                                     f"{mesh.backlash_min / k:.6g} to {mesh.backlash_max / k:.6g} {unit}",
                                     "circumferential_backlash", analytic[0] if low else analytic[1],
                                     mesh.backlash_min if low else mesh.backlash_max))
-    for name, al in allowances.items():
-        spec = next((g for p in layout.gears for g in p.gears if g.name == name), None)
-        if spec is None:
-            continue
-        c = math.cos(spec.helix_angle)
-        band = (-al.upper / c, -al.lower / c)  # circumferential thinning of the thickest, thinnest
-        if not band[0] - 1e-9 <= spec.thinning <= band[1] + 1e-9:
-            notes.append(f"{name}: modelled thinning {spec.thinning / k:.6g} {unit} (circumferential) is outside its "
-                         f"allowance's {band[0] / k:.6g} to {band[1] / k:.6g} {unit} (upper {al.upper_um:.4g} um, "
-                         f"lower {al.lower_um:.4g} um normal): the model's gear is not one made within it")
-    return records, failures, notes
+    failures += thinning_outside_allowances(layout, allowances)
+    return records, failures
+
+
+def thinning_outside_allowances(layout: Layout, allowances: dict[str, ThicknessAllowance]) -> list[Failure]:
+    """``thinning_outside_allowance`` for every gear of ``layout`` whose modelled thinning lies
+    outside its allowance (to 1e-9 mm), naming its gear table's key and the middle of the allowance."""
+    unit = layout.design.length_unit
+    k = LENGTH_SUFFIXES[unit]
+    out, seen = [], set()
+    for placed in layout.gears:
+        for spec in placed.gears:
+            al = allowances.get(spec.name)
+            if al is None or spec.name in seen:  # the second of two identical clusters: the same gear
+                continue
+            seen.add(spec.name)
+            c = math.cos(spec.helix_angle)
+            band = (-al.upper / c, -al.lower / c)  # circumferential thinning of the thickest, thinnest
+            if band[0] - 1e-9 <= spec.thinning <= band[1] + 1e-9:
+                continue
+            mesh = next((m.name for m in layout.meshes if spec.name in (m.gear1.name, m.gear2.name)), placed.name)
+            raw = layout.design.section("gears").get(spec.name, {})
+            normal = any(key.startswith("thinning_normal_") for key in raw)
+            key = f"gears.{spec.name}.{'thinning_normal' if normal else 'thinning_circumferential'}_{unit}"
+            fix = (band[0] + band[1]) / 2 * (c if normal else 1.0)
+            out.append(Failure(
+                "thinning_outside_allowance", mesh,
+                f"{spec.name}: modelled thinning {spec.thinning / k:.6g} {unit} (circumferential) is outside its "
+                f"allowance's {band[0] / k:.6g} to {band[1] / k:.6g} {unit} (upper {al.upper_um:.4g} um, lower "
+                f"{al.lower_um:.4g} um normal; {al.method}): its solids, STEP, DXF and gear data show a gear that "
+                f"fails its own drawing's inspection. Fix: {key} = {fix / k:.6g} (the middle of the allowance), or "
+                f"leave every gear's thinning_* out (the model is then made at [layout] model_tooth_thickness of each "
+                f"allowance)", "circumferential_thinning", spec.thinning,
+                band[0] if spec.thinning < band[0] else band[1]))
+    return out

@@ -60,6 +60,9 @@ FAILURE_KINDS: dict[str, str] = {
                                  "tolerance differs from the one measured on the thinnest and thickest teeth",
     "allowance_range_outside_design": "the backlash range from the tooth-thickness allowances and the "
                                       "centre-distance tolerance leaves the design range",
+    "thinning_outside_allowance": "a gear's modelled tooth thinning (its solids, STEP, STL, DXF and gear data) lies "
+                                  "outside its tooth-thickness allowance: the exported gear fails its own drawing's "
+                                  "inspection",
     "disengaged_overlap": "a pinion slid out of mesh still overlaps its mate axially",
     "ratio_mismatch": "the exact ratio of the train is not one the design requires",
     "load_capacity": "a safety factor of a mesh under the stated [duty] is below [checks] min_S_H (pitting, "
@@ -126,7 +129,7 @@ _RACK_LENGTHS = ("backlash_min", "backlash_max", "design_min", "design_max", "pl
                  "rack_backlash")
 
 LENGTH_QUANTITIES = ("circumferential_backlash", "normal_backlash", "min_clearance", "interference_depth",
-                     "tip_land", "path_difference", "carriage_travel")
+                     "tip_land", "path_difference", "carriage_travel", "circumferential_thinning")
 
 
 def _num(v):

@@ -119,17 +119,15 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
                 mesh.backlash_min if lo < mesh.backlash_min else mesh.backlash_max))
     from geargen.checks.allowance import backlash_ranges
     try:
-        ranges, range_failures, range_notes = backlash_ranges(layout, settings.centre_distance_tolerance,
-                                                              RANGE_TOLERANCE)
+        ranges, range_failures = backlash_ranges(layout, settings.centre_distance_tolerance, RANGE_TOLERANCE)
     except DesignError as exc:  # no allowance meets a range: reported (naming the key), the rest still checked
-        ranges, range_notes = [], []
+        ranges = []
         # the allowances are found for the drive's meshes together: the failure names them all
         engaged = ", ".join(m.name for m in layout.meshes if m.engaged) or "drive"
         range_failures = [Failure("allowance_range_outside_design", engaged, f"no tooth-thickness allowance meets the "
                                   f"backlash range: {exc}")]
     result.backlash_range = ranges
     result.failures += range_failures
-    result.notes += range_notes
     if layout.ratio and not layout.ratio["ok"]:
         result.failures.append(Failure("ratio_mismatch", "train",
                                        f"ratio {layout.ratio['what']} is {layout.ratio['total']}, not one of "

@@ -294,7 +294,7 @@ def _kind_table(args, kind: str, flags_given: list[str]) -> dict:
 def assembly_gear(design, name: str, layout=None) -> tuple[GearSpec, str]:
     """``[gears.NAME]`` of an assembly as the assembly builds it, and where its thinning comes from:
     in a drive the resolved one (``layout``, or :func:`geargen.model.resolve`: the thinning the
-    design states, or the one derived for its backlash), else the table as written."""
+    design states, or the one at the model's point of its allowance), else the table as written."""
     from geargen.model import is_drive
     from geargen.drives.resolver import resolve
 

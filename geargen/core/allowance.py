@@ -17,6 +17,11 @@ its nominal value in :mod:`geargen.core.geometry` with the thinning set to each 
 Limits are [smallest, largest]: the thinnest tooth (lower deviation) gives the smallest span
 and over-pins dimension, the thickest (upper deviation) the largest.
 
+The model's gear (the one the solids, STEP, STL, DXF and gear data show) is made at one point of
+its allowance (:func:`made_at`; the design names it: ``[layout] model_tooth_thickness``): the
+middle of the tolerance, the upper deviation (maximum material, thickest) or the lower (minimum
+material, thinnest), so every exported gear measures inside its own drawing's limits.
+
 Chosen from backlash (:func:`allowances_for_backlash`), by the centre-distance-tolerance route:
 a mesh with the design range [B_min, B_max] at its operating centre distance a, the centre
 distance held to +-f_a. Backlash grows one for one with the summed circumferential thinning S
@@ -44,7 +49,8 @@ from geargen.design.gear import GearSpec, with_changes
 from geargen.errors import DesignError
 
 __all__ = ["ThicknessAllowance", "at_deviation", "thickest", "thinnest", "span_limits", "over_pins_limits",
-           "mesh_backlash_range", "allowances_for_backlash", "BacklashRoute", "ENTERED", "ROUTE_METHOD"]
+           "mesh_backlash_range", "allowances_for_backlash", "BacklashRoute", "ENTERED", "ROUTE_METHOD",
+           "deviation_at", "made_at"]
 
 #: method string of an allowance typed in (design keys or ``--thickness-allowance``)
 ENTERED = "entered"
@@ -110,6 +116,19 @@ def thickest(spec: GearSpec, allowance: ThicknessAllowance) -> GearSpec:
 def thinnest(spec: GearSpec, allowance: ThicknessAllowance) -> GearSpec:
     """The gear at its lower deviation."""
     return at_deviation(spec, allowance.lower, allowance.field)
+
+
+def deviation_at(allowance: ThicknessAllowance, upper_weight: float) -> float:
+    """The normal thickness deviation (mm) ``w upper + (1 - w) lower`` of ``allowance``, ``w`` =
+    ``upper_weight`` in [0, 1]: 1 the thickest tooth made (maximum material), 0 the thinnest."""
+    if not 0.0 <= upper_weight <= 1.0:
+        raise ValueError(f"upper_weight {upper_weight!r} is not in [0, 1]")
+    return upper_weight * allowance.upper + (1 - upper_weight) * allowance.lower
+
+
+def made_at(spec: GearSpec, allowance: ThicknessAllowance, upper_weight: float) -> GearSpec:
+    """``spec`` made at :func:`deviation_at` of its ``allowance``."""
+    return at_deviation(spec, deviation_at(allowance, upper_weight), allowance.field)
 
 
 def span_limits(spec: GearSpec, allowance: ThicknessAllowance, teeth_spanned: int) -> tuple[float, float]:

@@ -5,8 +5,9 @@ Layout::
     [layout]
     kind = "dual_pinion"              # gears placed by the centre synthesis of [synthesis]
                                       # ("split_pinion": two pinions side by side on one output)
-    model_backlash = "mid"            # tooth thickness of the model: "mid", "max", "min" of the
-                                      # backlash range, or "as_designed" (the gears' own thinning)
+    model_tooth_thickness = "mid_tolerance"  # where in its tooth-thickness allowance each gear of
+                                      # the model is made: "mid_tolerance", "max_material" (thickest),
+                                      # "min_material" (thinnest), or "as_designed" (the gears' own thinning)
     loaded_flank_gap_mm = 0.0005      # left on the working flanks so the solids do not touch
     position = "engaged"              # sliding pinions ("disengaged" needs [engagement])
     upstream_stages = [[15, 30]]      # [driver_teeth, driven_teeth] between encoder and input
@@ -30,7 +31,15 @@ from geargen.drives.dual_pinion.keys import POSITIONS
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
 
-MODEL_BACKLASH = ("mid", "max", "min", "as_designed")
+#: [layout] model_tooth_thickness: where in its tooth-thickness allowance each gear of the model is made
+#: -> (the weight w of the upper deviation: the model's deviation is w upper + (1 - w) lower, what it is)
+MODEL_POINTS = {
+    "mid_tolerance": (0.5, "the middle of its tooth-thickness tolerance"),
+    "max_material": (1.0, "its upper deviation (maximum material: the thickest tooth made)"),
+    "min_material": (0.0, "its lower deviation (minimum material: the thinnest tooth made)"),
+}
+#: ... or "as_designed": the gear tables' own thinning
+MODEL_TOOTH_THICKNESS = (*MODEL_POINTS, "as_designed")
 #: the most teeth of an upstream stage's gear (a GearSpec's most) and the largest required ratio
 #: (far past a 360:1 indexing drive)
 MAX_TEETH = 2000
@@ -44,9 +53,12 @@ COMMON_FIELDS = [
                "right-hand helical pinion on an input shaft that slides axially under a preload spring, each "
                "meshing its own output gear of the opposite hand) or rack_dual_pinion (two rack pinions driven "
                "through a preload carriage); each kind's keys are listed under it"),
-    Field("model_backlash", "string", required=False, default=None, choices=MODEL_BACKLASH,
-          help="tooth thickness of the model: mid, max or min of the backlash range, or as_designed (the gears' own "
-               "thinning; the default when a gear gives one, else mid)"),
+    Field("model_tooth_thickness", "string", required=False, default=None, choices=MODEL_TOOTH_THICKNESS,
+          help="where in its tooth-thickness allowance (taken where its mesh runs) each gear of the model - its solids, "
+               "STEP, STL, DXF and gear data - is made: mid_tolerance (the default), max_material (the upper "
+               "deviation, thickest) or min_material (the lower, thinnest); the split of a mesh's thinning between its "
+               "gears is the allowance's; or as_designed, the gears' own thinning (the default when a gear gives one; "
+               "the check fails a gear whose thinning leaves its allowance)"),
     Field("loaded_flank_gap", "length", required=False, default=0.0, minimum=0.0,
           help="left open on the working flanks so that the solids do not touch"),
     # the gear ratio the controller needs, from encoder to output
@@ -87,15 +99,18 @@ def _refuse_other_kinds_keys(table: dict, kind: str) -> None:
 
 #: keys [layout] no longer has -> (what they gave, the key that gives it now: its one home); a file
 #: that still has one is told where it went rather than offered the nearest spelling of another key
-MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[engagement] clearance_<unit>")}
+MOVED_KEYS = {"disengaged_clearance": ("the retracted pinions' axial gap", "[engagement] clearance_<unit>"),
+              "model_backlash": ("the model's tooth thickness (a point of each gear's allowance)",
+                                 "[layout] model_tooth_thickness = \"mid_tolerance\" (was \"mid\"), \"min_material\" "
+                                 "(was \"max\"), \"max_material\" (was \"min\") or \"as_designed\"")}
 
 
 def layout_settings(design) -> dict[str, Any]:
     """``[layout]`` read and checked on its own (internal units); see :func:`check_layout`.
 
     A design without ``[layout]`` (or without its ``kind``) that has a ``[synthesis]`` is a
-    dual-pinion drive; ``model_backlash`` left out follows the gear tables: "as_designed" when a
-    gear states its thinning, else "mid" (the thinning is then derived, and said so). ``"drive"``
+    dual-pinion drive; ``model_tooth_thickness`` left out follows the gear tables: "as_designed" when
+    a gear states its thinning, else "mid_tolerance" (the thinning is then derived, and said so). ``"drive"``
     is the drive kind (:func:`geargen.drives.kind_of`)."""
     table = design.section("layout") or {}
     for key in table:
@@ -112,8 +127,9 @@ def layout_settings(design) -> dict[str, Any]:
     v = read_table(table, kind_fields(drive), "layout")
     v["kind"] = KEYS[drive].LAYOUT_KIND
     v["drive"] = drive
-    if v["model_backlash"] is None:
-        v["model_backlash"] = "as_designed" if any(g.thinning > 0 for g in design.gears.values()) else "mid"
+    if v["model_tooth_thickness"] is None:
+        v["model_tooth_thickness"] = ("as_designed" if any(g.thinning > 0 for g in design.gears.values())
+                                      else "mid_tolerance")
     for i, stage in enumerate(v["upstream_stages"]):
         if not (isinstance(stage, list) and len(stage) == 2
                 and all(isinstance(t, int) and not isinstance(t, bool) and 0 < t <= MAX_TEETH for t in stage)):
@@ -145,13 +161,14 @@ def check_layout(design, v: dict[str, Any]) -> None:
         own(design, v)
     if v.get("position") == "disengaged" and not design.section("engagement"):
         raise DesignError("layout.position", "'disengaged' needs an [engagement] section", "'engaged'")
-    if v["model_backlash"] != "as_designed":
+    if v["model_tooth_thickness"] != "as_designed":
         # a gear's own tooth thinning is never replaced quietly
         thinned = [name for name, g in design.gears.items() if g.thinning > 0]
         if thinned:
-            raise DesignError("layout.model_backlash", f"{v['model_backlash']!r} would replace the tooth thinning "
-                              f"given for gears.{thinned[0]}", "'as_designed' when a gear table gives thinning_*")
+            raise DesignError("layout.model_tooth_thickness", f"{v['model_tooth_thickness']!r} would replace the "
+                              f"tooth thinning given for gears.{thinned[0]}",
+                              "'as_designed' when a gear table gives thinning_*")
 
 
-__all__ = ["LAYOUT_KINDS", "MODEL_BACKLASH", "POSITIONS", "COMMON_FIELDS", "MOVED_KEYS", "kind_fields",
+__all__ = ["LAYOUT_KINDS", "MODEL_POINTS", "MODEL_TOOTH_THICKNESS", "POSITIONS", "COMMON_FIELDS", "MOVED_KEYS", "kind_fields",
            "layout_fields", "layout_settings", "check_layout"]

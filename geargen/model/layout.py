@@ -2,10 +2,10 @@
 
 Every command starts here (``geargen synth``, ``check``, ``stiffness``, ``build`` and ``fit``
 with ``assembly =``): :func:`resolve` turns a loaded design into a :class:`Layout` - each
-gear's tooth thickness as modelled (the thinning the design states, or the thinning derived for
-the backlash ``[layout] model_backlash`` asks for, said so in ``notes``), every centre, height
-and rotation, each mesh's operating centre distance and backlash - and nothing downstream
-re-derives a placement. :meth:`Layout.to_dict` is what is written beside every export.
+gear's tooth thickness as modelled (the thinning the design states, or made at the point of its
+tooth-thickness allowance ``[layout] model_tooth_thickness`` asks for, said so in ``notes``), every
+centre, height and rotation, each mesh's operating centre distance and backlash - and nothing
+downstream re-derives a placement. :meth:`Layout.to_dict` is what is written beside every export.
 
 Frame: the output gear's centre is the origin, +x the symmetry line towards the input, +z the
 gear axes (as :mod:`geargen.core.synthesis`). A gear is placed by ``centre`` (x, y), ``z``
@@ -14,14 +14,13 @@ gear axes (as :mod:`geargen.core.synthesis`). A gear is placed by ``centre`` (x,
 mesh (the cluster's own gear faces); the mate's rotation is carried to its own z = 0 face
 through the helix (``section_rotation``).
 
-Tooth thickness. ``model_backlash`` = "as_designed" keeps the gear tables' thinning; "mid",
-"max" or "min" derive it so each mesh has that backlash of the design range *where it runs*:
+Tooth thickness (:mod:`geargen.model.allowance`). ``model_tooth_thickness`` = "as_designed" keeps
+the gear tables' thinning; "mid_tolerance", "max_material" or "min_material" make each gear at that
+point of its allowance, the allowance taken from its mesh's backlash range *where the mesh runs*:
 the preload carriage settles where the loop closes, so mesh 1's centre distance is not quite the
-design's, and the modelled thickness is iterated until the backlash there is the one asked for.
-The thickness deficit comes from :mod:`geargen.core.synthesis` (``thickness_deficit_for_backlash``)
-and is split between the two gears of a mesh as the design splits it (equally when it gives none).
-Without a ``[layout] model_backlash`` the gear tables decide: "as_designed" when any gear of the
-train states its thinning, else "mid".
+design's, and the modelled teeth are iterated with it to the fixed point. Without a
+``[layout] model_tooth_thickness`` the gear tables decide: "as_designed" when any gear of the
+train states its thinning, else "mid_tolerance".
 """
 
 from __future__ import annotations
@@ -34,9 +33,8 @@ from typing import Any
 from geargen.core.involute import reference_tooth_thickness
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
-from geargen.design.gear import GearSpec, with_changes
-from geargen.design.layout import MODEL_BACKLASH, POSITIONS
-from geargen.errors import DesignError
+from geargen.design.gear import GearSpec
+from geargen.design.layout import MODEL_POINTS, MODEL_TOOTH_THICKNESS, POSITIONS
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -106,10 +104,12 @@ class MeshPlacement:
     engaged: bool = True
     working_flank: str = ""
     centre_distance: float = math.nan
-    # the design-file keys of the backlash range, without their unit suffix (min, max), and the
-    # centre distance the design states the range at (NaN: where the mesh is placed)
+    # the design-file keys of the backlash range, without their unit suffix (min, max), and the centre
+    # distance its gears' tooth-thickness allowances are taken at: where the mesh runs with its gears
+    # made at the middle of their allowances (NaN: where it is placed; a dual pinion's carriage mesh
+    # placed with other teeth runs elsewhere: geargen.model.allowance)
     range_keys: tuple[str, str] = ("", "")
-    range_centre_distance: float = math.nan
+    allowance_centre_distance: float = math.nan
 
 
 @dataclass(frozen=True)
@@ -118,8 +118,8 @@ class Layout:
     satisfy (mm, rad). Immutable: every command reads the same one (see the module docstring).
 
     ``thinning``: per gear part name, the circumferential tooth thinning at the reference circle
-    the solids are built with (mm) and where it comes from (``"design"`` or ``"derived for <rule>
-    backlash"``). ``placement``: the synthesis' placement of the modelled gears
+    the solids are built with (mm) and where it comes from (``"design"``, or the point of its
+    allowance: :func:`geargen.model.allowance.model_source`). ``placement``: the synthesis' placement of the modelled gears
     (:class:`geargen.core.synthesis.Placement`) for a dual-pinion drive.
     """
 
@@ -200,27 +200,12 @@ def layout_settings(design: Design) -> dict[str, Any]:
     return read(design)
 
 
-def modelled_backlash(lo: float, hi: float, rule: str) -> float:
-    return {"mid": (lo + hi) / 2, "max": hi, "min": lo}[rule]
-
-
-def thin_pair(a: GearSpec, b: GearSpec, backlash: float, centre_distance: float, where: str) -> tuple[GearSpec, GearSpec]:
-    """``a`` and ``b`` with the tooth thinning that makes the mesh's backlash ``backlash`` at
-    ``centre_distance``: it replaces any the design gives, shared between the gears as the
-    design shares it (equally when it gives none)."""
-    from geargen.core.synthesis import thickness_deficit_for_backlash
-
-    share_a = 0.5 if a.thinning + b.thinning <= 0 else a.thinning / (a.thinning + b.thinning)
-    a0, b0 = with_changes(a, thinning=0.0), with_changes(b, thinning=0.0)
-    standard = (a.teeth + b.teeth) * a.transverse_module / 2
-    needed = thickness_deficit_for_backlash(backlash, centre_distance, standard, a.transverse_pressure_angle)
-    present = a0.transverse_pitch - reference_tooth_thickness(a0) - reference_tooth_thickness(b0)
-    extra = needed - present
-    if extra < -1e-12:
-        raise DesignError(where, f"the unthinned teeth already have more than {backlash:.4g} mm of backlash at "
-                          f"{centre_distance:.6g} mm", "a smaller centre distance or a larger backlash range")
-    extra = max(extra, 0.0)
-    return with_changes(a0, thinning=extra * share_a), with_changes(b0, thinning=extra * (1 - share_a))
+def modelled_backlash(lo: float, hi: float, point: str) -> float:
+    """The backlash of the range [``lo``, ``hi``] that a mesh's ``model_tooth_thickness`` point
+    gives where no tooth thickness sets it (a rack mesh's, set by the pinion's height): the most
+    material the least backlash; "as_designed" takes the middle."""
+    w = MODEL_POINTS.get(point, MODEL_POINTS["mid_tolerance"])[0]
+    return w * lo + (1 - w) * hi
 
 
 def ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: str) -> dict[str, Any]:
@@ -262,5 +247,5 @@ def running_backlash(a: GearSpec, b: GearSpec, centre_distance: float) -> float:
     return float(backlash_from_thickness_deficit(deficit, centre_distance, standard, a.transverse_pressure_angle))
 
 
-__all__ = ["MODEL_BACKLASH", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
-           "layout_settings", "is_drive", "running_backlash", "modelled_backlash", "thin_pair", "ratio_check"]
+__all__ = ["MODEL_TOOTH_THICKNESS", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
+           "layout_settings", "is_drive", "running_backlash", "modelled_backlash", "ratio_check"]

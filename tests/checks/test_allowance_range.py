@@ -15,6 +15,7 @@ from geargen.core.allowance import BacklashRoute, allowances_for_backlash, mesh_
 from geargen.core.geometry import GearPair
 from geargen.design.assembly import design_from_dict, load_design
 from geargen.drives.resolver import resolve
+from geargen.errors import DesignError
 
 ROOT = Path(__file__).resolve().parents[2]
 UM = 1e-3
@@ -50,7 +51,7 @@ def test_shipped_designs_get_allowances_and_their_range(name):
     """No design file edited: every mesh with a range gets allowances, and with the design's own
     centre-distance tolerance (none given: 0) the range is the design's."""
     layout = resolve(load_design(ROOT / "assemblies" / f"{name}.toml"))
-    records, failures, _ = backlash_ranges(layout)
+    records, failures = backlash_ranges(layout)
     assert not failures
     assert {r["mesh"] for r in records} == {m.name for m in layout.meshes if m.engaged}
     for r in records:
@@ -105,12 +106,19 @@ def test_a_disagreement_between_analytic_and_measured_fails(monkeypatch):
     monkeypatch.setattr(check_allowance, "measured_backlash_range",
                         lambda *a, **k: tuple(v + 2 * AGREEMENT_TOLERANCE for v in real(*a, **k)))
     layout = resolve(_split_pinion(checks={"tolerances": False}))
-    _, failures, _ = backlash_ranges(layout)
+    _, failures = backlash_ranges(layout)
     assert [f.kind for f in failures] == ["allowance_range_disagrees"] * 2
 
 
 def test_a_tolerance_that_eats_the_range_is_reported_naming_the_key():
-    design = _split_pinion(checks={"centre_distance_tolerance_mm": 0.1, "tolerances": False})
+    # the model's gears are made within their allowances: with none to be had the drive is refused
+    with pytest.raises(DesignError) as err:
+        resolve(_split_pinion(checks={"centre_distance_tolerance_mm": 0.1, "tolerances": False}))
+    assert err.value.field == "layout.circumferential_backlash_max_mm"
+    assert "checks.centre_distance_tolerance_mm" in err.value.allowed
+    # teeth as designed are placed, and the check reports it
+    design = _split_pinion(checks={"centre_distance_tolerance_mm": 0.1, "tolerances": False},
+                           layout={"model_tooth_thickness": "as_designed"})
     result = verify(resolve(design))
     f = [f for f in result.failures if f.kind == "allowance_range_outside_design"]
     assert f and "layout.circumferential_backlash_max_mm" in f[0].message

@@ -140,7 +140,7 @@ def test_thinned_to_a_point_names_the_gear_key_and_the_largest_thinning(tmp_path
 def test_normal_thinning_is_named_and_bounded_in_the_normal_section(tmp_path):
     bad = variant(tmp_path, C_AXIS, (r"^bore_diameter_mm = 30 +# on its 30 mm shaft",
                                      "bore_diameter_mm = 30\nthinning_normal_mm = 1.5"),
-                  (r'^model_backlash = "mid"', 'model_backlash = "as_designed"'))
+                  (r'^model_tooth_thickness = "mid_tolerance"', 'model_tooth_thickness = "as_designed"'))
     err = error_of(bad)
     assert err.field == "gears.input.thinning_normal_mm"
     most = float(re.match(r"\[0, ([0-9.e-]+) mm\]", err.allowed).group(1))
@@ -255,8 +255,13 @@ def test_layout_parts_and_export_rules(tmp_path):
     err = error_of(variant(tmp_path, SPLIT, (r"^circumferential_backlash_min_mm = 0\.05",
                                              "circumferential_backlash_min_mm = 0.2")))
     assert err.field == "layout.circumferential_backlash_min_mm" and err.allowed == "[0, 0.1] mm"
-    err = error_of(variant(tmp_path, ROBOT, (r'^model_backlash = "as_designed"', 'model_backlash = "mid"')))
-    assert err.field == "layout.model_backlash" and "gears.input" in err.problem
+    err = error_of(variant(tmp_path, ROBOT, (r'^model_tooth_thickness = "as_designed"',
+                                             'model_tooth_thickness = "mid_tolerance"')))
+    assert err.field == "layout.model_tooth_thickness" and "gears.input" in err.problem
+    # the key it replaced is told where its values went (a file from before would otherwise get a bare
+    # "unknown key")
+    err = error_of(variant(tmp_path, SPLIT, (r'^model_tooth_thickness = "mid_tolerance"', 'model_backlash = "mid"')))
+    assert err.field == "layout.model_backlash" and 'model_tooth_thickness = "mid_tolerance" (was "mid")' in err.allowed
     err = error_of(variant(tmp_path, C_AXIS, (r"^cluster_bearing_outer_diameter_mm = 55", "cluster_bearing_outer_diameter_mm = 25")))
     assert err.field == "parts.cluster_bearing_outer_diameter_mm" and err.allowed == "> 30 mm"
     err = error_of(variant(tmp_path, ROBOT, (r"^bevel_face_width_in = 0\.15", "bevel_face_width_in = 0.8")))

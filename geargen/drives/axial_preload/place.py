@@ -76,8 +76,8 @@ from geargen.core.synthesis import mate_rotation
 from geargen.design.assembly import Design
 from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
-from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, thin_pair,
-                                  running_backlash)
+from geargen.model.allowance import MeshRange, model_gears, model_source
+from geargen.model.layout import GearPlacement, Layout, MeshPlacement, ratio_check, running_backlash
 from geargen.model.shafts import Bearing, Shaft, bore_of, mid_face
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
@@ -167,16 +167,14 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
     if lo > hi:
         raise DesignError(f"layout.circumferential_backlash_min_{unit}", f"{lo / k:.6g} {unit} is larger than the "
                           f"maximum {hi / k:.6g} {unit}", f"[0, {hi / k:.6g}] {unit}")
-    rule = s["model_backlash"]
+    rule = s["model_tooth_thickness"]
     gap = s["loaded_flank_gap"]
     notes: list[str] = []
-    thinning_source = "design"
+    thinning_source = model_source(rule)
     if rule != "as_designed":
-        target = modelled_backlash(lo, hi, rule)
-        for _, p, o, _ in MESHES:
-            spec[p], spec[o] = thin_pair(spec[p], spec[o], target, c, f"gears.{s[p]}")
-        thinning_source = f"derived for {rule}-range backlash ([layout] model_backlash)"
-        notes.append(f"thinning derived for {rule}-range backlash: " + ", ".join(
+        made = model_gears(design, rule, [MeshRange(spec[p], spec[o], lo, hi, c, RANGE_KEYS) for _, p, o, _ in MESHES])
+        spec = {role: made[g.name] for role, g in spec.items()}
+        notes.append(f"thinning made at {rule} of each allowance: " + ", ".join(
             f"{s[r]} {spec[r].thinning / k:.6g} {unit}" for r in spec) + " (circumferential, at the reference circle)")
     pl, pr, o_r, o_l = (spec[r] for r in ("pinion_left", "pinion_right", "output_right", "output_left"))
     backlash = {m: running_backlash(spec[p], spec[o], c) for m, p, o, _ in MESHES}

@@ -16,8 +16,8 @@ from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.drives.dual_pinion.keys import cluster_axial_gap
 from geargen.errors import DesignError
-from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, running_backlash,
-                                  thin_pair)
+from geargen.model.allowance import MeshRange, model_gears, model_source
+from geargen.model.layout import GearPlacement, Layout, MeshPlacement, ratio_check, running_backlash
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -36,9 +36,15 @@ def place(design: Design, s: dict) -> Layout:
     return _place_dual_pinion(design, s, engagement)
 
 
+#: most rounds of the teeth-and-carriage iteration, and the largest move (mm) of a placed centre distance in
+#: the last round: a tenth of a nanometre, a millionth of the thinnest allowance
+FIXED_POINT_ROUNDS = 30
+FIXED_POINT_TOLERANCE = 1e-10
+
+
 def _range_keys(n: int) -> tuple[str, str]:
-    """The design keys of loop mesh ``n``'s backlash range (the preload carriage places mesh 1 where
-    the loop closes, which moves with the teeth made: its range is stated at the synthesis's centres)."""
+    """The design keys of loop mesh ``n``'s backlash range (it holds where the mesh runs: mesh 1 where
+    the preload carriage closes the loop)."""
     return f"synthesis.circumferential_backlash_min_mesh{n}", f"synthesis.circumferential_backlash_max_mesh{n}"
 
 
@@ -52,44 +58,62 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
     inputs = synthesis_inputs(design)
     syn = synthesize_centres(inputs).check()
     g_in, g_large, g_small, g_out = (design.gear(r) for r in ("input", "cluster_large", "cluster_small", "output"))
-    rule = s["model_backlash"]
+    rule = s["model_tooth_thickness"]
     design_notes: list[str] = []
     ranges = {m: (inputs.backlash(m, "min"), inputs.backlash(m, "max")) for m in (1, 2)}
-    if rule == "as_designed":
-        from geargen.core.synthesis import backlash_from_thickness_deficit as backlash_at_centre_distance
-        modelled = {}
-        for mesh, (a, b) in ((1, (g_in, g_large)), (2, (g_small, g_out))):
-            t = a.transverse_pitch - reference_tooth_thickness(a) - reference_tooth_thickness(b)
-            modelled[mesh] = float(backlash_at_centre_distance(t, inputs.centre_distance(mesh),
-                                                               inputs.standard_centre_distance(mesh),
-                                                               inputs.pressure_angle(mesh)))
-    else:
-        # the carriage settles where the loop closes, so mesh 1 runs at another centre distance than
-        # the design's: iterate the modelled teeth until the backlash *there* is the one asked for
-        from geargen.core.synthesis import backlash_from_thickness_deficit, thickness_deficit_for_backlash
-        target = {m: modelled_backlash(*ranges[m], rule) for m in (1, 2)}
-        modelled = dict(target)
-        for _ in range(12):
-            placement = place_gears(syn, modelled[1], modelled[2], loaded_flank_gap=s["loaded_flank_gap"]).check()
-            pg = {g.name: g for g in placement.gears}
-            c1 = math.dist(pg["input"].centre, pg["cluster_large_a"].centre)
-            t1 = thickness_deficit_for_backlash(modelled[1], inputs.centre_distance_mesh1,
-                                                inputs.standard_centre_distance(1), inputs.pressure_angle(1))
-            actual = float(backlash_from_thickness_deficit(t1, c1, inputs.standard_centre_distance(1),
-                                                           inputs.pressure_angle(1)))
-            if abs(actual - target[1]) < 1e-9:
+
+    def at_design_centres(a: GearSpec, b: GearSpec, mesh: int) -> float:
+        """The backlash the teeth have at the design's centre distance of ``mesh`` (what the
+        synthesis places from)."""
+        from geargen.core.synthesis import backlash_from_thickness_deficit
+        t = a.transverse_pitch - reference_tooth_thickness(a) - reference_tooth_thickness(b)
+        return float(backlash_from_thickness_deficit(t, inputs.centre_distance(mesh), inputs.standard_centre_distance(mesh),
+                                                     inputs.pressure_angle(mesh)))
+
+    designed = (g_in, g_large, g_small, g_out)
+
+    def meshes_at(centres: dict[int, float]) -> list[MeshRange]:
+        return [MeshRange(g_in, g_large, *ranges[1], centres[1], _range_keys(1)),
+                MeshRange(g_small, g_out, *ranges[2], centres[2], _range_keys(2))]
+
+    def placed_with(made: dict[str, GearSpec], gap: float):
+        """The backlash of ``made`` at the design's centres, the placement, each mesh's placed centre distance."""
+        m_in, m_large, m_small, m_out = (made[g.name] for g in designed)
+        at_design = {1: at_design_centres(m_in, m_large, 1), 2: at_design_centres(m_small, m_out, 2)}
+        placed = place_gears(syn, at_design[1], at_design[2], loaded_flank_gap=gap).check()
+        pg = {g.name: g for g in placed.gears}
+        return at_design, placed, {1: math.dist(pg["input"].centre, pg["cluster_large_a"].centre),
+                                   2: math.dist(pg["cluster_small_a"].centre, pg["output"].centre)}
+
+    # The allowances hold where the meshes run with every gear made at the middle of its allowance:
+    # mesh 1 where the preload carriage then closes the loop, which moves with the teeth made, so teeth
+    # and carriage are iterated to their fixed point (the carriage takes up an eighth of a change of the
+    # teeth's backlash: the centre distance settles within 1e-10 mm in about eleven rounds). The
+    # allowance is then the design's whatever point the model is made at; teeth made anywhere within it
+    # move the carriage the way that keeps their backlash inside the range.
+    allowance_at = {1: inputs.centre_distance_mesh1, 2: inputs.centre_distance_mesh2}
+    try:
+        for _ in range(FIXED_POINT_ROUNDS):
+            modelled, placement, placed = placed_with(model_gears(design, "mid_tolerance", meshes_at(allowance_at)),
+                                                      s["loaded_flank_gap"])
+            moved = max(abs(placed[m] - allowance_at[m]) for m in (1, 2))
+            allowance_at = placed
+            if moved <= FIXED_POINT_TOLERANCE:
                 break
-            modelled[1] += target[1] - actual
-        designed = {1: (g_in, g_large), 2: (g_small, g_out)}
-        g_in, g_large = thin_pair(g_in, g_large, modelled[1], inputs.centre_distance_mesh1, "gears.input")
-        g_small, g_out = thin_pair(g_small, g_out, modelled[2], inputs.centre_distance_mesh2, "gears.cluster_small")
-        for mesh, (a, b), (ma, mb) in ((1, designed[1], (g_in, g_large)), (2, designed[2], (g_small, g_out))):
-            if (a.thinning or b.thinning) and not (math.isclose(a.thinning, ma.thinning, rel_tol=1e-6)
-                                                  and math.isclose(b.thinning, mb.thinning, rel_tol=1e-6)):
-                design_notes.append(
-                    f"mesh {mesh}: teeth modelled with thinning {ma.thinning:.4g} + {mb.thinning:.4g} mm (backlash "
-                    f"{target[mesh]:.4g} mm where the mesh runs, model_backlash = {rule!r}) instead of the design's "
-                    f"{a.thinning:.4g} + {b.thinning:.4g} mm")
+        else:
+            raise DesignError("synthesis.centre_distance_mesh1", f"the carriage's centre distance does not settle "
+                              f"with the teeth made within their allowances (last move {moved:.3g} mm)",
+                              "a backlash range the loop closes in")
+    except DesignError:
+        if rule != "as_designed":
+            raise
+        allowance_at = {1: math.nan, 2: math.nan}  # teeth as designed are placed; the check finds no allowance
+    if rule == "as_designed":
+        modelled = {1: at_design_centres(g_in, g_large, 1), 2: at_design_centres(g_small, g_out, 2)}
+    else:
+        made = model_gears(design, rule, meshes_at(allowance_at))
+        modelled, placement, _ = placed_with(made, s["loaded_flank_gap"])
+        g_in, g_large, g_small, g_out = (made[g.name] for g in designed)
     if rule == "as_designed":
         # teeth as specified may have no backlash (or interfere): place them touching on both flanks,
         # the checks report it; the solids' flank gap cannot exceed half the backlash there is
@@ -174,7 +198,7 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
         c = math.dist(by_name["input"].centre, by_name[name].centre)
         meshes.append(MeshPlacement(f"mesh1_{side}", "input", g_in, name, spec, (lo + hi) / 2, *ranges[1],
                                     running_backlash(g_in, spec, c), True, "input ccw" if side == "a" else "input cw",
-                                    c, _range_keys(1), inputs.centre_distance(1)))
+                                    c, _range_keys(1), allowance_at[1]))
         # mesh 2: the cluster's small gear (gear 1) against the output
         name, spec = part_of("cluster_small", side)
         lo = max(by_name[name].face_z(spec)[0], by_name["output"].face_z(g_out)[0])
@@ -185,16 +209,15 @@ def _place_dual_pinion(design: Design, s: dict, engagement) -> Layout:
                                     (lo + hi) / 2 if engaged else by_name[name].face_z(spec)[0],
                                     *ranges[2], running_backlash(spec, g_out, c), engaged,
                                     "cluster cw" if side == "a" else "cluster ccw", c, _range_keys(2),
-                                    inputs.centre_distance(2)))
+                                    allowance_at[2]))
     train = Fraction(g_large.teeth, g_in.teeth) * Fraction(g_out.teeth, g_small.teeth)
     stage_gears, stage_meshes, stage_notes = _place_stages(design, s, gears, rule)
     gears += stage_gears
     meshes += stage_meshes
     notes += stage_notes
-    source = "design" if rule == "as_designed" else f"derived for {rule}-range backlash ([layout] model_backlash)"
-    thinning = {g.name: {"source": source} for g in gears}
+    thinning = {g.name: {"source": model_source(rule)} for g in gears}
     if rule != "as_designed":
-        notes.insert(0, "thinning derived for " + rule + "-range backlash: "
+        notes.insert(0, f"thinning made at {rule} of each allowance (where its mesh runs): "
                      + ", ".join(f"{n} {g.thinning / LENGTH_SUFFIXES[design.length_unit]:.6g} {design.length_unit}"
                                  for n, g in (("input", g_in), ("cluster_large", g_large),
                                               ("cluster_small", g_small), ("output", g_out)))
@@ -253,9 +276,10 @@ def _place_stages(design: Design, s: dict, loop_gears: list[GearPlacement], rule
             level += placed.height + gap
             continue
         driver, driven = design.gear(st.driver), design.gear(st.driven)
-        if rule != "as_designed":
-            driver, driven = thin_pair(driver, driven, modelled_backlash(st.backlash_min, st.backlash_max, rule),
-                                        st.centre_distance, f"stages.{st.name}")
+        keys = (f"stages.{st.name}.circumferential_backlash_min", f"stages.{st.name}.circumferential_backlash_max")
+        made = model_gears(design, rule, [MeshRange(driver, driven, st.backlash_min, st.backlash_max, st.centre_distance,
+                                                    keys)])
+        driver, driven = made[driver.name], made[driven.name]
         height = max(driver.face_width, driven.face_width)
         z_driver = level + (height - driver.face_width) / 2
         z_driven = level + (height - driven.face_width) / 2
@@ -274,10 +298,9 @@ def _place_stages(design: Design, s: dict, loop_gears: list[GearPlacement], rule
         meshes.append(MeshPlacement(f"stage_{st.name}", st.driver, driver, st.driven, driven, (lo + hi) / 2,
                                     st.backlash_min, st.backlash_max,
                                     running_backlash(driver, driven, st.centre_distance), True, "", st.centre_distance,
-                                    (f"stages.{st.name}.circumferential_backlash_min",
-                                     f"stages.{st.name}.circumferential_backlash_max")))
+                                    keys))
         if rule != "as_designed":
-            notes.append(f"stage {st.name}: thinning derived for {rule}-range backlash: {st.driver} "
+            notes.append(f"stage {st.name}: thinning made at {rule} of each allowance: {st.driver} "
                          f"{driver.thinning / LENGTH_SUFFIXES[design.length_unit]:.6g}, {st.driven} "
                          f"{driven.thinning / LENGTH_SUFFIXES[design.length_unit]:.6g} {design.length_unit}")
         centre = driver_centre

@@ -170,8 +170,8 @@ METRIC = Starter(
         ), "Two helical compression springs push the carriage towards the output."),
         Table("layout", (
             Key("kind", "dual_pinion"),
-            Key("model_backlash", "mid", "the model's teeth thinned to the middle of each backlash range "
-                "(geargen check notes the thinning)"),
+            Key("model_tooth_thickness", "mid_tolerance", "each gear of the model made at the middle of its "
+                "tooth-thickness allowance (taken from its mesh's backlash range where the mesh runs)"),
             Key("loaded_flank_gap_mm", 0.0005, "0.5 um, so that the solids do not touch"),
             Key("cluster", "separate", "large gear bonded on the small gear's shaft: two parts"),
             Key("cluster_axial_gap_mm", 1.5),
@@ -420,7 +420,7 @@ INCH = Starter(
            "assumes (0.02 kg m^2 / 32^2 = 2.0e-5 kg m^2 at the motor against a 3.0e-6 rotor)."),
         Table('layout', (
             Key('kind', "dual_pinion", "gears placed by the centre synthesis of [synthesis]"),
-            Key('model_backlash', "as_designed", "the teeth as the [gears.*] tables give them (thinning included)"),
+            Key('model_tooth_thickness', "as_designed", "the teeth as the [gears.*] tables give them (thinning included)"),
             Key('loaded_flank_gap_in', 2e-05, "0.5 um left on the working flanks so the solids do not touch"),
             Key('cluster', "separate", "large gear pressed and bonded on the small gear's shaft with a jig"),
             Key('cluster_axial_gap_in', 0.0625,

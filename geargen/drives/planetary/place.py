@@ -5,8 +5,8 @@ Sun and ring on the input gear's axis, the planets at the carrier radius ``a`` a
 angles of :func:`geargen.core.planetary.assembly_angles`; all faces centred on one level. Phases
 (:func:`geargen.core.planetary.planet_phases`): the sun's tooth 0 on +x, each planet and the ring
 in the middle of both plays, in the level's lowest plane (carried to each gear's own face by its
-helix). Tooth thickness as modelled: for ``model_backlash`` mid/max/min the sun and planet are
-thinned (equally, or as the design shares it) for the sun-planet backlash at ``a``, then the
+helix). Tooth thickness as modelled: for a ``model_tooth_thickness`` point the sun and planet are
+made at that point of their allowances (from the sun-planet backlash range at ``a``), then the
 ring's spaces widened for the same backlash in the planet-ring mesh.
 
 The meshes: each sun-planet mesh a :class:`MeshPlacement` (the external checker); the
@@ -58,12 +58,14 @@ def internal_backlash(planet: GearSpec, ring: GearSpec, centre_distance: float) 
 
 
 def _modelled_gears(design, st, a: float, rule: str):
-    from geargen.model.layout import modelled_backlash, thin_pair
+    from geargen.model.allowance import MeshRange, model_gears
+    from geargen.model.layout import running_backlash
     sun, planet, ring = design.gear(st.sun), design.gear(st.planet), design.gear(st.ring)
     if rule == "as_designed":
         return sun, planet, ring, []
-    target = modelled_backlash(st.backlash_min, st.backlash_max, rule)
-    sun, planet = thin_pair(sun, planet, target, a, f"stages.{st.name}")
+    made = model_gears(design, rule, [MeshRange(sun, planet, st.backlash_min, st.backlash_max, a, _range_keys(st))])
+    sun, planet = made[sun.name], made[planet.name]
+    target = running_backlash(sun, planet, a)  # the planet-ring mesh is given the sun-planet mesh's backlash
     ring0 = with_changes(ring, thinning=0.0)
     # widening the ring's spaces by t adds t to this backlash (both at the planet's reference circle)
     extra = target - internal_backlash(planet, ring0, a)
@@ -74,9 +76,15 @@ def _modelled_gears(design, st, a: float, rule: str):
     ring = with_changes(ring0, thinning=max(extra, 0.0))
     unit = design.length_unit
     k = LENGTH_SUFFIXES[unit]
-    note = (f"stage {st.name}: thinning derived for {rule}-range backlash: {st.sun} {sun.thinning / k:.6g}, "
-            f"{st.planet} {planet.thinning / k:.6g}, {st.ring} {ring.thinning / k:.6g} (space widened) {unit}")
+    note = (f"stage {st.name}: thinning made at {rule} of each allowance: {st.sun} {sun.thinning / k:.6g}, "
+            f"{st.planet} {planet.thinning / k:.6g}, {st.ring} {ring.thinning / k:.6g} (space widened for the same "
+            f"backlash) {unit}")
     return sun, planet, ring, [note]
+
+
+def _range_keys(st) -> tuple[str, str]:
+    """The design keys of the stage's sun-planet backlash range (without their unit suffix)."""
+    return f"stages.{st.name}.circumferential_backlash_min", f"stages.{st.name}.circumferential_backlash_max"
 
 
 def place_planetary_stage(design, st, centre: tuple[float, float], level: float, rule: str) -> PlacedPlanetary:
@@ -117,9 +125,7 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
         gears.append(GearPlacement(name, planet, c, z[planet.name],
                                    r - section_rotation(planet, level - z[planet.name]), group, ("planetary_planet",)))
         meshes.append(MeshPlacement(f"stage_{st.name}_sun_{name}", st.sun, sun, name, planet, (lo + hi) / 2,
-                                    st.backlash_min, st.backlash_max, modelled, True, "", a,
-                                    (f"stages.{st.name}.circumferential_backlash_min",
-                                     f"stages.{st.name}.circumferential_backlash_max")))
+                                    st.backlash_min, st.backlash_max, modelled, True, "", a, _range_keys(st)))
     unit = design.length_unit
     notes.append(f"stage {st.name}: planetary, {len(angles)} planets on the carrier radius "
                  f"{a / LENGTH_SUFFIXES[unit]:.6g} {unit} at "

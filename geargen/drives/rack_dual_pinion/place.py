@@ -13,11 +13,12 @@ axis, teeth up, gear axes +z, the symmetry line x = 0):
 * the rack (a :class:`geargen.design.rack.RackSpec` made from the pinion's tooth system, spur,
   generating tip rounding, unthinned) is ``slide_travel`` + the pinions' span long, a whole even
   number of pitches, centred on x = 0 with a tooth space there (its phase);
-* each pinion's centre height gives the rack mesh its backlash (``model_backlash`` of the
-  ``rack_backlash`` range) by the centre offset (:func:`geargen.core.rack.centre_offset_for_backlash`),
-  and each pinion is turned against the rack on its working flank, the loaded flank gap short;
-* the input and path gears' teeth are thinned for the ``path_backlash`` range at the design
-  centre distance; the path gear is keyed to its pinion at the timing that closes the loop with
+* each pinion's centre height gives the rack mesh its backlash (the point of the ``rack_backlash``
+  range that ``model_tooth_thickness`` names: the middle, the least or the most) by the centre offset
+  (:func:`geargen.core.rack.centre_offset_for_backlash`), and each pinion is turned against the rack
+  on its working flank, the loaded flank gap short;
+* the input and path gears' teeth are made within their allowances for the ``path_backlash`` range
+  at the design centre distance; the path gear is keyed to its pinion at the timing that closes the loop with
   the carriage at its nominal height (the assembler's mark, reported); the input stands
   symmetric, and the carriage height where the loop closes is solved (root find) and placed.
 
@@ -39,8 +40,8 @@ from geargen.design.assembly import Design
 from geargen.design.gear import GearSpec
 from geargen.design.rack import RackSpec
 from geargen.errors import DesignError, GeometryError
-from geargen.model.layout import (GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, thin_pair,
-                                  running_backlash)
+from geargen.model.allowance import MeshRange, model_gears, model_source
+from geargen.model.layout import GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, running_backlash
 from geargen.units import LENGTH_SUFFIXES
 
 #: the gear tables the drive reads
@@ -185,7 +186,7 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     if path.module != inp.module or path.pressure_angle != inp.pressure_angle:
         raise DesignError("gears.input.module_mm", "the input meshes the path gears: same module and pressure angle",
                           f"{path.module:.6g} mm, {math.degrees(path.pressure_angle):.6g} deg")
-    rule = s["model_backlash"]
+    rule = s["model_tooth_thickness"]
     gap = s["loaded_flank_gap"]
     h = s["pinion_spacing"] / 2
     a_nom = s["input_centre_distance"]
@@ -194,19 +195,21 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
                           "either side of the symmetry line", f"> {h:.6g} mm (half the pinion spacing)")
     path_range = (s["path_backlash_min"], s["path_backlash_max"])
     rack_range = (s["rack_backlash_min"], s["rack_backlash_max"])
-    if rule != "as_designed":
-        inp, path = thin_pair(inp, path, modelled_backlash(*path_range, rule), a_nom, "layout.path_backlash")
+    keys = ("layout.path_backlash_min", "layout.path_backlash_max")
+    made = model_gears(design, rule, [MeshRange(inp, path, *path_range, a_nom, keys)])
+    inp, path = made[inp.name], made[path.name]
     rack = _rack(design, s, pinion)
     # the rack meshes' backlash comes from the pinions' centre height (the rack's backlash from
-    # centre offset); a tooth thickness rule does not apply to a height, so "as_designed" takes mid
-    rack_target = modelled_backlash(*rack_range, "mid" if rule == "as_designed" else rule)
+    # centre offset): the model's point taken on the rack range (most material, least backlash)
+    rack_target = modelled_backlash(*rack_range, rule)
     offset = centre_offset_for_backlash(rack, pinion, rack_target)
     geom = rack_pinion_geometry(rack, pinion, offset)
     unit = design.length_unit
     k = 1.0 / LENGTH_SUFFIXES[unit]
     # each loop stands a loaded flank gap short of its working flanks: the backlash must leave it
-    for key, backlash in (("rack_backlash_max" if rule == "max" else "rack_backlash_min", geom.backlash_circumferential),
-                          ("path_backlash_max" if rule == "max" else "path_backlash_min",
+    for key, backlash in (("rack_backlash_max" if rule == "min_material" else "rack_backlash_min",
+                           geom.backlash_circumferential),
+                          ("path_backlash_max" if rule == "min_material" else "path_backlash_min",
                            running_backlash(inp, path, a_nom))):
         if backlash <= 2 * gap:
             raise DesignError(f"layout.{key}_{s['_units'].get(key, unit)}", f"the modelled backlash "
@@ -261,7 +264,6 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
     ]
     plane = z_input + inp.face_width / 2
     c = float(frame.centre_distance(y_c))
-    keys = ("layout.path_backlash_min", "layout.path_backlash_max")
     meshes = (
         MeshPlacement("mesh_input_a", "input", inp, "path_gear_a", path, plane, *path_range,
                       running_backlash(inp, path, c), True, "input cw", c, keys),
@@ -275,7 +277,7 @@ def place_rack_drive(design: Design, s: dict) -> Layout:
              f"rack drive: rack {rack.teeth} teeth ({rack.length * k:.6g} {unit}), pinion centres "
              f"{offset * k:+.4g} {unit} from the nominal rack mesh (backlash {geom.backlash_circumferential * k:.4g} "
              f"{unit})"]
-    source = "design" if rule == "as_designed" else f"derived for {rule}-range backlash ([layout] model_backlash)"
+    source = model_source(rule)
     thinning = {g.name: {"source": source if g.name.startswith(("input", "path_gear")) else "design"} for g in gears}
     return Layout(design=design, kind="rack_dual_pinion", gears=tuple(gears), meshes=meshes, settings=s,
                   ratio=ratio_check(design, s, Fraction(path.teeth, inp.teeth), "motor to path shafts"),

@@ -1,6 +1,8 @@
 """The split pinion placed (Fig. 8): both pinions on one axis at the centre distance, the stiff one
-driving on its counter-clockwise flank, the compliant one wound against it; the output keeps the
-design's teeth, the pinions are thinned for the modelled backlash.
+driving on its counter-clockwise flank, the compliant one wound against it; every gear, the shared
+output too, is made at the ``model_tooth_thickness`` point of its allowance
+(:mod:`geargen.model.allowance`: the stiff mesh splits its thinning equally between the stiff
+pinion and the output, the compliant pinion takes the rest of its own mesh's).
 """
 
 from __future__ import annotations
@@ -8,55 +10,81 @@ from __future__ import annotations
 import math
 from fractions import Fraction
 
-from geargen.core.involute import reference_tooth_thickness
+import numpy as np
+
 from geargen.design.assembly import Design
-from geargen.design.gear import GearSpec, with_changes
+from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
-from geargen.model.layout import GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, running_backlash
+from geargen.model.allowance import MeshRange, decide, model_gears, model_source
+from geargen.model.layout import GearPlacement, Layout, MeshPlacement, ratio_check, running_backlash
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
+
+
+#: the design keys of each pinion's mesh's backlash range (without their unit suffix)
+RANGE_KEYS = ("layout.circumferential_backlash_min", "layout.circumferential_backlash_max")
+
+#: centre distances tried across the range the teeth reach, to find where the allowances exist
+#: when the design's does not (a refusal's path only); the ends are then refined by bisection
+CENTRE_GRID = 2001
+
+
+def _mesh_ranges(s: dict, stiff: GearSpec, compliant: GearSpec, out: GearSpec, centre_distance: float):
+    """The two meshes as their allowances are decided: the stiff one first (it decides the shared
+    output's), both with the design's range at ``centre_distance``."""
+    lo, hi = s["circumferential_backlash_min"], s["circumferential_backlash_max"]
+    return [MeshRange(stiff, out, lo, hi, centre_distance, RANGE_KEYS),
+            MeshRange(compliant, out, lo, hi, centre_distance, RANGE_KEYS)]
 
 
 def _split_pinion_centre_range(design: Design, s: dict, pinions, out: GearSpec) -> None:
     """Refuse a split pinion's ``layout.centre_distance`` outside the range its teeth can be placed
     at (naming the key, the cause and the range in the file's unit, and a distance in it): above
     the base circles' sum and below the tip circles' (beyond, the teeth do not reach each other);
-    with a ``model_backlash`` rule, where the pinions, thinned at most to a quarter pitch (half their
-    tooth), reach the modelled backlash (below: the teeth interfere even then) and where they are
-    not already looser than it as designed (above). The backlash rises with the centre distance
-    (B = T + 2 C_std (inv alpha_w - inv alpha)), so each bound is one root."""
-    from scipy.optimize import brentq
-
-    from geargen.core.synthesis import backlash_from_thickness_deficit
+    with a ``model_tooth_thickness`` point, where every gear has an allowance it can be made to
+    (:func:`geargen.model.allowance.decide`): above, the unthinned teeth at the smallest centre
+    distance already have more backlash than the range's minimum; below, the range's maximum asks
+    for a thinnest tooth that is pointed or thinned past a quarter pitch (the teeth interfere).
+    Each gear's thinning falls as the centre distance grows, so the allowances exist on one
+    interval, whose ends are bisected."""
     c = s["centre_distance"]
     unit = design.length_unit
     k = LENGTH_SUFFIXES[unit]
     key = f"layout.centre_distance_{s['_units'].get('centre_distance', unit)}"
     standard = (pinions[0].teeth + out.teeth) * out.transverse_module / 2
-    alpha = out.transverse_pressure_angle
     base = max(p.base_radius for p in pinions) + out.base_radius
     tips = min(p.tip_radius for p in pinions) + out.tip_radius
     lo_c, hi_c = base * (1 + 1e-12), tips * (1 - 1e-12)
     why_lo = why_hi = ""
-    rule = s["model_backlash"]
-    if rule != "as_designed":
-        target = modelled_backlash(s["circumferential_backlash_min"], s["circumferential_backlash_max"], rule)
-        for p in pinions:
-            present = p.transverse_pitch - reference_tooth_thickness(p) - reference_tooth_thickness(out)
-            deepest = present + p.transverse_pitch / 4 - p.thinning  # thinned to a quarter pitch
 
-            def short(x, deficit):
-                return float(backlash_from_thickness_deficit(deficit, x, standard, alpha)) - target
-            if short(lo_c, deepest) < 0 < short(hi_c, deepest):
-                root = brentq(short, lo_c, hi_c, args=(deepest,), xtol=1e-12)
-                if root > lo_c:
-                    lo_c, why_lo = root, (f"below it {p.name}'s teeth, thinned even to a quarter pitch, do not "
-                                          f"reach the modelled {target / k:.6g} {unit} of backlash (they interfere)")
-            if short(lo_c, present) < 0 < short(hi_c, present):
-                root = brentq(short, lo_c, hi_c, args=(present,), xtol=1e-12)
-                if root < hi_c:
-                    hi_c, why_hi = root, (f"above it {p.name}'s teeth as designed already have more than the "
-                                          f"modelled {target / k:.6g} {unit} of backlash ({rule}-range)")
+    def refusal(x: float) -> DesignError | None:
+        try:
+            decide(design, _mesh_ranges(s, *pinions, out, x))
+        except DesignError as exc:
+            return exc
+        return None
+
+    if s["model_tooth_thickness"] != "as_designed" and not (lo_c <= c <= hi_c and refusal(c) is None):
+        grid = np.linspace(lo_c, hi_c, CENTRE_GRID)
+        fits = [refusal(x) is None for x in grid]
+        if not any(fits):  # no centre distance helps (e.g. the tolerance eats the range): its own key's refusal
+            raise refusal(c)
+        first = fits.index(True)
+        last = len(fits) - 1 - fits[::-1].index(True)
+
+        def edge(good: float, bad: float) -> float:
+            for _ in range(60):
+                mid = 0.5 * (good + bad)
+                good, bad = (mid, bad) if refusal(mid) is None else (good, mid)
+            return good
+        if first > 0:
+            lo_c = edge(grid[first], grid[first - 1])
+            why_lo = (f"below it the range's maximum asks for teeth thinner than a gear can have (the teeth "
+                      f"interfere): {refusal(grid[first - 1]).problem}")
+        if last < len(grid) - 1:
+            hi_c = edge(grid[last], grid[last + 1])
+            why_hi = (f"above it the unthinned teeth at the smallest centre distance already have more backlash "
+                      f"than the range's minimum: {refusal(grid[last + 1]).problem}")
     if lo_c <= c <= hi_c:
         return
     below = c < lo_c
@@ -72,36 +100,17 @@ def _split_pinion_centre_range(design: Design, s: dict, pinions, out: GearSpec) 
 
 
 def place(design: Design, s: dict) -> Layout:
-    from geargen.core.synthesis import backlash_from_thickness_deficit as backlash_at_centre_distance, mate_rotation
+    from geargen.core.synthesis import mate_rotation
     stiff, compliant, out = (design.gear(s[k]) for k in ("pinion_stiff", "pinion_compliant", "output"))
     c = s["centre_distance"]
     lo, hi = s["circumferential_backlash_min"], s["circumferential_backlash_max"]  # given and ordered (on load)
-    rule = s["model_backlash"]
-    standard = (stiff.teeth + out.teeth) * out.transverse_module / 2
-    alpha = out.transverse_pressure_angle
+    rule = s["model_tooth_thickness"]
     _split_pinion_centre_range(design, s, (stiff, compliant), out)
-    if rule == "as_designed":
-        def b_of(p):
-            t = p.transverse_pitch - reference_tooth_thickness(p) - reference_tooth_thickness(out)
-            return float(backlash_at_centre_distance(t, c, standard, alpha))
-        b_stiff, b_comp = b_of(stiff), b_of(compliant)
-    else:
-        b_stiff = b_comp = modelled_backlash(lo, hi, rule)
-        # the output is shared: thin only the pinions (the output keeps the design's teeth)
-        from geargen.core.synthesis import thickness_deficit_for_backlash as thickness_deficit
-        need = thickness_deficit(b_stiff, c, standard, alpha)
-        for label in ("stiff", "comp"):
-            p = stiff if label == "stiff" else compliant
-            present = p.transverse_pitch - reference_tooth_thickness(p) - reference_tooth_thickness(out)
-            extra = need - present
-            if extra < -1e-12:  # the centre distance's range (above) keeps it out
-                raise DesignError(f"gears.{p.name}", "already thinner than the modelled backlash allows",
-                                  "a smaller layout.centre_distance")
-            p = with_changes(p, thinning=p.thinning + max(extra, 0.0))
-            if label == "stiff":
-                stiff = p
-            else:
-                compliant = p
+    # the stiff mesh decides the output's allowance (split equally with the stiff pinion), the
+    # compliant pinion takes the rest of its own mesh's: the model is made at one point of each
+    made = model_gears(design, rule, _mesh_ranges(s, stiff, compliant, out, c))
+    stiff, compliant, out = (made[g.name] for g in (stiff, compliant, out))
+    b_stiff, b_comp = running_backlash(stiff, out, c), running_backlash(compliant, out, c)
     gap = s["loaded_flank_gap"]
     # axial stack on the pinion axis: the stiff pinion from z = 0, the compliant one above it
     z_stiff = 0.0
@@ -129,18 +138,14 @@ def place(design: Design, s: dict) -> Layout:
             raise DesignError("gears.output.face_width", f"the output's face does not reach {part}",
                               f">= {zh:.4g} mm")
         meshes.append(MeshPlacement(f"mesh_{part}", part, spec, "output", out, (zl + zh) / 2, lo, hi,
-                                    running_backlash(spec, out, c), True, flank, c,
-                                    ("layout.circumferential_backlash_min", "layout.circumferential_backlash_max")))
+                                    running_backlash(spec, out, c), True, flank, c, RANGE_KEYS))
     notes = []
-    thinning = {g.name: {"source": "design"} for g in gears}
+    thinning = {g.name: {"source": model_source(rule)} for g in gears}
     if rule != "as_designed":
         unit = design.length_unit
-        notes.append(f"thinning derived for {rule}-range backlash: {s['pinion_stiff']} "
-                     f"{stiff.thinning / LENGTH_SUFFIXES[unit]:.6g} {unit}, {s['pinion_compliant']} "
-                     f"{compliant.thinning / LENGTH_SUFFIXES[unit]:.6g} {unit} (circumferential, at the reference "
-                     "circle; the output keeps the design's teeth)")
-        for name in (s["pinion_stiff"], s["pinion_compliant"]):
-            thinning[name] = {"source": f"derived for {rule}-range backlash ([layout] model_backlash)"}
+        notes.append(f"thinning made at {rule} of each allowance: " + ", ".join(
+            f"{g.name} {g.thinning / LENGTH_SUFFIXES[unit]:.6g} {unit}" for g in (stiff, compliant, out))
+            + " (circumferential, at the reference circle)")
     return Layout(design=design, kind="split_pinion", gears=tuple(gears), meshes=tuple(meshes), settings=s,
                   ratio=ratio_check(design, s, Fraction(out.teeth, stiff.teeth), "input to output"),
                   notes=tuple(notes), thinning=thinning)

@@ -103,12 +103,11 @@ METRIC = Starter(
         )),
         Table("layout", (
             Key("kind", "split_pinion"),
-            Key("model_backlash", "mid"),
+            Key("model_tooth_thickness", "mid_tolerance"),
             Key("loaded_flank_gap_mm", 0.0005, "0.5 um, so that the solids do not touch"),
             Key("centre_distance_mm", 60.0, "standard (24 + 96) x 1 / 2"),
             Key("pinion_axial_gap_mm", 2),
-            Key("circumferential_backlash_min_mm", 0.04, "each pinion's own mesh with the output (thinned "
-                "pinions)"),
+            Key("circumferential_backlash_min_mm", 0.04, "each pinion's own mesh with the output"),
             Key("circumferential_backlash_max_mm", 0.08),
         ), "The assembly model (geargen build): placement, the other parts, exports."),
         Table("parts", (
@@ -256,7 +255,7 @@ INCH = Starter(
         )),
         Table('layout', (
             Key('kind', "split_pinion"),
-            Key('model_backlash', "mid"),
+            Key('model_tooth_thickness', "mid_tolerance"),
             Key('loaded_flank_gap_in', 2e-05, "0.5 um left on the working flanks so the solids do not touch"),
             Key('centre_distance_in', 2.7, "standard (18 + 90) / (2 x 20)"),
             Key('pinion_axial_gap_in', 0.0625),
