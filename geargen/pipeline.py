@@ -453,6 +453,33 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
             made["json"] = out_folder / f"{spec.name}.json"
             write_json(made["json"], _jsonable(data))
             files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
+    files |= bevel_pair_drawings(layout, out_folder, source, str(design.path) if design.path else design.name)
+    return files
+
+
+def bevel_pair_drawings(layout: Layout, out_folder: Path, source: str, design_file: str) -> dict[str, Path]:
+    """The drive's bevel pair (:func:`geargen.drives.dual_pinion.bevel.bevel_drive`, none without one):
+    each gear's data (``NAME.json``, with its mate and the pair's backlash) and drawing, of the specs
+    the solids are built from (their back included)."""
+    from geargen.cad.export import write_json
+    from geargen.drives.dual_pinion.bevel import bevel_drive
+    from geargen.model.bevel_data import bevel_gear_data
+    from geargen.report.drawing_bevel import bevel_drawings
+    from geargen.units import from_mm
+
+    placed = bevel_drive(layout)
+    if placed is None:
+        return {}
+    files = {}
+    for spec, mate in ((placed.gear, placed.pinion), (placed.pinion, placed.gear)):
+        data = bevel_gear_data(spec)
+        # the pair's circumferential backlash: one arc length on both heel pitch circles (they roll together)
+        data["mating_gear"] = {"name": mate.name, "teeth": mate.teeth,
+                               "backlash_circumferential": float(from_mm(placed.backlash, spec.length_unit))}
+        made = bevel_drawings(data, spec, out_folder, spec.name, f"gear {spec.name} of {source}", design_file)
+        made["json"] = out_folder / f"{spec.name}.json"
+        write_json(made["json"], _jsonable(data))
+        files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
     return files
 
 

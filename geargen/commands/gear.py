@@ -423,11 +423,14 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
                               "an external gear")
         data["measured"] = _measure(solid, data)
     drawn = {}
+    design_file = str(Path(args.design).resolve()) if args.design else "command-line options"
     if not args.no_drawing and _drawn(spec):
         from geargen.report.drawing import gear_drawings
         data.setdefault("mating_gears", [])  # a drive's gear has its mates already
-        drawn = gear_drawings(data, solid.profile, out, spec.name, output.source,
-                              str(Path(args.design).resolve()) if args.design else "command-line options")
+        drawn = gear_drawings(data, solid.profile, out, spec.name, output.source, design_file)
+    elif not args.no_drawing:
+        from geargen.report.family_drawings import family_drawings
+        drawn = family_drawings(data, spec, out, spec.name, output.source, design_file)
     data_file = out / f"{spec.name}.json"
     write_json(data_file, data)
     update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",

@@ -1,0 +1,200 @@
+"""Drawings and JSON of the families that are not one cylindrical gear (issue 27): a bevel gear, the
+robot joint's bevel pair as built, a worm and its wheel, a rack and the robot joint's one-piece cluster.
+
+Each sheet is read back (the SVG's data block; the PDF's text through pdftotext) and its numbers
+compared with the part's JSON; the JSON's numbers are checked against closed forms written out here.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import subprocess
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+
+from geargen.report.drawing import COLUMNS_MM, DATA_BLOCK, MM_PER_PT, PAD_MM
+
+SVG_NS = "{http://www.w3.org/2000/svg}"
+#: half a unit of the sheet's last decimal (4 in mm, 5 in inches): a value read back from the sheet
+#: is the JSON's rounded to it
+ROUNDING = {"mm": 0.5e-4, "in": 0.5e-5}
+
+
+def sheet_rows(svg: Path) -> dict[str, tuple[str, str]]:
+    """The data block read back from the SVG: {name: (symbol, value)}, each cell's lines joined."""
+    texts = []
+    for t in ET.parse(svg).getroot().iter(f"{SVG_NS}text"):
+        texts.append(("".join(t.itertext()), float(t.get("x")) * MM_PER_PT, float(t.get("y")) * MM_PER_PT))
+    cols = [DATA_BLOCK[0] + PAD_MM, DATA_BLOCK[0] + COLUMNS_MM[0] + PAD_MM,
+            DATA_BLOCK[0] + COLUMNS_MM[0] + COLUMNS_MM[1] + PAD_MM]
+    names = sorted((y, text) for text, x, y in texts if abs(x - cols[0]) < 1e-3)
+    rows = {}
+    for i, (y, name) in enumerate(names):
+        below = names[i + 1][0] if i + 1 < len(names) else math.inf
+        cell = [[text for text, x, yy in sorted(texts, key=lambda t: t[2]) if abs(x - c) < 1e-3 and y - 1e-3 <= yy < below - 1e-3]
+                for c in cols[1:]]
+        rows.setdefault(name, (" ".join(cell[0]), " ".join(cell[1])))
+    return rows
+
+
+def number(text: str) -> float:
+    """The first number of a sheet value (``0.26857 in``, ``⌀0.96374``)."""
+    return float(re.search(r"[-+]?\d+\.?\d*(?:e[-+]?\d+)?", text).group())
+
+
+def assert_lengths(rows, data, pairs, unit):
+    """Each sheet row ``name`` shows the JSON's ``key`` to the sheet's rounding."""
+    for name, key in pairs:
+        assert name in rows, name
+        assert number(rows[name][1]) == pytest.approx(data[key], abs=ROUNDING[unit] * 1.0001), (name, key)
+
+
+def pdf_text(poppler, pdf: Path) -> str:
+    out = subprocess.run([poppler["pdftotext"], str(pdf), "-"], capture_output=True, text=True, check=True,
+                         timeout=120).stdout
+    return "".join(out.split())
+
+
+def assert_pdf_holds(poppler, pdf, rows):
+    """Every name and value of the SVG's data block is in the PDF's text too (one figure, two files)."""
+    compact = pdf_text(poppler, pdf)
+    for name, (_, value) in rows.items():
+        assert "".join(name.split()) in compact, name
+        for word in value.split():
+            assert word in compact, (name, word)
+
+
+# ---------------------------------------------------------------- bevel
+
+BEVEL_LENGTHS = [("Outer cone distance", "outer_cone_distance"), ("Mean cone distance", "mean_cone_distance"),
+                 ("Face width (along the cone)", "face_width"), ("Reference diameter at the heel", "reference_diameter"),
+                 ("Outside diameter as built", "outside_diameter_as_built"),
+                 ("Mounting distance (apex to back)", "mounting_distance"), ("Crown to back", "crown_to_back"),
+                 ("Heel chordal tooth thickness", "chordal_thickness_heel"),
+                 ("Heel chordal height", "chordal_height_heel"),
+                 ("Mean chordal tooth thickness", "chordal_thickness_mean"),
+                 ("Mean chordal height", "chordal_height_mean")]
+BEVEL_ANGLES = [("Pitch cone angle", "pitch_cone_angle_deg"), ("Face (tip) cone angle", "tip_cone_angle_deg"),
+                ("Root cone angle", "root_cone_angle_deg")]
+
+
+def check_bevel_sheet(files, data, poppler):
+    rows = sheet_rows(files["svg"])
+    assert_lengths(rows, data, BEVEL_LENGTHS, data["length_unit"])
+    for name, key in BEVEL_ANGLES:
+        assert number(rows[name][1]) == pytest.approx(data[key], abs=0.5e-4 * 1.0001)  # 4 decimals of a degree
+    assert_pdf_holds(poppler, files["pdf"], rows)
+    return rows
+
+
+def bevel_closed_form(z, z_mate, m, b, shaft_deg, back):
+    """Cones and mounting distance of a standard straight bevel gear, written out: tan delta = sin S /
+    (z2/z1 + cos S), R_e = z m / (2 sin delta), theta_f = atan(1.25 m / R_e); a flat back (the plane
+    through the heel root circle) lies R_e cos(delta - theta_f) from the apex, the heel sphere's pole R_e."""
+    s = math.radians(shaft_deg)
+    delta = math.atan(math.sin(s) / (z_mate / z + math.cos(s)))
+    re_ = z * m / (2 * math.sin(delta))
+    theta_f = math.atan(1.25 * m / re_)
+    return {"delta": delta, "R_e": re_, "mounting": re_ * math.cos(delta - theta_f) if back == "flat" else re_}
+
+
+def test_bevel_gear_command_json_and_drawing_agree(tmp_path, poppler):
+    from geargen.cli import main
+    out = tmp_path / "bevel"
+    assert main(["gear", "--kind", "bevel", "--teeth", "15", "--mate-teeth", "30", "--module", "1.0",
+                 "--face-width", "5", "--accuracy-grade", "7", "--bevel-thinning", "0.02", "--no-stl",
+                 "--out", str(out), "--name", "bev"]) == 0
+    import json
+    data = json.loads((out / "bev.json").read_text())
+    assert data["back"] == "flat" and data["accuracy"]["grade"] == 7 and data["accuracy"]["standard"] == "ISO 17485"
+    rows = check_bevel_sheet({"svg": out / "bev-drawing.svg", "pdf": out / "bev-drawing.pdf"}, data, poppler)
+    assert "ISO 17485 grade 7" in rows["Accuracy grade"][1]
+    ref = bevel_closed_form(15, 30, 1.0, 5.0, 90.0, "flat")
+    # closed forms in double precision: 1e-12 mm is rounding of a 15 mm quantity
+    assert data["mounting_distance"] == pytest.approx(ref["mounting"], abs=1e-12)
+    assert data["outer_cone_distance"] == pytest.approx(ref["R_e"], abs=1e-12)
+    assert math.radians(data["pitch_cone_angle_deg"]) == pytest.approx(ref["delta"], abs=1e-14)
+    # chordal tooth at the heel against the back-cone rule (KHK): s_c = s - s^3 / (6 d^2),
+    # h_c = h_a + s^2 cos(delta) / (4 d), s = pi m / 2 - thinning, d = z m. The thickness agrees to the
+    # series' next term s^5 / (120 d^4) (8e-8 mm here); the height differs by the sphere's curvature
+    # between pitch and tip cone, of order h_a theta_a^2 = 1 * 0.06^2 = 3.5e-3 mm: bound 4e-3
+    s, d = math.pi / 2 - 0.02, 15.0
+    assert data["chordal_thickness_heel"] == pytest.approx(s - s ** 3 / (6 * d * d), abs=s ** 5 / (120 * d ** 4) * 1.01)
+    assert data["chordal_height_heel"] == pytest.approx(1.0 + s * s * math.cos(ref["delta"]) / (4 * d), abs=4e-3)
+    # the tooth is a cone through the apex: at the mean sphere every chord is the heel's times R_m / R_e
+    # (1e-12: double-precision rounding of millimetre quantities)
+    k = data["mean_cone_distance"] / data["outer_cone_distance"]
+    assert data["chordal_thickness_mean"] == pytest.approx(k * data["chordal_thickness_heel"], abs=1e-12)
+    assert data["chordal_height_mean"] == pytest.approx(k * data["chordal_height_heel"], abs=1e-12)
+
+
+def test_bevel_grade_out_of_range_names_the_option(tmp_path, capsys):
+    from geargen.cli import main
+    code = main(["gear", "--kind", "bevel", "--teeth", "15", "--mate-teeth", "30", "--module", "1.0",
+                 "--face-width", "5", "--accuracy-grade", "1", "--out", str(tmp_path / "x")])
+    assert code != 0 and code != 4
+    assert "--accuracy-grade" in capsys.readouterr().err
+
+
+@pytest.fixture(scope="module")
+def robot_joint_drawings(tmp_path_factory):
+    """The robot joint resolved once and its drawings written (as the build's drawings step)."""
+    from geargen import pipeline
+    root = Path(__file__).resolve().parents[2]
+    layout = pipeline.place(pipeline.load(root / "assemblies" / "robot_joint.toml"))
+    folder = tmp_path_factory.mktemp("robot_joint")
+    files = pipeline.drawings(layout, folder)
+    return layout, files
+
+
+def test_robot_joint_bevel_pair_drawings_and_json(robot_joint_drawings, poppler):
+    import json
+
+    from geargen.drives.dual_pinion.bevel import bevel_drive
+    from geargen.units import from_mm
+    layout, files = robot_joint_drawings
+    placed = bevel_drive(layout)
+    for spec, mate in ((placed.gear, placed.pinion), (placed.pinion, placed.gear)):
+        data = json.loads(files[f"drawing:{spec.name}:json"].read_text())
+        rows = check_bevel_sheet({"svg": files[f"drawing:{spec.name}:svg"], "pdf": files[f"drawing:{spec.name}:pdf"]},
+                                 data, poppler)
+        assert data["back"] == "flat"  # as the hardware cuts it (drives/dual_pinion/hardware.py)
+        assert data["mating_gear"]["name"] == mate.name
+        u = data["length_unit"]
+        assert number(rows["Pair backlash, heel pitch arc"][1]) == pytest.approx(
+            data["mating_gear"]["backlash_circumferential"], abs=ROUNDING[u] * 1.0001)
+        # the pair's backlash is the sum of the two thinnings (bevel_drive splits it equally)
+        assert data["mating_gear"]["backlash_circumferential"] == pytest.approx(
+            float(from_mm(spec.thinning + mate.thinning, u)), rel=1e-12)
+        ref = bevel_closed_form(spec.teeth, spec.mate_teeth, spec.module, spec.face_width, 90.0, "flat")
+        assert data["mounting_distance"] == pytest.approx(float(from_mm(ref["mounting"], u)), rel=1e-12)
+
+
+def test_gear_command_bevel_is_the_builds_solid(robot_joint_drawings):
+    """`geargen gear --kind bevel` with the pair's numbers describes the spec the build cuts: same
+    spec (back included) and the same solid volume."""
+    import argparse
+
+    from geargen.cad.families import build_part
+    from geargen.commands.gear import add_arguments, spec_from_args
+    from geargen.drives.dual_pinion.bevel import bevel_drive
+    from geargen.units import from_mm
+    layout, _ = robot_joint_drawings
+    gear = bevel_drive(layout).gear
+    p = argparse.ArgumentParser()
+    add_arguments(p)
+    u = gear.length_unit
+    args = p.parse_args(["--kind", "bevel", "--teeth", str(gear.teeth), "--mate-teeth", str(gear.mate_teeth),
+                         "--diametral-pitch", f"{25.4 / gear.module!r}", "--face-width", repr(float(from_mm(gear.face_width, u))),
+                         "--bore", repr(float(from_mm(gear.bore_diameter, u))),
+                         "--bevel-thinning", repr(float(from_mm(gear.thinning, u))), "--name", gear.name])
+    spec, _ = spec_from_args(args)
+    for field in ("teeth", "mate_teeth", "back", "shaft_angle", "pressure_angle", "profile_shift"):
+        assert getattr(spec, field) == getattr(gear, field), field
+    # lengths through the inch option text and back: 1e-12 relative is double rounding
+    for field in ("module", "face_width", "bore_diameter", "thinning"):
+        assert getattr(spec, field) == pytest.approx(getattr(gear, field), rel=1e-12), field
+    assert build_part(spec).back == "flat"
