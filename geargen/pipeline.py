@@ -434,6 +434,9 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     allowances = drive_allowances_of(layout)
     files = {}
     drawn = set()
+    from geargen.model.cluster_data import drive_clusters
+    clusters = drive_clusters(layout)
+    cluster_of = {g.name: c.name for c in clusters for g in (c.large, c.small)}
     for placed in layout.gears:
         for spec in placed.gears:
             if spec.name in drawn:  # the second of two identical clusters: the same gear, one drawing
@@ -448,12 +451,34 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
                 continue
             profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
             data = drive_gear_data(layout, spec, profile, allowances.get(spec.name))
+            if spec.name in cluster_of:  # its tooth data sheet belongs to the cluster's drawing
+                data["cluster"] = {"name": cluster_of[spec.name], "drawing": f"{cluster_of[spec.name]}-drawing.svg"}
             made = gear_drawings(data, profile, out_folder, spec.name, f"gear {spec.name} of {source}",
                                  str(design.path) if design.path else design.name)
             made["json"] = out_folder / f"{spec.name}.json"
             write_json(made["json"], _jsonable(data))
             files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
-    files |= bevel_pair_drawings(layout, out_folder, source, str(design.path) if design.path else design.name)
+    design_file = str(design.path) if design.path else design.name
+    files |= bevel_pair_drawings(layout, out_folder, source, design_file)
+    files |= cluster_sheets(layout, clusters, out_folder, source, design_file)
+    return files
+
+
+def cluster_sheets(layout: Layout, clusters, out_folder: Path, source: str, design_file: str) -> dict[str, Path]:
+    """Each cluster article's drawing of the part as made and its data (``NAME.json``):
+    :mod:`geargen.model.cluster_data`, :mod:`geargen.report.drawing_cluster`."""
+    from geargen.cad.export import write_json
+    from geargen.model.cluster_data import cluster_data
+    from geargen.report.drawing_cluster import cluster_drawings
+
+    files = {}
+    for cluster in clusters:
+        data = cluster_data(layout, cluster)
+        made = cluster_drawings(data, cluster.large, cluster.small, out_folder, cluster.name,
+                                f"cluster {cluster.name} of {source}", design_file)
+        made["json"] = out_folder / f"{cluster.name}.json"
+        write_json(made["json"], _jsonable(data))
+        files |= {f"drawing:{cluster.name}:{kind}": path for kind, path in made.items()}
     return files
 
 

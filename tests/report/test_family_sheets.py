@@ -198,3 +198,101 @@ def test_gear_command_bevel_is_the_builds_solid(robot_joint_drawings):
     for field in ("module", "face_width", "bore_diameter", "thinning"):
         assert getattr(spec, field) == pytest.approx(getattr(gear, field), rel=1e-12), field
     assert build_part(spec).back == "flat"
+
+
+# ---------------------------------------------------------------- cluster
+
+
+def _tooth_centre(shape, profile, z: float, guess: float) -> float:
+    """The azimuth (rad) of the tooth centre nearest ``guess`` on the solid's section at ``z``: the
+    mean of the two flanks' crossings of the reference circle (section samples within 2 % of a module
+    of it, on either side of the guess, averaged; the flanks are mirror images, so the mean is the
+    centre up to the sampling's asymmetry, about one sample step over r: < 1e-3 rad here)."""
+    import numpy as np
+
+    from geargen.cad.measure import section
+    cut = section(shape, z, 512)
+    r = np.hypot(cut.points[:, 0], cut.points[:, 1])
+    theta = np.arctan2(cut.points[:, 1], cut.points[:, 0])
+    off = (theta - guess + math.pi) % (2 * math.pi) - math.pi
+    half_pitch = math.pi / profile.spec.teeth
+    near = (np.abs(r - profile.reference_radius) < 0.02 * profile.spec.module) & (np.abs(off) < half_pitch)
+    left, right = off[near & (off > 0)], off[near & (off < 0)]
+    assert left.size and right.size
+    return guess + (left.mean() + right.mean()) / 2
+
+
+def check_cluster_sheet(files, data, poppler):
+    u = data["length_unit"]
+    rows = sheet_rows(files["svg"])
+    assert number(rows["Tooth phase, large to small"][1]) == pytest.approx(data["tooth_phase_deg"], abs=0.5e-4 * 1.0001)
+    assert number(rows["Tooth phase tolerance"][1].lstrip("± ")) == pytest.approx(
+        data["tooth_phase_tolerance_deg"], abs=0.5e-4 * 1.0001)
+    assert_lengths(rows, data, [("Gap between the faces", "axial_gap"), ("Overall length", "overall_length"),
+                                ("Bore (one, through both gears)", "bore_diameter")], u)
+    for key, label in (("large", "Large gear"), ("small", "Small gear")):
+        assert_lengths(rows, data[key], [(f"{label}: tip diameter", "tip_diameter"),
+                                         (f"{label}: face width", "face_width")], u)
+        assert rows[f"{label}: tooth data sheet"][1] == data[key]["tooth_data_drawing"]
+    assert_pdf_holds(poppler, files["pdf"], rows)
+
+
+def test_robot_joint_cluster_one_drawing(robot_joint_drawings, poppler):
+    """The robot joint's clusters (two identical, each a large gear bonded on the small gear's shaft):
+    one cluster sheet and JSON; the phase read from the placements, the tolerance from mesh 1's range."""
+    import json
+    layout, files = robot_joint_drawings
+    data = json.loads(files["drawing:cluster:json"].read_text())
+    check_cluster_sheet({"svg": files["drawing:cluster:svg"], "pdf": files["drawing:cluster:pdf"]}, data, poppler)
+    assert not any(k.startswith("drawing:cluster_a") or k.startswith("drawing:cluster_b") for k in files)
+    # both clusters' placements turn large and small gear together: the phase as placed is that
+    # difference (1e-12 rad: rounding)
+    by = {p.name: p for p in layout.gears}
+    for side in ("a", "b"):
+        large, small = by[f"cluster_large_{side}"], by[f"cluster_small_{side}"]
+        placed = (small.rotation_at(small.spec, small.face_z(small.spec)[0])
+                  - large.rotation_at(large.spec, large.face_z(large.spec)[0]))
+        assert math.radians(data["tooth_phase_as_placed_deg"]) == pytest.approx(placed, abs=1e-12)
+    # tolerance: min over the clusters' meshes of (j_max - j_min) / (2 r), written out
+    expected = min((m.backlash_max - m.backlash_min) / (2 * g.reference_radius)
+                   for m in layout.meshes for g in (m.gear1, m.gear2) if g.name in ("cluster_large", "cluster_small"))
+    assert math.radians(data["tooth_phase_tolerance_deg"]) == pytest.approx(expected, rel=1e-12)
+    for gear in ("cluster_large", "cluster_small"):
+        assert json.loads(files[f"drawing:{gear}:json"].read_text())["cluster"]["drawing"] == "cluster-drawing.svg"
+
+
+def test_one_piece_cluster_phase_is_the_solids(tmp_path, poppler):
+    """A one-piece cluster whose small gear is turned by 0.1 rad: the JSON's phase is the placed
+    model's, measured on the built cluster solid's sections (tooth centres of both gears)."""
+    import dataclasses
+    import json
+
+    from geargen import pipeline
+    from geargen.cad.gear_solid import build_cluster
+    from geargen.design.cluster import ClusterSpec
+    from geargen.model.cluster_data import cluster_data, drive_clusters
+    from geargen.profile.tooth import tooth_profile
+    from geargen.report.drawing_cluster import cluster_drawings
+    root = Path(__file__).resolve().parents[2]
+    text = (root / "assemblies" / "robot_joint.toml").read_text().replace('cluster = "separate"', 'cluster = "one_piece"')
+    design_file = tmp_path / "one_piece.toml"
+    design_file.write_text(text)
+    layout = pipeline.place(pipeline.load(design_file))
+    gears = tuple(dataclasses.replace(p, spec=dataclasses.replace(p.spec, relative_phase=0.1))
+                  if isinstance(p.spec, ClusterSpec) else p for p in layout.gears)
+    layout = dataclasses.replace(layout, gears=gears)
+    (cluster,) = drive_clusters(layout)
+    assert cluster.one_piece
+    data = cluster_data(layout, cluster)
+    files = cluster_drawings(data, cluster.large, cluster.small, tmp_path, cluster.name, "test", str(design_file))
+    check_cluster_sheet(files, data, poppler)
+    spec = cluster.large_placement.spec
+    solid = build_cluster(spec)
+    lp, sp = tooth_profile(spec.large, warn=False), tooth_profile(spec.small, warn=False)
+    eps = 0.01 * spec.large.face_width  # just inside each face (spur gears: the section is the face's)
+    large_centre = _tooth_centre(solid.shape, lp, eps, 0.0)
+    small_centre = _tooth_centre(solid.shape, sp, spec.small_gear_z + eps, math.radians(data["tooth_phase_deg"]))
+    # 2e-3 rad: the two centres' sampling error (< 1e-3 rad each, _tooth_centre)
+    assert small_centre - large_centre == pytest.approx(math.radians(data["tooth_phase_deg"]), abs=2e-3)
+    assert math.radians(data["tooth_phase_deg"]) == pytest.approx(0.1, abs=1e-12)  # within half a pitch: as set
+    assert json.loads(json.dumps(data))["construction"] == "one piece"
