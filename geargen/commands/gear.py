@@ -415,6 +415,10 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
     else:
         from geargen.model.gear_data import family_data
         data = family_data(spec, solid)
+        if getattr(spec, "kind", None) in ("worm", "worm_wheel"):  # the pair's backlash as the pair check finds it
+            from geargen.checks.worm_pair import worm_pair_check
+            from geargen.model.worm_data import pair_check_data
+            data["pair_check"] = pair_check_data(worm_pair_check(spec.set), spec.length_unit)
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]
     if args.measure:

@@ -9,6 +9,8 @@ import importlib
 #: design_file)`` and returning ``{"svg"|"pdf": path}``
 FAMILY_DRAWINGS: dict[str, str] = {
     "bevel": "geargen.report.drawing_bevel:bevel_drawings",
+    "worm": "geargen.report.drawing_worm:worm_drawings",
+    "worm_wheel": "geargen.report.drawing_worm:worm_drawings",
 }
 
 

@@ -296,3 +296,93 @@ def test_one_piece_cluster_phase_is_the_solids(tmp_path, poppler):
     assert small_centre - large_centre == pytest.approx(math.radians(data["tooth_phase_deg"]), abs=2e-3)
     assert math.radians(data["tooth_phase_deg"]) == pytest.approx(0.1, abs=1e-12)  # within half a pitch: as set
     assert json.loads(json.dumps(data))["construction"] == "one piece"
+
+
+# ---------------------------------------------------------------- worm and worm wheel
+
+WORM_OPTIONS = ["--module", "3", "--starts", "2", "--wheel-teeth", "30", "--worm-diameter", "44", "--worm-length", "45",
+                "--wheel-width", "28", "--wheel-profile-shift", "0.3", "--backlash", "0.02", "--no-stl"]
+
+
+@pytest.fixture(scope="module")
+def worm_set_outputs(tmp_path_factory):
+    import json
+
+    from geargen.cli import main
+    out = {}
+    for kind in ("worm", "worm_wheel"):
+        folder = tmp_path_factory.mktemp(kind)
+        assert main(["gear", "--kind", kind, *WORM_OPTIONS, "--out", str(folder / "o"), "--name", kind]) == 0
+        o = folder / "o"
+        out[kind] = (json.loads((o / f"{kind}.json").read_text()),
+                     {"svg": o / f"{kind}-drawing.svg", "pdf": o / f"{kind}-drawing.pdf"})
+    return out
+
+
+def test_worm_json_closed_forms(worm_set_outputs):
+    data, _ = worm_set_outputs["worm"]
+    m, z1, z2, d1, x2 = 3.0, 2, 30, 44.0, 0.3
+    gamma = math.atan(z1 * m / d1)  # tan(gamma) = z1 m_x / d1
+    # closed forms in double precision: 1e-12 is rounding of quantities of tens of mm
+    assert data["lead"] == pytest.approx(z1 * math.pi * m, abs=1e-12)
+    assert data["axial_pitch"] == pytest.approx(math.pi * m, abs=1e-12)
+    assert math.radians(data["lead_angle_deg"]) == pytest.approx(gamma, abs=1e-14)
+    assert data["centre_distance"] == pytest.approx((d1 + z2 * m) / 2 + x2 * m, abs=1e-12)
+    assert data["worm_axial_thread_thickness"] == pytest.approx(math.pi * m / 2, abs=1e-12)  # backlash on the wheel
+    assert data["worm_normal_thread_thickness"] == pytest.approx(math.pi * m / 2 * math.cos(gamma), abs=1e-12)
+    hob = data["hob"]
+    # the hob: the worm's thread, tip raised by c = (1.25 - 1) m_x: d_a0 = d1 + 2 * 1.25 m_x
+    assert hob["tip_diameter"] == pytest.approx(d1 + 2 * 1.25 * m, abs=1e-12)
+    assert hob["tip_clearance"] == pytest.approx(0.25 * m, abs=1e-12)
+    assert hob["lead"] == data["lead"] and hob["reference_diameter"] == data["worm_reference_diameter"]
+    # the pair check finds the design backlash at the design centre distance (its search tolerance 1e-7 mm)
+    assert data["pair_check"]["backlash_circumferential"] == pytest.approx(0.02, abs=1e-6)
+    assert not data["pair_check"]["interference"]
+
+
+def test_wheel_tooth_thickness_is_the_generated_wheels(worm_set_outputs):
+    """The wheel's tooth thickness at d_2 in the mid plane: the JSON's closed form (rack of m_x, alpha_x,
+    shifted x2 m_x, less the thinning) against the wheel the worm generates there, measured on its
+    envelope section (geargen.core.worm.wheel_section, 2000 flank samples)."""
+    from geargen.core.worm import space_width_at_radius, wheel_section, worm_geometry
+    from geargen.design.worm import WormGearSet
+    data, _ = worm_set_outputs["worm_wheel"]
+    m, x2 = 3.0, 0.3
+    alpha_x = math.radians(data["axial_pressure_angle_deg"])
+    assert data["wheel_tooth_thickness_transverse"] == pytest.approx(
+        m * (math.pi / 2 + 2 * x2 * math.tan(alpha_x)) - 0.02, abs=1e-12)
+    s = WormGearSet(axial_module=m, starts=2, wheel_teeth=30, worm_reference_diameter=44.0,
+                    pressure_angle=math.radians(20), worm_face_length=45, wheel_face_width=28, wheel_profile_shift=x2,
+                    backlash=0.02)
+    g = worm_geometry(s)
+    r2 = g.wheel_reference_diameter / 2
+    measured = 2 * math.pi * r2 / 30 - space_width_at_radius(wheel_section(s, g, 0.0, n_flank=2000), r2)
+    # 2e-6 mm: linear interpolation between envelope samples, 2.3e-7 mm at 2000 samples (1.8e-5 at 400:
+    # it falls as 1 / n^2)
+    assert measured == pytest.approx(data["wheel_tooth_thickness_transverse"], abs=2e-6)
+
+
+def test_worm_and_wheel_sheets_read_back(worm_set_outputs, poppler):
+    worm, worm_files = worm_set_outputs["worm"]
+    rows = sheet_rows(worm_files["svg"])
+    assert_lengths(rows, worm, [("Lead", "lead"), ("Axial pitch", "axial_pitch"),
+                                ("Reference diameter", "worm_reference_diameter"),
+                                ("Tip diameter", "worm_tip_diameter"), ("Root diameter", "worm_root_diameter"),
+                                ("Axial thread thickness at d_1", "worm_axial_thread_thickness"),
+                                ("Normal thread thickness at d_1", "worm_normal_thread_thickness"),
+                                ("Centre distance", "centre_distance"),
+                                ("Design backlash (arc at wheel d)", "backlash_circumferential")], "mm")
+    assert number(rows["Lead angle"][1]) == pytest.approx(worm["lead_angle_deg"], abs=0.5e-4 * 1.0001)
+    assert number(rows["Backlash, pair check"][1]) == pytest.approx(worm["pair_check"]["backlash_circumferential"],
+                                                                  abs=ROUNDING["mm"] * 1.0001)
+    assert_pdf_holds(poppler, worm_files["pdf"], rows)
+    wheel, wheel_files = worm_set_outputs["worm_wheel"]
+    rows = sheet_rows(wheel_files["svg"])
+    assert_lengths(rows, wheel, [("Throat diameter", "throat_diameter"), ("Outside diameter", "wheel_outside_diameter"),
+                                 ("Root diameter", "wheel_root_diameter"), ("Face width", "wheel_face_width"),
+                                 ("Tooth thickness at d_2, mid plane", "wheel_tooth_thickness_transverse"),
+                                 ("Centre distance", "centre_distance")], "mm")
+    assert_lengths(rows, wheel["hob"], [("Hob tip diameter", "tip_diameter"), ("Hob tip clearance", "tip_clearance"),
+                                        ("Hob lead", "lead"), ("Hob axial thread thickness", "axial_thread_thickness"),
+                                        ("Hob normal thread thickness", "normal_thread_thickness")], "mm")
+    assert_pdf_holds(poppler, wheel_files["pdf"], rows)
