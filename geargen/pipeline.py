@@ -442,12 +442,17 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
             if spec.name in drawn:  # the second of two identical clusters: the same gear, one drawing
                 continue
             drawn.add(spec.name)
-            if not isinstance(spec, GearSpec):  # another family's part (a rack drive's rack): its data only
+            if not isinstance(spec, GearSpec):  # another family's part (a rack drive's rack): its own sheet
                 from geargen.model.gear_data import family_data
+                from geargen.report.family_drawings import family_drawings
+                data = family_data(spec)
+                made = family_drawings(data, spec, out_folder, spec.name, f"gear {spec.name} of {source}",
+                                       str(design.path) if design.path else design.name)
                 path = out_folder / f"{spec.name}.json"
                 out_folder.mkdir(parents=True, exist_ok=True)
-                write_json(path, _jsonable(family_data(spec)))
+                write_json(path, _jsonable(data))
                 files[f"drawing:{spec.name}:json"] = path
+                files |= {f"drawing:{spec.name}:{kind}": p for kind, p in made.items()}
                 continue
             profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
             data = drive_gear_data(layout, spec, profile, allowances.get(spec.name))

@@ -339,6 +339,8 @@ def gear_allowance(args, spec: GearSpec):
     from geargen.model.allowance import entered_allowance
 
     given = getattr(args, "thickness_allowance", None)
+    if getattr(spec, "kind", None) == "rack":  # a rack carries its allowance in its spec (with_rack_allowance)
+        return None
     if not isinstance(spec, GearSpec):  # the other families enter their thinning only
         if given is not None:
             raise DesignError("--thickness-allowance", f"applies to cylindrical gears, not --kind {spec.kind}",
@@ -356,9 +358,26 @@ def gear_allowance(args, spec: GearSpec):
     return None
 
 
+def with_rack_allowance(args, spec):
+    """A rack with the allowance ``--thickness-allowance`` gives it (refused when its design table
+    gives one too); any other spec as it is."""
+    import dataclasses
+
+    from geargen.core.allowance import ThicknessAllowance
+    given = getattr(args, "thickness_allowance", None)
+    if given is None or getattr(spec, "kind", None) != "rack":
+        return spec
+    if spec.thickness_deviations is not None:
+        raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
+                          f"rack {spec.name}", "the option or the design keys, not both")
+    checked = ThicknessAllowance(given[0] * 1e-3, given[1] * 1e-3, field="--thickness-allowance")
+    return dataclasses.replace(spec, thickness_deviations=(checked.upper, checked.lower))
+
+
 def run(args) -> int:
     layout = drive_layout(args)
     spec, thinning_source = spec_from_args(args, layout)
+    spec = with_rack_allowance(args, spec)
     allowance = gear_allowance(args, spec)
     if allowance is None and layout is not None:
         from geargen.pipeline import drive_allowances_of

@@ -10,6 +10,7 @@ import importlib
 FAMILY_DRAWINGS: dict[str, str] = {
     "bevel": "geargen.report.drawing_bevel:bevel_drawings",
     "worm": "geargen.report.drawing_worm:worm_drawings",
+    "rack": "geargen.report.drawing_rack:rack_drawings",
     "worm_wheel": "geargen.report.drawing_worm:worm_drawings",
 }
 

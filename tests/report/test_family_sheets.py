@@ -15,7 +15,7 @@ from pathlib import Path
 
 import pytest
 
-from geargen.report.drawing import COLUMNS_MM, DATA_BLOCK, MM_PER_PT, PAD_MM
+from geargen.report.drawing import COLUMNS_MM, DATA_BLOCK, MIN_FONT_PT, MM_PER_PT, PAD_MM, ROW_PAD_MM
 
 SVG_NS = "{http://www.w3.org/2000/svg}"
 #: half a unit of the sheet's last decimal (4 in mm, 5 in inches): a value read back from the sheet
@@ -24,16 +24,25 @@ ROUNDING = {"mm": 0.5e-4, "in": 0.5e-5}
 
 
 def sheet_rows(svg: Path) -> dict[str, tuple[str, str]]:
-    """The data block read back from the SVG: {name: (symbol, value)}, each cell's lines joined."""
+    """The data block read back from the SVG: {name: (symbol, value)}, each cell's lines joined. The
+    lines of one cell are one line height apart, rows a line height and two row paddings: a name
+    line closer than half way between to the one above continues that row's name."""
     texts = []
     for t in ET.parse(svg).getroot().iter(f"{SVG_NS}text"):
         texts.append(("".join(t.itertext()), float(t.get("x")) * MM_PER_PT, float(t.get("y")) * MM_PER_PT))
     cols = [DATA_BLOCK[0] + PAD_MM, DATA_BLOCK[0] + COLUMNS_MM[0] + PAD_MM,
             DATA_BLOCK[0] + COLUMNS_MM[0] + COLUMNS_MM[1] + PAD_MM]
-    names = sorted((y, text) for text, x, y in texts if abs(x - cols[0]) < 1e-3)
+    line_h = MIN_FONT_PT * 1.2 * MM_PER_PT
+    starts: list[list] = []  # [y of the row's first line, name]
+    for y, text in sorted((y, text) for text, x, y in texts if abs(x - cols[0]) < 1e-3):
+        if starts and y - starts[-1][2] < line_h + ROW_PAD_MM:
+            starts[-1][1] += " " + text
+            starts[-1][2] = y
+        else:
+            starts.append([y, text, y])
     rows = {}
-    for i, (y, name) in enumerate(names):
-        below = names[i + 1][0] if i + 1 < len(names) else math.inf
+    for i, (y, name, _) in enumerate(starts):
+        below = starts[i + 1][0] if i + 1 < len(starts) else math.inf
         cell = [[text for text, x, yy in sorted(texts, key=lambda t: t[2]) if abs(x - c) < 1e-3 and y - 1e-3 <= yy < below - 1e-3]
                 for c in cols[1:]]
         rows.setdefault(name, (" ".join(cell[0]), " ".join(cell[1])))
@@ -386,3 +395,87 @@ def test_worm_and_wheel_sheets_read_back(worm_set_outputs, poppler):
                                         ("Hob lead", "lead"), ("Hob axial thread thickness", "axial_thread_thickness"),
                                         ("Hob normal thread thickness", "normal_thread_thickness")], "mm")
     assert_pdf_holds(poppler, wheel_files["pdf"], rows)
+
+
+# ---------------------------------------------------------------- rack
+
+
+def _pin_rest_height(outline, diameter: float) -> float:
+    """Height of the centre of a pin resting in the space at x = 0 on the rack's modelled outline
+    (:meth:`geargen.core.rack.RackOutline.height_at`, fillets and lands included), found numerically:
+    the centre height where the nearest outline point (200001 samples over two pitches) is D / 2 away
+    (bisection; the nearest distance falls as the pin is lowered)."""
+    import numpy as np
+    x = np.linspace(-outline.pitch, outline.pitch, 200001)
+    u = outline.height_at(x)
+
+    def clearance(y):
+        return np.min(np.hypot(x, u - y)) - diameter / 2
+
+    lo, hi = -outline.dedendum, outline.addendum + diameter
+    for _ in range(100):
+        mid = (lo + hi) / 2
+        lo, hi = (lo, mid) if clearance(mid) > 0 else (mid, hi)
+    return (lo + hi) / 2
+
+
+@pytest.mark.parametrize("helix", [0.0, 15.0])
+def test_rack_allowance_pin_dimension_and_sheet(tmp_path, poppler, helix):
+    import json
+
+    from geargen.cli import main
+    from geargen.core.rack import rack_outline
+    from geargen.design.rack import rack_from_table
+    out = tmp_path / "rack"
+    options = ["gear", "--kind", "rack", "--module", "2", "--teeth", "10", "--face-width", "10", "--thinning", "0.03",
+               "--thickness-allowance", "-20", "-50", "--no-stl", "--out", str(out), "--name", "r"]
+    if helix:
+        options += ["--helix-angle", str(helix)]
+    assert main(options) == 0
+    data = json.loads((out / "r.json").read_text())
+    assert data["warnings"] == []  # the model's 0.03 cos(beta) mm thinning lies inside [20, 50] um
+    p_n = math.pi * 2.0
+    # limits: p_n / 2 + E_sni .. p_n / 2 + E_sns (1e-12 mm: rounding)
+    assert data["tooth_thickness_normal_limits"] == pytest.approx([p_n / 2 - 0.050, p_n / 2 - 0.020], abs=1e-12)
+    beta = math.radians(helix)
+    assert data["tooth_thickness_normal_model"] == pytest.approx(p_n / 2 - 0.03 * math.cos(beta), abs=1e-12)
+    # the pin touching the zero-backlash tooth at the pitch line: D = (p_n / 2) / cos(20 deg)
+    pin = data["over_pin"]
+    assert pin["diameter"] == pytest.approx(p_n / 2 / math.cos(math.radians(20)), abs=1e-12)
+    # over the pin to the back face against the pin resting on the modelled outline, found numerically
+    # for the model's tooth and each limit (2e-6 mm: the samples' spacing 6e-5 mm gives a distance error
+    # of (6e-5)^2 / D, below 1e-9, and bisection to 1e-15; the bound is the sampled flank's chords)
+    table = {"kind": "rack", "teeth": 10, "module_mm": 2, "face_width_mm": 10, "helix_angle_deg": helix,
+             "thinning_circumferential_mm": 0.03}
+    spec = rack_from_table(table)
+    for thinning_normal, value in ((0.03 * math.cos(beta), pin["dimension_to_back"]), (0.050, pin["limits"][0]),
+                                   (0.020, pin["limits"][1])):
+        made = rack_from_table({**table, "thinning_circumferential_mm": thinning_normal / math.cos(beta)})
+        y = _pin_rest_height(rack_outline(made), pin["diameter"])
+        assert value == pytest.approx(spec.pitch_line_height + y + pin["diameter"] / 2, abs=2e-6)
+    rows = sheet_rows(out / "r-drawing.svg")
+    kind = pin["kind"]
+    assert_lengths(rows, data, [("Tooth thickness at the pitch line (normal)", "tooth_thickness_normal_model"),
+                                ("Back face to pitch line", "pitch_line_height")], "mm")
+    assert_lengths(rows, pin, [(f"{kind.capitalize()} diameter", "diameter"),
+                               (f"Back face over {kind}", "dimension_to_back")], "mm")
+    hi, lo = (float(v) for v in re.findall(r"\d+\.\d+", rows[f"Over-{kind} limits"][1]))
+    assert (lo, hi) == pytest.approx(tuple(pin["limits"]), abs=ROUNDING["mm"] * 1.0001)
+    hi, lo = (float(v) for v in re.findall(r"\d+\.\d+", rows["Tooth thickness limits"][1]))
+    assert (lo, hi) == pytest.approx(tuple(data["tooth_thickness_normal_limits"]), abs=ROUNDING["mm"] * 1.0001)
+    assert "-20.0 µm" in rows["Tooth thickness allowance, upper"][1]
+    assert_pdf_holds(poppler, out / "r-drawing.pdf", rows)
+
+
+def test_rack_table_allowance_keys():
+    from geargen.design.rack import rack_from_table
+    from geargen.errors import DesignError
+    base = {"kind": "rack", "teeth": 10, "module_mm": 2, "face_width_mm": 10}
+    spec = rack_from_table({**base, "thickness_upper_deviation_um": -20, "thickness_lower_deviation_um": -50})
+    assert spec.thickness_deviations == pytest.approx((-0.020, -0.050), abs=1e-15)
+    with pytest.raises(DesignError) as err:
+        rack_from_table({**base, "thickness_upper_deviation_um": -20})
+    assert err.value.field == "gear.thickness_lower_deviation_um"
+    with pytest.raises(DesignError) as err:
+        rack_from_table({**base, "thickness_upper_deviation_um": -50, "thickness_lower_deviation_um": -20})
+    assert err.value.field == "gear.thickness_lower_deviation_um"
