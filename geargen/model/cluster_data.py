@@ -134,8 +134,9 @@ def cluster_data(layout, cluster: PlacedCluster) -> dict:
     hub = large.hub
     return {
         "name": cluster.name, "kind": "cluster", "length_unit": unit,
-        "construction": "one piece" if cluster.one_piece else "two parts: the large gear fixed on the small gear's "
-                                                             "shaft (pressed and bonded), phased as below",
+        "construction": "one piece" if cluster.one_piece else "two parts, bonded",
+        "construction_note": None if cluster.one_piece else "the large gear pressed and bonded on the small gear's "
+                                                            "shaft, its teeth phased to the small gear's as stated",
         "large": _gear_block(large, unit), "small": _gear_block(small, unit),
         # axial layout from the large gear's lower face (the part's datum face)
         "large_face": [0.0, L(z_large[1] - z_large[0])],

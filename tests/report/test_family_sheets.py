@@ -479,3 +479,49 @@ def test_rack_table_allowance_keys():
     with pytest.raises(DesignError) as err:
         rack_from_table({**base, "thickness_upper_deviation_um": -50, "thickness_lower_deviation_um": -20})
     assert err.value.field == "gear.thickness_lower_deviation_um"
+
+
+# ---------------------------------------------------------------- every sheet in Chromium
+
+
+def _boxes(svg: Path, chromium, tmp_path) -> list[dict]:
+    """Every text's box as Chromium lays the SVG out (sheet points), by the gear drawing test's page."""
+    import html
+    import json
+
+    from tests.report.test_drawing import _BOXES_PAGE, _chromium
+    text = svg.read_text(encoding="utf-8")
+    page = tmp_path / f"{svg.stem}.html"
+    page.write_text(_BOXES_PAGE.format(svg=text[text.index("<svg"):]), encoding="utf-8")
+    done = _chromium(chromium, page, tmp_path / "profile", "--dump-dom")
+    found = re.search(r'<pre id="boxes">(.*?)</pre>', done.stdout, re.S)
+    assert found and found.group(1), done.stderr[-2000:]
+    return json.loads(html.unescape(found.group(1)))
+
+
+def test_in_chromium_every_text_inside_its_cell_and_none_overlap(robot_joint_drawings, worm_set_outputs, chromium,
+                                                                  tmp_path):
+    """The family sheets as a browser draws them: no two texts overlap, every text of the data block
+    lies inside its column and the block, every text on the sheet (0.05 mm: sub-pixel rounding of the
+    browser's boxes)."""
+    from geargen.cli import main
+    _, files = robot_joint_drawings
+    sheets = [files[f"drawing:{n}:svg"] for n in ("bevel_gear", "bevel_pinion", "cluster")]
+    sheets += [worm_set_outputs[k][1]["svg"] for k in ("worm", "worm_wheel")]
+    assert main(["gear", "--kind", "rack", "--module", "2", "--teeth", "10", "--face-width", "10",
+                 "--thickness-allowance", "-20", "-50", "--no-stl", "--out", str(tmp_path / "rack"), "--name", "r"]) == 0
+    sheets.append(tmp_path / "rack" / "r-drawing.svg")
+    cols = [DATA_BLOCK[0], DATA_BLOCK[0] + COLUMNS_MM[0], DATA_BLOCK[0] + COLUMNS_MM[0] + COLUMNS_MM[1], DATA_BLOCK[2]]
+    slack = 0.05
+    for svg in sheets:
+        boxes = [{k: (v * MM_PER_PT if k != "text" else v) for k, v in b.items()} for b in _boxes(svg, chromium, tmp_path)]
+        overlaps = [(a["text"], b["text"]) for i, a in enumerate(boxes) for b in boxes[i + 1:]
+                    if a["x0"] < b["x1"] - slack and b["x0"] < a["x1"] - slack and a["y0"] < b["y1"] - slack
+                    and b["y0"] < a["y1"] - slack]
+        assert not overlaps, (svg.name, overlaps)
+        top = 297.0 - DATA_BLOCK[3]  # the SVG's y runs down from the top edge
+        for b in boxes:
+            assert b["x0"] >= 0 and b["y0"] >= 0 and b["x1"] <= 420 and b["y1"] <= 297, (svg.name, b["text"])
+            if b["x0"] >= DATA_BLOCK[0] - slack and b["y0"] >= top - slack and b["y1"] <= 297.0 - DATA_BLOCK[1]:
+                col = max(j for j in range(3) if b["x0"] >= cols[j] - slack)
+                assert b["x1"] <= cols[col + 1] + slack, (svg.name, b["text"], b["x1"], cols[col + 1])
