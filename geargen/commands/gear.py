@@ -70,7 +70,8 @@ def add_arguments(p) -> None:
                    help="tooth thinning for backlash: circumferential (transverse arc at the reference circle), "
                         "in the unit of the pitch system (default 0)")
     g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
-                   help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances (--kind bevel: ISO 17485 grade 2..11, recorded)")
+                   help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances "
+                        "(--kind bevel: ISO 17485 grade 2..11, recorded)")
     g.add_argument("--name", default=None,
                    help=f"part name, the files' names (default: the [gear] file's, or gear_<teeth>): at most {GEAR_NAME_MAX} "
                         "of A-Z a-z 0-9 _ - .")

@@ -162,8 +162,11 @@ def robot_joint_drawings(tmp_path_factory):
 def test_robot_joint_bevel_pair_drawings_and_json(robot_joint_drawings, poppler):
     import json
 
+    from geargen.cad.families import build_toothed
+    from geargen.cad.parts import bounding_box
     from geargen.drives.dual_pinion.bevel import bevel_drive
-    from geargen.units import from_mm
+    from geargen.model.components import Toothed
+    from geargen.units import from_mm, to_mm
     layout, files = robot_joint_drawings
     placed = bevel_drive(layout)
     for spec, mate in ((placed.gear, placed.pinion), (placed.pinion, placed.gear)):
@@ -180,6 +183,12 @@ def test_robot_joint_bevel_pair_drawings_and_json(robot_joint_drawings, poppler)
             float(from_mm(spec.thinning + mate.thinning, u)), rel=1e-12)
         ref = bevel_closed_form(spec.teeth, spec.mate_teeth, spec.module, spec.face_width, 90.0, "flat")
         assert data["mounting_distance"] == pytest.approx(float(from_mm(ref["mounting"], u)), rel=1e-12)
+        # measured on the solid the build cuts (apex at the origin, axis +z, tooth 0 on +x): its back
+        # face is the farthest from the apex, the crown of tooth 0 the farthest along +x (2e-7 mm: the
+        # kernel's optimal box, enlarged by the edges' 1e-7 mm tolerance; far below the sheet's 0.25 um)
+        lo, hi = bounding_box(build_toothed(Toothed(spec, spec.back)))
+        assert hi[2] == pytest.approx(to_mm(data["mounting_distance"], u), abs=2e-7)
+        assert hi[0] == pytest.approx(to_mm(data["outside_diameter_as_built"], u) / 2, abs=2e-7)
 
 
 def test_gear_command_bevel_is_the_builds_solid(robot_joint_drawings):
