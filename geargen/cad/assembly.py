@@ -232,11 +232,12 @@ def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, leng
     from OCP.STEPCAFControl import STEPCAFControl_Writer
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
     from OCP.XSControl import XSControl_WorkSession
-    from geargen.cad.export import STEP_UNITS, _quiet_kernel, atomic_path
+    from geargen.cad.export import STEP_UNITS, atomic_path
+    from geargen.cad.kernel import quiet_kernel
 
     doc = assembly_document(name, parts)
     STEPControl_Controller.Init_s()
-    _quiet_kernel()
+    quiet_kernel()
     writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
     writer.SetColorMode(True)
     writer.SetLayerMode(True)

@@ -36,7 +36,7 @@ from types import SimpleNamespace
 import numpy as np
 from scipy.interpolate import BSpline
 
-from geargen.cad.worm_solid import WormPartSolid, _checked
+from geargen.cad.worm_solid import WormPartSolid, checked_worm_solid
 from geargen.core.worm import WormGeometry, wheel_outline, worm_geometry, z_ranges
 from geargen.design.worm import WormGearSet, WormWheelSpec
 from geargen.errors import KernelFailure
@@ -217,8 +217,9 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
     from OCP.TopoDS import TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
-    from geargen.cad.gear_solid import KERNEL_TOLERANCE as tol
-    from geargen.cad.gear_solid import _bspline2d, _bspline3d, _bspline_surface_of, _edge, _vertex, _wire
+    from geargen.cad.kernel import KERNEL_TOLERANCE as tol
+    from geargen.cad.kernel import (bspline_curve_2d, bspline_curve_3d, bspline_surface, make_edge, make_vertex,
+                                    make_wire)
 
     builder = BRep_Builder()
     pitch = 2 * math.pi / teeth
@@ -229,7 +230,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
         it): the kernel's integrals (volume, area) take one knot span at a time."""
         ts = np.asarray(knots, float)
         poles = np.asarray(a, float) + np.outer((ts - ts[0]) / (ts[-1] - ts[0]), np.subtract(b, a))
-        return _bspline2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
+        return bspline_curve_2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
 
     # per tooth t: the rim at the top of its space's flank +1 (u = 0 of the space face, u = end of
     # the previous tip face) and of its flank -1 (u = end of the space face, u = 0 of its tip face),
@@ -249,20 +250,20 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     for t in range(teeth):
         for which, column in (("+", fit.space[0]), ("-", fit.space[-1])):
             col = _rotated_poles(column, t * pitch)
-            vertices = [_vertex(builder, *col[0])] + [_vertex(builder, *col[first + count - 1])
+            vertices = [make_vertex(builder, *col[0])] + [make_vertex(builder, *col[first + count - 1])
                                                       for first, count, _, _ in pieces]
             edges = []
             for (first, count, knots, mults), a, b in zip(pieces, vertices[:-1], vertices[1:]):
-                curve = _bspline3d(col[first:first + count], knots, mults, DEGREE)
-                edges.append(_edge(builder, curve, a, b, knots[0], knots[-1]))
+                curve = bspline_curve_3d(col[first:first + count], knots, mults, DEGREE)
+                edges.append(make_edge(builder, curve, a, b, knots[0], knots[-1]))
             rims[t, which] = edges
             corners[t, which] = [vertices[0], vertices[-1]]
     faces, ends = [], {v_lo: [], v_hi: []}
     for t in range(teeth):
         for which, poles, basis in (("space", fit.space, fit.space_u), ("tip", fit.tip, fit.tip_u)):
             turned = _rotated_poles(poles, t * pitch)
-            surface = _bspline_surface_of(turned, basis.knots, basis.mults, basis.degree, fit.v.knots, fit.v.mults,
-                                          fit.v.degree)
+            surface = bspline_surface(turned, basis.knots, basis.mults, basis.degree, fit.v.knots, fit.v.mults,
+                                      fit.v.degree)
             face = TopoDS_Face()
             builder.MakeFace(face, surface, tol)
             u1 = u_end[which]
@@ -274,8 +275,8 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             r_ends = corners[t, "-"] if which == "space" else corners[(t + 1) % teeth, "+"]
             row_edges = []
             for k, v in ((0, v_lo), (-1, v_hi)):
-                curve = _bspline3d(turned[:, k], basis.knots, basis.mults, basis.degree)
-                edge = _edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
+                curve = bspline_curve_3d(turned[:, k], basis.knots, basis.mults, basis.degree)
+                edge = make_edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
                 builder.UpdateEdge(edge, line((0.0, v), (u1, v), [0.0, u1]), face, tol)  # dv = 0: no volume
                 ends[v].append(edge)
                 row_edges.append(edge)
@@ -284,7 +285,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             # wheel, v = z)
             loop = [row_edges[0]] + right + [row_edges[1]] + left[::-1]
             orient = [TopAbs_FORWARD] * (1 + len(right)) + [TopAbs_REVERSED] * (1 + len(left))
-            builder.Add(face, _wire(builder, loop, orient))
+            builder.Add(face, make_wire(builder, loop, orient))
             faces.append(face)
     for v, edges in ends.items():
         plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, v), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)))
@@ -292,7 +293,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
         builder.MakeFace(face, plane, tol)
         for edge in edges:
             BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
-        builder.Add(face, _wire(builder, edges))  # counterclockwise seen from +z
+        builder.Add(face, make_wire(builder, edges))  # counterclockwise seen from +z
         faces.append(face if v == v_hi else face.Reversed())
     shell = TopoDS_Shell()
     builder.MakeShell(shell)
@@ -313,7 +314,8 @@ def build_worm_wheel(spec: WormWheelSpec, check: bool = False, tolerance: float 
     g = worm_geometry(s)
     fit = fit_wheel(s, g, tolerance)
     solid = _wheel_solid(fit, s.wheel_teeth, s.wheel_face_width / 2)
-    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=fit.max_error)
+    return WormPartSolid(checked_worm_solid(solid, spec.name, check), spec.name, spec, g, s.length_unit,
+                         flank_error=fit.max_error)
 
 
 __all__ = ["build_worm_wheel", "fit_wheel", "WheelFit", "z_ranges", "DEGREE", "FIT_TOLERANCE"]
