@@ -1,8 +1,9 @@
 """One home per formula (issue 26): the involute function, the working pressure angle at a centre
 distance, the backlash a centre distance gives, the roll length and length of action live in
-:mod:`geargen.core.involute`; the kernel helpers (B-spline curves and surfaces from poles, vertex,
-edge and wire builders) in :mod:`geargen.cad.kernel`. The scans below fail when a copy of one of
-these formulas is written afresh elsewhere in ``geargen/``, or when a cad module imports another
+:mod:`geargen.core.involute`; the B-spline least-squares fit and the Greville abscissae in
+:mod:`geargen.profile.bspline_fit`; the kernel helpers (B-spline curves and surfaces from poles,
+vertex, edge and wire builders, booleans, volume) in :mod:`geargen.cad.kernel`. The scans below fail when a copy of one of
+these formulas is written afresh elsewhere in ``geargen/``, or when a module imports another
 module's private name; the closed-form tests check each home against published numbers and
 independent constructions.
 
@@ -29,13 +30,16 @@ DEG = math.pi / 180
 #: where each formula lives
 HOMES = {"involute": "core/involute.py", "working pressure angle": "core/involute.py",
          "backlash at a centre distance": "core/involute.py", "line of action": "core/involute.py",
-         "kernel helper": "cad/kernel.py"}
+         "B-spline fit": "profile/bspline_fit.py", "Greville abscissae": "profile/bspline_fit.py",
+         "kernel boolean": "cad/kernel.py", "kernel volume": "cad/kernel.py"}
 
 #: (file under geargen/, formula) -> why that file keeps its own copy
 ALLOWED = {
     ("design/feasibility.py", "involute"): "design is the bottom layer (tests/test_layering.py) and may not import "
                                            "core; tests/design/test_feasibility.py checks its closed forms against "
                                            "core.involute and the outline",
+    ("core/worm.py", "Greville abscissae"): "core is below profile (tests/test_layering.py): the helix spline's "
+                                            "Greville abscissae of its unclamped knots, one line",
 }
 
 
@@ -119,6 +123,20 @@ def formula_copies(path: Path) -> list[tuple[int, str, str]]:
                     _call(n, "involute", "tan") or (isinstance(n, ast.Name) and n.id.startswith("tan"))
                     for n in ast.walk(difference[0].left)):
                 found.append((node.lineno, "backlash at a centre distance", ast.unparse(node)))
+        # the Greville abscissae: [t[j + 1:j + p + 1].mean() for j in ...]
+        if isinstance(node, ast.ListComp) and _call(node.elt, "mean") and isinstance(node.elt.func, ast.Attribute) \
+                and isinstance(node.elt.func.value, ast.Subscript):
+            found.append((node.lineno, "Greville abscissae", ast.unparse(node)))
+        # a boolean's arguments and tools set by hand, the kernel's plain volume integration
+        if _call(node, "SetArguments"):
+            found.append((node.lineno, "kernel boolean", ast.unparse(node)))
+        if _call(node, "VolumeProperties_s"):
+            found.append((node.lineno, "kernel volume", ast.unparse(node)))
+    # a least-squares fit on a B-spline basis (the basis of a design matrix solved by lstsq)
+    calls = {_name(n.func) for n in ast.walk(tree) if isinstance(n, ast.Call)}
+    if {"design_matrix", "lstsq"} <= calls:
+        line = min(n.lineno for n in ast.walk(tree) if _call(n, "design_matrix"))
+        found.append((line, "B-spline fit", "BSpline.design_matrix(...) solved by np.linalg.lstsq"))
     # the same site is found once per formula
     return sorted(set(found))
 
@@ -154,6 +172,10 @@ def test_the_homes_hold_each_formula():
     """The scan recognises each formula in its home (else it could not find a copy anywhere)."""
     found = {f for _, f, _ in formula_copies(PACKAGE / "core/involute.py")}
     assert {"involute", "working pressure angle", "backlash at a centre distance", "line of action"} <= found, found
+    found = {f for _, f, _ in formula_copies(PACKAGE / "profile/bspline_fit.py")}
+    assert {"B-spline fit", "Greville abscissae"} <= found, found
+    found = {f for _, f, _ in formula_copies(PACKAGE / "cad/kernel.py")}
+    assert {"kernel boolean", "kernel volume"} <= found, found
 
 
 def test_the_scan_finds_each_form_of_copy(tmp_path):
@@ -169,12 +191,16 @@ def test_the_scan_finds_each_form_of_copy(tmp_path):
         "    w4 = np.arccos(c_std * np.cos(alpha_t) / a)\n"
         "    j = 2.0 * (rb1 + rb2) * (involute(w) - inv0)\n"
         "    g = math.sqrt(ra1 ** 2 - rb1 ** 2) + math.sqrt(ra2 ** 2 - rb2 ** 2) - a * math.sin(w)\n"
+        "    design = BSpline.design_matrix(s, t, 3).toarray()\n"
+        "    poles = np.linalg.lstsq(design, y, rcond=None)[0]\n"
+        "    gr = np.array([t[j + 1:j + 4].mean() for j in range(len(t) - 4)])\n"
         "    return x, w, w2, w3, w4, j, g\n")
     kinds = [f for _, f, _ in formula_copies(copy)]
     assert kinds.count("involute") == 1
     assert kinds.count("working pressure angle") == 4
     assert kinds.count("backlash at a centre distance") == 1
     assert kinds.count("line of action") == 1
+    assert kinds.count("B-spline fit") == 1 and kinds.count("Greville abscissae") == 1
     alike = tmp_path / "alike.py"
     alike.write_text(
         "import math\nimport numpy as np\n"
@@ -182,6 +208,7 @@ def test_the_scan_finds_each_form_of_copy(tmp_path):
         "    p = np.arccos(np.clip(rb / r, -1.0, 1.0))\n"  # pressure angle at a radius: not a working angle
         "    q = math.tan(a) - b\n"
         "    s = math.sqrt(r ** 2 - rb ** 2) - a * math.tan(alpha)\n"
+        "    values = BSpline.design_matrix(x, t, 3).toarray() @ poles\n"  # evaluation, not a fit
         "    return p, q, s\n")
     assert formula_copies(alike) == []
 
@@ -202,10 +229,11 @@ def private_imports(package: Path) -> list[str]:
     return found
 
 
-def test_cad_imports_no_private_name_of_another_module():
-    found = private_imports(PACKAGE / "cad")
-    assert not found, "cad modules import another module's private names (make them public in " \
-                      "geargen/cad/kernel.py or their module):\n" + "\n".join(found)
+def test_no_module_imports_a_private_name_of_another():
+    """On main before issue 26's helpers: 64 names in 25 imports (29 in cad/, the kernel helpers)."""
+    found = private_imports(PACKAGE)
+    assert not found, "modules import another module's private names (make them public, the kernel helpers in " \
+                      "geargen/cad/kernel.py):\n" + "\n".join(found)
 
 
 def test_the_private_import_scan_finds_one(tmp_path):

@@ -29,12 +29,9 @@ from __future__ import annotations
 from dataclasses import replace
 
 from OCP.BOPAlgo import BOPAlgo_GlueFull, BOPAlgo_GlueShift
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
-from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
-from OCP.TopTools import TopTools_ListOfShape
 
 from geargen.cad.gear_solid import GearSolid, check_solid, default_tolerance, hub_body, toothed_body
-from geargen.cad.kernel import single_solid
+from geargen.cad.kernel import fused_solid
 from geargen.design.gear import GearSpec, Hub
 from geargen.errors import BuildError
 from geargen.profile.tessellate import Layer
@@ -74,20 +71,8 @@ def double_helical_layers(spec: GearSpec, profile: ToothProfile) -> list[Layer]:
 def _fused(parts: list, glue: str):
     """Fuse solids that only touch (the hub on the first end face): the kernel's glue option
     (``shift``: the faces coincide in part) skips the face-face intersection, the slow part."""
-    op = BRepAlgoAPI_Fuse()
-    args, tools = TopTools_ListOfShape(), TopTools_ListOfShape()
-    args.Append(parts[0])
-    for shape in parts[1:]:
-        tools.Append(shape)
-    op.SetArguments(args)
-    op.SetTools(tools)
-    op.SetGlue(BOPAlgo_GlueFull if glue == "full" else BOPAlgo_GlueShift)
-    op.Build()
-    if not op.IsDone():
-        raise BuildError("boolean fuse of the double-helical gear's hub failed")
-    unify = ShapeUpgrade_UnifySameDomain(op.Shape(), True, True, False)
-    unify.Build()
-    return single_solid(unify.Shape())
+    return fused_solid(parts, "boolean fuse of the double-helical gear's hub failed",
+                       glue=BOPAlgo_GlueFull if glue == "full" else BOPAlgo_GlueShift)
 
 
 def build_double_helical(spec: GearSpec, tolerance: float | None = None, check: bool = False) -> GearSolid:

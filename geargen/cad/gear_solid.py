@@ -47,7 +47,6 @@ from dataclasses import dataclass, field
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
 from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire,
                                 BRepBuilderAPI_Transform)
 from OCP.BRepCheck import BRepCheck_Analyzer
@@ -57,7 +56,6 @@ from OCP.Geom import Geom_Circle, Geom_CylindricalSurface, Geom_Plane
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Circle, Geom2d_Line
 from OCP.GProp import GProp_GProps
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax2d, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
-from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
@@ -65,7 +63,7 @@ from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_S
                         TopoDS_Wire)
 
 from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d,
-                                bspline_surface, make_edge, make_vertex, make_wire, single_solid)
+                                bspline_surface, fused_solid, make_edge, make_vertex, make_wire, volume)
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.errors import BuildError
@@ -574,21 +572,7 @@ def hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:
 
 
 def _fuse(shapes: list[TopoDS_Shape]) -> TopoDS_Shape:
-    from OCP.TopTools import TopTools_ListOfShape
-    op = BRepAlgoAPI_Fuse()
-    args, tools = TopTools_ListOfShape(), TopTools_ListOfShape()
-    args.Append(shapes[0])
-    for s in shapes[1:]:
-        tools.Append(s)
-    op.SetArguments(args)
-    op.SetTools(tools)
-    op.SetFuzzyValue(0.0)
-    op.Build()
-    if not op.IsDone():
-        raise BuildError("boolean fuse failed")
-    unify = ShapeUpgrade_UnifySameDomain(op.Shape(), True, True, False)
-    unify.Build()
-    return single_solid(unify.Shape())
+    return fused_solid(shapes, "boolean fuse failed", fuzzy=0.0)
 
 
 # ---------------------------------------------------------------- public API
@@ -605,9 +589,7 @@ def check_solid(shape: TopoDS_Shape) -> str | None:
         return f"{count} solids"
     if not BRepCheck_Analyzer(shape).IsValid():
         return "BRepCheck_Analyzer: invalid"
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, props)  # the sign is all that is needed here: quick rule
-    if props.Mass() <= 0:
+    if volume(shape) <= 0:  # the sign is all that is needed here: quick rule
         return "non-positive volume (inside out)"
     return None
 

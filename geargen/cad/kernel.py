@@ -1,6 +1,6 @@
 """Kernel helpers every solid builder shares: B-spline curves and surfaces from numpy poles, vertices,
-edges and wires put together with a ``BRep_Builder``, the one solid of a shape, the kernel's
-message level. One home for them (issue 26): the builders import these public names rather than
+edges and wires put together with a ``BRep_Builder``, booleans, the one solid of a shape, its
+volume, the kernel's message level. One home for them (issue 26): the builders import these public names rather than
 each other's private ones.
 
 Conventions: mm; poles ``(n, 2)``, ``(n, 3)`` or ``(nu, nv, 3)`` float arrays; knots as distinct
@@ -13,15 +13,20 @@ import functools
 
 import numpy as np
 from OCP.BRep import BRep_Builder
+from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
+from OCP.BRepGProp import BRepGProp
 from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface
 from OCP.Geom2d import Geom2d_BSplineCurve
 from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Pnt2d
+from OCP.GProp import GProp_GProps
 from OCP.Message import Message, Message_Gravity
+from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array1OfPnt2d, TColgp_Array2OfPnt
 from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape, TopoDS_Vertex, TopoDS_Wire
+from OCP.TopTools import TopTools_ListOfShape
 
 from geargen.errors import BuildError
 
@@ -117,6 +122,48 @@ def single_solid(shape: TopoDS_Shape) -> TopoDS_Shape:
     return TopoDS.Solid_s(solids[0])
 
 
+def volume(shape: TopoDS_Shape) -> float:
+    """Volume (mm^3) by the kernel's volume integration (``VolumeProperties``; negative for a solid
+    turned inside out). :func:`geargen.cad.gear_solid.solid_volume` integrates spline faces to a
+    stated accuracy instead."""
+    props = GProp_GProps()
+    BRepGProp.VolumeProperties_s(shape, props)
+    return props.Mass()
+
+
+def boolean(op, args, tools, parallel: bool | None = None, fuzzy: float | None = None, glue=None,
+            failure: str | None = None) -> TopoDS_Shape:
+    """The result of the boolean ``op`` (a ``BRepAlgoAPI_Fuse``, ``_Cut`` or ``_Common``) of ``args``
+    with ``tools``; the kernel's own default for each option left unset (``parallel``, ``fuzzy``
+    value, ``glue`` a ``BOPAlgo_GlueEnum`` for solids that only touch). BuildError ``failure``
+    (default: the operation's name) if the kernel fails."""
+    a, t = TopTools_ListOfShape(), TopTools_ListOfShape()
+    for s in args:
+        a.Append(s)
+    for s in tools:
+        t.Append(s)
+    op.SetArguments(a)
+    op.SetTools(t)
+    if parallel is not None:
+        op.SetRunParallel(parallel)
+    if fuzzy is not None:
+        op.SetFuzzyValue(fuzzy)
+    if glue is not None:
+        op.SetGlue(glue)
+    op.Build()
+    if not op.IsDone():
+        raise BuildError(failure or f"boolean operation {type(op).__name__} failed")
+    return op.Shape()
+
+
+def fused_solid(shapes: list[TopoDS_Shape], failure: str, fuzzy: float | None = None, glue=None) -> TopoDS_Shape:
+    """The one solid ``shapes`` fuse into, faces and edges of one surface merged."""
+    fused = boolean(BRepAlgoAPI_Fuse(), shapes[:1], shapes[1:], fuzzy=fuzzy, glue=glue, failure=failure)
+    unify = ShapeUpgrade_UnifySameDomain(fused, True, True, False)
+    unify.Build()
+    return single_solid(unify.Shape())
+
+
 def quiet_kernel() -> None:
     """Keep the kernel's transfer statistics off standard output (warnings and worse still print)."""
     printers = Message.DefaultMessenger_s().Printers()
@@ -125,4 +172,5 @@ def quiet_kernel() -> None:
 
 
 __all__ = ["KERNEL_TOLERANCE", "Z_AXIS", "ORIGIN_2D", "occ_knots", "bspline_curve_3d", "bspline_curve_2d",
-           "bspline_surface", "make_vertex", "make_edge", "make_wire", "single_solid", "quiet_kernel"]
+           "bspline_surface", "make_vertex", "make_edge", "make_wire", "single_solid", "volume", "boolean", "fused_solid",
+           "quiet_kernel"]
