@@ -5,7 +5,7 @@
 Gears: 19 teeth, m 1 mm, 30 deg helix, 14 mm face: a herringbone (no gap, flanks meeting at the apex)
 and one with a 3 mm relief groove, each with a 6 mm bore. Times are the best of ``--repeat`` builds
 after one warm-up, wall clock, this process. The builder puts both halves together face by face
-(geargen.cad.gear_solid._toothed_body with ``mirror``); ``--fuse`` also times what it did before:
+(geargen.cad.gear_solid.toothed_body with ``mirror``); ``--fuse`` also times what it did before:
 the first half built alone, mirrored and fused to it with the kernel's glue option (``full``: the
 faces coincide whole), for the record. No open-source peer with exact herringbone flanks was
 benchmarked here (py_gearworks' herringbone=True writes a straight extrusion: bench_families.py).
@@ -60,10 +60,10 @@ def main() -> None:
         from OCP.TopTools import TopTools_ListOfShape
 
         from geargen.cad.double_helical import half_spec
-        from geargen.cad.gear_solid import _toothed_body, _transform
+        from geargen.cad.gear_solid import toothed_body, _transform
         from geargen.profile.tooth import tooth_profile
         half = half_spec(spec(0.0))
-        lower, _ = _toothed_body(half, tooth_profile(half), 2e-6)
+        lower, _ = toothed_body(half, tooth_profile(half), 2e-6)
         mirror = gp_Trsf()
         mirror.SetMirror(gp_Ax2(gp_Pnt(0, 0, 7.0), gp_Dir(0, 0, 1)))
         t0 = time.perf_counter()

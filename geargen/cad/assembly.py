@@ -23,15 +23,14 @@ from typing import Any, Iterable, Mapping
 import numpy as np
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
 from OCP.BRepBndLib import BRepBndLib
-from OCP.BRepGProp import BRepGProp
 from OCP.Bnd import Bnd_Box
-from OCP.GProp import GProp_GProps
 from OCP.gp import gp_Trsf
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Shape
 
 from geargen.cad import parts as P
 from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
+from geargen.cad.kernel import volume
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import BuildError
 from geargen.model.components import COLOURS, transform
@@ -232,11 +231,12 @@ def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, leng
     from OCP.STEPCAFControl import STEPCAFControl_Writer
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
     from OCP.XSControl import XSControl_WorkSession
-    from geargen.cad.export import STEP_UNITS, _quiet_kernel, atomic_path
+    from geargen.cad.export import STEP_UNITS, atomic_path
+    from geargen.cad.kernel import quiet_kernel
 
     doc = assembly_document(name, parts)
     STEPControl_Controller.Init_s()
-    _quiet_kernel()
+    quiet_kernel()
     writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
     writer.SetColorMode(True)
     writer.SetLayerMode(True)
@@ -400,12 +400,6 @@ def contact_gap(a, b, tolerance: float) -> float:
     dist = BRepExtrema_DistShapeShape(P.compound(fa), P.compound(fb)) if fa and fb else BRepExtrema_DistShapeShape(a, b)
     return float(dist.Value()) if dist.IsDone() else math.inf
 
-def _volume(shape) -> float:
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, props)
-    return abs(props.Mass())
-
-
 def intersection_volume(a, b) -> float:
     """Volume (mm^3) of the boolean common of two shapes (0 if they only touch)."""
     op = BRepAlgoAPI_Common(a, b)
@@ -413,7 +407,7 @@ def intersection_volume(a, b) -> float:
     op.Build()
     if not op.IsDone():
         raise BuildError("boolean common failed")
-    return _volume(op.Shape())
+    return abs(volume(op.Shape()))
 
 
 def gear_core(part: PlacedPart) -> TopoDS_Shape | None:

@@ -47,8 +47,9 @@ from OCP.TopExp import TopExp
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
-from geargen.cad.gear_solid import (_ORIGIN_2D, _Z_AXIS, KERNEL_TOLERANCE, _bspline2d, _bspline3d, _edge, _occ_knots,
-                                    _vertex, _wire, check_solid)
+from geargen.cad.gear_solid import check_solid
+from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d, make_edge,
+                                make_vertex, make_wire, occ_knots)
 from geargen.core.bevel import (bevel_core, bevel_geometry, bevel_volume, check_tooth, lower_flank_points,
                                 tooth_half_angle, tooth_outline)
 from geargen.design.bevel import BevelGearSpec
@@ -132,10 +133,10 @@ def _meridian(azimuth: float, polar0: float, polar1: float, rising: bool) -> _Cu
         return Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), normal, gp_Dir(0, 0, 1)), r)
 
     def on_side(r):
-        return Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), r)
+        return Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), r)
 
     def ruling(t):
-        return Geom2d_Line(_ORIGIN_2D, gp_Dir2d(math.cos(t), math.sin(t)))
+        return Geom2d_Line(ORIGIN_2D, gp_Dir2d(math.cos(t), math.sin(t)))
 
     # the pcurve on the spheres: v = pi/2 - theta = pi/2 - sign t
     on_sphere = Geom2d_Line(gp_Pnt2d(azimuth, math.pi / 2), gp_Dir2d(0.0, -sign))
@@ -154,10 +155,10 @@ def _latitude(kind: str, polar: float, azimuth0: float, azimuth1: float) -> _Cur
         sense = -1  # (t, r) -> (r cos t, r sin t) turns the orientation over
 
         def on_side(r):
-            return Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), r)
+            return Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), r)
 
         def ruling(t):
-            return Geom2d_Line(_ORIGIN_2D, gp_Dir2d(math.cos(t), math.sin(t)))
+            return Geom2d_Line(ORIGIN_2D, gp_Dir2d(math.cos(t), math.sin(t)))
     else:
         up = polar < math.pi / 2
         sign = 1.0 if up else -1.0
@@ -219,12 +220,12 @@ def _flanks(spec: BevelGearSpec) -> tuple[_Curve, _Curve]:
         for i, (x, y, z) in enumerate(unit_poles.tolist()):
             for j, r in enumerate((ri, re)):
                 arr.SetValue(i + 1, j + 1, gp_Pnt(r * x, r * y, r * z))
-        ku, mu_ = _occ_knots(kn, mu)
-        kv, mv = _occ_knots([ri, re], [2, 2])
+        ku, mu_ = occ_knots(kn, mu)
+        kv, mv = occ_knots([ri, re], [2, 2])
         surface = Geom_BSplineSurface(arr, ku, kv, mu_, mv, degree, 1)
 
         def curve(r, unit_poles=unit_poles, kn=kn, mu=mu):
-            return _bspline3d(unit_poles * r, kn, mu, degree)
+            return bspline_curve_3d(unit_poles * r, kn, mu, degree)
 
         def on_side(r):
             return Geom2d_Line(gp_Pnt2d(0.0, r), gp_Dir2d(1.0, 0.0))
@@ -233,7 +234,7 @@ def _flanks(spec: BevelGearSpec) -> tuple[_Curve, _Curve]:
             return Geom2d_Line(gp_Pnt2d(s, 0.0), gp_Dir2d(0.0, 1.0))
 
         out.append(_Curve("flank", surface, 1, curve, (0.0, length), on_side, ruling,
-                          _bspline2d(poles[:, 3:], kn, mu, degree), unit_poles[0], unit_poles[-1], tolerance))
+                          bspline_curve_2d(poles[:, 3:], kn, mu, degree), unit_poles[0], unit_poles[-1], tolerance))
     return out[0], out[1]
 
 
@@ -264,12 +265,12 @@ class _Shell:
         self.faces: list = []
 
     def vertex(self, p):
-        return _vertex(self.builder, float(p[0]), float(p[1]), float(p[2]))
+        return make_vertex(self.builder, float(p[0]), float(p[1]), float(p[2]))
 
     def edge(self, curve, v0, v1, p0: float, p1: float, tolerance: float = KERNEL_TOLERANCE):
         """An edge of ``curve`` over [p0, p1]; a tolerance above the kernel's goes to its vertices too
         (a vertex's is never below its edges')."""
-        e = _edge(self.builder, curve, v0, v1, p0, p1)
+        e = make_edge(self.builder, curve, v0, v1, p0, p1)
         if tolerance > KERNEL_TOLERANCE:
             self.builder.UpdateEdge(e, tolerance)
             for v in (v0, v1):
@@ -291,7 +292,7 @@ class _Shell:
         f = TopoDS_Face()
         self.builder.MakeFace(f, surface, _LOC, KERNEL_TOLERANCE)
         for w in wires:
-            self.builder.Add(f, _wire(self.builder, [e for e, _ in w], [o for _, o in w]))
+            self.builder.Add(f, make_wire(self.builder, [e for e, _ in w], [o for _, o in w]))
         self.faces.append(f if sense > 0 else f.Reversed())
         return f
 
@@ -343,7 +344,7 @@ def _body(spec: BevelGearSpec, back: str):
     flat = core.back == "flat"
     if flat:
         back_plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, core.back_z), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)))
-        root_circle_2d = Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), re * math.sin(o.root))
+        root_circle_2d = Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), re * math.sin(o.root))
 
     # the seam of the whole spheres (and the bore's) runs along azimuth 0, through the middle of tooth 0's
     # tip arc, which is split there: the kernel's own revolved faces start at their x axis too, and its
@@ -357,11 +358,11 @@ def _body(spec: BevelGearSpec, back: str):
         k, j = divmod(i, n)
         c = curves[j]
         angle = k * pitch
-        surface = c.surface.Rotated(_Z_AXIS, angle) if k else c.surface
+        surface = c.surface.Rotated(Z_AXIS, angle) if k else c.surface
         t0, t1 = c.range
         toe_curve, heel_curve = c.curve(ri), c.curve(re)
         if k:
-            toe_curve, heel_curve = toe_curve.Rotated(_Z_AXIS, angle), heel_curve.Rotated(_Z_AXIS, angle)
+            toe_curve, heel_curve = toe_curve.Rotated(Z_AXIS, angle), heel_curve.Rotated(Z_AXIS, angle)
         pieces = [(t0, t1, toe_v[i - 1], toe_v[i], heel_v[i - 1], heel_v[i])]
         if i == j_tip:
             pieces = [(t0, 0.0, toe_v[i - 1], mid_toe, heel_v[i - 1], mid_heel),
@@ -379,7 +380,7 @@ def _body(spec: BevelGearSpec, back: str):
             if not flat:
                 shell.pcurve(e_heel, on_whole, heel_sphere, c.tolerance * re)
             elif c.kind == "root":
-                shell.pcurve(e_heel, root_circle_2d.Rotated(_ORIGIN_2D, angle), back_plane)
+                shell.pcurve(e_heel, root_circle_2d.Rotated(ORIGIN_2D, angle), back_plane)
             else:  # a tooth's own heel patch, whose u runs on across azimuth 0
                 shell.pcurve(e_heel, on_sphere, heel_sphere, c.tolerance * re)
                 heel_by_tooth[k].append(e_heel)
@@ -395,10 +396,10 @@ def _body(spec: BevelGearSpec, back: str):
         heel_outline += heels
         if flat and j == n - 1:
             # this tooth's heel end, a patch of the heel sphere from its root circle to its outline
-            arc = _latitude_circle(re, o.root).Rotated(_Z_AXIS, angle)
+            arc = _latitude_circle(re, o.root).Rotated(Z_AXIS, angle)
             under = shell.edge(arc, heel_v[k * n - 1], heel_v[k * n + n - 2], -o.root_half_angle, o.root_half_angle)
             shell.pcurve(under, Geom2d_Line(gp_Pnt2d(angle, math.pi / 2 - o.root), gp_Dir2d(1, 0)), heel_sphere)
-            shell.pcurve(under, root_circle_2d.Rotated(_ORIGIN_2D, angle), back_plane)
+            shell.pcurve(under, root_circle_2d.Rotated(ORIGIN_2D, angle), back_plane)
             shell.face(heel_sphere, [[(e, _F) for e in heel_by_tooth[k]] + [(under, _R)]])
             under_teeth.append((under, heels[-1]))
     seam_at = j_tip + 1  # the outlines from the seam round to it: from the second half of tooth 0's tip
@@ -437,18 +438,18 @@ def _body(spec: BevelGearSpec, back: str):
     elif core.toe_inner_face == "web":
         web_plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, core.web_z), gp_Dir(0, 0, 1), x_axis))
         meets_toe = ri * math.sin(core.toe_inner)  # the radius where the web's face meets the toe sphere
-        shell.pcurve(toe_inner, Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), meets_toe), web_plane)
+        shell.pcurve(toe_inner, Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), meets_toe), web_plane)
         wires = [[(toe_inner, _F)]]
         if rb > 0:
             bore_low, _ = inner_circle(rb, core.web_z)
-            shell.pcurve(bore_low, Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), rb), web_plane)
+            shell.pcurve(bore_low, Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), rb), web_plane)
             wires.append([(bore_low, _R)])
         shell.face(web_plane, wires, -1)
     if flat:
         wires = [[(e, _F) for pair in under_teeth for e in pair]]  # each tooth's foot, then its space
         if rb > 0:
             bore_high, _ = inner_circle(rb, core.back_z)
-            shell.pcurve(bore_high, Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), rb), back_plane)
+            shell.pcurve(bore_high, Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), rb), back_plane)
             wires.append([(bore_high, _R)])
         shell.face(back_plane, wires)
     else:

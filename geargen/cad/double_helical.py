@@ -19,7 +19,7 @@ of one hand into the other hand and leaves every transverse section's outline as
 second half's flanks are the same exact involute helicoids and, with no gap, its apex section is
 the first half's apex section edge for edge: the flanks meet at the apex on the edges they share.
 Both halves, the groove (a cylinder between the halves' annular inner ends) and the bore are put
-together face by face in one shell (:func:`geargen.cad.gear_solid._toothed_body`), with no boolean:
+together face by face in one shell (:func:`geargen.cad.gear_solid.toothed_body`), with no boolean:
 the 30-tooth bench herringbone in 0.03 s, where fusing the two halves with the kernel's glue
 option took 0.7 s. Only a hub is fused on (glue option: it only touches the first end face).
 """
@@ -29,11 +29,9 @@ from __future__ import annotations
 from dataclasses import replace
 
 from OCP.BOPAlgo import BOPAlgo_GlueFull, BOPAlgo_GlueShift
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
-from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
-from OCP.TopTools import TopTools_ListOfShape
 
-from geargen.cad.gear_solid import GearSolid, _hub_body, _single_solid, _toothed_body, check_solid, default_tolerance
+from geargen.cad.gear_solid import GearSolid, check_solid, default_tolerance, hub_body, toothed_body
+from geargen.cad.kernel import fused_solid
 from geargen.design.gear import GearSpec, Hub
 from geargen.errors import BuildError
 from geargen.profile.tessellate import Layer
@@ -73,20 +71,8 @@ def double_helical_layers(spec: GearSpec, profile: ToothProfile) -> list[Layer]:
 def _fused(parts: list, glue: str):
     """Fuse solids that only touch (the hub on the first end face): the kernel's glue option
     (``shift``: the faces coincide in part) skips the face-face intersection, the slow part."""
-    op = BRepAlgoAPI_Fuse()
-    args, tools = TopTools_ListOfShape(), TopTools_ListOfShape()
-    args.Append(parts[0])
-    for shape in parts[1:]:
-        tools.Append(shape)
-    op.SetArguments(args)
-    op.SetTools(tools)
-    op.SetGlue(BOPAlgo_GlueFull if glue == "full" else BOPAlgo_GlueShift)
-    op.Build()
-    if not op.IsDone():
-        raise BuildError("boolean fuse of the double-helical gear's hub failed")
-    unify = ShapeUpgrade_UnifySameDomain(op.Shape(), True, True, False)
-    unify.Build()
-    return _single_solid(unify.Shape())
+    return fused_solid(parts, "boolean fuse of the double-helical gear's hub failed",
+                       glue=BOPAlgo_GlueFull if glue == "full" else BOPAlgo_GlueShift)
 
 
 def build_double_helical(spec: GearSpec, tolerance: float | None = None, check: bool = False) -> GearSolid:
@@ -101,19 +87,19 @@ def build_double_helical(spec: GearSpec, tolerance: float | None = None, check: 
     profile = tooth_profile(half)
     mirror = (spec.centre_gap, centre_gap_radius(spec, profile))
     if tolerance is not None:
-        shape, faces = _toothed_body(half, profile, tolerance, mirror)
+        shape, faces = toothed_body(half, profile, tolerance, mirror)
     else:
         tolerance = default_tolerance(spec)
         try:
-            shape, faces = _toothed_body(half, profile, tolerance, mirror)
+            shape, faces = toothed_body(half, profile, tolerance, mirror)
         except BuildError as exc:
             if "no fit within" not in str(exc):
                 raise
             # some fillets of large modules do not fit 2 nm on 64 spans; 10x that (0.02 um) is still
             # 5x inside the issue's 0.1 um flank bound, and GearSolid.tolerance records it
             tolerance *= 10
-            shape, faces = _toothed_body(half, profile, tolerance, mirror)
-    hub = _hub_body(spec, "bottom")
+            shape, faces = toothed_body(half, profile, tolerance, mirror)
+    hub = hub_body(spec, "bottom")
     if hub is not None:
         shape = _fused([shape, hub], "shift")
     if check:

@@ -26,7 +26,6 @@ from OCP.BRep import BRep_Tool
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.Interface import Interface_Static
-from OCP.Message import Message, Message_Gravity
 from OCP.STEPCAFControl import STEPCAFControl_Writer
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
 from OCP.TCollection import TCollection_ExtendedString
@@ -40,19 +39,13 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Shape
 from OCP.XCAFDoc import XCAFDoc_DocumentTool
 
+from geargen.cad.kernel import quiet_kernel
 from geargen.errors import BuildError
 from geargen.outputs import atomic_path  # noqa: F401 - part of this module's interface
 
 #: STEP unit names by design length unit
 STEP_UNITS = {"mm": "MM", "in": "INCH"}
 MANIFEST = "manifest.json"
-
-
-def _quiet_kernel() -> None:
-    """Keep the kernel's transfer statistics off standard output (warnings and worse still print)."""
-    printers = Message.DefaultMessenger_s().Printers()
-    if printers.Size() > 0:
-        printers.First().SetTraceLevel(Message_Gravity.Message_Warning)
 
 
 def _parts(parts) -> list[tuple[str, TopoDS_Shape]]:
@@ -105,7 +98,7 @@ def export_step(parts, path, length_unit: str = "mm") -> ExportRecord:
     items = _parts(parts)
     t0 = time.perf_counter()
     STEPControl_Controller.Init_s()
-    _quiet_kernel()
+    quiet_kernel()
     Interface_Static.SetCVal_s("xstep.cascade.unit", "MM")
     Interface_Static.SetCVal_s("write.step.unit", STEP_UNITS[length_unit])
     Interface_Static.SetIVal_s("write.step.nonmanifold", 0)
@@ -334,7 +327,7 @@ def read_step(path) -> StepContents:
     from OCP.STEPCAFControl import STEPCAFControl_Reader
     from OCP.TopoDS import TopoDS_Compound
     STEPControl_Controller.Init_s()
-    _quiet_kernel()
+    quiet_kernel()
     Interface_Static.SetCVal_s("xstep.cascade.unit", "MM")
     doc = TDocStd_Document(TCollection_ExtendedString("XmlXCAF"))
     caf = STEPCAFControl_Reader()

@@ -36,37 +36,34 @@ face's parameter box, what OCCT readers and geargen's contact checks use) with i
 Tooth 0's curves and surfaces are built once and turned for the other teeth; neighbouring faces
 share their boundary curves, so the solid is put together edge by edge (BRep_Builder) without
 sewing or booleans; a double-helical gear's second half is the first's mirror image, put together
-the same way (:func:`_toothed_body`). Only hubs and clusters use a boolean fuse.
+the same way (:func:`toothed_body`). Only hubs and clusters use a boolean fuse.
 """
 
 from __future__ import annotations
 
-import functools
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from OCP.BRep import BRep_Builder, BRep_Tool
 from OCP.BRepAdaptor import BRepAdaptor_Surface
-from OCP.BRepAlgoAPI import BRepAlgoAPI_Fuse
 from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeFace, BRepBuilderAPI_MakeWire,
                                 BRepBuilderAPI_Transform)
 from OCP.BRepCheck import BRepCheck_Analyzer
 from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakePrism
-from OCP.Geom import Geom_BSplineCurve, Geom_BSplineSurface, Geom_Circle, Geom_CylindricalSurface, Geom_Plane
+from OCP.Geom import Geom_Circle, Geom_CylindricalSurface, Geom_Plane
 from OCP.Geom2d import Geom2d_BSplineCurve, Geom2d_Circle, Geom2d_Line
 from OCP.GProp import GProp_GProps
 from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax2d, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
-from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
-from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array1OfPnt2d, TColgp_Array2OfPnt
-from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex,
                         TopoDS_Wire)
 
+from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d,
+                                bspline_surface, fused_solid, make_edge, make_vertex, make_wire, volume)
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.errors import BuildError
@@ -77,8 +74,6 @@ from geargen.profile.tooth import ToothProfile, tooth_profile, twist_rate
 #: default interpolation tolerance of the splines (mm): 0.002 um, or 2e-6 normal modules if smaller
 #: (see :func:`default_tolerance`)
 DEFAULT_TOLERANCE = 2e-6
-#: edge/vertex tolerance given to the kernel (mm)
-KERNEL_TOLERANCE = 1e-7
 
 
 @dataclass
@@ -219,51 +214,6 @@ def _joints(profile: ToothProfile, ends: np.ndarray) -> np.ndarray:
     return np.stack([c * ends[:, 0] - s * ends[:, 1], s * ends[:, 0] + c * ends[:, 1]], axis=-1).reshape(-1, 2)
 
 
-_Z_AXIS = gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
-_ORIGIN_2D = gp_Pnt2d(0, 0)
-
-
-def _occ_knots(knots, mults):
-    return _occ_knots_of(tuple(float(t) for t in knots), tuple(int(m) for m in mults))
-
-
-@functools.lru_cache(maxsize=256)
-def _occ_knots_of(knots: tuple, mults: tuple):
-    """The kernel's knot and multiplicity arrays (shared: the kernel copies them into each spline)."""
-    k = TColStd_Array1OfReal(1, len(knots))
-    m = TColStd_Array1OfInteger(1, len(knots))
-    for i, (t, mult) in enumerate(zip(knots, mults)):
-        k.SetValue(i + 1, float(t))
-        m.SetValue(i + 1, int(mult))
-    return k, m
-
-
-def _bspline3d(poles: np.ndarray, knots, mults, degree: int) -> Geom_BSplineCurve:
-    arr = TColgp_Array1OfPnt(1, len(poles))
-    for i, (x, y, z) in enumerate(poles.tolist()):
-        arr.SetValue(i + 1, gp_Pnt(x, y, z))
-    return Geom_BSplineCurve(arr, *_occ_knots(knots, mults), degree)
-
-
-def _bspline2d(poles: np.ndarray, knots, mults, degree: int) -> Geom2d_BSplineCurve:
-    arr = TColgp_Array1OfPnt2d(1, len(poles))
-    for i, (x, y) in enumerate(poles.tolist()):
-        arr.SetValue(i + 1, gp_Pnt2d(x, y))
-    return Geom2d_BSplineCurve(arr, *_occ_knots(knots, mults), degree)
-
-
-def _bspline_surface_of(poles: np.ndarray, u_knots, u_mults, u_degree: int, v_knots, v_mults,
-                        v_degree: int) -> Geom_BSplineSurface:
-    nu, nv = poles.shape[:2]
-    arr = TColgp_Array2OfPnt(1, nu, 1, nv)
-    for i, row in enumerate(poles.tolist()):
-        for j, (x, y, z) in enumerate(row):
-            arr.SetValue(i + 1, j + 1, gp_Pnt(x, y, z))
-    ku, mu = _occ_knots(u_knots, u_mults)
-    kv, mv = _occ_knots(v_knots, v_mults)
-    return Geom_BSplineSurface(arr, ku, kv, mu, mv, u_degree, v_degree)
-
-
 def _line2d(u: float, v: float, du: float, dv: float) -> Geom2d_Line:
     """A unit-speed pcurve line from (u, v) along the unit vector (du, dv)."""
     return Geom2d_Line(gp_Pnt2d(u, v), gp_Dir2d(du, dv))
@@ -272,34 +222,10 @@ def _line2d(u: float, v: float, du: float, dv: float) -> Geom2d_Line:
 def _helix_pcurve(angle: float, twist: float, length: float) -> Geom2d_BSplineCurve:
     """The pcurve (u = angle + twist z / length, v = z) of a helix on a cylinder, parameter z."""
     poles = np.array([[angle, 0.0], [angle + twist, length]])
-    return _bspline2d(poles, [0.0, length], [2, 2], 1)
+    return bspline_curve_2d(poles, [0.0, length], [2, 2], 1)
 
 
 # ---------------------------------------------------------------- edges, wires, faces
-
-
-def _vertex(builder: BRep_Builder, x: float, y: float, z: float) -> TopoDS_Vertex:
-    v = TopoDS_Vertex()
-    builder.MakeVertex(v, gp_Pnt(x, y, z), KERNEL_TOLERANCE)
-    return v
-
-
-def _edge(builder: BRep_Builder, curve, v0, v1, p0: float, p1: float) -> TopoDS_Edge:
-    e = TopoDS_Edge()
-    builder.MakeEdge(e, curve, KERNEL_TOLERANCE)
-    builder.Add(e, v0.Oriented(TopAbs_FORWARD))
-    builder.Add(e, v1.Oriented(TopAbs_REVERSED))
-    builder.Range(e, p0, p1)
-    return e
-
-
-def _wire(builder: BRep_Builder, edges, orientations=None) -> TopoDS_Wire:
-    w = TopoDS_Wire()
-    builder.MakeWire(w)
-    for i, e in enumerate(edges):
-        builder.Add(w, e if orientations is None else e.Oriented(orientations[i]))
-    w.Closed(True)
-    return w
 
 
 def _bore_wire(spec: GearSpec, z: float = 0.0) -> TopoDS_Wire | None:
@@ -403,8 +329,8 @@ class _Side:
             out = [base]
             surf, bottom, top, (cap, cap_top) = base
             for angle in angles[1:]:
-                out.append((surf.Rotated(_Z_AXIS, angle), bottom.Rotated(_Z_AXIS, angle), top.Rotated(_Z_AXIS, angle),
-                            (cap.Rotated(_ORIGIN_2D, angle), cap_top.Rotated(_ORIGIN_2D, angle))))
+                out.append((surf.Rotated(Z_AXIS, angle), bottom.Rotated(Z_AXIS, angle), top.Rotated(Z_AXIS, angle),
+                            (cap.Rotated(ORIGIN_2D, angle), cap_top.Rotated(ORIGIN_2D, angle))))
             return out
         return self.built(twist, angles, grid, fine)
 
@@ -418,8 +344,9 @@ class _Side:
         poles[:, :, [0, -1], 2] = z_ends  # the end rows stay in the end planes
         bottoms, tops = poles[:, :, 0, :], poles[:, :, -1, :]
         tops_xy = _turned(tops[..., :2], -twist) if twist else tops[..., :2]  # in the top plane's frame
-        return [(_bspline_surface_of(p, uk, um, ud, vk, vm, vd), _bspline3d(b, *self.basis),
-                 _bspline3d(t, *self.basis), (_bspline2d(b[:, :2], *self.basis), _bspline2d(t_xy, *self.basis)))
+        return [(bspline_surface(p, uk, um, ud, vk, vm, vd), bspline_curve_3d(b, *self.basis),
+                 bspline_curve_3d(t, *self.basis),
+                 (bspline_curve_2d(b[:, :2], *self.basis), bspline_curve_2d(t_xy, *self.basis)))
                 for p, b, t, t_xy in zip(poles, bottoms, tops, tops_xy)]
 
 
@@ -440,15 +367,15 @@ def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
     surf = Geom_CylindricalSurface(gp_Ax3(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
     bottom = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)), r)
     top = Geom_Circle(gp_Ax2(gp_Pnt(0, 0, length), gp_Dir(0, 0, 1), gp_Dir(c_top, s_top, 0.0)), r)
-    cap = Geom2d_Circle(gp_Ax2d(_ORIGIN_2D, gp_Dir2d(1, 0)), r)
+    cap = Geom2d_Circle(gp_Ax2d(ORIGIN_2D, gp_Dir2d(1, 0)), r)
     a0, a1 = curve.angles
     pcurves = (_line2d(0.0, 0.0, 1.0, 0.0), _line2d(twist, length, 1.0, 0.0),
                _helix_pcurve(a0, twist, length), _helix_pcurve(a1, twist, length))
     return _Side(pcurves, land=(surf, bottom, top, (cap, cap)))
 
 
-def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
-                  mirror: tuple[float, float] | None = None) -> tuple[TopoDS_Shape, list[ToothFace]]:
+def toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
+                 mirror: tuple[float, float] | None = None) -> tuple[TopoDS_Shape, list[ToothFace]]:
     """The gear body (teeth, bore, keyway; no hub) put together face by face, and tooth 0's faces.
 
     Side faces: one per curve of :func:`_tooth_curves` per tooth; a flank or fillet is the
@@ -483,20 +410,20 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     helices = [axial.rows(c.end[None, :])[0] for c in curves]
     if grid:  # a helical gear: each tooth's helices turned and on the fine grid (_turned), as the faces' edges
         turned = [_turned(h, profile.pitch_angle * np.arange(profile.teeth), fine) for h in helices]
-        helix_c = [_bspline3d(turned[j][tooth], axial.knots, axial.mults, axial.degree)
+        helix_c = [bspline_curve_3d(turned[j][tooth], axial.knots, axial.mults, axial.degree)
                    for tooth, j in (divmod(i, n) for i in range(len(joints)))]
         bottom, top = (_turned(np.column_stack([joints, np.full(len(joints), z)]), 0.0, fine)
                        for z in (0.0, length))
         top = _turned(top, math.atan2(s_top, c_top), fine)
     else:
-        base = [_bspline3d(h, axial.knots, axial.mults, axial.degree) for h in helices]
-        helix_c = [base[j].Rotated(_Z_AXIS, tooth * profile.pitch_angle) if tooth else base[j]
+        base = [bspline_curve_3d(h, axial.knots, axial.mults, axial.degree) for h in helices]
+        helix_c = [base[j].Rotated(Z_AXIS, tooth * profile.pitch_angle) if tooth else base[j]
                    for tooth, j in (divmod(i, n) for i in range(len(joints)))]
         bottom = np.column_stack([joints, np.zeros(len(joints))])
         top = np.column_stack([c_top * joints[:, 0] - s_top * joints[:, 1], s_top * joints[:, 0] + c_top * joints[:, 1],
                                np.full(len(joints), length)])
-    bottom_v = [_vertex(builder, *p) for p in bottom.tolist()]
-    top_v = [_vertex(builder, *p) for p in top.tolist()]
+    bottom_v = [make_vertex(builder, *p) for p in bottom.tolist()]
+    top_v = [make_vertex(builder, *p) for p in top.tolist()]
 
     loc = TopLoc_Location()
     tol = KERNEL_TOLERANCE
@@ -510,13 +437,13 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
         """One half's side faces: ``bottoms``/``tops`` the 3-D curves of the edges at parameter
         v = 0 and v = length of the surfaces (None: already built, given as edges in ``tops``)."""
         faces, edges_b, edges_t = [], [], []
-        helix_e = [_edge(builder, c, vb[i], vt[i], 0.0, length) for i, c in enumerate(helix_curves)]
+        helix_e = [make_edge(builder, c, vb[i], vt[i], 0.0, length) for i, c in enumerate(helix_curves)]
         for i, surf in enumerate(surfaces):
             j = i % n
             pc_bottom, pc_top, pc_start, pc_end = canon[j].pcurves
             u0, u1 = sides[i][4]
-            eb = _edge(builder, bottoms[i], vb[i - 1], vb[i], u0, u1)
-            et = tops[i] if isinstance(tops[i], TopoDS_Edge) else _edge(builder, tops[i], vt[i - 1], vt[i], u0, u1)
+            eb = make_edge(builder, bottoms[i], vb[i - 1], vb[i], u0, u1)
+            et = tops[i] if isinstance(tops[i], TopoDS_Edge) else make_edge(builder, tops[i], vt[i - 1], vt[i], u0, u1)
             builder.UpdateEdge(eb, pc_bottom, surf, loc, tol)
             builder.UpdateEdge(et, pc_top, surf, loc, tol)
             # the joint helices: this face's end and the next face's start
@@ -524,8 +451,8 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
             builder.UpdateEdge(helix_e[i - 1], pc_start, surf, loc, tol)
             face = TopoDS_Face()
             builder.MakeFace(face, surf, loc, tol)
-            builder.Add(face, _wire(builder, [eb, helix_e[i], et, helix_e[i - 1]],
-                                    [TopAbs_FORWARD, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_REVERSED]))
+            builder.Add(face, make_wire(builder, [eb, helix_e[i], et, helix_e[i - 1]],
+                                        [TopAbs_FORWARD, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_REVERSED]))
             faces.append(face.Reversed() if reverse else face)
             edges_b.append(eb)
             edges_t.append(et)
@@ -552,8 +479,8 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
         far = 2 * length + gap
         plane = _mirror_ax2(far)
         # the second half: every curve, surface and vertex mirrored; v = 0 is now its far end z = far
-        vb2 = [_vertex(builder, *_mirror_point(v, far)) for v in bottom_v]
-        vt2 = top_v if gap == 0 else [_vertex(builder, *_mirror_point(v, far)) for v in top_v]
+        vb2 = [make_vertex(builder, *_mirror_point(v, far)) for v in bottom_v]
+        vt2 = top_v if gap == 0 else [make_vertex(builder, *_mirror_point(v, far)) for v in top_v]
         tops2 = top_edges if gap == 0 else [x[2].Mirrored(plane) for x in sides]
         faces2, far_edges, near_edges = half([x[0].Mirrored(plane) for x in sides], [x[1].Mirrored(plane) for x in sides],
                                              tops2, [c.Mirrored(plane) for c in helix_c], vb2, vt2, True)
@@ -587,7 +514,7 @@ def _toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
             builder.UpdateEdge(e, sides[i][3][which], plane, loc, tol)
         face = TopoDS_Face()
         builder.MakeFace(face, plane, loc, tol)
-        builder.Add(face, _wire(builder, edges))
+        builder.Add(face, make_wire(builder, edges))
         hole = ring[0].Reversed() if ring else bores.get(z)
         if hole is not None:
             builder.Add(face, hole)
@@ -631,7 +558,7 @@ def _outward_face(shape: TopoDS_Shape) -> TopoDS_Shape:
     return face if normal.X() * p.X() + normal.Y() * p.Y() > 0 else face.Reversed()
 
 
-def _hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:
+def hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:
     hub = spec.hub
     if hub.hub_length <= 0:
         return None
@@ -645,32 +572,7 @@ def _hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:
 
 
 def _fuse(shapes: list[TopoDS_Shape]) -> TopoDS_Shape:
-    from OCP.TopTools import TopTools_ListOfShape
-    op = BRepAlgoAPI_Fuse()
-    args, tools = TopTools_ListOfShape(), TopTools_ListOfShape()
-    args.Append(shapes[0])
-    for s in shapes[1:]:
-        tools.Append(s)
-    op.SetArguments(args)
-    op.SetTools(tools)
-    op.SetFuzzyValue(0.0)
-    op.Build()
-    if not op.IsDone():
-        raise BuildError("boolean fuse failed")
-    unify = ShapeUpgrade_UnifySameDomain(op.Shape(), True, True, False)
-    unify.Build()
-    return _single_solid(unify.Shape())
-
-
-def _single_solid(shape: TopoDS_Shape) -> TopoDS_Shape:
-    exp = TopExp_Explorer(shape, TopAbs_SOLID)
-    solids = []
-    while exp.More():
-        solids.append(exp.Current())
-        exp.Next()
-    if len(solids) != 1:
-        raise BuildError(f"expected one solid, got {len(solids)}")
-    return TopoDS.Solid_s(solids[0])
+    return fused_solid(shapes, "boolean fuse failed", fuzzy=0.0)
 
 
 # ---------------------------------------------------------------- public API
@@ -687,9 +589,7 @@ def check_solid(shape: TopoDS_Shape) -> str | None:
         return f"{count} solids"
     if not BRepCheck_Analyzer(shape).IsValid():
         return "BRepCheck_Analyzer: invalid"
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, props)  # the sign is all that is needed here: quick rule
-    if props.Mass() <= 0:
+    if volume(shape) <= 0:  # the sign is all that is needed here: quick rule
         return "non-positive volume (inside out)"
     return None
 
@@ -719,8 +619,8 @@ def _body_and_faces(spec: GearSpec, tolerance: float | None, profile: ToothProfi
         tolerance = default_tolerance(spec)
     if profile is None:
         profile = tooth_profile(spec)
-    body, faces = _toothed_body(spec, profile, tolerance)
-    hub = _hub_body(spec, hub_side)
+    body, faces = toothed_body(spec, profile, tolerance)
+    hub = hub_body(spec, hub_side)
     if hub is not None:
         body = _fuse([body, hub])
     return body, faces

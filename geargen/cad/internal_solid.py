@@ -4,7 +4,7 @@ Conventions as :mod:`geargen.cad.gear_solid`: axis on z, the face from z = 0 to 
 space 0 centred on +x at z = 0, the section at height z turned by ``section_rotation(spec, z)``.
 
 How: the hole - the region inside the ring's exact inner outline (:mod:`geargen.profile.internal`)
-- is built face by face exactly as an external gear's body (:func:`geargen.cad.gear_solid._toothed_body`:
+- is built face by face exactly as an external gear's body (:func:`geargen.cad.gear_solid.toothed_body`:
 one degree-7 B-spline face per flank and fillet within the tolerance of the exact curve, exact
 cylinders for the tip and root lands, helicoids by the fitted rotation). The ring's shell is then
 put together from the hole's side faces (turned inside out), the rim cylinder's side, and two
@@ -22,7 +22,7 @@ from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Shell, TopoDS_Solid
 
-from geargen.cad.gear_solid import GearSolid, _toothed_body, check_solid, default_tolerance
+from geargen.cad.gear_solid import GearSolid, check_solid, default_tolerance, toothed_body
 from geargen.design.gear import GearSpec
 from geargen.errors import BuildError
 from geargen.profile.internal import InternalProfile, internal_profile
@@ -36,7 +36,7 @@ def _internal(field: str, problem: str, allowed: str = "") -> ValueError:
 
 def build_hole(spec: GearSpec, profile: InternalProfile, tolerance: float):
     """The toothed hole as a solid (the external-gear builder on the ring's inner outline)."""
-    return _toothed_body(spec, profile, tolerance)
+    return toothed_body(spec, profile, tolerance)
 
 
 def _faces(shape):

@@ -32,6 +32,7 @@ from OCP.TopoDS import TopoDS, TopoDS_Shape
 from scipy.optimize import brentq, minimize_scalar
 from scipy.spatial import cKDTree
 
+from geargen.core.involute import involute
 from geargen.profile.segments import sample_outline
 from geargen.profile.tooth import ToothProfile, section_rotation
 
@@ -224,7 +225,7 @@ def involute_deviation(profile: ToothProfile, z: float, xy: np.ndarray) -> np.nd
     rad, _, local = _polar_in_tooth_frame(profile, z, xy)
     with np.errstate(invalid="ignore"):
         alpha = np.arccos(profile.base_radius / rad)
-    inv = np.tan(alpha) - alpha
+    inv = involute(alpha)
     return profile.base_radius * (np.abs(local) + inv - profile.base_half_angle)
 
 

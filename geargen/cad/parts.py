@@ -30,19 +30,17 @@ from OCP.BRepBuilderAPI import (BRepBuilderAPI_MakeEdge, BRepBuilderAPI_MakeWire
 from OCP.BRepLib import BRepLib
 from OCP.BRepOffsetAPI import BRepOffsetAPI_MakePipeShell
 from OCP.BRepCheck import BRepCheck_Analyzer
-from OCP.BRepGProp import BRepGProp
 from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox, BRepPrimAPI_MakeCone, BRepPrimAPI_MakeCylinder
 from OCP.GCE2d import GCE2d_MakeSegment
 from OCP.Geom import Geom_CylindricalSurface
 from OCP.Geom2d import Geom2d_Line
-from OCP.GProp import GProp_GProps
 from OCP.gp import gp_Ax2, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Trsf, gp_Vec
 from OCP.ShapeUpgrade import ShapeUpgrade_UnifySameDomain
 from OCP.TopAbs import TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
-from OCP.TopTools import TopTools_ListOfShape
 
+from geargen.cad.kernel import boolean, volume  # noqa: F401 - volume is part of this module's interface (P.volume)
 from geargen.core.bevel import BevelPairGeometry
 from geargen.errors import BuildError
 
@@ -65,13 +63,6 @@ def _positive(**values) -> None:
 def is_valid(shape: TopoDS_Shape) -> bool:
     """Whether the kernel's checker (``BRepCheck_Analyzer``) finds no defect in ``shape``."""
     return BRepCheck_Analyzer(shape).IsValid()
-
-
-def volume(shape: TopoDS_Shape) -> float:
-    """Volume (mm^3) by the kernel's volume integration (exact for these analytic solids)."""
-    props = GProp_GProps()
-    BRepGProp.VolumeProperties_s(shape, props)
-    return props.Mass()
 
 
 def bounding_box(shape: TopoDS_Shape, optimal: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -113,34 +104,19 @@ def compound(shapes) -> TopoDS_Compound:
     return out
 
 
-def _boolean(op, args, tools) -> TopoDS_Shape:
-    a, t = TopTools_ListOfShape(), TopTools_ListOfShape()
-    for s in args:
-        a.Append(s)
-    for s in tools:
-        t.Append(s)
-    op.SetArguments(a)
-    op.SetTools(t)
-    op.SetRunParallel(True)
-    op.Build()
-    if not op.IsDone():
-        raise BuildError(f"boolean operation {type(op).__name__} failed")
-    return op.Shape()
-
-
 def cut(shape: TopoDS_Shape, *tools: TopoDS_Shape) -> TopoDS_Shape:
     """``shape`` minus ``tools``."""
-    return _boolean(BRepAlgoAPI_Cut(), [shape], tools)
+    return boolean(BRepAlgoAPI_Cut(), [shape], tools, parallel=True)
 
 
 def intersect(shape: TopoDS_Shape, *tools: TopoDS_Shape) -> TopoDS_Shape:
     """The common part of ``shape`` and ``tools``."""
-    return _boolean(BRepAlgoAPI_Common(), [shape], tools)
+    return boolean(BRepAlgoAPI_Common(), [shape], tools, parallel=True)
 
 
 def union(shape: TopoDS_Shape, *tools: TopoDS_Shape) -> TopoDS_Shape:
     """``shape`` fused with ``tools`` (faces not merged: see :func:`clean`)."""
-    return _boolean(BRepAlgoAPI_Fuse(), [shape], tools)
+    return boolean(BRepAlgoAPI_Fuse(), [shape], tools, parallel=True)
 
 
 def clean(shape: TopoDS_Shape) -> TopoDS_Shape:

@@ -35,8 +35,8 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex,
                         TopoDS_Wire)
 
-from geargen.cad.gear_solid import (KERNEL_TOLERANCE, _bspline2d, _edge as _make_edge, check_solid,
-                                    solid_volume)
+from geargen.cad.gear_solid import check_solid, solid_volume
+from geargen.cad.kernel import KERNEL_TOLERANCE, bspline_curve_2d, make_edge
 from geargen.core.rack import RackOutline, rack_outline
 from geargen.design.rack import ZERO_SEGMENT, RackSpec
 from geargen.errors import BuildError
@@ -118,7 +118,7 @@ def _section_face(spec: RackSpec, segments: list[tuple]):
         if seg[0] == "line":
             length = math.hypot(x1 - x0, y1 - y0)
             curve = Geom_Line(gp_Pnt(x0, y0, 0.0), gp_Dir((x1 - x0) / length, (y1 - y0) / length, 0.0))
-            edge, forward = _make_edge(builder, curve, v0, v1, 0.0, length), True
+            edge, forward = make_edge(builder, curve, v0, v1, 0.0, length), True
         else:  # the arc (less than a half circle) on its circle, angles counter-clockwise about +z
             (cx, cy), r = seg[3], seg[4]
             a0, a1 = math.atan2(y0 - cy, x0 - cx), math.atan2(y1 - cy, x1 - cx)
@@ -128,7 +128,7 @@ def _section_face(spec: RackSpec, segments: list[tuple]):
             forward = a0 < a1
             lo, hi = min(a0, a1), max(a0, a1)
             shift = 2 * math.pi * math.floor(lo / (2 * math.pi))  # the circle's parameter runs over [0, 2 pi)
-            edge = _make_edge(builder, curve, v0 if forward else v1, v1 if forward else v0, lo - shift, hi - shift)
+            edge = make_edge(builder, curve, v0 if forward else v1, v1 if forward else v0, lo - shift, hi - shift)
         builder.UpdateEdge(edge, GeomAPI.To2d_s(curve, pln), plane, loc, KERNEL_TOLERANCE)
         builder.Add(wire, edge.Oriented(TopAbs_FORWARD if forward else TopAbs_REVERSED))
     wire.Closed(True)
@@ -275,7 +275,7 @@ class _HelicalRack:
         """A straight edge from p to q, parameter the distance from p."""
         length = math.dist(p, q)
         curve = Geom_Line(gp_Pnt(*p), gp_Dir(*((b - a) / length for a, b in zip(p, q))))
-        return _EdgeRecord(_make_edge(self.builder, curve, vertices[ends[0]], vertices[ends[1]], 0.0, length), curve,
+        return _EdgeRecord(make_edge(self.builder, curve, vertices[ends[0]], vertices[ends[1]], 0.0, length), curve,
                            ends)
 
     def _ellipse(self, wall: int, seg) -> Geom_Ellipse:
@@ -321,7 +321,7 @@ class _HelicalRack:
             fit = fit_function(lambda s: np.column_stack([u0 + s, bc * np.cos(u0 + s)]),
                                lambda s: np.column_stack([np.ones_like(s), -bc * np.sin(u0 + s)]), u1 - u0,
                                1e-3 * KERNEL_TOLERANCE)
-            self.pcurve_cache[key] = _bspline2d(fit.poles, fit.knots + u0, fit.mults, fit.degree)
+            self.pcurve_cache[key] = bspline_curve_2d(fit.poles, fit.knots + u0, fit.mults, fit.degree)
         return self.pcurve_cache[key].Translated(gp_Vec2d(0.0, a))
 
     def _face(self, surface, records: list[_EdgeRecord], pcurves: list, points: dict, normal_hint: tuple,
@@ -394,7 +394,7 @@ class _HelicalRack:
                 curve = self._ellipse(a.wall, seg)
                 ends = (("top", k), ("top", k1)) if ua <= uc else (("top", k1), ("top", k))
                 lo, hi = min(ua, uc), max(ua, uc)
-                rec = _EdgeRecord(_make_edge(self.builder, curve, vertices[ends[0]], vertices[ends[1]], lo, hi),
+                rec = _EdgeRecord(make_edge(self.builder, curve, vertices[ends[0]], vertices[ends[1]], lo, hi),
                                   curve, ends, angles=(lo, hi))
             rec.wall, rec.segment = a.wall, i
             tops.append(rec)
@@ -413,7 +413,7 @@ class _HelicalRack:
             sa, sc = _dot(pa, self.teeth_dir), _dot(pc, self.teeth_dir)
             origin = tuple(a - sa * d for a, d in zip(pa, self.teeth_dir))  # the line's parameter is then s
             curve = Geom_Line(gp_Pnt(*origin), gp_Dir(*self.teeth_dir))
-            edge = _make_edge(self.builder, curve, vertices["top", ka], vertices["top", kc], sa, sc)
+            edge = make_edge(self.builder, curve, vertices["top", ka], vertices["top", kc], sa, sc)
             joints[j] = _EdgeRecord(edge, curve, (("top", ka), ("top", kc)), joint=j)
 
         # the walls' other edges: the corners' verticals and the bottom edges

@@ -65,7 +65,7 @@ class WormPartSolid:
         return mesh(self.spec.set, chordal_tolerance)
 
 
-def _checked(shape, name: str, check: bool):
+def checked_worm_solid(shape, name: str, check: bool):
     """``shape``, checked when ``check``: a worm or wheel built from a valid set that is not one
     valid closed solid is geargen's failure, not the input's (KernelFailure: exit status 4)."""
     from geargen.cad.gear_solid import check_solid
@@ -106,7 +106,7 @@ def _helices(builder, g: WormGeometry, p: float, starts: int, half: float):
     theta1), their parameter s = theta - theta0; and the knots (distinct, multiplicities)."""
     from OCP.TColStd import TColStd_Array1OfReal
 
-    from geargen.cad.gear_solid import _bspline3d, _edge, _vertex
+    from geargen.cad.kernel import bspline_curve_3d, make_edge, make_vertex
 
     rf, ra = g.worm_root_diameter / 2, g.worm_tip_diameter / 2
     corners = [(rf, -1), (ra, -1), (ra, 1), (rf, 1)]
@@ -123,13 +123,13 @@ def _helices(builder, g: WormGeometry, p: float, starts: int, half: float):
         for e in (-1, 1):
             theta = (e * half - c) / p
             s_end[e] = theta - theta0
-            vertex[e] = _vertex(builder, r * math.cos(theta), r * math.sin(theta), e * half)
+            vertex[e] = make_vertex(builder, r * math.cos(theta), r * math.sin(theta), e * half)
         # z = p theta + c exactly: its poles are the Greville abscissae's images
-        curve = _bspline3d(np.column_stack([r * unit.real, r * unit.imag, p * (theta0 + spline.greville) + c]),
-                           spline.knots, simple, spline.degree)
+        curve = bspline_curve_3d(np.column_stack([r * unit.real, r * unit.imag, p * (theta0 + spline.greville) + c]),
+                                 spline.knots, simple, spline.degree)
         curve.Segment(0.0, theta1 - theta0)  # clamped at both ends: the same knot insertions on every helix
         first = -1 if s_end[-1] < s_end[1] else 1
-        edge = _edge(builder, curve, vertex[first], vertex[-first], s_end[first], s_end[-first])
+        edge = make_edge(builder, curve, vertex[first], vertex[-first], s_end[first], s_end[-first])
         poles = np.array([(q.X(), q.Y(), q.Z()) for q in (curve.Pole(i) for i in range(1, curve.NbPoles() + 1))])
         helices.append(_Helix(r, c, s_end, vertex, first, edge, poles))
     knots = TColStd_Array1OfReal(1, curve.NbKnots())
@@ -153,8 +153,8 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
     from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell
 
-    from geargen.cad.gear_solid import KERNEL_TOLERANCE as tol
-    from geargen.cad.gear_solid import _bspline2d, _bspline_surface_of, _edge
+    from geargen.cad.kernel import KERNEL_TOLERANCE as tol
+    from geargen.cad.kernel import bspline_curve_2d, bspline_surface, make_edge
 
     def segment(a, b, t0, t1, knots=()):
         """The straight pcurve a -> b, parameter t0 .. t1, with a knot at each of ``knots`` inside:
@@ -163,7 +163,7 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
         lo, hi = min(t0, t1) + 1e-9, max(t0, t1) - 1e-9  # a knot at an end (to rounding) is the end
         ts = np.concatenate([[t0], [k for k in knots if lo < k < hi][::1 if t1 > t0 else -1], [t1]])
         poles = np.asarray(a, float) + np.outer((ts - t0) / (t1 - t0), np.subtract(b, a))
-        return _bspline2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
+        return bspline_curve_2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
 
     half = length / 2
     builder = BRep_Builder()
@@ -177,8 +177,8 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
         face = TopoDS_Face()
         corner = {}  # (helix index 0/1, end) -> the corner's parameters on this face
         if j % 2 == 0:  # a flank: side -1 (j % 4 == 0) faces -z, side +1 faces +z
-            surface = _bspline_surface_of(np.stack([h0.poles, h1.poles]), _RULING.knots, _RULING.mults, _RULING.degree,
-                                          axis.knots, axis.mults, axis.degree)
+            surface = bspline_surface(np.stack([h0.poles, h1.poles]), _RULING.knots, _RULING.mults, _RULING.degree,
+                                      axis.knots, axis.mults, axis.degree)
             builder.MakeFace(face, surface, tol)
             for k, h in enumerate((h0, h1)):
                 a, b = h.s_end[h.first], h.s_end[-h.first]
@@ -213,7 +213,7 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
             else:  # on the cylinder: an arc of the end circle, parameter the angle from u_lo
                 (u_lo, lo), (u_hi, hi) = sorted([(u0, h0), (u1, h1)], key=lambda t: t[0])
                 frame = gp_Ax2(gp_Pnt(0, 0, e * half), gp_Dir(0, 0, 1), gp_Dir(math.cos(u_lo), math.sin(u_lo), 0))
-                edge = _edge(builder, Geom_Circle(frame, radius), lo.vertex[e], hi.vertex[e], 0.0, u_hi - u_lo)
+                edge = make_edge(builder, Geom_Circle(frame, radius), lo.vertex[e], hi.vertex[e], 0.0, u_hi - u_lo)
                 builder.UpdateEdge(edge, segment((u_lo, e * half), (u_hi, e * half), 0.0, u_hi - u_lo), face, tol)
             end_edges[e].append(edge)
         centre = _add_outer_wire(builder, face, [h0.edge, end_edges[1][-1], h1.edge, end_edges[-1][-1]])
@@ -264,7 +264,7 @@ def _add_outer_wire(builder, face, edges):
     from OCP.BRep import BRep_Tool
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 
-    from geargen.cad.gear_solid import _wire
+    from geargen.cad.kernel import make_wire
 
     loop = _loop(edges)
     uv = []
@@ -278,8 +278,8 @@ def _add_outer_wire(builder, face, edges):
     ccw = np.sum(uv[:, 0] * np.roll(uv[:, 1], -1) - np.roll(uv[:, 0], -1) * uv[:, 1]) > 0
     if not ccw:
         loop = [(edge, not rev) for edge, rev in loop[::-1]]
-    builder.Add(face, _wire(builder, [edge for edge, _ in loop],
-                            [TopAbs_REVERSED if rev else TopAbs_FORWARD for _, rev in loop]))
+    builder.Add(face, make_wire(builder, [edge for edge, _ in loop],
+                                [TopAbs_REVERSED if rev else TopAbs_FORWARD for _, rev in loop]))
     return uv.mean(axis=0)
 
 
@@ -308,7 +308,8 @@ def build_worm(spec: WormSpec, check: bool = False) -> WormPartSolid:
     # every face is oriented outward as it is made (_outward): no classification needed
     shell, error = _worm_shell(g, s.hand_sign * g.screw_parameter, s.starts, s.worm_face_length)
     builder.Add(solid, shell)
-    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=error)
+    return WormPartSolid(checked_worm_solid(solid, spec.name, check), spec.name, spec, g, s.length_unit,
+                         flank_error=error)
 
 
 def worm_to_mesh(points, centre_distance: float):

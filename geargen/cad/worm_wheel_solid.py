@@ -36,10 +36,12 @@ from types import SimpleNamespace
 import numpy as np
 from scipy.interpolate import BSpline
 
-from geargen.cad.worm_solid import WormPartSolid, _checked
+from geargen.cad.worm_solid import WormPartSolid, checked_worm_solid
 from geargen.core.worm import WormGeometry, wheel_outline, worm_geometry, z_ranges
 from geargen.design.worm import WormGearSet, WormWheelSpec
 from geargen.errors import KernelFailure
+from geargen.profile.bspline_fit import (clamped_uniform_knots, clamped_values, fit_clamped, fit_nodes,
+                                         greville_abscissae)
 
 #: B-spline degree of the wheel's surfaces, both ways: the runs are analytic, so the error falls
 #: like h^(degree + 1); one span of degree 6 holds every run and z range within 0.05 um (KHK set)
@@ -56,38 +58,6 @@ _CHECK_PER_SPAN = 2 * DEGREE + 1
 #: the runs of the space face, in u order (run i spans u in [i, i + 1])
 _SPACE_RUNS = (("flank", 1), ("trochoid", 1), "root", ("trochoid", -1), ("flank", -1))
 _MAX_SPANS = 12
-
-
-def _nodes(spans: int, per_span: int, chebyshev: bool) -> np.ndarray:
-    """Parameters in [0, 1]: both ends and ``per_span`` points inside each of ``spans`` uniform
-    spans (Chebyshev-spaced, denser at the span ends, or evenly spaced without either end)."""
-    k = np.arange(per_span)
-    frac = 0.5 - 0.5 * np.cos(math.pi * (k + 0.5) / per_span) if chebyshev else (k + 1) / (per_span + 1)
-    inner = ((np.arange(spans)[:, None] + frac[None, :]) / spans).ravel()
-    return np.concatenate([[0.0], inner, [1.0]]) if chebyshev else inner
-
-
-def _clamped(spans: int) -> np.ndarray:
-    """Knots (flat) of a clamped B-spline of ``spans`` uniform spans on [0, 1]."""
-    return np.concatenate([np.zeros(DEGREE), np.linspace(0.0, 1.0, spans + 1), np.ones(DEGREE)])
-
-
-def _fit(data: np.ndarray, params: np.ndarray, spans: int) -> np.ndarray:
-    """Poles (m, spans + DEGREE, d) of the clamped uniform B-splines fitting ``data`` (m, n, d) at
-    ``params`` (n,) in [0, 1] by least squares, each with its end poles the data's end points."""
-    design = BSpline.design_matrix(params, _clamped(spans), DEGREE).toarray()
-    n = spans + DEGREE
-    poles = np.empty((data.shape[0], n, data.shape[2]))
-    poles[:, 0], poles[:, -1] = data[:, 0], data[:, -1]
-    rhs = data - design[None, :, :1] @ poles[:, :1] - design[None, :, -1:] @ poles[:, -1:]
-    inner = np.linalg.lstsq(design[:, 1:-1], rhs.transpose(1, 0, 2).reshape(len(params), -1), rcond=None)[0]
-    poles[:, 1:-1] = inner.reshape(n - 2, data.shape[0], data.shape[2]).transpose(1, 0, 2)
-    return poles
-
-
-def _value(poles: np.ndarray, params: np.ndarray, spans: int) -> np.ndarray:
-    """The B-splines of ``poles`` (m, n, d) at ``params``: (m, len(params), d)."""
-    return np.einsum("pi,mid->mpd", BSpline.design_matrix(params, _clamped(spans), DEGREE).toarray(), poles)
 
 
 @dataclass
@@ -135,10 +105,10 @@ def fit_wheel(s: WormGearSet, g: WormGeometry, tolerance: float = FIT_TOLERANCE)
     spans_u = {"flank": 1, "trochoid": 1, "arc": 1}
     spans_v = [1] * len(ranges)
     for _ in range(_MAX_SPANS):
-        z_fit = [lo + (hi - lo) * _nodes(k, _FIT_PER_SPAN, True) for (lo, hi), k in zip(ranges, spans_v)]
-        z_check = [lo + (hi - lo) * _nodes(k, _CHECK_PER_SPAN, False) for (lo, hi), k in zip(ranges, spans_v)]
-        u_fit = {kind: _nodes(k, _FIT_PER_SPAN, True) for kind, k in spans_u.items()}
-        u_check = {kind: _nodes(k, _CHECK_PER_SPAN, False) for kind, k in spans_u.items()}
+        z_fit = [lo + (hi - lo) * fit_nodes(k, _FIT_PER_SPAN, True) for (lo, hi), k in zip(ranges, spans_v)]
+        z_check = [lo + (hi - lo) * fit_nodes(k, _CHECK_PER_SPAN, False) for (lo, hi), k in zip(ranges, spans_v)]
+        u_fit = {kind: fit_nodes(k, _FIT_PER_SPAN, True) for kind, k in spans_u.items()}
+        u_check = {kind: fit_nodes(k, _CHECK_PER_SPAN, False) for kind, k in spans_u.items()}
         rows = np.concatenate(z_fit)
         fitted = wheel_outline(s, g, rows, u_fit["flank"], u_fit["trochoid"], u_fit["arc"])
         # u checked on the fitted rows (the ends kept: the later runs start from the flank's end)
@@ -152,15 +122,16 @@ def fit_wheel(s: WormGearSet, g: WormGeometry, tolerance: float = FIT_TOLERANCE)
         for run in runs:
             kind = _kind(run)
             k_u = spans_u[kind]
-            row_poles = _fit(fitted[run], u_fit[kind], k_u)  # (rows, nu, 2)
+            row_poles = fit_clamped(fitted[run], u_fit[kind], k_u, DEGREE)  # (rows, nu, 2)
             error_u[kind] = max(error_u[kind], float(np.max(np.linalg.norm(
-                _value(row_poles, u_check[kind], k_u) - between[run][:, 1:-1], axis=-1))))
-            basis_u = BSpline.design_matrix(u_fit[kind], _clamped(k_u), DEGREE).toarray()
+                clamped_values(row_poles, u_check[kind], k_u, DEGREE) - between[run][:, 1:-1], axis=-1))))
+            basis_u = BSpline.design_matrix(u_fit[kind], clamped_uniform_knots(k_u, DEGREE), DEGREE).toarray()
             columns[run], start, check_start = [], 0, 0
             for i, ((lo, hi), k_v, zf, zc) in enumerate(zip(ranges, spans_v, z_fit, z_check)):
-                col = _fit(row_poles[start:start + len(zf)].transpose(1, 0, 2), (zf - lo) / (hi - lo), k_v)
+                col = fit_clamped(row_poles[start:start + len(zf)].transpose(1, 0, 2), (zf - lo) / (hi - lo), k_v,
+                                  DEGREE)
                 columns[run].append(col)  # (nu, nv, 2)
-                at_checks = np.einsum("pi,ivd->vpd", basis_u, _value(col, (zc - lo) / (hi - lo), k_v))
+                at_checks = np.einsum("pi,ivd->vpd", basis_u, clamped_values(col, (zc - lo) / (hi - lo), k_v, DEGREE))
                 error_v[i] = max(error_v[i], float(np.max(np.linalg.norm(
                     at_checks - exact_v[run][check_start:check_start + len(zc)], axis=-1))))
                 start += len(zf)
@@ -179,7 +150,7 @@ def fit_wheel(s: WormGearSet, g: WormGeometry, tolerance: float = FIT_TOLERANCE)
     cuts = [lo for lo, _ in ranges] + [ranges[-1][1]]
     v = _basis(spans_v, cuts)  # v = z: each range's spans on its own z interval
     flat = np.repeat(v.knots, v.mults)
-    greville = np.array([flat[j + 1:j + DEGREE + 1].mean() for j in range(len(flat) - DEGREE - 1)])
+    greville = greville_abscissae(flat, DEGREE)
 
     def poles(run):  # (nu, nv, 3): the ranges joined over v, z = the Greville abscissae (exactly linear)
         xy = _join([c.transpose(1, 0, 2) for c in columns[run]]).transpose(1, 0, 2)
@@ -217,8 +188,9 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
     from OCP.TopoDS import TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
-    from geargen.cad.gear_solid import KERNEL_TOLERANCE as tol
-    from geargen.cad.gear_solid import _bspline2d, _bspline3d, _bspline_surface_of, _edge, _vertex, _wire
+    from geargen.cad.kernel import KERNEL_TOLERANCE as tol
+    from geargen.cad.kernel import (bspline_curve_2d, bspline_curve_3d, bspline_surface, make_edge, make_vertex,
+                                    make_wire)
 
     builder = BRep_Builder()
     pitch = 2 * math.pi / teeth
@@ -229,7 +201,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
         it): the kernel's integrals (volume, area) take one knot span at a time."""
         ts = np.asarray(knots, float)
         poles = np.asarray(a, float) + np.outer((ts - ts[0]) / (ts[-1] - ts[0]), np.subtract(b, a))
-        return _bspline2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
+        return bspline_curve_2d(poles, ts, [2] + [1] * (len(ts) - 2) + [2], 1)
 
     # per tooth t: the rim at the top of its space's flank +1 (u = 0 of the space face, u = end of
     # the previous tip face) and of its flank -1 (u = end of the space face, u = 0 of its tip face),
@@ -249,20 +221,20 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     for t in range(teeth):
         for which, column in (("+", fit.space[0]), ("-", fit.space[-1])):
             col = _rotated_poles(column, t * pitch)
-            vertices = [_vertex(builder, *col[0])] + [_vertex(builder, *col[first + count - 1])
+            vertices = [make_vertex(builder, *col[0])] + [make_vertex(builder, *col[first + count - 1])
                                                       for first, count, _, _ in pieces]
             edges = []
             for (first, count, knots, mults), a, b in zip(pieces, vertices[:-1], vertices[1:]):
-                curve = _bspline3d(col[first:first + count], knots, mults, DEGREE)
-                edges.append(_edge(builder, curve, a, b, knots[0], knots[-1]))
+                curve = bspline_curve_3d(col[first:first + count], knots, mults, DEGREE)
+                edges.append(make_edge(builder, curve, a, b, knots[0], knots[-1]))
             rims[t, which] = edges
             corners[t, which] = [vertices[0], vertices[-1]]
     faces, ends = [], {v_lo: [], v_hi: []}
     for t in range(teeth):
         for which, poles, basis in (("space", fit.space, fit.space_u), ("tip", fit.tip, fit.tip_u)):
             turned = _rotated_poles(poles, t * pitch)
-            surface = _bspline_surface_of(turned, basis.knots, basis.mults, basis.degree, fit.v.knots, fit.v.mults,
-                                          fit.v.degree)
+            surface = bspline_surface(turned, basis.knots, basis.mults, basis.degree, fit.v.knots, fit.v.mults,
+                                      fit.v.degree)
             face = TopoDS_Face()
             builder.MakeFace(face, surface, tol)
             u1 = u_end[which]
@@ -274,8 +246,8 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             r_ends = corners[t, "-"] if which == "space" else corners[(t + 1) % teeth, "+"]
             row_edges = []
             for k, v in ((0, v_lo), (-1, v_hi)):
-                curve = _bspline3d(turned[:, k], basis.knots, basis.mults, basis.degree)
-                edge = _edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
+                curve = bspline_curve_3d(turned[:, k], basis.knots, basis.mults, basis.degree)
+                edge = make_edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
                 builder.UpdateEdge(edge, line((0.0, v), (u1, v), [0.0, u1]), face, tol)  # dv = 0: no volume
                 ends[v].append(edge)
                 row_edges.append(edge)
@@ -284,7 +256,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             # wheel, v = z)
             loop = [row_edges[0]] + right + [row_edges[1]] + left[::-1]
             orient = [TopAbs_FORWARD] * (1 + len(right)) + [TopAbs_REVERSED] * (1 + len(left))
-            builder.Add(face, _wire(builder, loop, orient))
+            builder.Add(face, make_wire(builder, loop, orient))
             faces.append(face)
     for v, edges in ends.items():
         plane = Geom_Plane(gp_Ax3(gp_Pnt(0, 0, v), gp_Dir(0, 0, 1), gp_Dir(1, 0, 0)))
@@ -292,7 +264,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
         builder.MakeFace(face, plane, tol)
         for edge in edges:
             BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
-        builder.Add(face, _wire(builder, edges))  # counterclockwise seen from +z
+        builder.Add(face, make_wire(builder, edges))  # counterclockwise seen from +z
         faces.append(face if v == v_hi else face.Reversed())
     shell = TopoDS_Shell()
     builder.MakeShell(shell)
@@ -313,7 +285,8 @@ def build_worm_wheel(spec: WormWheelSpec, check: bool = False, tolerance: float 
     g = worm_geometry(s)
     fit = fit_wheel(s, g, tolerance)
     solid = _wheel_solid(fit, s.wheel_teeth, s.wheel_face_width / 2)
-    return WormPartSolid(_checked(solid, spec.name, check), spec.name, spec, g, s.length_unit, flank_error=fit.max_error)
+    return WormPartSolid(checked_worm_solid(solid, spec.name, check), spec.name, spec, g, s.length_unit,
+                         flank_error=fit.max_error)
 
 
 __all__ = ["build_worm_wheel", "fit_wheel", "WheelFit", "z_ranges", "DEGREE", "FIT_TOLERANCE"]

@@ -41,7 +41,7 @@ class BevelPairCheck:
     tip_clearance_2: float
 
 
-def _frame2(shaft_angle: float) -> np.ndarray:
+def mate_frame(shaft_angle: float) -> np.ndarray:
     """Rotation taking gear 2's frame (its axis +z) into gear 1's: about y by Sigma."""
     c, s = math.cos(shaft_angle), math.sin(shaft_angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
@@ -82,7 +82,7 @@ def check_bevel_pair(gear1: BevelGearSpec, gear2: BevelGearSpec, samples: int = 
                           "gear1.mate_teeth = gear2.teeth, gear2.mate_teeth = gear1.teeth, the same shaft angle")
     if abs(gear1.cone_distance - gear2.cone_distance) > 1e-9 * gear1.cone_distance:
         raise DesignError("module", "the two bevel gears have different cone distances", "the same module")
-    rot = _frame2(gear1.shaft_angle)
+    rot = mate_frame(gear1.shaft_angle)
     th1, off1 = _flank_points(gear1, samples)
     th2, off2 = _flank_points(gear2, samples)
     phase2 = math.pi + math.pi / gear2.teeth + turn  # at turn 0, a tooth space of gear 2 on the generator

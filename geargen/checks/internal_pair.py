@@ -40,8 +40,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from geargen.checks.results import Failure
-from geargen.core.internal import InternalPairGeometry, internal_pair_geometry
-from geargen.core.involute import involute
+from geargen.core.internal import InternalPairGeometry, internal_pair_geometry, line_of_action_roll
+from geargen.core.involute import involute, roll_length
 from geargen.design.gear import GearSpec, with_changes
 from geargen.errors import GeargenError
 from geargen.profile.internal import InternalProfile, internal_profile
@@ -69,7 +69,7 @@ class RingMaterial:
         inv = (r >= ring.base_radius) & (r <= ring.form_radius)
         with np.errstate(invalid="ignore"):
             alpha = np.arccos(np.clip(ring.base_radius / r[inv], -1.0, 1.0))
-        out[inv] = ring.space_base_half_angle - (np.tan(alpha) - alpha)
+        out[inv] = ring.space_base_half_angle - involute(alpha)
         fil = (r > ring.form_radius) & (r <= ring.root_radius)
         out[fil] = np.interp(r[fil], self._r, self._ang)
         return out
@@ -194,9 +194,7 @@ def _alpha(rb: float, r: float) -> float:
 def ring_tip_roll_length(pair: InternalPairGeometry) -> float:
     """mm along the line of action from the pinion's base tangent point to where the ring's tip
     circle crosses it: sqrt(ra2^2 - rb2^2) - (rb2 - rb1) tan(a_w)."""
-    rb1, rb2 = pair.pinion.base_radius, pair.ring.base_radius
-    ra2 = pair.ring.tip_radius
-    return math.sqrt(max(ra2 ** 2 - rb2 ** 2, 0.0)) - (rb2 - rb1) * math.tan(pair.working_pressure_angle)
+    return line_of_action_roll(pair, pair.ring.tip_radius)
 
 
 #: a pinion flank closer to its involute than this (mm) counts as on it (the exact outline's round-off)
@@ -215,8 +213,7 @@ def undercut_recess(pinion: ToothProfile, r_lo: float, r_hi: float, samples: int
     if not inside.any():
         return None
     alpha = np.arccos(pinion.base_radius / r[inside])
-    recess = r[inside] * (pinion.base_half_angle - (np.tan(alpha) - alpha) - np.abs(np.arctan2(pts[inside, 1],
-                                                                                              pts[inside, 0])))
+    recess = r[inside] * (pinion.base_half_angle - involute(alpha) - np.abs(np.arctan2(pts[inside, 1], pts[inside, 0])))
     return float(recess.min()), float(recess.max())
 
 
@@ -244,7 +241,7 @@ def tip_margin(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalP
     pinion's root; and which one it is."""
     rb1, rb2, a = pair.pinion.base_radius, pair.ring.base_radius, pair.centre_distance
     ra1 = pinion.tip_radius
-    roll_ring = math.sqrt(ra1 ** 2 - rb1 ** 2) + (rb2 - rb1) * math.tan(pair.working_pressure_angle)
+    roll_ring = roll_length(ra1, rb1) + (rb2 - rb1) * math.tan(pair.working_pressure_angle)
     engage = math.hypot(rb2, roll_ring)
     options = [(ring.form_radius - engage, "the pinion's tip engages the ring's fillet"),
                (ring.root_radius - (a + ra1), "the pinion's tip circle reaches the ring's root circle"),

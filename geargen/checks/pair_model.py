@@ -36,7 +36,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from geargen.checks.mesh2d import MeshSetup, polar_outline
-from geargen.core.involute import involute
+from geargen.core.involute import backlash_change, involute, roll_length, working_pressure_angle_at
 from geargen.design.gear import GearSpec
 from geargen.profile.tooth import section_rotation
 
@@ -72,11 +72,11 @@ class GearConstants:
     @property
     def tip_roll_length(self) -> float:
         """Length of line of action from the base circle to the tip circle (mm)."""
-        return math.sqrt(self.tip_radius ** 2 - self.base_radius ** 2)
+        return roll_length(self.tip_radius, self.base_radius)
 
     @property
     def start_roll_length(self) -> float:
-        return math.sqrt(self.involute_start ** 2 - self.base_radius ** 2)
+        return roll_length(self.involute_start, self.base_radius)
 
 
 @dataclass
@@ -110,15 +110,15 @@ class PairModel:
         self.base_sum = self.gear1.base_radius + self.gear2.base_radius
         self.centre_distance = setup.centre_distance
         self.nominal_play = float(nominal_angular_play) * self.gear1.base_radius
-        self._inv_nominal = float(involute(math.acos(self.base_sum / self.centre_distance)))
+        self._inv_nominal = float(involute(working_pressure_angle_at(float(self.base_sum), float(self.centre_distance))))
 
     # ---------------------------------------------------------------- the error-free pair
     def total_play(self, distance):
         """Play of both sides along the line of action (mm) of the error-free teeth at centre
         distance ``distance``: ``j(a0) + 2 (r_b1 + r_b2)(inv alpha_w(a) - inv alpha_w(a0))``."""
         a = np.asarray(distance, dtype=float)
-        return self.nominal_play + 2 * self.base_sum * (involute(np.arccos(np.clip(self.base_sum / a, -1, 1)))
-                                                        - self._inv_nominal)
+        return self.nominal_play + backlash_change(self.base_sum, working_pressure_angle_at(self.base_sum, a, clamp=True),
+                                                   self._inv_nominal)
 
     def circumferential(self, play):
         """Play along the line of action (mm) as backlash of the resolved model's kind
@@ -128,7 +128,7 @@ class PairModel:
     def line_geometry(self, c1, c2) -> LineGeometry:
         d = np.asarray(c2) - np.asarray(c1)
         a = np.hypot(d[..., 0], d[..., 1])
-        aw = np.arccos(np.clip(self.base_sum / a, -1.0, 1.0))
+        aw = working_pressure_angle_at(self.base_sum, a, clamp=True)
         L = a * np.sin(aw)
         g1, g2 = self.gear1, self.gear2
         u_min = np.maximum(g1.start_roll_length, L - g2.tip_roll_length)

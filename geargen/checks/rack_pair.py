@@ -75,7 +75,7 @@ class RackMeshCheck:
         return not self.failures
 
 
-class _Pair:
+class PlacedRackPair:
     """The placed outlines: pinion boundary as a function of (tooth, sector parameter)."""
 
     def __init__(self, rack: RackSpec, pinion: PolarOutline, centre: float):
@@ -133,7 +133,7 @@ def _golden(f, a, b, iterations=_ITERATIONS):
     return best_x, best
 
 
-def _extreme(pair: _Pair, theta: float, objective, mask_of, u_grid, k_grid):
+def boundary_extreme(pair: PlacedRackPair, theta: float, objective, mask_of, u_grid, k_grid):
     """Minimum over the pinion's boundary of ``objective(X, Y)`` (points ``mask_of`` admits),
     bracketed on the grid and refined on the exact segment; returns (value, kind of the point)."""
     X, Y, kind = pair.points(theta, u_grid, k_grid)
@@ -161,7 +161,7 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
     from the nominal height, at ``positions`` pinion rotations over one tooth pitch."""
     geometry = rack_pinion_geometry(rack, pinion, centre_offset)
     outline = polar_outline(pinion)
-    pair = _Pair(rack, outline, geometry.centre_height)
+    pair = PlacedRackPair(rack, outline, geometry.centre_height)
     n_seg = outline.segment_count
     u1 = np.concatenate([s + np.linspace(0.0, 1.0, _SAMPLES, endpoint=False) for s in range(n_seg)] + [[float(n_seg)]])
     u_grid, k_grid = np.meshgrid(u1, pair.teeth.astype(float))
@@ -190,10 +190,10 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
     tip_start = float(o.flank_x(o.flank_tip_u))
     full, conj, lims, c_pin, c_rack = [], [], [], [], []
     for theta in thetas:
-        a, ka = _extreme(pair, theta, up, below_tips, u_grid, k_grid)
-        b, kb = _extreme(pair, theta, down, below_tips, u_grid, k_grid)
-        ca, _ = _extreme(pair, theta, up, conjugate, u_grid, k_grid)
-        cd, _ = _extreme(pair, theta, down, conjugate, u_grid, k_grid)
+        a, ka = boundary_extreme(pair, theta, up, below_tips, u_grid, k_grid)
+        b, kb = boundary_extreme(pair, theta, down, below_tips, u_grid, k_grid)
+        ca, _ = boundary_extreme(pair, theta, up, conjugate, u_grid, k_grid)
+        cd, _ = boundary_extreme(pair, theta, down, conjugate, u_grid, k_grid)
         full.append(a + b)
         conj.append(ca + cd)
         lims.append((ka, kb))
@@ -208,8 +208,8 @@ def check_rack_pinion_mesh(rack: RackSpec, pinion: GearSpec, centre_offset: floa
         def over_tip(X, Y, kd, shift=shift):  # a pinion root point above the rack's tip land or tip arc
             return (kd == ROOT) & (np.abs(pair.offset(X - shift)) * pair.cos_b >= tip_start)
 
-        c_pin.append(_extreme(pair, theta, gap, over_root, u_grid, k_grid)[0])
-        c_rack.append(_extreme(pair, theta, gap, over_tip, u_grid, k_grid)[0])
+        c_pin.append(boundary_extreme(pair, theta, gap, over_root, u_grid, k_grid)[0])
+        c_rack.append(boundary_extreme(pair, theta, gap, over_tip, u_grid, k_grid)[0])
     full, conj = np.array(full), np.array(conj)
     result = RackMeshCheck(mesh_position=thetas, circumferential_backlash=full, conjugate_backlash=conj,
                            normal_backlash=full * cos_at * cos_bb, tip_clearance_pinion=np.array(c_pin),

@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from geargen.core.involute import length_of_action
 from geargen.design.bevel import BevelGearSpec
 from geargen.errors import DesignError, GeometryError
 
@@ -444,11 +445,9 @@ def virtual_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = Non
     m = spec.module
     re = spec.cone_distance
     ha2 = (spec.addendum_coefficient - spec.profile_shift) * m if mate_addendum is None else mate_addendum
-    out = -re * (math.tan(spec.pitch_cone_angle) + math.tan(spec.mate_pitch_cone_angle)) * math.sin(a)
-    for delta, ha in ((spec.pitch_cone_angle, spec.addendum), (spec.mate_pitch_cone_angle, ha2)):
-        rv = re * math.tan(delta)
-        out += math.sqrt((rv + ha) ** 2 - (rv * math.cos(a)) ** 2)
-    return out / (math.pi * m * math.cos(a))
+    rv1, rv2 = re * math.tan(spec.pitch_cone_angle), re * math.tan(spec.mate_pitch_cone_angle)
+    path = length_of_action((rv1 + spec.addendum, rv2 + ha2), (rv1 * math.cos(a), rv2 * math.cos(a)), rv1 + rv2)
+    return path / (math.pi * m * math.cos(a))
 
 
 def spherical_contact_ratio(spec: BevelGearSpec, mate_addendum: float | None = None) -> float:

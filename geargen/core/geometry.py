@@ -22,7 +22,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from geargen.core.involute import (involute, inverse_involute, pointed_tip_radius, reference_tooth_thickness,
+from geargen.core.involute import (backlash_change, involute, inverse_involute, length_of_action, pointed_tip_radius,
+                                   reference_tooth_thickness, roll_length, working_pressure_angle_at,
                                    tooth_thickness_at_radius)
 from geargen.design.gear import GearSpec
 from geargen.errors import DesignError, GeometryError
@@ -171,7 +172,7 @@ def shift_sum_for_centre_distance(centre_distance, teeth_sum, normal_module, nor
     if np.any(~np.isfinite(aw)) or np.any(aw <= base_sum):
         raise DesignError("centre_distance", "must be larger than the sum of the base radii",
                           f"> {np.min(base_sum):.6g} mm")
-    alpha_wt = np.arccos(base_sum / aw)
+    alpha_wt = working_pressure_angle_at(base_sum, aw)
     return _out(np.asarray(teeth_sum, float) * (involute(alpha_wt) - involute(alpha_t))
                 / (2.0 * np.tan(normal_pressure_angle)))
 
@@ -243,7 +244,7 @@ def mesh_geometry(pair: GearPair, centre_distance: float | None = None, tip_radi
     rb1, rb2 = g1.base_radius, g2.base_radius
     if not (math.isfinite(a) and a > rb1 + rb2):
         raise DesignError("centre_distance", f"{a!r} mm does not clear the base circles", f"> {rb1 + rb2:.6g} mm")
-    alpha_w = math.acos((rb1 + rb2) / a)
+    alpha_w = working_pressure_angle_at(rb1 + rb2, a)
 
     if isinstance(tip_radii, str):
         if tip_radii not in TIP_RADII_MODES:
@@ -263,10 +264,10 @@ def mesh_geometry(pair: GearPair, centre_distance: float | None = None, tip_radi
         if not (math.isfinite(ra) and ra > rb):
             raise DesignError(f"gear{i}.tip_radius", f"{ra:.6g} mm is not above the base circle", f"> {rb:.6g} mm")
 
-    roll_tip1 = math.sqrt(ra1 * ra1 - rb1 * rb1)  # roll length from base tangent point to tip, on each gear
-    roll_tip2 = math.sqrt(ra2 * ra2 - rb2 * rb2)
+    roll_tip1 = roll_length(ra1, rb1)  # roll length from base tangent point to tip, on each gear
+    roll_tip2 = roll_length(ra2, rb2)
     line = a * math.sin(alpha_w)  # T1T2, the line of action between the base tangent points
-    g_alpha = roll_tip1 + roll_tip2 - line
+    g_alpha = length_of_action((ra1, ra2), (rb1, rb2), a)
     p_bt = 2 * math.pi * rb1 / g1.teeth
     eps_a = g_alpha / p_bt
     b = min(g1.face_width, g2.face_width) if face_width is None else float(face_width)
@@ -379,8 +380,8 @@ def backlash_at_centre_distance(pair: GearPair, centre_distance) -> MeshBacklash
     if np.any(~np.isfinite(a)) or np.any(a <= rb1 + rb2):
         raise DesignError("centre_distance", "must be larger than the sum of the base radii", f"> {rb1 + rb2:.6g} mm")
     inv0 = _tight_mesh_inv(pair)
-    alpha_w = np.arccos((rb1 + rb2) / a)
-    j_bt = 2.0 * (rb1 + rb2) * (involute(alpha_w) - inv0)
+    alpha_w = working_pressure_angle_at(rb1 + rb2, a)
+    j_bt = backlash_change(rb1 + rb2, alpha_w, inv0)
     j_wt = j_bt / np.cos(alpha_w)
     try:
         a_tight = tight_mesh_centre_distance(pair)

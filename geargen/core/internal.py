@@ -19,7 +19,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from geargen.core.involute import involute, inverse_involute, reference_tooth_thickness
+from geargen.core.involute import (involute, inverse_involute, length_of_action, reference_tooth_thickness, roll_length,
+                                   working_pressure_angle_at)
 from geargen.design.gear import GearSpec
 from geargen.errors import DesignError, GeometryError
 
@@ -126,10 +127,10 @@ def internal_pair_geometry(pinion: GearSpec, ring: GearSpec, centre_distance: fl
     if not (math.isfinite(a) and a > rb2 - rb1):
         raise GeometryError("centre_distance", f"centre distance {a!r} mm does not reach the base circles' "
                             f"difference rb2 - rb1 = {rb2 - rb1:.6g} mm")
-    alpha_w = math.acos((rb2 - rb1) / a)
+    alpha_w = working_pressure_angle_at(rb2 - rb1, a)
     ra1, ra2 = pinion.tip_radius, ring.tip_radius
     p_bt = math.pi * m_t * math.cos(alpha_t)
-    eps_a = (math.sqrt(ra1 ** 2 - rb1 ** 2) - math.sqrt(max(ra2 ** 2 - rb2 ** 2, 0.0)) + a * math.sin(alpha_w)) / p_bt
+    eps_a = length_of_action((ra1, ra2), (rb1, rb2), a, internal=True) / p_bt
     width = min(pinion.face_width, ring.face_width)
     eps_b = width * math.sin(pinion.helix_angle) / (math.pi * pinion.module)
     s1 = reference_tooth_thickness(pinion)
@@ -152,8 +153,7 @@ def line_of_action_roll(pair: InternalPairGeometry, ring_radius: float) -> float
     point at which the ring's flank at ``ring_radius`` engages (negative: behind the pinion's
     tangent point, where the pinion has no involute)."""
     rb1, rb2 = pair.pinion.base_radius, pair.ring.base_radius
-    return (math.sqrt(max(ring_radius ** 2 - rb2 ** 2, 0.0))
-            - (rb2 - rb1) * math.tan(pair.working_pressure_angle))
+    return roll_length(ring_radius, rb2) - (rb2 - rb1) * math.tan(pair.working_pressure_angle)
 
 
 __all__ = ["InternalPairGeometry", "internal_pair_geometry", "check_internal_pair", "ring_space_width",

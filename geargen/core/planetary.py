@@ -19,7 +19,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from geargen.core.involute import involute, inverse_involute
+from geargen.core.involute import involute, inverse_involute, working_pressure_angle_at
 from geargen.errors import DesignError
 
 
@@ -114,11 +114,11 @@ def coaxial_ring_shift(stage: PlanetaryStage) -> float:
     a_w = sun_planet_working(stage)[1]
     diff = stage.ring_teeth - stage.planet_teeth
     alpha_t = stage.transverse_pressure_angle
-    cos_w = stage.transverse_module * diff / 2 * math.cos(alpha_t) / a_w
-    if not 0 < cos_w < 1:
+    alpha_w = working_pressure_angle_at(float(stage.transverse_module * diff / 2 * math.cos(alpha_t)), float(a_w))
+    if not 0 < alpha_w < math.pi / 2:  # NaN: a_w inside the base circles
         raise DesignError("ring_teeth", f"no internal working pressure angle reaches a_w = {a_w:.6g} mm",
                           "tooth numbers with z_r - z_p close to z_s + z_p")
-    inv_w = involute(math.acos(cos_w))
+    inv_w = involute(alpha_w)
     return stage.planet_profile_shift + (inv_w - involute(alpha_t)) * diff / (2 * math.tan(stage.pressure_angle))
 
 

@@ -45,6 +45,7 @@ from typing import Callable
 import numpy as np
 from scipy.optimize import brentq
 
+from geargen.core.involute import working_pressure_angle_at
 from geargen.core.synthesis import mate_rotation, wrap
 from geargen.errors import GeometryError
 
@@ -74,10 +75,10 @@ class RackDriveFrame:
 
     def working_pressure_angle(self, y: float) -> float:
         c = float(self.centre_distance(y))
-        ratio = (self.input_base_radius + self.path_base_radius) / c
-        if ratio >= 1.0:
+        alpha_w = working_pressure_angle_at(float(self.input_base_radius + self.path_base_radius), c)
+        if not alpha_w > 0:  # NaN: inside the base circles; 0: touching them
             raise GeometryError("carriage", f"centre distance {c:.6g} mm is inside the base circles")
-        return math.acos(ratio)
+        return alpha_w
 
     def line_of_action_a(self, y: float) -> np.ndarray:
         """Unit vector of the force the input puts on path gear a (along mesh a's working line of

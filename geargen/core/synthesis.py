@@ -52,7 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geargen.core.involute import involute, tooth_thickness_at_radius
+from geargen.core.involute import backlash_change, involute, tooth_thickness_at_radius, working_pressure_angle_at
 from geargen.design.gear import GearSpec
 from geargen.design.synthesis import ROUNDING_RULES, SynthesisInputs
 from geargen.errors import GeometryError
@@ -110,11 +110,7 @@ def round_increments(increments: float, rule: str) -> int:
 
 def operating_pressure_angle(centre_distance, standard_centre_distance, pressure_angle):
     """alpha_w with cos alpha_w = C_std cos alpha / C (rad); NaN where C is inside the base circles."""
-    c = np.asarray(centre_distance, dtype=float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        cos_w = standard_centre_distance * np.cos(pressure_angle) / c
-        out = np.where((cos_w > 0) & (cos_w <= 1.0), np.arccos(np.clip(cos_w, -1.0, 1.0)), np.nan)
-    return float(out) if out.ndim == 0 else out
+    return working_pressure_angle_at(standard_centre_distance * np.cos(pressure_angle), centre_distance)
 
 
 def backlash_from_thickness_deficit(thickness_deficit, centre_distance, standard_centre_distance, pressure_angle):
@@ -124,7 +120,7 @@ def backlash_from_thickness_deficit(thickness_deficit, centre_distance, standard
     minus the two reference tooth thicknesses (transverse, mm). Arrays broadcast.
     """
     a_w = operating_pressure_angle(centre_distance, standard_centre_distance, pressure_angle)
-    return thickness_deficit + 2 * standard_centre_distance * (involute(a_w) - involute(pressure_angle))
+    return thickness_deficit + backlash_change(standard_centre_distance, a_w, involute(pressure_angle))
 
 
 def thickness_deficit_for_backlash(backlash, centre_distance, standard_centre_distance, pressure_angle):
@@ -452,10 +448,9 @@ def solve_loop(synthesis: CentreSynthesis, backlash_mesh1=None, backlash_mesh2=N
         c_sq = dx * dx + dy * dy
         c = np.sqrt(c_sq)
         beta = np.arctan2(dy, dx)
-        with np.errstate(invalid="ignore"):
-            a_w = np.arccos(k_cos / c)  # NaN inside the base circles
+        a_w = working_pressure_angle_at(k_cos, c)  # NaN inside the base circles
         tan_w = np.tan(a_w)
-        b_mesh1 = t1 + 2 * cs1 * (tan_w - a_w - inv_al1)
+        b_mesh1 = t1 + backlash_change(cs1, a_w, inv_al1)
         phi1 = mate_rotation(beta, phi2_seen, z1, z2, b_mesh1 / r1, side) - tooth_in
         dphi1 = ((1 + ratio1) * dy - side * cs1 * tan_w * dx / r1) / c_sq
         return phi1, dphi1

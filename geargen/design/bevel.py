@@ -33,7 +33,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.gear import _check
+from geargen.design.gear import check_number
 from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
@@ -76,13 +76,13 @@ class BevelGearSpec:
             value = getattr(self, name)
             if isinstance(value, bool) or not isinstance(value, int):
                 raise DesignError(name, f"expected a whole number, got {value!r}")
-            _check(name, value, 5, 1000, "")
-        _check("module", self.module, 0.05, 100.0, "mm", exclusive_lo=True)
-        _check("shaft_angle", self.shaft_angle, 10 * DEG, 170 * DEG, "rad")
-        _check("pressure_angle", self.pressure_angle, 10 * DEG, 30 * DEG, "rad")
-        _check("profile_shift", self.profile_shift, -0.8, 0.8, "")
-        _check("addendum_coefficient", self.addendum_coefficient, 0.5, 1.5, "")
-        _check("dedendum_coefficient", self.dedendum_coefficient, 0.8, 2.0, "")
+            check_number(name, value, 5, 1000, "")
+        check_number("module", self.module, 0.05, 100.0, "mm", exclusive_lo=True)
+        check_number("shaft_angle", self.shaft_angle, 10 * DEG, 170 * DEG, "rad")
+        check_number("pressure_angle", self.pressure_angle, 10 * DEG, 30 * DEG, "rad")
+        check_number("profile_shift", self.profile_shift, -0.8, 0.8, "")
+        check_number("addendum_coefficient", self.addendum_coefficient, 0.5, 1.5, "")
+        check_number("dedendum_coefficient", self.dedendum_coefficient, 0.8, 2.0, "")
         if self.dedendum_coefficient <= self.addendum_coefficient:
             raise DesignError("dedendum_coefficient", "leaves no tip clearance with the mate",
                               f"> addendum_coefficient ({self.addendum_coefficient:g})")
@@ -96,13 +96,13 @@ class BevelGearSpec:
         if self.accuracy_grade is not None:
             if isinstance(self.accuracy_grade, bool) or not isinstance(self.accuracy_grade, int):
                 raise DesignError("accuracy_grade", f"expected a whole number, got {self.accuracy_grade!r}")
-            _check("accuracy_grade", self.accuracy_grade, 2, 11, "")
+            check_number("accuracy_grade", self.accuracy_grade, 2, 11, "")
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
         # the toe must stay a real sphere with a whole tooth on it: at most 0.6 R_e (a third is the rule)
-        _check("face_width", self.face_width, 0.0, 0.6 * self.cone_distance, "mm", exclusive_lo=True)
-        _check("thinning", self.thinning, 0.0, 0.25 * math.pi * self.module, "mm")
-        _check("bore_diameter", self.bore_diameter, 0.0, math.inf, "mm")
+        check_number("face_width", self.face_width, 0.0, 0.6 * self.cone_distance, "mm", exclusive_lo=True)
+        check_number("thinning", self.thinning, 0.0, 0.25 * math.pi * self.module, "mm")
+        check_number("bore_diameter", self.bore_diameter, 0.0, math.inf, "mm")
         if self.bore_diameter > 0:
             # the bore runs along the axis and must stay inside the root cone at the toe
             most = 2 * self.toe_cone_distance * math.sin(self.pitch_cone_angle - self.dedendum_angle) * 0.95

@@ -44,7 +44,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any
 
-from geargen.design.gear import _with_field_prefix
+from geargen.design.gear import with_field_prefix
 from geargen.design.schema import Field, check_range, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
@@ -155,22 +155,22 @@ CHECKS_FIELDS: list[Field] = [
                "turned"),
 ]
 
-_CENTRE_KEYS = tuple(f"centre_distance_{u}" for u in LENGTH_SUFFIXES)
+CENTRE_KEYS = tuple(f"centre_distance_{u}" for u in LENGTH_SUFFIXES)
 
 
 def checks_settings(design: Design) -> ChecksSettings:
     """Read ``[checks]`` of ``design`` (absent: all defaults)."""
     raw = dict(design.section("checks"))
-    centre_keys = [k for k in raw if k in _CENTRE_KEYS]
+    centre_keys = [k for k in raw if k in CENTRE_KEYS]
     centre_raw = {k: raw.pop(k) for k in centre_keys}
-    v = read_table(raw, CHECKS_FIELDS, "checks", read_elsewhere=_CENTRE_KEYS)
+    v = read_table(raw, CHECKS_FIELDS, "checks", read_elsewhere=CENTRE_KEYS)
     meshes = _declared_meshes(design, v["meshes"], centre_raw)
     kwargs = {k: v[k] for k in ("steps_per_tooth", "revolutions", "section_planes", "min_contact_ratio",
                                 "min_tip_land_modules", "require_backlash", "tolerances", "monte_carlo_samples",
                                 "seed", "sections", "sections_planes", "stl_chordal_tolerance",
                                 "carriage_travel_limit", "centre_distance_tolerance", "structure", "min_S_H",
                                 "min_S_F")}
-    return _with_field_prefix("checks.", lambda: ChecksSettings(meshes=meshes, **kwargs), v["_units"])
+    return with_field_prefix("checks.", lambda: ChecksSettings(meshes=meshes, **kwargs), v["_units"])
 
 
 def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) -> tuple[DeclaredMesh, ...]:
@@ -195,7 +195,7 @@ def _declared_meshes(design: Design, meshes: Any, centre_raw: dict[str, Any]) ->
                                   "external gears", "pairs of external gears")
     if len(centre_raw) != 1:
         raise DesignError("checks.centre_distance_mm", "missing" if not centre_raw else "given twice",
-                          "one of " + ", ".join(_CENTRE_KEYS))
+                          "one of " + ", ".join(CENTRE_KEYS))
     key, raw = next(iter(centre_raw.items()))
     scale = LENGTH_SUFFIXES[key[len("centre_distance_"):]]
     values = raw if isinstance(raw, list) else [raw]

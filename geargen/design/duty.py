@@ -50,7 +50,7 @@ from typing import Any, Mapping
 
 from geargen.design.iso6336_5 import MATERIAL_NAMES, QUALITY_GRADES, hardness_needed, hardness_range
 from geargen.design.schema import Field, as_float, check_range, read_table, shown, unknown_key
-from geargen.design.stiffness import QUANTITY_SUFFIXES, Quantity, _read_section, preload_spec_from_table
+from geargen.design.stiffness import QUANTITY_SUFFIXES, Quantity, read_quantity_section, preload_spec_from_table
 from geargen.errors import DesignError
 
 DIRECTIONS = ("both", "signed")
@@ -202,7 +202,7 @@ def duty_settings(design) -> DutySpec:
     """Read ``[duty]`` of ``design`` (absent: every default; the spectrum from ``[preload]``)."""
     data = design.section("duty")
     level_keys = DUTY_QUANTITIES[0].keys()
-    v = _read_section(data, DUTY_FIELDS, [], "duty", tables=tuple(level_keys))
+    v = read_quantity_section(data, DUTY_FIELDS, [], "duty", tables=tuple(level_keys))
     given = [k for k in data if k in level_keys]
     if len(given) > 1:
         raise DesignError(f"duty.{given[1]}", f"given twice, also as {given[0]}", "one spelling")

@@ -160,19 +160,19 @@ class GearSpec:
             raise DesignError("kind", f"{self.kind!r} is not a cylindrical gear kind", ", ".join(map(repr, CYLINDRICAL_KINDS)))
         if self.kind != "internal" and self.rim_diameter is not None:
             raise DesignError("rim_diameter", f"{self.kind} gears have no rim", "only with kind = 'internal'")
-        _check("teeth", self.teeth, 4, 2000, "")
+        check_number("teeth", self.teeth, 4, 2000, "")
         if not isinstance(self.teeth, int):
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
-        _check("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
-        _check("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
-        _check("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
-        _check("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
+        check_number("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
+        check_number("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
+        check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
+        check_number("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
         self._check_double_helical()
         if self.hand not in HANDS:
             raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
-        _check("profile_shift", self.profile_shift, -1.5, 1.5, "")
-        _check("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
-        _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
+        check_number("profile_shift", self.profile_shift, -1.5, 1.5, "")
+        check_number("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
+        check_number("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
         rho_max = self.max_rack_tip_radius_coefficient
         if self.rack_tip_radius_coefficient is None:
             # ISO 53 profile A's 0.38, or the full-radius fillet when 0.38 does not fit the rack;
@@ -180,8 +180,8 @@ class GearSpec:
             # cutters of 12 teeth and more (geargen.profile.internal)
             default = INTERNAL_CUTTER_TIP_RADIUS if self.kind == "internal" else 0.38
             object.__setattr__(self, "rack_tip_radius_coefficient", min(default, rho_max))
-        _check("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
-        _check("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
+        check_number("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
+        check_number("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
         if self.thickness_deviations is not None:
             upper, lower = self.thickness_deviations
             if not (math.isfinite(upper) and math.isfinite(lower) and lower <= upper <= 0):
@@ -206,7 +206,7 @@ class GearSpec:
         least = 2 * self.root_radius_standard + 2 * MIN_RIM_WALL_MODULES * self.module
         if self.rim_diameter is None:
             object.__setattr__(self, "rim_diameter", internal_rim_diameter(self))
-        _check("rim_diameter", self.rim_diameter, least, 100000.0, "mm")
+        check_number("rim_diameter", self.rim_diameter, least, 100000.0, "mm")
 
     def _check_double_helical(self) -> None:
         """A centre gap belongs to a double-helical gear and leaves both halves some face; a
@@ -356,7 +356,7 @@ def internal_rim_diameter(spec: GearSpec) -> float:
     return 2 * spec.root_radius_standard + 2 * INTERNAL_RIM_MODULES * spec.module
 
 
-def _check(name: str, value, lo: float, hi: float, unit: str = "", exclusive_lo: bool = False) -> None:
+def check_number(name: str, value, lo: float, hi: float, unit: str = "", exclusive_lo: bool = False) -> None:
     """DesignError naming ``name`` unless ``value`` is a finite number (not a bool) in [lo, hi] (or (lo, hi]);
     every gear family's spec validates its numbers with it."""
     ok = (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
@@ -504,7 +504,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
             raise DesignError(f"{p}thickness_lower_deviation_{unit_d}", f"{lower / scale:.6g} {unit_d} is above the "
                               "upper deviation", f"<= {upper / scale:.6g} {unit_d}")
         deviations = (upper, lower)
-    hub = _with_field_prefix(p, lambda: Hub(v["bore_diameter"], v["keyway_width"], v["keyway_depth"],
+    hub = with_field_prefix(p, lambda: Hub(v["bore_diameter"], v["keyway_width"], v["keyway_depth"],
                                             v["hub_diameter"], v["hub_length"]), v["_units"])
     kwargs = dict(teeth=v["teeth"], module=module_n, pressure_angle=alpha_n, face_width=v["face_width"],
                   helix_angle=beta, hand=v["hand"], profile_shift=shift_n,
@@ -516,7 +516,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
-        plain = _with_field_prefix(p, lambda: GearSpec(**{**kwargs, "hub": Hub()}), v["_units"])
+        plain = with_field_prefix(p, lambda: GearSpec(**{**kwargs, "hub": Hub()}), v["_units"])
         root = plain.root_radius_standard
         most = 2 * root * 0.98 - 2 * hub.keyway_depth
         if root > 0 and hub.bore_diameter >= most:
@@ -524,7 +524,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
             scale = LENGTH_SUFFIXES[unit_b]
             raise DesignError(f"{p}bore_diameter_{unit_b}", f"{hub.bore_diameter / scale:.6g} {unit_b}: the bore (with "
                               "keyway) cuts into the tooth root", f"< {most / scale:.6g} {unit_b}")
-    return _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
+    return with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
 
 
 def gear_keys_written(data: Mapping[str, Any]) -> dict[str, str]:
@@ -537,7 +537,7 @@ def gear_keys_written(data: Mapping[str, Any]) -> dict[str, str]:
     return out
 
 
-def _with_field_prefix(prefix: str, make, units: Mapping[str, str]):
+def with_field_prefix(prefix: str, make, units: Mapping[str, str]):
     """Run ``make``; re-raise a DesignError with the design-file key path (name plus unit suffix)."""
     try:
         return make()

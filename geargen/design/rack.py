@@ -31,7 +31,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.gear import DEG, HANDS, _check, _with_field_prefix
+from geargen.design.gear import DEG, HANDS, check_number, with_field_prefix
 from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
@@ -99,16 +99,16 @@ class RackSpec:
             raise DesignError("kind", f"{self.kind!r} is not a rack", "'rack'")
         if isinstance(self.teeth, bool) or not isinstance(self.teeth, int):
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
-        _check("teeth", self.teeth, 1, 10000, "")
-        _check("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
-        _check("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
-        _check("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
-        _check("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
+        check_number("teeth", self.teeth, 1, 10000, "")
+        check_number("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
+        check_number("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
+        check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
+        check_number("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
         if self.hand not in HANDS:
             raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
-        _check("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
-        _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
-        _check("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm")
+        check_number("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
+        check_number("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
+        check_number("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm")
         if self.thickness_deviations is not None:
             upper, lower = self.thickness_deviations
             if not (math.isfinite(upper) and math.isfinite(lower) and lower <= upper <= 0):
@@ -130,14 +130,15 @@ class RackSpec:
             object.__setattr__(self, "tip_radius_coefficient", 0.0)
         elif self.tip_radius_coefficient is None:
             object.__setattr__(self, "tip_radius_coefficient", min(ISO53_FILLET, self.max_tip_radius_coefficient(0.0)))
-        _check("tip_radius_coefficient", self.tip_radius_coefficient, 0.0, self.max_tip_radius_coefficient(0.0), "")
+        check_number("tip_radius_coefficient", self.tip_radius_coefficient, 0.0, self.max_tip_radius_coefficient(0.0),
+                     "")
         if self.root_fillet_coefficient is None:
             object.__setattr__(self, "root_fillet_coefficient",
                                min(ISO53_FILLET, self.max_root_fillet_coefficient(self.tip_radius_coefficient)))
-        _check("root_fillet_coefficient", self.root_fillet_coefficient, 0.0,
+        check_number("root_fillet_coefficient", self.root_fillet_coefficient, 0.0,
                self.max_root_fillet_coefficient(self.tip_radius_coefficient), "")
         self._check_short_segments()
-        _check("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True)
+        check_number("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True)
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
 
@@ -378,7 +379,7 @@ def rack_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
         units = {**units, "thinning": units.get("thinning_circumferential", unit)}
         renamed = {"thinning": "thinning_circumferential"}
     try:
-        return _with_field_prefix("", lambda: RackSpec(**kwargs), units)
+        return with_field_prefix("", lambda: RackSpec(**kwargs), units)
     except DesignError as exc:
         key = exc.field
         stem = key.rsplit("_", 1)[0] if key.rsplit("_", 1)[-1] in LENGTH_SUFFIXES else key

@@ -24,9 +24,9 @@ from pathlib import Path
 from typing import Any
 
 from geargen.design.assembly import SECTIONS
-from geargen.design.schema import (key_comment, GEAR_NAME_MAX, MAX_FILE_BYTES, MAX_NESTING, NAME_MAX, PLAUSIBLE, Field, _fmt,
-                                   _range_text, plausible)
-from geargen.design.stiffness import (_KIND_KEYS, INTERNAL_UNITS, QUANTITY_SUFFIXES, BeamPinionSpec, ComponentSpec,
+from geargen.design.schema import (key_comment, GEAR_NAME_MAX, MAX_FILE_BYTES, MAX_NESTING, NAME_MAX, PLAUSIBLE, Field, number_text,
+                                   field_range_text, plausible)
+from geargen.design.stiffness import (KIND_KEYS, INTERNAL_UNITS, QUANTITY_SUFFIXES, BeamPinionSpec, ComponentSpec,
                                       FlexureSpec, PreloadSpec, Quantity, SpringSpec, StiffnessSpec)
 from geargen.design.validate import table_schema
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
@@ -322,16 +322,16 @@ def range_text(schema: Field | Quantity) -> str:
     if isinstance(schema, Quantity):
         bounds = Field(schema.name, "number", minimum=schema.minimum, maximum=schema.maximum,
                        exclusive_minimum=schema.exclusive_minimum)
-        return "; ".join(_range_text(plausible(bounds, family), 1.0, INTERNAL_UNITS[family])
+        return "; ".join(field_range_text(plausible(bounds, family), 1.0, INTERNAL_UNITS[family])
                          for family in schema.families)
     if schema.kind not in ("length", "angle", "number", "integer"):
         return ""
     schema = plausible(schema)
     if schema.kind == "length":
-        return _range_text(schema, 1.0, "mm")
+        return field_range_text(schema, 1.0, "mm")
     if schema.kind == "angle":
-        return _range_text(schema, DEG, "deg")
-    return _range_text(schema, 1.0, "")
+        return field_range_text(schema, DEG, "deg")
+    return field_range_text(schema, 1.0, "")
 
 
 def _value_text(value: Any, kind: str) -> str:
@@ -342,11 +342,11 @@ def _value_text(value: Any, kind: str) -> str:
     if isinstance(value, (tuple, list)):
         return "[" + ", ".join(_value_text(v, kind) for v in value) + "]"
     if kind == "length":
-        return f"{_fmt(value)} mm"
+        return f"{number_text(value)} mm"
     if kind == "angle":
         degrees = value / DEG
-        return f"{_fmt(degrees)} deg" if math.isclose(degrees, float(_fmt(degrees)), abs_tol=1e-12) else f"{_fmt(value)} rad"
-    return _fmt(value) if isinstance(value, float) else str(value)
+        return f"{number_text(degrees)} deg" if math.isclose(degrees, float(number_text(degrees)), abs_tol=1e-12) else f"{number_text(value)} rad"
+    return number_text(value) if isinstance(value, float) else str(value)
 
 
 def _quantity_default(q: Quantity, path: tuple[str, ...]) -> str:
@@ -357,8 +357,8 @@ def _quantity_default(q: Quantity, path: tuple[str, ...]) -> str:
         return ""
     family = q.families[0]
     if family == "stress" and value >= 1e3:
-        return f"{_fmt(value / 1e3)} GPa"
-    return f"{_fmt(value)} {INTERNAL_UNITS[family]}"
+        return f"{number_text(value / 1e3)} GPa"
+    return f"{number_text(value)} {INTERNAL_UNITS[family]}"
 
 
 def default_text(schema: Field | Quantity, path: tuple[str, ...] = ()) -> str:
@@ -425,11 +425,12 @@ def _units_section() -> list[str]:
            "`face_width_mm = 8` and `face_width_in = 0.315` are the same key. Ranges below are given in "
            "internal units (mm, degrees for angles, N, N·mm, MPa); messages give them in the unit the file used.",
            "", "| kind | suffixes (factor to the internal unit) |", "|---|---|"]
-    out.append("| length (mm) | " + ", ".join(f"`_{s}` ({_fmt(f)})" for s, f in LENGTH_SUFFIXES.items()) + " |")
-    out.append("| angle (deg) | " + ", ".join(f"`_{s}` ({_fmt(f / DEG)})" for s, f in ANGLE_SUFFIXES.items()) + " |")
+    out.append("| length (mm) | " + ", ".join(f"`_{s}` ({number_text(f)})" for s, f in LENGTH_SUFFIXES.items()) + " |")
+    out.append("| angle (deg) | " + ", ".join(f"`_{s}` ({number_text(f / DEG)})" for s, f in ANGLE_SUFFIXES.items())
+               + " |")
     for family, table in QUANTITY_SUFFIXES.items():
         out.append(f"| {_FAMILY_NAMES[family]} ({INTERNAL_UNITS[family]}) | "
-                   + ", ".join(f"`_{s}` ({_fmt(f)})" for s, f in table.items()) + " |")
+                   + ", ".join(f"`_{s}` ({number_text(f)})" for s, f in table.items()) + " |")
     out.append("")
     return out
 
@@ -438,7 +439,7 @@ def _component_kinds() -> list[str]:
     common = ("kind", "scope", "count", "shaft", "ratio")
     out = ["Keys each kind reads (besides `" + "`, `".join(common) + "`):", "",
            "| kind | keys |", "|---|---|"]
-    for kind, keys in _KIND_KEYS.items():
+    for kind, keys in KIND_KEYS.items():
         out.append(f"| `{kind}` | " + ", ".join(f"`{k}`" for k in sorted(keys)) + " |")
     return out + [""]
 

@@ -256,7 +256,7 @@ def raise_unknown_keys(errors: list[DesignError]) -> None:
         raise DesignErrors(errors)
 
 
-def _fmt(value: float) -> str:
+def number_text(value: float) -> str:
     return f"{value:.6g}"
 
 
@@ -264,11 +264,11 @@ def bound_text(value: float, toward: str) -> str:
     """``value`` to 6 significant digits, rounded ``toward`` "down" (an upper bound) or "up" (a
     lower bound), so that the printed limit itself is allowed."""
     if value == 0 or not math.isfinite(value):
-        return _fmt(value)
+        return number_text(value)
     quantum = 10.0 ** (math.floor(math.log10(abs(value))) - 5)
     steps = value / quantum
     steps = math.floor(steps) if toward == "down" else math.ceil(steps)
-    return _fmt(steps * quantum)
+    return number_text(steps * quantum)
 
 
 #: The plausible magnitudes of a value of each kind, or quantity family (internal units), as
@@ -312,18 +312,18 @@ def plausible(field: Field, family: str | None = None) -> Field:
     return replace(field, minimum=minimum, maximum=maximum, exclusive_minimum=exclusive_minimum)
 
 
-def _range_text(field: Field, scale: float, unit: str) -> str:
+def field_range_text(field: Field, scale: float, unit: str) -> str:
     lo = None if field.minimum is None else field.minimum / scale
     hi = None if field.maximum is None else field.maximum / scale
     unit_text = f" {unit}" if unit else ""
     if lo is not None and hi is not None:
         left = "(" if field.exclusive_minimum else "["
         right = ")" if field.exclusive_maximum else "]"
-        return f"{left}{_fmt(lo)}, {_fmt(hi)}{right}{unit_text}"
+        return f"{left}{number_text(lo)}, {number_text(hi)}{right}{unit_text}"
     if lo is not None:
-        return f"{'>' if field.exclusive_minimum else '>='} {_fmt(lo)}{unit_text}"
+        return f"{'>' if field.exclusive_minimum else '>='} {number_text(lo)}{unit_text}"
     if hi is not None:
-        return f"{'<' if field.exclusive_maximum else '<='} {_fmt(hi)}{unit_text}"
+        return f"{'<' if field.exclusive_maximum else '<='} {number_text(hi)}{unit_text}"
     return "any finite value"
 
 
@@ -333,14 +333,14 @@ def check_range(field: Field, value: float, where: str, scale: float = 1.0, unit
     outside the :func:`plausible` range of its kind (or quantity ``family``) where it sets none."""
     field = plausible(field, family)
     if not math.isfinite(value):
-        raise DesignError(where, "must be a finite number", _range_text(field, scale, unit))
+        raise DesignError(where, "must be a finite number", field_range_text(field, scale, unit))
     bad = False
     if field.minimum is not None:
         bad |= value < field.minimum or (field.exclusive_minimum and value == field.minimum)
     if field.maximum is not None:
         bad |= value > field.maximum or (field.exclusive_maximum and value == field.maximum)
     if bad:
-        raise DesignError(where, f"{_fmt(value / scale)} is out of range", _range_text(field, scale, unit))
+        raise DesignError(where, f"{number_text(value / scale)} is out of range", field_range_text(field, scale, unit))
 
 
 def as_float(raw: int | float, where: str) -> float:

@@ -120,7 +120,7 @@ class Quantity:
         return {f"{self.name}_{s}": (fam, s) for fam in self.families for s in QUANTITY_SUFFIXES[fam]}
 
 
-def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list[Quantity], where: str,
+def read_quantity_section(data: Mapping[str, Any], fields: list[Field], quantities: list[Quantity], where: str,
                   tables: tuple[str, ...] = ()) -> dict[str, Any]:
     """``read_table`` extended with :class:`Quantity` keys; ``tables`` are sub-tables read elsewhere.
 
@@ -166,7 +166,7 @@ def _read_section(data: Mapping[str, Any], fields: list[Field], quantities: list
     return out
 
 
-def _value(entry) -> float | None:
+def value_of(entry) -> float | None:
     return None if entry is None else entry[0]
 
 
@@ -223,7 +223,7 @@ SUPPORTS = ("simple", "fixed", "cantilever")
 MESH_METHODS = ("eq1", "iso6336")
 
 #: keys each component kind uses besides kind, scope, count, shaft and ratio; anything else is an error
-_KIND_KEYS = {
+KIND_KEYS = {
     "torsion": {"gear", "stiffness"},
     "linear": {"gear", "radius", "stiffness"},
     "shaft_torsion": {"gear", "diameter", "bore_diameter", "length", "shear_modulus", "from_geometry"},
@@ -406,7 +406,7 @@ class StiffnessSpec:
                 "cluster_small": self.cluster_small_gear, "output": self.output_gear}
 
 
-_STIFFNESS_FIELDS = [
+STIFFNESS_FIELDS = [
     Field("reduce_to", "string", required=False, default="output", choices=LOCATIONS,
           help="where path stiffnesses are reported, as torsion of that shaft (a split pinion: input or output; a "
                "custom train: the output)"),
@@ -427,11 +427,11 @@ _STIFFNESS_FIELDS = [
     Field("output_gear", "string", required=False, default="output",
           help="dual-pinion train: the gear table of the output (gear 4)"),
 ]
-_MODULI = [Quantity("elastic_modulus", ("stress",), minimum=0.0,
+MODULI = [Quantity("elastic_modulus", ("stress",), minimum=0.0,
                     help="Young's modulus of gears and shafts (Eq. 1: k_mesh = E w / 11)"),
            Quantity("shear_modulus", ("stress",), minimum=0.0, help="shear modulus of the shafts (torsion)")]
 
-_COMPONENT_FIELDS = [
+COMPONENT_FIELDS = [
     Field("kind", "string", choices=COMPONENT_KINDS,
           help="torsion: a torsional stiffness; linear: a linear stiffness on a line of action; shaft_torsion, "
                "shaft_bending: a round shaft; shaft_support: a gear on its placed shaft and bearings "
@@ -471,7 +471,7 @@ _COMPONENT_FIELDS = [
           help="shaft_torsion, shaft_bending, shaft_support: diameter, length, span and load position are the "
                "placed shaft's (geargen.model.shafts), never typed here"),
 ]
-_COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0,
+COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_stiffness"), minimum=0.0,
                                   help="torsion: a torsional stiffness; linear: a linear stiffness"),
                          Quantity("elastic_modulus", ("stress",), minimum=0.0,
                                   help="this component's Young's modulus (default: [stiffness] elastic_modulus_*)"),
@@ -481,11 +481,11 @@ _COMPONENT_QUANTITIES = [Quantity("stiffness", ("linear_stiffness", "torsional_s
 
 def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
     where = f"stiffness.components.{name}"
-    v = _read_section(data, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES, where)
+    v = read_quantity_section(data, COMPONENT_FIELDS, COMPONENT_QUANTITIES, where)
     kind = v["kind"]
-    used = _KIND_KEYS[kind] | {"kind", "scope", "count", "shaft", "ratio"}
-    given = {f.name for f in _COMPONENT_FIELDS if any(k in data for k in f.keys())}
-    given |= {q.name for q in _COMPONENT_QUANTITIES if v[q.name] is not None}
+    used = KIND_KEYS[kind] | {"kind", "scope", "count", "shaft", "ratio"}
+    given = {f.name for f in COMPONENT_FIELDS if any(k in data for k in f.keys())}
+    given |= {q.name for q in COMPONENT_QUANTITIES if v[q.name] is not None}
     extra = sorted(given - used)
     if extra:
         raise DesignError(f"{where}.{extra[0]}", f"not used by kind {kind!r}", ", ".join(sorted(used)))
@@ -497,10 +497,10 @@ def component_from_table(name: str, data: Mapping[str, Any]) -> ComponentSpec:
                               ", ".join(f"stiffness_{s}" for s in QUANTITY_SUFFIXES[want]))
     gears = tuple(v["gears"]) if v["gears"] is not None else None
     return _user_keys(where, data, lambda: ComponentSpec(name=name, kind=kind, scope=v["scope"], count=v["count"], shaft=v["shaft"], ratio=v["ratio"],
-                         gear=v["gear"], gears=gears, face_width=v["face_width"], radius=v["radius"], stiffness=_value(stiffness), diameter=v["diameter"],
+                         gear=v["gear"], gears=gears, face_width=v["face_width"], radius=v["radius"], stiffness=value_of(stiffness), diameter=v["diameter"],
                          bore_diameter=v["bore_diameter"], length=v["length"], span=v["span"],
                          load_position=v["load_position"], support=v["support"],
-                         elastic_modulus=_value(v["elastic_modulus"]), shear_modulus=_value(v["shear_modulus"]),
+                         elastic_modulus=value_of(v["elastic_modulus"]), shear_modulus=value_of(v["shear_modulus"]),
                          from_geometry=v["from_geometry"]))
 
 
@@ -509,7 +509,7 @@ def stiffness_spec_from_table(data: Mapping[str, Any], required_train: str | Non
     pinion's own train is the only one that describes it: a custom train would type the ratios its
     teeth give), or None (dual_pinion by default, or custom). A train that belongs to a drive needs
     that drive."""
-    v = _read_section(data, _STIFFNESS_FIELDS, _MODULI, "stiffness", tables=("components",))
+    v = read_quantity_section(data, STIFFNESS_FIELDS, MODULI, "stiffness", tables=("components",))
     if v["train"] is None:
         v["train"] = required_train or "dual_pinion"
     elif required_train is not None and v["train"] != required_train:
@@ -600,7 +600,7 @@ class PreloadSpec:
                               "loop_error_carriage_travel_* or loop_error_rotation_*")
 
 
-_PRELOAD_FIELDS = [
+PRELOAD_FIELDS = [
     Field("line_of_action_angle", "angle", required=False, default=0.0, units=("deg", "rad"),
           minimum=-math.radians(60), maximum=math.radians(60), exclusive_minimum=True, exclusive_maximum=True,
           help="angle between the preload motion and each mesh-1 line of action (0: the optimal configuration of "
@@ -614,7 +614,7 @@ _PRELOAD_FIELDS = [
     Field("path_backlash", "angle", required=False, default=None, minimum=0.0,
           help="flank clearance of one path as output rotation, drawn in the preload diagram"),
 ]
-_PRELOAD_QUANTITIES = [
+PRELOAD_QUANTITIES = [
     Quantity("max_output_torque", ("torque",), required=True, minimum=0.0,
              help="largest drive torque at the output, either direction"),
     Quantity("preload", ("torque",), minimum=0.0, exclusive_minimum=False,
@@ -627,9 +627,9 @@ _PRELOAD_QUANTITIES = [
 
 
 def preload_spec_from_table(data: Mapping[str, Any]) -> PreloadSpec:
-    v = _read_section(data, _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, "preload")
+    v = read_quantity_section(data, PRELOAD_FIELDS, PRELOAD_QUANTITIES, "preload")
     spring = v["preload_spring_stiffness"]
-    return _user_keys("preload", data, lambda: PreloadSpec(max_output_torque=v["max_output_torque"][0], preload=_value(v["preload"]),
+    return _user_keys("preload", data, lambda: PreloadSpec(max_output_torque=v["max_output_torque"][0], preload=value_of(v["preload"]),
                        line_of_action_angle=v["line_of_action_angle"],
                        loop_error_carriage_travel=v["loop_error_carriage_travel"],
                        loop_error_rotation=v["loop_error_rotation"], loop_error_budget=v["loop_error_budget"],
@@ -690,7 +690,7 @@ class FlexureSpec:
         return self.allowable_stress * self.length ** 2 / (3.0 * self.elastic_modulus * self.thickness)
 
 
-_FLEXURE_FIELDS = [
+FLEXURE_FIELDS = [
     Field("count", "integer", required=False, default=3, minimum=1, maximum=100,
           help="identical parallel blades guiding the preload carriage"),
     Field("thickness", "length", minimum=0.0, exclusive_minimum=True, help="blade thickness, along the motion"),
@@ -706,7 +706,7 @@ _FLEXURE_FIELDS = [
     Field("poisson_ratio", "number", required=False, default=0.29, minimum=0.0, maximum=0.5, exclusive_maximum=True,
           help="Poisson's ratio of the blade material"),
 ]
-_FLEXURE_QUANTITIES = [Quantity("elastic_modulus", ("stress",), minimum=0.0, help="Young's modulus of the blades"),
+FLEXURE_QUANTITIES = [Quantity("elastic_modulus", ("stress",), minimum=0.0, help="Young's modulus of the blades"),
                        Quantity("allowable_stress", ("stress",), required=True, minimum=0.0,
                                 help="allowable bending stress at the clamps"),
                        Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0,
@@ -718,10 +718,10 @@ def flexure_spec_from_table(data: Mapping[str, Any], length_unit: str | None = N
     """``[flexures]`` read and checked: blades thinner than wide, within their allowable stress at
     the travel, operating within the travel. Lengths in messages are in ``length_unit`` (default:
     the unit the file gave the travel in)."""
-    v = _read_section(data, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, "flexures")
+    v = read_quantity_section(data, FLEXURE_FIELDS, FLEXURE_QUANTITIES, "flexures")
     kwargs = dict(count=v["count"], thickness=v["thickness"], length=v["length"], width=v["width"],
                   travel=v["travel"], neutral_offset=v["neutral_offset"], poisson_ratio=v["poisson_ratio"],
-                  allowable_stress=v["allowable_stress"][0], target_stiffness=_value(v["target_stiffness"]))
+                  allowable_stress=v["allowable_stress"][0], target_stiffness=value_of(v["target_stiffness"]))
     if v["elastic_modulus"] is not None:
         kwargs["elastic_modulus"] = v["elastic_modulus"][0]
     unit = length_unit or v["_units"]["travel"]
@@ -817,7 +817,7 @@ class SpringSpec:
         return max(self.free_length - allowed_force / self.rate, self.solid_height)
 
 
-_SPRING_FIELDS = [
+SPRING_FIELDS = [
     Field("count", "integer", required=False, default=2, minimum=1, maximum=100,
           help="identical helical compression springs pushing the preload carriage"),
     Field("wire_diameter", "length", minimum=0.0, exclusive_minimum=True, help="wire diameter d"),
@@ -830,7 +830,7 @@ _SPRING_FIELDS = [
     Field("installed_length", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="length at the carriage's operating position: sets the preload force"),
 ]
-_SPRING_QUANTITIES = [Quantity("shear_modulus", ("stress",), minimum=0.0, help="shear modulus of the wire"),
+SPRING_QUANTITIES = [Quantity("shear_modulus", ("stress",), minimum=0.0, help="shear modulus of the wire"),
                       Quantity("allowable_shear_stress", ("stress",), required=True, minimum=0.0,
                                help="allowable wire shear stress (Wahl-corrected) at the installed length")]
 
@@ -839,7 +839,7 @@ def spring_spec_from_table(data: Mapping[str, Any], length_unit: str | None = No
     """``[springs]`` read and checked: a coil wider than twice its wire, a free length above the
     solid height, an installed length above it and within the allowable shear stress. Lengths in
     messages are in ``length_unit`` (default: the unit the file gave the free length in)."""
-    v = _read_section(data, _SPRING_FIELDS, _SPRING_QUANTITIES, "springs")
+    v = read_quantity_section(data, SPRING_FIELDS, SPRING_QUANTITIES, "springs")
     kwargs = dict(count=v["count"], wire_diameter=v["wire_diameter"], mean_coil_diameter=v["mean_coil_diameter"],
                   active_coils=v["active_coils"], end_type=v["end_type"], free_length=v["free_length"],
                   installed_length=v["installed_length"], allowable_shear_stress=v["allowable_shear_stress"][0])
@@ -916,7 +916,7 @@ class BeamPinionSpec:
                 raise DesignError("beam_pinion.mesh_position", "must lie between the bearings", "< span")
 
 
-_BEAM_FIELDS = [
+BEAM_FIELDS = [
     Field("gear", "string", help="the long pinion whose bending is the preload spring"),
     Field("span", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="bearing span of the pinion (or give target_stiffness)"),
@@ -925,7 +925,7 @@ _BEAM_FIELDS = [
     Field("diameter", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
           help="diameter of the bending section (default: the pinion's root diameter)"),
 ]
-_BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0,
+BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=0.0,
                              help="stiffness at the mesh that sets the span (instead of span)"),
                     Quantity("elastic_modulus", ("stress",), minimum=0.0, help="Young's modulus of the pinion"),
                     Quantity("allowable_stress", ("stress",), minimum=0.0,
@@ -934,9 +934,9 @@ _BEAM_QUANTITIES = [Quantity("target_stiffness", ("linear_stiffness",), minimum=
 
 def beam_pinion_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any] | None = None) -> BeamPinionSpec:
     """``[beam_pinion]`` read and checked; with ``gears`` (the design's), its gear must be one of them."""
-    v = _read_section(data, _BEAM_FIELDS, _BEAM_QUANTITIES, "beam_pinion")
+    v = read_quantity_section(data, BEAM_FIELDS, BEAM_QUANTITIES, "beam_pinion")
     kwargs = dict(gear=v["gear"], span=v["span"], mesh_position=v["mesh_position"], diameter=v["diameter"],
-                  target_stiffness=_value(v["target_stiffness"]), allowable_stress=_value(v["allowable_stress"]))
+                  target_stiffness=value_of(v["target_stiffness"]), allowable_stress=value_of(v["allowable_stress"]))
     if v["elastic_modulus"] is not None:
         kwargs["elastic_modulus"] = v["elastic_modulus"][0]
     if gears is not None and v["gear"] not in gears:
@@ -975,7 +975,7 @@ class EngagementSpec:
             raise DesignError("engagement.clearance", f"{self.clearance!r} is out of range", ">= 0")
 
 
-_ENGAGEMENT_FIELDS = [
+ENGAGEMENT_FIELDS = [
     Field("gear", "string", help="the helical gear the pinions slide into mesh with"),
     Field("backlash", "length", minimum=0.0,
           help="circumferential clearance at its reference circle that the sliding pinions need to enter"),
@@ -1040,7 +1040,7 @@ def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any]
     Gear roles from ``stiffness`` (``[stiffness]``; default roles when None). Lengths in messages
     are in ``length_unit`` (default: the unit of ``backlash_*``).
     """
-    v = read_table(data, _ENGAGEMENT_FIELDS, "engagement")
+    v = read_table(data, ENGAGEMENT_FIELDS, "engagement")
     spec = EngagementSpec(gear=v["gear"], backlash=v["backlash"], preload_windup=v["preload_windup"],
                           engagement_length=v["engagement_length"], clearance=v["clearance"])
     if gears is None:

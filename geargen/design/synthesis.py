@@ -50,7 +50,7 @@ from typing import TYPE_CHECKING
 import math
 from dataclasses import dataclass, field
 
-from geargen.design.gear import _with_field_prefix
+from geargen.design.gear import with_field_prefix
 from geargen.design.schema import Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES
@@ -322,7 +322,7 @@ def synthesis_inputs(design: Design) -> SynthesisInputs:
                   module_mesh1=gears[0].transverse_module, module_mesh2=gears[2].transverse_module,
                   pressure_angle_mesh1=gears[0].transverse_pressure_angle,
                   pressure_angle_mesh2=gears[2].transverse_pressure_angle, length_unit=design.length_unit)
-    return _with_field_prefix("synthesis.", lambda: SynthesisInputs(**kwargs), v["_units"])
+    return with_field_prefix("synthesis.", lambda: SynthesisInputs(**kwargs), v["_units"])
 
 
 def _graded_kinds(design: Design, gear: str) -> tuple[str, ...]:
@@ -374,7 +374,7 @@ def error_table(design: Design, gear: str, required: bool) -> dict[str, float] |
     v = read_table(raw, fields, where)
     entered = {f.name: v[f.name] for f in fields}
     # the range rule of GearErrors, with the key as written
-    _with_field_prefix(where + ".", lambda: GearErrors(**entered), v["_units"])
+    with_field_prefix(where + ".", lambda: GearErrors(**entered), v["_units"])
     return entered
 
 
@@ -388,7 +388,7 @@ def validate_error_budget(design: Design) -> None:
 def monte_carlo_settings(design: Design) -> MonteCarloSettings:
     """Read ``[monte_carlo]`` (all keys optional; an absent section gives the defaults)."""
     v = read_table(design.section("monte_carlo"), MONTE_CARLO_FIELDS, "monte_carlo")
-    return _with_field_prefix("monte_carlo.", lambda: MonteCarloSettings(**{f.name: v[f.name] for f in MONTE_CARLO_FIELDS}),
+    return with_field_prefix("monte_carlo.", lambda: MonteCarloSettings(**{f.name: v[f.name] for f in MONTE_CARLO_FIELDS}),
                               {})
 
 

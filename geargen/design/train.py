@@ -48,7 +48,7 @@ from typing import Any, Mapping
 
 from geargen.design.layout import layout_settings
 from geargen.design.schema import Field, as_float, check_range, shown
-from geargen.design.stiffness import Quantity, _read_section, _value
+from geargen.design.stiffness import Quantity, read_quantity_section, value_of
 from geargen.errors import DesignError
 
 #: densities (kg/m^3) geargen knows; [train.materials] adds to them or replaces one
@@ -136,7 +136,7 @@ def _numbers(values: Any, where: str, family: str, scale: float, unit: str) -> t
 def train_settings(design) -> TrainSettings:
     """``[train]`` of ``design`` read and checked (absent: every default)."""
     raw = design.section("train")
-    v = _read_section(raw, TRAIN_FIELDS, TRAIN_QUANTITIES, "train", _TRAIN_TABLES)
+    v = read_quantity_section(raw, TRAIN_FIELDS, TRAIN_QUANTITIES, "train", _TRAIN_TABLES)
     densities = dict(DENSITIES)
     materials = raw.get("materials", {})
     if not isinstance(materials, Mapping):
@@ -164,7 +164,7 @@ def train_settings(design) -> TrainSettings:
             raise DesignError(f"train.{key}", f"{len(values)} values for {count} [layout] upstream_stages",
                               "one per upstream stage")
         lists[key] = tuple(x * model for x in values)
-    given = {k: _value(v[k]) for k in ("bandwidth", "position_gain", "velocity_gain")}
+    given = {k: value_of(v[k]) for k in ("bandwidth", "position_gain", "velocity_gain")}
     if given["bandwidth"] is not None and given["position_gain"] is not None:
         raise DesignError("train.position_gain", "given with bandwidth_Hz", "one of bandwidth_Hz (with damping_ratio) "
                           "or position_gain_* (with velocity_gain_*)")
@@ -175,8 +175,9 @@ def train_settings(design) -> TrainSettings:
     return TrainSettings(
         material=v["material"], densities=densities, part_materials=dict(part_materials),
         mesh_friction_coefficient=v["mesh_friction_coefficient"], allowed_lost_motion=v["allowed_lost_motion"],
-        motor_rotor_inertia=_value(v["motor_rotor_inertia"]), motor_torque_constant=_value(v["motor_torque_constant"]),
-        motor_peak_torque=_value(v["motor_peak_torque"]), load_inertia=_value(v["load_inertia"]) or 0.0,
+        motor_rotor_inertia=value_of(v["motor_rotor_inertia"]),
+        motor_torque_constant=value_of(v["motor_torque_constant"]),
+        motor_peak_torque=value_of(v["motor_peak_torque"]), load_inertia=value_of(v["load_inertia"]) or 0.0,
         bandwidth=None if given["bandwidth"] is None else 2 * math.pi * given["bandwidth"],
         damping_ratio=v["damping_ratio"],
         position_gain=None if given["position_gain"] is None else given["position_gain"] / 1e3,
@@ -236,7 +237,7 @@ def dual_motor_spec(design) -> DualMotorSpec:
     """``[dual_motor]`` read and checked: two pinions and the output are gears of the file, and
     ``[checks] meshes`` declares each pinion with the output (their centre distances)."""
     from geargen.design.checks import checks_settings
-    v = _read_section(design.section("dual_motor"), DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, "dual_motor")
+    v = read_quantity_section(design.section("dual_motor"), DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, "dual_motor")
     pinions = v["pinions"]
     if not (isinstance(pinions, (list, tuple)) and len(pinions) == 2 and all(isinstance(p, str) for p in pinions)
             and pinions[0] != pinions[1]):
@@ -255,8 +256,8 @@ def dual_motor_spec(design) -> DualMotorSpec:
     if a.teeth != b.teeth:
         raise DesignError("dual_motor.pinions", f"{a.teeth} and {b.teeth} teeth: the two motors turn alike only with "
                           "equal pinions", "two pinions of one tooth count")
-    peak = _value(v["motor_peak_torque"]) * v["upstream_ratio"] * design.gears[v["output"]].teeth / a.teeth
-    bias, load = _value(v["bias_torque"]), _value(v["max_output_torque"])
+    peak = value_of(v["motor_peak_torque"]) * v["upstream_ratio"] * design.gears[v["output"]].teeth / a.teeth
+    bias, load = value_of(v["bias_torque"]), value_of(v["max_output_torque"])
     if v["control"] == "bias" and load / 2 + bias > peak * (1 + 1e-12):
         raise DesignError("dual_motor.bias_torque", f"{bias / 1e3:g} N·m with a {load / 1e3:g} N·m load asks "
                           f"{(load / 2 + bias) / 1e3:.4g} N·m of one motor at the output, more than its peak "
@@ -266,11 +267,11 @@ def dual_motor_spec(design) -> DualMotorSpec:
                           f"peak at the output ({peak / 1e3:.4g} N·m): with unidirectional torques one motor carries "
                           "the load", f"at most {(peak - bias) / 1e3:.4g} N·m")
     return DualMotorSpec(pinions=tuple(pinions), output=v["output"], control=v["control"], bias_torque=bias,
-                         motor_peak_torque=_value(v["motor_peak_torque"]), max_output_torque=load,
+                         motor_peak_torque=value_of(v["motor_peak_torque"]), max_output_torque=load,
                          upstream_ratio=v["upstream_ratio"], pinion_shaft_diameter=v["pinion_shaft_diameter"],
-                         pinion_shaft_length=v["pinion_shaft_length"], upstream_stiffness=_value(v["upstream_stiffness"]),
-                         elastic_modulus=_value(v["elastic_modulus"]) or 207e3,
-                         shear_modulus=_value(v["shear_modulus"]) or 79.3e3, centre_distances=tuple(centres),
+                         pinion_shaft_length=v["pinion_shaft_length"], upstream_stiffness=value_of(v["upstream_stiffness"]),
+                         elastic_modulus=value_of(v["elastic_modulus"]) or 207e3,
+                         shear_modulus=value_of(v["shear_modulus"]) or 79.3e3, centre_distances=tuple(centres),
                          mesh_stiffness=v["mesh_stiffness"])
 
 

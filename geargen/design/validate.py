@@ -41,7 +41,7 @@ from __future__ import annotations
 from dataclasses import replace
 from typing import Any, Mapping
 
-from geargen.design.checks import CHECKS_FIELDS, _CENTRE_KEYS, checks_settings
+from geargen.design.checks import CHECKS_FIELDS, CENTRE_KEYS, checks_settings
 from geargen.design.duty import DUTY_FIELDS, DUTY_QUANTITIES, MATERIAL_FIELDS, duty_settings, gear_materials
 from geargen.design.export import EXPORT_FIELDS, export_settings
 from geargen.design.gear import GEAR_FIELDS, family_fields
@@ -49,10 +49,10 @@ from geargen.design.layout import check_layout, layout_fields, layout_settings
 from geargen.design.parts import check_parts, hardware_fields, parts_settings
 from geargen.design.schema import Field, Problems
 from geargen.design.stages import STAGE_FIELDS, check_stages, stages
-from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
-                                      _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
-                                      _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, _SPRING_FIELDS, _SPRING_QUANTITIES,
-                                      _STIFFNESS_FIELDS, Quantity, beam_pinion_spec_from_table,
+from geargen.design.stiffness import (BEAM_FIELDS, BEAM_QUANTITIES, COMPONENT_FIELDS, COMPONENT_QUANTITIES,
+                                      ENGAGEMENT_FIELDS, FLEXURE_FIELDS, FLEXURE_QUANTITIES, MODULI,
+                                      PRELOAD_FIELDS, PRELOAD_QUANTITIES, SPRING_FIELDS, SPRING_QUANTITIES,
+                                      STIFFNESS_FIELDS, Quantity, beam_pinion_spec_from_table,
                                       check_stiffness_gears, check_swept_spring, engagement_spec_from_table, flexure_spec_from_table,
                                       preload_spec_from_table, spring_spec_from_table, stiffness_spec_from_table)
 from geargen.design.synthesis import (ERROR_FIELDS, GEAR_ROLES, MONTE_CARLO_FIELDS, SYNTHESIS_FIELDS,
@@ -152,12 +152,12 @@ _TABLE_SCHEMA: dict[str, tuple[list[Field], list[Quantity]]] = {
                                       exclusive_minimum=True,
                                       help="centre distance of the pairs in meshes: one number, or a list of "
                                            "one per pair")], []),
-    "stiffness": (_STIFFNESS_FIELDS, _MODULI),
-    "preload": (_PRELOAD_FIELDS, _PRELOAD_QUANTITIES),
-    "flexures": (_FLEXURE_FIELDS, _FLEXURE_QUANTITIES),
-    "springs": (_SPRING_FIELDS, _SPRING_QUANTITIES),
-    "beam_pinion": (_BEAM_FIELDS, _BEAM_QUANTITIES),
-    "engagement": (_ENGAGEMENT_FIELDS, []),
+    "stiffness": (STIFFNESS_FIELDS, MODULI),
+    "preload": (PRELOAD_FIELDS, PRELOAD_QUANTITIES),
+    "flexures": (FLEXURE_FIELDS, FLEXURE_QUANTITIES),
+    "springs": (SPRING_FIELDS, SPRING_QUANTITIES),
+    "beam_pinion": (BEAM_FIELDS, BEAM_QUANTITIES),
+    "engagement": (ENGAGEMENT_FIELDS, []),
     "layout": (layout_fields(), []),
     "export": (EXPORT_FIELDS, []),
     "train": (TRAIN_FIELDS, TRAIN_QUANTITIES),
@@ -198,7 +198,7 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
         required = "synthesis" in data
         return [replace(f, required=required, default=0.0) for f in ERROR_FIELDS], []
     if path[:2] == ("stiffness", "components") and len(path) == 3:
-        return _COMPONENT_FIELDS, _COMPONENT_QUANTITIES
+        return COMPONENT_FIELDS, COMPONENT_QUANTITIES
     if head == "stages" and len(path) == 2:
         table = data.get("stages", {}).get(path[1], {})
         if isinstance(table, Mapping) and table.get("kind") == "planetary":
@@ -221,7 +221,7 @@ def key_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> Field | Quanti
         return None
     fields, quantities = schema
     key = path[-1]
-    if path[0] == "checks" and key in _CENTRE_KEYS:
+    if path[0] == "checks" and key in CENTRE_KEYS:
         return next(f for f in fields if f.name == "centre_distance")
     for f in fields:
         if key in f.keys():

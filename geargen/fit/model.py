@@ -214,11 +214,11 @@ def _condition(G: np.ndarray) -> float:
         return math.inf
 
 
-def _mask_or_all(mask, n):
+def mask_or_all(mask, n):
     return np.ones(n, bool) if mask is None else np.asarray(mask, bool)
 
 
-def _drift_variable(meas: Measurement, variable: str) -> np.ndarray:
+def drift_variable(meas: Measurement, variable: str) -> np.ndarray:
     return meas.temperature_C if variable == "temperature" else meas.time_s
 
 
@@ -230,7 +230,7 @@ def drift_terms(meas: Measurement) -> list[Term]:
     return out
 
 
-def _drift_value(variable: str, rate: float) -> dict:
+def drift_value(variable: str, rate: float) -> dict:
     return {"per_kelvin": rate} if variable == "temperature" else {"per_second": rate}
 
 
@@ -311,7 +311,7 @@ class PreloadModel:
 
     def _drift_mean(self, variable: str) -> float:
         if variable not in self._means:
-            self._means[variable] = _drift_variable(self.meas, variable).mean()
+            self._means[variable] = drift_variable(self.meas, variable).mean()
         return self._means[variable]
 
     def _width(self, term: Term) -> int:
@@ -329,7 +329,7 @@ class PreloadModel:
         if term.effect == "harmonic":
             return fx.harmonic_basis(self.theta[rows], term.order)
         if term.effect == "drift":
-            v = _drift_variable(self.meas, term.variable)
+            v = drift_variable(self.meas, term.variable)
             return (v[rows] - self._drift_mean(term.variable))[:, None]
         return np.zeros((self.theta[rows].shape[0], 0))
 
@@ -366,7 +366,7 @@ class PreloadModel:
                 np.sin(phase, out=X[:, col + 1])
                 col += 2
             elif term.effect == "drift":
-                v = _drift_variable(self.meas, term.variable)
+                v = drift_variable(self.meas, term.variable)
                 np.subtract(v[rows], self._drift_mean(term.variable), out=X[:, col])
                 col += 1
             elif self._width(term):
@@ -482,7 +482,7 @@ class PreloadModel:
     def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
         terms = tuple(terms)
         whole = mask is None
-        mask = _mask_or_all(mask, self.n)
+        mask = mask_or_all(mask, self.n)
         slices = self._slices(terms)
         hyst = [i for i, t in enumerate(terms) if t.effect == "hysteresis"]
         if not terms and whole:
@@ -525,7 +525,7 @@ class PreloadModel:
         if term.effect == "harmonic":
             amp, ph = fx.harmonic_parameters(*coef)
             return {"order": term.order, "amplitude": amp, "phase_deg": ph}
-        return _drift_value(term.variable, float(coef[0]))
+        return drift_value(term.variable, float(coef[0]))
 
     def _check_declared_design(self) -> None:
         """The recorded output angles must tell the declared sinusoids and the offset apart."""
@@ -603,7 +603,7 @@ class PreloadModel:
                 X = self._design(terms, rows)
                 return X, X[:, sl]
             JtJ, CtC = self._two_grams(jacobians, mask)
-            return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
+            return contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
         src, side = fx.play_structure(self._predict(terms, coef), h)[1:]
         if terms[index].effect == "hysteresis":
             cols = None
@@ -618,7 +618,7 @@ class PreloadModel:
             def jacobians(rows):
                 return self._design(terms, src[rows], extra=side[rows]), self._design(terms, rows)[:, sl]
         JtJ, CtC = self._two_grams(jacobians, mask)
-        return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, cols)
+        return contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, cols)
 
     def _two_grams(self, make, mask) -> tuple[np.ndarray, np.ndarray]:
         """(J^T J over the masked rows, C^T C over all rows) for ``make(rows) -> (J, C)`` blocks."""
@@ -717,8 +717,8 @@ class PreloadModel:
         for term in drift_terms(self.meas):
             if ("drift", term.variable) in present:
                 continue
-            v = _drift_variable(self.meas, term.variable)
-            corr = _correlation(v, r)
+            v = drift_variable(self.meas, term.variable)
+            corr = sample_correlation(v, r)
             unit = "K" if term.variable == "temperature" else "s"
             out.append(Candidate(term, f"residual correlates with {term.variable} (r = {corr:+.3f}) over a range of "
                                        f"{np.ptp(v):.3g} {unit}", statistic=corr))
@@ -997,7 +997,7 @@ class TorqueModel:
         return names
 
     def _drift_ref(self, variable: str) -> tuple[np.ndarray, float]:
-        v = _drift_variable(self.meas, variable)
+        v = drift_variable(self.meas, variable)
         ref = float(v[0]) if variable == "time" else float(np.mean(v[: min(10, v.size)]))
         return v, ref
 
@@ -1036,7 +1036,7 @@ class TorqueModel:
             if term.effect == "drift":
                 v, ref = self._drift_ref(term.variable)
                 c = fx.drift(v, val[f"{i}:rate"], ref)
-                values[i] = _drift_value(term.variable, val[f"{i}:rate"])
+                values[i] = drift_value(term.variable, val[f"{i}:rate"])
             elif term.effect == "hysteresis":
                 h = val[f"{i}:half_width"]
                 c = self._memo(("play", h), lambda: self.T_smooth - fx.play_operator(self.T_smooth, h))
@@ -1092,7 +1092,7 @@ class TorqueModel:
 
     def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
         terms = tuple(terms)
-        mask = _mask_or_all(mask, self.n)
+        mask = mask_or_all(mask, self.n)
         names = self._layout(terms)
         centre = dict(self.declared_start) if start is None else dict(start.declared_values)
         p0 = {"ln_k1": math.log(centre["k1"]), "ln_k2": math.log(centre["k2"]), "preload": centre["preload"],
@@ -1214,8 +1214,9 @@ class TorqueModel:
                 continue
             v, ref = self._drift_ref(term.variable)
             rate = _slope(v - ref, r)
-            out.append(Candidate(term, f"residual correlates with {term.variable} (r = {_correlation(v, r):+.3f})",
-                                 start={"rate": rate}, statistic=_correlation(v, r)))
+            corr = sample_correlation(v, r)
+            out.append(Candidate(term, f"residual correlates with {term.variable} (r = {corr:+.3f})",
+                                 start={"rate": rate}, statistic=corr))
         friction = ("hysteresis", "") in present or ("amplitude_hysteresis", "") in present
         if not friction:
             dT = np.diff(self.T_smooth, prepend=self.T_smooth[0])
@@ -1373,11 +1374,11 @@ class TorqueModel:
 
 def _contribution_noise(J: np.ndarray, C: np.ndarray, sigma: float, columns=None) -> float:
     """trace(C Cov C^T) / n with Cov = sigma^2 (J^T J)^-1: J (m, p); C (n, p), or (n, k) holding
-    only the given ``columns`` of it (the rest zero). See :func:`_contribution_noise_gram`."""
-    return _contribution_noise_gram(J.T @ J, C.T @ C, C.shape[0], sigma, columns)
+    only the given ``columns`` of it (the rest zero). See :func:`contribution_noise_gram`."""
+    return contribution_noise_gram(J.T @ J, C.T @ C, C.shape[0], sigma, columns)
 
 
-def _contribution_noise_gram(JtJ: np.ndarray, CtC: np.ndarray, n: int, sigma: float, columns=None) -> float:
+def contribution_noise_gram(JtJ: np.ndarray, CtC: np.ndarray, n: int, sigma: float, columns=None) -> float:
     """trace(C Cov C^T) / n = sum(Cov * C^T C) / n with Cov = sigma^2 (J^T J)^-1, from the Gram
     matrices alone: J^T J (p, p) and C^T C (p, p), or (k, k) for the given ``columns`` of C.
 
@@ -1403,7 +1404,7 @@ def _slope(x: np.ndarray, y: np.ndarray) -> float:
     return float(x @ (y - y.mean()) / den) if den > 0 else 0.0
 
 
-def _correlation(x: np.ndarray, y: np.ndarray) -> float:
+def sample_correlation(x: np.ndarray, y: np.ndarray) -> float:
     x = x - x.mean()
     y = y - y.mean()
     den = math.sqrt(float(x @ x) * float(y @ y))

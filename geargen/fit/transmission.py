@@ -35,8 +35,8 @@ import numpy as np
 
 from geargen.fit import effects as fx
 from geargen.fit.measurement import Measurement, TransmissionModelSpec
-from geargen.fit.model import (Candidate, ModelFit, PreloadModel, Term, _contribution_noise_gram, _correlation,
-                               _drift_value, _drift_variable, _mask_or_all, drift_terms)
+from geargen.fit.model import (Candidate, ModelFit, PreloadModel, Term, contribution_noise_gram, sample_correlation,
+                               drift_value, drift_variable, mask_or_all, drift_terms)
 from geargen.fit.noise import NoiseEstimate
 from geargen.fit.orders import attribute_order, transmission_declared_orders, transmission_orders
 
@@ -73,7 +73,7 @@ class TransmissionModel(PreloadModel):
         if term.effect == "harmonic":
             return fx.harmonic_basis(theta, term.order)
         if term.effect == "drift":
-            v = _drift_variable(self.meas, term.variable)
+            v = drift_variable(self.meas, term.variable)
             return (v[rows] - self._drift_mean(term.variable))[:, None]
         if term.effect == "ratio_error":
             return (-(theta - self._theta_mean) * 1e6)[:, None]
@@ -103,7 +103,7 @@ class TransmissionModel(PreloadModel):
             amp, ph = fx.harmonic_parameters(*coef)
             return {"order": term.order, "amplitude": amp, "phase_deg": ph}
         if term.effect == "drift":
-            return _drift_value(term.variable, float(coef[0]))
+            return drift_value(term.variable, float(coef[0]))
         if term.effect == "ratio_error":
             return {"relative": float(coef[0])}
         if term.effect == "sidebands":
@@ -122,7 +122,7 @@ class TransmissionModel(PreloadModel):
     def fit(self, terms: tuple[Term, ...], mask=None, start: ModelFit | None = None, extra: dict | None = None) -> ModelFit:
         terms = tuple(terms)
         whole = mask is None
-        mask = _mask_or_all(mask, self.n)
+        mask = mask_or_all(mask, self.n)
         if not terms and whole:
             self._check_declared_design()
         for _ in range(6):  # (only a backlash's half-width is iterated; everything else is linear)
@@ -166,7 +166,7 @@ class TransmissionModel(PreloadModel):
             X = self._design(terms, rows)
             return X, X[:, sl]
         JtJ, CtC = self._two_grams(jacobians, mask)
-        return _contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
+        return contribution_noise_gram(JtJ, CtC, self.n, self.noise.rms, np.arange(width)[sl])
 
     def quick_gain(self, fit: ModelFit, term: Term) -> float | None:
         return None
@@ -201,11 +201,11 @@ class TransmissionModel(PreloadModel):
         for term in drift_terms(self.meas):
             if ("drift", term.variable) in kinds:
                 continue
-            v = _drift_variable(self.meas, term.variable)
-            out.append(Candidate(term, f"residual correlates with {term.variable} (r = {_correlation(v, r):+.3f})",
-                                 statistic=_correlation(v, r)))
+            v = drift_variable(self.meas, term.variable)
+            corr = sample_correlation(v, r)
+            out.append(Candidate(term, f"residual correlates with {term.variable} (r = {corr:+.3f})", statistic=corr))
         if not any(t.effect == "ratio_error" for t in fit.terms):
-            corr = _correlation(self.theta, r)
+            corr = sample_correlation(self.theta, r)
             out.append(Candidate(Term("ratio_error"), f"residual correlates with the output angle (r = {corr:+.3f}) "
                                                       f"over {self.revolutions:.3g} revolutions", statistic=corr))
         if not any(t.effect == "hysteresis" for t in fit.terms) and self.reversals.size:

@@ -7,6 +7,7 @@ import math
 
 from typing import Any
 
+from geargen.core.involute import working_pressure_angle_at
 from geargen.design.assembly import Design
 from geargen.model.layout import Layout
 
@@ -100,7 +101,7 @@ def _mesh_force_direction(own: tuple[float, float], own_base: float, mate: tuple
     centre distance ``a``), pushing the gear away from its mate and turning it ``sense`` (+1
     counter-clockwise)."""
     towards = math.atan2(mate[1] - own[1], mate[0] - own[0])
-    alpha = math.acos(min((own_base + mate_base) / math.dist(own, mate), 1.0))
+    alpha = working_pressure_angle_at(float(own_base + mate_base), math.dist(own, mate), clamp=True)
     # -sin(alpha) along the centre line, sense cos(alpha) across it
     return towards + math.pi - sense * (math.pi / 2 - alpha)
 

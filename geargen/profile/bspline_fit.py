@@ -64,6 +64,53 @@ class SplineFit:
         return np.repeat(self.knots, self.mults)
 
 
+def fit_fractions(per_span: int) -> np.ndarray:
+    """Where the fit points sit inside a span, as fractions in (0, 1): Chebyshev nodes, denser at
+    the span's ends (where a B-spline's error would otherwise gather)."""
+    return 0.5 - 0.5 * np.cos(np.pi * (np.arange(per_span) + 0.5) / per_span)
+
+
+def fit_nodes(spans: int, per_span: int, chebyshev: bool) -> np.ndarray:
+    """Parameters in [0, 1]: both ends and ``per_span`` points inside each of ``spans`` uniform
+    spans (Chebyshev-spaced, :func:`fit_fractions`), or without ``chebyshev`` evenly spaced without
+    either end (check points, none of them a fit point)."""
+    k = np.arange(per_span)
+    frac = fit_fractions(per_span) if chebyshev else (k + 1) / (per_span + 1)
+    inner = ((np.arange(spans)[:, None] + frac[None, :]) / spans).ravel()
+    return np.concatenate([[0.0], inner, [1.0]]) if chebyshev else inner
+
+
+def clamped_uniform_knots(spans: int, degree: int) -> np.ndarray:
+    """Knots (flat) of a clamped B-spline of ``spans`` uniform spans on [0, 1]."""
+    return np.concatenate([np.zeros(degree), np.linspace(0.0, 1.0, spans + 1), np.ones(degree)])
+
+
+def fit_clamped(data: np.ndarray, params: np.ndarray, spans: int, degree: int) -> np.ndarray:
+    """Poles (m, spans + degree, d) of the clamped uniform B-splines on [0, 1] fitting ``data``
+    (m, n, d) at ``params`` (n,) by least squares, each with its end poles the data's end points
+    (``params`` from :func:`fit_nodes`, which include both ends)."""
+    design = BSpline.design_matrix(params, clamped_uniform_knots(spans, degree), degree).toarray()
+    n = spans + degree
+    poles = np.empty((data.shape[0], n, data.shape[2]))
+    poles[:, 0], poles[:, -1] = data[:, 0], data[:, -1]
+    rhs = data - design[None, :, :1] @ poles[:, :1] - design[None, :, -1:] @ poles[:, -1:]
+    inner = np.linalg.lstsq(design[:, 1:-1], rhs.transpose(1, 0, 2).reshape(len(params), -1), rcond=None)[0]
+    poles[:, 1:-1] = inner.reshape(n - 2, data.shape[0], data.shape[2]).transpose(1, 0, 2)
+    return poles
+
+
+def clamped_values(poles: np.ndarray, params: np.ndarray, spans: int, degree: int) -> np.ndarray:
+    """The clamped uniform B-splines of ``poles`` (m, n, d) at ``params``: (m, len(params), d)."""
+    basis = BSpline.design_matrix(params, clamped_uniform_knots(spans, degree), degree).toarray()
+    return np.einsum("pi,mid->mpd", basis, poles)
+
+
+def greville_abscissae(knots: np.ndarray, degree: int) -> np.ndarray:
+    """Greville abscissae ``(n,)`` of the basis on the flat ``knots``: the poles of the identity
+    function s -> s (so a spline with these as its z poles has z(s) = s exactly)."""
+    return np.array([knots[i + 1:i + degree + 1].mean() for i in range(len(knots) - degree - 1)])
+
+
 def _fit(point, deriv, length: float, tolerance: float, degree: int, max_spans: int):
     """Fewest uniform spans whose constrained least-squares fit of ``point`` is within ``tolerance``.
 
@@ -81,7 +128,7 @@ def _fit(point, deriv, length: float, tolerance: float, degree: int, max_spans: 
         fixed = {0: p0, 1: p0 + d0 * h0 / degree, n - 2: p1 - d1 * h1 / degree, n - 1: p1}
         free = [i for i in range(n) if i not in fixed]
         # fit points: interior Chebyshev-like nodes per span (denser at the span ends)
-        frac = 0.5 - 0.5 * np.cos(np.pi * (np.arange(_FIT_PER_SPAN) + 0.5) / _FIT_PER_SPAN)
+        frac = fit_fractions(_FIT_PER_SPAN)
         s_fit = (knots[:-1, None] + np.diff(knots)[:, None] * frac[None, :]).ravel()
         a = BSpline.design_matrix(s_fit, t, degree).toarray()
         rhs = point(s_fit) - sum(a[:, i:i + 1] * v[None, :] for i, v in fixed.items())
@@ -229,11 +276,9 @@ def fit_rotation(rate: float, length: float, tolerance: float, degree: int | Non
 
 
 def greville(fit: SplineFit) -> np.ndarray:
-    """Greville abscissae ``(n,)`` of ``fit``'s basis: the poles of the identity function s -> s
-    (so a spline with these as its z poles has z(s) = s exactly)."""
-    t = fit.full_knots()
-    p = fit.degree
-    return np.array([t[i + 1:i + p + 1].mean() for i in range(len(t) - p - 1)])
+    """Greville abscissae ``(n,)`` of ``fit``'s basis (:func:`greville_abscissae`)."""
+    return greville_abscissae(fit.full_knots(), fit.degree)
 
 
-__all__ = ["SplineFit", "fit_segment", "fit_function", "fit_rotation", "greville", "FIT_DEGREE"]
+__all__ = ["SplineFit", "fit_segment", "fit_function", "fit_rotation", "greville", "FIT_DEGREE", "fit_fractions",
+           "fit_nodes", "clamped_uniform_knots", "fit_clamped", "clamped_values", "greville_abscissae"]

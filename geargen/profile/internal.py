@@ -171,8 +171,8 @@ class InternalProfile:
         """Polar angle of the upper flank of space 0 at ``radius`` (involute range), rad."""
         r = np.asarray(radius, dtype=float)
         alpha = np.arccos(np.clip(self.base_radius / r, -1.0, 1.0))
-        out = self.space_base_half_angle - (np.tan(alpha) - alpha)
-        return float(out) if out.ndim == 0 else out
+        out = self.space_base_half_angle - involute(alpha)
+        return float(out) if np.ndim(out) == 0 else out
 
     def flank_frame(self) -> "SpaceAsTooth":
         """The ring's spaces seen as the teeth of an external gear, in the terms

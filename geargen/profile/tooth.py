@@ -190,8 +190,8 @@ class ToothProfile:
         """Polar angle of the upper flank of tooth 0 at ``radius`` (>= base radius), rad."""
         r = np.asarray(radius, dtype=float)
         alpha = np.arccos(np.clip(self.base_radius / r, -1.0, 1.0))
-        out = self.base_half_angle - (np.tan(alpha) - alpha)
-        return float(out) if out.ndim == 0 else out
+        out = self.base_half_angle - involute(alpha)
+        return float(out) if np.ndim(out) == 0 else out
 
 
 def tooth_profile(spec: GearSpec, warn: bool = True) -> ToothProfile:
@@ -357,7 +357,7 @@ def _undercut_intersection(fillet: FilletCurve, flank: InvoluteCurve, r_b: float
         p = fillet.point(theta)
         rad = np.hypot(p[:, 0], p[:, 1])
         alpha = np.arccos(np.clip(r_b / rad, -1.0, 1.0))
-        return np.arctan2(p[:, 1], p[:, 0]) - (flank.base_half_angle - (np.tan(alpha) - alpha)), rad
+        return np.arctan2(p[:, 1], p[:, 0]) - (flank.base_half_angle - involute(alpha)), rad
 
     lo, hi = theta_joint, theta_root
     for _ in range(8):  # a slight undercut crosses just past the joint: zoom in on it

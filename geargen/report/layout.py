@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from geargen.core.involute import working_pressure_angle_at
 from geargen.units import LENGTH_SUFFIXES
 
 
@@ -57,7 +58,7 @@ def line_of_action(c1, rb1: float, c2, rb2: float, side: int) -> np.ndarray:
     d = c2 - c1
     a = float(np.hypot(*d))
     beta = math.atan2(d[1], d[0])
-    alpha_w = math.acos(min(1.0, (rb1 + rb2) / a))
+    alpha_w = working_pressure_angle_at(float(rb1 + rb2), a, clamp=True)
     phi = beta + side * alpha_w  # direction from centre 1 to its tangent point
     u = np.array([math.cos(phi), math.sin(phi)])
     return np.vstack([c1 + rb1 * u, c2 - rb2 * u])

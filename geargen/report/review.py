@@ -120,7 +120,7 @@ def from_markdown(text: str, status: str) -> Review:
     return review
 
 
-def _cell(v: Any) -> str:
+def table_cell(v: Any) -> str:
     if isinstance(v, float):
         return f"{v:.6g}"
     return str(v)
@@ -141,7 +141,7 @@ def to_markdown(review: Review) -> str:
             header, rows = payload
             out.append("| " + " | ".join(header) + " |")
             out.append("|" + "|".join("---" for _ in header) + "|")
-            out += ["| " + " | ".join(_cell(c).replace("|", "\\|") for c in r) + " |" for r in rows]
+            out += ["| " + " | ".join(table_cell(c).replace("|", "\\|") for c in r) + " |" for r in rows]
             out.append("")
         elif kind == "pre":
             out += ["```", payload.rstrip("\n"), "```", ""]
@@ -162,7 +162,7 @@ _LINK = re.compile(r"^\[([^\]]+)\]\(([^)\s]+)\)$")
 
 def _html_cell(value: Any) -> str:
     """A table cell as HTML: a cell that is one Markdown link ``[text](href)`` becomes a link."""
-    text = _cell(value)
+    text = table_cell(value)
     link = _LINK.match(text)
     if link:
         return f"<a href='{html.escape(link.group(2))}'>{html.escape(link.group(1))}</a>"

@@ -21,7 +21,7 @@ import re
 from pathlib import Path
 from typing import Any
 
-from geargen.report.review import Review, _cell
+from geargen.report.review import Review, table_cell
 from geargen.units import LENGTH_SUFFIXES
 
 VIEWER = Path(__file__).parent / "viewer"
@@ -46,7 +46,7 @@ def sections(review: Review) -> list[dict[str, Any]]:
         elif kind == "table":
             header, rows = payload
             out[-1]["blocks"].append({"kind": "table", "header": [str(h) for h in header],
-                                      "rows": [[_cell(c) for c in r] for r in rows]})
+                                      "rows": [[table_cell(c) for c in r] for r in rows]})
         elif kind == "list":
             out[-1]["blocks"].append({"kind": "list", "items": [str(i) for i in payload]})
         elif kind in ("p", "pre", "h3"):

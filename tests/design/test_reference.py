@@ -23,10 +23,10 @@ from geargen.design.gear import GEAR_FIELDS, gear_from_table
 from geargen.design.layout import layout_fields
 from geargen.design.parts import hardware_fields
 from geargen.design.schema import DesignErrors, close_keys, read_table, typo_distance
-from geargen.design.stiffness import (_BEAM_FIELDS, _BEAM_QUANTITIES, _COMPONENT_FIELDS, _COMPONENT_QUANTITIES,
-                                      _ENGAGEMENT_FIELDS, _FLEXURE_FIELDS, _FLEXURE_QUANTITIES, _MODULI,
-                                      _PRELOAD_FIELDS, _PRELOAD_QUANTITIES, _SPRING_FIELDS, _SPRING_QUANTITIES,
-                                      _STIFFNESS_FIELDS, preload_spec_from_table)
+from geargen.design.stiffness import (BEAM_FIELDS, BEAM_QUANTITIES, COMPONENT_FIELDS, COMPONENT_QUANTITIES,
+                                      ENGAGEMENT_FIELDS, FLEXURE_FIELDS, FLEXURE_QUANTITIES, MODULI,
+                                      PRELOAD_FIELDS, PRELOAD_QUANTITIES, SPRING_FIELDS, SPRING_QUANTITIES,
+                                      STIFFNESS_FIELDS, preload_spec_from_table)
 from geargen.design.synthesis import ERROR_FIELDS, ERROR_KINDS, MONTE_CARLO_FIELDS, SYNTHESIS_FIELDS
 from geargen.design.validate import DRIVE_FIELDS, TOP_FIELDS, key_schema
 from geargen.errors import DesignError
@@ -45,13 +45,13 @@ SCHEMA = {
     "[errors.GEAR]": ERROR_FIELDS,
     "[monte_carlo]": MONTE_CARLO_FIELDS,
     "[checks]": CHECKS_FIELDS + [key_schema({}, ("checks", "centre_distance_mm"))],  # read by checks itself
-    "[stiffness]": _STIFFNESS_FIELDS + _MODULI,
-    "[stiffness.components.NAME]": _COMPONENT_FIELDS + _COMPONENT_QUANTITIES,
-    "[preload]": _PRELOAD_FIELDS + _PRELOAD_QUANTITIES,
-    "[flexures]": _FLEXURE_FIELDS + _FLEXURE_QUANTITIES,
-    "[springs]": _SPRING_FIELDS + _SPRING_QUANTITIES,
-    "[beam_pinion]": _BEAM_FIELDS + _BEAM_QUANTITIES,
-    "[engagement]": _ENGAGEMENT_FIELDS,
+    "[stiffness]": STIFFNESS_FIELDS + MODULI,
+    "[stiffness.components.NAME]": COMPONENT_FIELDS + COMPONENT_QUANTITIES,
+    "[preload]": PRELOAD_FIELDS + PRELOAD_QUANTITIES,
+    "[flexures]": FLEXURE_FIELDS + FLEXURE_QUANTITIES,
+    "[springs]": SPRING_FIELDS + SPRING_QUANTITIES,
+    "[beam_pinion]": BEAM_FIELDS + BEAM_QUANTITIES,
+    "[engagement]": ENGAGEMENT_FIELDS,
     "[layout]": layout_fields(),
     "[parts] of a dual pinion on a preload carriage": hardware_fields("dual_pinion"),
     "[parts] of a dual pinion with a beam-spring pinion": hardware_fields("beam_pinion"),

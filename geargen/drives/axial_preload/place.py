@@ -71,6 +71,7 @@ from typing import Any
 from geargen.core.axial_preload import (friction_to_preload_ratio, helix_angle_table, input_bearing_reactions,
                                         preload_band, smallest_helix_angle)
 from geargen.core.drive import TwoPathDrive
+from geargen.core.involute import working_pressure_angle_at
 from geargen.core.stiffness import gear_mesh_stiffness, preload_spring_at_output, torsional_from_linear
 from geargen.core.synthesis import mate_rotation
 from geargen.design.assembly import Design
@@ -232,7 +233,7 @@ def place_axial_preload(design: Design, s: dict) -> Layout:
         raise DesignError("parts", "missing: the sliding fit's friction acts on the input shaft's two bearings, "
                           "which [parts] places", "a [parts] table sizing the axial_preload hardware "
                           "(bearing_clearance_*, input_bearing_width_*, ...)")
-    alpha_wt = math.acos((pl.base_radius + o_r.base_radius) / c)
+    alpha_wt = working_pressure_angle_at(float(pl.base_radius + o_r.base_radius), float(c))
     mu = s["sliding_friction_coefficient"]
     # at the reference position (the slide, tens of um, moves the arms by less than 0.1 %): each mesh
     # at the middle of its faces' overlap

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geargen.checks.bevel_pair import BevelPairCheck, _frame2, check_bevel_pair
+from geargen.checks.bevel_pair import BevelPairCheck, mate_frame, check_bevel_pair
 from geargen.checks.results import Failure
 from geargen.design.bevel import BevelGearSpec
 from geargen.drives.dual_pinion.bevel import bevel_drive
@@ -67,7 +67,7 @@ def check_placed_bevel_pair(gear1: BevelGearSpec, matrix1: np.ndarray, gear2: Be
     alpha = math.atan2(axis2[1], axis2[0])
     ca, sa = math.cos(alpha), math.sin(alpha)
     rz = np.array([[ca, -sa, 0.0], [sa, ca, 0.0], [0.0, 0.0, 1.0]])
-    own2 = _frame2(gear1.shaft_angle).T @ rz.T @ rel  # what is left: gear 2 turned about its own axis
+    own2 = mate_frame(gear1.shaft_angle).T @ rz.T @ rel  # what is left: gear 2 turned about its own axis
     gamma = math.atan2(own2[1, 0], own2[0, 0])
     pitch1, pitch2 = 2 * math.pi / gear1.teeth, 2 * math.pi / gear2.teeth
     turn = _wrap(gamma - math.pi - math.pi / gear2.teeth, pitch2)

@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from geargen.checks.mesh2d import polar_outline
-from geargen.checks.rack_pair import _Pair, _extreme, check_rack_pinion_mesh
+from geargen.checks.rack_pair import PlacedRackPair, boundary_extreme, check_rack_pinion_mesh
 from geargen.checks.results import DesignCheck, Failure
 from geargen.units import LENGTH_SUFFIXES
 
@@ -46,7 +46,7 @@ def placed_rack_gaps(rack, pinion, centre_offset: float, pinion_x: float, pinion
     from geargen.core.rack import rack_pinion_geometry
     geometry = rack_pinion_geometry(rack, pinion, centre_offset)
     outline = polar_outline(pinion)
-    pair = _Pair(rack, outline, geometry.centre_height)
+    pair = PlacedRackPair(rack, outline, geometry.centre_height)
     # the pair's turn (tooth 0 points down at theta = 0), reduced to one pinion pitch: the pair
     # looks at the teeth near the bottom; the rack and the pinion repeat by a pitch
     pitch = 2 * math.pi / pinion.teeth
@@ -62,8 +62,9 @@ def placed_rack_gaps(rack, pinion, centre_offset: float, pinion_x: float, pinion
     def below_tips(X, Y, kind):
         return Y < tip_line
 
-    up, _ = _extreme(pair, theta, lambda X, Y: pair.half_width(Y) + pair.offset(X), below_tips, u_grid, k_grid)
-    down, _ = _extreme(pair, theta, lambda X, Y: pair.half_width(Y) - pair.offset(X), below_tips, u_grid, k_grid)
+    up, _ = boundary_extreme(pair, theta, lambda X, Y: pair.half_width(Y) + pair.offset(X), below_tips, u_grid, k_grid)
+    down, _ = boundary_extreme(pair, theta, lambda X, Y: pair.half_width(Y) - pair.offset(X), below_tips, u_grid,
+                               k_grid)
     # seen from the pinion, the placed rack stands `shift` further toward +x than the pair's
     return float(up - shift), float(down + shift)
 
