@@ -221,12 +221,28 @@ def private_imports(package: Path) -> list[str]:
     found = []
     for path in sorted(package.rglob("*.py")):
         own = ".".join(path.relative_to(ROOT).with_suffix("").parts)
-        for node in ast.walk(ast.parse(path.read_text(), str(path))):
+        tree = ast.parse(path.read_text(), str(path))
+        modules = {}  # local name -> another geargen module it is bound to (``from geargen.report import drawing``)
+        for node in ast.walk(tree):
             if isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or "").startswith("geargen") \
                     and node.module != own:
                 found += [f"{path.relative_to(ROOT)}:{node.lineno}: {node.module}.{a.name}" for a in node.names
-                          if a.name.startswith("_") and not a.name.startswith("__")]
+                          if _private(a.name)]
+                for a in node.names:
+                    target = ROOT.joinpath(*node.module.split("."), a.name)
+                    if target.with_suffix(".py").is_file() or target.is_dir():
+                        modules[a.asname or a.name] = f"{node.module}.{a.name}"
+            elif isinstance(node, ast.Import):
+                modules.update({a.asname: a.name for a in node.names if a.asname and a.name.startswith("geargen")})
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in modules \
+                    and _private(node.attr) and modules[node.value.id] != own:
+                found.append(f"{path.relative_to(ROOT)}:{node.lineno}: {modules[node.value.id]}.{node.attr}")
     return found
+
+
+def _private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
 
 
 def test_no_module_imports_a_private_name_of_another():
@@ -239,11 +255,15 @@ def test_no_module_imports_a_private_name_of_another():
 def test_the_private_import_scan_finds_one(tmp_path):
     (tmp_path / "geargen").mkdir()
     (tmp_path / "geargen" / "m.py").write_text("from geargen.cad.gear_solid import build_gear, _x\n"
-                                               "from geargen.cad.gear_solid import __all__\n")
+                                               "from geargen.cad.gear_solid import __all__\n"
+                                               "from geargen import cad as kernel_side\n"
+                                               "y = kernel_side._hidden + kernel_side.__name__\n")
+    (tmp_path / "geargen" / "cad").mkdir()
     global ROOT
     saved, ROOT = ROOT, tmp_path
     try:
-        assert private_imports(tmp_path / "geargen") == ["geargen/m.py:1: geargen.cad.gear_solid._x"]
+        assert private_imports(tmp_path / "geargen") == ["geargen/m.py:1: geargen.cad.gear_solid._x",
+                                                         "geargen/m.py:4: geargen.cad._hidden"]
     finally:
         ROOT = saved
 

@@ -58,7 +58,7 @@ def _build(body: Body) -> TopoDS_Shape:
     if k == "translate":
         return P.translate(_build(a[0]), a[1])
     if k == "single":
-        return P._single(_build(a[0]), a[1])
+        return P.one_valid_solid(_build(a[0]), a[1])
     raise ValueError(f"no builder for body kind {k!r}")
 
 

@@ -133,7 +133,8 @@ def _valid(shape: TopoDS_Shape, what: str) -> TopoDS_Shape:
     return shape
 
 
-def _single(shape: TopoDS_Shape, what: str) -> TopoDS_Shape:
+def one_valid_solid(shape: TopoDS_Shape, what: str) -> TopoDS_Shape:
+    """The one solid ``shape`` holds, valid; BuildError naming ``what`` otherwise."""
     found = solids(shape)
     if len(found) != 1:
         raise BuildError(f"{what}: expected one solid, got {len(found)}")
@@ -145,7 +146,7 @@ def fuse(shapes: list[TopoDS_Shape], what: str = "fused part") -> TopoDS_Shape:
     out = shapes[0]
     if len(shapes) > 1:
         out = clean(union(out, *shapes[1:]))
-    return _single(out, what)
+    return one_valid_solid(out, what)
 
 
 def _cylinder(radius: float, height: float, base=(0.0, 0.0, 0.0)) -> TopoDS_Shape:
@@ -168,7 +169,7 @@ def cylinder(diameter: float, height: float, bore: float = 0.0) -> TopoDS_Shape:
     solid = _cylinder(diameter / 2, height)
     if bore > 0:
         solid = cut(solid, _cylinder(bore / 2, height))
-    return _single(solid, "cylinder")
+    return one_valid_solid(solid, "cylinder")
 
 
 def box(size_x: float, size_y: float, size_z: float, corner=(0.0, 0.0, 0.0)) -> TopoDS_Shape:
@@ -194,7 +195,7 @@ def frustum(bottom_radius: float, top_radius: float, height: float, bore: float 
                                  2 * math.pi).Shape()
     if bore > 0:
         solid = cut(solid, _cylinder(bore / 2, height))
-    return _single(solid, "frustum")
+    return one_valid_solid(solid, "frustum")
 
 
 # ---------------------------------------------------------------- machine elements
@@ -274,7 +275,7 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
     sweep.MakeSolid()
     wire = translate(sweep.Shape(), (0, 0, z0))
     slab = _cylinder(mean / 2 + d, length)
-    return _single(intersect(wire, slab), "compression spring")
+    return one_valid_solid(intersect(wire, slab), "compression spring")
 
 
 def _helix(pitch: float, height: float, radius: float):
@@ -305,7 +306,7 @@ def plate_with_holes(size_x: float, size_y: float, thickness: float, holes: list
     cutters = [_cylinder(dh / 2, thickness, (xh, yh, corner[2])) for xh, yh, dh in holes]
     if cutters:
         solid = cut(solid, *cutters)
-    return _single(solid, "plate")
+    return one_valid_solid(solid, "plate")
 
 
 def link_tray(radius: float, length: float, height: float, wall: float, floor: float,
@@ -337,7 +338,7 @@ def link_tray(radius: float, length: float, height: float, wall: float, floor: f
     reliefs = [_cylinder(r / 2, h, (x, y, floor)) for x, y, d, h, r in bosses if r > 0]
     if reliefs:
         tray = cut(tray, *reliefs)
-    return _single(clean(tray), "link tray")
+    return one_valid_solid(clean(tray), "link tray")
 
 
 def _relieved(bosses) -> list[tuple[float, float, float, float, float]]:
@@ -391,7 +392,7 @@ def link_cover(radius: float, wall: float, x_end: float, thickness: float,
     bores = [_cylinder(rl / 2, thickness + depth, (x, y, -depth)) for x, y, _, depth, rl in seats if rl > 0]
     if bores:
         cover = cut(cover, *bores)
-    return _single(clean(cover), "link cover")
+    return one_valid_solid(clean(cover), "link cover")
 
 
 def link_cover_volume(radius: float, wall: float, x_end: float, thickness: float,
@@ -433,7 +434,7 @@ def quill(outer_diameter: float, length: float, bores: list[tuple[float, float, 
     solid = _cylinder(radius, length)
     solid = cut(solid, *[_cylinder(d / 2, z1 - z0, (0.0, 0.0, z0)) for z0, z1, d in spans]) if spans else solid
     lug = _box(radius + lug_length - root, lug_width, lug_thickness, (root, -lug_width / 2, 0.0))
-    return _single(clean(union(solid, lug)), "quill")
+    return one_valid_solid(clean(union(solid, lug)), "quill")
 
 
 def quill_volume(outer_diameter: float, length: float, bores: list[tuple[float, float, float]], lug_length: float,
@@ -456,10 +457,10 @@ def split_collar(bore: float, outer_diameter: float, width: float, slot: float) 
     if slot <= 0:
         return ring
     cutter = box(outer_diameter, slot, width, (0, -slot / 2, 0))
-    return _single(cut(ring, cutter), "split collar")
+    return one_valid_solid(cut(ring, cutter), "split collar")
 
 
-__all__ = ["is_valid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
+__all__ = ["is_valid", "one_valid_solid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
            "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
            "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
            "link_cover_volume", "ring_relief", "quill", "quill_volume", "split_collar"]
