@@ -56,7 +56,10 @@ TITLE_BLOCK = (230.0, 10.0, 410.0, 50.0)
 COLUMNS_MM = (74.0, 24.0, 82.0)  # name | symbol | value
 FULL_VIEW = (25.0, 120.0, 135.0, 270.0)  # drawing box of the whole gear (without its title)
 SECTION_VIEW = (140.0, 120.0, 225.0, 270.0)
-DETAIL_VIEW = (30.0, 18.0, 222.0, 102.0)
+DETAIL_VIEW = (30.0, 18.0, 118.0, 102.0)
+#: the blank's table (datums, blank tolerances, material, finish) beside the detail
+BLANK_BLOCK = (124.0, 12.0, 226.0, 106.0)
+BLANK_COLUMNS_MM = (40.0, 13.0, 49.0)  # name | symbol | value
 
 
 def scale_text(scale: float) -> str:
@@ -157,7 +160,7 @@ def _method_text(method: str | None) -> str:
     JSON keeps the whole rule)."""
     if not method:
         return NOT_SPECIFIED
-    name = method.split(":")[0]
+    name = method.split(": ")[0]
     return name + (f"; {method[method.index('f_a ='):]}" if "f_a =" in method else "")
 
 
@@ -210,7 +213,10 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
                               ("Total profile tolerance", "F_αT", "profile_total_um"),
                               ("Total helix tolerance", "F_βT", "helix_total_um"),
                               ("Runout tolerance", "F_rT", "runout_um")):
-        rows.append((name, symbol, format_um(acc.get(key), u) if acc else "-"))
+        value = format_um(acc.get(key), u) if acc else "-"
+        if acc and key in ("helix_total_um", "runout_um") and acc.get(key) is not None:
+            value += ", to datum A"  # the bore axis the gear is cut and inspected on
+        rows.append((name, symbol, value))
     allowance = data.get("thickness_allowance")
     rows += [
         ("Tooth thickness allowance, upper", "A_sne",
@@ -232,6 +238,7 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
         (f"{kind[:-1].capitalize()} diameter", "D_M", L(pins["diameter"]) if pins else NOT_SPECIFIED),
         (f"Dimension over {kind}", "M_dK", L(pins["dimension"]) if pins else NOT_SPECIFIED),
         (f"Over-{kind} limits", "M_dK", format_limits(pins.get("limits"), u) if pins else "-"),
+        (f"{kind[:-1].capitalize()} size series", "", pins.get("series") or NOT_SPECIFIED if pins else "-"),
     ]
     mates = mates_of(data)
     if not mates:
@@ -255,7 +262,60 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
     return rows
 
 
+def _tolerance_text(tol: dict | None, unit: str) -> str:
+    """A size's tolerance as the blank table states it: ``h11: 19.6435 / 19.5135 mm (max / min)``."""
+    if not tol or not tol.get("limits"):
+        return NOT_SPECIFIED
+    head = f"{tol['code']} (ISO 286-1)" if tol.get("code") else "by deviation"
+    return f"{head}: {format_limits(tol['limits'], unit)}"
+
+
+def blank_rows(data: dict) -> list[tuple[str, str, str]]:
+    """The blank table as ``(name, symbol, value)`` rows: datums A (bore axis) and B (reference
+    face), the bore with its ISO 286 fit and limits, the tip diameter's and face width's tolerances,
+    the axial runout of face B referred to A, material, heat treatment, hardness and flank finish.
+    A key the gear data lacks reads "not specified"."""
+    u = data["length_unit"]
+    datums = data.get("datums") or {}
+    rows = [("Datum A", "A", datums.get("A", NOT_SPECIFIED)), ("Datum B", "B", datums.get("B", NOT_SPECIFIED))]
+    bore = data.get("bore")
+    if bore:
+        rows.append(("Bore diameter", "d_B", format_length(bore["nominal"], u) + (f" {bore['code']}" if bore.get("code")
+                                                                                  else ", fit not specified")))
+        rows.append(("Bore limits", "", f"{format_limits(bore['limits'], u)}" if bore.get("limits") else NOT_SPECIFIED))
+    else:
+        rows.append(("Bore diameter", "d_B", "- (no bore)"))
+    rows += [("Tip diameter tolerance", "d_a", _tolerance_text(data.get("tip_diameter_tolerance"), u)),
+             ("Face width tolerance", "b", _tolerance_text(data.get("face_width_tolerance"), u))]
+    geo = data.get("datum_tolerances") or {}
+    face = geo.get("face_axial_runout_um")
+    rows.append(("Axial runout of face B", "t_B", format_um(face, u) + ", to datum A" if face is not None
+                 else NOT_SPECIFIED))
+    mat = data.get("material") or {}
+    hard = mat.get("hardness")
+    ra = data.get("flank_roughness_Ra_um")
+    rows += [("Material", "", mat.get("material") or NOT_SPECIFIED),
+             ("Heat treatment", "", mat.get("heat_treatment") or NOT_SPECIFIED),
+             ("Surface hardness", "", f"{hard['value']:g} {hard['unit']}" if hard else NOT_SPECIFIED),
+             ("Flank roughness", "Ra", NOT_SPECIFIED if ra is None else
+              f"{ra:g} µm" + (f" ({ra / 0.0254:.3g} µin)" if u == "in" else ""))]
+    return rows
+
+
 # ---------------------------------------------------------------- measuring and wrapping text
+
+
+def cell_gid(n: int, cell) -> str:
+    """The SVG id of the ``n``-th text that must stay inside ``cell`` (sheet mm, y up, 3 decimals):
+    ``cell-<n>-<x0>_<y0>_<x1>_<y1>``; :func:`parse_cell_gid` reads it back."""
+    return f"cell-{n}-" + "_".join(f"{c:.3f}" for c in cell)
+
+
+def parse_cell_gid(gid: str) -> tuple[float, float, float, float] | None:
+    """The cell (sheet mm, y up) of a :func:`cell_gid`, or None for another id."""
+    if not gid or not gid.startswith("cell-"):
+        return None
+    return tuple(float(v) for v in gid.split("-", 2)[2].split("_"))
 
 
 class _Sheet:
@@ -273,6 +333,7 @@ class _Sheet:
         self.ax.set_axis_off()
         self.renderer = self.fig.canvas.get_renderer()
         self._widths: dict[tuple[str, float, str], float] = {}
+        self.cells: list[tuple[object, tuple[float, float, float, float]]] = []
 
     def width_mm(self, text: str, size: float, weight: str = "normal") -> float:
         # the renderer's own metrics (what a drawn Text measures), without making an artist per trial;
@@ -284,6 +345,12 @@ class _Sheet:
             w_px = self.renderer.get_text_width_height_descent(text, prop, ismath=False)[0]
             self._widths[key] = w_px * 72.0 / self.fig.dpi * MM_PER_PT
         return self._widths[key]
+
+    def in_cell(self, text, cell) -> None:
+        """Record that ``text`` (an artist) must lie inside ``cell`` (x0, y0, x1, y1 sheet mm, y up):
+        its SVG group id carries the cell (:func:`cell_gid`), and :attr:`cells` keeps the pair."""
+        self.cells.append((text, tuple(float(c) for c in cell)))
+        text.set_gid(cell_gid(len(self.cells), cell))
 
     def text(self, x, y, s, size=MIN_FONT_PT, **kw):
         kw.setdefault("family", FONT)
@@ -339,27 +406,30 @@ def _box(sheet, box, lw=0.35):
     sheet.line([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], lw=lw)
 
 
-def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT) -> list[float]:
-    """Draw ``rows`` as a table in ``box`` (from its top); returns the bottom of each row (mm).
-    Raises ValueError when the rows do not fit the box."""
+def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT, columns=COLUMNS_MM,
+                header=("Gear data (ISO 1340)", "Symbol", "Value")) -> list[float]:
+    """Draw ``rows`` as a table in ``box`` (from its top) with ``columns`` widths (mm) under
+    ``header``; returns the bottom of each row (mm). Raises ValueError when the rows do not fit
+    the box. Each text carries its cell (:func:`cell_gid`) so a test can find it outside."""
     x0, y0, x1, y1 = box
     line_h = size * 1.2 * MM_PER_PT
-    cols = np.cumsum((x0,) + COLUMNS_MM)
+    cols = np.cumsum((x0,) + tuple(columns))
     assert abs(cols[-1] - x1) < 1e-9
-    header = [("Gear data (ISO 1340)", "Symbol", "Value")]
+    header = [tuple(header)]
     y = y1
     bottoms = []
     for i, row in enumerate(header + list(rows)):
         weight = "bold" if i == 0 else "normal"
-        cells = [sheet.wrap(text, COLUMNS_MM[j] - 2 * PAD_MM, size) for j, text in enumerate(row)]
+        cells = [sheet.wrap(text, columns[j] - 2 * PAD_MM, size) for j, text in enumerate(row)]
         n = max(len(c) for c in cells)
         height = n * line_h + 2 * ROW_PAD_MM
         if y - height < y0:
             raise ValueError(f"the gear data block needs more than {y1 - y0:g} mm")
         for j, lines in enumerate(cells):
             for k, text in enumerate(lines):
-                sheet.text(cols[j] + PAD_MM, y - ROW_PAD_MM - (k + 0.5) * line_h, text, size,
-                           va="center_baseline", weight=weight)
+                t = sheet.text(cols[j] + PAD_MM, y - ROW_PAD_MM - (k + 0.5) * line_h, text, size,
+                               va="center_baseline", weight=weight)
+                sheet.in_cell(t, (cols[j], y - height, cols[j + 1], y))
         y -= height
         sheet.line([x0, x1], [y, y], lw=0.35 if i == 0 else 0.18)
         bottoms.append(y)
@@ -369,24 +439,36 @@ def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT) 
     return bottoms
 
 
-def _title_block(sheet: _Sheet, name: str, design_file: str, unit: str, scale: str, version: str) -> None:
+def _title_block(sheet: _Sheet, name: str, design_file: str, unit: str, scale: str, version: str,
+                 part_number: str | None = None, revision: str | None = None, kind: str = "Gear") -> None:
+    """The title block: the part's name (``kind`` above it) and its part number; the design file,
+    the revision and the length unit; the scale and sheet. A part number or revision the design
+    does not give reads "not specified"."""
     x0, y0, x1, y1 = TITLE_BLOCK
     _box(sheet, TITLE_BLOCK, lw=0.7)
     ym = y0 + 0.55 * (y1 - y0)
     sheet.line([x0, x1], [ym, ym], lw=0.35)
     xm = x0 + 110
-    sheet.line([xm, xm], [y0, ym], lw=0.35)
-    sheet.text(x0 + 3, y1 - 3, "Gear", MIN_FONT_PT, va="top", color="0.3")
-    for k, line in enumerate(sheet.wrap(name, x1 - x0 - 6, TITLE_FONT_PT)[:2]):
-        sheet.text(x0 + 3, y1 - 8.5 - k * 6, line, TITLE_FONT_PT, va="top", weight="bold")
-    cells = [((x0 + 2, ym - 2), "Design file", design_file, xm - x0 - 4),
-             ((xm + 2, ym - 2), "Length unit", unit, x1 - xm - 4)]
-    for (x, y), label, value, width in cells:
-        sheet.text(x, y, label, MIN_FONT_PT, va="top", color="0.3")
-        for k, line in enumerate(sheet.wrap(value, width, MIN_FONT_PT)[:3]):
-            sheet.text(x, y - 5 - k * 4.4, line, MIN_FONT_PT, va="top")
+    sheet.line([xm, xm], [y0, y1], lw=0.35)
+    xr = xm + 34  # revision | length unit
+    sheet.line([xr, xr], [ym, ym - 11], lw=0.18)
+    sheet.line([xm, x1], [ym - 11, ym - 11], lw=0.18)
+    top = (x0, ym, xm, y1)
+    sheet.in_cell(sheet.text(x0 + 3, y1 - 3, kind, MIN_FONT_PT, va="top", color="0.3"), top)
+    for k, line in enumerate(sheet.wrap(name, xm - x0 - 6, TITLE_FONT_PT)[:2]):
+        sheet.in_cell(sheet.text(x0 + 3, y1 - 8.5 - k * 6, line, TITLE_FONT_PT, va="top", weight="bold"), top)
+    cells = [((x0, y0, xm, ym), "Design file", design_file, 3),
+             ((xm, ym, x1, y1), "Part number", part_number or NOT_SPECIFIED, 2),
+             ((xm, ym - 11, xr, ym), "Revision", revision or NOT_SPECIFIED, 1),
+             ((xr, ym - 11, x1, ym), "Length unit", unit, 1)]
+    for cell, label, value, most in cells:
+        x, y = cell[0] + 2, cell[3] - 1.2
+        sheet.in_cell(sheet.text(x, y, label, MIN_FONT_PT, va="top", color="0.3"), cell)
+        width = cell[2] - cell[0] - 4
+        for k, line in enumerate(sheet.wrap(value, width, MIN_FONT_PT)[:most]):
+            sheet.in_cell(sheet.text(x, y - 4.6 - k * 4.4, line, MIN_FONT_PT, va="top"), cell)
     for k, line in enumerate(sheet.wrap(f"Scale {scale}, sheet {SHEET}", x1 - xm - 4, MIN_FONT_PT)[:2][::-1]):
-        sheet.text(xm + 2, y0 + 2 + k * 4.4, line, MIN_FONT_PT, va="bottom")
+        sheet.in_cell(sheet.text(xm + 2, y0 + 1.2 + k * 4.4, line, MIN_FONT_PT, va="bottom"), (xm, y0, x1, ym - 11))
 
 
 def _outline_points(profile, step_mm: float) -> np.ndarray:
@@ -586,7 +668,10 @@ def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
         _section_view(sheet, profile, unit, section)
         _detail_view(sheet, profile, unit, detail)
         _data_block(sheet, data_rows(data, scale, version, source))
-        _title_block(sheet, data["name"], design_file, unit, scale, version)
+        _data_block(sheet, blank_rows(data), BLANK_BLOCK, columns=BLANK_COLUMNS_MM,
+                    header=("Blank, datums, material", "", "Value"))
+        _title_block(sheet, data["name"], design_file, unit, scale, version, data.get("part_number"),
+                     data.get("revision"))
     return sheet.fig
 
 
@@ -614,7 +699,7 @@ def write_drawing(data: dict, profile, folder, name: str, source: str, design_fi
     return out
 
 
-__all__ = ["SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
+__all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "blank_rows", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
            "drawing_scales", "draw_gear", "write_drawing", "gear_drawings"]
 
