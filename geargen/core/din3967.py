@@ -85,8 +85,8 @@ def allowance_um(reference_diameter_mm: float, designation: str,
 def method_text(designation: str) -> str:
     """How the allowance was chosen, as the JSON and the drawing state it."""
     series, tol = parse_designation(designation)
-    return (f"{STANDARD} {series}{tol}: upper allowance series {series} (Table 1), tolerance series {tol} "
-            "(Table 2), by reference diameter")
+    return (f"{STANDARD} {series}{tol} (Tables 1 and 2): upper allowance series {series}, tolerance series {tol}, "
+            "by reference diameter")
 
 
 __all__ = ["DIAMETER_STEPS_MM", "UPPER_SERIES", "TOLERANCE_SERIES", "UPPER_UM", "TOLERANCE_UM",

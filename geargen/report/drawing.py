@@ -48,6 +48,7 @@ PREFERRED_SCALES = (50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02)
 DECIMALS = {"mm": 4, "in": 5}
 NOT_SPECIFIED = "not specified"
 PAD_MM = 1.2  # clearance between a text and its cell's side
+WRAP_FILL = 0.95  # the share of a cell's width a wrapped line may fill (as Agg measures it)
 ROW_PAD_MM = 0.6  # and its cell's top and bottom
 
 # the sheet's areas (mm): data block and title block on the right, views on the left
@@ -58,8 +59,8 @@ FULL_VIEW = (25.0, 120.0, 135.0, 270.0)  # drawing box of the whole gear (withou
 SECTION_VIEW = (140.0, 120.0, 225.0, 270.0)
 DETAIL_VIEW = (30.0, 18.0, 118.0, 102.0)
 #: the blank's table (datums, blank tolerances, material, finish) beside the detail
-BLANK_BLOCK = (124.0, 12.0, 226.0, 106.0)
-BLANK_COLUMNS_MM = (40.0, 13.0, 49.0)  # name | symbol | value
+BLANK_BLOCK = (124.0, 12.0, 226.0, 116.0)  # up to below the axial section's lowest dimension
+BLANK_COLUMNS_MM = (34.0, 12.0, 56.0)  # name | symbol | value
 
 
 def scale_text(scale: float) -> str:
@@ -280,16 +281,16 @@ def blank_rows(data: dict) -> list[tuple[str, str, str]]:
     rows = [("Datum A", "A", datums.get("A", NOT_SPECIFIED)), ("Datum B", "B", datums.get("B", NOT_SPECIFIED))]
     bore = data.get("bore")
     if bore:
-        rows.append(("Bore diameter", "d_B", format_length(bore["nominal"], u) + (f" {bore['code']}" if bore.get("code")
-                                                                                  else ", fit not specified")))
+        rows.append(("Bore", "d_B", format_length(bore["nominal"], u) + (f" {bore['code']}" if bore.get("code")
+                                                                         else ", fit not specified")))
         rows.append(("Bore limits", "", f"{format_limits(bore['limits'], u)}" if bore.get("limits") else NOT_SPECIFIED))
     else:
-        rows.append(("Bore diameter", "d_B", "- (no bore)"))
-    rows += [("Tip diameter tolerance", "d_a", _tolerance_text(data.get("tip_diameter_tolerance"), u)),
-             ("Face width tolerance", "b", _tolerance_text(data.get("face_width_tolerance"), u))]
+        rows.append(("Bore", "d_B", "- (no bore)"))
+    rows += [("Tip diameter", "d_a", _tolerance_text(data.get("tip_diameter_tolerance"), u)),
+             ("Face width", "b", _tolerance_text(data.get("face_width_tolerance"), u))]
     geo = data.get("datum_tolerances") or {}
     face = geo.get("face_axial_runout_um")
-    rows.append(("Axial runout of face B", "t_B", format_um(face, u) + ", to datum A" if face is not None
+    rows.append(("Axial runout of B", "t_B", format_um(face, u) + ", to datum A" if face is not None
                  else NOT_SPECIFIED))
     mat = data.get("material") or {}
     hard = mat.get("hardness")
@@ -362,7 +363,10 @@ class _Sheet:
 
     def wrap(self, text: str, width_mm: float, size: float) -> list[str]:
         """``text`` broken into lines no wider than ``width_mm`` (at spaces, else after ``/``,
-        else anywhere)."""
+        else anywhere), measured with :data:`WRAP_FILL` of the width: a browser lays the SVG's text
+        out with its own shaping, up to 3 % wider than Agg's metrics (a run of ``/`` measured in
+        headless Chromium, tests/report/test_drawing_cells.py)."""
+        width_mm *= WRAP_FILL
         if self.width_mm(text, size) <= width_mm:
             return [text]
         tokens = []
