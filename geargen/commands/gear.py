@@ -390,6 +390,21 @@ def gear_allowance(args, spec: GearSpec):
     return None
 
 
+def _check_shop_keys(args, spec) -> None:
+    """The drawing keys' ISO 286 classes and DIN 3967 designation, checked before the gear is built;
+    errors name the design key, or the option that set it."""
+    from geargen.model.gear_data import check_shop_keys
+    if not isinstance(spec, GearSpec):
+        return
+    if args.design:
+        check_shop_keys(spec, f"gears.{args.gear}." if args.gear else "gear.")
+        return
+    try:
+        check_shop_keys(spec, "")
+    except DesignError as exc:
+        raise DesignError(_flag_of_key(exc.field, {}, _given(args)), exc.problem, exc.allowed) from None
+
+
 def standalone_allowance(args, spec, layout):
     """A gear made alone (options, a [gear] file, or an assembly gear outside a drive) without an
     allowance of its own is ordered with the DIN 3967 one of ``--thickness-series`` or its table's
@@ -407,6 +422,7 @@ def standalone_allowance(args, spec, layout):
 def run(args) -> int:
     layout = drive_layout(args)
     spec, thinning_source = spec_from_args(args, layout)
+    _check_shop_keys(args, spec)
     allowance = gear_allowance(args, spec)
     if allowance is None and layout is not None:
         from geargen.pipeline import drive_allowances_of

@@ -591,9 +591,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
             scale = LENGTH_SUFFIXES[unit_b]
             raise DesignError(f"{p}bore_diameter_{unit_b}", f"{hub.bore_diameter / scale:.6g} {unit_b}: the bore (with "
                               "keyway) cuts into the tooth root", f"< {most / scale:.6g} {unit_b}")
-    spec = _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
-    _check_shop_classes(spec, p)
-    return spec
+    return _with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
 
 
 def _shop_data(v: Mapping[str, Any], p: str) -> ShopData:
@@ -619,29 +617,12 @@ def _shop_data(v: Mapping[str, Any], p: str) -> ShopData:
                 raise DesignError(f"{p}{stem}_lower_deviation_{unit}", f"{lo / scale:.6g} {unit} is above the upper "
                                   "deviation", f"<= {up / scale:.6g} {unit}")
             pairs[stem] = (up, lo)
-    if v["thickness_allowance_series"] is not None:
-        from geargen.core.din3967 import parse_designation
-        parse_designation(v["thickness_allowance_series"], p + "thickness_allowance_series")
     return ShopData(part_number=v["part_number"], revision=v["revision"], material=v["material"],
                     heat_treatment=v["heat_treatment"], hardness=hardness, flank_roughness_Ra=v["flank_roughness_Ra"],
                     bore_fit=v["bore_fit"], tip_diameter_class=v["tip_diameter_tolerance"],
                     tip_diameter_deviations=pairs.get("tip_diameter"), face_width_class=v["face_width_tolerance"],
                     face_width_deviations=pairs.get("face_width"),
                     thickness_allowance_series=v["thickness_allowance_series"])
-
-
-def _check_shop_classes(spec: GearSpec, p: str) -> None:
-    """Each ISO 286 class named exists at its feature's size (a bore fit needs a bore)."""
-    from geargen.core.iso286 import tolerance_class
-    shop = spec.shop
-    if shop.bore_fit is not None:
-        if spec.hub.bore_diameter <= 0:
-            raise DesignError(p + "bore_fit", "a fit needs a bore", "bore_diameter_* > 0, or no bore_fit")
-        tolerance_class(shop.bore_fit, spec.hub.bore_diameter, "hole", p + "bore_fit")
-    if shop.tip_diameter_class is not None:
-        tolerance_class(shop.tip_diameter_class, 2 * spec.tip_radius, "shaft", p + "tip_diameter_tolerance")
-    if shop.face_width_class is not None:
-        tolerance_class(shop.face_width_class, spec.face_width, "shaft", p + "face_width_tolerance")
 
 
 def gear_keys_written(data: Mapping[str, Any]) -> dict[str, str]:

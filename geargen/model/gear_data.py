@@ -145,11 +145,34 @@ def _tolerance(size_mm: float, code: str | None, deviations, default: str, u: st
     return out
 
 
+def check_shop_keys(spec: GearSpec, prefix: str | None = None) -> None:
+    """Each ISO 286 class the gear's table names exists at its feature's size (a bore fit needs a
+    bore) and its DIN 3967 designation is one; errors name the key under ``prefix`` (default
+    ``gears.NAME.``). The tables are core's, above the design layer, so this runs where the gear
+    is used (``geargen gear``, a build's gear data), not where the table is read."""
+    from geargen.core.din3967 import parse_designation
+    from geargen.core.iso286 import tolerance_class
+    from geargen.errors import DesignError
+    p = f"gears.{spec.name}." if prefix is None else prefix
+    shop = spec.shop
+    if shop.bore_fit is not None:
+        if spec.hub.bore_diameter <= 0:
+            raise DesignError(p + "bore_fit", "a fit needs a bore", "bore_diameter_* > 0, or no bore_fit")
+        tolerance_class(shop.bore_fit, spec.hub.bore_diameter, "hole", p + "bore_fit")
+    if shop.tip_diameter_class is not None:
+        tolerance_class(shop.tip_diameter_class, 2 * spec.tip_radius, "shaft", p + "tip_diameter_tolerance")
+    if shop.face_width_class is not None:
+        tolerance_class(shop.face_width_class, spec.face_width, "shaft", p + "face_width_tolerance")
+    if shop.thickness_allowance_series is not None:
+        parse_designation(shop.thickness_allowance_series, p + "thickness_allowance_series")
+
+
 def shop_data(spec: GearSpec, profile, accuracy: dict | None, material=None) -> dict:
     """The drawing's data besides the teeth (gear-data keys): part number and revision, material,
     heat treatment, hardness and flank finish (the gear table's keys, else the rating's ISO 6336-5
     ``material``, else None: not specified), the datums, the bore's, tip diameter's and face width's
     tolerances (ISO 286-1) and the tolerances referred to the datums."""
+    check_shop_keys(spec)
     shop, u = spec.shop, spec.length_unit
     out = {"part_number": shop.part_number, "revision": shop.revision}
     mat = {"material": shop.material, "heat_treatment": shop.heat_treatment, "hardness": None,

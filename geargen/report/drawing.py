@@ -239,7 +239,6 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
         (f"{kind[:-1].capitalize()} diameter", "D_M", L(pins["diameter"]) if pins else NOT_SPECIFIED),
         (f"Dimension over {kind}", "M_dK", L(pins["dimension"]) if pins else NOT_SPECIFIED),
         (f"Over-{kind} limits", "M_dK", format_limits(pins.get("limits"), u) if pins else "-"),
-        (f"{kind[:-1].capitalize()} size series", "", pins.get("series") or NOT_SPECIFIED if pins else "-"),
     ]
     mates = mates_of(data)
     if not mates:
@@ -292,6 +291,9 @@ def blank_rows(data: dict) -> list[tuple[str, str, str]]:
     face = geo.get("face_axial_runout_um")
     rows.append(("Axial runout of B", "t_B", format_um(face, u) + ", to datum A" if face is not None
                  else NOT_SPECIFIED))
+    pins = data.get("over_pins")
+    if pins:  # the over-pins rows of the data block measure with a pin of this series
+        rows.append((f"{pins['kind'][:-1].capitalize()} series", "D_M", pins.get("series") or NOT_SPECIFIED))
     mat = data.get("material") or {}
     hard = mat.get("hardness")
     ra = data.get("flank_roughness_Ra_um")

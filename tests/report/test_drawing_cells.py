@@ -35,8 +35,8 @@ def _full():
                     helix_angle=math.radians(20), hand="left", profile_shift=0.2,
                     hub=Hub(bore_diameter=6.0, keyway_width=2.0, keyway_depth=1.0), name="pinion_21",
                     shop=ShopData(part_number="GG-2026-0021-PINION-LONG-NUMBER", revision="C",
-                                  material="42CrMo4 (1.7225) quenched and tempered bar, ISO 683-2",
-                                  heat_treatment="quenched and tempered, then nitrided 0.3 mm deep",
+                                  material="42CrMo4 (1.7225), ISO 683-2",
+                                  heat_treatment="quenched and tempered, nitrided",
                                   hardness=(650.0, "HV"), flank_roughness_Ra=0.4e-3, bore_fit="H7",
                                   tip_diameter_class="h9", face_width_deviations=(0.0, -0.05)))
     profile = tooth_profile(spec, warn=False)
