@@ -571,10 +571,12 @@ def tooth_root_form(teeth: float, profile_shift: float, normal_module: float, no
     the reference circle (mm); ``eps_alpha``: the pair's transverse contact ratio;
     ``dedendum_coefficient`` h_fP/m_n and ``rack_tip_radius_coefficient`` rho_fP/m_n of the basic
     rack; ``thinning_normal``: the normal thinning at the reference cylinder, taken as cut by a
-    thicker rack tooth at the nominal infeed (geargen's convention), which narrows E by half of it.
+    thicker rack tooth at the nominal infeed (geargen's convention): each rack flank stands s_n/2
+    further out, so E (the rack tooth's centre to its tip round's centre) grows by s_n/2 as ISO's
+    protuberance term grows it, and the root section narrows.
 
     With z_n = z / (cos^2 beta_b cos beta), eps_alpha_n = eps_alpha / cos^2 beta_b:
-    E = pi/4 m_n - h_fP tan(alpha_n) - (1 - sin(alpha_n)) rho_fP / cos(alpha_n) - s_n/2,
+    E = pi/4 m_n - h_fP tan(alpha_n) - (1 - sin(alpha_n)) rho_fP / cos(alpha_n) + s_n/2,
     G = rho_fP/m_n - h_fP/m_n + x, H = 2/z_n (pi/2 - E/m_n) - pi/3,
     theta = 2G/z_n tan(theta) - H (fixed point from pi/6),
     s_Fn/m_n = z_n sin(pi/3 - theta) + sqrt(3) (G/cos(theta) - rho_fP/m_n),
@@ -597,7 +599,7 @@ def tooth_root_form(teeth: float, profile_shift: float, normal_module: float, no
     z_n = teeth / (cb2 * math.cos(helix_angle))
     eps_an = eps_alpha / cb2
     e = (math.pi / 4 * m - h_fp * math.tan(a_n) - (1 - math.sin(a_n)) * rho / math.cos(a_n)
-         - thinning_normal / 2)
+         + thinning_normal / 2)
     g = rho / m - h_fp / m + x
     h = 2.0 / z_n * (math.pi / 2 - e / m) - math.pi / 3
     theta = math.pi / 6

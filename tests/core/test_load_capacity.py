@@ -326,8 +326,9 @@ def test_helical_case_by_hand(capsys):
 # Y_F's critical section against the tooth geargen generates
 # ---------------------------------------------------------------------------------------------
 
-@pytest.mark.parametrize("teeth, shift", [(21, 0.25), (47, -0.1), (14, 0.5)])
-def test_critical_section_is_the_30_degree_tangent_on_the_generated_trochoid(teeth, shift):
+@pytest.mark.parametrize("teeth, shift, thinning", [(21, 0.25, 0.0), (47, -0.1, 0.0), (14, 0.5, 0.0),
+                                                    (21, 0.25, 0.12), (14, 0.5, 0.3)])
+def test_critical_section_is_the_30_degree_tangent_on_the_generated_trochoid(teeth, shift, thinning):
     # Method B's s_Fn and rho_F are closed forms for the point of the fillet where the tangent makes
     # 30 deg with the tooth's centreline. Measured here on the fillet geargen generates (the rack tip
     # circle rolled, geargen.core.geometry._rack_fillet_in_gear): the point is found by bisection on
@@ -335,11 +336,18 @@ def test_critical_section_is_the_30_degree_tangent_on_the_generated_trochoid(tee
     # Tolerance 1e-6 relative: the bisection resolves s_Fn to 1e-8 mm; the three-point radius with a
     # step of 1e-4 rad in the fillet's parameter is within 2e-7 of the curvature (smaller steps drown
     # in rounding: 1e-5 rad reads 3e-5 off).
+    # A thinned gear is cut by a thicker rack tooth at the same infeed: its root section is
+    # narrower (the sign of s_n/2 in E; it once widened the root).
     from geargen.core.geometry import _rack_fillet_in_gear
 
-    spec = GearSpec(teeth=teeth, module=4.0, pressure_angle=20 * DEG, face_width=30.0, profile_shift=shift)
+    spec = GearSpec(teeth=teeth, module=4.0, pressure_angle=20 * DEG, face_width=30.0, profile_shift=shift,
+                    thinning=thinning)
     form = lc.tooth_root_form(teeth, shift, 4.0, 20 * DEG, 0.0, 0.0, spec.tip_radius - spec.reference_radius, 1.5,
-                              1.25, spec.rack_tip_radius_coefficient)
+                              1.25, spec.rack_tip_radius_coefficient, thinning_normal=thinning)
+    if thinning:
+        plain = lc.tooth_root_form(teeth, shift, 4.0, 20 * DEG, 0.0, 0.0, spec.tip_radius - spec.reference_radius,
+                                   1.5, 1.25, spec.rack_tip_radius_coefficient)
+        assert form.s_Fn < plain.s_Fn
 
     def point(t):
         r, phi = _rack_fillet_in_gear(spec, t)
