@@ -119,6 +119,15 @@ class Hub:
                               f"> {self.bore_diameter + 2 * self.keyway_depth} mm")
 
 
+#: the most characters of each text a gear's drawing prints as the designer wrote it: the lines
+#: geargen.report.drawing gives it (DRAWN_TEXT_LINES: material 4, heat treatment 2 in the blank
+#: table's 74 mm value column; part number 2, revision 1 in their title-block cells) times the
+#: letters of the widest character it may hold ("m", 3.53 mm at 10 pt; schema.DRAWN_TEXT_RANGES)
+#: that one line holds: 19 in the value column, 17 in the part-number cell, 8 in the revision
+#: cell (tests/report/test_drawn_text_limits.py measures them again and draws the longest)
+DRAWN_TEXT_MAX = {"material": 76, "heat_treatment": 38, "part_number": 34, "revision": 8}
+
+
 #: the default tolerance class of the tip diameter and the face width when the design gives none:
 #: ISO 286-1 h11, the usual class of a tip that is not a datum (ISO/TR 10064-3 leaves it to the blank)
 DEFAULT_TIP_CLASS = "h11"
@@ -468,13 +477,14 @@ GEAR_FIELDS: list[Field] = [
                "[errors.NAME], its pitch-line eccentricity and tooth-to-tooth TIRs"),
     Field("accuracy_standard", "string", required=False, default=None, choices=ACCURACY_STANDARDS,
           help="the standard of accuracy_grade (default and only choice: ISO 1328-1:2013, inch designs too)"),
-    Field("part_number", "string", required=False, default=None,
+    Field("part_number", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["part_number"],
           help="the drawing's part (identification) number; the title block says \"not specified\" without it"),
-    Field("revision", "string", required=False, default=None, help="the drawing's revision index"),
-    Field("material", "string", required=False, default=None,
+    Field("revision", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["revision"],
+          help="the drawing's revision index"),
+    Field("material", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["material"],
           help="the gear's material as the drawing names it (e.g. \"42CrMo4 (1.7225)\"; default: the ISO 6336-5 "
                "material of the gear's [materials] or [duty] rating when the design names one)"),
-    Field("heat_treatment", "string", required=False, default=None,
+    Field("heat_treatment", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["heat_treatment"],
           help="the heat treatment the drawing asks for (e.g. \"quenched and tempered\"; default: that of the "
                "rating's material)"),
     Field("hardness_HV", "number", required=False, default=None, minimum=50.0, maximum=1200.0,
@@ -651,6 +661,6 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter", "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
+__all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter", "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
            "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

@@ -123,9 +123,14 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=Non
     return out
 
 
-#: ISO/TR 10064-3:1996, Table 3 (runout tolerances of the mounting surfaces): the axial runout of a
-#: datum face is held to 0.2 (D_d / b) F_beta, D_d the datum face's diameter, b the face width
-FACE_RUNOUT_RULE = "ISO/TR 10064-3:1996 Table 3: 0.2 (D_d / b) F_β, D_d the root diameter"
+#: the axial runout tolerance of the reference face B, referred to the bore axis A: the face's tilt
+#: over its diameter may take a fifth of what the helix tolerance allows over the face width. This is
+#: geargen's convention: the form was recalled as ISO/TR 10064-3 Table 3's, but no text of that
+#: report could be found to check it against (searched 2026-11), so no standard is cited for it
+FACE_RUNOUT_FORMULA = "0.2 (d_f / b) F_βT"
+FACE_RUNOUT_RULE = ("geargen's convention, not a value of a standard: t_B = 0.2 (d_f / b) F_βT, d_f the root "
+                    "diameter (the face's outer diameter below the teeth), b the face width, F_βT the total helix "
+                    "tolerance of the accuracy grade")
 
 
 def _tolerance(size_mm: float, code: str | None, deviations, default: str, u: str, feature: str) -> dict:
@@ -181,13 +186,12 @@ def shop_data(spec: GearSpec, profile, accuracy: dict | None, material=None) -> 
         mat["hardness"] = {"value": shop.hardness[0], "unit": shop.hardness[1]}
     if material is not None:
         from geargen.design.iso6336_5 import TABLE_8
-        rated = f"{TABLE_8[material.name][0]}, ISO 6336-5 quality {material.quality}"
         taken = []
         if mat["material"] is None:
-            mat["material"] = rated
+            mat["material"] = TABLE_8[material.name][0]
             taken.append("material")
         if mat["heat_treatment"] is None:
-            mat["heat_treatment"] = material.name.replace("_", " ")
+            mat["heat_treatment"] = f"{material.name.replace('_', ' ')}, ISO 6336-5 {material.quality}"
             taken.append("heat treatment")
         if mat["hardness"] is None and material.hardness is not None:
             mat["hardness"] = {"value": material.hardness, "unit": "HV"}
@@ -198,9 +202,9 @@ def shop_data(spec: GearSpec, profile, accuracy: dict | None, material=None) -> 
     out["material"] = mat
     out["flank_roughness_Ra_um"] = None if shop.flank_roughness_Ra is None else shop.flank_roughness_Ra * 1e3
     bore = spec.hub.bore_diameter
+    # B is the face at z = b, the one without the hub (the hub stands on z < 0, geargen.cad.gear_solid)
     out["datums"] = {"A": "bore axis" if bore > 0 else "axis of the tip cylinder (no bore)",
-                     "B": "reference face (the face at z = 0, opposite the hub)" if spec.hub.hub_length > 0
-                     else "reference face (the face at z = 0)"}
+                     "B": "face at z = b, opposite the hub" if spec.hub.hub_length > 0 else "face at z = b"}
     if bore > 0:
         from geargen.core.iso286 import tolerance_class
         b = {"nominal": float(from_mm(bore, u)), "code": shop.bore_fit, "standard": None,
@@ -219,7 +223,7 @@ def shop_data(spec: GearSpec, profile, accuracy: dict | None, material=None) -> 
     out["face_width_tolerance"] = _tolerance(spec.face_width, shop.face_width_class, shop.face_width_deviations,
                                              DEFAULT_FACE_WIDTH_CLASS, u, "shaft")
     geo = {"datum_axis": "A", "radial_runout_um": None, "helix_total_um": None, "face_axial_runout_um": None,
-           "face_axial_runout_rule": FACE_RUNOUT_RULE}
+           "face_axial_runout_formula": FACE_RUNOUT_FORMULA, "face_axial_runout_rule": FACE_RUNOUT_RULE}
     if accuracy:
         geo["radial_runout_um"] = accuracy.get("runout_um")
         geo["helix_total_um"] = accuracy.get("helix_total_um")

@@ -57,10 +57,18 @@ TITLE_BLOCK = (230.0, 10.0, 410.0, 50.0)
 COLUMNS_MM = (74.0, 24.0, 82.0)  # name | symbol | value
 FULL_VIEW = (25.0, 120.0, 135.0, 270.0)  # drawing box of the whole gear (without its title)
 SECTION_VIEW = (140.0, 120.0, 225.0, 270.0)
-DETAIL_VIEW = (30.0, 18.0, 118.0, 102.0)
+DETAIL_VIEW = (30.0, 18.0, 100.0, 102.0)
 #: the blank's table (datums, blank tolerances, material, finish) beside the detail
-BLANK_BLOCK = (124.0, 12.0, 226.0, 116.0)  # up to below the axial section's lowest dimension
-BLANK_COLUMNS_MM = (34.0, 12.0, 56.0)  # name | symbol | value
+BLANK_BLOCK = (106.0, 12.0, 226.0, 116.0)  # up to below the axial section's lowest dimension
+BLANK_COLUMNS_MM = (34.0, 12.0, 74.0)  # name | symbol | value
+#: the lines a text of the designer's own takes at most in its cell (the blank table's value column,
+#: the title block's part-number and revision cells); the design keys' length limits
+#: (geargen.design.gear.DRAWN_TEXT_MAX) are these lines of the widest letter the drawing font draws
+DRAWN_TEXT_LINES = {"material": 4, "heat_treatment": 2, "part_number": 2, "revision": 1}
+#: room (mm) kept right of the axial section for datum B's indicator
+DATUM_ROOM_MM = 9.0
+#: side (mm) of a datum letter's frame (ISO 5459), the letter at the sheet's lettering size
+DATUM_FRAME_MM = 5.0
 
 
 def scale_text(scale: float) -> str:
@@ -270,35 +278,37 @@ def _tolerance_text(tol: dict | None, unit: str) -> str:
     return f"{head}: {format_limits(tol['limits'], unit)}"
 
 
-def blank_rows(data: dict) -> list[tuple[str, str, str]]:
+def blank_rows(data: dict) -> list[tuple]:
     """The blank table as ``(name, symbol, value)`` rows: datums A (bore axis) and B (reference
     face), the bore with its ISO 286 fit and limits, the tip diameter's and face width's tolerances,
-    the axial runout of face B referred to A, material, heat treatment, hardness and flank finish.
-    A key the gear data lacks reads "not specified"."""
+    the axial runout of face B referred to A (with the rule it is computed by), material, heat
+    treatment, hardness and flank finish. A key the gear data lacks reads "not specified". The
+    designer's own texts (material, heat treatment) carry a fourth item, the most lines they may
+    take (:data:`DRAWN_TEXT_LINES`)."""
     u = data["length_unit"]
     datums = data.get("datums") or {}
     rows = [("Datum A", "A", datums.get("A", NOT_SPECIFIED)), ("Datum B", "B", datums.get("B", NOT_SPECIFIED))]
     bore = data.get("bore")
     if bore:
-        rows.append(("Bore", "d_B", format_length(bore["nominal"], u) + (f" {bore['code']}" if bore.get("code")
-                                                                         else ", fit not specified")))
-        rows.append(("Bore limits", "", f"{format_limits(bore['limits'], u)}" if bore.get("limits") else NOT_SPECIFIED))
+        fit = f" {bore['code']}" if bore.get("code") else ", fit not specified"
+        limits = f": {format_limits(bore['limits'], u)}" if bore.get("limits") else ""
+        rows.append(("Bore", "d_B", format_length(bore["nominal"], u) + fit + limits))
     else:
         rows.append(("Bore", "d_B", "- (no bore)"))
     rows += [("Tip diameter", "d_a", _tolerance_text(data.get("tip_diameter_tolerance"), u)),
              ("Face width", "b", _tolerance_text(data.get("face_width_tolerance"), u))]
     geo = data.get("datum_tolerances") or {}
     face = geo.get("face_axial_runout_um")
-    rows.append(("Axial runout of B", "t_B", format_um(face, u) + ", to datum A" if face is not None
-                 else NOT_SPECIFIED))
+    rows.append(("Axial runout of B", "t_B", f"{format_um(face, u)} to A; geargen's rule {geo['face_axial_runout_formula']}"
+                 if face is not None else NOT_SPECIFIED))
     pins = data.get("over_pins")
     if pins:  # the over-pins rows of the data block measure with a pin of this series
         rows.append((f"{pins['kind'][:-1].capitalize()} series", "D_M", pins.get("series") or NOT_SPECIFIED))
     mat = data.get("material") or {}
     hard = mat.get("hardness")
     ra = data.get("flank_roughness_Ra_um")
-    rows += [("Material", "", mat.get("material") or NOT_SPECIFIED),
-             ("Heat treatment", "", mat.get("heat_treatment") or NOT_SPECIFIED),
+    rows += [("Material", "", mat.get("material") or NOT_SPECIFIED, DRAWN_TEXT_LINES["material"]),
+             ("Heat treatment", "", mat.get("heat_treatment") or NOT_SPECIFIED, DRAWN_TEXT_LINES["heat_treatment"]),
              ("Surface hardness", "", f"{hard['value']:g} {hard['unit']}" if hard else NOT_SPECIFIED),
              ("Flank roughness", "Ra", NOT_SPECIFIED if ra is None else
               f"{ra:g} µm" + (f" ({ra / 0.0254:.3g} µin)" if u == "in" else ""))]
@@ -363,14 +373,33 @@ class _Sheet:
         # line widths given in mm on the sheet (ISO 128: 0.35 thick, 0.18 thin)
         return self.ax.plot(xs, ys, lw=lw / MM_PER_PT, color=kw.pop("color", "black"), solid_capstyle="butt", **kw)[0]
 
-    def wrap(self, text: str, width_mm: float, size: float) -> list[str]:
+    def wrap(self, text: str, width_mm: float, size: float, most: int | None = None) -> list[str]:
         """``text`` broken into lines no wider than ``width_mm`` (at spaces, else after ``/``,
         else anywhere), measured with :data:`WRAP_FILL` of the width: a browser lays the SVG's text
         out with its own shaping, up to 3 % wider than Agg's metrics (a run of ``/`` measured in
-        headless Chromium, tests/report/test_drawing_cells.py)."""
+        headless Chromium, tests/report/test_drawing_cells.py). With ``most``, a text that needs
+        more lines broken at words is broken anywhere instead, each line filled: then ``most`` lines
+        hold ``most`` times the letters of the widest that fit one line, whatever the spaces."""
         width_mm *= WRAP_FILL
         if self.width_mm(text, size) <= width_mm:
             return [text]
+        lines = self._wrap_words(text, width_mm, size)
+        if most is not None and len(lines) > most:
+            lines = self._fill(text, width_mm, size)
+        return lines
+
+    def _fill(self, text: str, width_mm: float, size: float) -> list[str]:
+        """``text`` cut into lines as full as ``width_mm`` allows, at any character."""
+        lines, start = [], 0
+        while start < len(text):
+            n = len(text) - start
+            while n > 1 and self.width_mm(text[start:start + n], size) > width_mm:
+                n -= 1
+            lines.append(text[start:start + n])
+            start += n
+        return lines
+
+    def _wrap_words(self, text: str, width_mm: float, size: float) -> list[str]:
         tokens = []
         for word in text.split(" "):
             parts = word.split("/")
@@ -426,7 +455,11 @@ def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT, 
     bottoms = []
     for i, row in enumerate(header + list(rows)):
         weight = "bold" if i == 0 else "normal"
-        cells = [sheet.wrap(text, columns[j] - 2 * PAD_MM, size) for j, text in enumerate(row)]
+        most = row[3] if len(row) > 3 else None  # a designer's text: the lines its length limit allows
+        cells = [sheet.wrap(text, columns[j] - 2 * PAD_MM, size, most if j == 2 else None)
+                 for j, text in enumerate(row[:3])]
+        if most is not None and len(cells[2]) > most:
+            raise ValueError(f"{row[0]!r} needs {len(cells[2])} lines, more than its {most}")
         n = max(len(c) for c in cells)
         height = n * line_h + 2 * ROW_PAD_MM
         if y - height < y0:
@@ -445,36 +478,52 @@ def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT, 
     return bottoms
 
 
+def title_cells() -> dict[str, tuple[float, float, float, float]]:
+    """The title block's cells (sheet mm, y up): ``name`` (top left), ``design_file``,
+    ``part_number`` (top right), ``revision``, ``length_unit`` and ``scale``."""
+    x0, y0, x1, y1 = TITLE_BLOCK
+    ym, xm = y0 + 0.55 * (y1 - y0), x0 + 110
+    xr = xm + 34  # revision | length unit
+    return {"name": (x0, ym, xm, y1), "design_file": (x0, y0, xm, ym), "part_number": (xm, ym, x1, y1),
+            "revision": (xm, ym - 11, xr, ym), "length_unit": (xr, ym - 11, x1, ym), "scale": (xm, y0, x1, ym - 11)}
+
+
+def title_cell_width(cell) -> float:
+    """The width (mm) a title-block cell's text wraps to: 2 mm clear of each side."""
+    return cell[2] - cell[0] - 4
+
+
 def _title_block(sheet: _Sheet, name: str, design_file: str, unit: str, scale: str, version: str,
                  part_number: str | None = None, revision: str | None = None, kind: str = "Gear") -> None:
     """The title block: the part's name (``kind`` above it) and its part number; the design file,
     the revision and the length unit; the scale and sheet. A part number or revision the design
     does not give reads "not specified"."""
     x0, y0, x1, y1 = TITLE_BLOCK
+    c = title_cells()
     _box(sheet, TITLE_BLOCK, lw=0.7)
-    ym = y0 + 0.55 * (y1 - y0)
+    xm, ym, xr = c["part_number"][0], c["part_number"][1], c["revision"][2]
     sheet.line([x0, x1], [ym, ym], lw=0.35)
-    xm = x0 + 110
     sheet.line([xm, xm], [y0, y1], lw=0.35)
-    xr = xm + 34  # revision | length unit
     sheet.line([xr, xr], [ym, ym - 11], lw=0.18)
     sheet.line([xm, x1], [ym - 11, ym - 11], lw=0.18)
-    top = (x0, ym, xm, y1)
+    top = c["name"]
     sheet.in_cell(sheet.text(x0 + 3, y1 - 3, kind, MIN_FONT_PT, va="top", color="0.3"), top)
     for k, line in enumerate(sheet.wrap(name, xm - x0 - 6, TITLE_FONT_PT)[:2]):
         sheet.in_cell(sheet.text(x0 + 3, y1 - 8.5 - k * 6, line, TITLE_FONT_PT, va="top", weight="bold"), top)
-    cells = [((x0, y0, xm, ym), "Design file", design_file, 3),
-             ((xm, ym, x1, y1), "Part number", part_number or NOT_SPECIFIED, 2),
-             ((xm, ym - 11, xr, ym), "Revision", revision or NOT_SPECIFIED, 1),
-             ((xr, ym - 11, x1, ym), "Length unit", unit, 1)]
-    for cell, label, value, most in cells:
+    cells = [(c["design_file"], "Design file", design_file, 3, False),
+             (c["part_number"], "Part number", part_number or NOT_SPECIFIED, DRAWN_TEXT_LINES["part_number"], True),
+             (c["revision"], "Revision", revision or NOT_SPECIFIED, DRAWN_TEXT_LINES["revision"], True),
+             (c["length_unit"], "Length unit", unit, 1, False)]
+    for cell, label, value, most, designers in cells:
         x, y = cell[0] + 2, cell[3] - 1.2
         sheet.in_cell(sheet.text(x, y, label, MIN_FONT_PT, va="top", color="0.3"), cell)
-        width = cell[2] - cell[0] - 4
-        for k, line in enumerate(sheet.wrap(value, width, MIN_FONT_PT)[:most]):
+        lines = sheet.wrap(value, title_cell_width(cell), MIN_FONT_PT, most if designers else None)
+        if designers and len(lines) > most:  # the design reader's length limit keeps this from happening
+            raise ValueError(f"the {label.lower()} needs {len(lines)} lines, more than its {most}")
+        for k, line in enumerate(lines[:most]):
             sheet.in_cell(sheet.text(x, y - 4.6 - k * 4.4, line, MIN_FONT_PT, va="top"), cell)
     for k, line in enumerate(sheet.wrap(f"Scale {scale}, sheet {SHEET}", x1 - xm - 4, MIN_FONT_PT)[:2][::-1]):
-        sheet.in_cell(sheet.text(xm + 2, y0 + 1.2 + k * 4.4, line, MIN_FONT_PT, va="bottom"), (xm, y0, x1, ym - 11))
+        sheet.in_cell(sheet.text(xm + 2, y0 + 1.2 + k * 4.4, line, MIN_FONT_PT, va="bottom"), c["scale"])
 
 
 def _outline_points(profile, step_mm: float) -> np.ndarray:
@@ -536,7 +585,7 @@ def _section_view(sheet, profile, unit: str, scale: float) -> None:
     rbore = hub.bore_diameter / 2 * k
     hub_len, rhub = hub.hub_length * k, hub.hub_diameter / 2 * k
     width = b + hub_len
-    cx = box[0] + 34 + hub_len + (box[2] - box[0] - 34 - width) / 2
+    cx = box[0] + 34 + hub_len + (box[2] - box[0] - 34 - DATUM_ROOM_MM - width) / 2
     cy = (box[1] + box[3]) / 2
     x0, x1 = cx, cx + b
     thick, thin = 0.5, 0.18
@@ -562,17 +611,47 @@ def _section_view(sheet, profile, unit: str, scale: float) -> None:
     if rbore > 0:
         dims.append((hub.bore_diameter, rbore))
     # the smallest diameter nearest the section, so no extension line crosses a smaller one's text
+    datum_a = rbore if rbore > 0 else ra  # A: the bore's axis, else the tip cylinder's
     for i, (value_mm, half) in enumerate(sorted(dims, key=lambda d: d[1])):
         x = left - 8 - 9 * i
+        if half == datum_a:
+            # in line with the diameter's dimension line: the datum is the feature's axis (ISO 5459)
+            _datum(sheet, "A", (x, cy + half), (x, cy + ra + 4 + DATUM_FRAME_MM / 2))
         _dimension(sheet, (x, cy - half), (x, cy + half), f"⌀{N(value_mm)}", vertical=True)
         for sign in (1, -1):  # extension lines
             sheet.line([x - 1.5, left - 1 if half > (rhub if hub_len else 0) or not hub_len else x0 - hub_len - 1],
                        [cy + sign * half, cy + sign * half], lw=thin)
+    # B: the face at z = b, on its extension line above the tip, clear of the face width's dimension
+    sheet.line([x1, x1], [cy + ra + 1, cy + ra + 4 + DATUM_FRAME_MM], lw=thin)
+    yb = cy + ra + 4 + DATUM_FRAME_MM / 2
+    _datum(sheet, "B", (x1, yb), (x1 + DATUM_ROOM_MM - 0.5 - DATUM_FRAME_MM / 2, yb))
     y = cy - ra - 6
     _dimension(sheet, (x0, y), (x1, y), N(spec.face_width), vertical=False)
     for x in (x0, x1):
         sheet.line([x, x], [y - 1.5, cy - ra - 1], lw=thin)
     _view_title(sheet, box, f"Axial section ({scale_text(scale)})")
+
+
+def _datum(sheet, letter: str, foot, frame_centre) -> None:
+    """A datum feature indicator (ISO 5459): a filled triangle standing on ``foot``, a leader to a
+    square frame around ``letter`` centred at ``frame_centre``. The triangle points along the leader;
+    the letter's SVG id carries its frame (:func:`cell_gid`), so a reader finds the datum there."""
+    from matplotlib.patches import Polygon
+    (fx, fy), (cx, cy) = foot, frame_centre
+    length = math.hypot(cx - fx, cy - fy)
+    ux, uy = (cx - fx) / length, (cy - fy) / length  # along the leader
+    side = 3.0  # mm: the triangle's base on the feature; its height sqrt(3)/2 of it
+    tip = (fx + ux * side * 0.866, fy + uy * side * 0.866)
+    base = [(fx - uy * side / 2, fy + ux * side / 2), (fx + uy * side / 2, fy - ux * side / 2)]
+    sheet.ax.add_patch(Polygon([base[0], base[1], tip], closed=True, facecolor="black", edgecolor="black",
+                               lw=0.18 / MM_PER_PT))
+    half = DATUM_FRAME_MM / 2
+    # the leader ends where it meets the frame's side
+    reach = half / max(abs(ux), abs(uy))
+    sheet.line([tip[0], cx - ux * reach], [tip[1], cy - uy * reach], lw=0.18)
+    cell = (cx - half, cy - half, cx + half, cy + half)
+    _box(sheet, cell, lw=0.35)
+    sheet.in_cell(sheet.text(cx, cy, letter, MIN_FONT_PT, ha="center", va="center_baseline"), cell)
 
 
 def _dimension(sheet, p, q, text, vertical: bool) -> None:
@@ -653,7 +732,7 @@ def drawing_scales(profile) -> tuple[float, float, float]:
     length = spec.face_width + spec.hub.hub_length
     full = preferred_scale(d_a, min(FULL_VIEW[2] - FULL_VIEW[0], FULL_VIEW[3] - FULL_VIEW[1]) - 10)
     section = min(preferred_scale(d_a, SECTION_VIEW[3] - SECTION_VIEW[1] - 20),
-                  preferred_scale(length, SECTION_VIEW[2] - SECTION_VIEW[0] - 34 - 6))
+                  preferred_scale(length, SECTION_VIEW[2] - SECTION_VIEW[0] - 34 - 6 - DATUM_ROOM_MM))
     tooth = max(2.6 * 2 * math.pi * profile.reference_radius / spec.teeth,
                 1.5 * (profile.tip_radius - profile.root_radius))
     detail = preferred_scale(tooth, min(DETAIL_VIEW[2] - DETAIL_VIEW[0], 1.4 * (DETAIL_VIEW[3] - DETAIL_VIEW[1])))
@@ -675,7 +754,7 @@ def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
         _detail_view(sheet, profile, unit, detail)
         _data_block(sheet, data_rows(data, scale, version, source))
         _data_block(sheet, blank_rows(data), BLANK_BLOCK, columns=BLANK_COLUMNS_MM,
-                    header=("Blank, datums, material", "", "Value"))
+                    header=("Blank", "", "Value"))
         _title_block(sheet, data["name"], design_file, unit, scale, version, data.get("part_number"),
                      data.get("revision"))
     return sheet.fig
@@ -705,7 +784,8 @@ def write_drawing(data: dict, profile, folder, name: str, source: str, design_fi
     return out
 
 
-__all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "blank_rows", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
+__all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
+           "blank_rows", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
            "drawing_scales", "draw_gear", "write_drawing", "gear_drawings"]
 

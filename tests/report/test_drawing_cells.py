@@ -9,7 +9,8 @@ id (``cell-<n>-x0_y0_x1_y1``, sheet mm, y up). Two independent measurements of t
   with its own font engine, so a wrap that fits only matplotlib's metrics is caught here.
 
 The sheets: a metric helical pinion with every drawing key given and the accuracy grade the error
-budget chose (the longest accuracy-grade text), and an inch spur gear with only its teeth.
+budget chose (the longest accuracy-grade text), an inch spur gear with only its teeth, and a gear whose
+part number, revision, material and heat treatment are each at its length limit in the widest letter.
 """
 
 import html
@@ -57,10 +58,20 @@ def _bare():
     return spec, profile, gear_data(spec, profile)
 
 
+def _longest():
+    """Every designer's text of the drawing at its length limit, in the widest letter."""
+    from geargen.design.gear import DRAWN_TEXT_MAX, gear_from_table
+    spec = gear_from_table({"teeth": 40, "module_mm": 1.0, "pressure_angle_deg": 20, "face_width_mm": 12.0,
+                            "bore_diameter_mm": 20.0, "bore_fit": "H7",
+                            **{key: "m" * n for key, n in DRAWN_TEXT_MAX.items()}}, "gears.wheel", "wheel")
+    profile = tooth_profile(spec, warn=False)
+    return spec, profile, gear_data(spec, profile)
+
+
 SOURCE = "gear x from " + "/a/long/path" * 10 + "/design.toml [gear]"
 
 
-@pytest.mark.parametrize("make", [_full, _bare])
+@pytest.mark.parametrize("make", [_full, _bare, _longest])
 def test_matplotlib_extents_lie_inside_their_cells(make):
     spec, profile, data = make()
     fig = draw_gear(data, profile, SOURCE, "/a/long/path/design.toml", "0.0")
@@ -111,7 +122,7 @@ def _boxes_in_chromium(chromium, svg_path: Path, tmp_path: Path) -> list[dict]:
     return json.loads(html.unescape(found.group(1)))
 
 
-@pytest.mark.parametrize("make", [_full, _bare])
+@pytest.mark.parametrize("make", [_full, _bare, _longest])
 def test_in_chromium_every_text_lies_inside_its_cell(make, chromium, tmp_path):
     spec, profile, data = make()
     files = write_drawing(data, profile, tmp_path, spec.name, SOURCE, "/a/long/path/design.toml", "0.0")

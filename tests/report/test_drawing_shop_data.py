@@ -3,7 +3,6 @@ the design-file keys of a gear table (geargen.design.gear, geargen.model.gear_da
 
 import math
 import subprocess
-import xml.etree.ElementTree as ET
 
 import pytest
 
@@ -12,39 +11,14 @@ from geargen.design.gear import gear_from_table
 from geargen.errors import DesignError
 from geargen.model.gear_data import gear_data
 from geargen.profile.tooth import tooth_profile
-from geargen.report.drawing import BLANK_BLOCK, DATA_BLOCK, parse_cell_gid, write_drawing
-
-SVG = "{http://www.w3.org/2000/svg}"
+from geargen.report.drawing import BLANK_BLOCK, DATA_BLOCK, SECTION_VIEW, write_drawing
+from tests.drawing_support import cell_texts, table_rows
 
 TABLE = {"teeth": 40, "module_mm": 1.0, "pressure_angle_deg": 20, "face_width_mm": 12.0, "bore_diameter_mm": 20.0,
          "part_number": "GG-40-001", "revision": "B", "material": "42CrMo4 (1.7225)",
          "heat_treatment": "quenched and tempered", "hardness_HRC": 30, "flank_roughness_Ra_um": 0.8,
          "bore_fit": "H7", "tip_diameter_tolerance": "h9", "face_width_upper_deviation_mm": 0.0,
          "face_width_lower_deviation_mm": -0.05, "thickness_allowance_series": "cd26", "accuracy_grade": 6}
-
-
-def cell_texts(svg_path):
-    """{cell (x0, y0, x1, y1) mm: [its texts, top to bottom]} of the SVG."""
-    out = {}
-    for g in ET.parse(svg_path).getroot().iter(f"{SVG}g"):
-        cell = parse_cell_gid(g.get("id"))
-        if cell is not None:
-            out.setdefault(cell, []).extend("".join(t.itertext()) for t in g.iter(f"{SVG}text"))
-    return out
-
-
-def table_rows(cells, box):
-    """{name: value} of a table in ``box``: the cells in it grouped by row, first column the name,
-    last the value, wrapped lines joined with spaces."""
-    rows = {}
-    inside = {c: t for c, t in cells.items() if box[0] - 1e-3 <= c[0] and c[2] <= box[2] + 1e-3
-              and box[1] - 1e-3 <= c[1] and c[3] <= box[3] + 1e-3}
-    for c, texts in inside.items():
-        if abs(c[0] - box[0]) < 1e-3:
-            value = next((" ".join(t) for cc, t in inside.items() if abs(cc[2] - box[2]) < 1e-3 and cc[1] == c[1]
-                          and cc[3] == c[3]), "")
-            rows[" ".join(texts)] = value
-    return rows
 
 
 @pytest.fixture(scope="module")
@@ -80,8 +54,11 @@ def test_the_json_carries_the_design_keys_and_the_standards_numbers(drawn):
     w = data["span"]["span_normal"]
     c = math.cos(math.radians(20))
     assert data["span"]["limits"] == pytest.approx([w - 0.104 * c, w - 0.054 * c], abs=1e-9)
-    # ISO/TR 10064-3 axial runout of face B: 0.2 (d_f / b) F_beta
+    # geargen's rule for the axial runout of face B, stated as its own (no standard's number):
+    # 0.2 (d_f / b) F_beta
     geo = data["datum_tolerances"]
+    assert geo["face_axial_runout_formula"] == "0.2 (d_f / b) F_βT"
+    assert geo["face_axial_runout_rule"].startswith("geargen's convention, not a value of a standard")
     assert geo["face_axial_runout_um"] == pytest.approx(0.2 * 2 * data["root_radius"] / 12.0
                                                         * data["accuracy"]["helix_total_um"], rel=1e-12)
 
@@ -91,9 +68,8 @@ def test_the_sheet_reads_back_the_jsons_values(drawn):
     cells = cell_texts(files["svg"])
     blank = table_rows(cells, BLANK_BLOCK)
     main = table_rows(cells, DATA_BLOCK)
-    assert blank["Bore"] == "20.0000 mm H7"
     lo, hi = data["bore"]["limits"]
-    assert blank["Bore limits"] == f"{hi:.4f} / {lo:.4f} mm (max / min)"
+    assert blank["Bore"] == f"20.0000 mm H7: {hi:.4f} / {lo:.4f} mm (max / min)"
     lo, hi = data["tip_diameter_tolerance"]["limits"]
     assert blank["Tip diameter"] == f"h9 (ISO 286-1): {hi:.4f} / {lo:.4f} mm (max / min)"
     lo, hi = data["face_width_tolerance"]["limits"]
@@ -104,7 +80,8 @@ def test_the_sheet_reads_back_the_jsons_values(drawn):
     assert blank["Flank roughness"] == "0.8 µm"
     assert blank["Datum A"] == "bore axis"
     t_b = data["datum_tolerances"]["face_axial_runout_um"]
-    assert blank["Axial runout of B"] == f"{t_b * 1e-3:.4f} mm ({t_b:.1f} µm), to datum A"
+    assert blank["Axial runout of B"] == f"{t_b * 1e-3:.4f} mm ({t_b:.1f} µm) to A; geargen's rule 0.2 (d_f / b) F_βT"
+    assert blank["Datum B"] == data["datums"]["B"] == "face at z = b"
     assert main["Tooth thickness allowance, upper"] == "-0.0540 mm (-54.0 µm)"
     assert main["Tooth thickness allowance, lower"] == "-0.1040 mm (-104.0 µm)"
     assert main["Allowance method"].startswith("DIN 3967:1978-08 cd26 (Tables 1 and 2)")
@@ -142,3 +119,20 @@ def test_bad_drawing_keys_name_the_key():
     with pytest.raises(DesignError) as exc:
         gear_from_table({**TABLE, "hardness_HV": 300}, "gears.wheel", "wheel")
     assert exc.value.field == "gears.wheel.hardness_HRC"
+
+
+def test_the_datum_letters_stand_in_the_axial_section(drawn):
+    """A and B are drawn in the axial section, each in its frame (ISO 5459): A above the gear in line
+    with the bore's diameter dimension (left of the part), B right of the face at z = b, where the
+    tables' tolerances "to datum A" and the blank table's datum rows refer."""
+    spec, data, files = drawn
+    letters = {t[0]: c for c, t in cell_texts(files["svg"]).items() if t in (["A"], ["B"])
+               and SECTION_VIEW[0] <= c[0] and c[2] <= SECTION_VIEW[2] + 5.0 and SECTION_VIEW[1] <= c[1]}
+    assert set(letters) == {"A", "B"}
+    a, b = letters["A"], letters["B"]
+    # both frames 5 mm squares (DATUM_FRAME_MM) at one height above the tip; A left of B by more
+    # than the face width drawn (B stands right of the face, A left of the hub and bore)
+    for c in (a, b):
+        assert c[2] - c[0] == pytest.approx(5.0, abs=1e-3) and c[3] - c[1] == pytest.approx(5.0, abs=1e-3)
+    assert a[1] == pytest.approx(b[1], abs=1e-3)
+    assert b[0] - a[2] > 0
