@@ -32,7 +32,8 @@ import time
 import warnings
 from pathlib import Path
 
-from geargen.design.gear import CYLINDRICAL_KINDS, FAMILY_READERS, GearSpec, gear_from_table, gear_kinds
+from geargen.design.gear import (CYLINDRICAL_KINDS, DRAWN_TEXT_MAX, FAMILY_READERS, GearSpec, gear_from_table,
+                                 gear_kinds)
 from geargen.design.schema import GEAR_NAME_MAX, check_name, shown
 from geargen.errors import DesignError, clipped
 from geargen.units import from_mm, to_mm
@@ -106,10 +107,13 @@ def add_arguments(p) -> None:
 #: the drawing-data options: argparse dest -> (flag, metavar, help); each sets the gear-table key of
 #: :data:`SHOP_KEYS`
 SHOP_OPTIONS = {
-    "part_number": ("--part-number", "TEXT", "part (identification) number in the title block"),
-    "revision": ("--revision", "TEXT", "drawing revision index"),
-    "material": ("--material", "TEXT", "material, e.g. '42CrMo4 (1.7225)'"),
-    "heat_treatment": ("--heat-treatment", "TEXT", "heat treatment, e.g. 'quenched and tempered'"),
+    "part_number": ("--part-number", "TEXT", "part (identification) number in the title block (at most "
+                    f"{DRAWN_TEXT_MAX['part_number']} characters)"),
+    "revision": ("--revision", "TEXT", f"drawing revision index (at most {DRAWN_TEXT_MAX['revision']} characters)"),
+    "material": ("--material", "TEXT", f"material, e.g. '42CrMo4 (1.7225)' (at most {DRAWN_TEXT_MAX['material']} "
+                 "characters)"),
+    "heat_treatment": ("--heat-treatment", "TEXT", "heat treatment, e.g. 'quenched and tempered' (at most "
+                       f"{DRAWN_TEXT_MAX['heat_treatment']} characters)"),
     "hardness_hv": ("--hardness-hv", "HV", "surface hardness, Vickers"),
     "hardness_hrc": ("--hardness-hrc", "HRC", "surface hardness, Rockwell C"),
     "flank_roughness_ra": ("--flank-roughness-ra", "UM", "flank roughness Ra in um"),
