@@ -520,6 +520,17 @@ def drive_allowances_of(layout: Layout) -> dict:
     return drive_allowances(layout, checks_settings(layout.design).centre_distance_tolerance, strict=False)
 
 
+def rated_material(design, gear: str):
+    """The ISO 6336-5 material the design's rating names for ``gear`` (its [materials.GEAR] table or
+    a [duty] material key), or None where the design names none (geargen's default is not a
+    designer's choice to put on a drawing)."""
+    from geargen.design.duty import duty_settings, gear_materials
+    duty = duty_settings(design)
+    tables = design.section("materials")
+    named = gear in (tables or {}) or "material" not in duty.defaulted
+    return gear_materials(design, duty).get(gear) if named else None
+
+
 def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     """The gear data of one gear of the resolved drive, as the build's drawings and ``geargen gear
     --gear`` write it: its ``allowance``, the grade its error budget holds when it has no grade of
@@ -528,7 +539,7 @@ def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     from geargen.model.gear_data import gear_data
     from geargen.report.drawing import mates_from_layout
 
-    data = gear_data(spec, profile, allowance, gear_errors(layout.design, spec.name))
+    data = gear_data(spec, profile, allowance, gear_errors(layout.design, spec.name), rated_material(layout.design, spec.name))
     data["thinning_source"] = next((layout.thinning.get(p.name, {}).get("source", "design")
                                     for p in layout.gears if any(g.name == spec.name for g in p.gears)), "design")
     data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]

@@ -32,7 +32,8 @@ import time
 import warnings
 from pathlib import Path
 
-from geargen.design.gear import CYLINDRICAL_KINDS, FAMILY_READERS, GearSpec, gear_from_table, gear_kinds
+from geargen.design.gear import (CYLINDRICAL_KINDS, DRAWN_TEXT_MAX, FAMILY_READERS, GearSpec, gear_from_table,
+                                 gear_kinds)
 from geargen.design.schema import GEAR_NAME_MAX, check_name, shown
 from geargen.errors import DesignError, clipped
 from geargen.units import from_mm, to_mm
@@ -72,6 +73,10 @@ def add_arguments(p) -> None:
     g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
                    help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances "
                         "(--kind bevel: ISO 17485 grade 2..11, recorded)")
+    shop = p.add_argument_group("drawing data (cylindrical gears; the gear table's keys of the same names)")
+    for flag, metavar, help_ in SHOP_OPTIONS.values():
+        shop.add_argument(flag, default=None, type=float if metavar in ("HV", "HRC", "UM") else str, metavar=metavar,
+                          help=help_)
     g.add_argument("--name", default=None,
                    help=f"part name, the files' names (default: the [gear] file's, or gear_<teeth>): at most {GEAR_NAME_MAX} "
                         "of A-Z a-z 0-9 _ - .")
@@ -82,6 +87,9 @@ def add_arguments(p) -> None:
                         "from the zero-backlash tooth (both <= 0, UPPER >= LOWER); the JSON gains the span and "
                         "over-pins limits. Default: the gear table's thickness_*_deviation_*, or for a gear of a "
                         "drive (--gear) the allowance chosen from its meshes' backlash ranges")
+    p.add_argument("--thickness-series", metavar="DESIGNATION", default=None,
+                   help="DIN 3967 tooth-thickness allowance (upper series a..h, tolerance series 21..30, e.g. cd25) "
+                        "of a gear made alone; default: the gear table's thickness_allowance_series, else cd25")
     p.add_argument("--out", metavar="DIR", default=None,
                    help="output folder (default: exports/<name>); must not exist, be empty, or hold an earlier "
                         "geargen gear output of the same gear, which is replaced")
@@ -97,6 +105,29 @@ def add_arguments(p) -> None:
                    help="also section the solid and report the measured flank deviation, span and over-pins size")
 
 
+#: the drawing-data options: argparse dest -> (flag, metavar, help); each sets the gear-table key of
+#: :data:`SHOP_KEYS`
+SHOP_OPTIONS = {
+    "part_number": ("--part-number", "TEXT", "part (identification) number in the title block (at most "
+                    f"{DRAWN_TEXT_MAX['part_number']} characters)"),
+    "revision": ("--revision", "TEXT", f"drawing revision index (at most {DRAWN_TEXT_MAX['revision']} characters)"),
+    "material": ("--material", "TEXT", f"material, e.g. '42CrMo4 (1.7225)' (at most {DRAWN_TEXT_MAX['material']} "
+                 "characters)"),
+    "heat_treatment": ("--heat-treatment", "TEXT", "heat treatment, e.g. 'quenched and tempered' (at most "
+                       f"{DRAWN_TEXT_MAX['heat_treatment']} characters)"),
+    "hardness_hv": ("--hardness-hv", "HV", "surface hardness, Vickers"),
+    "hardness_hrc": ("--hardness-hrc", "HRC", "surface hardness, Rockwell C"),
+    "flank_roughness_ra": ("--flank-roughness-ra", "UM", "flank roughness Ra in um"),
+    "bore_fit": ("--bore-fit", "CLASS", "ISO 286-1 class of the bore, e.g. H7 (limits computed)"),
+    "tip_diameter_tolerance": ("--tip-diameter-tolerance", "CLASS", "ISO 286-1 class of the tip diameter (default h11)"),
+    "face_width_tolerance": ("--face-width-tolerance", "CLASS", "ISO 286-1 class of the face width (default h11)"),
+}
+#: drawing-data option dest -> the gear-table key it sets
+SHOP_KEYS = {"part_number": "part_number", "revision": "revision", "material": "material",
+             "heat_treatment": "heat_treatment", "hardness_hv": "hardness_HV", "hardness_hrc": "hardness_HRC",
+             "flank_roughness_ra": "flank_roughness_Ra_um", "bore_fit": "bore_fit",
+             "tip_diameter_tolerance": "tip_diameter_tolerance", "face_width_tolerance": "face_width_tolerance"}
+
 #: the gear options (argparse dest -> flag) and the value each stands for when not given
 GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
                 "diametral_pitch": ("--diametral-pitch", None), "pitch_system": ("--pitch-system", "normal"),
@@ -105,7 +136,8 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
                 "face_width": ("--face-width", None), "face_width_mm": ("--face-width-mm", None),
                 "face_width_in": ("--face-width-in", None), "bore": ("--bore", None), "bore_mm": ("--bore-mm", None),
                 "bore_in": ("--bore-in", None), "thinning": ("--thinning", None), "centre_gap": ("--centre-gap", None),
-                "accuracy_grade": ("--accuracy-grade", None)}
+                "accuracy_grade": ("--accuracy-grade", None),
+                **{dest: (flag, None) for dest, (flag, _, _) in SHOP_OPTIONS.items()}}
 
 
 #: gear kind -> the module (``geargen.commands.gear_<family>``) of that kind's own options. Such a
@@ -169,6 +201,9 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
             "accuracy_grade": "--accuracy-grade"}
     if key in base:
         return base[key]
+    shop = {k: SHOP_OPTIONS[d][0] for d, k in SHOP_KEYS.items()}
+    if key in shop:
+        return shop[key]
     if key == "kind":
         return "--kind"
     for dest, (flag, stem, is_length, kinds) in _kind_option_table().items():
@@ -253,6 +288,9 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
         table[f"centre_gap_{unit}"] = args.centre_gap
     if args.accuracy_grade is not None:
         table["accuracy_grade"] = args.accuracy_grade
+    for dest, key in SHOP_KEYS.items():
+        if getattr(args, dest, None) is not None:
+            table[key] = getattr(args, dest)
     name = args.name or (f"gear_{args.teeth}" if kind == "external" else f"{kind}_{args.teeth}" if args.teeth else kind)
     try:
         return gear_from_table(table, where="options", name=name, length_unit=unit), None
@@ -375,14 +413,54 @@ def with_rack_allowance(args, spec):
     return dataclasses.replace(spec, thickness_deviations=(checked.upper, checked.lower))
 
 
+def _check_shop_keys(args, spec) -> None:
+    """The drawing keys' ISO 286 classes and DIN 3967 designation, checked before the gear is built;
+    errors name the design key, or the option that set it."""
+    from geargen.model.gear_data import check_shop_keys
+    if not isinstance(spec, GearSpec):
+        return
+    if args.design:
+        check_shop_keys(spec, f"gears.{args.gear}." if args.gear else "gear.")
+        return
+    try:
+        check_shop_keys(spec, "")
+    except DesignError as exc:
+        raise DesignError(_flag_of_key(exc.field, {}, _given(args)), exc.problem, exc.allowed) from None
+
+
+def standalone_allowance(args, spec, layout):
+    """A gear made alone (options, a [gear] file, or an assembly gear outside a drive) without an
+    allowance of its own is ordered with the DIN 3967 one of ``--thickness-series`` or its table's
+    ``thickness_allowance_series`` (default cd25), so its span and over-pins limits are printed."""
+    from geargen.core.allowance import series_allowance
+    given = getattr(args, "thickness_series", None)
+    if layout is not None or not isinstance(spec, GearSpec) or spec.kind != "external":
+        if given is not None:
+            raise DesignError("--thickness-series", "applies to an external gear made alone, not to a drive's gear "
+                              "(whose allowance comes from its meshes' backlash)", "an external gear without --gear")
+        return None
+    return series_allowance(spec, given, "--thickness-series" if given else "thickness_allowance_series")
+
+
 def run(args) -> int:
     layout = drive_layout(args)
     spec, thinning_source = spec_from_args(args, layout)
     spec = with_rack_allowance(args, spec)
+    _check_shop_keys(args, spec)
     allowance = gear_allowance(args, spec)
     if allowance is None and layout is not None:
         from geargen.pipeline import drive_allowances_of
         allowance = drive_allowances_of(layout).get(spec.name)
+    elif getattr(args, "thickness_series", None) is not None and allowance is not None:
+        raise DesignError("--thickness-series", "conflicts with the allowance entered for the gear",
+                          "--thickness-series or --thickness-allowance / the design's deviations, not both")
+    if allowance is None:
+        allowance = standalone_allowance(args, spec, layout)
+        if allowance is not None and spec.thinning == 0:
+            # an unthinned model would measure outside the limits it is drawn with: the model is made
+            # at the middle of the allowance, as a drive's gears are by default
+            from geargen.core.allowance import made_at
+            spec, thinning_source = made_at(spec, allowance, 0.5), "mid-tolerance of its DIN 3967 allowance"
     from geargen.outputs import OutputFolder
     source = gear_source(args, spec)
     output = OutputFolder(Path(args.out) if args.out else Path("exports") / spec.name, "geargen gear", source,

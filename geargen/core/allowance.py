@@ -50,7 +50,7 @@ from geargen.errors import DesignError
 
 __all__ = ["ThicknessAllowance", "at_deviation", "thickest", "thinnest", "span_limits", "over_pins_limits",
            "mesh_backlash_range", "allowances_for_backlash", "BacklashRoute", "ENTERED", "ROUTE_METHOD",
-           "deviation_at", "made_at"]
+           "deviation_at", "made_at", "series_allowance"]
 
 #: method string of an allowance typed in (design keys or ``--thickness-allowance``)
 ENTERED = "entered"
@@ -236,3 +236,17 @@ def allowances_for_backlash(gear1: GearSpec, gear2: GearSpec, route: BacklashRou
         c = math.cos(spec.helix_angle)
         out.append(ThicknessAllowance(-max(thick, 0.0) * c, -max(thin, 0.0) * c, method, route.field_min))
     return out[0], out[1]
+
+
+def series_allowance(spec: GearSpec, designation: str | None = None,
+                     field: str = "thickness_allowance_series") -> ThicknessAllowance:
+    """The allowance of a DIN 3967 designation (``"cd25"``; default the gear's
+    ``thickness_allowance_series``, else :data:`geargen.core.din3967.DEFAULT_DESIGNATION`) at the
+    gear's reference diameter: what a gear made alone (no mesh to take it from) is ordered with."""
+    from geargen.core.din3967 import DEFAULT_DESIGNATION, allowance_um, method_text
+    shop = getattr(spec, "shop", None)
+    designation = designation or (shop.thickness_allowance_series if shop else None) or DEFAULT_DESIGNATION
+    d = 2 * spec.reference_radius
+    upper, lower = allowance_um(d, designation, field)
+    method = method_text(designation) + f" d = {d:.6g} mm"
+    return ThicknessAllowance(upper * 1e-3, lower * 1e-3, method, field)

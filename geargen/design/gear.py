@@ -119,6 +119,44 @@ class Hub:
                               f"> {self.bore_diameter + 2 * self.keyway_depth} mm")
 
 
+#: the most characters of each text a gear's drawing prints as the designer wrote it: the lines
+#: geargen.report.drawing gives it (DRAWN_TEXT_LINES: material 4, heat treatment 2 in the blank
+#: table's 74 mm value column; part number 2, revision 1 in their title-block cells) times the
+#: letters of the widest character it may hold ("m", 3.53 mm at 10 pt; schema.DRAWN_TEXT_RANGES)
+#: that one line holds: 19 in the value column, 17 in the part-number cell, 8 in the revision
+#: cell (tests/report/test_drawn_text_limits.py measures them again and draws the longest)
+DRAWN_TEXT_MAX = {"material": 76, "heat_treatment": 38, "part_number": 34, "revision": 8}
+
+
+#: the default tolerance class of the tip diameter and the face width when the design gives none:
+#: ISO 286-1 h11, the usual class of a tip that is not a datum (ISO/TR 10064-3 leaves it to the blank)
+DEFAULT_TIP_CLASS = "h11"
+DEFAULT_FACE_WIDTH_CLASS = "h11"
+
+
+@dataclass(frozen=True)
+class ShopData:
+    """What the drawing states about a gear besides its teeth (design keys of the gear table; None:
+    not given): ``part_number``, ``revision``, ``material``, ``heat_treatment``, surface
+    ``hardness`` as (value, "HV" or "HRC"), ``flank_roughness_Ra`` (mm), the bore's ISO 286 class
+    ``bore_fit`` (``"H7"``), the tip diameter's and the face width's ISO 286 class or their
+    (upper, lower) deviations in mm, and the DIN 3967 designation of the tooth-thickness
+    allowance ``thickness_allowance_series`` (``"cd25"``)."""
+
+    part_number: str | None = None
+    revision: str | None = None
+    material: str | None = None
+    heat_treatment: str | None = None
+    hardness: tuple[float, str] | None = None
+    flank_roughness_Ra: float | None = None
+    bore_fit: str | None = None
+    tip_diameter_class: str | None = None
+    tip_diameter_deviations: tuple[float, float] | None = None
+    face_width_class: str | None = None
+    face_width_deviations: tuple[float, float] | None = None
+    thickness_allowance_series: str | None = None
+
+
 @dataclass(frozen=True)
 class GearSpec:
     """An external involute gear (spur when ``helix_angle`` is 0), normal system, mm and rad.
@@ -154,6 +192,8 @@ class GearSpec:
     # double_helical only: axial gap between the two halves (mm), a relief groove at the root
     # diameter; 0 is a herringbone whose flanks meet at the apex
     centre_gap: float = 0.0
+    # drawing data: part number, material, finish, blank tolerances (geargen.report.drawing)
+    shop: ShopData = field(default_factory=ShopData)
 
     def __post_init__(self):
         if self.kind not in CYLINDRICAL_KINDS:
@@ -437,6 +477,42 @@ GEAR_FIELDS: list[Field] = [
                "[errors.NAME], its pitch-line eccentricity and tooth-to-tooth TIRs"),
     Field("accuracy_standard", "string", required=False, default=None, choices=ACCURACY_STANDARDS,
           help="the standard of accuracy_grade (default and only choice: ISO 1328-1:2013, inch designs too)"),
+    Field("part_number", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["part_number"],
+          help="the drawing's part (identification) number; the title block says \"not specified\" without it"),
+    Field("revision", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["revision"],
+          help="the drawing's revision index"),
+    Field("material", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["material"],
+          help="the gear's material as the drawing names it (e.g. \"42CrMo4 (1.7225)\"; default: the ISO 6336-5 "
+               "material of the gear's [materials] or [duty] rating when the design names one)"),
+    Field("heat_treatment", "string", required=False, default=None, maximum=DRAWN_TEXT_MAX["heat_treatment"],
+          help="the heat treatment the drawing asks for (e.g. \"quenched and tempered\"; default: that of the "
+               "rating's material)"),
+    Field("hardness_HV", "number", required=False, default=None, minimum=50.0, maximum=1200.0,
+          help="surface hardness, Vickers (give this or hardness_HRC; default: the rating's)"),
+    Field("hardness_HRC", "number", required=False, default=None, minimum=20.0, maximum=70.0,
+          help="surface hardness, Rockwell C (give this or hardness_HV)"),
+    Field("flank_roughness_Ra", "length", required=False, default=None, minimum=0.0, exclusive_minimum=True,
+          maximum=0.1, help="roughness R_a of the tooth flanks (e.g. flank_roughness_Ra_um = 0.8)"),
+    Field("bore_fit", "string", required=False, default=None,
+          help="ISO 286-1 tolerance class of the bore (H or JS with grade 4..13, e.g. \"H7\"); its limits are "
+               "computed from ISO 286-1 and drawn; needs a bore"),
+    Field("tip_diameter_tolerance", "string", required=False, default=None,
+          help=f"ISO 286-1 tolerance class of the tip diameter (h or js with grade 4..13; default "
+               f"{DEFAULT_TIP_CLASS!r}); or give tip_diameter_upper/lower_deviation_*"),
+    Field("tip_diameter_upper_deviation", "length", required=False, default=None,
+          help="upper deviation of the tip diameter (with the lower one, instead of tip_diameter_tolerance)"),
+    Field("tip_diameter_lower_deviation", "length", required=False, default=None,
+          help="lower deviation of the tip diameter (<= the upper one)"),
+    Field("face_width_tolerance", "string", required=False, default=None,
+          help=f"ISO 286-1 tolerance class of the face width (h or js with grade 4..13; default "
+               f"{DEFAULT_FACE_WIDTH_CLASS!r}); or give face_width_upper/lower_deviation_*"),
+    Field("face_width_upper_deviation", "length", required=False, default=None,
+          help="upper deviation of the face width (with the lower one, instead of face_width_tolerance)"),
+    Field("face_width_lower_deviation", "length", required=False, default=None,
+          help="lower deviation of the face width (<= the upper one)"),
+    Field("thickness_allowance_series", "string", required=False, default=None,
+          help="DIN 3967 designation of the tooth-thickness allowance (upper series a..h and tolerance series "
+               "21..30, e.g. \"cd25\"); a gear without deviations of its own and outside a drive gets \"cd25\""),
 ]
 
 
@@ -514,6 +590,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   accuracy_standard=v["accuracy_standard"], kind=v["kind"], rim_diameter=v["rim_diameter"],
                   centre_gap=v["centre_gap"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
+    kwargs["shop"] = _shop_data(v, p)
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
         plain = with_field_prefix(p, lambda: GearSpec(**{**kwargs, "hub": Hub()}), v["_units"])
@@ -525,6 +602,37 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
             raise DesignError(f"{p}bore_diameter_{unit_b}", f"{hub.bore_diameter / scale:.6g} {unit_b}: the bore (with "
                               "keyway) cuts into the tooth root", f"< {most / scale:.6g} {unit_b}")
     return with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
+
+
+def _shop_data(v: Mapping[str, Any], p: str) -> ShopData:
+    """The drawing keys of a gear table (validated ranges; the ISO 286 classes are checked against
+    the gear's sizes by :func:`_check_shop_classes`)."""
+    if v["hardness_HV"] is not None and v["hardness_HRC"] is not None:
+        raise DesignError(p + "hardness_HRC", "give at most one hardness", "hardness_HV or hardness_HRC")
+    hardness = ((v["hardness_HV"], "HV") if v["hardness_HV"] is not None
+                else (v["hardness_HRC"], "HRC") if v["hardness_HRC"] is not None else None)
+    pairs = {}
+    for stem in ("tip_diameter", "face_width"):
+        up, lo = v[f"{stem}_upper_deviation"], v[f"{stem}_lower_deviation"]
+        if (up is None) != (lo is None):
+            missing = "lower" if up is not None else "upper"
+            raise DesignError(f"{p}{stem}_{missing}_deviation_mm", "missing: the other deviation is given",
+                              f"both {stem}_upper_deviation_* and {stem}_lower_deviation_*, or neither")
+        if up is not None:
+            if v[f"{stem}_tolerance"] is not None:
+                raise DesignError(f"{p}{stem}_tolerance", "given with deviations", "a tolerance class or deviations")
+            if lo > up:
+                unit = v["_units"][f"{stem}_lower_deviation"]
+                scale = LENGTH_SUFFIXES[unit]
+                raise DesignError(f"{p}{stem}_lower_deviation_{unit}", f"{lo / scale:.6g} {unit} is above the upper "
+                                  "deviation", f"<= {up / scale:.6g} {unit}")
+            pairs[stem] = (up, lo)
+    return ShopData(part_number=v["part_number"], revision=v["revision"], material=v["material"],
+                    heat_treatment=v["heat_treatment"], hardness=hardness, flank_roughness_Ra=v["flank_roughness_Ra"],
+                    bore_fit=v["bore_fit"], tip_diameter_class=v["tip_diameter_tolerance"],
+                    tip_diameter_deviations=pairs.get("tip_diameter"), face_width_class=v["face_width_tolerance"],
+                    face_width_deviations=pairs.get("face_width"),
+                    thickness_allowance_series=v["thickness_allowance_series"])
 
 
 def gear_keys_written(data: Mapping[str, Any]) -> dict[str, str]:
@@ -553,6 +661,6 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["internal_rim_diameter", "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
+__all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter", "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
            "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

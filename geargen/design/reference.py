@@ -311,6 +311,8 @@ def key_type(schema: Field | Quantity) -> str:
         return f"{schema.kind}: " + " ".join(f"_{s}" for s in schema.suffixes())
     if schema.kind == "string" and schema.choices:
         return "one of " + ", ".join(f'"{c}"' for c in schema.choices)
+    if schema.kind == "string" and schema.maximum is not None:
+        return f"text: at most {int(schema.maximum)} characters, one line (what the drawing's cell holds)"
     if schema.kind == "name":
         return f"name: at most {int(schema.maximum or NAME_MAX)} of A-Z a-z 0-9 _ - ."
     return {"integer": "whole number", "number": "number", "string": "string", "bool": "true or false",

@@ -30,7 +30,8 @@ class Field:
 
     ``name`` is the key without its unit suffix. ``minimum``/``maximum`` are in internal units
     (mm, rad) and inclusive unless ``exclusive_minimum``/``exclusive_maximum``. ``choices``
-    restricts strings. A field with ``required=False`` takes ``default`` when absent.
+    restricts strings; a string's ``maximum`` makes it a text the drawing prints, of at most that many
+    characters (:func:`check_drawn_text`). A field with ``required=False`` takes ``default`` when absent.
     ``units`` narrows the accepted suffixes of a length or angle (default: all). ``help`` is the
     key's one-line meaning, for the design-file reference (:mod:`geargen.design.reference`) and
     the comments of the starter designs (``geargen new``).
@@ -89,6 +90,41 @@ NAME_MAX = 64
 #: (``manifest.json``, the build's ``assembly.step``): a gear of that name would overwrite them.
 #: Compared without case, as macOS and Windows compare file names.
 RESERVED_NAMES = ("manifest", "assembly")
+#: the characters a text printed on a drawing as the designer wrote it (part number, revision, material,
+#: heat treatment: a Field of kind "string" with a ``maximum``) may hold: one line of Latin-1, Latin
+#: Extended-A but the ligatures Œ œ, Greek but the yot U+037F (the font lacks it), the dashes, quotes
+#: and ellipsis U+2010..U+2027 and − ≈ ≠ ≤ ≥. The drawing font (DejaVu Sans) draws each, none wider than "m" (3.53 mm at 10 pt), so a
+#: length limit measured in "m" holds for any of them (tests/report/test_drawn_text_limits.py)
+DRAWN_TEXT_RANGES = ((0x20, 0x7E), (0xA0, 0x17F), (0x370, 0x3FF), (0x2010, 0x2027))
+DRAWN_TEXT_EXTRA = "−≈≠≤≥"
+DRAWN_TEXT_EXCLUDED = "\u0152\u0153\u037f"  # Œ œ and the Greek yot
+
+
+def drawn_character(c: str) -> bool:
+    """Whether a drawing may print ``c`` in a designer's text (:data:`DRAWN_TEXT_RANGES`)."""
+    if not c.isprintable() or c in DRAWN_TEXT_EXCLUDED:
+        return False
+    return c in DRAWN_TEXT_EXTRA or any(lo <= ord(c) <= hi for lo, hi in DRAWN_TEXT_RANGES)
+
+
+def drawn_text_rule(most: int) -> str:
+    """The allowed values of a drawn text of at most ``most`` characters, as an error states them."""
+    return (f"at most {most} characters (what its cell of the drawing holds) on one line: Latin and Greek "
+            "letters, digits, punctuation")
+
+
+def check_drawn_text(where: str, value: str, most: int) -> str:
+    """``value`` when the drawing holds it in its cell (:func:`drawn_character`, ``most`` characters),
+    else a :class:`DesignError` naming ``where`` and the allowed length."""
+    bad = next((i for i, c in enumerate(value) if not drawn_character(c)), None)
+    if bad is not None:
+        raise DesignError(where, f"{shown(value)} holds {value[bad]!r} (character {bad + 1}), which the drawing "
+                          "does not print", drawn_text_rule(most))
+    if len(value) > most:
+        raise DesignError(where, f"{shown(value)} is {len(value):,} characters long", drawn_text_rule(most))
+    return value
+
+
 #: the most characters of a string that is no name (a description, a material): far more than
 #: any sentence a design file needs; a longer one (a 50 MB name) would only slow every writer
 STRING_MAX = 2000
@@ -379,6 +415,8 @@ def _convert(field: Field, key: str, raw: Any, where: str) -> Any:
             raise DesignError(where, f"{shown(raw)} is not a valid choice", ", ".join(map(repr, field.choices)))
         if len(raw) > STRING_MAX:
             raise DesignError(where, f"{shown(raw)} is {len(raw):,} characters long", f"at most {STRING_MAX:,}")
+        if field.maximum is not None:  # a text the drawing prints
+            return check_drawn_text(where, raw, int(field.maximum))
         return raw
     if field.kind == "bool":
         if not isinstance(raw, bool):

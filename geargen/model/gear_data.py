@@ -37,7 +37,7 @@ def family_data(spec, solid=None) -> dict:
     return getattr(importlib.import_module(module), function)(spec)
 
 
-def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
+def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=None) -> dict:
     """Radii, thicknesses, undercut, span and over-pins/balls of ``spec`` in its length unit, and
     the ``accuracy`` block of its grade's tolerances (um) when it has one.
 
@@ -49,7 +49,11 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
     ``errors`` (:class:`geargen.design.synthesis.GearErrors`, the gear's entered error budget): a
     gear without an accuracy grade gets the ``accuracy`` block of the coarsest grade that holds its
     budget's pitch-line eccentricity and tooth-to-tooth TIRs (what the shop must make it to), with
-    ``grade_source`` saying so; a budget finer than grade 1 is a warning, not a made-up grade."""
+    ``grade_source`` saying so; a budget finer than grade 1 is a warning, not a made-up grade.
+
+    ``material`` (:class:`geargen.design.duty.GearMaterial`, the ISO 6336-5 material the design's
+    rating names for the gear): the drawing's material, heat treatment and hardness where the gear
+    table gives none (:func:`shop_data`)."""
     if getattr(spec, "kind", "external") in FAMILY_DATA:  # a GearSpec kind with its own data (a ring)
         return family_data(spec, None)
     from geargen.core import geometry
@@ -105,14 +109,127 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None) -> dict:
         out["span"] = None
         out["warnings"].append(f"span: {exc}")
     try:
-        pins = geometry.over_pins_measurement(spec)
+        from geargen.core.measuring_pins import standard_pin
+        pins, series = standard_pin(spec)
         out["over_pins"] = {"kind": pins.kind, "diameter": L(pins.pin_diameter), "dimension": L(pins.dimension),
-                            "centre_radius": L(pins.centre_radius), "contact_radius": L(pins.contact_radius)}
+                            "centre_radius": L(pins.centre_radius), "contact_radius": L(pins.contact_radius),
+                            "series": series, "ideal_diameter": L(geometry.ideal_pin_diameter(spec))}
     except GeargenError as exc:
         out["over_pins"] = None
         out["warnings"].append(f"over pins: {exc}")
     if allowance is not None:
         _add_limits(out, spec, allowance, L)
+    out.update(shop_data(spec, profile, out.get("accuracy"), material))
+    return out
+
+
+#: the axial runout tolerance of the reference face B, referred to the bore axis A: the face's tilt
+#: over its diameter may take a fifth of what the helix tolerance allows over the face width. This is
+#: geargen's convention: the form was recalled as ISO/TR 10064-3 Table 3's, but no text of that
+#: report could be found to check it against (searched 2026-11), so no standard is cited for it
+FACE_RUNOUT_FORMULA = "0.2 (d_f / b) F_βT"
+FACE_RUNOUT_RULE = ("geargen's convention, not a value of a standard: t_B = 0.2 (d_f / b) F_βT, d_f the root "
+                    "diameter (the face's outer diameter below the teeth), b the face width, F_βT the total helix "
+                    "tolerance of the accuracy grade")
+
+
+def _tolerance(size_mm: float, code: str | None, deviations, default: str, u: str, feature: str) -> dict:
+    """A size's tolerance: its ISO 286 class (the design's or ``default``) or its deviations, with the
+    limits [smallest, largest] in the unit ``u`` and the deviations in um."""
+    from geargen.core.iso286 import tolerance_class
+    if deviations is not None:
+        upper, lower = deviations[0] * 1e3, deviations[1] * 1e3
+        out = {"standard": None, "code": None, "source": "the design's deviations"}
+    else:
+        tc = tolerance_class(code or default, size_mm, feature)
+        upper, lower = tc.upper_um, tc.lower_um
+        out = {"standard": "ISO 286-1:2010", "code": tc.code,
+               "source": "the design's tolerance class" if code else "geargen's default class"}
+    out |= {"nominal": float(from_mm(size_mm, u)), "upper_deviation_um": upper, "lower_deviation_um": lower,
+            "limits": [float(from_mm(size_mm + lower * 1e-3, u)), float(from_mm(size_mm + upper * 1e-3, u))]}
+    return out
+
+
+def check_shop_keys(spec: GearSpec, prefix: str | None = None) -> None:
+    """Each ISO 286 class the gear's table names exists at its feature's size (a bore fit needs a
+    bore) and its DIN 3967 designation is one; errors name the key under ``prefix`` (default
+    ``gears.NAME.``). The tables are core's, above the design layer, so this runs where the gear
+    is used (``geargen gear``, a build's gear data), not where the table is read."""
+    from geargen.core.din3967 import parse_designation
+    from geargen.core.iso286 import tolerance_class
+    from geargen.errors import DesignError
+    p = f"gears.{spec.name}." if prefix is None else prefix
+    shop = spec.shop
+    if shop.bore_fit is not None:
+        if spec.hub.bore_diameter <= 0:
+            raise DesignError(p + "bore_fit", "a fit needs a bore", "bore_diameter_* > 0, or no bore_fit")
+        tolerance_class(shop.bore_fit, spec.hub.bore_diameter, "hole", p + "bore_fit")
+    if shop.tip_diameter_class is not None:
+        tolerance_class(shop.tip_diameter_class, 2 * spec.tip_radius, "shaft", p + "tip_diameter_tolerance")
+    if shop.face_width_class is not None:
+        tolerance_class(shop.face_width_class, spec.face_width, "shaft", p + "face_width_tolerance")
+    if shop.thickness_allowance_series is not None:
+        parse_designation(shop.thickness_allowance_series, p + "thickness_allowance_series")
+
+
+def shop_data(spec: GearSpec, profile, accuracy: dict | None, material=None) -> dict:
+    """The drawing's data besides the teeth (gear-data keys): part number and revision, material,
+    heat treatment, hardness and flank finish (the gear table's keys, else the rating's ISO 6336-5
+    ``material``, else None: not specified), the datums, the bore's, tip diameter's and face width's
+    tolerances (ISO 286-1) and the tolerances referred to the datums."""
+    check_shop_keys(spec)
+    shop, u = spec.shop, spec.length_unit
+    out = {"part_number": shop.part_number, "revision": shop.revision}
+    mat = {"material": shop.material, "heat_treatment": shop.heat_treatment, "hardness": None,
+           "source": "the gear table" if (shop.material or shop.heat_treatment or shop.hardness) else None}
+    if shop.hardness is not None:
+        mat["hardness"] = {"value": shop.hardness[0], "unit": shop.hardness[1]}
+    if material is not None:
+        from geargen.design.iso6336_5 import TABLE_8
+        taken = []
+        if mat["material"] is None:
+            mat["material"] = TABLE_8[material.name][0]
+            taken.append("material")
+        if mat["heat_treatment"] is None:
+            mat["heat_treatment"] = f"{material.name.replace('_', ' ')}, ISO 6336-5 {material.quality}"
+            taken.append("heat treatment")
+        if mat["hardness"] is None and material.hardness is not None:
+            mat["hardness"] = {"value": material.hardness, "unit": "HV"}
+            taken.append("hardness")
+        if taken:
+            mat["source"] = (mat["source"] + "; " if mat["source"] else "") + \
+                f"{', '.join(taken)} from the load-capacity rating's material ({material.source})"
+    out["material"] = mat
+    out["flank_roughness_Ra_um"] = None if shop.flank_roughness_Ra is None else shop.flank_roughness_Ra * 1e3
+    bore = spec.hub.bore_diameter
+    # B is the face at z = b, the one without the hub (the hub stands on z < 0, geargen.cad.gear_solid)
+    out["datums"] = {"A": "bore axis" if bore > 0 else "axis of the tip cylinder (no bore)",
+                     "B": "face at z = b, opposite the hub" if spec.hub.hub_length > 0 else "face at z = b"}
+    if bore > 0:
+        from geargen.core.iso286 import tolerance_class
+        b = {"nominal": float(from_mm(bore, u)), "code": shop.bore_fit, "standard": None,
+             "upper_deviation_um": None, "lower_deviation_um": None, "limits": None}
+        if shop.bore_fit:
+            tc = tolerance_class(shop.bore_fit, bore, "hole")
+            b |= {"code": tc.code, "standard": "ISO 286-1:2010", "upper_deviation_um": tc.upper_um,
+                  "lower_deviation_um": tc.lower_um,
+                  "limits": [float(from_mm(bore + tc.lower_um * 1e-3, u)), float(from_mm(bore + tc.upper_um * 1e-3, u))]}
+        out["bore"] = b
+    else:
+        out["bore"] = None
+    from geargen.design.gear import DEFAULT_FACE_WIDTH_CLASS, DEFAULT_TIP_CLASS
+    out["tip_diameter_tolerance"] = _tolerance(2 * profile.tip_radius, shop.tip_diameter_class,
+                                               shop.tip_diameter_deviations, DEFAULT_TIP_CLASS, u, "shaft")
+    out["face_width_tolerance"] = _tolerance(spec.face_width, shop.face_width_class, shop.face_width_deviations,
+                                             DEFAULT_FACE_WIDTH_CLASS, u, "shaft")
+    geo = {"datum_axis": "A", "radial_runout_um": None, "helix_total_um": None, "face_axial_runout_um": None,
+           "face_axial_runout_formula": FACE_RUNOUT_FORMULA, "face_axial_runout_rule": FACE_RUNOUT_RULE}
+    if accuracy:
+        geo["radial_runout_um"] = accuracy.get("runout_um")
+        geo["helix_total_um"] = accuracy.get("helix_total_um")
+        if accuracy.get("helix_total_um") is not None:
+            geo["face_axial_runout_um"] = 0.2 * (2 * profile.root_radius / spec.face_width) * accuracy["helix_total_um"]
+    out["datum_tolerances"] = geo
     return out
 
 

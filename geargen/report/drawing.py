@@ -48,6 +48,7 @@ PREFERRED_SCALES = (50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02)
 DECIMALS = {"mm": 4, "in": 5}
 NOT_SPECIFIED = "not specified"
 PAD_MM = 1.2  # clearance between a text and its cell's side
+WRAP_FILL = 0.95  # the share of a cell's width a wrapped line may fill (as Agg measures it)
 ROW_PAD_MM = 0.6  # and its cell's top and bottom
 
 # the sheet's areas (mm): data block and title block on the right, views on the left
@@ -56,7 +57,18 @@ TITLE_BLOCK = (230.0, 10.0, 410.0, 50.0)
 COLUMNS_MM = (74.0, 24.0, 82.0)  # name | symbol | value
 FULL_VIEW = (25.0, 120.0, 135.0, 270.0)  # drawing box of the whole gear (without its title)
 SECTION_VIEW = (140.0, 120.0, 225.0, 270.0)
-DETAIL_VIEW = (30.0, 18.0, 222.0, 102.0)
+DETAIL_VIEW = (30.0, 18.0, 100.0, 102.0)
+#: the blank's table (datums, blank tolerances, material, finish) beside the detail
+BLANK_BLOCK = (106.0, 12.0, 226.0, 116.0)  # up to below the axial section's lowest dimension
+BLANK_COLUMNS_MM = (34.0, 12.0, 74.0)  # name | symbol | value
+#: the lines a text of the designer's own takes at most in its cell (the blank table's value column,
+#: the title block's part-number and revision cells); the design keys' length limits
+#: (geargen.design.gear.DRAWN_TEXT_MAX) are these lines of the widest letter the drawing font draws
+DRAWN_TEXT_LINES = {"material": 4, "heat_treatment": 2, "part_number": 2, "revision": 1}
+#: room (mm) kept right of the axial section for datum B's indicator
+DATUM_ROOM_MM = 9.0
+#: side (mm) of a datum letter's frame (ISO 5459), the letter at the sheet's lettering size
+DATUM_FRAME_MM = 5.0
 
 
 def scale_text(scale: float) -> str:
@@ -157,7 +169,7 @@ def _method_text(method: str | None) -> str:
     JSON keeps the whole rule)."""
     if not method:
         return NOT_SPECIFIED
-    name = method.split(":")[0]
+    name = method.split(": ")[0]
     return name + (f"; {method[method.index('f_a ='):]}" if "f_a =" in method else "")
 
 
@@ -210,7 +222,10 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
                               ("Total profile tolerance", "F_αT", "profile_total_um"),
                               ("Total helix tolerance", "F_βT", "helix_total_um"),
                               ("Runout tolerance", "F_rT", "runout_um")):
-        rows.append((name, symbol, format_um(acc.get(key), u) if acc else "-"))
+        value = format_um(acc.get(key), u) if acc else "-"
+        if acc and key in ("helix_total_um", "runout_um") and acc.get(key) is not None:
+            value += ", to datum A"  # the bore axis the gear is cut and inspected on
+        rows.append((name, symbol, value))
     allowance = data.get("thickness_allowance")
     rows += [
         ("Tooth thickness allowance, upper", "A_sne",
@@ -255,10 +270,68 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
     return rows
 
 
+def _tolerance_text(tol: dict | None, unit: str) -> str:
+    """A size's tolerance as the blank table states it: ``h11: 19.6435 / 19.5135 mm (max / min)``."""
+    if not tol or not tol.get("limits"):
+        return NOT_SPECIFIED
+    head = f"{tol['code']} (ISO 286-1)" if tol.get("code") else "by deviation"
+    return f"{head}: {format_limits(tol['limits'], unit)}"
+
+
+def blank_rows(data: dict) -> list[tuple]:
+    """The blank table as ``(name, symbol, value)`` rows: datums A (bore axis) and B (reference
+    face), the bore with its ISO 286 fit and limits, the tip diameter's and face width's tolerances,
+    the axial runout of face B referred to A (with the rule it is computed by), material, heat
+    treatment, hardness and flank finish. A key the gear data lacks reads "not specified". The
+    designer's own texts (material, heat treatment) carry a fourth item, the most lines they may
+    take (:data:`DRAWN_TEXT_LINES`)."""
+    u = data["length_unit"]
+    datums = data.get("datums") or {}
+    rows = [("Datum A", "A", datums.get("A", NOT_SPECIFIED)), ("Datum B", "B", datums.get("B", NOT_SPECIFIED))]
+    bore = data.get("bore")
+    if bore:
+        fit = f" {bore['code']}" if bore.get("code") else ", fit not specified"
+        limits = f": {format_limits(bore['limits'], u)}" if bore.get("limits") else ""
+        rows.append(("Bore", "d_B", format_length(bore["nominal"], u) + fit + limits))
+    else:
+        rows.append(("Bore", "d_B", "- (no bore)"))
+    rows += [("Tip diameter", "d_a", _tolerance_text(data.get("tip_diameter_tolerance"), u)),
+             ("Face width", "b", _tolerance_text(data.get("face_width_tolerance"), u))]
+    geo = data.get("datum_tolerances") or {}
+    face = geo.get("face_axial_runout_um")
+    rows.append(("Axial runout of B", "t_B", f"{format_um(face, u)} to A; geargen's rule {geo['face_axial_runout_formula']}"
+                 if face is not None else NOT_SPECIFIED))
+    pins = data.get("over_pins")
+    if pins:  # the over-pins rows of the data block measure with a pin of this series
+        rows.append((f"{pins['kind'][:-1].capitalize()} series", "D_M", pins.get("series") or NOT_SPECIFIED))
+    mat = data.get("material") or {}
+    hard = mat.get("hardness")
+    ra = data.get("flank_roughness_Ra_um")
+    rows += [("Material", "", mat.get("material") or NOT_SPECIFIED, DRAWN_TEXT_LINES["material"]),
+             ("Heat treatment", "", mat.get("heat_treatment") or NOT_SPECIFIED, DRAWN_TEXT_LINES["heat_treatment"]),
+             ("Surface hardness", "", f"{hard['value']:g} {hard['unit']}" if hard else NOT_SPECIFIED),
+             ("Flank roughness", "Ra", NOT_SPECIFIED if ra is None else
+              f"{ra:g} µm" + (f" ({ra / 0.0254:.3g} µin)" if u == "in" else ""))]
+    return rows
+
+
 # ---------------------------------------------------------------- measuring and wrapping text
 
 
-class _Sheet:
+def cell_gid(n: int, cell) -> str:
+    """The SVG id of the ``n``-th text that must stay inside ``cell`` (sheet mm, y up, 3 decimals):
+    ``cell-<n>-<x0>_<y0>_<x1>_<y1>``; :func:`parse_cell_gid` reads it back."""
+    return f"cell-{n}-" + "_".join(f"{c:.3f}" for c in cell)
+
+
+def parse_cell_gid(gid: str) -> tuple[float, float, float, float] | None:
+    """The cell (sheet mm, y up) of a :func:`cell_gid`, or None for another id."""
+    if not gid or not gid.startswith("cell-"):
+        return None
+    return tuple(float(v) for v in gid.split("-", 2)[2].split("_"))
+
+
+class Sheet:
     """The figure (A3, 72 dpi: 1 px = 1 pt) and one axes spanning it in sheet mm."""
 
     def __init__(self):
@@ -273,6 +346,7 @@ class _Sheet:
         self.ax.set_axis_off()
         self.renderer = self.fig.canvas.get_renderer()
         self._widths: dict[tuple[str, float, str], float] = {}
+        self.cells: list[tuple[object, tuple[float, float, float, float]]] = []
 
     def width_mm(self, text: str, size: float, weight: str = "normal") -> float:
         # the renderer's own metrics (what a drawn Text measures), without making an artist per trial;
@@ -285,6 +359,12 @@ class _Sheet:
             self._widths[key] = w_px * 72.0 / self.fig.dpi * MM_PER_PT
         return self._widths[key]
 
+    def in_cell(self, text, cell) -> None:
+        """Record that ``text`` (an artist) must lie inside ``cell`` (x0, y0, x1, y1 sheet mm, y up):
+        its SVG group id carries the cell (:func:`cell_gid`), and :attr:`cells` keeps the pair."""
+        self.cells.append((text, tuple(float(c) for c in cell)))
+        text.set_gid(cell_gid(len(self.cells), cell))
+
     def text(self, x, y, s, size=MIN_FONT_PT, **kw):
         kw.setdefault("family", FONT)
         return self.ax.text(x, y, s, fontsize=size, **kw)
@@ -293,11 +373,33 @@ class _Sheet:
         # line widths given in mm on the sheet (ISO 128: 0.35 thick, 0.18 thin)
         return self.ax.plot(xs, ys, lw=lw / MM_PER_PT, color=kw.pop("color", "black"), solid_capstyle="butt", **kw)[0]
 
-    def wrap(self, text: str, width_mm: float, size: float) -> list[str]:
+    def wrap(self, text: str, width_mm: float, size: float, most: int | None = None) -> list[str]:
         """``text`` broken into lines no wider than ``width_mm`` (at spaces, else after ``/``,
-        else anywhere)."""
+        else anywhere), measured with :data:`WRAP_FILL` of the width: a browser lays the SVG's text
+        out with its own shaping, up to 3 % wider than Agg's metrics (a run of ``/`` measured in
+        headless Chromium, tests/report/test_drawing_cells.py). With ``most``, a text that needs
+        more lines broken at words is broken anywhere instead, each line filled: then ``most`` lines
+        hold ``most`` times the letters of the widest that fit one line, whatever the spaces."""
+        width_mm *= WRAP_FILL
         if self.width_mm(text, size) <= width_mm:
             return [text]
+        lines = self._wrap_words(text, width_mm, size)
+        if most is not None and len(lines) > most:
+            lines = self._fill(text, width_mm, size)
+        return lines
+
+    def _fill(self, text: str, width_mm: float, size: float) -> list[str]:
+        """``text`` cut into lines as full as ``width_mm`` allows, at any character."""
+        lines, start = [], 0
+        while start < len(text):
+            n = len(text) - start
+            while n > 1 and self.width_mm(text[start:start + n], size) > width_mm:
+                n -= 1
+            lines.append(text[start:start + n])
+            start += n
+        return lines
+
+    def _wrap_words(self, text: str, width_mm: float, size: float) -> list[str]:
         tokens = []
         for word in text.split(" "):
             parts = word.split("/")
@@ -327,7 +429,7 @@ class _Sheet:
 # ---------------------------------------------------------------- the sheet
 
 
-def _frame(sheet: _Sheet) -> None:
+def draw_frame(sheet: Sheet) -> None:
     w, h = SHEET_MM
     sheet.line([0, w, w, 0, 0], [0, 0, h, h, 0], lw=0.18, color="0.6")  # trimmed sheet edge
     x0, y0, x1, y1 = FRAME_MM
@@ -339,27 +441,34 @@ def _box(sheet, box, lw=0.35):
     sheet.line([x0, x1, x1, x0, x0], [y0, y0, y1, y1, y0], lw=lw)
 
 
-def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT) -> list[float]:
-    """Draw ``rows`` as a table in ``box`` (from its top); returns the bottom of each row (mm).
-    Raises ValueError when the rows do not fit the box."""
+def draw_data_block(sheet: Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT, columns=COLUMNS_MM,
+                header=("Gear data (ISO 1340)", "Symbol", "Value")) -> list[float]:
+    """Draw ``rows`` as a table in ``box`` (from its top) with ``columns`` widths (mm) under
+    ``header``; returns the bottom of each row (mm). Raises ValueError when the rows do not fit
+    the box. Each text carries its cell (:func:`cell_gid`) so a test can find it outside."""
     x0, y0, x1, y1 = box
     line_h = size * 1.2 * MM_PER_PT
-    cols = np.cumsum((x0,) + COLUMNS_MM)
+    cols = np.cumsum((x0,) + tuple(columns))
     assert abs(cols[-1] - x1) < 1e-9
-    header = [("Gear data (ISO 1340)", "Symbol", "Value")]
+    header = [tuple(header)]
     y = y1
     bottoms = []
     for i, row in enumerate(header + list(rows)):
         weight = "bold" if i == 0 else "normal"
-        cells = [sheet.wrap(text, COLUMNS_MM[j] - 2 * PAD_MM, size) for j, text in enumerate(row)]
+        most = row[3] if len(row) > 3 else None  # a designer's text: the lines its length limit allows
+        cells = [sheet.wrap(text, columns[j] - 2 * PAD_MM, size, most if j == 2 else None)
+                 for j, text in enumerate(row[:3])]
+        if most is not None and len(cells[2]) > most:
+            raise ValueError(f"{row[0]!r} needs {len(cells[2])} lines, more than its {most}")
         n = max(len(c) for c in cells)
         height = n * line_h + 2 * ROW_PAD_MM
         if y - height < y0:
             raise ValueError(f"the gear data block needs more than {y1 - y0:g} mm")
         for j, lines in enumerate(cells):
             for k, text in enumerate(lines):
-                sheet.text(cols[j] + PAD_MM, y - ROW_PAD_MM - (k + 0.5) * line_h, text, size,
-                           va="center_baseline", weight=weight)
+                t = sheet.text(cols[j] + PAD_MM, y - ROW_PAD_MM - (k + 0.5) * line_h, text, size,
+                               va="center_baseline", weight=weight)
+                sheet.in_cell(t, (cols[j], y - height, cols[j + 1], y))
         y -= height
         sheet.line([x0, x1], [y, y], lw=0.35 if i == 0 else 0.18)
         bottoms.append(y)
@@ -369,33 +478,61 @@ def _data_block(sheet: _Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT) 
     return bottoms
 
 
-def _title_block(sheet: _Sheet, name: str, design_file: str, unit: str, scale: str, version: str) -> None:
+def title_cells() -> dict[str, tuple[float, float, float, float]]:
+    """The title block's cells (sheet mm, y up): ``name`` (top left), ``design_file``,
+    ``part_number`` (top right), ``revision``, ``length_unit`` and ``scale``."""
     x0, y0, x1, y1 = TITLE_BLOCK
+    ym, xm = y0 + 0.55 * (y1 - y0), x0 + 110
+    xr = xm + 34  # revision | length unit
+    return {"name": (x0, ym, xm, y1), "design_file": (x0, y0, xm, ym), "part_number": (xm, ym, x1, y1),
+            "revision": (xm, ym - 11, xr, ym), "length_unit": (xr, ym - 11, x1, ym), "scale": (xm, y0, x1, ym - 11)}
+
+
+def title_cell_width(cell) -> float:
+    """The width (mm) a title-block cell's text wraps to: 2 mm clear of each side."""
+    return cell[2] - cell[0] - 4
+
+
+def draw_title_block(sheet: Sheet, name: str, design_file: str, unit: str, scale: str, version: str,
+                 part_number: str | None = None, revision: str | None = None, kind: str = "Gear") -> None:
+    """The title block: the part's name (``kind`` above it) and its part number; the design file,
+    the revision and the length unit; the scale and sheet. A part number or revision the design
+    does not give reads "not specified"."""
+    x0, y0, x1, y1 = TITLE_BLOCK
+    c = title_cells()
     _box(sheet, TITLE_BLOCK, lw=0.7)
-    ym = y0 + 0.55 * (y1 - y0)
+    xm, ym, xr = c["part_number"][0], c["part_number"][1], c["revision"][2]
     sheet.line([x0, x1], [ym, ym], lw=0.35)
-    xm = x0 + 110
-    sheet.line([xm, xm], [y0, ym], lw=0.35)
-    sheet.text(x0 + 3, y1 - 3, "Gear", MIN_FONT_PT, va="top", color="0.3")
-    for k, line in enumerate(sheet.wrap(name, x1 - x0 - 6, TITLE_FONT_PT)[:2]):
-        sheet.text(x0 + 3, y1 - 8.5 - k * 6, line, TITLE_FONT_PT, va="top", weight="bold")
-    cells = [((x0 + 2, ym - 2), "Design file", design_file, xm - x0 - 4),
-             ((xm + 2, ym - 2), "Length unit", unit, x1 - xm - 4)]
-    for (x, y), label, value, width in cells:
-        sheet.text(x, y, label, MIN_FONT_PT, va="top", color="0.3")
-        for k, line in enumerate(sheet.wrap(value, width, MIN_FONT_PT)[:3]):
-            sheet.text(x, y - 5 - k * 4.4, line, MIN_FONT_PT, va="top")
+    sheet.line([xm, xm], [y0, y1], lw=0.35)
+    sheet.line([xr, xr], [ym, ym - 11], lw=0.18)
+    sheet.line([xm, x1], [ym - 11, ym - 11], lw=0.18)
+    top = c["name"]
+    sheet.in_cell(sheet.text(x0 + 3, y1 - 3, kind, MIN_FONT_PT, va="top", color="0.3"), top)
+    for k, line in enumerate(sheet.wrap(name, xm - x0 - 6, TITLE_FONT_PT)[:2]):
+        sheet.in_cell(sheet.text(x0 + 3, y1 - 8.5 - k * 6, line, TITLE_FONT_PT, va="top", weight="bold"), top)
+    cells = [(c["design_file"], "Design file", design_file, 3, False),
+             (c["part_number"], "Part number", part_number or NOT_SPECIFIED, DRAWN_TEXT_LINES["part_number"], True),
+             (c["revision"], "Revision", revision or NOT_SPECIFIED, DRAWN_TEXT_LINES["revision"], True),
+             (c["length_unit"], "Length unit", unit, 1, False)]
+    for cell, label, value, most, designers in cells:
+        x, y = cell[0] + 2, cell[3] - 1.2
+        sheet.in_cell(sheet.text(x, y, label, MIN_FONT_PT, va="top", color="0.3"), cell)
+        lines = sheet.wrap(value, title_cell_width(cell), MIN_FONT_PT, most if designers else None)
+        if designers and len(lines) > most:  # the design reader's length limit keeps this from happening
+            raise ValueError(f"the {label.lower()} needs {len(lines)} lines, more than its {most}")
+        for k, line in enumerate(lines[:most]):
+            sheet.in_cell(sheet.text(x, y - 4.6 - k * 4.4, line, MIN_FONT_PT, va="top"), cell)
     for k, line in enumerate(sheet.wrap(f"Scale {scale}, sheet {SHEET}", x1 - xm - 4, MIN_FONT_PT)[:2][::-1]):
-        sheet.text(xm + 2, y0 + 2 + k * 4.4, line, MIN_FONT_PT, va="bottom")
+        sheet.in_cell(sheet.text(xm + 2, y0 + 1.2 + k * 4.4, line, MIN_FONT_PT, va="bottom"), c["scale"])
 
 
-def _outline_points(profile, step_mm: float) -> np.ndarray:
+def outline_points(profile, step_mm: float) -> np.ndarray:
     from geargen.profile.segments import sample_outline
     pts = sample_outline(profile.outline(), step_mm)
     return np.vstack([pts, pts[:1]])
 
 
-def _bore_points(hub, n: int = 361) -> np.ndarray | None:
+def bore_points(hub, n: int = 361) -> np.ndarray | None:
     if hub.bore_diameter <= 0:
         return None
     rb = hub.bore_diameter / 2
@@ -410,13 +547,13 @@ def _bore_points(hub, n: int = 361) -> np.ndarray | None:
     return np.vstack([arc, [(xk, -w2), (xf, -w2), (xf, w2), (xk, w2)]])
 
 
-def _centre_cross(sheet, cx, cy, half):
+def centre_cross(sheet, cx, cy, half):
     dash = dict(lw=0.18, linestyle=(0, (12, 2, 1.5, 2)), color="0.25")
     sheet.line([cx - half, cx + half], [cy, cy], **dash)
     sheet.line([cx, cx], [cy - half, cy + half], **dash)
 
 
-def _view_title(sheet, box, text):
+def view_title(sheet, box, text):
     sheet.text((box[0] + box[2]) / 2, box[3] + 2.5, text, MIN_FONT_PT, ha="center", va="bottom", weight="bold")
 
 
@@ -425,16 +562,16 @@ def _full_view(sheet, profile, scale: float) -> None:
     cx, cy = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
     k = scale  # sheet mm per gear mm
     to = lambda p: (cx + p[:, 0] * k, cy + p[:, 1] * k)  # noqa: E731
-    pts = _outline_points(profile, 0.05 / k)
+    pts = outline_points(profile, 0.05 / k)
     sheet.line(*to(pts), lw=0.5)
-    bore = _bore_points(profile.spec.hub)
+    bore = bore_points(profile.spec.hub)
     if bore is not None:
         sheet.line(*to(np.vstack([bore, bore[:1]])), lw=0.5)
     r = profile.reference_radius * k
     t = np.linspace(0, 2 * np.pi, 721)
     sheet.line(cx + r * np.cos(t), cy + r * np.sin(t), lw=0.18, linestyle=(0, (12, 2, 1.5, 2)), color="0.25")
-    _centre_cross(sheet, cx, cy, profile.tip_radius * k + 4)
-    _view_title(sheet, box, f"Transverse section ({scale_text(scale)})")
+    centre_cross(sheet, cx, cy, profile.tip_radius * k + 4)
+    view_title(sheet, box, f"Transverse section ({scale_text(scale)})")
 
 
 def _section_view(sheet, profile, unit: str, scale: float) -> None:
@@ -448,7 +585,7 @@ def _section_view(sheet, profile, unit: str, scale: float) -> None:
     rbore = hub.bore_diameter / 2 * k
     hub_len, rhub = hub.hub_length * k, hub.hub_diameter / 2 * k
     width = b + hub_len
-    cx = box[0] + 34 + hub_len + (box[2] - box[0] - 34 - width) / 2
+    cx = box[0] + 34 + hub_len + (box[2] - box[0] - 34 - DATUM_ROOM_MM - width) / 2
     cy = (box[1] + box[3]) / 2
     x0, x1 = cx, cx + b
     thick, thin = 0.5, 0.18
@@ -474,20 +611,50 @@ def _section_view(sheet, profile, unit: str, scale: float) -> None:
     if rbore > 0:
         dims.append((hub.bore_diameter, rbore))
     # the smallest diameter nearest the section, so no extension line crosses a smaller one's text
+    datum_a = rbore if rbore > 0 else ra  # A: the bore's axis, else the tip cylinder's
     for i, (value_mm, half) in enumerate(sorted(dims, key=lambda d: d[1])):
         x = left - 8 - 9 * i
-        _dimension(sheet, (x, cy - half), (x, cy + half), f"⌀{N(value_mm)}", vertical=True)
+        if half == datum_a:
+            # in line with the diameter's dimension line: the datum is the feature's axis (ISO 5459)
+            _datum(sheet, "A", (x, cy + half), (x, cy + ra + 4 + DATUM_FRAME_MM / 2))
+        dimension(sheet, (x, cy - half), (x, cy + half), f"⌀{N(value_mm)}", vertical=True)
         for sign in (1, -1):  # extension lines
             sheet.line([x - 1.5, left - 1 if half > (rhub if hub_len else 0) or not hub_len else x0 - hub_len - 1],
                        [cy + sign * half, cy + sign * half], lw=thin)
+    # B: the face at z = b, on its extension line above the tip, clear of the face width's dimension
+    sheet.line([x1, x1], [cy + ra + 1, cy + ra + 4 + DATUM_FRAME_MM], lw=thin)
+    yb = cy + ra + 4 + DATUM_FRAME_MM / 2
+    _datum(sheet, "B", (x1, yb), (x1 + DATUM_ROOM_MM - 0.5 - DATUM_FRAME_MM / 2, yb))
     y = cy - ra - 6
-    _dimension(sheet, (x0, y), (x1, y), N(spec.face_width), vertical=False)
+    dimension(sheet, (x0, y), (x1, y), N(spec.face_width), vertical=False)
     for x in (x0, x1):
         sheet.line([x, x], [y - 1.5, cy - ra - 1], lw=thin)
-    _view_title(sheet, box, f"Axial section ({scale_text(scale)})")
+    view_title(sheet, box, f"Axial section ({scale_text(scale)})")
 
 
-def _dimension(sheet, p, q, text, vertical: bool) -> None:
+def _datum(sheet, letter: str, foot, frame_centre) -> None:
+    """A datum feature indicator (ISO 5459): a filled triangle standing on ``foot``, a leader to a
+    square frame around ``letter`` centred at ``frame_centre``. The triangle points along the leader;
+    the letter's SVG id carries its frame (:func:`cell_gid`), so a reader finds the datum there."""
+    from matplotlib.patches import Polygon
+    (fx, fy), (cx, cy) = foot, frame_centre
+    length = math.hypot(cx - fx, cy - fy)
+    ux, uy = (cx - fx) / length, (cy - fy) / length  # along the leader
+    side = 3.0  # mm: the triangle's base on the feature; its height sqrt(3)/2 of it
+    tip = (fx + ux * side * 0.866, fy + uy * side * 0.866)
+    base = [(fx - uy * side / 2, fy + ux * side / 2), (fx + uy * side / 2, fy - ux * side / 2)]
+    sheet.ax.add_patch(Polygon([base[0], base[1], tip], closed=True, facecolor="black", edgecolor="black",
+                               lw=0.18 / MM_PER_PT))
+    half = DATUM_FRAME_MM / 2
+    # the leader ends where it meets the frame's side
+    reach = half / max(abs(ux), abs(uy))
+    sheet.line([tip[0], cx - ux * reach], [tip[1], cy - uy * reach], lw=0.18)
+    cell = (cx - half, cy - half, cx + half, cy + half)
+    _box(sheet, cell, lw=0.35)
+    sheet.in_cell(sheet.text(cx, cy, letter, MIN_FONT_PT, ha="center", va="center_baseline"), cell)
+
+
+def dimension(sheet, p, q, text, vertical: bool) -> None:
     """A dimension line from ``p`` to ``q`` with arrows at both ends and its text beside it."""
     sheet.ax.annotate("", xy=p, xytext=q, arrowprops=dict(arrowstyle="<|-|>", lw=0.18 / MM_PER_PT, color="black",
                                                           shrinkA=0, shrinkB=0, mutation_scale=7))
@@ -550,7 +717,7 @@ def _detail_view(sheet, profile, unit: str, scale: float) -> None:
     sub.set_ylim(box[1], box[3])
     sub.set_axis_off()
     place_labels(sub, labels, obstacles, leader_from_ring=1)
-    _view_title(sheet, box, f"Detail: tooth form ({scale_text(scale)})")
+    view_title(sheet, box, f"Detail: tooth form ({scale_text(scale)})")
 
 
 def _axes_rect(box):
@@ -565,7 +732,7 @@ def drawing_scales(profile) -> tuple[float, float, float]:
     length = spec.face_width + spec.hub.hub_length
     full = preferred_scale(d_a, min(FULL_VIEW[2] - FULL_VIEW[0], FULL_VIEW[3] - FULL_VIEW[1]) - 10)
     section = min(preferred_scale(d_a, SECTION_VIEW[3] - SECTION_VIEW[1] - 20),
-                  preferred_scale(length, SECTION_VIEW[2] - SECTION_VIEW[0] - 34 - 6))
+                  preferred_scale(length, SECTION_VIEW[2] - SECTION_VIEW[0] - 34 - 6 - DATUM_ROOM_MM))
     tooth = max(2.6 * 2 * math.pi * profile.reference_radius / spec.teeth,
                 1.5 * (profile.tip_radius - profile.root_radius))
     detail = preferred_scale(tooth, min(DETAIL_VIEW[2] - DETAIL_VIEW[0], 1.4 * (DETAIL_VIEW[3] - DETAIL_VIEW[1])))
@@ -580,26 +747,34 @@ def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
     full, section, detail = drawing_scales(profile)
     scale = f"{scale_text(full)} (section {scale_text(section)}, detail {scale_text(detail)})"
     with matplotlib.rc_context({"hatch.linewidth": 0.18 / MM_PER_PT, "hatch.color": "0.35"}):
-        sheet = _Sheet()
-        _frame(sheet)
+        sheet = Sheet()
+        draw_frame(sheet)
         _full_view(sheet, profile, full)
         _section_view(sheet, profile, unit, section)
         _detail_view(sheet, profile, unit, detail)
-        _data_block(sheet, data_rows(data, scale, version, source))
-        _title_block(sheet, data["name"], design_file, unit, scale, version)
+        draw_data_block(sheet, data_rows(data, scale, version, source))
+        draw_data_block(sheet, blank_rows(data), BLANK_BLOCK, columns=BLANK_COLUMNS_MM,
+                    header=("Blank", "", "Value"))
+        draw_title_block(sheet, data["name"], design_file, unit, scale, version, data.get("part_number"),
+                     data.get("revision"))
     return sheet.fig
 
 
 def write_drawing(data: dict, profile, folder, name: str, source: str, design_file: str,
                   version: str | None = None) -> dict[str, Path]:
-    """Draw the gear and write ``folder/name-drawing.svg`` and ``.pdf`` (atomically, folder
-    created) from the same figure; returns ``{"svg": path, "pdf": path}``."""
+    """Draw the gear and write ``folder/name-drawing.svg`` and ``.pdf`` (:func:`write_figure`)."""
+    from geargen import __version__
+
+    return write_figure(draw_gear(data, profile, source, design_file, version or __version__), folder, name)
+
+
+def write_figure(fig, folder, name: str) -> dict[str, Path]:
+    """``folder/name-drawing.svg`` and ``.pdf`` from the one figure ``fig`` (atomically, folder
+    created); returns ``{"svg": path, "pdf": path}``."""
     import matplotlib
 
-    from geargen import __version__
     from geargen.outputs import atomic_path
 
-    fig = draw_gear(data, profile, source, design_file, version or __version__)
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     out = {}
@@ -614,9 +789,11 @@ def write_drawing(data: dict, profile, folder, name: str, source: str, design_fi
     return out
 
 
-__all__ = ["SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
+__all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
+           "blank_rows", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
-           "drawing_scales", "draw_gear", "write_drawing", "gear_drawings"]
+           "drawing_scales", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
+           "draw_title_block", "view_title", "dimension", "outline_points", "bore_points", "centre_cross"]
 
 
 def gear_drawings(data: dict, profile, folder, name: str, source: str, design_file: str) -> dict[str, Path]:

@@ -12,9 +12,9 @@ import numpy as np
 from geargen.core.bevel import bevel_geometry, flat_back_envelope
 from geargen.design.bevel import BevelGearSpec
 from geargen.core.bevel import back_plane_distance
-from geargen.report.drawing import NOT_SPECIFIED, format_number, scale_text
+from geargen.report.drawing import format_number, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
-                                          polyline, value_text, view_title, write_sheet)
+                                          polyline, value_text, view_title)
 from geargen.units import from_mm
 
 
@@ -120,7 +120,7 @@ def bevel_drawings(data: dict, spec: BevelGearSpec, folder, name: str, source: s
     ``data["drawing"]`` first (the JSON lists them). Returns ``{"svg"|"pdf": path}``."""
     from geargen import __version__
     data["drawing"] = {"svg": f"{name}-drawing.svg", "pdf": f"{name}-drawing.pdf"}
-    return write_sheet(draw_bevel(data, spec, source, design_file, __version__), folder, name)
+    return write_figure(draw_bevel(data, spec, source, design_file, __version__), folder, name)
 
 
 __all__ = ["bevel_rows", "draw_bevel", "bevel_drawings"]

@@ -15,8 +15,9 @@ import math
 import numpy as np
 
 from geargen.report import drawing as sheet_parts
+from geargen.report.drawing import write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet,
-                                          polyline, value_text, view_title, write_sheet)
+                                          polyline, value_text, view_title)
 from geargen.units import from_mm
 
 END_VIEW = (VIEWS[0], 60.0, 150.0, 262.0)
@@ -76,12 +77,12 @@ def draw_cluster(data: dict, large, small, source: str, design_file: str, versio
     def views(sheet):
         # end view, from the small gear's end: +z towards the reader, counter-clockwise as drawn
         cx, cy = (END_VIEW[0] + END_VIEW[2]) / 2, (END_VIEW[1] + END_VIEW[3]) / 2
-        polyline(sheet, sheet_parts._outline_points(lp, 0.05 / k), (cx, cy), k, lw=0.18, color="0.35")
-        polyline(sheet, _turned(sheet_parts._outline_points(sp, 0.05 / k), phase), (cx, cy), k, lw=0.5)
-        bore = sheet_parts._bore_points(large.hub)
+        polyline(sheet, sheet_parts.outline_points(lp, 0.05 / k), (cx, cy), k, lw=0.18, color="0.35")
+        polyline(sheet, _turned(sheet_parts.outline_points(sp, 0.05 / k), phase), (cx, cy), k, lw=0.5)
+        bore = sheet_parts.bore_points(large.hub)
         if bore is not None:
             polyline(sheet, np.vstack([bore, bore[:1]]), (cx, cy), k, lw=0.5)
-        sheet_parts._centre_cross(sheet, cx, cy, lp.tip_radius * k + 4)
+        sheet_parts.centre_cross(sheet, cx, cy, lp.tip_radius * k + 4)
         r_out = max(lp.tip_radius, sp.tip_radius) * k + 6
         for angle, label in ((0.0, "large tooth 0"), (phase, "small tooth")):
             chain_line(sheet, [cx, cx + r_out * math.cos(angle)], [cy, cy + r_out * math.sin(angle)])
@@ -123,7 +124,7 @@ def cluster_drawings(data: dict, large, small, folder, name: str, source: str, d
     """``name-drawing.svg``/``.pdf`` of the cluster into ``folder``, recorded in ``data["drawing"]``."""
     from geargen import __version__
     data["drawing"] = {"svg": f"{name}-drawing.svg", "pdf": f"{name}-drawing.pdf"}
-    return write_sheet(draw_cluster(data, large, small, source, design_file, __version__), folder, name)
+    return write_figure(draw_cluster(data, large, small, source, design_file, __version__), folder, name)
 
 
 __all__ = ["cluster_rows", "draw_cluster", "cluster_drawings"]

@@ -11,9 +11,9 @@ import math
 import numpy as np
 
 from geargen.core.rack import pin_contact_height, pitch_line_pin_diameter, rack_outline
-from geargen.report.drawing import NOT_SPECIFIED, format_limits, format_number, format_um, scale_text
+from geargen.report.drawing import format_limits, format_number, format_um, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet,
-                                          polyline, value_text, view_title, write_sheet)
+                                          polyline, value_text, view_title)
 from geargen.units import from_mm
 
 SIDE_VIEW = (VIEWS[0], 185.0, VIEWS[2], 262.0)
@@ -114,7 +114,7 @@ def rack_drawings(data: dict, spec, folder, name: str, source: str, design_file:
     """``name-drawing.svg``/``.pdf`` of the rack into ``folder``, recorded in ``data["drawing"]``."""
     from geargen import __version__
     data["drawing"] = {"svg": f"{name}-drawing.svg", "pdf": f"{name}-drawing.pdf"}
-    return write_sheet(draw_rack(data, spec, source, design_file, __version__), folder, name)
+    return write_figure(draw_rack(data, spec, source, design_file, __version__), folder, name)
 
 
 __all__ = ["rack_rows", "draw_rack", "rack_drawings"]

@@ -15,9 +15,9 @@ import math
 import numpy as np
 
 from geargen.core.worm import rim_radius, worm_geometry
-from geargen.report.drawing import NOT_SPECIFIED, format_number, scale_text
+from geargen.report.drawing import format_number, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
-                                          polyline, value_text, view_title, write_sheet)
+                                          polyline, value_text, view_title)
 from geargen.units import from_mm
 
 
@@ -190,7 +190,7 @@ def worm_drawings(data: dict, spec, folder, name: str, source: str, design_file:
     """``name-drawing.svg``/``.pdf`` of the worm or wheel into ``folder``, recorded in ``data["drawing"]``."""
     from geargen import __version__
     data["drawing"] = {"svg": f"{name}-drawing.svg", "pdf": f"{name}-drawing.pdf"}
-    return write_sheet(draw_worm_part(data, spec, source, design_file, __version__), folder, name)
+    return write_figure(draw_worm_part(data, spec, source, design_file, __version__), folder, name)
 
 
 __all__ = ["worm_rows", "wheel_rows", "thread_section", "wheel_section", "draw_worm_part", "worm_drawings"]

@@ -26,8 +26,10 @@ from geargen.design.gear import GearSpec
 from geargen.drives.resolver import resolve
 from geargen.model.allowance import drive_allowances
 from geargen.profile.tooth import tooth_profile
+from geargen.report.drawing import DATA_BLOCK
 from geargen.units import LENGTH_SUFFIXES
 from tests.conftest import ASSEMBLY_DESIGNS
+from tests.drawing_support import cell_texts, table_rows
 
 pytestmark = pytest.mark.slow
 
@@ -85,18 +87,6 @@ def dxf_section(path, unit: str, samples: int = 64) -> Section:
     return Section(0.0, curves, np.concatenate(points), np.concatenate(index), np.concatenate(params))
 
 
-def drawing_texts(path) -> list[str]:
-    """The text elements of a drawing's SVG, in order."""
-    return [t.strip() for t in re.findall(r"<text[^>]*>(.*?)</text>", path.read_text(), flags=re.S)]
-
-
-def row_value(texts: list[str], label: str) -> str:
-    """The value of the data table's row ``label``: the first text after it that starts with a number
-    (the symbol between them, W_k or M_dK, does not)."""
-    i = texts.index(label)
-    return next(t for t in texts[i + 1:i + 4] if re.match(r"^[-+]?\d", t))
-
-
 def printed_equal(text: str, values: list[float]) -> None:
     """The numbers printed in ``text`` are ``values`` rounded as printed (half a unit of the last digit)."""
     printed = re.findall(r"[-+]?\d+\.\d+", text)
@@ -108,22 +98,23 @@ def printed_equal(text: str, values: list[float]) -> None:
 
 def check_drawing(folder, data: dict, unit: str) -> None:
     """The drawing's allowance, thinning, span and over-pins numbers are the gear JSON's."""
-    texts = drawing_texts(folder / "drawings" / f"{data['name']}-drawing.svg")
+    # the data block's rows read by their cells (a label may wrap to two lines)
+    rows = table_rows(cell_texts(folder / "drawings" / f"{data['name']}-drawing.svg"), DATA_BLOCK)
     allowance = data["thickness_allowance"]
     k = LENGTH_SUFFIXES[unit]
     for side in ("upper", "lower"):
         um = allowance[f"{side}_um"]
-        printed_equal(row_value(texts, f"Tooth thickness allowance, {side}"), [um * 1e-3 / k, um])
-    printed_equal(row_value(texts, "Thinning in the model (circumferential)"), [data["thinning_circumferential"]])
+        printed_equal(rows[f"Tooth thickness allowance, {side}"], [um * 1e-3 / k, um])
+    printed_equal(rows["Thinning in the model (circumferential)"], [data["thinning_circumferential"]])
     span = data["span"]
     if span:
-        printed_equal(row_value(texts, f"Span over k = {span['teeth_spanned']} teeth"), [span["span_normal"]])
-        printed_equal(row_value(texts, "Span limits"), span["limits"][::-1])  # printed max / min
+        printed_equal(rows[f"Span over k = {span['teeth_spanned']} teeth"], [span["span_normal"]])
+        printed_equal(rows["Span limits"], span["limits"][::-1])  # printed max / min
     pins = data["over_pins"]
     kind = pins["kind"]
-    printed_equal(row_value(texts, f"{kind[:-1].capitalize()} diameter"), [pins["diameter"]])
-    printed_equal(row_value(texts, f"Dimension over {kind}"), [pins["dimension"]])
-    printed_equal(row_value(texts, f"Over-{kind} limits"), pins["limits"][::-1])
+    printed_equal(rows[f"{kind[:-1].capitalize()} diameter"], [pins["diameter"]])
+    printed_equal(rows[f"Dimension over {kind}"], [pins["dimension"]])
+    printed_equal(rows[f"Over-{kind} limits"], pins["limits"][::-1])
 
 
 def measure(shape, cut, spec: GearSpec, data: dict, z: float) -> dict[str, float]:

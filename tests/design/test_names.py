@@ -167,7 +167,7 @@ def test_the_drawing_holds_the_longest_gear_name():
     from geargen.design.gear import GearSpec
     from geargen.model.gear_data import gear_data
     from geargen.profile.tooth import tooth_profile
-    from geargen.report.drawing import _data_block, _Sheet, data_rows
+    from geargen.report.drawing import draw_data_block, Sheet, data_rows
 
     spec = GearSpec(teeth=21, module=1.0, pressure_angle=0.3490658503988659, face_width=10.0, helix_angle=0.3,
                     accuracy_grade=6)  # every row the block can have: helical, graded, an allowance
@@ -183,7 +183,7 @@ def test_the_drawing_holds_the_longest_gear_name():
                                  "centre_distance_tolerance": [-0.01, 0.01]}] * 2
         source = f"gear {name} from {path} [gears.{name}]"  # geargen gear FILE --gear NAME: the longest source
         try:
-            _data_block(_Sheet(), data_rows(data, "2:1 (section 1:1, detail 10:1)", "0.0.0", source))
+            draw_data_block(Sheet(), data_rows(data, "2:1 (section 1:1, detail 10:1)", "0.0.0", source))
             return True
         except ValueError:
             return False
