@@ -99,13 +99,13 @@ class RackSpec:
         _check("teeth", self.teeth, 1, 10000, "")
         _check("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
         _check("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
-        _check("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
+        _check("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True, length_unit=self.length_unit)
         _check("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
         if self.hand not in HANDS:
             raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
         _check("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
         _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
-        _check("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm")
+        _check("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm", length_unit=self.length_unit)
         if self.tip_rounding not in TIP_ROUNDINGS:
             raise DesignError("tip_rounding", f"{self.tip_rounding!r} is not a valid choice",
                               ", ".join(map(repr, TIP_ROUNDINGS)))
@@ -129,7 +129,7 @@ class RackSpec:
         _check("root_fillet_coefficient", self.root_fillet_coefficient, 0.0,
                self.max_root_fillet_coefficient(self.tip_radius_coefficient), "")
         self._check_short_segments()
-        _check("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True)
+        _check("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True, length_unit=self.length_unit)
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
 
