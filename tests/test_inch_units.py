@@ -148,6 +148,9 @@ def outputs(tmp_path_factory) -> dict[str, tuple[str, set[str]]]:
             out[str(path.relative_to(tmp))] = (_svg_text(path), design_units)
         elif path.suffix == ".json":
             out[str(path.relative_to(tmp))] = ("\n".join(_json_strings(json.loads(path.read_text()))), design_units)
+        elif path.name == "data.js":  # the review page's data: one JSON object assigned to a global
+            data = json.loads(path.read_text().split("=", 1)[1].strip().rstrip(";"))
+            out[str(path.relative_to(tmp))] = ("\n".join(_json_strings(data)), design_units)
     return out
 
 
@@ -224,3 +227,13 @@ def test_no_shipped_design_is_warned_about(design):
     # the robot joint writes its STL tolerances in mm beside inch lengths: small by nature, not warned
     from geargen.design.assembly import load_design
     assert load_design(design).unit_warnings == ()
+
+
+def test_an_inch_gears_range_error_names_its_own_option_in_inches(tmp_path, capsys):
+    from geargen.cli import main
+    assert main(["gear", "--teeth", "18", "--diametral-pitch", "20", "--face-width-in", "0.5", "--thinning", "0.06",
+                 "--no-stl", "--out", str(tmp_path / "gear")]) == 2
+    err = capsys.readouterr().err
+    # a quarter of the circular pitch: pi / (4 x 20) = 0.0392699 in; the option is --thinning (was
+    # named --bevel-thinning, the bevel kind's option)
+    assert "--thinning: 0.06 in is out of range (allowed: [0, 0.0392699] in" in err

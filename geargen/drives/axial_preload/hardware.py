@@ -9,7 +9,6 @@ on its bearings, and the housing's bottom and top plates (the ground)."""
 from __future__ import annotations
 
 from functools import partial
-
 from typing import Any, Mapping
 
 from geargen.model import bodies as B

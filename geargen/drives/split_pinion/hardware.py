@@ -11,7 +11,6 @@ the stiffness model reads the same shafts (the inner shaft's torsion, each pinio
 from __future__ import annotations
 
 from functools import partial
-
 from typing import Any, Mapping
 
 from geargen.errors import DesignError
