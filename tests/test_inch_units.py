@@ -237,3 +237,15 @@ def test_an_inch_gears_range_error_names_its_own_option_in_inches(tmp_path, caps
     # a quarter of the circular pitch: pi / (4 x 20) = 0.0392699 in; the option is --thinning (was
     # named --bevel-thinning, the bevel kind's option)
     assert "--thinning: 0.06 in is out of range (allowed: [0, 0.0392699] in" in err
+
+
+def test_hardware_that_cannot_be_made_is_refused_in_inches(tmp_path, capsys):
+    # a clamp collar narrower than the inner shaft it clamps: the body library's message, in inches
+    from geargen.cli import main
+    bad = tmp_path / "collar.toml"
+    bad.write_text(INCH_DESIGN.read_text().replace("collar_outer_diameter_in = 0.875", "collar_outer_diameter_in = 0.00001"))
+    assert main(["check", str(bad)]) == 2
+    err = capsys.readouterr().err
+    # the collar's bore is the inner shaft's 1/4 in (the compliant pinion's bore_diameter_in)
+    assert "the hardware cannot be made: bore 0.25 in must lie in [0, 1e-05 in)" in err
+    assert findings(err, set(), "stderr") == []
