@@ -249,3 +249,15 @@ def test_hardware_that_cannot_be_made_is_refused_in_inches(tmp_path, capsys):
     # the collar's bore is the inner shaft's 1/4 in (the compliant pinion's bore_diameter_in)
     assert "the hardware cannot be made: bore 0.25 in must lie in [0, 1e-05 in)" in err
     assert findings(err, set(), "stderr") == []
+
+
+def test_the_robot_joints_undercut_note_is_in_inches():
+    # the "involute starts at radius 5.96749 mm" on the 16-tooth 32 DP input: 5.96749 / 25.4
+    import warnings
+    from geargen.design.assembly import load_design
+    from geargen.profile.tooth import UndercutWarning, tooth_profile
+    spec = load_design(ROOT / "assemblies" / "robot_joint.toml").gears["input"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", UndercutWarning)
+        (note,) = tooth_profile(spec).warnings
+    assert "the usable involute starts at radius 0.234941 in instead" in note
