@@ -34,6 +34,7 @@ from geargen.cad.kernel import volume
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import BuildError
 from geargen.model.components import COLOURS, transform
+from geargen.units import length_text, pitch_text
 
 # ---------------------------------------------------------------- placements
 
@@ -147,7 +148,8 @@ def _gear_text(spec) -> str:
     if isinstance(spec, ClusterSpec):
         return f"cluster {spec.large.teeth}/{spec.small.teeth} T"
     helix = f", helix {math.degrees(spec.helix_angle):.4g} deg {spec.hand}" if spec.is_helical else ""
-    return f"{spec.teeth} T, m_n {spec.module:.4g} mm{helix}, face {spec.face_width:.4g} mm"
+    unit = spec.length_unit
+    return f"{spec.teeth} T, {pitch_text(spec.module, unit)}{helix}, face {length_text(spec.face_width, unit)}"
 
 
 # ---------------------------------------------------------------- the [parts] section

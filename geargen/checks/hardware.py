@@ -30,6 +30,7 @@ from geargen.model.bodies import distance_function, polygon_distance, world_box
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
 from geargen.profile.tooth import section_rotation, tooth_profile
+from geargen.units import LENGTH_SUFFIXES, length_text
 
 #: shared volume below which two parts only touch (mm^3; the build's overlap check uses the same)
 OVERLAP_TOLERANCE = 1e-3
@@ -276,15 +277,17 @@ class PartFinding:
     part2: str
     amount: float
     why: str = ""
+    length_unit: str = "mm"  # the design's: what the message says the amount in
 
     @property
     def message(self) -> str:
+        unit = self.length_unit
+        volume = f"{self.amount / LENGTH_SUFFIXES[unit] ** 3:.4g} {unit}^3"
         if self.kind == "overlap":
-            return f"parts overlap: {self.part1} and {self.part2} share {self.amount:.4g} mm^3"
+            return f"parts overlap: {self.part1} and {self.part2} share {volume}"
         if self.kind == "interpenetrating":
-            return (f"parts meant to touch run into each other: {self.part1} and {self.part2} share "
-                    f"{self.amount:.4g} mm^3 ({self.why})")
-        return (f"intended contact missing: {self.part1} and {self.part2} are {self.amount:.4g} mm apart, "
+            return f"parts meant to touch run into each other: {self.part1} and {self.part2} share {volume} ({self.why})"
+        return (f"intended contact missing: {self.part1} and {self.part2} are {length_text(self.amount, unit)} apart, "
                 f"not touching ({self.why})")
 
 
@@ -325,6 +328,7 @@ def parts_check(layout, tolerance: float = OVERLAP_TOLERANCE, contact_tolerance:
                 resolution: float = 0.05) -> PartsReport:
     """The parts check of the module docstring on the resolved drive ``layout``."""
     hardware = layout.hardware
+    unit = layout.design.length_unit
     parts = analytic_parts(layout)
     report = PartsReport(len(parts), 0, tolerance=tolerance, contact_tolerance=contact_tolerance)
     if hardware is None:
@@ -343,10 +347,11 @@ def parts_check(layout, tolerance: float = OVERLAP_TOLERANCE, contact_tolerance:
             report.pairs_read += 1
             reading = read_pair(a, b, resolution, tolerance=tolerance)
             if reading.volume > tolerance:
-                report.findings.append(PartFinding("overlap", a.name, b.name, reading.volume))
+                report.findings.append(PartFinding("overlap", a.name, b.name, reading.volume, length_unit=unit))
     for key, joint in joints.items():
         if joint.a not in by_name or joint.b not in by_name:
-            report.findings.append(PartFinding("missing_contact", joint.a, joint.b, math.inf, joint.why + " (no such part)"))
+            report.findings.append(PartFinding("missing_contact", joint.a, joint.b, math.inf, joint.why + " (no such part)",
+                                                   length_unit=unit))
             continue
         report.pairs_read += 1
         a, b = by_name[joint.a], by_name[joint.b]
@@ -355,9 +360,9 @@ def parts_check(layout, tolerance: float = OVERLAP_TOLERANCE, contact_tolerance:
         reading = read_pair(a, b, 8 * resolution, margin=max(contact_tolerance, 8 * resolution))
         gap = 2 * closest_approach(a, b, reading.near[:3], 8 * resolution) if len(reading.near) else math.inf
         if gap > contact_tolerance:
-            report.findings.append(PartFinding("missing_contact", joint.a, joint.b, gap, joint.why))
+            report.findings.append(PartFinding("missing_contact", joint.a, joint.b, gap, joint.why, unit))
         elif reading.volume > tolerance:
-            report.findings.append(PartFinding("interpenetrating", joint.a, joint.b, reading.volume, joint.why))
+            report.findings.append(PartFinding("interpenetrating", joint.a, joint.b, reading.volume, joint.why, unit))
     return report
 
 

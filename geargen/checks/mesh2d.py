@@ -971,7 +971,7 @@ def _static_failures(setup: MeshSetup, settings: CheckSettings):
                                  f"{length_text(minimum, g.length_unit)} ({settings.min_tip_land_modules:g} m_n)",
                                  "tip_land", o.profile.tip_land, minimum))
         if o.profile.undercut:
-            notes.append(f"{g.name} is undercut: its involute starts at radius {o.r_start:.6g} mm")
+            notes.append(f"{g.name} is undercut: its involute starts at radius {length_text(o.r_start, g.length_unit, 6)}")
     try:
         geo = mesh_geometry(GearPair(setup.gear1, setup.gear2), setup.centre_distance)
     except GeargenError as exc:  # a pair the formulas reject (e.g. mismatched pitch) is reported, not raised

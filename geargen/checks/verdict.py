@@ -84,7 +84,8 @@ def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: b
     settings = checks_settings(design) if settings is None else settings
     unit = design.length_unit
     k = LENGTH_SUFFIXES[unit]
-    result = DesignCheck(design=design.name, length_unit=unit, meshes=[], notes=list(layout.notes))
+    result = DesignCheck(design=design.name, length_unit=unit, meshes=[],
+                         notes=list(design.unit_warnings) + list(layout.notes))
     setups = {}
     for mesh in layout.meshes:
         entry = {"mesh": mesh.name, "gear1": mesh.part1, "gear2": mesh.part2, "kind": BACKLASH_KIND,

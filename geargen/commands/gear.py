@@ -206,8 +206,10 @@ def _flag_of_key(key: str, table: dict, given: list[str]) -> str:
         return shop[key]
     if key == "kind":
         return "--kind"
+    kind = table.get("kind", "external")
     for dest, (flag, stem, is_length, kinds) in _kind_option_table().items():
-        if key == stem or (is_length and key.rsplit("_", 1)[0] == stem):
+        # only the gear's own kind's options (a spur gear's thinning is --thinning, not --bevel-thinning)
+        if kind in kinds and (key == stem or (is_length and key.rsplit("_", 1)[0] == stem)):
             return flag
     for stem, flag in (("face_width", "--face-width"), ("bore_diameter", "--bore"), ("centre_gap", "--centre-gap"),
                        ("thinning_circumferential", "--thinning")):

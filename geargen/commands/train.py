@@ -72,7 +72,7 @@ def _run(args, design, output) -> int:
     kind, result = analysis(design)
     data = report.train_dict(result) if kind == "drive" else report.dual_motor_dict(result)
     text_out = sys.stderr if args.json == "-" else sys.stdout
-    print(report.format_train(data) if kind == "drive" else report.format_dual_motor(data), file=text_out)
+    print(report.format_train(data, design.text_units) if kind == "drive" else report.format_dual_motor(data), file=text_out)
     if output is not None:
         written = (report.write_train_plots(result, output.work) if kind == "drive"
                    else report.write_dual_motor_plots(result, output.work))

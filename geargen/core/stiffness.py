@@ -38,6 +38,7 @@ from geargen.core.flexures import (BeamPinion, BladeDesign, BladeFlexure, Compre
 from geargen.design.stiffness import (TRAIN_SHAFTS, ComponentSpec, StiffnessDesign, StiffnessSpec,
                                       engagement_meshes, stiffness_design)
 from geargen.errors import DesignError
+from geargen.units import TextUnits
 
 #: Eq. 1's divisor: k_mesh = E w / 11 (Shigley, bending + shear + contact of a typical mesh)
 MESH_DIVISOR = 11.0
@@ -716,6 +717,8 @@ class StiffnessSummary:
     engagement: HelicalEngagement | None = None
     warnings: tuple[str, ...] = field(default_factory=tuple)
     supports: tuple["SupportDeflection", ...] = ()
+    #: the units its text is shown in (the design's: :attr:`geargen.design.assembly.Design.text_units`)
+    units: TextUnits = TextUnits()
 
     # --- drive quantities ---
     @property
@@ -912,6 +915,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     spec, pre = sd.stiffness, sd.preload
     drive_type = design.drive_type
     warnings: list[str] = []
+    u = design.text_units  # the warnings speak the design's units
 
     train = drive_train(design, spec)
     comps: list[ComponentStiffness] = []
@@ -984,10 +988,10 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
             hint = ""
             if lever is not None and linear_parts and not torsional_parts:
                 # k3 = k lambda^-2: the linear stiffness along the preload motion that gives a third of the path
-                hint = (f"; a third of it needs {min(k1, k2) / 3.0 * lever ** 2:.4g} N/mm along the preload motion "
-                        f"(now {preload_spring.linear_stiffness:.4g})")
-            warnings.append(f"preload spring k3 = {k3 * 1e-3:.4g} N·m/rad is not several times softer than a path "
-                            f"({min(k1, k2) * 1e-3:.4g} N·m/rad): the loop stiffness, and so the preload variation, "
+                hint = (f"; a third of it needs {u.text('linear_stiffness', min(k1, k2) / 3.0 * lever ** 2)} along the "
+                        f"preload motion (now {u.text('linear_stiffness', preload_spring.linear_stiffness)})")
+            warnings.append(f"preload spring k3 = {u.text('torsional_stiffness', k3)} is not several times softer than a path "
+                            f"({u.text('torsional_stiffness', min(k1, k2))}): the loop stiffness, and so the preload variation, "
                             f"is set by the paths{hint}")
     elif linear_parts or torsional_parts:
         raise DesignError("drive.type", "a type1 drive has no preload spring, but the design gives one "
@@ -1021,12 +1025,12 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     to_carry = preload_to_carry(pre.max_output_torque, drive_type, k1, k2, k3)
     fe = None if lever is None else float(carriage_force(preload, lever))
     if preload < rule * (1 - 1e-12):
-        warnings.append(f"preload {preload * 1e-3:.4g} N·m is below the paper's recommendation "
-                        f"{rule * 1e-3:.4g} N·m ({'half ' if drive_type == 'type2' else ''}the maximum load)")
+        warnings.append(f"preload {u.text('torque', preload)} is below the paper's recommendation "
+                        f"{u.text('torque', rule)} ({'half ' if drive_type == 'type2' else ''}the maximum load)")
     t_lo, t_hi = drive.unloading_torques
     if min(-t_lo, t_hi) < pre.max_output_torque * (1 - 1e-12):
-        warnings.append(f"a path unloads at {min(-t_lo, t_hi) * 1e-3:.4g} N·m, below the maximum load "
-                        f"{pre.max_output_torque * 1e-3:.4g} N·m")
+        warnings.append(f"a path unloads at {u.text('torque', min(-t_lo, t_hi))}, below the maximum load "
+                        f"{u.text('torque', pre.max_output_torque)}")
 
     # spring length for this preload when the springs do not set it
     installed_for_preload = None
@@ -1037,11 +1041,11 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         if spring.installed_length is not None and spring.installed_length <= spring.solid_height:
             warnings.append("springs: installed length is at or below the solid height")
         if spring.installed_stress > spring.allowable_shear_stress:
-            warnings.append(f"springs: installed stress {spring.installed_stress:.4g} MPa exceeds the allowable "
-                            f"{spring.allowable_shear_stress:.4g} MPa")
+            warnings.append(f"springs: installed stress {u.text('stress', spring.installed_stress)} exceeds the allowable "
+                            f"{u.text('stress', spring.allowable_shear_stress)}")
         if not spring.solid_safe:
-            warnings.append(f"springs: closed solid the stress would be {spring.solid_stress:.4g} MPa "
-                            f"(allowable {spring.allowable_shear_stress:.4g} MPa); keep them off solid")
+            warnings.append(f"springs: closed solid the stress would be {u.text('stress', spring.solid_stress)} "
+                            f"(allowable {u.text('stress', spring.allowable_shear_stress)}); keep them off solid")
 
     # --- loop errors and the preload band ---
     if carriage_travels:
@@ -1056,21 +1060,21 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
                        for e in errors)
     for v in variations:
         if v.unloads:
-            warnings.append(f"loop error ({v.label}) unloads the preload: band {v.low * 1e-3:.4g} to {v.high * 1e-3:.4g} N·m")
+            warnings.append(f"loop error ({v.label}) unloads the preload: band {u.value('torque', v.low):.4g} to {u.text('torque', v.high)}")
         elif v.low < rule * (1 - 1e-12) and v.label == headline:
-            warnings.append(f"loop error ({v.label}) takes the preload down to {v.low * 1e-3:.4g} N·m, below the "
-                            f"recommended {rule * 1e-3:.4g} N·m")
+            warnings.append(f"loop error ({v.label}) takes the preload down to {u.text('torque', v.low)}, below the "
+                            f"recommended {u.text('torque', rule)}")
 
     # --- flexure travel and stress ---
     if flex is not None:
         needed = abs(sd.flexures.neutral_offset) + max((v.carriage_travel or 0.0) for v in variations) / 2.0 \
             if variations else abs(sd.flexures.neutral_offset)
         if needed > flex.travel * (1 + 1e-12):
-            warnings.append(f"flexures: the loop error needs {needed:.4g} mm of travel from neutral, more than the "
-                            f"{flex.travel:.4g} mm designed")
+            warnings.append(f"flexures: the loop error needs {u.text('length', needed)} of travel from neutral, more than the "
+                            f"{u.text('length', flex.travel)} designed")
         if not flex.stress_ok:
-            warnings.append(f"flexures: stress {flex.stress_at_travel:.4g} MPa at {flex.travel:.4g} mm exceeds the "
-                            f"allowable {flex.allowable_stress:.4g} MPa")
+            warnings.append(f"flexures: stress {u.text('stress', flex.stress_at_travel)} at {u.text('length', flex.travel)} exceeds the "
+                            f"allowable {u.text('stress', flex.allowable_stress)}")
 
     # --- beam pinion at the preload force ---
     beam = None
@@ -1081,9 +1085,9 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
                            mesh_position=probe.mesh_position, face_width=pin.face_width,
                            allowable_stress=beam_spec.allowable_stress)
         if beam.stress_ok is False:
-            warnings.append(f"beam pinion: stress {beam.max_stress:.4g} MPa exceeds the allowable {beam.allowable_stress:.4g} MPa")
+            warnings.append(f"beam pinion: stress {u.text('stress', beam.max_stress)} exceeds the allowable {u.text('stress', beam.allowable_stress)}")
         if abs(beam.zero_slope_offset) > 1e-9 * beam.span:
-            warnings.append(f"beam pinion: the mesh is {beam.zero_slope_offset:+.4g} mm from the zero-slope point "
+            warnings.append(f"beam pinion: the mesh is {u.value('length', beam.zero_slope_offset):+.4g} {u.length} from the zero-slope point "
                             "(put the bearings symmetric about the mesh)")
 
     # --- helical engagement ---
@@ -1118,16 +1122,17 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
                                 design.gears[c.gear].face_width)
         supports.append(sup)
         if sup.misalignment > MISALIGNMENT_WARNING:
-            warnings.append(f"{c.name}: at the preload's mesh force {force:.4g} N gears.{c.gear} deflects "
-                            f"{sup.deflection * 1e3:.4g} um and tilts {sup.tilt * 1e6:.4g} urad: "
-                            f"{sup.misalignment * 1e3:.3g} um of misalignment across its {sup.face_width:.4g} mm face "
-                            f"(more than {MISALIGNMENT_WARNING * 1e3:g} um: the flank contact moves to one end)")
+            warnings.append(f"{c.name}: at the preload's mesh force {u.text('force', force)} gears.{c.gear} deflects "
+                            f"{u.small_length(sup.deflection)} and tilts {sup.tilt * 1e6:.4g} urad: "
+                            f"{u.small_length(sup.misalignment, 3)} of misalignment across its {u.text('length', sup.face_width)} face "
+                            f"(more than {u.small_length(MISALIGNMENT_WARNING, 3)}: the flank contact moves to one end)")
 
     location = spec.reduce_to
     ratios = {"output": 1.0} if train is None else {s: train.shaft_ratio(s) for s in train.shafts}
     return StiffnessSummary(
         name=design.name, drive_type=drive_type, preload_method=method, location=location,
-        location_ratio=ratios[location], shaft_ratios=ratios, length_unit=design.length_unit, components=tuple(comps), path1=path1,
+        location_ratio=ratios[location], shaft_ratios=ratios, length_unit=design.length_unit, units=design.text_units,
+        components=tuple(comps), path1=path1,
         path2=path2, common=common, preload_spring=preload_spring, drive=drive,
         max_output_torque=pre.max_output_torque, preload_source=source, required_preload=rule,
         preload_to_carry=to_carry, carriage_force=fe, lever=lever, variations=variations, headline_budget=headline,

@@ -44,7 +44,8 @@ from geargen.design.parts import hardware_fields
 from geargen.design.stiffness import QUANTITY_SUFFIXES, preload_spec_from_table
 from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
-from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS
+from geargen.design.written_units import other_unit_warnings
+from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS, TextUnits, text_units
 
 #: top-level sections a design file may hold, and who reads them
 SECTIONS: dict[str, str] = {
@@ -94,11 +95,18 @@ class Design:
     #: gear table key -> the label its ``name`` key gives it (only gears whose label differs from the
     #: key): for reports and exports; the key stays the gear's identity (``gears``, every section)
     labels: dict[str, str] = field(default_factory=dict)
+    #: lengths written in the other unit whose numbers read like the design's own (geargen.design.written_units)
+    unit_warnings: tuple[str, ...] = ()
 
     @property
     def mm_per_unit(self) -> float:
         """mm in one of the design's length units (25.4 for an inch design)."""
         return LENGTH_SUFFIXES[self.length_unit]
+
+    @property
+    def text_units(self) -> TextUnits:
+        """The units this design's reports, warnings and errors use (:func:`geargen.units.text_units`)."""
+        return text_units(self.length_unit, _keys_of(self.sections))
 
     def section(self, name: str) -> dict[str, Any]:
         """The raw table of a section (empty when the file has none)."""
@@ -120,6 +128,14 @@ class Design:
         """A path written in the design file, relative to the file's folder."""
         base = self.path.parent if self.path else Path.cwd()
         return (base / relative).resolve()
+
+
+def _keys_of(table: Mapping[str, Any]):
+    """Every key of a nested table, depth first in file order."""
+    for key, value in table.items():
+        yield key
+        if isinstance(value, Mapping):
+            yield from _keys_of(value)
 
 
 def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: str = "",
@@ -219,7 +235,9 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
                 problems.add(DesignError(k, f"expected a table, got {type(v).__name__}", f"a [{k}] table"))
     design = Design(name=name, length_unit=unit, gears=gears, sections=sections, description=description,
                     drive_type=drive_type, preload_method=preload, path=path, sha256=sha256,
-                    defaulted=defaulted, labels=labels)
+                    defaulted=defaulted, labels=labels,
+                    unit_warnings=tuple(other_unit_warnings({k: v for k, v in data.items() if isinstance(v, Mapping)},
+                                                            unit)))
     if validate:
         from geargen.design.validate import validate_sections  # it reads the sections with their own modules
 

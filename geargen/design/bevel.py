@@ -100,9 +100,9 @@ class BevelGearSpec:
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
         # the toe must stay a real sphere with a whole tooth on it: at most 0.6 R_e (a third is the rule)
-        check_number("face_width", self.face_width, 0.0, 0.6 * self.cone_distance, "mm", exclusive_lo=True)
-        check_number("thinning", self.thinning, 0.0, 0.25 * math.pi * self.module, "mm")
-        check_number("bore_diameter", self.bore_diameter, 0.0, math.inf, "mm")
+        check_number("face_width", self.face_width, 0.0, 0.6 * self.cone_distance, "mm", exclusive_lo=True, length_unit=self.length_unit)
+        check_number("thinning", self.thinning, 0.0, 0.25 * math.pi * self.module, "mm", length_unit=self.length_unit)
+        check_number("bore_diameter", self.bore_diameter, 0.0, math.inf, "mm", length_unit=self.length_unit)
         if self.bore_diameter > 0:
             # the bore runs along the axis and must stay inside the root cone at the toe
             most = 2 * self.toe_cone_distance * math.sin(self.pitch_cone_angle - self.dedendum_angle) * 0.95

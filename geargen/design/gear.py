@@ -31,7 +31,7 @@ from typing import Any, Mapping
 
 from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
-from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
+from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, from_mm, length_text, module_from_diametral_pitch
 
 DEG = math.pi / 180.0
 
@@ -205,7 +205,7 @@ class GearSpec:
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
         check_number("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
         check_number("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
-        check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
+        check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True, length_unit=self.length_unit)
         check_number("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
         self._check_double_helical()
         if self.hand not in HANDS:
@@ -221,7 +221,7 @@ class GearSpec:
             default = INTERNAL_CUTTER_TIP_RADIUS if self.kind == "internal" else 0.38
             object.__setattr__(self, "rack_tip_radius_coefficient", min(default, rho_max))
         check_number("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
-        check_number("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm")
+        check_number("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm", length_unit=self.length_unit)
         if self.thickness_deviations is not None:
             upper, lower = self.thickness_deviations
             if not (math.isfinite(upper) and math.isfinite(lower) and lower <= upper <= 0):
@@ -236,7 +236,7 @@ class GearSpec:
         if (self.hub.bore_diameter > 0 and self.root_radius_standard > 0
                 and self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98):
             raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
-                              f"< {2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth:.4g} mm")
+                              f"< {length_text(2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth, self.length_unit)}")
 
     def _check_internal(self) -> None:
         """A ring has no bore, keyway or hub; its rim must enclose the root circle with some wall."""
@@ -246,18 +246,20 @@ class GearSpec:
         least = 2 * self.root_radius_standard + 2 * MIN_RIM_WALL_MODULES * self.module
         if self.rim_diameter is None:
             object.__setattr__(self, "rim_diameter", internal_rim_diameter(self))
-        check_number("rim_diameter", self.rim_diameter, least, 100000.0, "mm")
+        check_number("rim_diameter", self.rim_diameter, least, 100000.0, "mm", length_unit=self.length_unit)
 
     def _check_double_helical(self) -> None:
         """A centre gap belongs to a double-helical gear and leaves both halves some face; a
         double-helical gear needs a helix (with none it would be a spur gear in two pieces)."""
         gap = self.centre_gap
+        written = length_text(gap, self.length_unit, 6) if isinstance(gap, (int, float)) else repr(gap)
         if self.kind != "double_helical":
             if gap != 0:
-                raise DesignError("centre_gap", f"{gap!r} mm: only a double_helical gear has a centre gap", "0")
+                raise DesignError("centre_gap", f"{written}: only a double_helical gear has a centre gap", "0")
             return
         if not (isinstance(gap, (int, float)) and math.isfinite(gap) and 0 <= gap < self.face_width):
-            raise DesignError("centre_gap", f"{gap!r} mm is out of range", f"[0, {self.face_width:.6g}) mm (below the face width)")
+            raise DesignError("centre_gap", f"{written} is out of range",
+                              f"[0, {length_text(self.face_width, self.length_unit, 6)}) (below the face width)")
         if not self.helix_angle > 0:
             raise DesignError("helix_angle", "a double_helical gear needs a helix", "(0, 45] deg")
 
@@ -396,14 +398,20 @@ def internal_rim_diameter(spec: GearSpec) -> float:
     return 2 * spec.root_radius_standard + 2 * INTERNAL_RIM_MODULES * spec.module
 
 
-def check_number(name: str, value, lo: float, hi: float, unit: str = "", exclusive_lo: bool = False) -> None:
+def check_number(name: str, value, lo: float, hi: float, unit: str = "", exclusive_lo: bool = False,
+                 length_unit: str = "mm") -> None:
     """DesignError naming ``name`` unless ``value`` is a finite number (not a bool) in [lo, hi] (or (lo, hi]);
-    every gear family's spec validates its numbers with it."""
-    ok = (isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
-          and (value > lo if exclusive_lo else value >= lo) and value <= hi)
+    every gear family's spec validates its numbers with it. A length (``unit`` "mm") is reported in
+    the design's ``length_unit``."""
+    number = isinstance(value, (int, float)) and not isinstance(value, bool)
+    ok = number and math.isfinite(value) and (value > lo if exclusive_lo else value >= lo) and value <= hi
     if not ok:
         left = "(" if exclusive_lo else "["
-        raise DesignError(name, f"{value!r} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())
+        written = repr(value)
+        if unit == "mm" and length_unit != "mm":
+            written = f"{from_mm(value, length_unit):.6g} {length_unit}" if number and math.isfinite(value) else written
+            lo, hi, unit = from_mm(lo, length_unit), from_mm(hi, length_unit), length_unit
+        raise DesignError(name, f"{written} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())
 
 
 def gear_kinds() -> tuple[str, ...]:

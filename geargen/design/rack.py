@@ -102,13 +102,13 @@ class RackSpec:
         check_number("teeth", self.teeth, 1, 10000, "")
         check_number("module", self.module, 0.01, 200.0, "mm", exclusive_lo=True)
         check_number("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
-        check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True)
+        check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True, length_unit=self.length_unit)
         check_number("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
         if self.hand not in HANDS:
             raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
         check_number("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
         check_number("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
-        check_number("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm")
+        check_number("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm", length_unit=self.length_unit)
         if self.thickness_deviations is not None:
             upper, lower = self.thickness_deviations
             if not (math.isfinite(upper) and math.isfinite(lower) and lower <= upper <= 0):
@@ -138,7 +138,7 @@ class RackSpec:
         check_number("root_fillet_coefficient", self.root_fillet_coefficient, 0.0,
                self.max_root_fillet_coefficient(self.tip_radius_coefficient), "")
         self._check_short_segments()
-        check_number("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True)
+        check_number("pitch_line_height", self.pitch_line_height, self.dedendum, 1e5, "mm", exclusive_lo=True, length_unit=self.length_unit)
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
 

@@ -29,6 +29,7 @@ from geargen.design.schema import (key_comment, GEAR_NAME_MAX, MAX_FILE_BYTES, M
 from geargen.design.stiffness import (KIND_KEYS, INTERNAL_UNITS, QUANTITY_SUFFIXES, BeamPinionSpec, ComponentSpec,
                                       FlexureSpec, PreloadSpec, Quantity, SpringSpec, StiffnessSpec)
 from geargen.design.validate import table_schema
+from geargen.design.written_units import FACTOR
 from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
 
 DEG = math.pi / 180.0
@@ -426,6 +427,19 @@ def _units_section() -> list[str]:
            "Every key that has a unit carries it as a suffix, and any suffix of its kind may be used: "
            "`face_width_mm = 8` and `face_width_in = 0.315` are the same key. Ranges below are given in "
            "internal units (mm, degrees for angles, N, N·mm, MPa); messages give them in the unit the file used.",
+           "",
+           "Every command's text (reports, tables, warnings, errors, plots) gives lengths in the design's "
+           "`length_unit`, and forces, torques, stiffnesses and stresses in that unit's usual system (N, N·m, "
+           "N/mm, MPa for mm; lbf, in·lbf, lbf/in, psi for in) unless the file wrote that quantity only in "
+           "the other system: then in the unit it wrote (the robot joint's `max_output_torque_Nm` keeps its "
+           "torques in N·m). JSON keys carry their unit.",
+           "",
+           "A length written in the other unit (`face_width_mm` in an inch design) is read in the unit it "
+           "names, and `geargen check` notes it when its number reads like one in the design's unit: more "
+           f"than {FACTOR:g} times from the file's typical size (the median of the sizes it wrote in its own "
+           f"unit) as written, within {FACTOR:g} times of it in the design's unit (a `pinion_axial_gap_mm = "
+           "0.0625` beside inch sizes). Tolerances, runouts, backlashes and thinnings, small by nature, are "
+           "not compared.",
            "", "| kind | suffixes (factor to the internal unit) |", "|---|---|"]
     out.append("| length (mm) | " + ", ".join(f"`_{s}` ({number_text(f)})" for s, f in LENGTH_SUFFIXES.items()) + " |")
     out.append("| angle (deg) | " + ", ".join(f"`_{s}` ({number_text(f / DEG)})" for s, f in ANGLE_SUFFIXES.items())

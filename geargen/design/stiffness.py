@@ -57,31 +57,10 @@ from geargen.design.schema import (Field, as_float, bound_text, check_name, chec
                                    shown, unknown_key)
 from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
-from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES
+from geargen.units import ANGLE_SUFFIXES, LENGTH_SUFFIXES, QUANTITY_SUFFIXES
 
-LBF = 4.4482216152605  # N per pound-force
 #: geargen's steel, MPa: the default Young's modulus of gears and shafts (Eq. 1's E)
 STEEL_ELASTIC_MODULUS = 207e3
-IN = 25.4  # mm per inch
-PSI = LBF / IN ** 2  # MPa per psi
-
-#: factor turning a value in the suffix's unit into the internal unit, per quantity family
-QUANTITY_SUFFIXES: dict[str, dict[str, float]] = {
-    "force": {"N": 1.0, "kN": 1e3, "lbf": LBF},
-    "torque": {"Nmm": 1.0, "Nm": 1e3, "in_lbf": LBF * IN, "ft_lbf": LBF * 12 * IN},
-    "linear_stiffness": {"N_per_mm": 1.0, "N_per_um": 1e3, "N_per_m": 1e-3, "kN_per_mm": 1e3,
-                         "lbf_per_in": LBF / IN},
-    "torsional_stiffness": {"Nmm_per_rad": 1.0, "Nm_per_rad": 1e3, "kNm_per_rad": 1e6,
-                            "Nm_per_deg": 1e3 * 180.0 / math.pi, "Nm_per_arcmin": 1e3 * 10800.0 / math.pi,
-                            "in_lbf_per_rad": LBF * IN},
-    "stress": {"MPa": 1.0, "GPa": 1e3, "Pa": 1e-6, "kPa": 1e-3, "psi": PSI, "ksi": PSI * 1e3, "Mpsi": PSI * 1e6},
-    # the servo's quantities ([train]) stay in SI: a motor data sheet's units
-    "inertia": {"kg_m2": 1.0, "kg_cm2": 1e-4, "g_cm2": 1e-7, "kg_mm2": 1e-6, "lb_in2": 0.45359237 * 0.0254 ** 2,
-                "oz_in_s2": LBF / 16 * 0.0254},
-    "rotary_damping": {"Nm_s_per_rad": 1.0, "Nmm_s_per_rad": 1e-3},
-    "torque_constant": {"Nm_per_A": 1.0},
-    "frequency": {"Hz": 1.0},
-}
 
 _ALL_SUFFIXES = set(LENGTH_SUFFIXES) | set(ANGLE_SUFFIXES) | {s for t in QUANTITY_SUFFIXES.values() for s in t}
 

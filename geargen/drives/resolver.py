@@ -19,6 +19,7 @@ from geargen.drives.registry import DRIVES
 from geargen.drives.rules import RuleBroken, find_fixes, offered
 from geargen.errors import DesignError
 from geargen.model.analysis import stiffness
+from geargen.model.bodies import SizeError
 from geargen.model.layout import Layout, is_drive
 
 
@@ -83,7 +84,8 @@ def with_hardware(layout: Layout) -> Layout:
                           "geargen sized it; see geargen check)",
                           f"{exc.allowed}; or a [{section}] table of your own") from None
     except ValueError as exc:
-        raise DesignError("parts", f"the hardware cannot be made: {exc}",
+        problem = exc.in_unit(design.length_unit) if isinstance(exc, SizeError) else str(exc)
+        raise DesignError("parts", f"the hardware cannot be made: {problem}",
                           "other [parts] sizes (the part named is what does not fit)") from None
     return replace(layout, hardware=hardware)
 

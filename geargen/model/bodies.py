@@ -28,6 +28,8 @@ from typing import Any
 
 import numpy as np
 
+from geargen.units import length_text
+
 
 @dataclass(frozen=True)
 class Body:
@@ -42,6 +44,18 @@ class Body:
         return _aabb(self)
 
 
+class SizeError(ValueError):
+    """A body its sizes cannot make. ``problem`` has a ``{}`` for each of ``lengths`` (mm), so the
+    message can be given in a design's unit (:meth:`in_unit`); ``str()`` gives it in mm."""
+
+    def __init__(self, problem: str, *lengths: float):
+        self.problem, self.lengths = problem, lengths
+        super().__init__(self.in_unit("mm"))
+
+    def in_unit(self, unit: str) -> str:
+        return self.problem.format(*(length_text(v, unit, 6) for v in self.lengths))
+
+
 def _f(*values) -> tuple[float, ...]:
     return tuple(float(v) for v in values)
 
@@ -49,7 +63,7 @@ def _f(*values) -> tuple[float, ...]:
 def _positive(**values) -> None:
     for name, v in values.items():
         if not (math.isfinite(v) and v > 0):
-            raise ValueError(f"{name} = {v!r} must be a positive length")
+            raise SizeError(f"{name} = {{}} must be a positive length", v)
 
 
 # ============================================================================ constructors
@@ -59,7 +73,7 @@ def cylinder(diameter: float, height: float, bore: float = 0.0) -> Body:
     """A (hollow) cylinder on +z, z in [0, height]."""
     _positive(diameter=diameter, height=height)
     if not 0 <= bore < diameter:
-        raise ValueError(f"bore {bore!r} mm must lie in [0, {diameter:.6g}) mm")
+        raise SizeError("bore {} must lie in [0, {})", bore, diameter)
     return Body("cylinder", _f(diameter, height, bore))
 
 
@@ -78,7 +92,7 @@ def frustum(bottom_radius: float, top_radius: float, height: float, bore: float 
     """A cone frustum on +z: radius ``bottom_radius`` at z = 0, ``top_radius`` at ``height``."""
     _positive(bottom_radius=bottom_radius, top_radius=top_radius, height=height)
     if not 0 <= bore < 2 * min(bottom_radius, top_radius):
-        raise ValueError(f"bore {bore!r} mm must be smaller than both end diameters")
+        raise SizeError("bore {} must be smaller than both end diameters", bore)
     return Body("frustum", _f(bottom_radius, top_radius, height, bore))
 
 
@@ -90,7 +104,7 @@ def shaft(diameter: float, length: float, bore: float = 0.0) -> Body:
 def bearing(bore: float, outer_diameter: float, width: float) -> Body:
     """A rolling bearing as its envelope ring, z in [0, width]."""
     if not outer_diameter > bore:
-        raise ValueError(f"bearing outer diameter {outer_diameter!r} mm is not larger than its bore {bore!r} mm")
+        raise SizeError("bearing outer diameter {} is not larger than its bore {}", outer_diameter, bore)
     return Body("bearing", _f(bore, outer_diameter, width))
 
 
@@ -125,7 +139,7 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
         raise ValueError("spring index D/d must exceed 2")
     solid = wire_diameter * (total_coils if ground else total_coils + 1)
     if not length > solid:
-        raise ValueError(f"spring length {length:.6g} mm closes its coils (solid height {solid:.6g} mm)")
+        raise SizeError("spring length {} closes its coils (solid height {})", length, solid)
     return Body("compression_spring", _f(wire_diameter, mean_coil_diameter, length, total_coils) + (bool(ground),))
 
 
@@ -154,7 +168,7 @@ def relieved(bosses) -> tuple[tuple[float, ...], ...]:
     out = tuple(_f(*b) + (0.0,) * (5 - len(b)) for b in bosses)
     for _, _, d, _, r in out:
         if not 0 <= r < d:
-            raise ValueError(f"relief {r!r} mm leaves no boss around it")
+            raise SizeError("relief {} leaves no boss around it", r)
     return out
 
 
@@ -183,7 +197,7 @@ def quill(outer_diameter: float, length: float, bores, lug_length: float, lug_wi
     radius = outer_diameter / 2
     for (z0, z1, d), following in zip(spans, spans[1:] + ((length, length, 0.0),)):
         if not (0 <= z0 < z1 <= following[0] and 0 < d < outer_diameter):
-            raise ValueError(f"quill bore ({z0:.6g}, {z1:.6g}, {d:.6g}) mm is out of range")
+            raise SizeError("quill bore from z {} to {}, diameter {}, is out of range", z0, z1, d)
     if not lug_width < outer_diameter:
         raise ValueError("the quill's lug is not narrower than its sleeve")
     if not math.hypot(quill_lug_root(outer_diameter, spans, lug_thickness), lug_width / 2) < radius:

@@ -272,13 +272,14 @@ def tooth_profile(spec: GearSpec, warn: bool = True) -> ToothProfile:
         if theta_start is None:
             raise GeometryError("no_involute", "the rack tip's fillet cuts the whole involute flank away")
     r_start = r_b * math.sqrt(1.0 + t_start * t_start)
+    start = length_text(r_start, spec.length_unit, 6)  # messages in the design's unit
     if t_start >= t_a or r_start >= r_a:
-        raise GeometryError("no_involute", f"the involute would start at radius {r_start:.6g} mm, at or above "
-                            f"the tip circle {r_a:.6g} mm (undercut removes the flank)")
+        raise GeometryError("no_involute", f"the involute would start at radius {start}, at or above the tip "
+                            f"circle {length_text(r_a, spec.length_unit, 6)} (undercut removes the flank)")
     if undercut:
         msg = (f"undercut: the rack tip cuts into the involute of this {z}-tooth gear (profile shift "
-               f"{spec.profile_shift:g}); the usable involute starts at radius {r_start:.6g} mm instead "
-               f"of at the fillet joint")
+               f"{spec.profile_shift:g}); the usable involute starts at radius {start} instead of at the "
+               f"fillet joint")
         notes.append(msg)
         if warn:
             warnings.warn(msg, UndercutWarning, stacklevel=2)

@@ -19,6 +19,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from geargen.units import TextUnits, diametral_pitch_from_module
+
 
 #: the model frame of a drive whose kind says nothing else (geargen.drives.kind.DriveKind.frame)
 FRAME = "the output gear's centre at the origin, +x along the symmetry line towards the input"
@@ -238,7 +240,7 @@ def key_numbers(result: Any) -> dict[str, Any]:
     unit = result.design.length_unit
     scale = LENGTH_SUFFIXES[unit]
     ratio = result.layout.ratio
-    out: dict[str, Any] = {"length_unit": unit,
+    out: dict[str, Any] = {"length_unit": unit, "torque_unit": result.design.text_units.torque,
                            "ratio": ratio["text"] if ratio else None,
                            "ratio_ok": ratio["ok"] if ratio else None,
                            "drive_stiffness_Nm_per_rad": None, "drive_stiffness_with_common_Nm_per_rad": None,
@@ -295,16 +297,22 @@ def key_numbers_table(numbers: dict[str, Any]) -> tuple[list[str], list[list[str
     """:func:`key_numbers` as a two-column table (quantity, value), every number in one format
     (:func:`plain_number`)."""
     unit = numbers["length_unit"]
-    g = plain_number
+    units = TextUnits(length=unit, torque=numbers.get("torque_unit", "Nm"))  # the numbers' N·m in the file's unit
+    tq, ks = units.unit("torque"), units.unit("torsional_stiffness")
+
+    def torque_number(value_nm, digits: int = 5):
+        return plain_number(None if value_nm is None else units.value("torque", value_nm * 1e3), digits)
+
     rows = [["ratio", "-" if numbers["ratio"] is None else
              f"{numbers['ratio']}" + ("" if numbers["ratio_ok"] else " (NOT an allowed ratio)")],
-            ["drive stiffness k_D (N·m/rad)", g(numbers["drive_stiffness_Nm_per_rad"])],
-            ["drive stiffness with common parts (N·m/rad)", g(numbers["drive_stiffness_with_common_Nm_per_rad"])],
-            ["loop stiffness k_L (N·m/rad)", g(numbers["loop_stiffness_Nm_per_rad"])],
-            ["preload (N·m)", g(numbers["preload_Nm"])]]
+            [f"drive stiffness k_D ({ks})", torque_number(numbers["drive_stiffness_Nm_per_rad"])],
+            [f"drive stiffness with common parts ({ks})", torque_number(numbers["drive_stiffness_with_common_Nm_per_rad"])],
+            [f"loop stiffness k_L ({ks})", torque_number(numbers["loop_stiffness_Nm_per_rad"])],
+            [f"preload ({tq})", torque_number(numbers["preload_Nm"])]]
+    g = plain_number
     v = numbers["preload_variation"]
-    rows.append(["preload variation, p-p (N·m)", "-" if v is None else
-                 f"{g(v['range_Nm'], 4)} ({100 * v['relative']:.2f} %, {v['budget']} budget)"])
+    rows.append([f"preload variation, p-p ({tq})", "-" if v is None else
+                 f"{torque_number(v['range_Nm'], 4)} ({100 * v['relative']:.2f} %, {v['budget']} budget)"])
     for m in numbers["meshes"]:
         worst = m["worst_case_min_backlash"]
         rows.append([f"backlash {m['mesh']}, minimum ({unit})",
@@ -374,12 +382,13 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
         for spec in g.gears:
             z0, z1 = g.face_z(spec)
             helix = f"{math.degrees(spec.helix_angle):.4g} {spec.hand}" if spec.is_helical else "spur"
-            rows.append([g.name, spec.name, spec.teeth, f"{spec.module:.5g}", f"{math.degrees(spec.pressure_angle):.4g}",
+            size = diametral_pitch_from_module(spec.module) if unit == "in" else spec.module
+            rows.append([g.name, spec.name, spec.teeth, f"{size:.5g}", f"{math.degrees(spec.pressure_angle):.4g}",
                          helix, _len(spec.face_width, scale), _len(spec.thinning, scale),
                          f"({_len(g.centre[0], scale, 6)}, {_len(g.centre[1], scale, 6)})",
                          f"{_len(z0, scale)} to {_len(z1, scale)}", f"{math.degrees(g.rotation_at(spec, z0)):.5g}"])
     r.h("Gears")
-    r.table(["part", "gear", "teeth", "m_n (mm)", "alpha_n (deg)", "helix (deg)", f"face ({unit})",
+    r.table(["part", "gear", "teeth", "P_n (1/in)" if unit == "in" else "m_n (mm)", "alpha_n (deg)", "helix (deg)", f"face ({unit})",
              f"thinning ({unit}, circ.)", f"centre ({unit})", f"z ({unit})", "tooth 0 at its face (deg)"], rows)
 
     run = layout.synthesis
@@ -502,10 +511,12 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     if ov is not None:
         r.h("Part overlaps")
         r.p(f"{ov.parts} parts; {ov.pairs_checked} pairs whose bounding boxes meet were intersected "
-            f"(tolerance {ov.tolerance:g} mm^3); {len(ov.intended)} intended contacts; "
+            f"(tolerance {ov.tolerance / scale ** 3:.4g} {unit}^3); "
+            f"{len(ov.intended)} intended contacts; "
             f"{len(ov.delegated)} meshing pairs left to the mesh checker. Unintended overlaps: "
             f"{len(ov.unintended) or 'none'}.")
-        r.items([f"{o.part1} / {o.part2}: {o.volume:.4g} mm^3" for o in ov.unintended])
+        r.items([f"{o.part1} / {o.part2}: {o.volume / scale ** 3:.4g} {unit}^3"
+                 for o in ov.unintended])
         r.table(["part", "part", "intended contact"], [[a, b, why] for a, b, why in ov.intended])
 
     s = result.stiffness

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from geargen.report.figures import write_figure
+from geargen.units import TextUnits
 
 NM = 1e3
 
@@ -73,9 +74,15 @@ def _fmt(x, spec=".4g", none="-"):
     return none if x is None else format(x, spec)
 
 
-def format_train(data: dict[str, Any]) -> str:
-    """The text report of :func:`train_dict`'s data."""
+def format_train(data: dict[str, Any], units: TextUnits = TextUnits()) -> str:
+    """The text report of :func:`train_dict`'s data (torques in N·m there) in ``units`` (torques in the
+    design file's torque unit)."""
     t = data["totals"]
+    tq, ks = units.unit("torque"), units.unit("torsional_stiffness")
+
+    def torque(x_nm):  # a torque, or a torque per rad, of the data in the text's unit
+        return None if x_nm is None else units.value("torque", x_nm * NM)
+
     lines = [f"Train of {data['design']}: motor to output {data['motor_speed_over_output']:.6g}:1", "",
              "Rotating parts (inertia from the parts' geometry; reflected = own / ratio_to_motor^2)",
              f"  {'part':26s} {'mass kg':>9s} {'J own kg m2':>12s} {'ratio':>8s} {'J at motor':>11s}  turns with"]
@@ -83,12 +90,12 @@ def format_train(data: dict[str, Any]) -> str:
         lines.append(f"  {p['name']:26s} {p['mass_kg']:9.4g} {p['inertia_own_axis_kg_m2']:12.4g} "
                      f"{p['ratio_to_motor']:8.4g} {p['reflected_to_motor_kg_m2']:11.4g}  {p['turns_with']}")
     lines += ["", "Stages, motor first (stiffness and lost motion at the output)",
-              f"  {'stage':40s} {'ratio':>6s} {'N·m/rad':>11s} {'compl.':>7s} {'backlash urad':>13s} {'design range':>13s}"
+              f"  {'stage':40s} {'ratio':>6s} {ks:>11s} {'compl.':>7s} {'backlash urad':>13s} {'design range':>13s}"
               f" {'share':>6s} {'left urad':>9s}"]
     for s in data["stages"]:
         lo, hi = s["lost_motion_min_at_output_urad"], s["lost_motion_max_at_output_urad"]
         span = "-" if lo is None or hi is None else f"{lo:.1f}-{hi:.1f}"
-        lines.append(f"  {s['name']:40s} {s['ratio']:6.4g} {_fmt(s['stiffness_at_output_Nm_per_rad'], '11.5g'):>11s} "
+        lines.append(f"  {s['name']:40s} {s['ratio']:6.4g} {_fmt(torque(s['stiffness_at_output_Nm_per_rad']), '11.5g'):>11s} "
                      f"{s['compliance_share']:7.1%} {_fmt(s['lost_motion_at_output_urad'], '13.1f'):>13s} {span:>13s} "
                      f"{s['share_of_lost_motion']:6.1%} {_fmt(s['lost_motion_left_urad'], '9.1f'):>9s}"
                      + ("  preloaded" if s["preloaded"] else ""))
@@ -98,17 +105,17 @@ def format_train(data: dict[str, Any]) -> str:
             lines.append(f"    {s['name'].split(' (')[0]}: " + ", ".join(s["components"]))
     lines += ["", f"Totals: inertia at the motor {t['inertia_at_motor_kg_m2']:.4g} kg m^2 (rotor "
               f"{_fmt(t['motor_rotor_inertia_kg_m2'])}, parts {t['parts_inertia_at_motor_kg_m2']:.4g}, load "
-              f"{t['load_inertia_at_motor_kg_m2']:.4g}); stiffness at the output {_fmt(t['stiffness_at_output_Nm_per_rad'], '.6g')} "
-              f"N·m/rad (geargen stiffness, without the upstream stages: "
-              f"{_fmt(t['stiffness_command_drive_with_common_Nm_per_rad'], '.6g')});",
+              f"{t['load_inertia_at_motor_kg_m2']:.4g}); stiffness at the output {_fmt(torque(t['stiffness_at_output_Nm_per_rad']), '.6g')} "
+              f"{ks} (geargen stiffness, without the upstream stages: "
+              f"{_fmt(torque(t['stiffness_command_drive_with_common_Nm_per_rad']), '.6g')});",
               f"  lost motion at the output {t['lost_motion_at_output_urad']:.1f} urad as built "
               f"({t['lost_motion_without_preload_urad']:.1f} without the preload); the largest backlash: "
-              f"{t['dominant_stage']}; preload {t['preload_Nm']:.4g} N·m drags {t['preload_friction_at_output_Nm']:.4g} N·m."]
+              f"{t['dominant_stage']}; preload {torque(t['preload_Nm']):.4g} {tq} drags {torque(t['preload_friction_at_output_Nm']):.4g} {tq}."]
     sv = data.get("servo")
     if sv:
         lines += ["", "Servo view (PD loop at the motor; direct drive: the same motor, gains and load)",
-                  f"  gains Kp {sv['position_gain_Nm_per_rad']:.4g} N·m/rad, Kd {sv['velocity_gain_Nm_s_per_rad']:.4g} "
-                  f"N·m·s/rad; servo stiffness at the output Kp R^2 = {sv['servo_stiffness_at_output_Nm_per_rad']:.5g} N·m/rad",
+                  f"  gains Kp {torque(sv['position_gain_Nm_per_rad']):.4g} {ks}, Kd {torque(sv['velocity_gain_Nm_s_per_rad']):.4g} "
+                  f"{tq}·s/rad; servo stiffness at the output Kp R^2 = {torque(sv['servo_stiffness_at_output_Nm_per_rad']):.5g} {ks}",
                   f"  geared: natural frequency {sv['natural_frequency_Hz']:.4g} Hz, damping ratio {sv['damping_ratio']:.3g}",
                   f"  direct: natural frequency {sv['direct_natural_frequency_Hz']:.4g} Hz, damping ratio "
                   f"{sv['direct_damping_ratio']:.3g}",
@@ -124,19 +131,19 @@ def format_train(data: dict[str, Any]) -> str:
         lines += ["", f"Strategy (the paper's: preload from the output up until the lost motion is allowed): allowed "
                   f"{ad['allowed_lost_motion_urad']:.1f} urad, {verdict}",
                   f"  preload: {', '.join(ad['preload']) or 'none'}; lost motion left {ad['lost_motion_left_urad']:.1f} urad; "
-                  f"stiffness {ad['stiffness_no_preload_Nm_per_rad']:.5g} -> {ad['stiffness_advised_Nm_per_rad']:.5g} N·m/rad; "
-                  f"preload {ad['preload_Nm']:.4g} N·m drags {ad['preload_friction_Nm']:.4g} N·m",
+                  f"stiffness {torque(ad['stiffness_no_preload_Nm_per_rad']):.5g} -> {torque(ad['stiffness_advised_Nm_per_rad']):.5g} {ks}; "
+                  f"preload {torque(ad['preload_Nm']):.4g} {tq} drags {torque(ad['preload_friction_Nm']):.4g} {tq}",
                   "  this design preloads: " + (", ".join(ad["design_preloads"]) or "none")
                   + (" (as advised)" if ad["design_agrees"] else " (differs from the advice)")]
     if data.get("alternatives"):
         lines += ["", "Alternatives on the same load (max output torque "
-                  f"{t['max_output_torque_Nm']:.4g} N·m either way)",
-                  f"  {'':36s} {'N·m/rad':>10s} {'lost urad':>10s} {'motor N·m':>10s} {'friction N·m':>12s}"]
+                  f"{torque(t['max_output_torque_Nm']):.4g} {tq} either way)",
+                  f"  {'':36s} {ks:>10s} {'lost urad':>10s} {'motor ' + tq:>10s} {'friction ' + tq:>12s}"]
         for r in data["alternatives"]:
             motors = f" x{r['motors']}" if r["motors"] > 1 else ""
-            lines.append(f"  {r['name']:36s} {r['stiffness_at_output_Nm_per_rad']:10.5g} "
-                         f"{r['lost_motion_at_output_urad']:10.1f} {r['motor_torque_Nm']:10.4g}{motors} "
-                         f"{r['preload_friction_Nm']:12.4g}")
+            lines.append(f"  {r['name']:36s} {torque(r['stiffness_at_output_Nm_per_rad']):10.5g} "
+                         f"{r['lost_motion_at_output_urad']:10.1f} {torque(r['motor_torque_Nm']):10.4g}{motors} "
+                         f"{torque(r['preload_friction_Nm']):12.4g}")
     for w in data.get("warnings", []):
         lines.append(f"warning: {w}")
     for n in data.get("notes", []):

@@ -106,15 +106,16 @@ def test_what_the_figures_draw_is_the_model():
     for i in (0, 1):
         rot, torque = (np.asarray(a) for a in _artist(fig, "drive", i).get_data())
         assert np.allclose(torque * 1e3, d.torque(rot * 1e-6), rtol=1e-9, atol=1e-9)
-    # preload band: slope k_L * 2 lambda against carriage travel; each budget's band ends on the line
+    # preload band: slope k_L * 2 lambda against carriage travel (in inches: the robot joint's unit);
+    # each budget's band ends on the line
     fig = preload_band_figure(s)
     xs, ps = (np.asarray(a) for a in _artist(fig, "preload").get_data())
-    slope = (ps[-1] - ps[0]) * 1e3 / ((xs[-1] - xs[0]) * 1e-3)
+    slope = (ps[-1] - ps[0]) * 1e3 / ((xs[-1] - xs[0]) * IN)
     assert slope == pytest.approx(s.loop_stiffness * 2 * s.lever, rel=1e-9)
     for v in s.variations:
         bx, by = (np.asarray(a) for a in _artist(fig, f"band_{v.label}").get_data())
         assert by * 1e3 == pytest.approx([v.low, v.high], rel=1e-12)
-        assert bx * 1e-3 == pytest.approx([-v.carriage_travel / 2, v.carriage_travel / 2], rel=1e-12)
+        assert bx * IN == pytest.approx([-v.carriage_travel / 2, v.carriage_travel / 2], rel=1e-12)
 
 
 def test_json_to_standard_output_keeps_it_parseable(tmp_path, capsys, monkeypatch):

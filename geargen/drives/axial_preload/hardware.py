@@ -8,11 +8,13 @@ on its bearings, and the housing's bottom and top plates (the ground)."""
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any, Mapping
 
 from geargen.model import bodies as B
 from geargen.drives.axial_preload.place import axial_preload_hardware
 from geargen.model.components import ComponentSet, Hardware, at
+from geargen.units import sizes_text, small_length_text
 
 
 def _cup(bore: float, wall: float, depth: float):
@@ -23,25 +25,26 @@ def _cup(bore: float, wall: float, depth: float):
 
 def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     """The parts of the module docstring, with their joints and how they hold together."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
     hw = axial_preload_hardware(layout, dict(s))
     out = ComponentSet()
     ish, osh = hw.input, hw.output
     x_in = ish.centre[0]
     shaft_in = out.add(ish.name, B.shaft(ish.diameter, ish.length), at(x_in, 0, ish.z_lo), "input", "shaft",
-                       description=f"input shaft d {ish.diameter:.4g} mm, slid {hw.shift * 1e3:.4g} um along +z by the "
+                       description=f"input shaft d {size(ish.diameter)}, slid {small_length_text(hw.shift, layout.design.length_unit)} along +z by the "
                                    "preload spring (the placement's take-up)")
     for name in ish.loads:
         out.join(shaft_in, name, "pinion on the input shaft")
     for b in ish.bearings:
         part = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(x_in, 0, b.z), "input",
-                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm, outer ring "
+                       "bearing", description=f"{size(b.bore, b.outer_diameter, b.width)}, outer ring "
                                               "sliding in its bore", shared=True)
         out.join(part, shaft_in, "bearing on the input shaft", kind="bearing")
     for b in osh.bearings:
         part = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(0, 0, b.z), "output",
-                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm", shared=True)
+                       "bearing", description=size(b.bore, b.outer_diameter, b.width), shared=True)
     shaft_out = out.add(osh.name, B.shaft(osh.diameter, osh.length), at(0, 0, osh.z_lo), "output", "shaft",
-                        description=f"output shaft d {osh.diameter:.4g} mm; the two output gears clamped on it")
+                        description=f"output shaft d {size(osh.diameter)}; the two output gears clamped on it")
     for name in osh.loads:
         out.join(shaft_out, name, "output gear on the output shaft")
     for b in osh.bearings:
@@ -57,7 +60,7 @@ def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
                                  ("top_plate", hw.top_plate, (upper_in, upper_out))):
         plate = out.add(name, B.plate_with_holes(x1 - x0, 2 * half_y, z1 - z0, [(0.0, 0.0, od_out), (x_in, 0.0, od_in)],
                                                  corner=(x0, -half_y, 0.0)), at(0, 0, z0), "housing", "housing",
-                        description=f"housing plate, {z1 - z0:.4g} mm: the bearings' seats (the input's a sliding fit)")
+                        description=f"housing plate, {size(z1 - z0)}: the bearings' seats (the input's a sliding fit)")
         for b in held:
             out.join(plate, b.name, "bearing seated in the plate" if b in (lower_out, upper_out)
                      else "bearing's outer ring sliding in the plate's bore", kind="bearing")
@@ -66,7 +69,7 @@ def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     wall = s["spring_cup_wall"]
     depth = hw.bottom_plate[0] - hw.cup_floor_z
     cup = out.add("spring_cup", _cup(od_in, wall, depth), at(x_in, 0, hw.cup_floor_z - wall), "housing", "housing",
-                  description=f"spring cup, bore {od_in:.4g} mm, bolted under the bottom plate")
+                  description=f"spring cup, bore {size(od_in)}, bolted under the bottom plate")
     out.join(cup, "bottom_plate", "cup bolted under the plate")
     out.stationary.append(cup)
     d, mean = s["spring_wire_diameter"], s["spring_mean_diameter"]
@@ -75,8 +78,8 @@ def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     total_coils = hw.spring_active_coils + 2
     spring = out.add("preload_spring", B.compression_spring(d, mean, z1 - z0, total_coils, ground=True), at(x_in, 0, z0),
                      "housing", "spring", description=f"preload spring: {hw.spring_active_coils:.3g} active coils "
-                                                      f"({total_coils:.3g} in all) of {d:.4g} mm wire on {mean:.4g} mm, "
-                                                      f"{z1 - z0:.4g} mm long as placed",
+                                                      f"({total_coils:.3g} in all) of {size(d)} wire on {size(mean)}, "
+                                                      f"{size(z1 - z0)} long as placed",
                      envelope=B.coil_envelope(d, mean, z1 - z0))
     out.join(spring, cup, "spring on the cup's floor", kind="spring")
     out.join(spring, lower_in.name, "spring on the lower input bearing's outer ring", kind="spring")
@@ -86,15 +89,15 @@ def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     spacer = B.cylinder(od_in + 2 * wall, hw.stroke_z - hw.top_plate[1], od_in + 1.0)
     lip = B.translate(B.cylinder(od_in + 2 * wall, wall, lip_bore), (0.0, 0.0, hw.stroke_z - hw.top_plate[1]))
     stop = out.add("stroke_stop", B.fuse([spacer, lip], "stroke stop"), at(x_in, 0, hw.top_plate[1]), "housing",
-                   "stop", description=f"stop of the input's slide: {layout.settings['input_stroke']:.4g} mm above the "
+                   "stop", description=f"stop of the input's slide: {size(layout.settings['input_stroke'])} above the "
                                        "upper bearing's reference position")
     out.join(stop, "top_plate", "stop bolted on the top plate")
     out.stationary.append(stop)
     travel = hw.stroke_z - (upper_in.z + upper_in.width)
     out.dimensions["axial_preload"] = dict(shift=hw.shift, spring_length=z1 - z0, spring_active_coils=hw.spring_active_coils,
                                      stroke_left=travel)
-    out.notes.append(f"axial preload: input shaft slid {hw.shift * 1e3:.4g} um; spring {z1 - z0:.4g} mm long "
-                     f"({hw.spring_active_coils:.3g} active coils); {travel:.4g} mm of stroke left")
+    out.notes.append(f"axial preload: input shaft slid {small_length_text(hw.shift, layout.design.length_unit)}; spring {size(z1 - z0)} long "
+                     f"({hw.spring_active_coils:.3g} active coils); {size(travel)} of stroke left")
     return out.freeze()
 
 

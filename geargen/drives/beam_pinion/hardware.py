@@ -10,6 +10,7 @@ motor plate.
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any, Mapping
 
 import numpy as np
@@ -19,6 +20,7 @@ from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, Hardware, at, placed_box, transform
 from geargen.drives.beam_pinion.shafts import beam_pinion_shafts, housing_heights
 from geargen.model.shafts import bore_of
+from geargen.units import sizes_text, small_length_text
 
 
 def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
@@ -37,6 +39,7 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     lowest a large gear comes (the trailer retracted); the quills reach down through it to their
     lugs, which play between the stops under it.
     """
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
     summary = stiffness()
     beam = summary.beam
     eng = layout.engagement if layout.engagement is not None else summary.engagement
@@ -54,7 +57,7 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     d_sp = bore_of(bull.spec)
     sp_len = s["spindle_length"]
     spindle = out.add("spindle", B.shaft(d_sp, sp_len), at(0, 0, (z_b0 + z_b1 - sp_len) / 2), "spindle",
-                      "reference", "reference", f"lathe spindle (reference), d {d_sp:.4g} mm", shared=True)
+                      "reference", "reference", f"lathe spindle (reference), d {size(d_sp)}", shared=True)
     out.join(spindle, "output", "bull gear on the spindle")
     out.ground.append(spindle)  # turns in the machine's own spindle bearings, outside the model
     out.rotating.append(spindle)
@@ -63,7 +66,7 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     span = beam.span
     d_ish = s["input_shaft_diameter"]
     if not math.isclose(d_ish, bore_of(inp.spec)):
-        raise DesignError("parts.input_shaft_diameter_mm", "must equal the long pinion's bore", f"{bore_of(inp.spec):.6g} mm")
+        raise DesignError("parts.input_shaft_diameter_mm", "must equal the long pinion's bore", size(bore_of(inp.spec), digits=6))
     ibw, ibod = s["input_bearing_width"], s["input_bearing_outer_diameter"]
     placed_shafts = beam_pinion_shafts(layout, s)
     placed_input = placed_shafts["input"]
@@ -71,13 +74,13 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     cl = s["coupling_length"]
     ish_lo, ish_hi = placed_input.z_lo, placed_input.z_hi
     ishaft = out.add("input_shaft", B.shaft(d_ish, ish_hi - ish_lo), at(x_in, 0, ish_lo), "drive", "shaft",
-                     description=f"long pinion's shaft d {d_ish:.4g} mm, bearing span {span:.4g} mm (beam spring)", shared=True)
+                     description=f"long pinion's shaft d {size(d_ish)}, bearing span {size(span)} (beam spring)", shared=True)
     out.join(ishaft, "input", "pinion teeth on their shaft")
     input_bearings = []
     for bearing in placed_input.supports():
         b = out.add(bearing.name, B.bearing(d_ish, ibod, ibw), at(x_in, 0, bearing.z), "drive", "bearing",
-                    description=f"{d_ish:.4g} x {ibod:.4g} x {ibw:.4g} mm, simple support of the beam at "
-                                f"z = {bearing.centre_z:.5g} mm", shared=True)
+                    description=f"{size(d_ish, ibod, ibw)}, simple support of the beam at "
+                                f"z = {size(bearing.centre_z, digits=5)}", shared=True)
         out.join(b, ishaft, "bearing on its shaft", kind="bearing")
         input_bearings.append((b, bearing.z))
     z_lo_bearing = placed_input.supports()[0].z
@@ -117,15 +120,15 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     for small, _, _ in clusters.values():
         wall = math.hypot(small.centre[0] - x_in, small.centre[1]) - (d_quill + hole) / 2
         if not wall > 0:
-            raise DesignError("parts.quill_outer_diameter_mm", f"{d_quill:.6g} mm: the quill's bore in the housing "
-                              f"block runs {-wall:.4g} mm into the hole the long pinion passes",
-                              f"< {d_quill + 2 * wall:.6g} mm")
+            raise DesignError("parts.quill_outer_diameter_mm", f"{size(d_quill, digits=6)}: the quill's bore in the housing "
+                              f"block runs {size(-wall)} into the hole the long pinion passes",
+                              f"< {size(d_quill + 2 * wall, digits=6)}")
     quills = []
     for side, (small, large, shift) in clusters.items():
         for part in (small, large):
             if not math.isclose(bore_of(part.spec), d_cs):
                 raise DesignError("parts.cluster_shaft_diameter_mm", f"must equal the bore of {part.name}",
-                                  f"{bore_of(part.spec):.6g} mm")
+                                  size(bore_of(part.spec), digits=6))
         x, y = small.centre
         zl1 = large.height[1]
         ring_w = s["friction_ring_width"]
@@ -137,13 +140,13 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
         # shaft and quill bearings where the model places them (the stiffness reads the same)
         sh = placed_shafts[f"cluster_{side}"]
         shaft = out.add(sh.name, B.shaft(sh.diameter, sh.length), at(x, y, sh.z_lo), f"cluster_{side}",
-                        "shaft", description=f"dual pinion shaft d {sh.diameter:.4g} mm (slides with the pinion)", shared=True)
+                        "shaft", description=f"dual pinion shaft d {size(sh.diameter)} (slides with the pinion)", shared=True)
         for part in (small.name, large.name, ring):
             out.join(shaft, part, "on the pinion shaft")
         for b in sh.bearings:
             ring_b = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(x, y, b.z),
                              f"cluster_{side}", "bearing",
-                             description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm in the sliding quill", shared=True)
+                             description=f"{size(b.bore, b.outer_diameter, b.width)} in the sliding quill", shared=True)
             out.join(ring_b, shaft, "bearing on its shaft", kind="bearing")
         lower, upper = sh.supports()
         nut = out.add(f"locknut_{side}", B.cylinder(s["locknut_outer_diameter"], s["locknut_width"], d_cs),
@@ -169,7 +172,7 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
         quill = out.add(f"quill_{side}", B.quill(d_quill, z_top - z_bottom, [st for st in steps if st[1] > st[0]], lug,
                                                  lug_w, lug_t),
                         transform((x, y, z_bottom), (0, 0, 1), direction), f"cluster_{side}", "quill",
-                        description=f"quill {d_quill:.4g} mm, {z_top - z_bottom:.4g} mm long: holds both bearings' "
+                        description=f"quill {size(d_quill)}, {size(z_top - z_bottom)} long: holds both bearings' "
                                     "outer rings, slides in the housing block, its lug between the travel stops")
         for b in (lower, upper):
             out.join(quill, b.name, "outer ring seated in the quill", kind="bearing")
@@ -192,8 +195,8 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
                                   B.box_between((x_end + gap, -block / 2, z_foot), (x_end + gap + block, block / 2, z_block))],
                                  "retracted stop")
         retracted_stop = out.add(f"travel_stop_retracted_{side}", foot_and_column, place, "housing", "stop",
-                     description=f"retracted travel stop, stroke {strokes[side]:.4g} mm"
-                                 + (f" (the trailing pinion: {eng.lead:.4g} mm lead further)" if side == "b" else ""))
+                     description=f"retracted travel stop, stroke {size(strokes[side])}"
+                                 + (f" (the trailing pinion: {size(eng.lead)} lead further)" if side == "b" else ""))
         out.join(quill, engaged_stop if shift == 0 else retracted_stop, "the quill's lug against its travel stop")
         out.join(engaged_stop, "housing", "stop bolted under the housing block")
         out.join(retracted_stop, "housing", "stop's column bolted under the housing block")
@@ -242,10 +245,10 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
             description="C-axis housing block, bolted to the headstock: the quills slide in its bores, the stops hang under it")
     out.dimensions.update(beam=beam, engagement=eng, z_mesh=z_mesh, housing=dict(lo=lo, hi=hi),
                     drive_column=dict(x=x_col, width=width, thickness=thick, z=(z_lo_bearing, z_plate)))
-    out.notes.append(f"long pinion: bearing span {span:.4g} mm symmetric about the engaged mesh at z = {z_mesh:.4g} mm "
-                     f"(zero slope there), beam stiffness {beam.stiffness:.4g} N/mm; static deflection at the preload "
-                     f"{beam.deflection * 1e3:.3g} um (the model shows the straight beam)")
-    out.notes.append(f"axial engagement: lead {eng.lead:.4g} mm between the pinions, strokes "
-                     f"{-eng.leader_retracted_stop:.4g} / {-eng.trailer_retracted_stop:.4g} mm, relative rotation "
+    out.notes.append(f"long pinion: bearing span {size(span)} symmetric about the engaged mesh at z = {size(z_mesh)} "
+                     f"(zero slope there), beam stiffness {layout.design.text_units.text('linear_stiffness', beam.stiffness)}; static deflection at the preload "
+                     f"{small_length_text(beam.deflection, layout.design.length_unit, 3)} (the model shows the straight beam)")
+    out.notes.append(f"axial engagement: lead {size(eng.lead)} between the pinions, strokes "
+                     f"{-eng.leader_retracted_stop:.4g} / {size(-eng.trailer_retracted_stop)}, relative rotation "
                      f"{eng.relative_rotation * 1e3:.3g} mrad")
     return out.freeze()

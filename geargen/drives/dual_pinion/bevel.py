@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -29,6 +30,7 @@ from geargen.design.bevel import BevelGearSpec
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import DesignError
 from geargen.model.layout import Layout
+from geargen.units import sizes_text
 
 
 @dataclass(frozen=True)
@@ -58,6 +60,7 @@ def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
     ``bevel_backlash``, or the [train] ``upstream_backlash_arcmin`` of the stage
     ``pinion_teeth:gear_teeth`` of [layout] ``upstream_stages`` (rad at its driven shaft, the bevel
     gear's) times the gear's heel pitch radius; both given: they must agree."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
     from geargen.design.train import train_settings
     zp, zg = parts["bevel_pinion_teeth"], parts["bevel_gear_teeth"]
     module = parts["bevel_module"] or 25.4 / parts["bevel_diametral_pitch_per_in"]
@@ -72,8 +75,8 @@ def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
                           f"a length, or [layout] upstream_stages holding [{zp}, {zg}] with its backlash in "
                           "[train] upstream_backlash_arcmin")
     if given is not None and train is not None and not math.isclose(given, train, rel_tol=1e-9):
-        raise DesignError("parts.bevel_backlash", f"{given:.6g} mm differs from the [train] upstream_backlash_arcmin "
-                          f"of the pair ({train:.6g} mm at the gear's heel pitch circle)", "one of the two, or equal")
+        raise DesignError("parts.bevel_backlash", f"{size(given, digits=6)} differs from the [train] upstream_backlash_arcmin "
+                          f"of the pair ({size(train, digits=6)} at the gear's heel pitch circle)", "one of the two, or equal")
     return train if given is None else given
 
 

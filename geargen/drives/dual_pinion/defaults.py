@@ -49,7 +49,7 @@ from geargen.design.catalogue import (STEEL_E_GPA, STEEL_G_GPA, WIRE_DIAMETERS, 
                                       wahl_stress_per_newton)
 from geargen.design.schema import PLAUSIBLE
 from geargen.errors import DesignError
-from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
+from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, length_text
 
 #: through-hardened steel gears: about half the AGMA bending strength of grade 1 at 250 HB (221 MPa)
 STEEL_BENDING_ALLOWABLE_MPA = 110.0
@@ -108,7 +108,7 @@ def shaft_bearing(gears, unit: str, shaft: str):
     if found is None:
         names = ", ".join(g.name for g in gears)
         raise DesignError(f"gears.{gears[0].name}.bore_diameter", f"missing, and no standard bearing fits the "
-                          f"{shaft} shaft under {names} (at most {limit:.3g} mm)", "bore_diameter_* and a [parts] table")
+                          f"{shaft} shaft under {names} (at most {length_text(limit, unit, 3)})", "bore_diameter_* and a [parts] table")
     return found
 
 

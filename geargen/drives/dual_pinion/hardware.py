@@ -15,6 +15,7 @@ the shaft end (the upper ones sit in the cover).
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any, Mapping
 
 import numpy as np
@@ -32,7 +33,7 @@ from geargen.model.bodies import lowest_x_above
 from geargen.model.components import (ComponentSet, Hardware, Toothed, along_x, analytic_body, at, placed_box)
 from geargen.drives.dual_pinion.shafts import carriage_arm_top, carriage_shafts
 from geargen.model.shafts import bore_of
-from geargen.units import MM_PER_IN
+from geargen.units import MM_PER_IN, length_text, sizes_text
 
 
 def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
@@ -48,6 +49,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     the inner ring and the shaft end (the upper ones sit in the removed cover, as in the paper's
     figure).
     """
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
     design = layout.design
     sd = stiffness_design(design)
     if sd.flexures is None or sd.springs is None:
@@ -74,15 +76,15 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
             out.join(part, gear, contact)
         for b in sh.bearings:
             ring = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(*sh.centre, b.z), group,
-                           "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm", shared=True)
+                           "bearing", description=size(b.bore, b.outer_diameter, b.width), shared=True)
             out.join(ring, part, "bearing on its shaft", kind="bearing")
         return part
 
     for side in ("a", "b"):
         sh = placed_shafts[f"cluster_{side}"]
-        shaft_with_bearings(sh, f"cluster_{side}", f"d {sh.diameter:.4g} mm", [m.name for m in members[side]],
+        shaft_with_bearings(sh, f"cluster_{side}", f"d {size(sh.diameter)}", [m.name for m in members[side]],
                             "cluster gear on its shaft (pressed and bonded)")
-    shaft_with_bearings(placed_shafts["output"], "output", f"joint shaft d {placed_shafts['output'].diameter:.4g} mm",
+    shaft_with_bearings(placed_shafts["output"], "output", f"joint shaft d {size(placed_shafts['output'].diameter)}",
                                  ["output"], "shaft in the output gear's bore")
     bw, bod = s["cluster_bearing_width"], s["cluster_bearing_outer_diameter"]
     zb_lo, zb_hi = (b.z for b in placed_shafts["cluster_a"].bearings)
@@ -123,11 +125,11 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     # the input shaft and its bearings (placed by the model), up through the carriage arm to the
     # gear that drives it
     ishaft = out.add("input_shaft", B.shaft(d_in, drive["input_top"] - ish.z_lo), at(x_in, 0, ish.z_lo),
-                     "carriage", "shaft", description=f"d {d_in:.4g} mm", shared=True)
+                     "carriage", "shaft", description=f"d {size(d_in)}", shared=True)
     out.join(ishaft, "input", "shaft in the input gear's bore")
     for b in ish.bearings:
         ring = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(x_in, 0, b.z), "carriage",
-                       "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm", shared=True)
+                       "bearing", description=size(b.bore, b.outer_diameter, b.width), shared=True)
         out.join(ring, ishaft, "bearing on its shaft", kind="bearing")
 
     # --- the carriage, one solid
@@ -160,7 +162,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     xs = np.linspace(x_in - arm_half, x_wall0 - 2 * gap, fl.count)
     for i, x in enumerate(xs, start=1):
         b = out.add(f"blade_flexure_{i}", B.blade_flexure(fl.thickness, fl.length, fl.width), at(x, 0, z_floor),
-                    "flexures", "flexure", description=f"{fl.thickness:.4g} x {fl.width:.4g} x {fl.length:.4g} mm blade", shared=True)
+                    "flexures", "flexure", description=f"{size(fl.thickness, fl.width, fl.length)} blade", shared=True)
         out.join(b, carriage, "blade clamped to the carriage", kind="flexure")
         out.join(b, "link", "blade clamped to the link floor", kind="flexure")
 
@@ -177,8 +179,8 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     z_spring = (z_plate_bot + z_wall_top) / 2
     for i, y in enumerate((s["spring_y_offset"], -s["spring_y_offset"]), start=1):
         sp_name = out.add(f"preload_spring_{i}", spring_shape, along_x(x_wall1, y, z_spring), "preload", "spring",
-                          description=f"d {sp.wire_diameter:.4g} mm wire, D {sp.mean_coil_diameter:.4g} mm, "
-                                      f"{coils:g} coils at {sp.installed_length:.4g} mm", envelope=spring_envelope,
+                          description=f"d {size(sp.wire_diameter)} wire, D {size(sp.mean_coil_diameter)}, "
+                                      f"{coils:g} coils at {size(sp.installed_length)}", envelope=spring_envelope,
                           shared=True)
         out.join(sp_name, carriage, "spring seat on the carriage", kind="spring")
         out.join(sp_name, "link", "spring seat on the link's end wall", kind="spring")
@@ -211,7 +213,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     for c in out.components:
         if c.name in over and not placed_box(analytic_body(c), c.placement)[0][2] >= z_cover + floor:
             raise DesignError(f"stages.{stage_list[-1].name}", f"{c.name} reaches down to the link cover (its top "
-                              f"{z_cover + floor:.4g} mm)", "a stage that stands clear above the cover")
+                              f"{size(z_cover + floor)})", "a stage that stands clear above the cover")
     rising = [(lowest_x_above(analytic_body(c), c.placement, z_cover), c.name)
               for c in out.components if c.group == "carriage" and c.name not in over]
     x_first, first = min(rising, default=(length + gap, ""))
@@ -353,7 +355,7 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
                 saddle_x0=x_flange + s["motor_flange_thickness"] + gap, input_top=input_top,
                 dims=dict(bevel=bev, bevel_apex=apex),
                 note=f"bevel pair {bev.pinion_teeth}:{bev.gear_teeth} (ratio {bev.ratio:.4g}), spherical-involute "
-                     f"teeth, thinning {gear_spec.thinning:.4g} mm each; "
+                     f"teeth, thinning {length_text(gear_spec.thinning, unit)} each; "
                      f"motor to output ratio {bev.ratio * layout.ratio['train']:.6g}")
 
 
@@ -364,18 +366,19 @@ def _stage_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shafts,
     under it) and an upper one under the bridge; two side columns on the base plate carry the
     bridge clear of every stage gear; the first driver sits on the motor's shaft, which comes
     down through the bridge."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     g = {p.name: p for p in layout.gears}
     shafts = [placed_shafts[k] for k in sorted(k for k in placed_shafts if k.startswith("stage_"))]
     sob, sbw = s["stage_bearing_outer_diameter"], s["stage_bearing_width"]
     for sh in shafts:
         part = out.add(sh.name, B.shaft(sh.diameter, sh.length), at(*sh.centre, sh.z_lo), "carriage",
-                       "shaft", description=f"stage shaft d {sh.diameter:.4g} mm", shared=True)
+                       "shaft", description=f"stage shaft d {size(sh.diameter)}", shared=True)
         for gear in sh.loads:
             out.join(part, gear, "stage gear on its shaft")
         for b in sh.bearings:
             ring = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(*sh.centre, b.z),
-                           "carriage", "bearing", description=f"{b.bore:.4g} x {b.outer_diameter:.4g} x {b.width:.4g} mm", shared=True)
+                           "carriage", "bearing", description=size(b.bore, b.outer_diameter, b.width), shared=True)
             out.join(ring, part, "bearing on its shaft", kind="bearing")
             out.join(ring, "carriage", "outer ring seated on the carriage", kind="bearing")
     out.join("input_shaft", stage_list[-1].driven, "shaft in the driving stage gear's bore")

@@ -6,6 +6,7 @@ planetary stage's carrier), and the stage shafts standing on the preload carriag
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any
 
 from geargen.design.stages import stages
@@ -13,6 +14,7 @@ from geargen.drives.planetary.place import carrier
 from geargen.errors import DesignError
 from geargen.model.layout import Layout
 from geargen.model.shafts import Bearing, Shaft, bore_of, loop_shafts, mid_face
+from geargen.units import sizes_text
 
 
 def carriage_arm_top(input_shaft: Shaft, parts: dict[str, Any]) -> float:
@@ -25,6 +27,7 @@ def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     """The robot joint's shafts (Fig. 10): the loop's (:func:`loop_shafts`), the input's running
     on to the gear that drives it (the bevel gear, or the last of the [stages]), and the stage
     shafts (:func:`stage_shafts`)."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
     out = loop_shafts(layout.gears, parts)
     shaft = out["input"]
     stage_list = stages(layout.design)
@@ -43,8 +46,8 @@ def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     # the input shaft runs up through the carriage arm to the last stage's driven gear
     last = layout.gear(stage_list[-1].driven)
     if not math.isclose(bore_of(last.spec), shaft.diameter, rel_tol=1e-9):
-        raise DesignError(f"gears.{last.name}.bore_diameter", f"{bore_of(last.spec):.6g} mm: the gear sits on the input "
-                          "gear's shaft", f"the input's bore, {shaft.diameter:.6g} mm")
+        raise DesignError(f"gears.{last.name}.bore_diameter", f"{size(bore_of(last.spec), digits=6)}: the gear sits on the input "
+                          "gear's shaft", f"the input's bore, {size(shaft.diameter, digits=6)}")
     out["input"] = Shaft(shaft.name, shaft.centre, shaft.z_lo, last.height[1], shaft.diameter, shaft.bearings,
                          {**shaft.loads, last.name: mid_face(last, last.spec)})
     out.update(stage_shafts(layout, parts, stage_list))
@@ -55,6 +58,7 @@ def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str,
     """The shafts between the upstream stages (:mod:`geargen.design.stages`): each carries one
     stage's driven gear and the next stage's driver, from its lower bearing standing on the
     carriage arm to its upper bearing under the bridge over the highest stage."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
     gap, width, outer = parts["bearing_clearance"], parts["stage_bearing_width"], parts["stage_bearing_outer_diameter"]
     by = {p.name: p for p in layout.gears}
     loop = [p for p in layout.gears if not p.group.startswith("stage_")]
@@ -66,14 +70,14 @@ def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str,
         members = [by[st.driven], by[nxt.driver]]
         bores = {bore_of(m.spec) for m in members}
         if len(bores) != 1:
-            raise DesignError(f"gears.{nxt.driver}.bore_diameter", f"{bore_of(members[1].spec):.6g} mm: it shares a shaft "
-                              f"with {st.driven}", f"{bore_of(members[0].spec):.6g} mm, the same bore")
+            raise DesignError(f"gears.{nxt.driver}.bore_diameter", f"{size(bore_of(members[1].spec), digits=6)}: it shares a shaft "
+                              f"with {st.driven}", f"{size(bore_of(members[0].spec), digits=6)}, the same bore")
         diameter = bores.pop()
         if not diameter > 0:
             raise DesignError(f"gears.{st.driven}.bore_diameter", "missing: the gear sits on a stage shaft", "> 0")
         if not outer > diameter:
-            raise DesignError("parts.stage_bearing_outer_diameter", f"not larger than the stage shaft ({diameter:.6g} mm)",
-                              f"> {diameter:.6g} mm")
+            raise DesignError("parts.stage_bearing_outer_diameter", f"not larger than the stage shaft ({size(diameter, digits=6)})",
+                              f"> {size(diameter, digits=6)}")
         bearings = (Bearing(f"stage_bearing_lower_{i}", z_lower, width, diameter, outer),
                     Bearing(f"stage_bearing_upper_{i}", z_upper, width, diameter, outer))
         loads = {m.name: mid_face(m, m.spec) for m in members}

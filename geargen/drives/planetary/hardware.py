@@ -14,6 +14,7 @@ above the link cover (the stage stands a clearance above it): they may overhang 
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any, Mapping
 
 from geargen.errors import DesignError
@@ -22,12 +23,14 @@ from geargen.model.components import ComponentSet, at
 from geargen.drives.planetary.place import carrier
 from geargen.model.shafts import bore_of
 from geargen.profile.internal import internal_profile
+from geargen.units import sizes_text
 
 
 def planetary_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shafts, st,
                     post_x0: float) -> dict[str, Any]:
     """Add the stage's hardware to ``out``; returns what the carriage
     (:func:`geargen.drives.dual_pinion.hardware.carriage_hardware`) reads of its motor drive."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
 
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     c = carrier(layout, s, st)
@@ -42,11 +45,11 @@ def planetary_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shaf
                                 *[B.translate(B.cylinder(d, c.thickness), (x, y, 0.0)) for x, y, d in pins]),
                           "carrier plate")
         out.add(f"{c.name}_{which}", plate, at(cx, cy, z0), group, "carrier",
-                description=f"planet carrier {which} plate, {len(pins)} pins on r {math.dist(c.pins[0], c.centre):.5g} mm")
+                description=f"planet carrier {which} plate, {len(pins)} pins on r {size(math.dist(c.pins[0], c.centre), digits=5)}")
     out.join("input_shaft", f"{c.name}_lower", "input shaft in the carrier's bore")
     for i, (p, (x, y)) in enumerate(zip(planets, c.pins), start=1):
         pin = out.add(f"{c.name}_pin_{i}", B.shaft(c.pin_diameter, c.top - c.z_lower), at(x, y, c.z_lower),
-                      group, "shaft", description=f"planet pin d {c.pin_diameter:.4g} mm", shared=True)
+                      group, "shaft", description=f"planet pin d {size(c.pin_diameter)}", shared=True)
         out.join(pin, p.name, "planet on its pin")
         for which in ("lower", "upper"):
             out.join(pin, f"{c.name}_{which}", "pin pressed in the carrier plate")
@@ -54,11 +57,11 @@ def planetary_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shaf
     rim = ring.spec.rim_diameter
     root = 2 * internal_profile(ring.spec).root_radius
     if not root + 2 * gap < rim:
-        raise DesignError(f"gears.{st.ring}.rim_diameter", f"{rim:.6g} mm leaves no wall for the ring's frame outside "
-                          f"its root circle", f"> {root + 2 * gap:.6g} mm")
+        raise DesignError(f"gears.{st.ring}.rim_diameter", f"{size(rim, digits=6)} leaves no wall for the ring's frame outside "
+                          f"its root circle", f"> {size(root + 2 * gap, digits=6)}")
     if not 2 * c.radius < root:
         raise DesignError(f"gears.{st.planet}.bore_diameter", "the carrier plates reach the ring's frame",
-                          f"< {(root / 2 - math.dist(c.pins[0], c.centre)) :.4g} mm")
+                          f"< {size(root / 2 - math.dist(c.pins[0], c.centre))}")
     z_ring_top = ring.height[1]
     z_bridge0 = c.top + gap
     z_bridge1 = z_bridge0 + t

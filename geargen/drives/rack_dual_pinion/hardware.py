@@ -19,6 +19,7 @@ it is not modelled.
 from __future__ import annotations
 
 import math
+from functools import partial
 from typing import Any, Mapping
 
 from geargen.core.flexures import spring_for_rate
@@ -26,10 +27,12 @@ from geargen.errors import DesignError
 from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, Hardware, at, transform
 from geargen.drives.rack_dual_pinion.place import rack_drive
+from geargen.units import sizes_text
 
 
 def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     """The parts listed in the module docstring, placed, with their joints."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
     placed = rack_drive(layout)
     out = ComponentSet()
     gap = s["bearing_clearance"]
@@ -39,7 +42,7 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
     d_path = placed.pinion.hub.bore_diameter
     if placed.path_gear.hub.bore_diameter != d_path:
         raise DesignError("gears.path_gear.bore_diameter_mm", "the path gear sits on the pinion's shaft",
-                          f"{d_path:.6g} mm (the pinion's bore)")
+                          f"{size(d_path, digits=6)} (the pinion's bore)")
     z_low = g["pinion_a"].z - gap - bw  # lower bearing under the pinion
     z_top = g["path_gear_a"].z + placed.path_gear.face_width + gap  # upper bearing over the path gear
     out.ground += ["rack"]
@@ -47,12 +50,12 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
     for side in ("a", "b"):
         x, y = g[f"pinion_{side}"].centre
         shaft = out.add(f"path_shaft_{side}", B.shaft(d_path, z_top + bw - z_low), at(x, y, z_low),
-                        f"path_{side}", "shaft", description=f"path shaft {side}, d {d_path:.4g} mm", shared=True)
+                        f"path_{side}", "shaft", description=f"path shaft {side}, d {size(d_path)}", shared=True)
         out.join(shaft, f"pinion_{side}", "rack pinion on its path shaft")
         out.join(shaft, f"path_gear_{side}", "path gear keyed on its path shaft (timing mark)")
         for where, z in (("lower", z_low), ("upper", z_top)):
             b = out.add(f"path_bearing_{side}_{where}", B.bearing(d_path, bod, bw), at(x, y, z),
-                        f"path_{side}", "bearing", description=f"{d_path:.4g} x {bod:.4g} x {bw:.4g} mm", shared=True)
+                        f"path_{side}", "bearing", description=size(d_path, bod, bw), shared=True)
             out.join(b, shaft, "bearing on the path shaft", kind="bearing")
         out.join(f"pinion_{side}", "rack", "rack mesh: checked by geargen.drives.rack_dual_pinion.verdict", kind="mesh")
     xa, ys = g["pinion_a"].centre
@@ -82,8 +85,8 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
     installed = s["spring_installed_length"]
     total = coils + 2  # squared and ground ends
     if not installed > spring_d * (total + 1):
-        raise DesignError("parts.spring_installed_length_mm", f"{installed:.6g} mm closes the spring's {total:.3g} "
-                          f"coils of {spring_d:.4g} mm wire", f"> {spring_d * (total + 1):.6g} mm")
+        raise DesignError("parts.spring_installed_length_mm", f"{size(installed, digits=6)} closes the spring's {total:.3g} "
+                          f"coils of {size(spring_d)} wire", f"> {size(spring_d * (total + 1), digits=6)}")
     z_spring = z_carriage + max(ibw * 2, spring_mean + spring_d) / 2
     carriage_h = 2 * (z_spring - z_carriage)
     y_face = yi + carriage_half_y
@@ -93,7 +96,7 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
     holes_top = holes_bottom + [(xi, yi, clearance_hole)]
     for name, z, holes in (("bottom_plate", z_low, holes_bottom), ("top_plate", z_top, holes_top)):
         plate = out.add(name, B.plate_with_holes(x1 - x0, y1 - y0, bw, holes, corner=(x0, y0, 0.0)), at(0, 0, z),
-                        "housing", "housing", description=f"housing plate, {bw:.4g} mm, holds the path bearings")
+                        "housing", "housing", description=f"housing plate, {size(bw)}, holds the path bearings")
         for side in ("a", "b"):
             out.join(plate, f"path_bearing_{side}_{'lower' if name == 'bottom_plate' else 'upper'}",
                       "bearing seated in the plate", kind="bearing")
@@ -111,25 +114,26 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
     carriage = out.add("carriage", B.plate_with_holes(carriage_x1 - carriage_x0, 2 * carriage_half_y, carriage_h,
                                                       [(xi, yi, ibod)], corner=(carriage_x0, yi - carriage_half_y, 0.0)),
                        at(0, 0, z_carriage), "carriage", "carriage",
-                       description=f"preload carriage: {placed.carriage_travel:.4g} mm stroke either way along the "
+                       description=f"preload carriage: {size(placed.carriage_travel)} stroke either way along the "
                                    "symmetry line")
     out.join(carriage, block, "carriage bolted to the guide block")
     out.stationary.append(carriage)
     shaft = out.add("input_shaft", B.shaft(d_in, z_carriage + carriage_h - g["input"].z),
-                    at(xi, yi, g["input"].z), "input", "shaft", description=f"input (motor) shaft, d {d_in:.4g} mm", shared=True)
+                    at(xi, yi, g["input"].z), "input", "shaft", description=f"input (motor) shaft, d {size(d_in)}", shared=True)
     out.join(shaft, "input", "input gear on the motor's shaft")
     for i, z in enumerate((z_carriage, z_carriage + carriage_h - ibw)):
         b = out.add(f"input_bearing_{i + 1}", B.bearing(d_in, ibod, ibw), at(xi, yi, z), "input",
-                    "bearing", description=f"{d_in:.4g} x {ibod:.4g} x {ibw:.4g} mm", shared=True)
+                    "bearing", description=size(d_in, ibod, ibw), shared=True)
         out.join(b, shaft, "bearing on the input shaft", kind="bearing")
         out.join(b, carriage, "bearing seated in the carriage", kind="bearing")
     # the spring along -y: local +z turned onto world -y (a quarter turn about +x)
     spring_matrix = transform((xi, y_post, z_spring), (1, 0, 0), math.pi / 2)
     spring = out.add("carriage_spring", B.coil_envelope(spring_d, spring_mean, installed), spring_matrix, "carriage",
-                     "spring", description=f"compression spring d {spring_d:.4g} x D {spring_mean:.4g} mm, "
-                                           f"{coils:.3g} active coils ({rate:.4g} N/mm), installed {installed:.4g} mm, "
-                                           f"free {installed + placed.spring_force / rate:.4g} mm: "
-                                           f"{placed.spring_force:.4g} N")
+                     "spring", description=f"compression spring d {size(spring_d)} x D {size(spring_mean)}, "
+                                           f"{coils:.3g} active coils ({layout.design.text_units.text('linear_stiffness', rate)}), "
+                                           f"installed {size(installed)}, "
+                                           f"free {size(installed + placed.spring_force / rate)}: "
+                                           f"{layout.design.text_units.text('force', placed.spring_force)}")
     post = out.add("spring_post", B.box(2 * (spring_mean / 2 + spring_d + margin), post_t, z_spring + spring_mean / 2
                                         + spring_d + margin - z_plate_top,
                                         (xi - spring_mean / 2 - spring_d - margin, y_post, 0.0)),

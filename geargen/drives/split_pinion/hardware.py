@@ -10,6 +10,7 @@ the stiffness model reads the same shafts (the inner shaft's torsion, each pinio
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any, Mapping
 
 from geargen.errors import DesignError
@@ -17,9 +18,11 @@ from geargen.model import bodies as B
 from geargen.model.components import ComponentSet, Hardware, at
 from geargen.drives.split_pinion.shafts import split_pinion_shafts
 from geargen.model.shafts import bore_of
+from geargen.units import sizes_text
 
 
 def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
     out = ComponentSet()
     g = {p.name: p for p in layout.gears}
     st = layout.settings
@@ -27,18 +30,18 @@ def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardw
     gap = s["bearing_clearance"]
     if not bore_of(stiff.spec) == s["hollow_shaft_outer_diameter"]:
         raise DesignError("parts.hollow_shaft_outer_diameter", "must equal the stiff pinion's bore",
-                          f"{bore_of(stiff.spec):.6g} mm")
+                          size(bore_of(stiff.spec), digits=6))
     placed = split_pinion_shafts(layout, s)
     hollow, inner = placed["hollow"], placed["inner"]
     x_p = hollow.centre[0]
     hollow_part = out.add("hollow_shaft", B.shaft(hollow.diameter, hollow.length, hollow.bore),
                           at(x_p, 0, hollow.z_lo), "split_pinion", "shaft", shared=True,
-                          description=f"outer (stiff) path: hollow shaft {hollow.diameter:.4g}/{hollow.bore:.4g} mm")
+                          description=f"outer (stiff) path: hollow shaft {size(hollow.diameter, hollow.bore, sep='/')}")
     out.join(hollow_part, stiff.name, "stiff pinion on the hollow shaft")
     for b in hollow.bearings:
         name = out.add(b.name, B.bearing(b.bore, b.outer_diameter, b.width), at(x_p, 0, b.z), "split_pinion",
-                       "bearing", shared=True, description=f"angular-contact pair (preloaded), {b.bore:.4g} x "
-                                                           f"{b.outer_diameter:.4g} x {b.width:.4g} mm")
+                       "bearing", shared=True, description="angular-contact pair (preloaded), "
+                                                           + size(b.bore, b.outer_diameter, b.width))
         out.join(name, hollow_part, "bearing on the hollow shaft", kind="bearing")
     collar, outboard = inner.supports()
     collar_part = out.add(collar.name, B.split_collar(collar.bore, collar.outer_diameter, collar.width,
@@ -49,14 +52,14 @@ def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardw
     out.join(collar_part, hollow_part, "collar against the hollow shaft's end")
     inner_part = out.add("inner_shaft", B.shaft(inner.diameter, inner.length), at(x_p, 0, inner.z_lo),
                          "split_pinion", "shaft", shared=True,
-                         description=f"inner (compliant) path: d {inner.diameter:.4g} mm, twisting over "
-                                     f"{inner.twist_length:.4g} mm, collar to compliant pinion")
+                         description=f"inner (compliant) path: d {size(inner.diameter)}, twisting over "
+                                     f"{size(inner.twist_length)}, collar to compliant pinion")
     out.join(inner_part, collar_part, "clamped in the collar")
     out.join(inner_part, compl.name, "compliant pinion on the inner shaft")
     top = out.add(outboard.name, B.bearing(outboard.bore, outboard.outer_diameter, outboard.width),
                   at(x_p, 0, outboard.z), "split_pinion", "bearing", shared=True,
-                  description=f"outboard bearing of the compliant pinion, {outboard.bore:.4g} x "
-                              f"{outboard.outer_diameter:.4g} x {outboard.width:.4g} mm")
+                  description="outboard bearing of the compliant pinion, "
+                              + size(outboard.bore, outboard.outer_diameter, outboard.width))
     out.join(top, inner_part, "bearing on the inner shaft", kind="bearing")
     out.dimensions["inner_shaft"] = dict(diameter=inner.diameter, twist_length=inner.twist_length)
     # output shaft and bearings: the lower one level with the pinion pair's upper bearing, the upper
@@ -66,12 +69,12 @@ def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardw
     zo0, zo1 = outg.height
     z_low, z_high = zo0 - gap - obw, max(zo1 + gap, outboard.z)
     oshaft = out.add("output_shaft", B.shaft(d_os, z_high + obw - z_low), at(0, 0, z_low), "output", "shaft",
-                     shared=True, description=f"d {d_os:.4g} mm")
+                     shared=True, description=f"d {size(d_os)}")
     out.join(oshaft, outg.name, "output gear on its shaft")
     output_bearings = {}
     for where, z in (("lower", z_low), ("upper", z_high)):
         output_bearings[where] = out.add(f"output_bearing_{where}", B.bearing(d_os, obod, obw), at(0, 0, z), "output",
-                                         "bearing", shared=True, description=f"{d_os:.4g} x {obod:.4g} x {obw:.4g} mm")
+                                         "bearing", shared=True, description=size(d_os, obod, obw))
         out.join(output_bearings[where], oshaft, "bearing on its shaft", kind="bearing")
     # the housing: a bottom plate holding the pinion pair and the lower output bearing, a top plate
     # holding the outboard and the upper output bearing (both fixed to the machine: the ground)
@@ -87,7 +90,7 @@ def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardw
         plate = out.add(name, B.plate_with_holes(x1 - x0, 2 * half_y, thickness,
                                                  [(0.0, 0.0, obod), (x_p, 0.0, od_pinion)], corner=(x0, -half_y, 0.0)),
                         at(0, 0, z), "housing", "housing",
-                        description=f"housing plate, {thickness:.4g} mm, holds the bearings at this level")
+                        description=f"housing plate, {size(thickness)}, holds the bearings at this level")
         for b in held:
             out.join(plate, b.name, "bearing seated in the plate", kind="bearing")
         out.join(plate, held_output, "bearing seated in the plate", kind="bearing")

@@ -18,7 +18,7 @@ from geargen.errors import DesignError
 from geargen.model.allowance import MeshRange, decide, model_gears, model_source
 from geargen.model.layout import GearPlacement, Layout, MeshPlacement, ratio_check, running_backlash
 from geargen.profile.tooth import section_rotation
-from geargen.units import LENGTH_SUFFIXES
+from geargen.units import LENGTH_SUFFIXES, length_text
 
 
 #: the design keys of each pinion's mesh's backlash range (without their unit suffix)
@@ -136,7 +136,7 @@ def place(design: Design, s: dict) -> Layout:
         zh = min(by[part].face_z(spec)[1], by["output"].face_z(out)[1])
         if zh - zl <= 0:
             raise DesignError("gears.output.face_width", f"the output's face does not reach {part}",
-                              f">= {zh:.4g} mm")
+                              f">= {length_text(zh, design.length_unit)}")
         meshes.append(MeshPlacement(f"mesh_{part}", part, spec, "output", out, (zl + zh) / 2, lo, hi,
                                     running_backlash(spec, out, c), True, flank, c, RANGE_KEYS))
     notes = []

@@ -4,11 +4,13 @@ stiffness model reads the same (the inner shaft's torsion, each pinion's support
 
 from __future__ import annotations
 
+from functools import partial
 from typing import Any
 
 from geargen.errors import DesignError
 from geargen.model.layout import Layout
 from geargen.model.shafts import Bearing, Shaft, bore_of, mid_face
+from geargen.units import sizes_text
 
 
 def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
@@ -25,6 +27,7 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     it clears both). It is carried by the collar (on the hollow shaft) and the outboard bearing,
     so the compliant pinion sits between two supports; it twists from the collar's face to the
     compliant pinion's face."""
+    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
     gap = parts["bearing_clearance"]
     stiff, compl = layout.gear(layout.settings["pinion_stiff"]), layout.gear(layout.settings["pinion_compliant"])
     output = layout.gear(layout.settings["output"])
@@ -34,21 +37,21 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
                           "pinion's bore", "bore_diameter_* > 0")
     bore_hollow = d_inner + 2 * gap
     if not bore_hollow < d_hollow:
-        raise DesignError("parts.hollow_shaft_outer_diameter", f"{d_hollow:.6g} mm leaves no wall around the inner "
-                          f"shaft ({d_inner:.6g} mm + {gap:.6g} mm clearance all round)", f"> {bore_hollow:.6g} mm")
+        raise DesignError("parts.hollow_shaft_outer_diameter", f"{size(d_hollow, digits=6)} leaves no wall around the inner "
+                          f"shaft ({size(d_inner, digits=6)} + {size(gap, digits=6)} clearance all round)", f"> {size(bore_hollow, digits=6)}")
     zs0, zs1 = stiff.height
     zc0, zc1 = compl.height
     bw, bod = parts["bearing_width"], parts["bearing_outer_diameter"]
     z_hollow0 = zs1 - parts["hollow_shaft_length"]
     spacing = parts.get("bearing_spacing") or (bw + gap)
     if not spacing >= bw + gap:
-        raise DesignError("parts.bearing_spacing", f"{spacing:.6g} mm puts the two bearings into each other",
-                          f">= {bw + gap:.6g} mm (a bearing width and a bearing_clearance)")
+        raise DesignError("parts.bearing_spacing", f"{size(spacing, digits=6)} puts the two bearings into each other",
+                          f">= {size(bw + gap, digits=6)} (a bearing width and a bearing_clearance)")
     upper = Bearing("pinion_bearing_1", zs0 - gap - bw, bw, d_hollow, bod)
     pair = (Bearing("pinion_bearing_2", upper.z - spacing, bw, d_hollow, bod), upper)
     if not z_hollow0 < pair[0].z:
-        raise DesignError("parts.hollow_shaft_length", f"{parts['hollow_shaft_length']:.6g} mm does not reach "
-                          "through the bearing pair", f"> {zs1 - pair[0].z:.6g} mm")
+        raise DesignError("parts.hollow_shaft_length", f"{size(parts['hollow_shaft_length'], digits=6)} does not reach "
+                          "through the bearing pair", f"> {size(zs1 - pair[0].z, digits=6)}")
     # the drive turns the hollow shaft at its lower end, where the collar joins the inner shaft to it:
     # the stiff path twists from there to the stiff pinion's mid-face, the compliant one from the
     # collar's face to the compliant pinion
