@@ -181,8 +181,6 @@ def test_build_output_has_no_metric_unit_the_file_did_not_use(outputs):
     assert not found, "\n".join(found)
 
 
-@pytest.mark.xfail(strict=True, reason="geargen/report/drawing.py (the drawings work, not this branch's) writes "
-                                        "'Normal module m_n 1.27 mm' on an inch drawing beside its diametral pitch")
 def test_drawing_text_has_no_metric_unit_the_file_did_not_use(outputs):
     found = _report(outputs, lambda where: where.endswith(".svg"))
     assert not found, "\n".join(found)

@@ -37,8 +37,14 @@ def _lengths(table: Mapping[str, Any], where: str = "") -> Iterator[tuple[str, s
         if suffix not in LENGTH_UNITS or key.endswith(("_per_in", "_per_mm")) or any(w in key for w in SMALL_BY_NATURE):
             continue
         for v in value if isinstance(value, list) else [value]:
-            if isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v) and v != 0:
-                yield path, suffix, abs(float(v))
+            if not isinstance(v, (int, float)) or isinstance(v, bool):
+                continue
+            try:
+                size = abs(float(v))
+            except OverflowError:  # an integer beyond any float: the schema refuses it by its key
+                continue
+            if math.isfinite(size) and size != 0:
+                yield path, suffix, size
 
 
 def other_unit_warnings(sections: Mapping[str, Any], length_unit: str) -> list[str]:

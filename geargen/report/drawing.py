@@ -98,12 +98,14 @@ def format_length(value, unit: str) -> str:
 
 
 def format_um(value_um, unit: str, signed: bool = False) -> str:
-    """A deviation or tolerance given in um, in the gear's unit (with the um value beside it)."""
+    """A deviation or tolerance given in um, in the gear's unit (on a metric sheet with the um value beside it)."""
     if value_um is None:
         return NOT_SPECIFIED
     v = from_mm(value_um * 1e-3, unit)
     sign = "+" if signed else ""
-    return f"{v:{sign}.{DECIMALS[unit] + (0 if unit == 'mm' else 1)}f} {unit} ({value_um:{sign}.1f} µm)"
+    if unit != "mm":  # an inch sheet speaks inches only
+        return f"{v:{sign}.{DECIMALS[unit] + 1}f} {unit}"
+    return f"{v:{sign}.{DECIMALS[unit]}f} {unit} ({value_um:{sign}.1f} µm)"
 
 
 def format_limits(limits, unit: str) -> str:
@@ -185,6 +187,14 @@ def _rack_text(data: dict) -> str:
     return text
 
 
+def pitch_rows(module_mm: float, unit: str, kind: str = "Normal", symbol: str = "n") -> list[tuple[str, str, str]]:
+    """The pitch as a sheet row in the design's system: a metric sheet gives the module (and the
+    diametral pitch it equals, for inch tooling), an inch sheet the diametral pitch only (no mm on it)."""
+    module = (f"{kind} module", f"m_{symbol}", f"{module_mm:.6g} mm")
+    pitch = (f"{kind} diametral pitch", f"P_{symbol}", f"{LENGTH_SUFFIXES['in'] / module_mm:.6g} 1/in")
+    return [pitch] if unit == "in" else [module, pitch]
+
+
 def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[str, str, str]]:
     """The gear data block as ``(name, symbol, value)`` rows, in the order of ISO 1340.
 
@@ -192,11 +202,7 @@ def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[s
     when the gear meshes with others; ``scale``, ``version``, ``source``: the drawing's."""
     u = data["length_unit"]
     L = lambda v: format_length(v, u)  # noqa: E731 - one formatter for every length on the sheet
-    m_n = data["normal_module_mm"]
-    module = ("Normal module", "m_n", f"{m_n:.6g} mm")
-    pitch = ("Normal diametral pitch", "P_n", f"{LENGTH_SUFFIXES['in'] / m_n:.6g} 1/in")
-    rows = [("Number of teeth", "z", f"{data['teeth']}")]
-    rows += [pitch, module] if u == "in" else [module, pitch]
+    rows = [("Number of teeth", "z", f"{data['teeth']}")] + pitch_rows(data["normal_module_mm"], u)
     helical = data.get("hand") is not None
     rows += [
         ("Basic rack tooth proportions", "", _rack_text(data)),
@@ -792,7 +798,7 @@ def write_figure(fig, folder, name: str) -> dict[str, Path]:
 __all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
            "blank_rows", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
-           "drawing_scales", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
+           "drawing_scales", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
            "draw_title_block", "view_title", "dimension", "outline_points", "bore_points", "centre_cross"]
 
 

@@ -11,7 +11,7 @@ import math
 import numpy as np
 
 from geargen.core.rack import pin_contact_height, pitch_line_pin_diameter, rack_outline
-from geargen.report.drawing import format_limits, format_number, format_um, NOT_SPECIFIED, scale_text, write_figure
+from geargen.report.drawing import pitch_rows, format_limits, format_number, format_um, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet,
                                           polyline, value_text, view_title)
 from geargen.units import from_mm
@@ -29,7 +29,7 @@ def rack_rows(data: dict) -> list[tuple[str, str, str]]:
     rack = data["basic_rack"]
     return [
         ("Number of teeth", "z", f"{data['teeth']}"),
-        ("Normal module", "m_n", f"{data['normal_module_mm']:.6g} mm"),
+        *pitch_rows(data["normal_module_mm"], u),
         ("Normal pressure angle", "α_n", angle_text(data["normal_pressure_angle_deg"])),
         ("Helix angle and hand", "β", f"{data['helix_angle_deg']:.4f}° {data['hand']} hand" if data["hand"]
          else "0° (straight teeth)"),

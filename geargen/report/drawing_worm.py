@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from geargen.core.worm import rim_radius, worm_geometry
-from geargen.report.drawing import format_number, NOT_SPECIFIED, scale_text, write_figure
+from geargen.report.drawing import pitch_rows, format_number, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
                                           polyline, value_text, view_title)
 from geargen.units import from_mm
@@ -40,8 +40,8 @@ def worm_rows(data: dict) -> list[tuple[str, str, str]]:
     return [
         ("Worm type", "", data["worm_type"]),
         ("Number of starts", "z_1", f"{data['starts']}"),
-        ("Axial module", "m_x", f"{data['axial_module_mm']:.6g} mm"),
-        ("Normal module", "m_n", f"{data['normal_module_mm']:.6g} mm"),
+        *pitch_rows(data["axial_module_mm"], u, "Axial", "x"),
+        *pitch_rows(data["normal_module_mm"], u),
         ("Normal pressure angle", "α_n", angle_text(data["normal_pressure_angle_deg"])),
         ("Axial pressure angle", "α_x", angle_text(data["axial_pressure_angle_deg"])),
         ("Hand", "", data["hand"]),

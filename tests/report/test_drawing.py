@@ -222,9 +222,8 @@ def test_a_lone_gear_reads_not_specified_never_a_made_up_value(tmp_path):
         assert rows[field][1] == "not specified", field
     for field in ("Single pitch tolerance", "Runout tolerance"):
         assert rows[field][1] == "-", field
-    # an inch design: diametral pitch first, lengths in inches to 5 decimals
-    names = list(rows)
-    assert names.index("Normal diametral pitch") < names.index("Normal module")
+    # an inch design: its diametral pitch and no module (no mm on an inch sheet), lengths in inches to 5 decimals
+    assert rows["Normal diametral pitch"][1] == "32 1/in" and "Normal module" not in rows
     assert rows["Tip diameter"][1] == f"{2 * data['tip_radius']:.5f} in"
     assert data["tip_radius"] == pytest.approx((112 + 2) / 32 / 2, rel=1e-12)  # (z + 2) / P
 
