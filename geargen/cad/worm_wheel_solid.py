@@ -206,16 +206,25 @@ def _rotated_poles(poles: np.ndarray, angle: float) -> np.ndarray:
                     axis=-1)
 
 
+def _runs(basis: SimpleNamespace) -> list[tuple[float, float, int, int]]:
+    """The runs of a face's u basis (joined at knots of full multiplicity, where the curve passes
+    through a pole): (first u, last u, first pole, last pole) each."""
+    flat = np.repeat(basis.knots, basis.mults)
+    joints = [j for j in range(len(flat) - DEGREE - 1) if flat[j + 1] == flat[j + DEGREE]]
+    ends = [float(k) for k, m in zip(basis.knots, basis.mults) if m >= DEGREE]
+    return list(zip(ends[:-1], ends[1:], joints[:-1], joints[1:]))
+
+
 def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     """The wheel's closed solid from tooth 0's surfaces: per tooth the space and tip faces (tooth 0's
     turned), their edges made once: the rim curves (u isolines, shared by a space and a tip face),
-    the end curves (v = -+half isolines, shared with an end plane)."""
+    the end curves (v = -+half isolines, an edge a run, shared with an end plane)."""
     from OCP.BRep import BRep_Builder
     from OCP.BRepLib import BRepLib
     from OCP.Geom import Geom_Plane
     from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
-    from OCP.TopoDS import TopoDS_Face, TopoDS_Shell, TopoDS_Solid
+    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
     from geargen.cad.gear_solid import KERNEL_TOLERANCE as tol
     from geargen.cad.gear_solid import _bspline2d, _bspline3d, _bspline_surface_of, _edge, _vertex, _wire
@@ -236,6 +245,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     # an edge per z range (a kink at the crease is then an edge's end: the readers' integrals,
     # which rebuild the curves on the faces without its knot, take it)
     u_end = {"space": fit.space_u.knots[-1], "tip": fit.tip_u.knots[-1]}
+    runs = {"space": _runs(fit.space_u), "tip": _runs(fit.tip_u)}
     cuts = [k for k, m in zip(fit.v.knots, fit.v.mults) if m >= DEGREE]  # the range ends in v
     pieces = []  # per range: (its first pole, its number of poles, knots, mults), clamped at its ends
     start = 0
@@ -275,15 +285,42 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             row_edges = []
             for k, v in ((0, v_lo), (-1, v_hi)):
                 curve = _bspline3d(turned[:, k], basis.knots, basis.mults, basis.degree)
-                edge = _edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
-                builder.UpdateEdge(edge, line((0.0, v), (u1, v), [0.0, u1]), face, tol)  # dv = 0: no volume
-                ends[v].append(edge)
-                row_edges.append(edge)
+                # an edge a run, a vertex at every kink of the outline: one edge over a run of
+                # nanometres and its kinks (a trochoid where the hob's tip edge touches the flank
+                # on the line of centres, near a face end) made the kernel's self-intersection test
+                # of the end plane's wire find crossings inside it (the worm sweep's seed 3, set 2:
+                # 7.5 nm at z = -b/2); a run within the tolerance is a point: a degenerate edge of
+                # the face, none of the plane
+                row, vertex = [], l_ends[k]
+                for i, (u_a, u_b, first, last) in enumerate(runs[which]):
+                    # the run's poles, and so the run, within the tolerance of its start
+                    point = np.max(np.linalg.norm(turned[first:last + 1, k] - turned[first, k], axis=1)) < tol
+                    if i + 1 == len(runs[which]):
+                        end = r_ends[k]
+                    else:
+                        end = vertex if point else _vertex(builder, *turned[last, k])  # a joint: on its pole
+                    pcurve = line((u_a, v), (u_b, v), [u_a, u_b])  # dv = 0: no volume
+                    if point and end is vertex:
+                        edge = TopoDS_Edge()
+                        builder.MakeEdge(edge)
+                        builder.UpdateEdge(edge, pcurve, face, tol)
+                        builder.Add(edge, vertex.Oriented(TopAbs_FORWARD))
+                        builder.Add(edge, vertex.Oriented(TopAbs_REVERSED))
+                        builder.Range(edge, u_a, u_b)
+                        builder.Degenerated(edge, True)
+                    else:
+                        edge = _edge(builder, curve, vertex, end, u_a, u_b)
+                        builder.UpdateEdge(edge, pcurve, face, tol)
+                        ends[v].append(edge)
+                    row.append(edge)
+                    vertex = end
+                row_edges.append(row)
             # counterclockwise in (u, v): the bottom row, the right rim up, the top row back, the
             # left rim down; the normal S_u x S_v points out (u runs counterclockwise round the
             # wheel, v = z)
-            loop = [row_edges[0]] + right + [row_edges[1]] + left[::-1]
-            orient = [TopAbs_FORWARD] * (1 + len(right)) + [TopAbs_REVERSED] * (1 + len(left))
+            loop = row_edges[0] + right + row_edges[1][::-1] + left[::-1]
+            orient = ([TopAbs_FORWARD] * (len(row_edges[0]) + len(right))
+                      + [TopAbs_REVERSED] * (len(row_edges[1]) + len(left)))
             builder.Add(face, _wire(builder, loop, orient))
             faces.append(face)
     for v, edges in ends.items():
