@@ -146,11 +146,6 @@ def test_wheel_mesh_closed_where_a_trochoid_shrinks_to_nanometres(tolerance):
     points of one round to 13 distinct ones in one sector, 3 in another); the ends' triangles,
     sector 0's repeated by index, then missed the side's edges: 452 (1 um) and 400 (10 um) open
     edges. Neighbours are made one point by sector 0's exact points, in every sector alike."""
-    import sys
-    sys.path.insert(0, str(Path(__file__).parents[1]))
-    import sweep_support
-
-    rng = np.random.default_rng(3)
-    s = sweep_support.worm_set([sweep_support.worm_parameters(rng) for _ in range(3)][2])
+    s = _test_module("cad/test_worm_wheel_solid.py")._sweep_set(3, 2)
     assert (s.axial_module, s.starts, s.wheel_teeth) == (pytest.approx(4.640262, abs=1e-6), 4, 24)
     assert _closed(wheel_triangles(s, tolerance))
