@@ -206,13 +206,18 @@ def _rotated_poles(poles: np.ndarray, angle: float) -> np.ndarray:
                     axis=-1)
 
 
-def _runs(basis: SimpleNamespace) -> list[tuple[float, float, int, int]]:
+def _runs(basis: SimpleNamespace) -> list[tuple[int, int, list, list]]:
     """The runs of a face's u basis (joined at knots of full multiplicity, where the curve passes
-    through a pole): (first u, last u, first pole, last pole) each."""
+    through a pole), each as a clamped B-spline of its own: (first pole, last pole, knots, mults)."""
     flat = np.repeat(basis.knots, basis.mults)
     joints = [j for j in range(len(flat) - DEGREE - 1) if flat[j + 1] == flat[j + DEGREE]]
     ends = [float(k) for k, m in zip(basis.knots, basis.mults) if m >= DEGREE]
-    return list(zip(ends[:-1], ends[1:], joints[:-1], joints[1:]))
+    out = []
+    for lo, hi, first, last in zip(ends[:-1], ends[1:], joints[:-1], joints[1:]):
+        knots = [float(k) for k in basis.knots if lo <= k <= hi]
+        mults = [DEGREE + 1] + [m for k, m in zip(basis.knots, basis.mults) if lo < k < hi] + [DEGREE + 1]
+        out.append((first, last, knots, mults))
+    return out
 
 
 def _wheel_solid(fit: WheelFit, teeth: int, half: float):
@@ -284,7 +289,6 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             r_ends = corners[t, "-"] if which == "space" else corners[(t + 1) % teeth, "+"]
             row_edges = []
             for k, v in ((0, v_lo), (-1, v_hi)):
-                curve = _bspline3d(turned[:, k], basis.knots, basis.mults, basis.degree)
                 # an edge a run, a vertex at every kink of the outline: one edge over a run of
                 # nanometres and its kinks (a trochoid where the hob's tip edge touches the flank
                 # on the line of centres, near a face end) made the kernel's self-intersection test
@@ -292,7 +296,8 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
                 # 7.5 nm at z = -b/2); a run within the tolerance is a point: a degenerate edge of
                 # the face, none of the plane
                 row, vertex = [], l_ends[k]
-                for i, (u_a, u_b, first, last) in enumerate(runs[which]):
+                for i, (first, last, knots, mults) in enumerate(runs[which]):
+                    u_a, u_b = knots[0], knots[-1]
                     # the run's poles, and so the run, within the tolerance of its start
                     point = np.max(np.linalg.norm(turned[first:last + 1, k] - turned[first, k], axis=1)) < tol
                     if i + 1 == len(runs[which]):
@@ -309,6 +314,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
                         builder.Range(edge, u_a, u_b)
                         builder.Degenerated(edge, True)
                     else:
+                        curve = _bspline3d(turned[first:last + 1, k], knots, mults, DEGREE)
                         edge = _edge(builder, curve, vertex, end, u_a, u_b)
                         builder.UpdateEdge(edge, pcurve, face, tol)
                         ends[v].append(edge)
