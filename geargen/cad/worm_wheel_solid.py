@@ -8,7 +8,9 @@ No boolean and no sewing: the wheel is two faces a tooth, put together edge by e
   joined at knots of full multiplicity, so each run has its own polynomial pieces and the faces
   meet only the exact joint points) and v = z (the face width).
 - The TIP face: the rim between two spaces (throat torus, capped by the outside cylinder).
-- Two planar end faces.
+- Two planar end faces, their outline an edge a run (a vertex at every kink; a run that shrinks
+  to a point in an end plane, the trochoid where the root circle meets the reference circle, a
+  degenerate edge of the space face).
 
 Every surface is a least-squares fit (degree :data:`DEGREE` both ways, uniform spans, end poles
 the exact ends) of exact points of :func:`geargen.core.worm.wheel_outline`; row by row over u, then
@@ -24,7 +26,7 @@ neighbouring faces have identical boundary curves; tooth 0's geometry is turned 
 Measured (tests/cad/test_worm_wheel_solid.py, bench/bench_families.py): exact envelope points lie
 within 0.023 um (KHK set: m_x 3, z1 2, z2 30, d1 44, face 28) and 0.064 um (bench set: q 11, z2 40,
 face 24) of the solid; volume within 2e-8 of Gauss-Legendre over the exact sections; the bench set
-builds in ~0.1 s into 82 faces and a 3.15 MB STEP (the 542 interpolated patches sewn: 1.2 s, 22 MB).
+builds in ~0.1 s into 82 faces and a 3.29 MB STEP (the 542 interpolated patches sewn: 1.2 s, 22 MB).
 """
 
 from __future__ import annotations
