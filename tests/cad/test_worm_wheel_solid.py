@@ -285,6 +285,35 @@ def test_wheel_whose_trochoid_vanishes_at_a_face_end_is_valid(tmp_path, at_the_p
 
 
 @pytest.mark.slow
+def test_wheel_face_beyond_the_worms_flanks_is_refused_by_name_and_its_widest_builds():
+    """The worm sweep's set 2 of seed 1 (m_x 2.48, z1 1, z2 33, q 17.8, alpha_n 24.6 deg, x2 0.22,
+    face 32.40 mm = 1.66 r_i) failed in the wheel's fit (GeometryError worm_envelope: the flank in
+    plane z = 16.04 mm does not span the rim): near the face ends the +1 flank's whole envelope lies
+    outside the rim (0.13 mm at z = 16.04 mm), only the hob's tip edge cuts inside it. Refused by
+    name with the widest face that keeps the flanks (31.908 mm), which builds valid with the exact
+    volume."""
+    import dataclasses
+
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    from geargen.cad.worm_wheel_solid import build_worm_wheel
+    from geargen.errors import DesignError
+
+    s = _sweep_set(1, 2)
+    assert (s.axial_module, s.wheel_teeth, s.wheel_face_width) == (pytest.approx(2.477156, abs=1e-6), 33,
+                                                                  pytest.approx(32.4038, abs=1e-4))
+    with pytest.raises(DesignError) as info:
+        worm_geometry(s)
+    assert info.value.field == "wheel_face_width"
+    widest = float(info.value.allowed.strip("[] m").split(",")[1])
+    assert widest == pytest.approx(31.908, abs=2e-3)  # bisection to 1 um, printed to 6 digits
+    s = dataclasses.replace(s, wheel_face_width=widest)
+    wheel = build_worm_wheel(WormWheelSpec(s), check=True)
+    assert check_solid(wheel.shape) is None
+    # measured -1.7e-8 (the sweep's bound, 1 nm over the area: 1.49e-7)
+    assert solid_volume(wheel.shape) == pytest.approx(exact_wheel_volume(s, nodes=8), rel=1e-7)
+
+
+@pytest.mark.slow
 def test_worm_wheel_solid_crease_and_rim():
     """The rim: the throat torus meets the outside cylinder at z_c = sqrt(r_i^2 - (a - d_k/2)^2)
     (KHK: sqrt(19^2 - 17.5^2) = 7.399 mm); the tip stays sharp there (rows at +-z_c), so the rim
