@@ -6,7 +6,8 @@ Conventions (the synthesis and assembly steps rotate and place from these):
 - tooth 0 is centred on +x in the z = 0 section; the section at height z is the z = 0 section
   turned counter-clockwise by ``geargen.profile.section_rotation(spec, z)`` (positive for a
   right-hand helix, negative for a left-hand one);
-- the keyway (if any) is centred on +x, its flat floor at ``bore_radius + keyway_depth``;
+- the keyway (if any) is centred on +x, its flat floor at ``bore_radius + keyway_depth`` (a
+  cluster's too: it is one part with one bore and one keyway, whatever the small gear's phase);
 - the hub (if any) is a plain cylinder on the z < 0 side, from ``-hub_length`` to 0
   (``hub_side="top"``: from the face width up);
 - a cluster's large gear sits at z in [0, b_large], the small gear at
@@ -228,8 +229,9 @@ def _helix_pcurve(angle: float, twist: float, length: float) -> Geom2d_BSplineCu
 # ---------------------------------------------------------------- edges, wires, faces
 
 
-def _bore_wire(spec: GearSpec, z: float = 0.0) -> TopoDS_Wire | None:
-    """The bore (with keyway) as a clockwise wire (seen from +z) at height ``z``, or None."""
+def _bore_wire(spec: GearSpec, z: float = 0.0, keyway_angle: float = 0.0) -> TopoDS_Wire | None:
+    """The bore (with keyway) as a clockwise wire (seen from +z) at height ``z``, or None; the
+    keyway centred on +x turned counter-clockwise by ``keyway_angle`` (rad)."""
     hub = spec.hub
     if hub.bore_diameter <= 0:
         return None
@@ -252,7 +254,11 @@ def _bore_wire(spec: GearSpec, z: float = 0.0) -> TopoDS_Wire | None:
         mk.Add(BRepBuilderAPI_MakeEdge(p, q).Edge())
     if not mk.IsDone():
         raise BuildError("keyway wire could not be closed")
-    return mk.Wire()
+    if keyway_angle == 0.0:
+        return mk.Wire()
+    turn = gp_Trsf()
+    turn.SetRotation(Z_AXIS, keyway_angle)
+    return TopoDS.Wire_s(_transform(mk.Wire(), turn))
 
 
 def _transform(shape: TopoDS_Shape, trsf: gp_Trsf) -> TopoDS_Shape:
@@ -375,7 +381,8 @@ def _side(curve: _Curve, axial: _Axial, length: float) -> _Side:
 
 
 def toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
-                 mirror: tuple[float, float] | None = None) -> tuple[TopoDS_Shape, list[ToothFace]]:
+                 mirror: tuple[float, float] | None = None,
+                 keyway_angle: float = 0.0) -> tuple[TopoDS_Shape, list[ToothFace]]:
     """The gear body (teeth, bore, keyway; no hub) put together face by face, and tooth 0's faces.
 
     Side faces: one per curve of :func:`_tooth_curves` per tooth; a flank or fillet is the
@@ -388,7 +395,8 @@ def toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
     the second half is the first's mirror image in the plane z = h + gap / 2, every face and edge
     of it mirrored (a mirror turns the helix's hand and keeps the sections), sharing the first
     half's edges at z = h when there is no gap; with a gap the blank between the halves is the
-    groove cylinder of that radius between two annular end faces. The bore runs through.
+    groove cylinder of that radius between two annular end faces. The bore runs through, its
+    keyway turned by ``keyway_angle`` (:func:`_bore_wire`).
     """
     builder = BRep_Builder()
     length = spec.face_width
@@ -499,7 +507,7 @@ def toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
 
     # caps: faces of +z normal (outer wire counter-clockwise, holes clockwise), those facing -z turned over
     bore_faces, bores = [], {}
-    bore0 = _bore_wire(spec, 0.0)
+    bore0 = _bore_wire(spec, 0.0, keyway_angle)
     if bore0 is not None:
         prism = BRepPrimAPI_MakePrism(bore0, gp_Vec(0, 0, far), True)
         bores = {0.0: TopoDS.Wire_s(prism.FirstShape()), far: TopoDS.Wire_s(prism.LastShape())}
@@ -558,14 +566,14 @@ def _outward_face(shape: TopoDS_Shape) -> TopoDS_Shape:
     return face if normal.X() * p.X() + normal.Y() * p.Y() > 0 else face.Reversed()
 
 
-def hub_body(spec: GearSpec, side: str) -> TopoDS_Shape | None:
+def hub_body(spec: GearSpec, side: str, keyway_angle: float = 0.0) -> TopoDS_Shape | None:
     hub = spec.hub
     if hub.hub_length <= 0:
         return None
     z0 = -hub.hub_length if side == "bottom" else spec.face_width
     outer_edge = BRepBuilderAPI_MakeEdge(gp_Circ(gp_Ax2(gp_Pnt(0, 0, z0), gp_Dir(0, 0, 1)), hub.hub_diameter / 2)).Edge()
     mk = BRepBuilderAPI_MakeFace(BRepBuilderAPI_MakeWire(outer_edge).Wire(), True)
-    bore = _bore_wire(spec, z0)
+    bore = _bore_wire(spec, z0, keyway_angle)
     if bore is not None:
         mk.Add(bore)
     return BRepPrimAPI_MakePrism(mk.Face(), gp_Vec(0, 0, hub.hub_length), True).Shape()
@@ -606,21 +614,22 @@ def solid_volume(shape: TopoDS_Shape, eps: float = 1e-9) -> float:
 
 
 def build_body(spec: GearSpec, tolerance: float | None = None, profile: ToothProfile | None = None,
-               hub_side: str = "bottom") -> TopoDS_Shape:
-    """The solid of one gear (with bore, keyway and hub) as an OCCT shape; see the module docstring."""
+               hub_side: str = "bottom", keyway_angle: float = 0.0) -> TopoDS_Shape:
+    """The solid of one gear (with bore, keyway and hub) as an OCCT shape; see the module docstring.
+    ``keyway_angle`` (rad): the keyway turned counter-clockwise from +x, the teeth not."""
     if tolerance is None:
         tolerance = default_tolerance(spec)
-    return _body_and_faces(spec, tolerance, profile, hub_side)[0]
+    return _body_and_faces(spec, tolerance, profile, hub_side, keyway_angle)[0]
 
 
 def _body_and_faces(spec: GearSpec, tolerance: float | None, profile: ToothProfile | None,
-                    hub_side: str) -> tuple[TopoDS_Shape, list[ToothFace]]:
+                    hub_side: str, keyway_angle: float = 0.0) -> tuple[TopoDS_Shape, list[ToothFace]]:
     if tolerance is None:
         tolerance = default_tolerance(spec)
     if profile is None:
         profile = tooth_profile(spec)
-    body, faces = toothed_body(spec, profile, tolerance)
-    hub = hub_body(spec, hub_side)
+    body, faces = toothed_body(spec, profile, tolerance, keyway_angle=keyway_angle)
+    hub = hub_body(spec, hub_side, keyway_angle)
     if hub is not None:
         body = _fuse([body, hub])
     return body, faces
@@ -652,15 +661,16 @@ def build_gear(spec: GearSpec, tolerance: float | None = None, check: bool = Fal
 def build_cluster(cluster: ClusterSpec, tolerance: float | None = None, check: bool = False) -> GearSolid:
     """Build a cluster gear: large gear at z in [0, b_L], spacer, small gear above it, one solid.
 
-    The small gear is turned by ``cluster.relative_phase`` counter-clockwise (its tooth 0 at
-    its own lowest face against the large gear's tooth 0 at z = 0); the bore runs through both.
+    The small gear's teeth are turned by ``cluster.relative_phase`` counter-clockwise (its tooth 0
+    at its own lowest face against the large gear's tooth 0 at z = 0); the bore runs through
+    both, its one keyway on +x (the small gear's built turned back by the phase).
     """
     large, small = cluster.large, cluster.small
     if tolerance is None:
         tolerance = min(default_tolerance(large), default_tolerance(small))
     large_profile, small_profile = tooth_profile(large), tooth_profile(small)
     large_body = build_body(large, tolerance, large_profile, hub_side="bottom")
-    small_body = build_body(small, tolerance, small_profile, hub_side="top")
+    small_body = build_body(small, tolerance, small_profile, hub_side="top", keyway_angle=-cluster.relative_phase)
     z_small = large.face_width + cluster.axial_gap
     trsf = gp_Trsf()
     trsf.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1)), cluster.relative_phase)

@@ -8,7 +8,9 @@ No boolean and no sewing: the wheel is two faces a tooth, put together edge by e
   joined at knots of full multiplicity, so each run has its own polynomial pieces and the faces
   meet only the exact joint points) and v = z (the face width).
 - The TIP face: the rim between two spaces (throat torus, capped by the outside cylinder).
-- Two planar end faces.
+- Two planar end faces, their outline an edge a run (a vertex at every kink; a run that shrinks
+  to a point in an end plane, the trochoid where the root circle meets the reference circle, a
+  degenerate edge of the space face).
 
 Every surface is a least-squares fit (degree :data:`DEGREE` both ways, uniform spans, end poles
 the exact ends) of exact points of :func:`geargen.core.worm.wheel_outline`; row by row over u, then
@@ -24,7 +26,7 @@ neighbouring faces have identical boundary curves; tooth 0's geometry is turned 
 Measured (tests/cad/test_worm_wheel_solid.py, bench/bench_families.py): exact envelope points lie
 within 0.023 um (KHK set: m_x 3, z1 2, z2 30, d1 44, face 28) and 0.064 um (bench set: q 11, z2 40,
 face 24) of the solid; volume within 2e-8 of Gauss-Legendre over the exact sections; the bench set
-builds in ~0.1 s into 82 faces and a 3.15 MB STEP (the 542 interpolated patches sewn: 1.2 s, 22 MB).
+builds in ~0.1 s into 82 faces and a 3.29 MB STEP (the 542 interpolated patches sewn: 1.2 s, 22 MB).
 """
 
 from __future__ import annotations
@@ -177,16 +179,30 @@ def _rotated_poles(poles: np.ndarray, angle: float) -> np.ndarray:
                     axis=-1)
 
 
+def _runs(basis: SimpleNamespace) -> list[tuple[int, int, list, list]]:
+    """The runs of a face's u basis (joined at knots of full multiplicity, where the curve passes
+    through a pole), each as a clamped B-spline of its own: (first pole, last pole, knots, mults)."""
+    flat = np.repeat(basis.knots, basis.mults)
+    joints = [j for j in range(len(flat) - DEGREE - 1) if flat[j + 1] == flat[j + DEGREE]]
+    ends = [float(k) for k, m in zip(basis.knots, basis.mults) if m >= DEGREE]
+    out = []
+    for lo, hi, first, last in zip(ends[:-1], ends[1:], joints[:-1], joints[1:]):
+        knots = [float(k) for k in basis.knots if lo <= k <= hi]
+        mults = [DEGREE + 1] + [m for k, m in zip(basis.knots, basis.mults) if lo < k < hi] + [DEGREE + 1]
+        out.append((first, last, knots, mults))
+    return out
+
+
 def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     """The wheel's closed solid from tooth 0's surfaces: per tooth the space and tip faces (tooth 0's
     turned), their edges made once: the rim curves (u isolines, shared by a space and a tip face),
-    the end curves (v = -+half isolines, shared with an end plane)."""
+    the end curves (v = -+half isolines, an edge a run, shared with an end plane)."""
     from OCP.BRep import BRep_Builder
     from OCP.BRepLib import BRepLib
     from OCP.Geom import Geom_Plane
     from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
-    from OCP.TopoDS import TopoDS_Face, TopoDS_Shell, TopoDS_Solid
+    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
     from geargen.cad.kernel import KERNEL_TOLERANCE as tol
     from geargen.cad.kernel import (bspline_curve_2d, bspline_curve_3d, bspline_surface, make_edge, make_vertex,
@@ -208,6 +224,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     # an edge per z range (a kink at the crease is then an edge's end: the readers' integrals,
     # which rebuild the curves on the faces without its knot, take it)
     u_end = {"space": fit.space_u.knots[-1], "tip": fit.tip_u.knots[-1]}
+    runs = {"space": _runs(fit.space_u), "tip": _runs(fit.tip_u)}
     cuts = [k for k, m in zip(fit.v.knots, fit.v.mults) if m >= DEGREE]  # the range ends in v
     pieces = []  # per range: (its first pole, its number of poles, knots, mults), clamped at its ends
     start = 0
@@ -246,16 +263,44 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             r_ends = corners[t, "-"] if which == "space" else corners[(t + 1) % teeth, "+"]
             row_edges = []
             for k, v in ((0, v_lo), (-1, v_hi)):
-                curve = bspline_curve_3d(turned[:, k], basis.knots, basis.mults, basis.degree)
-                edge = make_edge(builder, curve, l_ends[k], r_ends[k], 0.0, u1)
-                builder.UpdateEdge(edge, line((0.0, v), (u1, v), [0.0, u1]), face, tol)  # dv = 0: no volume
-                ends[v].append(edge)
-                row_edges.append(edge)
+                # an edge a run, a vertex at every kink of the outline: one edge over a run of
+                # nanometres and its kinks (a trochoid where the hob's tip edge touches the flank
+                # on the line of centres, near a face end) made the kernel's self-intersection test
+                # of the end plane's wire find crossings inside it (the worm sweep's seed 3, set 2:
+                # 7.5 nm at z = -b/2); a run within the tolerance is a point: a degenerate edge of
+                # the face, none of the plane
+                row, vertex = [], l_ends[k]
+                for i, (first, last, knots, mults) in enumerate(runs[which]):
+                    u_a, u_b = knots[0], knots[-1]
+                    # the run's poles, and so the run, within the tolerance of its start
+                    point = np.max(np.linalg.norm(turned[first:last + 1, k] - turned[first, k], axis=1)) < tol
+                    if i + 1 == len(runs[which]):
+                        end = r_ends[k]
+                    else:
+                        end = vertex if point else make_vertex(builder, *turned[last, k])  # a joint: on its pole
+                    pcurve = line((u_a, v), (u_b, v), [u_a, u_b])  # dv = 0: no volume
+                    if point and end is vertex:
+                        edge = TopoDS_Edge()
+                        builder.MakeEdge(edge)
+                        builder.UpdateEdge(edge, pcurve, face, tol)
+                        builder.Add(edge, vertex.Oriented(TopAbs_FORWARD))
+                        builder.Add(edge, vertex.Oriented(TopAbs_REVERSED))
+                        builder.Range(edge, u_a, u_b)
+                        builder.Degenerated(edge, True)
+                    else:
+                        curve = bspline_curve_3d(turned[first:last + 1, k], knots, mults, DEGREE)
+                        edge = make_edge(builder, curve, vertex, end, u_a, u_b)
+                        builder.UpdateEdge(edge, pcurve, face, tol)
+                        ends[v].append(edge)
+                    row.append(edge)
+                    vertex = end
+                row_edges.append(row)
             # counterclockwise in (u, v): the bottom row, the right rim up, the top row back, the
             # left rim down; the normal S_u x S_v points out (u runs counterclockwise round the
             # wheel, v = z)
-            loop = [row_edges[0]] + right + [row_edges[1]] + left[::-1]
-            orient = [TopAbs_FORWARD] * (1 + len(right)) + [TopAbs_REVERSED] * (1 + len(left))
+            loop = row_edges[0] + right + row_edges[1][::-1] + left[::-1]
+            orient = ([TopAbs_FORWARD] * (len(row_edges[0]) + len(right))
+                      + [TopAbs_REVERSED] * (len(row_edges[1]) + len(left)))
             builder.Add(face, make_wire(builder, loop, orient))
             faces.append(face)
     for v, edges in ends.items():

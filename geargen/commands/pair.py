@@ -35,6 +35,7 @@ import math
 import sys
 from dataclasses import replace
 
+from geargen.design.checks import MINIMUM_SAFETY
 from geargen.design.gear import GearSpec, gear_from_table
 from geargen.errors import DesignError
 from geargen.units import from_mm, to_mm
@@ -111,7 +112,7 @@ def add_arguments(p) -> None:
     rating.add_argument("--tip-relief", type=float, default=0.0, metavar="C_A", help="tip relief C_a, um (default 0)")
     rating.add_argument("--minimum-safety", type=float, nargs=2, default=None, metavar=("S_HMIN", "S_FMIN"),
                         help="minimum safety factors for pitting and bending; the pair fails (exit 1) below them. "
-                             f"Default {DEFAULT_MINIMUM_SAFETY[0]:g} and {DEFAULT_MINIMUM_SAFETY[1]:g}: ISO 6336 leaves "
+                             f"Default {MINIMUM_SAFETY[0]:g} and {MINIMUM_SAFETY[1]:g}: ISO 6336 leaves "
                              "the values to agreement between the parties and recommends none; these are the usual "
                              "industrial values (a root fracture ends the drive, a pit does not at once, hence the "
                              "larger S_Fmin)")
@@ -120,8 +121,6 @@ def add_arguments(p) -> None:
                    help="gear 2 is an internal gear (a ring, same hand as gear 1): internal pair geometry and checks")
 
 
-#: S_Hmin, S_Fmin when --minimum-safety is not given (see its help)
-DEFAULT_MINIMUM_SAFETY = (1.0, 1.4)
 #: N m per in lbf
 NM_PER_INLBF = 0.1129848290276167
 
@@ -311,7 +310,7 @@ def rate_from_args(args, gear1: GearSpec, gear2: GearSpec, centre_distance_mm: f
             speed=args.speed, life=args.life, accuracy_grade=args.accuracy_grade, roughness=args.roughness,
             viscosity=args.viscosity, application_factor=args.application_factor,
             face_load_factor=args.face_load_factor, tip_relief=args.tip_relief,
-            minimum_safety=tuple(args.minimum_safety or DEFAULT_MINIMUM_SAFETY))
+            minimum_safety=tuple(args.minimum_safety or MINIMUM_SAFETY))
         geo = rating_geometry(gear1, gear2, centre_distance_mm)
         load = 2 * torque_nmm / geo.reference_diameters[0]
         rating = rate_pair(geo, load, conditions, materials)

@@ -109,12 +109,54 @@ def worm_geometry(s: WormGearSet) -> WormGeometry:
             raise
         limit = g.wheel_outside_diameter / 2  # an envelope that folds back: wheel_section says so (wheel_undercut)
     if s.wheel_outside_diameter is None:
-        return dataclasses.replace(g, wheel_outside_diameter=min(da2 + m, 2 * limit))
-    if s.wheel_outside_diameter > 2 * limit + 1e-9:
+        g = dataclasses.replace(g, wheel_outside_diameter=min(da2 + m, 2 * limit))
+    elif s.wheel_outside_diameter > 2 * limit + 1e-9:
         raise DesignError("wheel_outside_diameter", f"{s.wheel_outside_diameter:.6g} mm leaves the wheel teeth less than "
                           f"{MIN_TIP_LAND:g} m_x of tip land at the face ends (pointed teeth)",
                           f"[{da2:.6g}, {2 * limit:.6g}] mm")
-    return dataclasses.replace(g, wheel_outside_diameter=s.wheel_outside_diameter)
+    else:
+        g = dataclasses.replace(g, wheel_outside_diameter=s.wheel_outside_diameter)
+    _check_flanks_reach_the_rim(s, g)
+    return g
+
+
+def _flank_inside_rim(s: WormGearSet, g: WormGeometry, z) -> np.ndarray:
+    """Per plane z (nz,): how far inside the rim (mm) the envelope of the hob's flank reaches at the
+    hob's tip radius, the less of the two sides; negative where the flank's whole envelope lies
+    outside the rim, so that inside it only the hob's tip edge cuts the wheel. A side whose envelope
+    folds back (its radius not falling from the rim's worm radius to the tip's, in 16 steps) is
+    left to the undercut check (:func:`wheel_section`: ``wheel_undercut``)."""
+    z = np.asarray(z, float)
+    rim = rim_radius(g, z)
+    start = np.maximum(np.hypot(g.centre_distance - rim, z), np.abs(z) * (1 + 1e-9) + 1e-12)
+    radii = start[:, None] + (g.hob_tip_radius - start)[:, None] * np.linspace(0.0, 1.0, 17)[None, :]
+    least = np.full(z.shape, np.inf)
+    for side in (1, -1):
+        xy = _envelope(s, g, z[:, None], side, radii)[0]
+        reach = np.hypot(xy[..., 0], xy[..., 1])
+        folds = np.any(np.diff(reach, axis=1) >= 0, axis=1)
+        least = np.minimum(least, np.where(folds, np.inf, rim - reach[:, -1]))
+    return least
+
+
+def _check_flanks_reach_the_rim(s: WormGearSet, g: WormGeometry) -> None:
+    """DesignError ``wheel_face_width`` where at a face end the worm's flanks cut no wheel flank inside
+    the rim (the worm sweep's seed 1: m_x 2.48, z1 1, z2 33, q 17.8, alpha_n 24.6 deg, x2 0.22, face
+    32.4 mm = 1.66 r_i; the +1 flank's envelope ends 0.13 mm outside the rim at z = 16.04 mm): the
+    face beyond carries no contact, and the wheel's outline (flank from the rim down, geargen.cad.
+    worm_wheel_solid) is not that wheel's. The allowed width: the widest whose ends keep it, by
+    bisection to 1 um (the reach falls as |z| grows)."""
+    half = s.wheel_face_width / 2
+    ends = np.array([-half, half])
+    if np.min(_flank_inside_rim(s, g, ends)) >= 0:
+        return
+    lo, hi = 0.0, half
+    while hi - lo > 0.5e-3:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if np.min(_flank_inside_rim(s, g, np.array([-mid, mid]))) >= 0 else (lo, mid)
+    raise DesignError("wheel_face_width", f"{s.wheel_face_width:.6g} mm reaches beyond the worm's flanks: at the face "
+                      "ends only the hob's tip edge cuts the wheel inside its rim (no flank, no contact there)",
+                      f"[{0.5 * s.axial_module:.6g}, {2 * lo:.6g}] mm")
 
 
 def _signed_p(s: WormGearSet, g: WormGeometry) -> float:

@@ -153,20 +153,37 @@ def ring_mesh(grid: np.ndarray, sectors: int) -> np.ndarray:
     ``grid`` (nz, nc, 3): rows at increasing z, each a ring of ``nc`` points counterclockwise round
     the z axis (the last joined to the first), ``sectors``-fold (nc / sectors columns a sector),
     with flat ends in the first and last rows' planes. Each quad is split along its shorter
-    diagonal. The points are rounded to single precision (an STL's) first, neighbours closer than
-    a nanometre made one, and triangles whose corners then coincide left out (where a run shrinks
-    to a point, e.g. a trochoid of no length in some plane): what is written is closed."""
+    diagonal. The points are rounded to single precision (an STL's), neighbours in a row within
+    :func:`_merge_distance` of a chain's first point made that point (where a run shrinks to a
+    point, e.g. a trochoid of nanometres at a face end), and triangles whose corners then
+    coincide left out: what is written is closed."""
+    per = grid.shape[1] // sectors
+    merge = _merge_distance(grid)
+    # which neighbours are one point is decided on sector 0's exact points and done by index in
+    # every sector: the ends' triangles are sector 0's repeated by index, and the sectors' rounded
+    # points differ (the 22 points of a 9 nm trochoid round to 13 distinct ones in one sector, 3 in another)
+    anchor = np.broadcast_to(np.arange(per), (len(grid), per)).copy()
+    steps = np.linalg.norm(np.diff(grid[:, :per], axis=1), axis=-1)
+    for i, j in np.argwhere(steps < merge):  # row by row, in order: a chain takes its first point
+        if np.linalg.norm(grid[i, j + 1] - grid[i, anchor[i, j]]) < merge:
+            anchor[i, j + 1] = anchor[i, j]
     grid = grid.astype(np.float32).astype(float)
-    # neighbours in a row closer than a nanometre (a run that shrinks to a point) are one point
-    close = np.argwhere(np.linalg.norm(np.diff(grid, axis=1), axis=-1) < 1e-6)
-    for i, j in close:  # in order: a chain of them takes its first
-        grid[i, j + 1] = grid[i, j]
+    rows, cols = np.nonzero(anchor != np.arange(per))
+    for k in range(sectors):
+        grid[rows, k * per + cols] = grid[rows, k * per + anchor[rows, cols]]
     a, b = grid[:-1], np.roll(grid[:-1], -1, axis=1)
     c, d = np.roll(grid[1:], -1, axis=1), grid[1:]
     rising = _rising(a, b, c, d)[..., None, None]
     first = np.where(rising, np.stack([a, b, c], axis=2), np.stack([a, b, d], axis=2)).reshape(-1, 3, 3)
     second = np.where(rising, np.stack([a, c, d], axis=2), np.stack([b, c, d], axis=2)).reshape(-1, 3, 3)
     return _uncollapsed(np.concatenate([first, second, _cap(grid[0], sectors)[:, ::-1], _cap(grid[-1], sectors)]))
+
+
+def _merge_distance(grid: np.ndarray) -> float:
+    """Neighbours closer than this (mm) are one point: four single-precision steps at the grid's
+    largest coordinate, so that points kept apart stay apart, in order, once rounded (each moves
+    at most half a step a coordinate); 15 nm on a wheel of 125 mm, far inside any chordal tolerance."""
+    return 4 * float(np.spacing(np.float32(np.max(np.abs(grid)))))
 
 
 def _uncollapsed(tris: np.ndarray) -> np.ndarray:

@@ -133,6 +133,45 @@ def test_cluster_gear(gap, make_spec):
     assert np.max(np.abs(involute_deviation(p_small, 0.0, unturned))) < 1e-4
 
 
+def _keyway_and_tooth_angles(shape, z: float, hub: Hub, profile) -> tuple[np.ndarray, np.ndarray]:
+    """In the section at height ``z``: the points of the keyway (off the bore circle, inside the
+    keyway's reach) and the polar angles of the points on the tip circle."""
+    cut = section(shape, z)
+    rad = np.hypot(cut.points[:, 0], cut.points[:, 1])
+    rb, w2 = hub.bore_diameter / 2, hub.keyway_width / 2
+    reach = math.hypot(rb + hub.keyway_depth, w2)
+    keyway = cut.points[(rad > rb + 1e-6) & (rad < reach + 1e-6)]
+    tip = cut.points[np.abs(rad - profile.tip_radius) < 1e-6]
+    return keyway, np.arctan2(tip[:, 1], tip[:, 0])
+
+
+@pytest.mark.parametrize("phase", [0.3, -1.1])
+def test_one_piece_cluster_has_one_keyway_on_x_and_its_teeth_at_the_phase(phase, make_spec):
+    """A one-piece cluster has one bore and one keyway: sectioned inside the large gear and inside
+    the small one, the keyway lies on +x in both (its walls at y = +-w/2, its floor at x = r + t);
+    the small gear's tooth 0 sits at the relative phase, the large gear's at 0. (The small gear's
+    body was turned by the phase keyway and all: its keyway 0.3 rad off the large gear's.)"""
+    from geargen.profile.tooth import tooth_profile
+    hub = Hub(bore_diameter=6.35, keyway_width=1.6, keyway_depth=0.8)
+    large = make_spec(48, face=4.7625, hub=hub)
+    small = make_spec(21, face=7.9375, hub=hub)
+    cluster = ClusterSpec(large, small, axial_gap=1.5, relative_phase=phase, name="cluster")
+    g = build_cluster(cluster, check=True)
+    w2, floor = hub.keyway_width / 2, hub.bore_diameter / 2 + hub.keyway_depth
+    for z, spec, tooth0 in ((0.5 * large.face_width, large, 0.0),
+                            (cluster.small_gear_z + 0.5 * small.face_width, small, phase)):
+        profile = tooth_profile(spec)
+        keyway, tips = _keyway_and_tooth_angles(g.shape, z, hub, profile)
+        assert len(keyway) > 10
+        # on the kernel's tolerance (0.1 nm) and the section's sampling of straight edges: 1 nm
+        assert np.abs(keyway[:, 1]).max() == pytest.approx(w2, abs=1e-6)
+        assert keyway[:, 0].max() == pytest.approx(floor, abs=1e-6)
+        assert keyway[:, 0].min() > 0
+        # a tip land is centred on tooth 0's angle: within its half angle (spur: every section alike)
+        off = (tips - tooth0 + math.pi) % (2 * math.pi) - math.pi
+        assert np.min(np.abs(off)) <= profile.tip_half_angle + 1e-9
+
+
 @pytest.mark.parametrize("teeth", [16, 48, 21])
 def test_the_papers_gears(teeth, make_spec, quiet_undercut):
     """The robot joint's gears (Hale & Slocum, Appendix): 32 DP, 20 deg; 112 is the bench gear.

@@ -223,6 +223,96 @@ def test_wheel_teeth_that_would_come_to_a_point_keep_a_tip_land():
     assert info.value.field == "wheel_outside_diameter" and f"{g.wheel_outside_diameter:.6g}" in info.value.allowed
 
 
+def _touching_width(s):
+    """The face width at which the root circle meets the reference circle in the end planes,
+    a - sqrt(rho^2 - z^2) = d2/2 (the worm sweep's set 2 of seed 3 has 44.3895 mm: 0.037 mm less)."""
+    g = worm_geometry(s)
+    return 2 * math.sqrt(g.hob_tip_radius ** 2 - (g.centre_distance - g.wheel_reference_diameter / 2) ** 2)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("at_the_point", [False, True], ids=["sweep_set", "trochoid_of_no_length"])
+def test_wheel_whose_trochoid_vanishes_at_a_face_end_is_valid(tmp_path, at_the_point):
+    """The worm sweep's set 2 of seed 3 (m_x 4.64, z1 4, z2 24, q 16.7, alpha_n 20.64 deg, x2 -0.029)
+    built an invalid wheel: in the end planes the root circle nearly meets the reference circle, so
+    the hob's tip edge touches the flank almost on the line of centres and the trochoid between flank
+    and root is 7.5 nm long (2.79 mm at the mid plane). The end plane's outline was one edge a space,
+    over all five runs, and the kernel's self-intersection test of the wire found a crossing inside
+    the trochoid (teeth 10, 16 and 22 of 24: the turns' rounding). Now an edge a run; with the face
+    width where the root circle meets the reference circle the trochoid has no length (1e-14 mm): a
+    degenerate edge of the face. One valid solid with the volume the sweep checks it against, read
+    back valid from its STEP."""
+    import dataclasses
+
+    from geargen.cad.export import export_step, read_step
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    from geargen.cad.worm_wheel_solid import build_worm_wheel
+    from geargen.core.worm import wheel_outline
+    from OCP.BRepGProp import BRepGProp
+    from OCP.GProp import GProp_GProps
+    from OCP.TopAbs import TopAbs_SOLID
+    from OCP.TopExp import TopExp_Explorer
+
+    s = _sweep_set(3, 2)
+    assert (s.axial_module, s.starts, s.wheel_teeth) == (pytest.approx(4.640262, abs=1e-6), 4, 24)
+    if at_the_point:
+        s = dataclasses.replace(s, wheel_face_width=_touching_width(s))
+    g = worm_geometry(s)
+    half = s.wheel_face_width / 2
+    runs = wheel_outline(s, g, np.array([-half, 0.0]), [0.0, 1.0], np.linspace(0.0, 1.0, 201), [0.0, 1.0])
+    length = np.linalg.norm(np.diff(runs["trochoid", 1], axis=1), axis=-1).sum(axis=1)
+    # the case: measured 7.5e-6 mm (sweep set) and 7e-15 mm (no length) at the face end, 2.79 mm mid face
+    assert length[0] < (1e-12 if at_the_point else 1e-5) and length[1] > 1.0
+
+    wheel = build_worm_wheel(WormWheelSpec(s), check=True)  # KernelFailure if not one valid solid
+    assert check_solid(wheel.shape) is None
+    solids, exp = 0, TopExp_Explorer(wheel.shape, TopAbs_SOLID)
+    while exp.More():
+        solids += 1
+        exp.Next()
+    assert solids == 1
+    exact = exact_wheel_volume(s, nodes=8)  # the sweep's exact value (tests/sweep_support.py)
+    props = GProp_GProps()
+    BRepGProp.SurfaceProperties_s(wheel.shape, props)
+    # the sweep's tolerance: the surfaces' mean offset within 1 nm over the wheel's area (1.17e-7
+    # relative here); measured -2.46e-8 both
+    tolerance = 1e-6 * props.Mass() / exact
+    assert solid_volume(wheel.shape) == pytest.approx(exact, rel=tolerance)
+    export_step(wheel, tmp_path / "wheel.step")
+    shape = read_step(tmp_path / "wheel.step").shape
+    assert check_solid(shape) is None
+    assert solid_volume(shape, 1e-9) == pytest.approx(exact, rel=tolerance)
+
+
+@pytest.mark.slow
+def test_wheel_face_beyond_the_worms_flanks_is_refused_by_name_and_its_widest_builds():
+    """The worm sweep's set 2 of seed 1 (m_x 2.48, z1 1, z2 33, q 17.8, alpha_n 24.6 deg, x2 0.22,
+    face 32.40 mm = 1.66 r_i) failed in the wheel's fit (GeometryError worm_envelope: the flank in
+    plane z = 16.04 mm does not span the rim): near the face ends the +1 flank's whole envelope lies
+    outside the rim (0.13 mm at z = 16.04 mm), only the hob's tip edge cuts inside it. Refused by
+    name with the widest face that keeps the flanks (31.908 mm), which builds valid with the exact
+    volume."""
+    import dataclasses
+
+    from geargen.cad.gear_solid import check_solid, solid_volume
+    from geargen.cad.worm_wheel_solid import build_worm_wheel
+    from geargen.errors import DesignError
+
+    s = _sweep_set(1, 2)
+    assert (s.axial_module, s.wheel_teeth, s.wheel_face_width) == (pytest.approx(2.477156, abs=1e-6), 33,
+                                                                  pytest.approx(32.4038, abs=1e-4))
+    with pytest.raises(DesignError) as info:
+        worm_geometry(s)
+    assert info.value.field == "wheel_face_width"
+    widest = float(info.value.allowed.strip("[] m").split(",")[1])
+    assert widest == pytest.approx(31.908, abs=2e-3)  # bisection to 1 um, printed to 6 digits
+    s = dataclasses.replace(s, wheel_face_width=widest)
+    wheel = build_worm_wheel(WormWheelSpec(s), check=True)
+    assert check_solid(wheel.shape) is None
+    # measured -1.7e-8 (the sweep's bound, 1 nm over the area: 1.49e-7)
+    assert solid_volume(wheel.shape) == pytest.approx(exact_wheel_volume(s, nodes=8), rel=1e-7)
+
+
 @pytest.mark.slow
 def test_worm_wheel_solid_crease_and_rim():
     """The rim: the throat torus meets the outside cylinder at z_c = sqrt(r_i^2 - (a - d_k/2)^2)

@@ -136,3 +136,16 @@ def test_wheel_mesh_is_closed_and_within_the_tolerance(changes):
     exact = _test_module("cad/test_worm_wheel_solid.py").exact_wheel_volume(s, nodes=8)
     # measured -1e-5 and -7e-6 relative; the chords' sags (< 1 um) over ~23,000 mm^2 bound it by 1.2e-4
     assert mesh_volume(tri) == pytest.approx(exact, rel=1.2e-4)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("tolerance", [1e-3, 1e-2])
+def test_wheel_mesh_closed_where_a_trochoid_shrinks_to_nanometres(tolerance):
+    """The worm sweep's set 2 of seed 3: at the face ends the trochoids are 7.5 and 22 nm long, their
+    points a few single-precision steps apart, rounded differently in each tooth's sector (the 22
+    points of one round to 13 distinct ones in one sector, 3 in another); the ends' triangles,
+    sector 0's repeated by index, then missed the side's edges: 452 (1 um) and 400 (10 um) open
+    edges. Neighbours are made one point by sector 0's exact points, in every sector alike."""
+    s = _test_module("cad/test_worm_wheel_solid.py")._sweep_set(3, 2)
+    assert (s.axial_module, s.starts, s.wheel_teeth) == (pytest.approx(4.640262, abs=1e-6), 4, 24)
+    assert _closed(wheel_triangles(s, tolerance))
