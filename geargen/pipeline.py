@@ -434,25 +434,82 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     allowances = drive_allowances_of(layout)
     files = {}
     drawn = set()
+    from geargen.model.cluster_data import drive_clusters
+    clusters = drive_clusters(layout)
+    cluster_of = {g.name: c.name for c in clusters for g in (c.large, c.small)}
     for placed in layout.gears:
         for spec in placed.gears:
             if spec.name in drawn:  # the second of two identical clusters: the same gear, one drawing
                 continue
             drawn.add(spec.name)
-            if not isinstance(spec, GearSpec):  # another family's part (a rack drive's rack): its data only
+            if not isinstance(spec, GearSpec):  # another family's part (a rack drive's rack): its own sheet
                 from geargen.model.gear_data import family_data
+                from geargen.report.family_drawings import family_drawings
+                data = family_data(spec)
+                made = family_drawings(data, spec, out_folder, spec.name, f"gear {spec.name} of {source}",
+                                       str(design.path) if design.path else design.name)
                 path = out_folder / f"{spec.name}.json"
                 out_folder.mkdir(parents=True, exist_ok=True)
-                write_json(path, _jsonable(family_data(spec)))
+                write_json(path, _jsonable(data))
                 files[f"drawing:{spec.name}:json"] = path
+                files |= {f"drawing:{spec.name}:{kind}": p for kind, p in made.items()}
                 continue
             profile = tooth_profile(spec, warn=False)  # the solids' profile (undercut warned at the build)
             data = drive_gear_data(layout, spec, profile, allowances.get(spec.name))
+            if spec.name in cluster_of:  # its tooth data sheet belongs to the cluster's drawing
+                data["cluster"] = {"name": cluster_of[spec.name], "drawing": f"{cluster_of[spec.name]}-drawing.svg"}
             made = gear_drawings(data, profile, out_folder, spec.name, f"gear {spec.name} of {source}",
                                  str(design.path) if design.path else design.name)
             made["json"] = out_folder / f"{spec.name}.json"
             write_json(made["json"], _jsonable(data))
             files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
+    design_file = str(design.path) if design.path else design.name
+    files |= bevel_pair_drawings(layout, out_folder, source, design_file)
+    files |= cluster_sheets(layout, clusters, out_folder, source, design_file)
+    return files
+
+
+def cluster_sheets(layout: Layout, clusters, out_folder: Path, source: str, design_file: str) -> dict[str, Path]:
+    """Each cluster article's drawing of the part as made and its data (``NAME.json``):
+    :mod:`geargen.model.cluster_data`, :mod:`geargen.report.drawing_cluster`."""
+    from geargen.cad.export import write_json
+    from geargen.model.cluster_data import cluster_data
+    from geargen.report.drawing_cluster import cluster_drawings
+
+    files = {}
+    for cluster in clusters:
+        data = cluster_data(layout, cluster)
+        made = cluster_drawings(data, cluster.large, cluster.small, out_folder, cluster.name,
+                                f"cluster {cluster.name} of {source}", design_file)
+        made["json"] = out_folder / f"{cluster.name}.json"
+        write_json(made["json"], _jsonable(data))
+        files |= {f"drawing:{cluster.name}:{kind}": path for kind, path in made.items()}
+    return files
+
+
+def bevel_pair_drawings(layout: Layout, out_folder: Path, source: str, design_file: str) -> dict[str, Path]:
+    """The drive's bevel pair (:func:`geargen.drives.dual_pinion.bevel.bevel_drive`, none without one):
+    each gear's data (``NAME.json``, with its mate and the pair's backlash) and drawing, of the specs
+    the solids are built from (their back included)."""
+    from geargen.cad.export import write_json
+    from geargen.drives.dual_pinion.bevel import bevel_drive
+    from geargen.model.bevel_data import bevel_gear_data
+    from geargen.report.drawing_bevel import bevel_drawings
+    from geargen.units import from_mm
+
+    placed = bevel_drive(layout)
+    if placed is None:
+        return {}
+    files = {}
+    for spec, mate in ((placed.gear, placed.pinion), (placed.pinion, placed.gear)):
+        data = bevel_gear_data(spec)
+        # the pair's circumferential backlash: one arc length on both heel pitch circles (they roll together)
+        data["mating_gear"] = {"name": mate.name, "teeth": mate.teeth,
+                               "backlash_circumferential": float(from_mm(placed.backlash, spec.length_unit))}
+        made = bevel_drawings(data, spec, out_folder, spec.name, f"gear {spec.name} of {source}", design_file)
+        made["json"] = out_folder / f"{spec.name}.json"
+        write_json(made["json"], _jsonable(data))
+        files |= {f"drawing:{spec.name}:{kind}": path for kind, path in made.items()}
     return files
 
 

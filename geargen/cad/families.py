@@ -35,6 +35,8 @@ def build_part(spec, check: bool = False):
     if kind not in BUILDERS:
         raise ValueError(f"{kind!r} has no solid builder (the design reader knows {', '.join(map(repr, BUILDERS))})")
     module, function = BUILDERS[kind].split(":")
+    if kind == "bevel":  # the back the spec states (flat by default, as the drive's pair is built)
+        return getattr(importlib.import_module(module), function)(spec, check=check, back=spec.back)
     return getattr(importlib.import_module(module), function)(spec, check=check)
 
 

@@ -70,7 +70,8 @@ def add_arguments(p) -> None:
                    help="tooth thinning for backlash: circumferential (transverse arc at the reference circle), "
                         "in the unit of the pitch system (default 0)")
     g.add_argument("--accuracy-grade", type=int, default=None, metavar="A",
-                   help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances")
+                   help="ISO 1328-1:2013 flank tolerance class 1..11: the gear data gains its tolerances "
+                        "(--kind bevel: ISO 17485 grade 2..11, recorded)")
     g.add_argument("--name", default=None,
                    help=f"part name, the files' names (default: the [gear] file's, or gear_<teeth>): at most {GEAR_NAME_MAX} "
                         "of A-Z a-z 0-9 _ - .")
@@ -339,6 +340,8 @@ def gear_allowance(args, spec: GearSpec):
     from geargen.model.allowance import entered_allowance
 
     given = getattr(args, "thickness_allowance", None)
+    if getattr(spec, "kind", None) == "rack":  # a rack carries its allowance in its spec (with_rack_allowance)
+        return None
     if not isinstance(spec, GearSpec):  # the other families enter their thinning only
         if given is not None:
             raise DesignError("--thickness-allowance", f"applies to cylindrical gears, not --kind {spec.kind}",
@@ -356,9 +359,26 @@ def gear_allowance(args, spec: GearSpec):
     return None
 
 
+def with_rack_allowance(args, spec):
+    """A rack with the allowance ``--thickness-allowance`` gives it (refused when its design table
+    gives one too); any other spec as it is."""
+    import dataclasses
+
+    from geargen.core.allowance import ThicknessAllowance
+    given = getattr(args, "thickness_allowance", None)
+    if given is None or getattr(spec, "kind", None) != "rack":
+        return spec
+    if spec.thickness_deviations is not None:
+        raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
+                          f"rack {spec.name}", "the option or the design keys, not both")
+    checked = ThicknessAllowance(given[0] * 1e-3, given[1] * 1e-3, field="--thickness-allowance")
+    return dataclasses.replace(spec, thickness_deviations=(checked.upper, checked.lower))
+
+
 def run(args) -> int:
     layout = drive_layout(args)
     spec, thinning_source = spec_from_args(args, layout)
+    spec = with_rack_allowance(args, spec)
     allowance = gear_allowance(args, spec)
     if allowance is None and layout is not None:
         from geargen.pipeline import drive_allowances_of
@@ -415,6 +435,10 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
     else:
         from geargen.model.gear_data import family_data
         data = family_data(spec, solid)
+        if getattr(spec, "kind", None) in ("worm", "worm_wheel"):  # the pair's backlash as the pair check finds it
+            from geargen.checks.worm_pair import worm_pair_check
+            from geargen.model.worm_data import pair_check_data
+            data["pair_check"] = pair_check_data(worm_pair_check(spec.set), spec.length_unit)
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]
     if args.measure:
@@ -423,11 +447,14 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
                               "an external gear")
         data["measured"] = _measure(solid, data)
     drawn = {}
+    design_file = str(Path(args.design).resolve()) if args.design else "command-line options"
     if not args.no_drawing and _drawn(spec):
         from geargen.report.drawing import gear_drawings
         data.setdefault("mating_gears", [])  # a drive's gear has its mates already
-        drawn = gear_drawings(data, solid.profile, out, spec.name, output.source,
-                              str(Path(args.design).resolve()) if args.design else "command-line options")
+        drawn = gear_drawings(data, solid.profile, out, spec.name, output.source, design_file)
+    elif not args.no_drawing:
+        from geargen.report.family_drawings import family_drawings
+        drawn = family_drawings(data, spec, out, spec.name, output.source, design_file)
     data_file = out / f"{spec.name}.json"
     write_json(data_file, data)
     update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",

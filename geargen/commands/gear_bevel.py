@@ -11,11 +11,12 @@ OPTIONS = {
     "mate_teeth": ("--mate-teeth", "mate_teeth", False),
     "shaft_angle": ("--shaft-angle", "shaft_angle_deg", False),
     "bevel_thinning": ("--bevel-thinning", "thinning_circumferential", True),
+    "bevel_back": ("--back", "back", False),
 }
 
 #: the common gear options a bevel gear reads
 COMMON = ("teeth", "module", "diametral_pitch", "pressure_angle", "profile_shift", "face_width", "face_width_mm",
-          "face_width_in", "bore", "bore_mm", "bore_in")
+          "face_width_in", "bore", "bore_mm", "bore_in", "accuracy_grade")
 
 
 def add_arguments(group) -> None:
@@ -26,3 +27,6 @@ def add_arguments(group) -> None:
     group.add_argument("--bevel-thinning", type=float, default=None, metavar="LEN",
                        help="tooth thinning for backlash, an arc of the heel pitch circle, in the unit of the pitch "
                             "system (default 0)")
+    group.add_argument("--back", dest="bevel_back", choices=("flat", "spherical"), default=None,
+                       help="the gear's back: flat through the heel root circle (default, as the robot joint's pair "
+                            "is built) or the heel sphere")

@@ -260,6 +260,33 @@ def back_plane_distance(spec: BevelGearSpec) -> float:
     return spec.cone_distance * math.cos(bevel_geometry(spec).root_cone_angle)
 
 
+@dataclass(frozen=True)
+class ChordalTooth:
+    """The tooth as a gear-tooth vernier measures it on the sphere of radius ``cone_distance`` about
+    the apex (mm): ``thickness`` the chord between the two flanks' points on the pitch cone,
+    ``height`` the distance from the crown (the tip cone on that sphere, on the tooth's centre) to
+    that chord's midpoint."""
+
+    cone_distance: float
+    thickness: float
+    height: float
+
+
+def chordal_tooth(spec: BevelGearSpec, cone_distance: float) -> ChordalTooth:
+    """Chordal tooth thickness and height of the built tooth on the sphere ``cone_distance``: the
+    flanks cross the pitch cone delta at azimuth +/- phi (:func:`tooth_half_angle`), so the chord is
+    2 R sin delta sin phi; its midpoint R (sin delta cos phi, cos delta), the crown R (sin delta_a,
+    cos delta_a) in the tooth's meridian plane. (The back-cone rule of thumb, s - s^3 / (6 d^2) and
+    h_a + s^2 cos delta / (4 d), is this to leading order.)"""
+    g = bevel_geometry(spec)
+    d, da = g.pitch_cone_angle, g.tip_cone_angle
+    phi = tooth_half_angle(spec, d)
+    r = cone_distance
+    mid = np.array([r * math.sin(d) * math.cos(phi), r * math.cos(d)])
+    crown = np.array([r * math.sin(da), r * math.cos(da)])
+    return ChordalTooth(r, 2 * r * math.sin(d) * math.sin(phi), float(np.linalg.norm(crown - mid)))
+
+
 #: the backs a bevel gear solid is built with
 BACKS = ("spherical", "flat")
 
@@ -543,7 +570,7 @@ def bevel_pair_geometry(pinion_teeth: int, gear_teeth: int, module: float, face_
     return BevelPairGeometry(pinion_teeth, gear_teeth, module, face_width, shaft_angle, gp, gg, rp, rg, cone)
 
 
-__all__ = ["bevel_axial_moment", "flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
+__all__ = ["ChordalTooth", "chordal_tooth", "bevel_axial_moment", "flat_back_envelope", "BevelPairGeometry", "bevel_pair_geometry", "spherical_contact_ratio", "pitch_cone_angles", "base_cone_angle", "spherical_involute_roll", "spherical_involute_function",
            "spherical_involute_points", "gleason_profile_shift", "BevelGeometry", "bevel_geometry",
            "tooth_half_angle", "tooth_solid_angle", "gear_solid_angle", "check_tooth", "virtual_contact_ratio",
            "ToothOutline", "involute_roll", "tooth_outline", "lower_flank_points", "back_plane_distance", "BACKS",

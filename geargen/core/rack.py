@@ -147,6 +147,30 @@ def rack_outline(spec: RackSpec) -> RackOutline:
                        tip_centre=tip_centre, root_land_half=root_corner_x - rf * t, tip_land_start=tip_corner_x + ra * t)
 
 
+def pitch_line_pin_diameter(spec: RackSpec) -> float:
+    """The pin (ball, for a helical rack: in the normal section) that touches the zero-backlash
+    tooth's flanks at the pitch line: the space there is e = p_n / 2 wide, so D = e / cos(alpha_n)."""
+    return spec.normal_pitch / 2 / math.cos(spec.pressure_angle)
+
+
+def pin_contact_height(spec: RackSpec, pin_diameter: float, deviation: float) -> tuple[float, float]:
+    """(centre, contact) heights above the pitch line (mm) of a pin of ``pin_diameter`` resting in a
+    space of a rack whose normal tooth thickness at the pitch line is p_n / 2 + ``deviation``
+    (deviation <= 0): the flank through (e / 2, 0) of slope alpha_n lies D / 2 from the centre when
+    e / 2 cos(alpha) + y sin(alpha) = D / 2, so y = (D / (2 cos alpha) - e / 2) / tan alpha; the
+    contact is D / 2 sin(alpha) below the centre."""
+    a = spec.pressure_angle
+    e = spec.normal_pitch / 2 - deviation
+    y = (pin_diameter / (2 * math.cos(a)) - e / 2) / math.tan(a)
+    return y, y - pin_diameter / 2 * math.sin(a)
+
+
+def over_pin_to_back(spec: RackSpec, pin_diameter: float, deviation: float) -> float:
+    """Back face to the top of the pin (mm): pitch-line height + centre height + D / 2
+    (:func:`pin_contact_height`)."""
+    return spec.pitch_line_height + pin_contact_height(spec, pin_diameter, deviation)[0] + pin_diameter / 2
+
+
 def corner_area(radius: float, pressure_angle: float) -> float:
     """Area between a rack corner (inner angle pi/2 + alpha) and its tangent arc of ``radius``:
     ``r^2 (cot(theta/2) - (pi - theta)/2)`` with ``theta = pi/2 + alpha``."""
@@ -275,6 +299,6 @@ def centre_offset_for_backlash(rack: RackSpec, pinion: GearSpec, backlash_circum
     return (backlash_circumferential - rack.thinning - pinion.thinning) / (2 * math.tan(rack.transverse_pressure_angle))
 
 
-__all__ = ["RackOutline", "rack_outline", "corner_area", "normal_section_area_per_pitch", "transverse_section_area",
+__all__ = ["RackOutline", "rack_outline", "pitch_line_pin_diameter", "pin_contact_height", "over_pin_to_back", "corner_area", "normal_section_area_per_pitch", "transverse_section_area",
            "rack_volume", "RackPinionGeometry", "rack_pinion_geometry", "check_rack_pinion",
            "centre_offset_for_backlash"]

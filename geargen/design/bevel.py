@@ -23,6 +23,8 @@ Design-file table (``[gear]`` or ``[gears.NAME]``)::
     profile_shift = 0.0
     thinning_circumferential_in = 0.0 # arc at the heel pitch circle
     bore_diameter_in = 0.0
+    back = "flat"                     # or "spherical" (the heel sphere), default flat as the build
+    accuracy_grade = 7                # optional, ISO 17485 accuracy grade 2..11
 """
 
 from __future__ import annotations
@@ -62,6 +64,10 @@ class BevelGearSpec:
     name: str = "bevel"
     length_unit: str = "mm"
     kind: str = "bevel"
+    # the back the solid is cut with (geargen.core.bevel.BACKS): flat through the heel root circle,
+    # as the robot joint's pair is built, so `geargen gear` and the build describe one solid
+    back: str = "flat"
+    accuracy_grade: int | None = None  # ISO 17485 accuracy grade (2..11), None: not specified
 
     def __post_init__(self):
         if self.kind != "bevel":
@@ -85,6 +91,12 @@ class BevelGearSpec:
                               "an internal bevel gear, which is not built",
                               f"shaft angle <= {math.degrees(90 * DEG + self.mate_pitch_cone_angle):.6g} deg "
                               "(pitch cone angle <= 90 deg)")
+        if self.back not in ("flat", "spherical"):
+            raise DesignError("back", f"{self.back!r} is not a bevel gear back", "'flat', 'spherical'")
+        if self.accuracy_grade is not None:
+            if isinstance(self.accuracy_grade, bool) or not isinstance(self.accuracy_grade, int):
+                raise DesignError("accuracy_grade", f"expected a whole number, got {self.accuracy_grade!r}")
+            _check("accuracy_grade", self.accuracy_grade, 2, 11, "")
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
         # the toe must stay a real sphere with a whole tooth on it: at most 0.6 R_e (a third is the rule)
@@ -175,6 +187,11 @@ BEVEL_FIELDS: list[Field] = [
           help="tooth thinning for backlash, as an arc of the heel pitch circle"),
     Field("bore_diameter", "length", required=False, default=0.0, minimum=0.0,
           help="bore along the axis (0: none); must stay inside the root cone at the toe"),
+    Field("back", "string", required=False, default="flat", choices=("flat", "spherical"),
+          help="the gear's back: \"flat\" (the plane through the heel root circle, as the robot joint's pair is "
+               "built) or \"spherical\" (the heel sphere)"),
+    Field("accuracy_grade", "integer", required=False, default=None, minimum=2, maximum=11,
+          help="ISO 17485 accuracy grade of the bevel gear (2 finest .. 11)"),
 ]
 
 
@@ -194,6 +211,7 @@ def bevel_from_table(data: Mapping[str, Any], where: str = "gear", name: str | N
                   shaft_angle=v["shaft_angle"], pressure_angle=v["pressure_angle"], profile_shift=v["profile_shift"],
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=v["thinning_circumferential"], bore_diameter=v["bore_diameter"],
+                  back=v["back"], accuracy_grade=v["accuracy_grade"],
                   name=name or v["name"] or "bevel", length_unit=length_unit or unit)
     try:
         return BevelGearSpec(**kwargs)

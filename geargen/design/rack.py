@@ -90,6 +90,9 @@ class RackSpec:
     name: str = "rack"
     length_unit: str = "mm"
     kind: str = "rack"
+    # tooth-thickness allowance (E_sns, E_sni): normal deviations at the pitch line from the
+    # zero-backlash tooth p_n / 2 (mm, lower <= upper <= 0); None: not specified
+    thickness_deviations: tuple[float, float] | None = None
 
     def __post_init__(self):
         if self.kind != "rack":
@@ -106,6 +109,11 @@ class RackSpec:
         _check("addendum_coefficient", self.addendum_coefficient, 0.3, 1.5, "")
         _check("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
         _check("thinning", self.thinning, 0.0, 0.25 * self.transverse_pitch, "mm")
+        if self.thickness_deviations is not None:
+            upper, lower = self.thickness_deviations
+            if not (math.isfinite(upper) and math.isfinite(lower) and lower <= upper <= 0):
+                raise DesignError("thickness_upper_deviation", f"({upper!r}, {lower!r}) mm is out of range",
+                                  "lower <= upper <= 0")
         if self.tip_rounding not in TIP_ROUNDINGS:
             raise DesignError("tip_rounding", f"{self.tip_rounding!r} is not a valid choice",
                               ", ".join(map(repr, TIP_ROUNDINGS)))
@@ -287,6 +295,11 @@ RACK_FIELDS: list[Field] = [
           help="tooth thinning for backlash along the pitch line, transverse (give at most one thinning)"),
     Field("thinning_normal", "length", required=False, default=None, minimum=0.0,
           help="tooth thinning for backlash, normal tooth thickness at the pitch line (give at most one thinning)"),
+    Field("thickness_upper_deviation", "length", required=False, default=None, maximum=0.0,
+          help="tooth-thickness allowance: upper deviation E_sns of the normal tooth thickness at the pitch line from "
+               "p_n / 2 (<= 0; give both deviations, or neither: not specified)"),
+    Field("thickness_lower_deviation", "length", required=False, default=None, maximum=0.0,
+          help="tooth-thickness allowance: lower deviation E_sni (<= the upper deviation)"),
 ]
 
 #: back height (under the root line) when neither height is given, over the module
@@ -340,12 +353,24 @@ def rack_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
         height = v["pitch_line_height"]
     else:
         height = dedendum + (v["back_height"] if v["back_height"] is not None else DEFAULT_BACK_MODULES * module)
+    if (v["thickness_upper_deviation"] is None) != (v["thickness_lower_deviation"] is None):
+        missing = "lower" if v["thickness_upper_deviation"] is not None else "upper"
+        raise DesignError(f"{p}thickness_{missing}_deviation_um", "missing: the other deviation is given",
+                          "both thickness_upper_deviation_* and thickness_lower_deviation_*, or neither")
+    deviations = None
+    if v["thickness_upper_deviation"] is not None:
+        deviations = (v["thickness_upper_deviation"], v["thickness_lower_deviation"])
+        if deviations[1] > deviations[0]:
+            unit_d = units["thickness_lower_deviation"]
+            scale = LENGTH_SUFFIXES[unit_d]
+            raise DesignError(f"{p}thickness_lower_deviation_{unit_d}", f"{deviations[1] / scale:.6g} {unit_d} is "
+                              "above the upper deviation", f"<= {deviations[0] / scale:.6g} {unit_d}")
     kwargs = dict(teeth=teeth, module=module, pressure_angle=v["pressure_angle"], face_width=v["face_width"],
                   pitch_line_height=height, helix_angle=beta, hand=v["hand"],
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   tip_rounding=v["tip_rounding"], tip_radius_coefficient=v["tip_radius_coefficient"],
                   root_fillet_coefficient=v["root_fillet_coefficient"], thinning=thinning,
-                  name=name or v["name"] or "rack", length_unit=length_unit or unit)
+                  name=name or v["name"] or "rack", length_unit=length_unit or unit, thickness_deviations=deviations)
     if v["thinning_normal"] is not None:
         units = {**units, "thinning": units["thinning_normal"]}
         renamed = {"thinning": "thinning_normal"}

@@ -312,10 +312,10 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
                          z_heel - lowest, (Candidate("input_shaft_to_bevel", +1, "the bevel pair higher"),
                                            Candidate("carriage_plate_thickness", -1, "a thinner carriage arm")))
     gear_matrix, pinion_matrix = placed.gear_matrix, placed.pinion_matrix
-    bevel_gear = out.add("bevel_gear", None, gear_matrix, "carriage", "bevel", toothed=Toothed(gear_spec, "flat"),
+    bevel_gear = out.add("bevel_gear", None, gear_matrix, "carriage", "bevel", toothed=Toothed(gear_spec, gear_spec.back),
                          description=f"bevel gear {bev.gear_teeth} T, pitch cone {math.degrees(bev.pitch_angle_gear):.4g} deg, "
                                      f"spherical involute")
-    pinion = out.add("bevel_pinion", None, pinion_matrix, "carriage", "bevel", toothed=Toothed(pinion_spec, "flat"),
+    pinion = out.add("bevel_pinion", None, pinion_matrix, "carriage", "bevel", toothed=Toothed(pinion_spec, pinion_spec.back),
                      description=f"bevel pinion {bev.pinion_teeth} T, pitch cone {math.degrees(bev.pitch_angle_pinion):.4g} deg, "
                                  f"spherical involute")
     out.join(bevel_gear, pinion, "meshing bevel gears: checked by the bevel mesh checker", kind="mesh")
@@ -348,7 +348,7 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     out.join(motor, pinion, "motor shaft stub on the bevel pinion", kind="motor")
     x_end = x_flange + s["motor_flange_thickness"] + s["motor_body_length"]
     # the input shaft fills the gear's bore from its lower end (the toe, or the web's face)
-    input_top = z_apex - bevel_core(gear_spec, "flat").bore_z[0]
+    input_top = z_apex - bevel_core(gear_spec, gear_spec.back).bore_z[0]
     return dict(x_end=x_end, z_axis=z_apex, motor_r=motor_r, z_top=z_apex + motor_r,
                 saddle_x0=x_flange + s["motor_flange_thickness"] + gap, input_top=input_top,
                 dims=dict(bevel=bev, bevel_apex=apex),
