@@ -333,7 +333,7 @@ def flank_accuracy(table: dict, name: str, source: str, path: Path) -> str:
         from geargen.profile.internal import internal_profile
         form, offset = gear_flank_form(shape, internal_profile(spec).flank_frame(), heights)
     elif kind == "double_helical":
-        from geargen.cad.double_helical import half_spec
+        from geargen.families.double_helical.solid import half_spec
         from geargen.profile.tooth import tooth_profile
         h = spec.half_face_width
         heights = [z for z in heights if z <= h or z >= b - h]  # not in the centre gap
@@ -354,7 +354,7 @@ BEVEL_FRAMES = {"geargen": lambda spec: (0.0, 1.0),
 
 def bevel_flank_accuracy(path: Path, table: dict, source: str) -> dict:
     """The flank deviation of a bevel gear's STEP read back, the same measure for every source: points
-    on its B-spline faces (geargen.cad.bevel_solid.face_points, 12 x 12 per face), brought into
+    on its B-spline faces (geargen.families.bevel.solid.face_points, 12 x 12 per face), brought into
     geargen's frame (:data:`BEVEL_FRAMES`), compared with the exact spherical involute of the case
     (involute_deviation) over the middle of the flank (10 % of the depth off the base or root cone,
     20 % off the tip cone: py_gearworks truncates its tips by 0.1 m). The tooth's phase is searched
@@ -364,7 +364,7 @@ def bevel_flank_accuracy(path: Path, table: dict, source: str) -> dict:
     import numpy as np
     from scipy.optimize import minimize_scalar
 
-    from geargen.cad.bevel_solid import face_points, involute_deviation
+    from geargen.families.bevel.solid import face_points, involute_deviation
     from geargen.cad.export import read_step
     spec = read_spec(table, "bench")
     apex_z, sense = BEVEL_FRAMES[source](spec)

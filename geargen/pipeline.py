@@ -493,8 +493,8 @@ def bevel_pair_drawings(layout: Layout, out_folder: Path, source: str, design_fi
     the solids are built from (their back included)."""
     from geargen.cad.export import write_json
     from geargen.drives.dual_pinion.bevel import bevel_drive
-    from geargen.model.bevel_data import bevel_gear_data
-    from geargen.report.drawing_bevel import bevel_drawings
+    from geargen.families.bevel.data import bevel_gear_data
+    from geargen.families.bevel.drawing import bevel_drawings
     from geargen.units import from_mm
 
     placed = bevel_drive(layout)

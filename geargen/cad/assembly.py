@@ -125,7 +125,7 @@ def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
                 if isinstance(g.spec, ClusterSpec):
                     solid = build_cluster(g.spec, tolerance)
                 elif g.spec.kind == "internal":  # a planetary stage's ring
-                    from geargen.cad.internal_solid import build_internal
+                    from geargen.families.internal.solid import build_internal
                     solid = build_internal(g.spec, tolerance)
                 elif getattr(g.spec, "kind", "external") == "external":
                     solid = build_gear(g.spec, tolerance)

@@ -14,12 +14,12 @@ import importlib
 #: kind -> "module:function" building that kind's solid
 BUILDERS: dict[str, str] = {
     "external": "geargen.cad.gear_solid:build_gear",
-    "rack": "geargen.cad.rack_solid:build_rack",
-    "internal": "geargen.cad.internal_solid:build_internal",
-    "double_helical": "geargen.cad.double_helical:build_double_helical",
-    "worm": "geargen.cad.worm_solid:build_worm",
-    "worm_wheel": "geargen.cad.worm_wheel_solid:build_worm_wheel",
-    "bevel": "geargen.cad.bevel_solid:build_bevel",
+    "rack": "geargen.families.rack.solid:build_rack",
+    "internal": "geargen.families.internal.solid:build_internal",
+    "double_helical": "geargen.families.double_helical.solid:build_double_helical",
+    "worm": "geargen.families.worm.solid:build_worm",
+    "worm_wheel": "geargen.families.worm_wheel.solid:build_worm_wheel",
+    "bevel": "geargen.families.bevel.solid:build_bevel",
 }
 
 
@@ -44,6 +44,6 @@ def build_toothed(toothed):
     """The solid of a toothed component of a drive's hardware (:class:`geargen.model.components.Toothed`):
     its family's solid, a bevel gear with the back the component asks for."""
     if getattr(toothed.spec, "kind", "") == "bevel":
-        from geargen.cad.bevel_solid import build_bevel
+        from geargen.families.bevel.solid import build_bevel
         return build_bevel(toothed.spec, check=True, back=toothed.back).shape
     return build_part(toothed.spec, check=True).shape

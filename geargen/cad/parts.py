@@ -43,7 +43,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 from OCP.TopTools import TopTools_ListOfShape
 
-from geargen.core.bevel import BevelPairGeometry
+from geargen.families.bevel.geometry import BevelPairGeometry
 from geargen.errors import BuildError
 
 

@@ -115,11 +115,11 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
 #: Options map to the kind's design-table keys, so a command line and a ``[gear]`` table are
 #: read by the same reader.
 KIND_OPTIONS: dict[str, str] = {
-    "rack": "geargen.commands.gear_rack",
-    "internal": "geargen.commands.gear_internal",
-    "worm": "geargen.commands.gear_worm",
-    "worm_wheel": "geargen.commands.gear_worm",
-    "bevel": "geargen.commands.gear_bevel",
+    "rack": "geargen.families.rack.options",
+    "internal": "geargen.families.internal.options",
+    "worm": "geargen.families.worm.options",
+    "worm_wheel": "geargen.families.worm.options",
+    "bevel": "geargen.families.bevel.options",
 }
 
 
@@ -436,8 +436,8 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
         from geargen.model.gear_data import family_data
         data = family_data(spec, solid)
         if getattr(spec, "kind", None) in ("worm", "worm_wheel"):  # the pair's backlash as the pair check finds it
-            from geargen.checks.worm_pair import worm_pair_check
-            from geargen.model.worm_data import pair_check_data
+            from geargen.families.worm.pair import worm_pair_check
+            from geargen.families.worm.data import pair_check_data
             data["pair_check"] = pair_check_data(worm_pair_check(spec.set), spec.length_unit)
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]

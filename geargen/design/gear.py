@@ -43,17 +43,17 @@ CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
 #: the other kinds a ``[gear]``/``[gears.NAME]`` table may name -> "module:function" reading the table
 #: into that family's spec (same signature as :func:`gear_from_table`); each family registers itself
 FAMILY_READERS: dict[str, str] = {
-    "rack": "geargen.design.rack:rack_from_table",
-    "worm": "geargen.design.worm:worm_set_from_table",
-    "worm_wheel": "geargen.design.worm:worm_set_from_table",
-    "bevel": "geargen.design.bevel:bevel_from_table",
+    "rack": "geargen.families.rack.spec:rack_from_table",
+    "worm": "geargen.families.worm.spec:worm_set_from_table",
+    "worm_wheel": "geargen.families.worm.spec:worm_set_from_table",
+    "bevel": "geargen.families.bevel.spec:bevel_from_table",
 }
 #: the same kinds -> "module:NAME" of the list of Fields their reader reads (validation, reference docs)
 FAMILY_FIELDS: dict[str, str] = {
-    "rack": "geargen.design.rack:RACK_FIELDS",
-    "worm": "geargen.design.worm:WORM_FIELDS",
-    "worm_wheel": "geargen.design.worm:WORM_FIELDS",
-    "bevel": "geargen.design.bevel:BEVEL_FIELDS",
+    "rack": "geargen.families.rack.spec:RACK_FIELDS",
+    "worm": "geargen.families.worm.spec:WORM_FIELDS",
+    "worm_wheel": "geargen.families.worm.spec:WORM_FIELDS",
+    "bevel": "geargen.families.bevel.spec:BEVEL_FIELDS",
 }
 
 

@@ -17,11 +17,11 @@ from geargen.units import from_mm
 #: returning that gear's data as a dict in its length unit (the keys of the gear-data contract that
 #: apply, with the same meaning, and the family's own); each family registers itself
 FAMILY_DATA: dict[str, str] = {
-    "rack": "geargen.model.rack_data:rack_data",
-    "internal": "geargen.model.internal_data:internal_gear_data",
-    "worm": "geargen.model.worm_data:worm_part_data",
-    "worm_wheel": "geargen.model.worm_data:worm_part_data",
-    "bevel": "geargen.model.bevel_data:bevel_gear_data",
+    "rack": "geargen.families.rack.data:rack_data",
+    "internal": "geargen.families.internal.data:internal_gear_data",
+    "worm": "geargen.families.worm.data:worm_part_data",
+    "worm_wheel": "geargen.families.worm.data:worm_part_data",
+    "bevel": "geargen.families.bevel.data:bevel_gear_data",
 }
 
 

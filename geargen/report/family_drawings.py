@@ -8,10 +8,10 @@ import importlib
 #: kind -> "module:function" writing that kind's sheets, taking ``(data, spec, folder, name, source,
 #: design_file)`` and returning ``{"svg"|"pdf": path}``
 FAMILY_DRAWINGS: dict[str, str] = {
-    "bevel": "geargen.report.drawing_bevel:bevel_drawings",
-    "worm": "geargen.report.drawing_worm:worm_drawings",
-    "rack": "geargen.report.drawing_rack:rack_drawings",
-    "worm_wheel": "geargen.report.drawing_worm:worm_drawings",
+    "bevel": "geargen.families.bevel.drawing:bevel_drawings",
+    "worm": "geargen.families.worm.drawing:worm_drawings",
+    "rack": "geargen.families.rack.drawing:rack_drawings",
+    "worm_wheel": "geargen.families.worm.drawing:worm_drawings",
 }
 
 

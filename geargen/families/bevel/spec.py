@@ -7,7 +7,7 @@ cone's), the face width is measured along the cone.
 Tooth proportions: *standard* (equal-addendum) proportions, addendum h_a = (h_a* + x) m and
 dedendum h_f = (h_f* - x) m at the heel, with h_a* = 1 and h_f* = 1.25 by default (KHK Gear
 Technical Reference, "standard straight bevel gears"). A Gleason-style unequal addendum is the
-same thing with x1 = -x2 (:func:`geargen.core.bevel.gleason_profile_shift` gives the shift of
+same thing with x1 = -x2 (:func:`geargen.families.bevel.geometry.gleason_profile_shift` gives the shift of
 Gleason's addendum rule). Tip and root cones pass through the apex (the tooth depth tapers to
 the apex, no constant clearance).
 
@@ -64,7 +64,7 @@ class BevelGearSpec:
     name: str = "bevel"
     length_unit: str = "mm"
     kind: str = "bevel"
-    # the back the solid is cut with (geargen.core.bevel.BACKS): flat through the heel root circle,
+    # the back the solid is cut with (geargen.families.bevel.geometry.BACKS): flat through the heel root circle,
     # as the robot joint's pair is built, so `geargen gear` and the build describe one solid
     back: str = "flat"
     accuracy_grade: int | None = None  # ISO 17485 accuracy grade (2..11), None: not specified
@@ -109,7 +109,7 @@ class BevelGearSpec:
             if self.bore_diameter >= most:
                 raise DesignError("bore_diameter", "cuts into the tooth root at the toe", f"< {most:.6g} mm")
 
-    # --- the pair's cones (closed forms; the rest of the geometry is geargen.core.bevel) ---
+    # --- the pair's cones (closed forms; the rest of the geometry is geargen.families.bevel.geometry) ---
     @property
     def pitch_cone_angle(self) -> float:
         """delta: tan delta = sin Sigma / (z_mate / z + cos Sigma)."""

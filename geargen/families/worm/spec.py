@@ -47,7 +47,7 @@ class WormGearSet:
     length equals that wheel arc). ``wheel_outside_diameter`` bounds the throated rim; None: the
     throat diameter plus one axial module (the rim of the KHK example, Table 4.17), turned down
     where the teeth would keep less than 0.1 m_x of tip land at the face ends
-    (geargen.core.worm.worm_geometry)."""
+    (geargen.families.worm.geometry.worm_geometry)."""
 
     axial_module: float
     starts: int

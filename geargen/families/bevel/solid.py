@@ -4,8 +4,8 @@ Conventions: apex at the origin, axis +z, the teeth on the pitch cone of half an
 centred on the +x half plane (azimuth 0). The toothed body lies between the toe sphere (radius
 R_i = R_e - b) and the heel sphere (R_e) about the apex: the ends are spherical, not back cones,
 so every other surface is a cone through the apex and the tooth's section on any sphere about
-the apex is the heel's scaled (:mod:`geargen.core.bevel`). Inside the root cone lies the
-axisymmetric core (:func:`geargen.core.bevel.bevel_core`): its back is the heel sphere
+the apex is the heel's scaled (:mod:`geargen.families.bevel.geometry`). Inside the root cone lies the
+axisymmetric core (:func:`geargen.families.bevel.geometry.bevel_core`): its back is the heel sphere
 (``back="spherical"``) or the plane through the heel root circle (``back="flat"``, with a web to
 the bore when the toe sphere lies beyond that plane); a bore runs along the axis.
 
@@ -49,9 +49,9 @@ from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid
 
 from geargen.cad.gear_solid import (_ORIGIN_2D, _Z_AXIS, KERNEL_TOLERANCE, _bspline2d, _bspline3d, _edge, _occ_knots,
                                     _vertex, _wire, check_solid)
-from geargen.core.bevel import (bevel_core, bevel_geometry, bevel_volume, check_tooth, lower_flank_points,
+from geargen.families.bevel.geometry import (bevel_core, bevel_geometry, bevel_volume, check_tooth, lower_flank_points,
                                 tooth_half_angle, tooth_outline)
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.spec import BevelGearSpec
 from geargen.errors import BuildError
 from geargen.profile.bspline_fit import fit_function
 
@@ -67,7 +67,7 @@ _F, _R = TopAbs_FORWARD, TopAbs_REVERSED
 @dataclass
 class BevelSolid:
     """A built bevel gear: the OCCT shape (one closed solid), its spec and its back
-    (``"spherical"`` or ``"flat"``, :func:`geargen.core.bevel.bevel_core`)."""
+    (``"spherical"`` or ``"flat"``, :func:`geargen.families.bevel.geometry.bevel_core`)."""
 
     shape: object
     name: str
@@ -472,10 +472,10 @@ def _body(spec: BevelGearSpec, back: str):
 def build_bevel(spec: BevelGearSpec, check: bool = False, back: str = "spherical") -> BevelSolid:
     """Build ``spec`` as one closed solid (conventions in the module docstring) with its ``back``
     ``"spherical"`` (the heel sphere) or ``"flat"`` (the plane through the heel root circle, with a
-    web to the bore when the toe sphere lies beyond it: :func:`geargen.core.bevel.bevel_core`).
-    Raises GeometryError for a tooth that cannot be made (:func:`geargen.core.bevel.check_tooth`)."""
+    web to the bore when the toe sphere lies beyond it: :func:`geargen.families.bevel.geometry.bevel_core`).
+    Raises GeometryError for a tooth that cannot be made (:func:`geargen.families.bevel.geometry.check_tooth`)."""
     check_tooth(spec)
-    bevel_core(spec, back)  # a wrong back is refused (geargen.core.bevel) before any kernel work
+    bevel_core(spec, back)  # a wrong back is refused (geargen.families.bevel.geometry) before any kernel work
     shape = _body(spec, back)
     if check:
         problem = check_solid(shape)

@@ -1,6 +1,6 @@
-"""Rack solids (spur and helical) from the exact rack outline of :mod:`geargen.core.rack`.
+"""Rack solids (spur and helical) from the exact rack outline of :mod:`geargen.families.rack.geometry`.
 
-Frame (see :class:`geargen.design.rack.RackSpec`): x along the rack (0 .. length), y up from the
+Frame (see :class:`geargen.families.rack.spec.RackSpec`): x along the rack (0 .. length), y up from the
 back face through the pitch line to the tips, z across the face width (0 .. face width).
 
 How: the teeth are prisms along the tooth direction ``(sin beta, 0, cos beta)`` of the exact
@@ -13,7 +13,7 @@ face of the teeth is the strip between two joints of the section clipped by that
 walls carry the section's lines and ellipse arcs), with no boolean - the boolean common of a long
 prism with a box it replaced took 10x longer (0.27 s against 0.025 s on the 30-tooth bench rack).
 Because the length is a whole number of transverse pitches, every transverse section has the same
-area, so the volume is that area times the face width (:func:`geargen.core.rack.rack_volume`,
+area, so the volume is that area times the face width (:func:`geargen.families.rack.geometry.rack_volume`,
 checked by the tests and sweep).
 """
 
@@ -37,8 +37,8 @@ from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_S
 
 from geargen.cad.gear_solid import (KERNEL_TOLERANCE, _bspline2d, _edge as _make_edge, check_solid,
                                     solid_volume)
-from geargen.core.rack import RackOutline, rack_outline
-from geargen.design.rack import ZERO_SEGMENT, RackSpec
+from geargen.families.rack.geometry import RackOutline, rack_outline
+from geargen.families.rack.spec import ZERO_SEGMENT, RackSpec
 from geargen.errors import BuildError
 from geargen.profile.bspline_fit import fit_function
 

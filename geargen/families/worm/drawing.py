@@ -6,7 +6,7 @@ lead angle, axial pitch, thread thickness (axial and normal), the mate and the p
 and backlash. Wheel: the section through its axis in the worm's plane (the throated rim, the root
 the hob cuts) with outside, throat and root diameters and face width; data block with its tooth
 thickness, the mate, and the hob's data. Every value from the part's JSON dict
-(:func:`geargen.model.worm_data.worm_part_data`)."""
+(:func:`geargen.families.worm.data.worm_part_data`)."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from geargen.core.worm import rim_radius, worm_geometry
+from geargen.families.worm.geometry import rim_radius, worm_geometry
 from geargen.report.drawing import NOT_SPECIFIED, format_number, scale_text
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
                                           polyline, value_text, view_title, write_sheet)
@@ -136,7 +136,7 @@ def _worm_views(spec, data, scale):
 
 def wheel_section(spec, samples: int = 401) -> tuple[np.ndarray, np.ndarray]:
     """(z, r) of the wheel's rim and root in the plane through its axis and the worm's (mm): the rim
-    the throat torus capped by the outside cylinder (:func:`geargen.core.worm.rim_radius`), the root
+    the throat torus capped by the outside cylinder (:func:`geargen.families.worm.geometry.rim_radius`), the root
     the torus the hob's tip cuts (minor radius the hob tip radius about the worm axis)."""
     g = worm_geometry(spec.set)
     z = np.linspace(-spec.set.wheel_face_width / 2, spec.set.wheel_face_width / 2, samples)

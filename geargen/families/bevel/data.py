@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import math
 
-from geargen.core.bevel import (back_plane_distance, bevel_geometry, chordal_tooth, spherical_contact_ratio,
+from geargen.families.bevel.geometry import (back_plane_distance, bevel_geometry, chordal_tooth, spherical_contact_ratio,
                                 virtual_contact_ratio)
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.spec import BevelGearSpec
 from geargen.units import from_mm
 
 

@@ -35,7 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geargen.design.worm import WormGearSet
+from geargen.families.worm.spec import WormGearSet
 from geargen.errors import DesignError, GeometryError
 
 

@@ -1,13 +1,13 @@
 """The gear data of a worm or worm wheel (``geargen gear --kind worm|worm_wheel``'s JSON).
 
-Lengths in the set's length unit; the set's derived dimensions (geargen.core.worm) are written for
+Lengths in the set's length unit; the set's derived dimensions (geargen.families.worm.geometry) are written for
 both parts, so the two JSONs of a set agree on the centre distance, lead and throat."""
 
 from __future__ import annotations
 
 import math
 
-from geargen.core.worm import worm_geometry
+from geargen.families.worm.geometry import worm_geometry
 from geargen.units import from_mm
 
 
@@ -34,11 +34,11 @@ def hob_data(s, g) -> dict:
 
 
 def pair_check_data(check, unit: str) -> dict:
-    """The JSON block of a worm pair check's result (:func:`geargen.checks.worm_pair.worm_pair_check`,
+    """The JSON block of a worm pair check's result (:func:`geargen.families.worm.pair.worm_pair_check`,
     run by the caller: the model layer does not run checks), lengths in ``unit``."""
     return {"backlash_circumferential": float(from_mm(check.backlash, unit)), "interference": bool(check.interference),
             "centre_distance": float(from_mm(check.centre_distance, unit)),
-            "method": "geargen.checks.worm_pair: the worm against the wheel's envelope in 9 planes across the face"}
+            "method": "geargen.families.worm.pair: the worm against the wheel's envelope in 9 planes across the face"}
 
 
 def worm_part_data(spec) -> dict:

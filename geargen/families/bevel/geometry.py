@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.spec import BevelGearSpec
 from geargen.errors import DesignError, GeometryError
 
 

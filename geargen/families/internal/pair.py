@@ -40,7 +40,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from geargen.checks.results import Failure
-from geargen.core.internal import InternalPairGeometry, internal_pair_geometry
+from geargen.families.internal.geometry import InternalPairGeometry, internal_pair_geometry
 from geargen.core.involute import involute
 from geargen.design.gear import GearSpec, with_changes
 from geargen.errors import GeargenError

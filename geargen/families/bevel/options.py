@@ -1,6 +1,6 @@
 """``geargen gear --kind bevel`` options: the mate, the shaft angle and the thinning of a straight bevel gear.
 
-Each option maps to a key of the ``[gear] kind = "bevel"`` table (:mod:`geargen.design.bevel`), so the
+Each option maps to a key of the ``[gear] kind = "bevel"`` table (:mod:`geargen.families.bevel.spec`), so the
 command line and a design file are read by the same reader.
 """
 

@@ -1,4 +1,4 @@
-"""The throated worm wheel's solid, generated from its worm (geargen.core.worm gives the exact
+"""The throated worm wheel's solid, generated from its worm (geargen.families.worm.geometry gives the exact
 transverse geometry: the envelope flanks, the hob tip's trochoids, the root and the rim).
 
 No boolean and no sewing: the wheel is two faces a tooth, put together edge by edge.
@@ -11,7 +11,7 @@ No boolean and no sewing: the wheel is two faces a tooth, put together edge by e
 - Two planar end faces.
 
 Every surface is a least-squares fit (degree :data:`DEGREE` both ways, uniform spans, end poles
-the exact ends) of exact points of :func:`geargen.core.worm.wheel_outline`; row by row over u, then
+the exact ends) of exact points of :func:`geargen.families.worm.geometry.wheel_outline`; row by row over u, then
 the rows' poles column by column over z (for points on a grid that is the tensor-product
 least-squares fit). The z poles are the Greville abscissae, so v IS z: every isoline v = z lies in
 its plane and the end rows are planar. The rim's crease where the torus meets the outside cylinder
@@ -36,9 +36,9 @@ from types import SimpleNamespace
 import numpy as np
 from scipy.interpolate import BSpline
 
-from geargen.cad.worm_solid import WormPartSolid, _checked
-from geargen.core.worm import WormGeometry, wheel_outline, worm_geometry, z_ranges
-from geargen.design.worm import WormGearSet, WormWheelSpec
+from geargen.families.worm.solid import WormPartSolid, _checked
+from geargen.families.worm.geometry import WormGeometry, wheel_outline, worm_geometry, z_ranges
+from geargen.families.worm.spec import WormGearSet, WormWheelSpec
 from geargen.errors import KernelFailure
 
 #: B-spline degree of the wheel's surfaces, both ways: the runs are analytic, so the error falls

@@ -1,12 +1,12 @@
-"""``geargen gear --kind rack`` options: a rack's own keys (:mod:`geargen.design.rack`).
+"""``geargen gear --kind rack`` options: a rack's own keys (:mod:`geargen.families.rack.spec`).
 
 Each option sets the rack table key of the same meaning, so the command line and a ``[gear]``
-table with ``kind = "rack"`` go through one reader (:func:`geargen.design.rack.rack_from_table`).
+table with ``kind = "rack"`` go through one reader (:func:`geargen.families.rack.spec.rack_from_table`).
 """
 
 from __future__ import annotations
 
-from geargen.design.rack import TIP_ROUNDINGS
+from geargen.families.rack.spec import TIP_ROUNDINGS
 
 #: argparse dest -> (flag, design-table key stem, whether the value is a length in the pitch system's unit)
 OPTIONS = {

@@ -1,6 +1,6 @@
 """Backlash and interference of a worm and its wheel at a centre distance, measured on the exact
 surfaces: the worm's ZA thread (closed form) and the wheel's generated flanks (the envelope
-sections of :func:`geargen.core.worm.wheel_section`).
+sections of :func:`geargen.families.worm.geometry.wheel_section`).
 
 With the worm held, each flank point of the worm's threads in a wheel transverse plane is at some
 angle from the wheel flank facing it (at its radius); the smallest such angle over every engaged
@@ -24,8 +24,8 @@ import numpy as np
 from scipy.interpolate import CubicSpline
 from scipy.optimize import minimize_scalar
 
-from geargen.core.worm import flank_axial_offset, wheel_section, worm_geometry
-from geargen.design.worm import WormGearSet
+from geargen.families.worm.geometry import flank_axial_offset, wheel_section, worm_geometry
+from geargen.families.worm.spec import WormGearSet
 
 
 @dataclass(frozen=True)

@@ -1,6 +1,6 @@
 """Exact rack geometry and the rack-and-pinion pair (numpy only).
 
-The rack's outline (normal section, :class:`geargen.design.rack.RackSpec`): straight flanks at the
+The rack's outline (normal section, :class:`geargen.families.rack.spec.RackSpec`): straight flanks at the
 normal pressure angle, tip and root lands, optional circular tip arcs ("generating" tip rounding)
 and root fillets, each tangent to its flank and land. Heights ``u`` are measured from the pitch
 line, positive toward the tips. Across the space centred on ``x = 0`` the outline is the graph of
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from geargen.design.gear import GearSpec
-from geargen.design.rack import RackSpec, corner_tangent_length
+from geargen.families.rack.spec import RackSpec, corner_tangent_length
 from geargen.errors import DesignError
 
 

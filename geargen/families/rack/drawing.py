@@ -2,7 +2,7 @@
 over the back), a detail of a tooth space in the normal section with the measuring pin (ball) and the
 dimension from the back face over it, and the data block with the tooth-thickness allowance, the
 tooth thickness at the pitch line and the over-pin dimension with their limits. Every value from the
-rack's JSON dict (:func:`geargen.model.rack_data.rack_data`)."""
+rack's JSON dict (:func:`geargen.families.rack.data.rack_data`)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from geargen.core.rack import pin_contact_height, pitch_line_pin_diameter, rack_outline
+from geargen.families.rack.geometry import pin_contact_height, pitch_line_pin_diameter, rack_outline
 from geargen.report.drawing import NOT_SPECIFIED, format_limits, format_number, format_um, scale_text
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet,
                                           polyline, value_text, view_title, write_sheet)

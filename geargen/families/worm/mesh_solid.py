@@ -1,6 +1,6 @@
 """The worm pair's backlash measured on the built SOLIDS (the wheel of
-geargen.cad.worm_wheel_solid, the worm of geargen.cad.worm_solid placed by ``worm_to_mesh``), read
-as the exact check reads it (geargen.checks.worm_pair): the wheel's free rotation with the worm
+geargen.families.worm_wheel.solid, the worm of geargen.families.worm.solid placed by ``worm_to_mesh``), read
+as the exact check reads it (geargen.families.worm.pair): the wheel's free rotation with the worm
 held, per side, over the same transverse planes, as an arc at the wheel reference circle.
 
 In each plane both solids are sectioned face by face (a boolean section of the whole solids took
@@ -21,15 +21,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geargen.cad.worm_solid import worm_to_mesh
-from geargen.core.worm import worm_geometry
-from geargen.design.worm import WormGearSet
+from geargen.families.worm.solid import worm_to_mesh
+from geargen.families.worm.geometry import worm_geometry
+from geargen.families.worm.spec import WormGearSet
 from geargen.errors import BuildError
 
 
 @dataclass(frozen=True)
 class SolidWormPlay:
-    """What geargen.checks.worm_pair.WormPairCheck reports, read from the solids: ``free_rotation``
+    """What geargen.families.worm.pair.WormPairCheck reports, read from the solids: ``free_rotation``
     (rad) of the wheel per side (+1: toward +X at the mesh), ``backlash`` (mm, arc at the wheel
     reference circle), ``interference``, the plane of first contact per side, the centre distance."""
 
@@ -100,7 +100,7 @@ class _Section:
 
 def _z_isoline(surface, plane):
     """(3D curve, curve on the surface, first, last) of the section of ``surface`` by ``plane`` when
-    that is an isoline: a B-spline surface whose v is its z (the wheel's, geargen.cad.worm_wheel_solid)
+    that is an isoline: a B-spline surface whose v is its z (the wheel's, geargen.families.worm_wheel.solid)
     cut by a plane z = const; else None."""
     from OCP.Geom import Geom_BSplineSurface
     from OCP.Geom2d import Geom2d_Line
@@ -204,10 +204,10 @@ def solid_worm_backlash(s: WormGearSet, wheel_shape, worm_shape, planes: int = 9
     """The pair of solids at the design centre distance plus ``centre_distance_error`` (the worm
     moved away from the wheel), worm angle 0, wheel angle 0: the wheel's
     free rotation per side (+1: toward +X at the mesh) over ``planes`` transverse planes across 95 %
-    of the face (those of geargen.checks.worm_pair), backlash = their sum times r2. ``step``: the
+    of the face (those of geargen.families.worm.pair), backlash = their sum times r2. ``step``: the
     sampling of the wheel's section and of the worm's near contact (default 0.005 m_x: chord sag
     under 20 nm on the flanks). ``axial_window``: only the worm's points within it of the line of
-    centres (|X| <= window), e.g. p_x / 2 for the one thread geargen.checks.worm_pair reads; by
+    centres (|X| <= window), e.g. p_x / 2 for the one thread geargen.families.worm.pair reads; by
     default every thread that meets the wheel (off the design centre distance the other engaged
     teeth, at other phases of the mesh, may touch first)."""
     from OCP.gp import gp_Dir, gp_Pln, gp_Pnt

@@ -1,7 +1,7 @@
 """The manufacturing drawing of a straight bevel gear: its axial half-sections (apex, cones, heel sphere,
 back face and bore as built) with the mounting distance, outside diameter and face width dimensioned,
 and the cone data, chordal tooth, accuracy grade and mate in the data block. Every value comes from
-the gear's JSON dict (:func:`geargen.model.bevel_data.bevel_gear_data`)."""
+the gear's JSON dict (:func:`geargen.families.bevel.data.bevel_gear_data`)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,9 @@ import math
 
 import numpy as np
 
-from geargen.core.bevel import bevel_geometry, flat_back_envelope
-from geargen.design.bevel import BevelGearSpec
-from geargen.core.bevel import back_plane_distance
+from geargen.families.bevel.geometry import bevel_geometry, flat_back_envelope
+from geargen.families.bevel.spec import BevelGearSpec
+from geargen.families.bevel.geometry import back_plane_distance
 from geargen.report.drawing import NOT_SPECIFIED, format_number, scale_text
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
                                           polyline, value_text, view_title, write_sheet)
@@ -60,7 +60,7 @@ def bevel_rows(data: dict) -> list[tuple[str, str, str]]:
 
 def _half_section(spec: BevelGearSpec, points: int = 48) -> list[np.ndarray]:
     """(rho, z) outlines (mm) of the solid as built, z from the apex: the flat back's envelope
-    (:func:`geargen.core.bevel.flat_back_envelope`) or, for a spherical back, toe sphere, tip cone,
+    (:func:`geargen.families.bevel.geometry.flat_back_envelope`) or, for a spherical back, toe sphere, tip cone,
     heel sphere and bore."""
     if spec.back == "flat":
         return flat_back_envelope(spec, points)

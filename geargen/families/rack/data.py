@@ -5,9 +5,9 @@ from __future__ import annotations
 
 import math
 
-from geargen.core.rack import (normal_section_area_per_pitch, over_pin_to_back, pin_contact_height,
+from geargen.families.rack.geometry import (normal_section_area_per_pitch, over_pin_to_back, pin_contact_height,
                                pitch_line_pin_diameter, rack_outline, rack_volume)
-from geargen.design.rack import RackSpec
+from geargen.families.rack.spec import RackSpec
 from geargen.units import from_mm
 
 
@@ -15,7 +15,7 @@ def rack_inspection(spec: RackSpec) -> dict:
     """What a shop measures on the rack (mm): the normal tooth thickness at the pitch line and the
     dimension from the back face over a pin (a ball on a helical rack) in a tooth space, each for the
     model's thinning and at the limits of the allowance (when the rack states one). The pin is the one
-    touching the zero-backlash tooth at the pitch line (:func:`geargen.core.rack.pitch_line_pin_diameter`);
+    touching the zero-backlash tooth at the pitch line (:func:`geargen.families.rack.geometry.pitch_line_pin_diameter`);
     every contact must lie on the straight flank, else a warning."""
     outline = rack_outline(spec)
     pin = pitch_line_pin_diameter(spec)

@@ -4,7 +4,7 @@ sphere about the common apex (:func:`check_bevel_pair`).
 Frame: apex at the origin, gear 1's axis +z, gear 2's axis in the xz plane at the shaft angle
 Sigma from it; the pitch cones touch along the generator at polar angle delta1, azimuth 0 of
 gear 1. At zero rotation gear 1 has a tooth centred on that generator and gear 2 a tooth space.
-Both outlines are the exact ones of :func:`geargen.core.bevel.tooth_half_angle` (every tooth
+Both outlines are the exact ones of :func:`geargen.families.bevel.geometry.tooth_half_angle` (every tooth
 surface is a cone through the apex, so one sphere serves for the whole face; the heel's is used).
 
 Backlash: gear 1 is turned on its axis, gear 2 held, until a flank of gear 1 touches one of gear
@@ -22,8 +22,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geargen.core.bevel import bevel_geometry, tooth_half_angle
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.geometry import bevel_geometry, tooth_half_angle
+from geargen.families.bevel.spec import BevelGearSpec
 from geargen.errors import DesignError
 
 

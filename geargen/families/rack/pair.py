@@ -5,7 +5,7 @@ Method (transverse section of the pinion = the section of the rack across its wi
 such plane the picture is the same, turned and slid together, so one plane serves a helical pair
 too). The pinion's outline is :class:`geargen.checks.mesh2d.PolarOutline` (involute flanks,
 generated fillets, tip and root arcs, each evaluated exactly at its own parameter); the rack's is
-:class:`geargen.core.rack.RackOutline` (lines and arcs), which is a graph in both directions: at
+:class:`geargen.families.rack.geometry.RackOutline` (lines and arcs), which is a graph in both directions: at
 a height ``u`` above its pitch line the space around ``x = 0`` is ``|x| <= E_t(u)`` (``E_t`` the
 normal half-width over ``cos(beta)``), and above a point ``x`` the rack's top is at ``g(x)``.
 
@@ -35,9 +35,9 @@ import numpy as np
 
 from geargen.checks.mesh2d import FILLET, INVOLUTE, ROOT, TIP, PolarOutline, polar_outline
 from geargen.checks.results import Failure
-from geargen.core.rack import RackPinionGeometry, rack_outline, rack_pinion_geometry
+from geargen.families.rack.geometry import RackPinionGeometry, rack_outline, rack_pinion_geometry
 from geargen.design.gear import GearSpec
-from geargen.design.rack import RackSpec
+from geargen.families.rack.spec import RackSpec
 
 _GOLDEN = 0.3819660112501051
 #: samples per boundary segment for bracketing (the refinement is exact)
@@ -57,7 +57,7 @@ class RackMeshCheck:
     cos(alpha_t) cos(beta_b). Clearances (mm): ``tip_clearance_pinion`` pinion tip arcs to the rack's
     root outline, ``tip_clearance_rack`` the pinion's root arcs to the rack's tips (vertical gaps).
     ``failures`` (:class:`geargen.checks.results.Failure`): interference named, no backlash.
-    ``geometry``: the closed forms of :func:`geargen.core.rack.rack_pinion_geometry`.
+    ``geometry``: the closed forms of :func:`geargen.families.rack.geometry.rack_pinion_geometry`.
     """
 
     mesh_position: np.ndarray

@@ -1,9 +1,9 @@
-"""The solid of a ZA worm (geargen.core.worm gives the exact geometry), built face by face.
+"""The solid of a ZA worm (geargen.families.worm.geometry gives the exact geometry), built face by face.
 
 The ZA flank is the Archimedean helicoid: at every angle its generator is a straight line in
 the axial half-plane, so the flank is the ruled surface between its root and tip helices joined
 at equal angles. Every helix is a B-spline on the same knots (one
-:func:`geargen.core.worm.helix_spline` of the unit circle scaled by the radius, z exactly linear in
+:func:`geargen.families.worm.geometry.helix_spline` of the unit circle scaled by the radius, z exactly linear in
 its poles) within :data:`HELIX_TOLERANCE` of the exact helix, so each flank is ONE B-spline
 surface (degree 1 across, 7 along) whose isolines at equal angles are the generators. The tip and
 root are exact cylinder faces, the ends planes. Every face is bounded by curves that are straight
@@ -31,8 +31,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from geargen.core.worm import WormGeometry, flank_axial_offset, helix_spline, worm_geometry
-from geargen.design.worm import WormSpec
+from geargen.families.worm.geometry import WormGeometry, flank_axial_offset, helix_spline, worm_geometry
+from geargen.families.worm.spec import WormSpec
 from geargen.errors import KernelFailure
 
 
@@ -102,7 +102,7 @@ class _Helix:
 def _helices(builder, g: WormGeometry, p: float, starts: int, half: float):
     """The worm's helices in axial order (four a thread: root and tip of its -1 flank, tip and
     root of its +1 flank; thread k shifted k p_x), all B-splines on the same knots (the clamped
-    ends of one :func:`geargen.core.worm.helix_spline` over every helix's angles, theta0 to
+    ends of one :func:`geargen.families.worm.geometry.helix_spline` over every helix's angles, theta0 to
     theta1), their parameter s = theta - theta0; and the knots (distinct, multiplicities)."""
     from OCP.TColStd import TColStd_Array1OfReal
 

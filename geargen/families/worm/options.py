@@ -1,7 +1,7 @@
 """``geargen gear --kind worm`` / ``--kind worm_wheel``: the worm-gear set's own options.
 
 Both parts of a set take the same options (a set is defined together); each option maps to the
-key of the ``[gear]`` table with ``kind = "worm"`` or ``"worm_wheel"`` (geargen.design.worm)."""
+key of the ``[gear]`` table with ``kind = "worm"`` or ``"worm_wheel"`` (geargen.families.worm.spec)."""
 
 from __future__ import annotations
 

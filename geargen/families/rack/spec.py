@@ -64,7 +64,7 @@ def corner_tangent_length(pressure_angle: float) -> float:
 class RackSpec:
     """A straight-tooth (spur, ``helix_angle`` 0) or helical rack, normal system, mm and rad.
 
-    Frame of the solid (:mod:`geargen.cad.rack_solid`): x along the rack's length (0 .. length),
+    Frame of the solid (:mod:`geargen.families.rack.solid`): x along the rack's length (0 .. length),
     y up from the back face (y = 0) through the pitch line (``pitch_line_height``) to the tips,
     z across the face width (0 .. face_width). Tooth ``i`` is centred at
     ``x = (i + 1/2) p_t`` in the z = 0 section; the section at z is that section moved by
@@ -157,7 +157,7 @@ class RackSpec:
                                   "build", f"a {what} of 0 (the largest radius) or of at least {SHORTEST_SEGMENT:g} "
                                   "modules")
 
-    # --- closed-form basics (the pair geometry lives in geargen.core.rack)
+    # --- closed-form basics (the pair geometry lives in geargen.families.rack.geometry)
     @property
     def is_helical(self) -> bool:
         return self.helix_angle > 0.0
