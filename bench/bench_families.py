@@ -40,9 +40,9 @@ Every build runs in a fresh process (geargen: this script with ``--worker``; a p
 make_peer_family.py in the peers' venv), ``--repeat`` times (once when a build takes over
 ``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import, the
 family's own module included on both sides, is measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
-reads the case's design table with the family's reader (geargen.design.gear.gear_from_table, or
-the reader a family registers in FAMILY_READERS) and builds it with
-geargen.cad.families.build_part, so a family's row works as soon as it registers; until then the
+reads the case's design table with the family's reader (geargen.families.registry.read_gear) and
+builds it with geargen.cad.families.build_part, so a family's row works as soon as it registers
+(geargen/families/registry.py); until then the
 row says "not in this geargen". ``--table CASE=FILE.toml`` replaces a case's table by FILE's
 ``[gear]`` table (a family whose keys differ from those guessed here).
 
@@ -131,39 +131,34 @@ CASES = [
 
 
 def registration_problem(table: dict) -> str | None:
-    """Why this geargen cannot build ``table``'s kind (no builder or no table reader), or None."""
-    from geargen.cad.families import BUILDERS
-    from geargen.design.gear import CYLINDRICAL_KINDS, FAMILY_READERS
-    kind = table.get("kind", "external")
-    if kind not in BUILDERS or (kind not in CYLINDRICAL_KINDS and kind not in FAMILY_READERS):
+    """Why this geargen cannot build ``table``'s kind (no family registered), or None."""
+    from geargen.families.registry import FAMILIES
+    if table.get("kind", "external") not in FAMILIES:
         return "not in this geargen"
     return None
 
 
 def read_spec(table: dict, name: str):
-    """The family's spec from its design table, through the reader the kind registers."""
-    import importlib
-    from geargen.design.gear import FAMILY_READERS, gear_from_table
-    kind = table.get("kind", "external")
-    reader = gear_from_table
-    if kind in FAMILY_READERS:
-        module, function = FAMILY_READERS[kind].split(":")
-        reader = getattr(importlib.import_module(module), function)
-    return reader(table, where="gear", name=name.replace(" ", "_"))
+    """The family's spec from its design table, through its family's reader."""
+    from geargen.families.registry import read_gear
+    return read_gear(table, where="gear", name=name.replace(" ", "_"))
 
 
 def geargen_worker(table: dict, name: str, out: str) -> dict:
     """One fresh-process build of a case (see the module docstring); a JSON-able dict."""
     t0 = time.perf_counter()
     import importlib
+    import importlib.util
 
     from geargen.cad.export import export_step
-    from geargen.cad.families import BUILDERS, build_part
+    from geargen.cad.families import build_part
     from geargen.cad.gear_solid import check_solid
     from geargen.errors import DesignError, GeometryError
-    # the family's builder module too (build_part imports it on first use): the peers' import time
+    # the family's solid module too (its family imports it on first use): the peers' import time
     # holds theirs
-    importlib.import_module(BUILDERS[table.get("kind", "external")].split(":")[0])
+    solid_module = f"geargen.families.{table.get('kind', 'external')}.solid"
+    if importlib.util.find_spec(solid_module) is not None:
+        importlib.import_module(solid_module)
     t_import = time.perf_counter() - t0
     try:
         t0 = time.perf_counter()

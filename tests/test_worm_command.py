@@ -6,14 +6,14 @@ import math
 import pytest
 
 from geargen.cli import main
-from geargen.design.gear import gear_from_table
+from geargen.families.registry import read_gear
 from geargen.families.worm.spec import WormSpec
 
 KHK = ["--module", "3", "--starts", "2", "--wheel-teeth", "30", "--worm-diameter", "44", "--pressure-angle", "20"]
 
 
 def test_design_table_kind_worm_reads_the_set():
-    spec = gear_from_table({"kind": "worm", "module_mm": 3, "starts": 2, "wheel_teeth": 30,
+    spec = read_gear({"kind": "worm", "module_mm": 3, "starts": 2, "wheel_teeth": 30,
                             "worm_reference_diameter_mm": 44, "worm_face_length_mm": 30, "wheel_face_width_mm": 28})
     assert isinstance(spec, WormSpec) and spec.set.pressure_angle == pytest.approx(math.radians(20))
 

@@ -48,6 +48,7 @@ from typing import Any, Sequence
 from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
 from geargen.design.checks import MINIMUM_SAFETY
 from geargen.errors import DesignError
+from geargen.families.registry import FAMILIES
 
 STANDARD = "ISO 6336-2:2019 / ISO 6336-3:2019, method B"
 #: the virtual tooth count standing for z -> infinity (a rack, an internal gear's root, the mesh
@@ -61,15 +62,10 @@ HARDNESS_HB_PER_HV = 0.95  # ISO 18265 steel conversion, near 200-400 HV (Z_W ne
 
 def rating_scope(spec) -> str | None:
     """None when ISO 6336 rates ``spec``'s family; else the sentence naming the standard that would."""
-    kind = getattr(spec, "kind", None)
-    name = type(spec).__name__
-    if name == "BevelGearSpec" or kind == "bevel":
-        return "not rated by ISO 6336: bevel gears are rated by ISO 10300 (not implemented)"
-    if name in ("WormSpec", "WormWheelSpec") or kind in ("worm", "worm_wheel"):
-        return "not rated by ISO 6336: worm gears are rated by ISO/TS 14521 (not implemented)"
-    if kind in ("external", "internal", "double_helical", "rack"):
-        return None
-    return f"not rated: {name} is not a cylindrical involute gear or rack (ISO 6336's scope)"
+    family = FAMILIES.get(getattr(spec, "kind", None))
+    if family is None:
+        return f"not rated: {type(spec).__name__} is not a cylindrical involute gear or rack (ISO 6336's scope)"
+    return family.RATING_SCOPE
 
 
 # ---------------------------------------------------------------------------------------------

@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from geargen.design.gear import gear_from_table
+from geargen.families.registry import read_gear
 
 pytestmark = pytest.mark.slow
 
@@ -16,7 +16,7 @@ def pinion():
     from geargen.families.bevel.solid import build_bevel
     # the headline gear of the issue: 15 / 30 teeth, 32 DP, 0.15 in face, 90 deg shaft angle, with a
     # thinning and a bore so both are exercised
-    spec = gear_from_table({"kind": "bevel", "teeth": 15, "mate_teeth": 30, "diametral_pitch_per_in": 32,
+    spec = read_gear({"kind": "bevel", "teeth": 15, "mate_teeth": 30, "diametral_pitch_per_in": 32,
                             "face_width_in": 0.15, "thinning_circumferential_in": 0.001, "bore_diameter_in": 0.1})
     return spec, build_bevel(spec, check=True)
 
@@ -135,7 +135,7 @@ def test_flat_back_with_a_web_is_the_builds_boolean_part(bore_in):
     from geargen.cad import parts as P
     from geargen.families.bevel.solid import bevel_volume, build_bevel
     from geargen.cad.gear_solid import check_solid, solid_volume
-    spec = gear_from_table({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "diametral_pitch_per_in": 32,
+    spec = read_gear({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "diametral_pitch_per_in": 32,
                             "face_width_in": 0.15, "thinning_circumferential_in": 0.00075, "bore_diameter_in": bore_in})
     flat = build_bevel(spec, check=True, back="flat")
     ri, re = spec.toe_cone_distance, spec.cone_distance
@@ -160,7 +160,7 @@ def test_crown_gear_tip_cone_beyond_90_deg(back):
     # (a crown gear), the tip cone past it (a cone opening the other way) and the root cone inside
     from geargen.families.bevel.solid import bevel_volume, build_bevel, flank_deviation
     from geargen.cad.gear_solid import check_solid, solid_volume
-    spec = gear_from_table({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "shaft_angle_deg": 120, "module_mm": 1.0,
+    spec = read_gear({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "shaft_angle_deg": 120, "module_mm": 1.0,
                             "face_width_mm": 4.0, "bore_diameter_mm": 6.0})
     assert spec.pitch_cone_angle == pytest.approx(math.pi / 2, abs=1e-12)
     solid = build_bevel(spec, check=True, back=back)
@@ -176,7 +176,7 @@ def test_stl_without_a_bore_is_watertight(tmp_path):
 
     from geargen.families.bevel.solid import build_bevel
     from geargen.cad.export import export_stl, read_stl
-    spec = gear_from_table({"kind": "bevel", "teeth": 12, "mate_teeth": 25, "module_mm": 1.0, "face_width_mm": 4.0,
+    spec = read_gear({"kind": "bevel", "teeth": 12, "mate_teeth": 25, "module_mm": 1.0, "face_width_mm": 4.0,
                             "profile_shift": 0.3})
     for back in ("spherical", "flat"):
         export_stl(build_bevel(spec, back=back), tmp_path / f"{back}.stl", chordal_tolerance=0.005)

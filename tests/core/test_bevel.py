@@ -9,14 +9,14 @@ from geargen.families.bevel.geometry import (base_cone_angle, bevel_geometry, ch
                                 spherical_involute_function, spherical_involute_points, tooth_half_angle,
                                 virtual_contact_ratio)
 from geargen.families.bevel.spec import BevelGearSpec
-from geargen.design.gear import gear_from_table
+from geargen.families.registry import read_gear
 from geargen.errors import DesignError, GeometryError
 
 DEG = math.pi / 180
 
 
 def _khk(teeth, mate):
-    return gear_from_table({"kind": "bevel", "teeth": teeth, "mate_teeth": mate, "module_mm": 3,
+    return read_gear({"kind": "bevel", "teeth": teeth, "mate_teeth": mate, "module_mm": 3,
                             "pressure_angle_deg": 20, "face_width_mm": 22, "shaft_angle_deg": 90})
 
 
@@ -113,7 +113,7 @@ def test_tooth_thickness_at_the_pitch_cone_and_solid_angle():
 
 def test_volumes_of_the_two_backs_by_hand():
     from geargen.families.bevel.geometry import back_plane_distance, bevel_core, bevel_volume
-    spec = gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 22,
+    spec = read_gear({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 22,
                             "bore_diameter_mm": 12})
     ri, re, rb = spec.toe_cone_distance, spec.cone_distance, 6.0
     g = bevel_geometry(spec)
@@ -139,7 +139,7 @@ def test_volumes_of_the_two_backs_by_hand():
 
 def test_refusals_are_named():
     with pytest.raises(DesignError, match="gear.face_width_mm"):
-        gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 60})
+        read_gear({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 60})
     with pytest.raises(DesignError, match="shaft_angle"):  # the gear's cone beyond 90 deg: internal bevel
         BevelGearSpec(teeth=40, mate_teeth=10, module=1, face_width=3, shaft_angle=150 * DEG)
     # z1 = 8, z2 = 40: the equivalent pair's gear tip reaches past the pinion's interference point

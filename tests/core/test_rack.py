@@ -10,7 +10,8 @@ import pytest
 from geargen.core.geometry import GearPair, mesh_geometry
 from geargen.families.rack.geometry import (centre_offset_for_backlash, normal_section_area_per_pitch, rack_outline,
                                rack_pinion_geometry, transverse_section_area)
-from geargen.design.gear import GearSpec, gear_from_table
+from geargen.design.gear import GearSpec
+from geargen.families.registry import read_gear
 from geargen.families.rack.spec import RackSpec, rack_from_table
 from geargen.errors import DesignError
 
@@ -123,7 +124,7 @@ def test_pinion_must_match_the_rack():
 
 def test_table_reader_and_its_errors():
     t = {"kind": "rack", "module_mm": 2, "teeth": 30, "face_width_mm": 20}
-    spec = gear_from_table(t)  # the gear reader hands a rack table to the rack's reader
+    spec = read_gear(t)  # the gear reader hands a rack table to the rack's reader
     assert isinstance(spec, RackSpec) and spec.back_height == pytest.approx(4.0)  # default 2 modules
     assert spec.length == pytest.approx(30 * math.pi * 2)
     assert spec.root_fillet_coefficient == 0.38 and spec.tip_radius_coefficient == 0.0
