@@ -31,8 +31,8 @@ ALLOWED = {
 #: a gear family's file (geargen/families/<kind>/<role>.py) -> the layer it sits in
 FAMILY_ROLES = {"spec": "design", "geometry": "core", "solid": "cad", "mesh_solid": "cad", "pair": "checks",
                 "data": "model", "options": "commands", "drawing": "report"}
-#: the families' registry files (families/family.py, families/registry.py, families/<kind>/family.py): any layer
-#: reads a family through them, so at their top they import the design layer only (a family's spec); a role
+#: the families' registry files (families/family.py, families/registry.py, families/<kind>/family.py): any
+#: layer reads a family through them, so at their top they import the design layer only (a family's spec); a role
 #: above it is imported inside the function that needs it (reading a design table never loads the kernel)
 REGISTRY = "families"
 KERNEL = ("cadquery", "OCP", "trimesh")

@@ -11,7 +11,8 @@ from geargen.families.rack import family as rack
 from geargen.families.worm import family as worm
 from geargen.families.worm_wheel import family as worm_wheel
 
-FAMILIES: dict[str, GearFamily] = {f.KIND: f for f in (external, internal, double_helical, rack, worm, worm_wheel, bevel)}
+FAMILIES: dict[str, GearFamily] = {f.KIND: f for f in (
+    external, internal, double_helical, rack, worm, worm_wheel, bevel)}
 
 
 def family_of(spec) -> GearFamily:
