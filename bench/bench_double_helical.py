@@ -46,7 +46,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--fuse", action="store_true", help="also time the halves fused with the glue option")
     args = ap.parse_args()
-    from geargen.cad.double_helical import build_double_helical
+    from geargen.families.double_helical.solid import build_double_helical
     from geargen.cad.gear_solid import check_solid
     for gap in (0.0, 3.0):
         s = spec(gap)
@@ -59,7 +59,7 @@ def main() -> None:
         from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Trsf
         from OCP.TopTools import TopTools_ListOfShape
 
-        from geargen.cad.double_helical import half_spec
+        from geargen.families.double_helical.solid import half_spec
         from geargen.cad.gear_solid import toothed_body, _transform
         from geargen.profile.tooth import tooth_profile
         half = half_spec(spec(0.0))

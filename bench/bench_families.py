@@ -40,9 +40,9 @@ Every build runs in a fresh process (geargen: this script with ``--worker``; a p
 make_peer_family.py in the peers' venv), ``--repeat`` times (once when a build takes over
 ``--slow`` seconds); ``build s`` is the median of the runs (the kernel and library import, the
 family's own module included on both sides, is measured apart: ``import s``, median too), ``STEP s`` the median STEP write. The geargen side
-reads the case's design table with the family's reader (geargen.design.gear.gear_from_table, or
-the reader a family registers in FAMILY_READERS) and builds it with
-geargen.cad.families.build_part, so a family's row works as soon as it registers; until then the
+reads the case's design table with the family's reader (geargen.families.registry.read_gear) and
+builds it with geargen.cad.families.build_part, so a family's row works as soon as it registers
+(geargen/families/registry.py); until then the
 row says "not in this geargen". ``--table CASE=FILE.toml`` replaces a case's table by FILE's
 ``[gear]`` table (a family whose keys differ from those guessed here).
 
@@ -131,39 +131,34 @@ CASES = [
 
 
 def registration_problem(table: dict) -> str | None:
-    """Why this geargen cannot build ``table``'s kind (no builder or no table reader), or None."""
-    from geargen.cad.families import BUILDERS
-    from geargen.design.gear import CYLINDRICAL_KINDS, FAMILY_READERS
-    kind = table.get("kind", "external")
-    if kind not in BUILDERS or (kind not in CYLINDRICAL_KINDS and kind not in FAMILY_READERS):
+    """Why this geargen cannot build ``table``'s kind (no family registered), or None."""
+    from geargen.families.registry import FAMILIES
+    if table.get("kind", "external") not in FAMILIES:
         return "not in this geargen"
     return None
 
 
 def read_spec(table: dict, name: str):
-    """The family's spec from its design table, through the reader the kind registers."""
-    import importlib
-    from geargen.design.gear import FAMILY_READERS, gear_from_table
-    kind = table.get("kind", "external")
-    reader = gear_from_table
-    if kind in FAMILY_READERS:
-        module, function = FAMILY_READERS[kind].split(":")
-        reader = getattr(importlib.import_module(module), function)
-    return reader(table, where="gear", name=name.replace(" ", "_"))
+    """The family's spec from its design table, through its family's reader."""
+    from geargen.families.registry import read_gear
+    return read_gear(table, where="gear", name=name.replace(" ", "_"))
 
 
 def geargen_worker(table: dict, name: str, out: str) -> dict:
     """One fresh-process build of a case (see the module docstring); a JSON-able dict."""
     t0 = time.perf_counter()
     import importlib
+    import importlib.util
 
     from geargen.cad.export import export_step
-    from geargen.cad.families import BUILDERS, build_part
+    from geargen.cad.families import build_part
     from geargen.cad.gear_solid import check_solid
     from geargen.errors import DesignError, GeometryError
-    # the family's builder module too (build_part imports it on first use): the peers' import time
+    # the family's solid module too (its family imports it on first use): the peers' import time
     # holds theirs
-    importlib.import_module(BUILDERS[table.get("kind", "external")].split(":")[0])
+    solid_module = f"geargen.families.{table.get('kind', 'external')}.solid"
+    if importlib.util.find_spec(solid_module) is not None:
+        importlib.import_module(solid_module)
     t_import = time.perf_counter() - t0
     try:
         t0 = time.perf_counter()
@@ -333,7 +328,7 @@ def flank_accuracy(table: dict, name: str, source: str, path: Path) -> str:
         from geargen.profile.internal import internal_profile
         form, offset = gear_flank_form(shape, internal_profile(spec).flank_frame(), heights)
     elif kind == "double_helical":
-        from geargen.cad.double_helical import half_spec
+        from geargen.families.double_helical.solid import half_spec
         from geargen.profile.tooth import tooth_profile
         h = spec.half_face_width
         heights = [z for z in heights if z <= h or z >= b - h]  # not in the centre gap
@@ -354,7 +349,7 @@ BEVEL_FRAMES = {"geargen": lambda spec: (0.0, 1.0),
 
 def bevel_flank_accuracy(path: Path, table: dict, source: str) -> dict:
     """The flank deviation of a bevel gear's STEP read back, the same measure for every source: points
-    on its B-spline faces (geargen.cad.bevel_solid.face_points, 12 x 12 per face), brought into
+    on its B-spline faces (geargen.families.bevel.solid.face_points, 12 x 12 per face), brought into
     geargen's frame (:data:`BEVEL_FRAMES`), compared with the exact spherical involute of the case
     (involute_deviation) over the middle of the flank (10 % of the depth off the base or root cone,
     20 % off the tip cone: py_gearworks truncates its tips by 0.1 m). The tooth's phase is searched
@@ -364,7 +359,7 @@ def bevel_flank_accuracy(path: Path, table: dict, source: str) -> dict:
     import numpy as np
     from scipy.optimize import minimize_scalar
 
-    from geargen.cad.bevel_solid import face_points, involute_deviation
+    from geargen.families.bevel.solid import face_points, involute_deviation
     from geargen.cad.export import read_step
     spec = read_spec(table, "bench")
     apex_z, sense = BEVEL_FRAMES[source](spec)

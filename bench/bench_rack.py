@@ -6,7 +6,7 @@ Racks: a spur rack for a machine slide (module 2, 20 deg, 60 teeth = 377 mm, 20 
 helical twin (20 deg helix, right hand), the latter with the generating tip rounding. Times are
 the best of ``--repeat`` runs (median in brackets) after one warm-up, wall clock, this process
 only; the kernel import is not counted. ``flank`` is the largest distance of sectioned flank
-points from the exact flank line at mid-face (geargen.cad.rack_solid.flank_straightness).
+points from the exact flank line at mid-face (geargen.families.rack.solid.flank_straightness).
 
 Peers: not measured here. The peers' venv of bench/peers (bd_warehouse, py_gearworks) was not
 installed on the machine this was written on; a rack of a peer would be added to
@@ -25,7 +25,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from geargen.design.rack import RackSpec  # noqa: E402
+from geargen.families.rack.spec import RackSpec  # noqa: E402
 
 DEG = math.pi / 180
 
@@ -56,8 +56,8 @@ def main(argv=None) -> int:
     t0 = time.perf_counter()
     from geargen.cad.export import export_step, export_stl
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.rack_solid import build_rack, flank_straightness
-    from geargen.core.rack import rack_volume
+    from geargen.families.rack.solid import build_rack, flank_straightness
+    from geargen.families.rack.geometry import rack_volume
     t_import = time.perf_counter() - t0
     out = Path(args.out or tempfile.mkdtemp(prefix="bench_rack_"))
     out.mkdir(parents=True, exist_ok=True)

@@ -443,11 +443,11 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
                 continue
             drawn.add(spec.name)
             if not isinstance(spec, GearSpec):  # another family's part (a rack drive's rack): its own sheet
-                from geargen.model.gear_data import family_data
-                from geargen.report.family_drawings import family_drawings
-                data = family_data(spec)
-                made = family_drawings(data, spec, out_folder, spec.name, f"gear {spec.name} of {source}",
-                                       str(design.path) if design.path else design.name)
+                from geargen.families.registry import family_of
+                family = family_of(spec)
+                data = family.gear_data(spec)
+                made = family.drawings(data, spec, out_folder, spec.name, f"gear {spec.name} of {source}",
+                                       str(design.path) if design.path else design.name) or {}
                 path = out_folder / f"{spec.name}.json"
                 out_folder.mkdir(parents=True, exist_ok=True)
                 write_json(path, _jsonable(data))
@@ -493,8 +493,8 @@ def bevel_pair_drawings(layout: Layout, out_folder: Path, source: str, design_fi
     the solids are built from (their back included)."""
     from geargen.cad.export import write_json
     from geargen.drives.dual_pinion.bevel import bevel_drive
-    from geargen.model.bevel_data import bevel_gear_data
-    from geargen.report.drawing_bevel import bevel_drawings
+    from geargen.families.bevel.data import bevel_gear_data
+    from geargen.families.bevel.drawing import bevel_drawings
     from geargen.units import from_mm
 
     placed = bevel_drive(layout)

@@ -421,7 +421,7 @@ def double_helical_check(p: dict) -> tuple[str, str]:
         from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
         from OCP.gp import gp_Ax2, gp_Dir, gp_Pnt, gp_Trsf
 
-        from geargen.cad.double_helical import build_double_helical
+        from geargen.families.double_helical.solid import build_double_helical
         from geargen.profile.tooth import centre_gap_radius
         from geargen.cad.measure import flank_deviation
         g = build_double_helical(spec)
@@ -510,7 +510,7 @@ def internal_check(p: dict) -> tuple[str, str]:
     involute at mid-face, watertight STL."""
     try:
         spec = internal_spec(p)
-        from geargen.cad.internal_solid import build_internal
+        from geargen.families.internal.solid import build_internal
         from geargen.cad.measure import flank_deviation
         # a looser spline than the default 2 nm (still 50x inside the flank bound): a lighter solid
         g = build_internal(spec, tolerance=2e-6 * spec.module)
@@ -561,7 +561,7 @@ def rack_parameters(rng: np.random.Generator) -> dict:
 
 def rack_spec(p: dict):
     """The RackSpec of a parameter set (raises DesignError for values it refuses)."""
-    from geargen.design.rack import RackSpec
+    from geargen.families.rack.spec import RackSpec
     m = p["module"]
     base = dict(teeth=p["teeth"], module=m, pressure_angle=math.radians(p["pressure_angle_deg"]),
                 face_width=p["face_modules"] * m, helix_angle=math.radians(p["helix_angle_deg"]), hand=p["hand"],
@@ -578,12 +578,12 @@ def rack_spec(p: dict):
 
 
 def rack_check(p: dict) -> tuple[str, str]:
-    """Valid solid, volume (transverse section area x face width, geargen.core.rack) within 1e-6,
+    """Valid solid, volume (transverse section area x face width, geargen.families.rack.geometry) within 1e-6,
     flanks within 0.1 um of the exact lines at mid-face, watertight STL."""
     try:
         spec = rack_spec(p)
-        from geargen.cad.rack_solid import build_rack, flank_straightness
-        from geargen.core.rack import rack_volume
+        from geargen.families.rack.solid import build_rack, flank_straightness
+        from geargen.families.rack.geometry import rack_volume
         rack = build_rack(spec)
     except Exception as exc:  # noqa: BLE001 - a refusal or a failure to tag
         return _tagged_exception(exc)
@@ -623,7 +623,7 @@ def bevel_parameters(rng: np.random.Generator) -> dict:
     """One random bevel gear. Small tooth counts are undercut without a shift, so most gears take a
     shift just above the back-cone equivalent's undercut limit, x = h_a* - z_v sin^2(alpha) / 2; the
     others any shift, to exercise the refusals."""
-    from geargen.core.bevel import pitch_cone_angles
+    from geargen.families.bevel.geometry import pitch_cone_angles
     teeth = int(rng.integers(5, BEVEL_MAX_TEETH + 1))
     mate = int(round(math.exp(rng.uniform(math.log(5), math.log(80)))))
     sigma = float(rng.uniform(10.0, 170.0))
@@ -647,7 +647,7 @@ def bevel_parameters(rng: np.random.Generator) -> dict:
 
 
 def bevel_spec(p: dict):
-    from geargen.design.bevel import BevelGearSpec
+    from geargen.families.bevel.spec import BevelGearSpec
     m = p["module"]
     base = dict(teeth=p["teeth"], mate_teeth=p["mate_teeth"], module=m, face_width=m,
                 shaft_angle=math.radians(p["shaft_angle_deg"]), pressure_angle=math.radians(p["pressure_angle_deg"]),
@@ -662,12 +662,12 @@ def bevel_spec(p: dict):
 
 
 def bevel_check(p: dict) -> tuple[str, str]:
-    """Valid solid (spherical or flat back at random), volume (geargen.core.bevel.bevel_volume)
+    """Valid solid (spherical or flat back at random), volume (geargen.families.bevel.geometry.bevel_volume)
     within 1e-6, flanks on the spherical involute within the fit's tolerance, watertight STL."""
     from geargen.errors import DesignError, GeometryError
     try:
         spec = bevel_spec(p)
-        from geargen.cad.bevel_solid import FLANK_TOLERANCE, bevel_volume, build_bevel, flank_deviation
+        from geargen.families.bevel.solid import FLANK_TOLERANCE, bevel_volume, build_bevel, flank_deviation
         from geargen.cad.gear_solid import check_solid, solid_volume
         g = build_bevel(spec, back=p["back"])
     except DesignError as exc:
@@ -730,7 +730,7 @@ def worm_parameters(rng: np.random.Generator) -> dict:
 
 
 def worm_set(p: dict):
-    from geargen.design.worm import WormGearSet
+    from geargen.families.worm.spec import WormGearSet
     m = p["module"]
     d1 = p["q"] * m
     throat_radius = d1 / 2 - m
@@ -745,7 +745,7 @@ def exact_worm_volume(s) -> float:
     """Root cylinder plus thread filling t_x(r)/p_x of each axial line (see tests/cad/test_worm_solid.py)."""
     from scipy.integrate import quad
 
-    from geargen.core.worm import worm_geometry
+    from geargen.families.worm.geometry import worm_geometry
     g = worm_geometry(s)
     r1, L = s.worm_reference_diameter / 2, s.worm_face_length
     rf, ra = g.worm_root_diameter / 2, g.worm_tip_diameter / 2
@@ -806,7 +806,7 @@ def worm_check(p: dict) -> tuple[str, str]:
     from geargen.errors import DesignError, GeometryError
     try:
         s = worm_set(p)
-        from geargen.checks.worm_pair import worm_pair_check
+        from geargen.families.worm.pair import worm_pair_check
         check = worm_pair_check(s, planes=5, samples=80)
     except DesignError as exc:
         return "design_error", exc.field.split(".")[-1]
@@ -821,16 +821,16 @@ def worm_check(p: dict) -> tuple[str, str]:
             return "backlash", f"{check.backlash!r} vs {s.backlash!r}"
         if not p["build_solid"]:
             return "ok", "sections and pair check"
-        from geargen.cad.worm_solid import build_worm
-        from geargen.design.worm import WormSpec
+        from geargen.families.worm.solid import build_worm
+        from geargen.families.worm.spec import WormSpec
         worm = build_worm(WormSpec(s))
         exact = exact_worm_volume(s)
         # the 0.01 nm helices: measured within 2e-9 of the closed form (quad's own error ~1e-12)
         failure = _solid_failure(worm.shape, exact, 1e-7, "", eps=1e-7) or _export_failure(worm, exact, "")
         if failure:
             return failure
-        from geargen.cad.worm_wheel_solid import build_worm_wheel
-        from geargen.design.worm import WormWheelSpec
+        from geargen.families.worm_wheel.solid import build_worm_wheel
+        from geargen.families.worm.spec import WormWheelSpec
         wheel = build_worm_wheel(WormWheelSpec(s))
         exact = _wheel_volume(s)
         # the least-squares surfaces' mean offset from the envelope: within 1 nm over the wheel's

@@ -8,13 +8,13 @@ import math
 import numpy as np
 import pytest
 
-from geargen.checks.internal_pair import (RingMaterial, check_internal, free_play, involute_margin, overlap_depth,
+from geargen.families.internal.pair import (RingMaterial, check_internal, free_play, involute_margin, overlap_depth,
                                           radial_assembly_margin, tip_margin, trochoid_margin, undercut_recess)
-from geargen.core.internal import internal_pair_geometry
+from geargen.families.internal.geometry import internal_pair_geometry
 from geargen.core.involute import involute
 from geargen.design.gear import GearSpec, gear_from_table
 from geargen.errors import DesignError
-from geargen.model.internal_data import between_pins, internal_gear_data, reference_pin_diameter
+from geargen.families.internal.data import between_pins, internal_gear_data, reference_pin_diameter
 from geargen.profile.internal import internal_profile
 from geargen.profile.segments import sample_outline
 from geargen.profile.tooth import tooth_profile

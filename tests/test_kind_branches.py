@@ -44,16 +44,17 @@ def _strings(node: ast.AST) -> list[ast.Constant]:
     return []
 
 
-def kind_branches(path: Path) -> list[tuple[int, str, str]]:
-    """(line, name, how) of every drive-kind name compared or used as a dict key in ``path``."""
+def kind_branches(path: Path, kinds: set[str] = KINDS) -> list[tuple[int, str, str]]:
+    """(line, name, how) of every kind name (of ``kinds``: the drive kinds by default) compared or
+    used as a dict key in ``path``."""
     found = []
     for node in ast.walk(ast.parse(path.read_text(), str(path))):
         if isinstance(node, ast.Compare):
             for side in [node.left, *node.comparators]:
-                found += [(c.lineno, c.value, "compared") for c in _strings(side) if c.value in KINDS]
+                found += [(c.lineno, c.value, "compared") for c in _strings(side) if c.value in kinds]
         elif isinstance(node, ast.Dict):
             found += [(k.lineno, k.value, "dict key") for k in node.keys
-                      if isinstance(k, ast.Constant) and k.value in KINDS]
+                      if isinstance(k, ast.Constant) and k.value in kinds]
     return found
 
 

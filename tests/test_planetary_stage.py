@@ -14,7 +14,7 @@ import pytest
 from matplotlib.path import Path as Polygon
 from scipy.optimize import brentq
 
-from geargen.checks.internal_pair import pinion_points
+from geargen.families.internal.pair import pinion_points
 from geargen.drives.planetary.verdict import placed_ring_play
 from geargen.checks.verdict import verify
 from geargen.core.planetary import planet_phases, ring_phase_error

@@ -2,7 +2,7 @@
 
 Every placed number is checked against an independent method here: the loop closure against a
 2-D Newton solve of the contact conditions on the exact tooth outlines (geargen.checks.mesh2d
-free play, geargen.checks.rack_pair outlines), the lever and Fig. 9's force split against finite
+free play, geargen.families.rack.pair outlines), the lever and Fig. 9's force split against finite
 differences of that exact free play, Eqs. 5-6 with k3 = k_c / lambda^2 against a small
 finite-difference spring model, the carriage sensitivity against a re-solved closure with the
 shafts moved apart, and the bad variants fail with their named failure kinds.

@@ -39,7 +39,7 @@ def _layout(tmp_path=None, **changes):
 
 
 def test_placed_apexes_coincide_on_the_pitch_cone_models_apex():
-    from geargen.core.bevel import bevel_pair_geometry
+    from geargen.families.bevel.geometry import bevel_pair_geometry
     from geargen.design.parts import parts_settings
     from geargen.drives.dual_pinion.shafts import carriage_shafts
     layout = _layout()

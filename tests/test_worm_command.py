@@ -6,14 +6,14 @@ import math
 import pytest
 
 from geargen.cli import main
-from geargen.design.gear import gear_from_table
-from geargen.design.worm import WormSpec
+from geargen.families.registry import read_gear
+from geargen.families.worm.spec import WormSpec
 
 KHK = ["--module", "3", "--starts", "2", "--wheel-teeth", "30", "--worm-diameter", "44", "--pressure-angle", "20"]
 
 
 def test_design_table_kind_worm_reads_the_set():
-    spec = gear_from_table({"kind": "worm", "module_mm": 3, "starts": 2, "wheel_teeth": 30,
+    spec = read_gear({"kind": "worm", "module_mm": 3, "starts": 2, "wheel_teeth": 30,
                             "worm_reference_diameter_mm": 44, "worm_face_length_mm": 30, "wheel_face_width_mm": 28})
     assert isinstance(spec, WormSpec) and spec.set.pressure_angle == pytest.approx(math.radians(20))
 
@@ -76,7 +76,7 @@ def test_exported_step_and_stl_are_the_exact_closed_solid(tmp_path, kind):
 
     from geargen.cad.export import read_step
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.design.worm import WormGearSet
+    from geargen.families.worm.spec import WormGearSet
 
     out = tmp_path / kind
     assert main(["gear", "--kind", kind, *ISSUE_31, "--out", str(out)]) == 0
@@ -99,7 +99,7 @@ def test_a_solid_the_kernel_spoils_is_an_internal_error_not_bad_input(tmp_path, 
     from OCP.BRep import BRep_Builder
     from OCP.TopoDS import TopoDS_Solid
 
-    import geargen.cad.worm_wheel_solid as wheel_solid
+    import geargen.families.worm_wheel.solid as wheel_solid
 
     def empty_solid(*args, **kwargs):  # a solid with no shell: what a failed kernel step leaves
         solid = TopoDS_Solid()

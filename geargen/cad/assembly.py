@@ -29,6 +29,7 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS_Shape
 
 from geargen.cad import parts as P
+from geargen.cad.families import build_part
 from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
 from geargen.cad.kernel import volume
 from geargen.design.cluster import ClusterSpec
@@ -124,14 +125,8 @@ def gear_parts(layout, tolerance: float | None = None) -> dict[str, PlacedPart]:
                 warnings.simplefilter("always")
                 if isinstance(g.spec, ClusterSpec):
                     solid = build_cluster(g.spec, tolerance)
-                elif g.spec.kind == "internal":  # a planetary stage's ring
-                    from geargen.cad.internal_solid import build_internal
-                    solid = build_internal(g.spec, tolerance)
-                elif getattr(g.spec, "kind", "external") == "external":
-                    solid = build_gear(g.spec, tolerance)
-                else:  # another family's part (the rack of a rack drive): its own builder
-                    from geargen.cad.families import build_part
-                    solid = build_part(g.spec)
+                else:  # any family's part (a planetary stage's ring, a rack drive's rack): its own builder
+                    solid = build_part(g.spec, tolerance=tolerance)
             # undercut and the like: reported with the build, not printed
             cache[key] = (solid, tuple(dict.fromkeys(str(w.message) for w in caught)))
         solid, notes = cache[key]

@@ -41,7 +41,7 @@ from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Compound, TopoDS_Shape
 
 from geargen.cad.kernel import boolean, volume  # noqa: F401 - volume is part of this module's interface (P.volume)
-from geargen.core.bevel import BevelPairGeometry
+from geargen.families.bevel.geometry import BevelPairGeometry
 from geargen.errors import BuildError
 
 

@@ -32,10 +32,10 @@ import time
 import warnings
 from pathlib import Path
 
-from geargen.design.gear import (CYLINDRICAL_KINDS, DRAWN_TEXT_MAX, FAMILY_READERS, GearSpec, gear_from_table,
-                                 gear_kinds)
+from geargen.design.gear import CYLINDRICAL_KINDS, DRAWN_TEXT_MAX, GearSpec
 from geargen.design.schema import GEAR_NAME_MAX, check_name, shown
 from geargen.errors import DesignError, clipped
+from geargen.families.registry import FAMILIES, family_of, read_gear
 from geargen.units import from_mm, to_mm
 
 
@@ -43,7 +43,7 @@ def add_arguments(p) -> None:
     p.add_argument("design", nargs="?", help="design file (TOML) with a [gear] table, or an assembly file with --gear")
     p.add_argument("--gear", metavar="NAME", help="build [gears.NAME] of an assembly design file")
     g = p.add_argument_group("gear options (instead of a design file)")
-    g.add_argument("--kind", choices=gear_kinds(), default=None,
+    g.add_argument("--kind", choices=tuple(FAMILIES), default=None,
                    help="the gear's kind (default external: spur or helical); a kind's own options are listed "
                         "under it below")
     g.add_argument("--teeth", type=int, help="number of teeth")
@@ -140,28 +140,19 @@ GEAR_OPTIONS = {"teeth": ("--teeth", None), "module": ("--module", None),
                 **{dest: (flag, None) for dest, (flag, _, _) in SHOP_OPTIONS.items()}}
 
 
-#: gear kind -> the module (``geargen.commands.gear_<family>``) of that kind's own options. Such a
-#: module gives ``add_arguments(group)``, ``OPTIONS`` {argparse dest: (flag, design-table key stem,
-#: whether the value is a length in the pitch system's unit)} and ``COMMON``, the dests of
-#: :data:`GEAR_OPTIONS` the kind reads (a common option the kind does not read is refused).
-#: Options map to the kind's design-table keys, so a command line and a ``[gear]`` table are
-#: read by the same reader.
-KIND_OPTIONS: dict[str, str] = {
-    "rack": "geargen.commands.gear_rack",
-    "internal": "geargen.commands.gear_internal",
-    "worm": "geargen.commands.gear_worm",
-    "worm_wheel": "geargen.commands.gear_worm",
-    "bevel": "geargen.commands.gear_bevel",
-}
-
-
 def _kind_modules() -> dict[tuple[str, ...], object]:
-    """Each kind-options module once, with the kinds it serves."""
-    import importlib
-    by_module: dict[str, list[str]] = {}
-    for kind, module in KIND_OPTIONS.items():
-        by_module.setdefault(module, []).append(kind)
-    return {tuple(kinds): importlib.import_module(m) for m, kinds in by_module.items()}
+    """Each family's own options module (:meth:`geargen.families.family.GearFamily.options`: its
+    ``add_arguments(group)``, ``OPTIONS`` {argparse dest: (flag, design-table key stem, whether the
+    value is a length in the pitch system's unit)} and ``COMMON``, the dests of :data:`GEAR_OPTIONS`
+    the kind reads; a common option the kind does not read is refused) once, with the kinds it
+    serves. Options map to the kind's design-table keys, so a command line and a ``[gear]`` table
+    are read by the same reader."""
+    by_module: dict[object, list[str]] = {}
+    for kind, family in FAMILIES.items():
+        module = family.options()
+        if module is not None:
+            by_module.setdefault(module, []).append(kind)
+    return {tuple(kinds): module for module, kinds in by_module.items()}
 
 
 def _kind_option_table() -> dict[str, tuple]:
@@ -248,7 +239,7 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
         unknown = [k for k in data if k != "gear"]
         if unknown:
             raise DesignError(unknown[0], "unknown key or section in a gear design file", "[gear]")
-        return gear_from_table(data["gear"], where="gear", name=_file_gear_name(args, data["gear"])), None
+        return read_gear(data["gear"], where="gear", name=_file_gear_name(args, data["gear"])), None
     kind = args.kind or "external"
     table = _kind_table(args, kind, flags_given)
     if args.module is None and args.diametral_pitch is None:
@@ -295,7 +286,7 @@ def spec_from_args(args, layout=None) -> tuple[GearSpec, str | None]:
             table[key] = getattr(args, dest)
     name = args.name or (f"gear_{args.teeth}" if kind == "external" else f"{kind}_{args.teeth}" if args.teeth else kind)
     try:
-        return gear_from_table(table, where="options", name=name, length_unit=unit), None
+        return read_gear(table, where="options", name=name, length_unit=unit), None
     except DesignError as exc:
         if not exc.field.startswith("options."):
             raise
@@ -322,7 +313,7 @@ def _kind_table(args, kind: str, flags_given: list[str]) -> dict:
     for dest, (flag, key, is_length, kinds) in _kind_option_table().items():
         if getattr(args, dest, None) is not None and kind not in kinds:
             raise DesignError(flag, f"does not apply to --kind {kind}", f"--kind {' or '.join(kinds)}")
-    if kind in FAMILY_READERS:
+    if kind not in CYLINDRICAL_KINDS:
         module = dict((k, m) for ks, m in _kind_modules().items() for k in ks).get(kind)
         common = getattr(module, "COMMON", ())
         for dest, (flag, _) in GEAR_OPTIONS.items():
@@ -513,12 +504,7 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
         if thinning_source is not None:
             data["thinning_source"] = thinning_source
     else:
-        from geargen.model.gear_data import family_data
-        data = family_data(spec, solid)
-        if getattr(spec, "kind", None) in ("worm", "worm_wheel"):  # the pair's backlash as the pair check finds it
-            from geargen.checks.worm_pair import worm_pair_check
-            from geargen.model.worm_data import pair_check_data
-            data["pair_check"] = pair_check_data(worm_pair_check(spec.set), spec.length_unit)
+        data = family_of(spec).gear_data(spec)
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}
     data["files"] = [r.path.name for r in records]
     if args.measure:
@@ -533,8 +519,7 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
         data.setdefault("mating_gears", [])  # a drive's gear has its mates already
         drawn = gear_drawings(data, solid.profile, out, spec.name, output.source, design_file)
     elif not args.no_drawing:
-        from geargen.report.family_drawings import family_drawings
-        drawn = family_drawings(data, spec, out, spec.name, output.source, design_file)
+        drawn = family_of(spec).drawings(data, spec, out, spec.name, output.source, design_file) or {}
     data_file = out / f"{spec.name}.json"
     write_json(data_file, data)
     update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",

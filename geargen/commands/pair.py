@@ -6,8 +6,8 @@
     geargen pair --internal --teeth 16 24 --module 3 --profile-shift 0 0.516
 
 ``--internal``: gear 2 is a ring (internal gear, same hand as gear 1) and the pinion meshes inside
-it: prints the internal pair's geometry (:mod:`geargen.core.internal`) and its named checks on the
-exact outlines (:mod:`geargen.checks.internal_pair`: involute, tip and trochoid interference,
+it: prints the internal pair's geometry (:mod:`geargen.families.internal.geometry`) and its named checks on the
+exact outlines (:mod:`geargen.families.internal.pair`: involute, tip and trochoid interference,
 radial-assembly fouling, the minimum tooth difference).
 
 Prints, in the design's unit (mm with ``--module``, inches with ``--diametral-pitch``): the
@@ -335,7 +335,7 @@ def rate_from_args(args, gear1: GearSpec, gear2: GearSpec, centre_distance_mm: f
 
 def run_internal(args, pinion: GearSpec, ring: GearSpec, unit: str) -> int:
     """``--internal``: the internal pair's geometry and named checks, printed and as JSON."""
-    from geargen.checks.internal_pair import check_internal
+    from geargen.families.internal.pair import check_internal
     from geargen.errors import GeometryError
 
     if pinion.teeth >= ring.teeth:

@@ -48,6 +48,7 @@ from typing import Any, Sequence
 from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
 from geargen.design.checks import MINIMUM_SAFETY
 from geargen.errors import DesignError
+from geargen.families.registry import FAMILIES
 
 STANDARD = "ISO 6336-2:2019 / ISO 6336-3:2019, method B"
 #: the virtual tooth count standing for z -> infinity (a rack, an internal gear's root, the mesh
@@ -61,15 +62,10 @@ HARDNESS_HB_PER_HV = 0.95  # ISO 18265 steel conversion, near 200-400 HV (Z_W ne
 
 def rating_scope(spec) -> str | None:
     """None when ISO 6336 rates ``spec``'s family; else the sentence naming the standard that would."""
-    kind = getattr(spec, "kind", None)
-    name = type(spec).__name__
-    if name == "BevelGearSpec" or kind == "bevel":
-        return "not rated by ISO 6336: bevel gears are rated by ISO 10300 (not implemented)"
-    if name in ("WormSpec", "WormWheelSpec") or kind in ("worm", "worm_wheel"):
-        return "not rated by ISO 6336: worm gears are rated by ISO/TS 14521 (not implemented)"
-    if kind in ("external", "internal", "double_helical", "rack"):
-        return None
-    return f"not rated: {name} is not a cylindrical involute gear or rack (ISO 6336's scope)"
+    family = FAMILIES.get(getattr(spec, "kind", None))
+    if family is None:
+        return f"not rated: {type(spec).__name__} is not a cylindrical involute gear or rack (ISO 6336's scope)"
+    return family.RATING_SCOPE
 
 
 # ---------------------------------------------------------------------------------------------
@@ -216,7 +212,7 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
                     face_width: float | None = None) -> RatingGeometry:
     """The mesh of ``gear1`` (an external :class:`~geargen.design.gear.GearSpec`, the pinion of an
     internal or rack pair) with ``gear2`` (GearSpec, internal GearSpec, or
-    :class:`~geargen.design.rack.RackSpec`) at the operating ``centre_distance`` (mm; default the
+    :class:`~geargen.families.rack.spec.RackSpec`) at the operating ``centre_distance`` (mm; default the
     zero-backlash one; a rack meshes at its nominal height), carrying ``face_width`` (default the
     narrower gear's). Tips as built."""
     from geargen.core import geometry
@@ -246,7 +242,7 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
                   transverse_pressure_angle=alpha_t, face_width=b, half_face_width=half, double_helical=double,
                   eps_beta=half * math.sin(beta) / (math.pi * m_n))
     if gear2.kind == "rack":
-        from geargen.core.rack import rack_pinion_geometry
+        from geargen.families.rack.geometry import rack_pinion_geometry
         rp = rack_pinion_geometry(gear2, gear1)
         inf = math.inf
         return RatingGeometry(
@@ -260,7 +256,7 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
             thinning_normal=(gear1.thinning_normal, gear2.thinning * math.cos(beta)),
             rim_thickness=(_rim_under_root(gear1), None), rack_teeth=gear2.teeth, **common)
     if gear2.kind == "internal":
-        from geargen.core.internal import internal_pair_geometry
+        from geargen.families.internal.geometry import internal_pair_geometry
         ip = internal_pair_geometry(gear1, gear2, centre_distance)
         return RatingGeometry(
             kind="internal", teeth=(gear1.teeth, gear2.teeth), working_pressure_angle=ip.working_pressure_angle,
@@ -1150,7 +1146,7 @@ def rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: Sequence[
     """Rate one mesh of a drive under its load cases (the API the drive's check calls).
 
     Inputs: ``gear1``/``gear2`` the two gears' specs (:class:`~geargen.design.gear.GearSpec`;
-    gear 2 may be an internal GearSpec or a :class:`~geargen.design.rack.RackSpec`; bevel and worm
+    gear 2 may be an internal GearSpec or a :class:`~geargen.families.rack.spec.RackSpec`; bevel and worm
     specs give an unrated result naming ISO 10300 / ISO/TS 14521), ``centre_distance`` the
     operating one (mm; None: zero backlash), ``load_cases`` the tangential loads F_t at gear 1's
     reference circle (N) with their source label, flank and spectrum share, ``conditions`` speed

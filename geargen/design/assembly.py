@@ -36,7 +36,7 @@ from typing import Any, Mapping
 
 from geargen.design.catalogue import Defaulted, Readers
 from geargen.design.feasibility import check_tooth
-from geargen.design.gear import GearSpec, gear_from_table, gear_keys_written
+from geargen.design.gear import GearSpec, gear_keys_written
 from geargen.design.schema import (GEAR_NAME_MAX, STRING_MAX, DesignErrors, Problems, check_name, read_toml, shown,
                                    unknown_key)
 from geargen.design.layout import layout_settings
@@ -45,6 +45,7 @@ from geargen.design.stiffness import QUANTITY_SUFFIXES, preload_spec_from_table
 from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
 from geargen.design.written_units import other_unit_warnings
+from geargen.families.registry import read_gear
 from geargen.units import LENGTH_SUFFIXES, LENGTH_UNITS, TextUnits, text_units
 
 #: top-level sections a design file may hold, and who reads them
@@ -214,8 +215,7 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
         try:
             # the table's key is the gear's identity (what every other section names it by); its
             # ``name`` key, read and checked with the gear, only labels it
-            gears[gname] = gear_from_table({**defaults, **table}, where=f"gears.{gname}", name=gname,
-                                           length_unit=unit)
+            gears[gname] = read_gear({**defaults, **table}, where=f"gears.{gname}", name=gname, length_unit=unit)
         except DesignError as exc:
             problems.add(_from_defaults(exc, gname, table, defaults))
             continue

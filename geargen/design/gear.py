@@ -40,30 +40,6 @@ HANDS = ("right", "left")
 #: gear kinds a :class:`GearSpec` describes (cylindrical involute gears); ``double_helical`` is two
 #: helical halves of opposite hand
 CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
-#: the other kinds a ``[gear]``/``[gears.NAME]`` table may name -> "module:function" reading the table
-#: into that family's spec (same signature as :func:`gear_from_table`); each family registers itself
-FAMILY_READERS: dict[str, str] = {
-    "rack": "geargen.design.rack:rack_from_table",
-    "worm": "geargen.design.worm:worm_set_from_table",
-    "worm_wheel": "geargen.design.worm:worm_set_from_table",
-    "bevel": "geargen.design.bevel:bevel_from_table",
-}
-#: the same kinds -> "module:NAME" of the list of Fields their reader reads (validation, reference docs)
-FAMILY_FIELDS: dict[str, str] = {
-    "rack": "geargen.design.rack:RACK_FIELDS",
-    "worm": "geargen.design.worm:WORM_FIELDS",
-    "worm_wheel": "geargen.design.worm:WORM_FIELDS",
-    "bevel": "geargen.design.bevel:BEVEL_FIELDS",
-}
-
-
-def family_fields(kind: str):
-    """The Fields of a registered family's table (:data:`FAMILY_FIELDS`), or None for a cylindrical kind."""
-    if kind not in FAMILY_FIELDS:
-        return None
-    import importlib
-    module, name = FAMILY_FIELDS[kind].split(":")
-    return getattr(importlib.import_module(module), name)
 
 #: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
 #: its formulas and rounding could not be established from a citable source; inch designs use ISO)
@@ -414,11 +390,6 @@ def check_number(name: str, value, lo: float, hi: float, unit: str = "", exclusi
         raise DesignError(name, f"{written} is out of range", f"{left}{lo:.6g}, {hi:.6g}] {unit}".rstrip())
 
 
-def gear_kinds() -> tuple[str, ...]:
-    """Every gear kind a design table may name."""
-    return CYLINDRICAL_KINDS + tuple(FAMILY_READERS)
-
-
 GEAR_FIELDS: list[Field] = [
     Field("kind", "string", required=False, default="external", choices=CYLINDRICAL_KINDS,
           help="the gear's kind: external (spur or helical), internal (a ring), double_helical (two helical halves "
@@ -531,14 +502,8 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     ``name`` is the gear's identity (an assembly's table key), which the table's own ``name`` key
     (a label) never replaces; without it the table's ``name`` names the gear. ``length_unit`` is
     the design's unit for reports; by default inches for a diametral-pitch design and mm for a
-    module design.
+    module design. A table of any family is read by :func:`geargen.families.registry.read_gear`.
     """
-    if isinstance(data, Mapping) and isinstance(data.get("kind"), str) and data["kind"] in FAMILY_READERS:
-        # another family's table
-        import importlib
-        module, function = FAMILY_READERS[data["kind"]].split(":")
-        return getattr(importlib.import_module(module), function)(data, where=where, name=name,
-                                                                  length_unit=length_unit)
     v = read_table(data, GEAR_FIELDS, where)
     p = f"{where}."
     if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
@@ -669,6 +634,7 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter", "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS", "FAMILY_READERS", "FAMILY_FIELDS", "family_fields",
-           "gear_kinds", "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
+__all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter",
+           "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS",
+           "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

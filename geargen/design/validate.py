@@ -44,7 +44,7 @@ from typing import Any, Mapping
 from geargen.design.checks import CHECKS_FIELDS, CENTRE_KEYS, checks_settings
 from geargen.design.duty import DUTY_FIELDS, DUTY_QUANTITIES, MATERIAL_FIELDS, duty_settings, gear_materials
 from geargen.design.export import EXPORT_FIELDS, export_settings
-from geargen.design.gear import GEAR_FIELDS, family_fields
+from geargen.design.gear import GEAR_FIELDS
 from geargen.design.layout import check_layout, layout_fields, layout_settings
 from geargen.design.parts import check_parts, hardware_fields, parts_settings
 from geargen.design.schema import Field, Problems
@@ -61,6 +61,7 @@ from geargen.design.train import (DUAL_MOTOR_FIELDS, DUAL_MOTOR_QUANTITIES, TRAI
                                   dual_motor_spec, train_settings)
 from geargen.drives.keys import KEYS, kind_of
 from geargen.errors import DesignError
+from geargen.families.registry import FAMILIES
 
 #: sections that need the drive type (the stiffness step reads it)
 _NEED_DRIVE_TYPE = ("stiffness", "preload", "flexures", "springs", "beam_pinion", "engagement")
@@ -192,8 +193,8 @@ def table_schema(data: Mapping[str, Any], path: tuple[str, ...]) -> tuple[list[F
         # a gear table is read merged with [gear_defaults]: a key is required when neither gives it
         table = data.get(head, {}).get(path[1], {}) if head == "gears" else data.get(head, {})
         kind = table.get("kind") if isinstance(table, Mapping) else None
-        family = family_fields(kind) if isinstance(kind, str) else None  # another family's own table
-        return (family if family is not None else GEAR_FIELDS), []
+        family = FAMILIES.get(kind) if isinstance(kind, str) else None  # another family's own table
+        return (family.FIELDS if family is not None else GEAR_FIELDS), []
     if head == "errors" and len(path) == 2:
         required = "synthesis" in data
         return [replace(f, required=required, default=0.0) for f in ERROR_FIELDS], []

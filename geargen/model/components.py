@@ -23,7 +23,7 @@ from typing import Any
 
 import numpy as np
 
-from geargen.core.bevel import flat_back_envelope
+from geargen.families.bevel.geometry import flat_back_envelope
 from geargen.model.bodies import Body, describe, fuse, revolve, world_box
 
 #: the joint kinds (see the module docstring)
@@ -77,7 +77,7 @@ def along_x(x, y, z, towards_minus: bool = False) -> np.ndarray:
 class Toothed:
     """A toothed part of a drive's hardware, made by its family: ``spec`` (a bevel gear of the motor
     drive), and its ``back``: "flat" for a bevel gear cut flat through its heel root circle
-    (:func:`geargen.core.bevel.bevel_core`), "spherical" for the heel sphere."""
+    (:func:`geargen.families.bevel.geometry.bevel_core`), "spherical" for the heel sphere."""
 
     spec: Any
     back: str = "spherical"
@@ -184,7 +184,7 @@ class ComponentSet:
 
 def analytic_body(component: Component) -> Body:
     """The body the analytic readers use for ``component``: its own, or for a toothed part its
-    family's envelope (a flat-backed bevel gear: :func:`geargen.core.bevel.flat_back_envelope`)."""
+    family's envelope (a flat-backed bevel gear: :func:`geargen.families.bevel.geometry.flat_back_envelope`)."""
     if component.body is not None:
         return component.body
     return toothed_envelope(component.toothed)

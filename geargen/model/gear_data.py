@@ -10,31 +10,8 @@ import math
 
 from geargen.design.gear import GearSpec
 from geargen.errors import GeargenError
+from geargen.families.registry import family_of
 from geargen.units import from_mm
-
-
-#: gear kind (of the families that are not a GearSpec) -> "module:function" taking ``(spec)`` and
-#: returning that gear's data as a dict in its length unit (the keys of the gear-data contract that
-#: apply, with the same meaning, and the family's own); each family registers itself
-FAMILY_DATA: dict[str, str] = {
-    "rack": "geargen.model.rack_data:rack_data",
-    "internal": "geargen.model.internal_data:internal_gear_data",
-    "worm": "geargen.model.worm_data:worm_part_data",
-    "worm_wheel": "geargen.model.worm_data:worm_part_data",
-    "bevel": "geargen.model.bevel_data:bevel_gear_data",
-}
-
-
-def family_data(spec, solid=None) -> dict:
-    """The gear data of a spec of another family (rack, bevel, worm, ...), by its kind's function in
-    :data:`FAMILY_DATA`. ``solid`` (its built solid) is accepted so that a caller need not know
-    which families read it; the registered functions read the spec only."""
-    import importlib
-    kind = getattr(spec, "kind", None)
-    if kind not in FAMILY_DATA:
-        raise GeargenError(f"no gear data for kind {kind!r}")
-    module, function = FAMILY_DATA[kind].split(":")
-    return getattr(importlib.import_module(module), function)(spec)
 
 
 def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=None) -> dict:
@@ -54,8 +31,9 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=Non
     ``material`` (:class:`geargen.design.duty.GearMaterial`, the ISO 6336-5 material the design's
     rating names for the gear): the drawing's material, heat treatment and hardness where the gear
     table gives none (:func:`shop_data`)."""
-    if getattr(spec, "kind", "external") in FAMILY_DATA:  # a GearSpec kind with its own data (a ring)
-        return family_data(spec, None)
+    own = family_of(spec).gear_data(spec)
+    if own is not None:  # a GearSpec kind with its own data (a ring)
+        return own
     from geargen.core import geometry
     from geargen.core.accuracy import gear_tolerances
     from geargen.core.involute import pointed_tip_radius, reference_tooth_thickness

@@ -5,7 +5,7 @@ A cylindrical gear is its exact transverse outline (sampled densely: the polygon
 moment converge as the square of the spacing) times its face width, less its bore, with its hub;
 a one-piece cluster its two gears and the spacer between them; a double-helical gear its two
 halves and the groove's cylinder in the gap (:func:`geargen.profile.tooth.centre_gap_radius`); a ring (internal gear) its rim less its teeth's outline; a bevel
-gear its closed forms (:func:`geargen.core.bevel.bevel_volume`, :func:`bevel_axial_moment`); a
+gear its closed forms (:func:`geargen.families.bevel.geometry.bevel_volume`, :func:`bevel_axial_moment`); a
 hardware component its body (:func:`geargen.model.bodies.mass_properties`). All of unit density, in
 the part's own frame: ``axial_moment`` about its own axis, the one it turns about.
 """
@@ -17,7 +17,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from geargen.core.bevel import bevel_axial_moment, bevel_volume
+from geargen.families.bevel.geometry import bevel_axial_moment, bevel_volume
 from geargen.design.cluster import ClusterSpec
 from geargen.model.bodies import MassProperties, mass_properties
 from geargen.model.components import analytic_body

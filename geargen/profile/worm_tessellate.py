@@ -27,8 +27,8 @@ from typing import Callable
 
 import numpy as np
 
-from geargen.core.worm import WormGeometry, flank_axial_offset, wheel_outline, worm_geometry, z_ranges
-from geargen.design.worm import WormGearSet
+from geargen.families.worm.geometry import WormGeometry, flank_axial_offset, wheel_outline, worm_geometry, z_ranges
+from geargen.families.worm.spec import WormGearSet
 from geargen.profile.tessellate import TessellationError, ear_clip
 
 #: starting segments per run kind and per z range, and the least growth factor of a refinement
@@ -250,7 +250,7 @@ def _zip(lower: np.ndarray, upper: np.ndarray, a: np.ndarray, b: np.ndarray) -> 
 
 def worm_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     """The worm's closed mesh (n, 3, 3), mm, outward normals, within ``chordal_tolerance`` (mm), in
-    the frame of geargen.cad.worm_solid (axis Z, mid plane z = 0).
+    the frame of geargen.families.worm.solid (axis Z, mid plane z = 0).
 
     Its faces are ruled between consecutive helices at equal angles (straight flank generators,
     axial lines on the tip and root), so the mesh's rows are the rulings themselves, at angles
@@ -409,7 +409,7 @@ def _wheel_rows(s: WormGearSet, g: WormGeometry, z: np.ndarray, params: dict) ->
 
 def wheel_triangles(s: WormGearSet, chordal_tolerance: float) -> np.ndarray:
     """The worm wheel's closed mesh (n, 3, 3), mm, outward normals, within ``chordal_tolerance``
-    (mm), in the frame of geargen.cad.worm_wheel_solid (axis Z, mid plane z = 0, a space on +Y).
+    (mm), in the frame of geargen.families.worm_wheel.solid (axis Z, mid plane z = 0, a space on +Y).
     Rows at the crease (z = +-z_c, the rim's kink) and at both faces."""
     g = worm_geometry(s)
     kinds = {run: run[0] if isinstance(run, tuple) else "arc" for run in _WHEEL_RUNS}

@@ -6,23 +6,23 @@ import math
 import numpy as np
 import pytest
 
-from geargen.design.gear import gear_from_table
+from geargen.families.registry import read_gear
 
 pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module")
 def pinion():
-    from geargen.cad.bevel_solid import build_bevel
+    from geargen.families.bevel.solid import build_bevel
     # the headline gear of the issue: 15 / 30 teeth, 32 DP, 0.15 in face, 90 deg shaft angle, with a
     # thinning and a bore so both are exercised
-    spec = gear_from_table({"kind": "bevel", "teeth": 15, "mate_teeth": 30, "diametral_pitch_per_in": 32,
+    spec = read_gear({"kind": "bevel", "teeth": 15, "mate_teeth": 30, "diametral_pitch_per_in": 32,
                             "face_width_in": 0.15, "thinning_circumferential_in": 0.001, "bore_diameter_in": 0.1})
     return spec, build_bevel(spec, check=True)
 
 
 def test_solid_is_valid_and_has_the_solid_angle_volume(pinion):
-    from geargen.cad.bevel_solid import bevel_volume
+    from geargen.families.bevel.solid import bevel_volume
     from geargen.cad.gear_solid import check_solid, solid_volume
     spec, solid = pinion
     assert check_solid(solid.shape) is None
@@ -32,7 +32,7 @@ def test_solid_is_valid_and_has_the_solid_angle_volume(pinion):
 
 
 def test_flank_points_lie_on_the_spherical_involute_within_0_01_nm(pinion):
-    from geargen.cad.bevel_solid import flank_deviation
+    from geargen.families.bevel.solid import flank_deviation
     spec, solid = pinion
     dev = flank_deviation(solid.shape, spec, grid=10)
     # both flanks of every tooth, from the base cone to the tip cone, toe to heel
@@ -47,7 +47,7 @@ def test_flank_deviation_sees_a_wrong_flank(pinion):
     # per flank on the pitch cone (half the thinning each side)
     from dataclasses import replace
 
-    from geargen.cad.bevel_solid import flank_deviation
+    from geargen.families.bevel.solid import flank_deviation
     spec, solid = pinion
     other = replace(spec, thinning=spec.thinning + 2e-3)
     dev = flank_deviation(solid.shape, other, grid=4)
@@ -95,9 +95,9 @@ def test_faces_are_the_tooth_surfaces_themselves(pinion):
 
 
 def test_flat_back_is_the_spherical_solid_less_the_cap_behind_the_heel_root_circle(pinion):
-    from geargen.cad.bevel_solid import bevel_volume, build_bevel
+    from geargen.families.bevel.solid import bevel_volume, build_bevel
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.core.bevel import back_plane_distance
+    from geargen.families.bevel.geometry import back_plane_distance
     spec, spherical = pinion
     flat = build_bevel(spec, check=True, back="flat")
     assert check_solid(flat.shape) is None and flat.back == "flat"
@@ -133,9 +133,9 @@ def test_flat_back_with_a_web_is_the_builds_boolean_part(bore_in):
     solid fused with the web disc (from (R_i + R_e)/2 cos delta_f to past the back, rim half way
     between the toe sphere and the root cone there, with the bore) and cut by the back plane."""
     from geargen.cad import parts as P
-    from geargen.cad.bevel_solid import bevel_volume, build_bevel
+    from geargen.families.bevel.solid import bevel_volume, build_bevel
     from geargen.cad.gear_solid import check_solid, solid_volume
-    spec = gear_from_table({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "diametral_pitch_per_in": 32,
+    spec = read_gear({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "diametral_pitch_per_in": 32,
                             "face_width_in": 0.15, "thinning_circumferential_in": 0.00075, "bore_diameter_in": bore_in})
     flat = build_bevel(spec, check=True, back="flat")
     ri, re = spec.toe_cone_distance, spec.cone_distance
@@ -158,9 +158,9 @@ def test_flat_back_with_a_web_is_the_builds_boolean_part(bore_in):
 def test_crown_gear_tip_cone_beyond_90_deg(back):
     # 30 teeth against 15 at a 120 deg shaft angle: cos(Sigma) = -15/30 puts the pitch cone at 90 deg
     # (a crown gear), the tip cone past it (a cone opening the other way) and the root cone inside
-    from geargen.cad.bevel_solid import bevel_volume, build_bevel, flank_deviation
+    from geargen.families.bevel.solid import bevel_volume, build_bevel, flank_deviation
     from geargen.cad.gear_solid import check_solid, solid_volume
-    spec = gear_from_table({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "shaft_angle_deg": 120, "module_mm": 1.0,
+    spec = read_gear({"kind": "bevel", "teeth": 30, "mate_teeth": 15, "shaft_angle_deg": 120, "module_mm": 1.0,
                             "face_width_mm": 4.0, "bore_diameter_mm": 6.0})
     assert spec.pitch_cone_angle == pytest.approx(math.pi / 2, abs=1e-12)
     solid = build_bevel(spec, check=True, back=back)
@@ -174,9 +174,9 @@ def test_stl_without_a_bore_is_watertight(tmp_path):
     # issue 31: both spheres reach the axis (degenerated edges at the poles); the STL must be closed
     import trimesh
 
-    from geargen.cad.bevel_solid import build_bevel
+    from geargen.families.bevel.solid import build_bevel
     from geargen.cad.export import export_stl, read_stl
-    spec = gear_from_table({"kind": "bevel", "teeth": 12, "mate_teeth": 25, "module_mm": 1.0, "face_width_mm": 4.0,
+    spec = read_gear({"kind": "bevel", "teeth": 12, "mate_teeth": 25, "module_mm": 1.0, "face_width_mm": 4.0,
                             "profile_shift": 0.3})
     for back in ("spherical", "flat"):
         export_stl(build_bevel(spec, back=back), tmp_path / f"{back}.stl", chordal_tolerance=0.005)
@@ -186,7 +186,7 @@ def test_stl_without_a_bore_is_watertight(tmp_path):
 
 
 def test_an_unknown_back_is_refused_by_name(pinion):
-    from geargen.cad.bevel_solid import build_bevel
+    from geargen.families.bevel.solid import build_bevel
     from geargen.errors import DesignError
     spec, _ = pinion
     with pytest.raises(DesignError) as err:

@@ -14,7 +14,7 @@ from OCP.TopAbs import TopAbs_FACE
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS
 
-from geargen.cad.double_helical import build_double_helical, half_spec
+from geargen.families.double_helical.solid import build_double_helical, half_spec
 from geargen.profile.tooth import centre_gap_radius
 from geargen.cad.families import build_part
 from geargen.cad.gear_solid import check_solid, solid_volume

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from geargen.core.bevel import bevel_pair_geometry
+from geargen.families.bevel.geometry import bevel_pair_geometry
 
 pytestmark = pytest.mark.slow
 

@@ -1,5 +1,5 @@
 """Rack solids: one valid closed solid, volume = transverse section area x face width (closed form,
-geargen.core.rack, itself checked against the outline polygon in tests/core/test_rack.py), flanks
+geargen.families.rack.geometry, itself checked against the outline polygon in tests/core/test_rack.py), flanks
 straight and on the exact flank lines measured on sections of the solid, STEP/STL/JSON from
 ``geargen gear --kind rack`` and from a ``[gear] kind = "rack"`` file."""
 
@@ -17,10 +17,10 @@ from geargen.cad.export import read_step
 from geargen.cad.families import build_part
 from geargen.cad.gear_solid import check_solid, solid_volume
 from geargen.cad.measure import section
-from geargen.cad.rack_solid import build_rack, flank_straightness
+from geargen.families.rack.solid import build_rack, flank_straightness
 from geargen.cli import main
-from geargen.core.rack import rack_volume
-from geargen.design.rack import RackSpec
+from geargen.families.rack.geometry import rack_volume
+from geargen.families.rack.spec import RackSpec
 
 pytestmark = pytest.mark.slow
 

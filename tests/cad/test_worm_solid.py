@@ -1,4 +1,4 @@
-"""Solids of the ZA worm (geargen.cad.worm_solid): one valid closed solid, volume against the
+"""Solids of the ZA worm (geargen.families.worm.solid): one valid closed solid, volume against the
 exact screw-solid formula, flanks on the exact Archimedean helicoid."""
 
 import math
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from geargen.core.worm import flank_axial_offset, worm_geometry
-from geargen.design.worm import WormGearSet, WormSpec
+from geargen.families.worm.geometry import flank_axial_offset, worm_geometry
+from geargen.families.worm.spec import WormGearSet, WormSpec
 
 
 def _set(**changes):
@@ -82,7 +82,7 @@ def test_worm_step_reads_back_to_the_exact_volume(tmp_path, starts, hand):
 
     from geargen.cad.export import export_step, read_step
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.worm_solid import build_worm
+    from geargen.families.worm.solid import build_worm
 
     s = _set(starts=starts, hand=hand, worm_face_length=45.0)
     worm = build_worm(WormSpec(s), check=True)
@@ -109,7 +109,7 @@ def test_worm_is_ten_faces_built_without_booleans():
     from OCP.TopExp import TopExp_Explorer
     from OCP.TopoDS import TopoDS
 
-    from geargen.cad.worm_solid import build_worm
+    from geargen.families.worm.solid import build_worm
 
     s = _set(starts=3)
     kinds = []

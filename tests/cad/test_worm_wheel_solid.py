@@ -1,4 +1,4 @@
-"""The throated worm wheel's solid (geargen.cad.worm_wheel_solid): one valid closed solid, volume
+"""The throated worm wheel's solid (geargen.families.worm_wheel.solid): one valid closed solid, volume
 against an independent integration of the exact section areas, surface on the exact envelope
 BETWEEN the grid's rows, and the pair's backlash measured on the wheel and worm solids."""
 
@@ -8,8 +8,8 @@ import time
 import numpy as np
 import pytest
 
-from geargen.core.worm import wheel_section, worm_geometry
-from geargen.design.worm import WormGearSet, WormSpec, WormWheelSpec
+from geargen.families.worm.geometry import wheel_section, worm_geometry
+from geargen.families.worm.spec import WormGearSet, WormSpec, WormWheelSpec
 
 
 def khk_set(**changes):
@@ -163,7 +163,7 @@ def test_worm_wheel_is_two_faces_a_tooth_and_reads_back_from_its_step(tmp_path):
     rebuild the curves on the faces: the rim edges end at the crease, where the rim kinks)."""
     from geargen.cad.export import export_step, read_step
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.worm_wheel_solid import build_worm_wheel
+    from geargen.families.worm_wheel.solid import build_worm_wheel
     from OCP.TopAbs import TopAbs_FACE
     from OCP.TopExp import TopExp_Explorer
 
@@ -200,8 +200,8 @@ def test_wheel_teeth_that_would_come_to_a_point_keep_a_tip_land():
     exact volume; the land measured on the exact flanks is the minimum; a larger outside diameter,
     given, is refused by name."""
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.worm_wheel_solid import build_worm_wheel
-    from geargen.core.worm import tip_land
+    from geargen.families.worm_wheel.solid import build_worm_wheel
+    from geargen.families.worm.geometry import tip_land
     from geargen.errors import DesignError
 
     s = _sweep_set(20261124, 32)
@@ -246,8 +246,8 @@ def test_wheel_whose_trochoid_vanishes_at_a_face_end_is_valid(tmp_path, at_the_p
 
     from geargen.cad.export import export_step, read_step
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.worm_wheel_solid import build_worm_wheel
-    from geargen.core.worm import wheel_outline
+    from geargen.families.worm_wheel.solid import build_worm_wheel
+    from geargen.families.worm.geometry import wheel_outline
     from OCP.BRepGProp import BRepGProp
     from OCP.GProp import GProp_GProps
     from OCP.TopAbs import TopAbs_SOLID
@@ -295,7 +295,7 @@ def test_wheel_face_beyond_the_worms_flanks_is_refused_by_name_and_its_widest_bu
     import dataclasses
 
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.worm_wheel_solid import build_worm_wheel
+    from geargen.families.worm_wheel.solid import build_worm_wheel
     from geargen.errors import DesignError
 
     s = _sweep_set(1, 2)
@@ -318,7 +318,7 @@ def test_worm_wheel_solid_crease_and_rim():
     """The rim: the throat torus meets the outside cylinder at z_c = sqrt(r_i^2 - (a - d_k/2)^2)
     (KHK: sqrt(19^2 - 17.5^2) = 7.399 mm); the tip stays sharp there (rows at +-z_c), so the rim
     points of the exact rim profile, at the crease and between, lie on the solid within 0.1 um."""
-    from geargen.cad.worm_wheel_solid import build_worm_wheel, z_ranges
+    from geargen.families.worm_wheel.solid import build_worm_wheel, z_ranges
 
     s = khk_set(wheel_face_width=22.0)
     g = worm_geometry(s)
@@ -344,10 +344,10 @@ def test_backlash_measured_on_the_solids_is_the_design_backlash(hand, backlash_o
     """The wheel and worm SOLIDS at the design centre distance (KHK set thinned for j = 0.05 mm):
     the wheel's free rotation with the worm held, sectioned in the 9 planes of the exact check,
     is the design backlash within 2 um (and agrees with the exact surfaces' check)."""
-    from geargen.cad.worm_mesh_solid import solid_worm_backlash
-    from geargen.cad.worm_solid import build_worm
-    from geargen.cad.worm_wheel_solid import build_worm_wheel
-    from geargen.checks.worm_pair import worm_pair_check
+    from geargen.families.worm.mesh_solid import solid_worm_backlash
+    from geargen.families.worm.solid import build_worm
+    from geargen.families.worm_wheel.solid import build_worm_wheel
+    from geargen.families.worm.pair import worm_pair_check
 
     s = khk_set(hand=hand, backlash_on=backlash_on, worm_face_length=45.0)
     wheel, worm = build_worm_wheel(WormWheelSpec(s), check=True).shape, build_worm(WormSpec(s)).shape
@@ -376,7 +376,7 @@ def test_backlash_measured_on_the_solids_is_the_design_backlash(hand, backlash_o
 ])
 def test_worm_wheel_solid_one_rim_surface(changes, ranges):
     from geargen.cad.gear_solid import check_solid, solid_volume
-    from geargen.cad.worm_wheel_solid import build_worm_wheel, z_ranges
+    from geargen.families.worm_wheel.solid import build_worm_wheel, z_ranges
 
     s = khk_set(**changes)
     assert len(z_ranges(s, worm_geometry(s))) == ranges

@@ -4,8 +4,8 @@ import math
 
 import pytest
 
-from geargen.checks.bevel_pair import check_bevel_pair
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.pair import check_bevel_pair
+from geargen.families.bevel.spec import BevelGearSpec
 
 DEG = math.pi / 180
 

@@ -1,5 +1,5 @@
-"""A pinion on a rack measured on the exact outlines (geargen.checks.rack_pair) against the closed
-forms of geargen.core.rack: the backlash from the centre offset, clearances, named interference."""
+"""A pinion on a rack measured on the exact outlines (geargen.families.rack.pair) against the closed
+forms of geargen.families.rack.geometry: the backlash from the centre offset, clearances, named interference."""
 
 from __future__ import annotations
 
@@ -7,9 +7,9 @@ import math
 
 import pytest
 
-from geargen.checks.rack_pair import check_rack_pinion_mesh
+from geargen.families.rack.pair import check_rack_pinion_mesh
 from geargen.design.gear import GearSpec
-from geargen.design.rack import RackSpec
+from geargen.families.rack.spec import RackSpec
 
 A20 = math.radians(20)
 
@@ -92,7 +92,7 @@ def test_backlash_measured_on_the_pinion_solid_section(beta):
 
     from geargen.cad.gear_solid import build_gear
     from geargen.cad.measure import section
-    from geargen.core.rack import rack_outline
+    from geargen.families.rack.geometry import rack_outline
     from geargen.profile.tooth import section_rotation
 
     r = RackSpec(teeth=20, module=2.0, pressure_angle=A20, face_width=20.0, pitch_line_height=12.0,

@@ -1,12 +1,12 @@
-"""Worm-pair backlash and interference (geargen.checks.worm_pair) on the exact surfaces."""
+"""Worm-pair backlash and interference (geargen.families.worm.pair) on the exact surfaces."""
 
 import math
 
 import pytest
 
-from geargen.checks.worm_pair import worm_pair_check
-from geargen.core.worm import worm_geometry
-from geargen.design.worm import WormGearSet
+from geargen.families.worm.pair import worm_pair_check
+from geargen.families.worm.geometry import worm_geometry
+from geargen.families.worm.spec import WormGearSet
 
 
 def _set(**changes):

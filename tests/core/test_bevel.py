@@ -1,22 +1,22 @@
-"""Straight bevel gear geometry (geargen.core.bevel) against a published example and closed forms."""
+"""Straight bevel gear geometry (geargen.families.bevel.geometry) against a published example and closed forms."""
 
 import math
 
 import numpy as np
 import pytest
 
-from geargen.core.bevel import (base_cone_angle, bevel_geometry, check_tooth, gear_solid_angle, pitch_cone_angles,
+from geargen.families.bevel.geometry import (base_cone_angle, bevel_geometry, check_tooth, gear_solid_angle, pitch_cone_angles,
                                 spherical_involute_function, spherical_involute_points, tooth_half_angle,
                                 virtual_contact_ratio)
-from geargen.design.bevel import BevelGearSpec
-from geargen.design.gear import gear_from_table
+from geargen.families.bevel.spec import BevelGearSpec
+from geargen.families.registry import read_gear
 from geargen.errors import DesignError, GeometryError
 
 DEG = math.pi / 180
 
 
 def _khk(teeth, mate):
-    return gear_from_table({"kind": "bevel", "teeth": teeth, "mate_teeth": mate, "module_mm": 3,
+    return read_gear({"kind": "bevel", "teeth": teeth, "mate_teeth": mate, "module_mm": 3,
                             "pressure_angle_deg": 20, "face_width_mm": 22, "shaft_angle_deg": 90})
 
 
@@ -112,8 +112,8 @@ def test_tooth_thickness_at_the_pitch_cone_and_solid_angle():
 
 
 def test_volumes_of_the_two_backs_by_hand():
-    from geargen.core.bevel import back_plane_distance, bevel_core, bevel_volume
-    spec = gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 22,
+    from geargen.families.bevel.geometry import back_plane_distance, bevel_core, bevel_volume
+    spec = read_gear({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 22,
                             "bore_diameter_mm": 12})
     ri, re, rb = spec.toe_cone_distance, spec.cone_distance, 6.0
     g = bevel_geometry(spec)
@@ -139,7 +139,7 @@ def test_volumes_of_the_two_backs_by_hand():
 
 def test_refusals_are_named():
     with pytest.raises(DesignError, match="gear.face_width_mm"):
-        gear_from_table({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 60})
+        read_gear({"kind": "bevel", "teeth": 20, "mate_teeth": 40, "module_mm": 3, "face_width_mm": 60})
     with pytest.raises(DesignError, match="shaft_angle"):  # the gear's cone beyond 90 deg: internal bevel
         BevelGearSpec(teeth=40, mate_teeth=10, module=1, face_width=3, shaft_angle=150 * DEG)
     # z1 = 8, z2 = 40: the equivalent pair's gear tip reaches past the pinion's interference point
@@ -156,7 +156,7 @@ def test_spherical_contact_ratio_is_near_the_back_cone_estimate(z1, z2, sigma_de
     # the spherical pair's own path of contact (great circle of action between the tip cones) against
     # Tredgold's back-cone equivalent spur pair: the approximation is good to a few tenths of a percent
     # for these proportions (measured 0.05-0.25 %), never exact
-    from geargen.core.bevel import spherical_contact_ratio
+    from geargen.families.bevel.geometry import spherical_contact_ratio
     spec = BevelGearSpec(teeth=z1, mate_teeth=z2, module=3, face_width=10, shaft_angle=sigma_deg * DEG)
     sph, tredgold = spherical_contact_ratio(spec), virtual_contact_ratio(spec)
     assert sph == pytest.approx(tredgold, rel=5e-3)

@@ -505,14 +505,14 @@ def test_life_curves_pass_through_the_standards_points():
 
 
 def test_families_outside_iso6336_are_named_not_rated():
-    from geargen.design.bevel import BevelGearSpec
+    from geargen.families.bevel.spec import BevelGearSpec
 
     bevel = BevelGearSpec(teeth=20, mate_teeth=40, module=3, face_width=15)
     result = lc.rate_mesh(bevel, bevel, None, [lc.LoadCase(1000.0, "drive")], CONDITIONS, CARBURISED)
     assert result.scope.startswith("not rated by ISO 6336") and "ISO 10300" in result.scope
     assert result.to_dict() == {"standard": lc.STANDARD, "rated": False, "scope": result.scope}
 
-    class WormWheelSpec:  # the name is what tells a worm wheel (geargen.design.worm's class)
+    class WormWheelSpec:  # the name is what tells a worm wheel (geargen.families.worm.spec's class)
         kind = "worm_wheel"
     assert "ISO/TS 14521" in lc.rating_scope(WormWheelSpec())
 
@@ -520,7 +520,7 @@ def test_families_outside_iso6336_are_named_not_rated():
 def test_internal_pair_and_rack_change_what_the_standard_says():
     # internal: u negative in sigma_H0 ((|u| - 1)/|u|), Z_D = 1; rack: u infinite (factor 1), Z_D = 1.
     # Tolerance 1e-12: the formula recomputed from the block's own factors.
-    from geargen.design.rack import RackSpec
+    from geargen.families.rack.spec import RackSpec
 
     pinion = GearSpec(teeth=18, module=2.0, pressure_angle=20 * DEG, face_width=20.0)
     ring = GearSpec(teeth=60, module=2.0, pressure_angle=20 * DEG, face_width=20.0, kind="internal")

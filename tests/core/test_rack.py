@@ -1,4 +1,4 @@
-"""Rack geometry and the rack-and-pinion closed forms (geargen.core.rack, geargen.design.rack)."""
+"""Rack geometry and the rack-and-pinion closed forms (geargen.families.rack.geometry, geargen.families.rack.spec)."""
 
 from __future__ import annotations
 
@@ -8,10 +8,11 @@ import numpy as np
 import pytest
 
 from geargen.core.geometry import GearPair, mesh_geometry
-from geargen.core.rack import (centre_offset_for_backlash, normal_section_area_per_pitch, rack_outline,
+from geargen.families.rack.geometry import (centre_offset_for_backlash, normal_section_area_per_pitch, rack_outline,
                                rack_pinion_geometry, transverse_section_area)
-from geargen.design.gear import GearSpec, gear_from_table
-from geargen.design.rack import RackSpec, rack_from_table
+from geargen.design.gear import GearSpec
+from geargen.families.registry import read_gear
+from geargen.families.rack.spec import RackSpec, rack_from_table
 from geargen.errors import DesignError
 
 A20 = math.radians(20)
@@ -64,7 +65,7 @@ def test_outline_is_a_graph_both_ways_and_tangent_at_the_joints():
 
 
 def test_rack_and_pinion_backlash_closed_form():
-    # j_t = T_rack + T_pinion + 2 dy tan(alpha_t) (derivation in geargen.core.rack); alpha_t of a 20 deg
+    # j_t = T_rack + T_pinion + 2 dy tan(alpha_t) (derivation in geargen.families.rack.geometry); alpha_t of a 20 deg
     # normal, 15 deg helix: tan(alpha_t) = tan 20 / cos 15 = 0.376801...
     beta = math.radians(15)
     r = rack(helix_angle=beta, thinning=0.01)
@@ -123,7 +124,7 @@ def test_pinion_must_match_the_rack():
 
 def test_table_reader_and_its_errors():
     t = {"kind": "rack", "module_mm": 2, "teeth": 30, "face_width_mm": 20}
-    spec = gear_from_table(t)  # the gear reader hands a rack table to the rack's reader
+    spec = read_gear(t)  # the gear reader hands a rack table to the rack's reader
     assert isinstance(spec, RackSpec) and spec.back_height == pytest.approx(4.0)  # default 2 modules
     assert spec.length == pytest.approx(30 * math.pi * 2)
     assert spec.root_fillet_coefficient == 0.38 and spec.tip_radius_coefficient == 0.0

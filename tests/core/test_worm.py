@@ -1,4 +1,4 @@
-"""ZA worm and generated wheel geometry (geargen.core.worm) against a published example and an
+"""ZA worm and generated wheel geometry (geargen.families.worm.geometry) against a published example and an
 independent envelope computation."""
 
 import math
@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from geargen.core.worm import space_width_at_radius, wheel_angle, wheel_section, worm_geometry
-from geargen.design.worm import WormGearSet, WormWheelSpec, worm_set_from_table
+from geargen.families.worm.geometry import space_width_at_radius, wheel_angle, wheel_section, worm_geometry
+from geargen.families.worm.spec import WormGearSet, WormWheelSpec, worm_set_from_table
 from geargen.errors import DesignError, GeometryError
 
 
@@ -121,12 +121,12 @@ def test_table_reader_and_validation():
 
 @pytest.mark.parametrize("tolerance", [4e-10, 1e-6])
 def test_helix_spline_stays_on_the_circle_over_many_turns(tolerance):
-    """The helix B-spline (geargen.core.worm.helix_spline) over 60 turns, evaluated independently
+    """The helix B-spline (geargen.families.worm.geometry.helix_spline) over 60 turns, evaluated independently
     (scipy's BSpline on its knots and poles) at 200,000 parameters: within its stated error and the
     tolerance of (cos t, sin t) at the same t; its Greville abscissae reproduce t (a helix's z)."""
     from scipy.interpolate import BSpline
 
-    from geargen.core.worm import helix_spline
+    from geargen.families.worm.geometry import helix_spline
 
     t0, t1 = -2.0, 2.0 + 120 * math.pi
     h = helix_spline(t0, t1, tolerance)

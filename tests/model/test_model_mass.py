@@ -68,10 +68,10 @@ def test_cluster_mass_matches_the_solid(quiet_undercut):
 
 @pytest.mark.parametrize("back", ["spherical", "flat"])
 def test_bevel_axial_moment_matches_the_solid(back):
-    from geargen.cad.bevel_solid import build_bevel
-    from geargen.core.bevel import bevel_axial_moment, bevel_volume
-    from geargen.design.gear import gear_from_table
-    gear = gear_from_table({"kind": "bevel", "teeth": 15, "mate_teeth": 30, "diametral_pitch_per_in": 32,
+    from geargen.families.bevel.solid import build_bevel
+    from geargen.families.bevel.geometry import bevel_axial_moment, bevel_volume
+    from geargen.families.registry import read_gear
+    gear = read_gear({"kind": "bevel", "teeth": 15, "mate_teeth": 30, "diametral_pitch_per_in": 32,
                             "face_width_in": 0.15, "bore_diameter_in": 0.1})
     kernel = mass_properties(build_bevel(gear, back=back).shape, eps=1e-3)  # converged to 1e-10 already
     assert bevel_volume(gear, back) == pytest.approx(kernel.volume, rel=1e-7)

@@ -10,8 +10,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from geargen.core.worm import flank_axial_offset, wheel_section, worm_geometry
-from geargen.design.worm import WormGearSet
+from geargen.families.worm.geometry import flank_axial_offset, wheel_section, worm_geometry
+from geargen.families.worm.spec import WormGearSet
 from geargen.profile.tessellate import mesh_volume
 from geargen.profile.worm_tessellate import wheel_triangles, worm_triangles
 

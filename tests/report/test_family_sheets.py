@@ -361,9 +361,9 @@ def test_worm_json_closed_forms(worm_set_outputs):
 def test_wheel_tooth_thickness_is_the_generated_wheels(worm_set_outputs):
     """The wheel's tooth thickness at d_2 in the mid plane: the JSON's closed form (rack of m_x, alpha_x,
     shifted x2 m_x, less the thinning) against the wheel the worm generates there, measured on its
-    envelope section (geargen.core.worm.wheel_section, 2000 flank samples)."""
-    from geargen.core.worm import space_width_at_radius, wheel_section, worm_geometry
-    from geargen.design.worm import WormGearSet
+    envelope section (geargen.families.worm.geometry.wheel_section, 2000 flank samples)."""
+    from geargen.families.worm.geometry import space_width_at_radius, wheel_section, worm_geometry
+    from geargen.families.worm.spec import WormGearSet
     data, _ = worm_set_outputs["worm_wheel"]
     m, x2 = 3.0, 0.3
     alpha_x = math.radians(data["axial_pressure_angle_deg"])
@@ -411,7 +411,7 @@ def test_worm_and_wheel_sheets_read_back(worm_set_outputs, poppler):
 
 def _pin_rest_height(outline, diameter: float) -> float:
     """Height of the centre of a pin resting in the space at x = 0 on the rack's modelled outline
-    (:meth:`geargen.core.rack.RackOutline.height_at`, fillets and lands included), found numerically:
+    (:meth:`geargen.families.rack.geometry.RackOutline.height_at`, fillets and lands included), found numerically:
     the centre height where the nearest outline point (200001 samples over two pitches) is D / 2 away
     (bisection; the nearest distance falls as the pin is lowered)."""
     import numpy as np
@@ -433,8 +433,8 @@ def test_rack_allowance_pin_dimension_and_sheet(tmp_path, poppler, helix):
     import json
 
     from geargen.cli import main
-    from geargen.core.rack import rack_outline
-    from geargen.design.rack import rack_from_table
+    from geargen.families.rack.geometry import rack_outline
+    from geargen.families.rack.spec import rack_from_table
     out = tmp_path / "rack"
     options = ["gear", "--kind", "rack", "--module", "2", "--teeth", "10", "--face-width", "10", "--thinning", "0.03",
                "--thickness-allowance", "-20", "-50", "--no-stl", "--out", str(out), "--name", "r"]
@@ -477,7 +477,7 @@ def test_rack_allowance_pin_dimension_and_sheet(tmp_path, poppler, helix):
 
 
 def test_rack_table_allowance_keys():
-    from geargen.design.rack import rack_from_table
+    from geargen.families.rack.spec import rack_from_table
     from geargen.errors import DesignError
     base = {"kind": "rack", "teeth": 10, "module_mm": 2, "face_width_mm": 10}
     spec = rack_from_table({**base, "thickness_upper_deviation_um": -20, "thickness_lower_deviation_um": -50})

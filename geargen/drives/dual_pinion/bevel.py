@@ -9,9 +9,9 @@ driven, input shaft) times the gear's heel pitch radius, split equally between t
 circles: the pair's circumferential backlash is t1 + t2).
 
 Placement (mm, the assembly frame of :mod:`geargen.model.layout`): a bevel solid has its apex at
-its frame's origin, its axis +z and tooth 0 centred on azimuth 0 (:mod:`geargen.cad.bevel_solid`).
+its frame's origin, its axis +z and tooth 0 centred on azimuth 0 (:mod:`geargen.families.bevel.solid`).
 The gear's axis is the input shaft's, its teeth below the apex (towards its heel); the pinion's
-axis runs along +x from the apex. The frame of :mod:`geargen.checks.bevel_pair` (gear 1 = the
+axis runs along +x from the apex. The frame of :mod:`geargen.families.bevel.pair` (gear 1 = the
 gear, axis +z; gear 2 = the pinion, axis in the xz plane) is the assembly's turned half a turn
 about x about the apex, and the phases are that check's at ``turn`` 0: a gear tooth on the pitch
 generator, a pinion space on it (the teeth centred in the spaces, the backlash on both sides).
@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.spec import BevelGearSpec
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import DesignError
 from geargen.model.layout import Layout

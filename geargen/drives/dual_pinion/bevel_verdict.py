@@ -2,7 +2,7 @@
 parts' placements, then backlash measured on the exact outlines (:func:`check_placed_bevel_pair`).
 
 Each bevel solid has its apex at its frame's origin, its axis +z and tooth 0 centred on azimuth 0
-(:mod:`geargen.cad.bevel_solid`). :func:`geargen.checks.bevel_pair.check_bevel_pair` measures a
+(:mod:`geargen.families.bevel.solid`). :func:`geargen.families.bevel.pair.check_bevel_pair` measures a
 pair in its own frame (gear 1's axis +z, gear 2's axis in the xz plane) with gear 2 turned by
 ``turn`` and gear 1 rolled with it; a placement is brought to that frame, ``turn`` read from gear
 2's phase, and gear 1's departure ``offset`` from the rolled position shifts the free play of
@@ -16,9 +16,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from geargen.checks.bevel_pair import BevelPairCheck, mate_frame, check_bevel_pair
+from geargen.families.bevel.pair import BevelPairCheck, mate_frame, check_bevel_pair
 from geargen.checks.results import Failure
-from geargen.design.bevel import BevelGearSpec
+from geargen.families.bevel.spec import BevelGearSpec
 from geargen.drives.dual_pinion.bevel import bevel_drive
 from geargen.errors import GeometryError
 from geargen.units import LENGTH_SUFFIXES
@@ -80,7 +80,7 @@ def check_placed_bevel_pair(gear1: BevelGearSpec, matrix1: np.ndarray, gear2: Be
 
 
 #: the placed bevel pair's measured backlash may differ from its design value (t1 + t2) by this
-#: much (mm): the bisection on the sampled exact flanks (geargen.checks.bevel_pair) is far finer
+#: much (mm): the bisection on the sampled exact flanks (geargen.families.bevel.pair) is far finer
 BEVEL_BACKLASH_TOLERANCE = 1e-4
 
 

@@ -20,7 +20,7 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from geargen.core.bevel import back_plane_distance, bevel_core, bevel_pair_geometry
+from geargen.families.bevel.geometry import back_plane_distance, bevel_core, bevel_pair_geometry
 from geargen.core.flexures import spring_total_coils
 from geargen.design.stages import stages
 from geargen.design.stiffness import stiffness_design

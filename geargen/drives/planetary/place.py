@@ -52,7 +52,7 @@ def planet_part(planet: str, i: int) -> str:
 def internal_backlash(planet: GearSpec, ring: GearSpec, centre_distance: float) -> float:
     """Planet-ring backlash (mm) at ``centre_distance``, in the resolved model's kind
     (circumferential at the planet's reference circle: j_bt / cos alpha_t)."""
-    from geargen.core.internal import internal_pair_geometry
+    from geargen.families.internal.geometry import internal_pair_geometry
     pair = internal_pair_geometry(planet, ring, centre_distance)
     return pair.backlash_transverse / math.cos(planet.transverse_pressure_angle)
 

@@ -2,12 +2,12 @@
 
 Everything is read from the Layout's placements (centres, rotations, the modelled teeth):
 
-- each planet-ring mesh on the exact outlines (:class:`geargen.checks.internal_pair.RingMaterial`
+- each planet-ring mesh on the exact outlines (:class:`geargen.families.internal.pair.RingMaterial`
   against the planet's sampled exact outline): the planet turned both ways from where it is placed,
   the ring held, until it touches (bisection): free play on both sides, its sum against the design
   range and against the closed form (:func:`geargen.drives.planetary.place.internal_backlash`),
   and over one planet pitch of mesh positions (:func:`ring_mesh_sweep`);
-  and the internal pair's named checks (:func:`geargen.checks.internal_pair.check_internal`:
+  and the internal pair's named checks (:func:`geargen.families.internal.pair.check_internal`:
   involute, tip and trochoid interference, radial-assembly fouling);
 - the stage's conditions: coaxiality (planet-ring minus sun-planet zero-backlash working centre
   distance of the design's gears, within ``coaxiality_tolerance``), assembly (each placed planet's
@@ -36,7 +36,7 @@ def placed_ring_play(planet_spec, planet_centre, planet_rotation, ring_spec, rin
     centre, the ring held, on the exact outlines (both sections at the same height; rotations of
     that section). Negative both: the planet already overlaps the ring (the deepest point's
     depth over the planet's reference radius, as an angle)."""
-    from geargen.checks.internal_pair import RingMaterial, pinion_points
+    from geargen.families.internal.pair import RingMaterial, pinion_points
     from geargen.profile.internal import internal_profile
     from geargen.profile.tooth import tooth_profile
     profile = tooth_profile(planet_spec, warn=False)
@@ -84,10 +84,10 @@ RING_SWEEP_POSITIONS = 8
 def ring_mesh_sweep(planet, ring, centre_distance: float) -> tuple[float, float]:
     """Smallest and largest planet-ring backlash (mm, at the planet's reference circle) over
     :data:`RING_SWEEP_POSITIONS` mesh positions of one planet pitch, on the exact outlines
-    (:func:`geargen.checks.internal_pair.free_play`; the same for every planet of a stage: one
+    (:func:`geargen.families.internal.pair.free_play`; the same for every planet of a stage: one
     geometry at one carrier radius)."""
-    from geargen.checks.internal_pair import RingMaterial, free_play
-    from geargen.core.internal import internal_pair_geometry
+    from geargen.families.internal.pair import RingMaterial, free_play
+    from geargen.families.internal.geometry import internal_pair_geometry
     from geargen.profile.internal import internal_profile
     from geargen.profile.tooth import tooth_profile
     pair = internal_pair_geometry(planet, ring, centre_distance)
@@ -103,7 +103,7 @@ def ring_mesh_sweep(planet, ring, centre_distance: float) -> tuple[float, float]
 def planetary_meshes(layout, result) -> list[dict]:
     """Rows (mm, rad) of every planet-ring mesh and every stage's conditions; the failures go to
     ``result.failures``."""
-    from geargen.checks.internal_pair import check_internal
+    from geargen.families.internal.pair import check_internal
     from geargen.core.planetary import planet_ring_working, sun_planet_working
     from geargen.design.stages import stages
     from geargen.drives.planetary.place import core_stage, internal_backlash, planet_part

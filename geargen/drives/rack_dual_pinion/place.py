@@ -10,12 +10,12 @@ The motor is at the common input, so the carriage spring is in neither path: Typ
 Placement (the maths in :mod:`geargen.core.rack_drive`; frame: the rack's pitch line on the x
 axis, teeth up, gear axes +z, the symmetry line x = 0):
 
-* the rack (a :class:`geargen.design.rack.RackSpec` made from the pinion's tooth system, spur,
+* the rack (a :class:`geargen.families.rack.spec.RackSpec` made from the pinion's tooth system, spur,
   generating tip rounding, unthinned) is ``slide_travel`` + the pinions' span long, a whole even
   number of pitches, centred on x = 0 with a tooth space there (its phase);
 * each pinion's centre height gives the rack mesh its backlash (the point of the ``rack_backlash``
   range that ``model_tooth_thickness`` names: the middle, the least or the most) by the centre offset
-  (:func:`geargen.core.rack.centre_offset_for_backlash`), and each pinion is turned against the rack
+  (:func:`geargen.families.rack.geometry.centre_offset_for_backlash`), and each pinion is turned against the rack
   on its working flank, the loaded flank gap short;
 * the input and path gears' teeth are made within their allowances for the ``path_backlash`` range
   at the design centre distance; the path gear is keyed to its pinion at the timing that closes the loop with
@@ -33,12 +33,12 @@ from dataclasses import dataclass
 from fractions import Fraction
 from typing import Any
 
-from geargen.core.rack import centre_offset_for_backlash, rack_pinion_geometry
+from geargen.families.rack.geometry import centre_offset_for_backlash, rack_pinion_geometry
 from geargen.core.rack_drive import (RackDriveFrame, carriage_k3, keying_for_closure, path_stiffness_at_rack,
                                      pinion_rotation_on_rack, preload_forces, solve_carriage)
 from geargen.design.assembly import Design
 from geargen.design.gear import GearSpec
-from geargen.design.rack import RackSpec
+from geargen.families.rack.spec import RackSpec
 from geargen.errors import DesignError, GeometryError
 from geargen.model.allowance import MeshRange, model_gears, model_source
 from geargen.model.layout import GearPlacement, Layout, MeshPlacement, modelled_backlash, ratio_check, running_backlash

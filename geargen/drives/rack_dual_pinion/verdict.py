@@ -1,13 +1,13 @@
 """The verdict rows of the Type 2 rack drive (:mod:`geargen.drives.rack_dual_pinion.place`) beyond its two
 external input meshes (which the exact 2-D checker of :mod:`geargen.checks.mesh2d` checks as
-every other mesh): the two rack meshes on the exact outlines (:mod:`geargen.checks.rack_pair`),
+every other mesh): the two rack meshes on the exact outlines (:mod:`geargen.families.rack.pair`),
 the pinions' placed phase on the rack, the carriage's travel and the preload's reach.
 
 Failures (kinds of :data:`geargen.checks.results.FAILURE_KINDS`): each rack mesh's own
 (``tip_to_root_interference``, ``involute_interference``, ``flank_interference``,
 ``no_backlash``), ``undercut`` when the rack works below the pinion's interference point (the
 base circle's tangent point on the line of action, the closed form of
-:func:`geargen.core.rack.rack_pinion_geometry`), ``backlash_out_of_range`` when its measured free-flank backlash leaves the
+:func:`geargen.families.rack.geometry.rack_pinion_geometry`), ``backlash_out_of_range`` when its measured free-flank backlash leaves the
 design range or is not the placed value, ``preload_contact_lost`` when a pinion does not stand
 a loaded flank gap from its working flank (the loop is not closed as placed) or the drive force
 unloads a path, ``flank_interference`` when a placed pinion's free flank overlaps the rack, ``carriage_travel_exceeded`` when the carriage's stroke cannot take its
@@ -23,7 +23,7 @@ import math
 import numpy as np
 
 from geargen.checks.mesh2d import polar_outline
-from geargen.checks.rack_pair import PlacedRackPair, boundary_extreme, check_rack_pinion_mesh
+from geargen.families.rack.pair import PlacedRackPair, boundary_extreme, check_rack_pinion_mesh
 from geargen.checks.results import DesignCheck, Failure
 from geargen.units import LENGTH_SUFFIXES
 
@@ -38,12 +38,12 @@ def placed_rack_gaps(rack, pinion, centre_offset: float, pinion_x: float, pinion
                      samples: int = 160) -> tuple[float, float]:
     """Free travel (mm) of the rack toward +x and toward -x against a pinion placed at ``pinion_x``
     with ``pinion_rotation`` (tooth 0's centreline, CCW from +x), on the exact outlines of
-    :mod:`geargen.checks.rack_pair`; the rack's space centred at x = 0.
+    :mod:`geargen.families.rack.pair`; the rack's space centred at x = 0.
 
-    The pair of :mod:`geargen.checks.rack_pair` ties the pinion's centre to its turn
+    The pair of :mod:`geargen.families.rack.pair` ties the pinion's centre to its turn
     (``X = -r theta``); the placed picture is that pair's with the rack moved ``X - pinion_x``
     toward +x, so the placed travels are the pair's less and plus that shift."""
-    from geargen.core.rack import rack_pinion_geometry
+    from geargen.families.rack.geometry import rack_pinion_geometry
     geometry = rack_pinion_geometry(rack, pinion, centre_offset)
     outline = polar_outline(pinion)
     pair = PlacedRackPair(rack, outline, geometry.centre_height)

@@ -1,0 +1,65 @@
+"""What a gear family provides (:class:`GearFamily`): the interface every layer calls, so that
+none of them asks which family a gear is.
+
+A family lives in ``geargen/families/<kind>/``, one file per layer role:
+
+- ``spec.py`` (design): its spec and its ``[gear]`` table's keys;
+- ``geometry.py`` (core): its closed-form geometry;
+- ``solid.py`` (cad): its solid, the only file that imports the kernel;
+- ``pair.py`` (checks): its pair check;
+- ``data.py`` (model): its gear data (the JSON a ``geargen gear`` run writes);
+- ``options.py`` (commands): its own ``geargen gear --kind <kind>`` options;
+- ``drawing.py`` (report): its drawing sheets;
+- ``family.py``: the module that is its :class:`GearFamily`, listed in :mod:`geargen.families.registry`.
+
+``family.py`` imports its spec at its top and every other role inside the function that needs
+it, so that reading a design table never loads the kernel or the drawing code. A family may reuse
+another's files (the worm wheel reads the worm set's spec, data, options and drawing).
+"""
+
+from __future__ import annotations
+
+from types import ModuleType
+from typing import Any, Mapping, Protocol, Sequence
+
+
+class GearFamily(Protocol):
+    """A gear family (a ``family.py`` module satisfies it):
+
+    - ``KIND``: the ``kind`` a ``[gear]`` table names it by (and its specs' ``kind``);
+    - ``FIELDS``: the :class:`geargen.design.schema.Field` list of its table (validation, reference);
+    - ``RATING_SCOPE``: None when ISO 6336 rates the family's load capacity, else the sentence naming
+      the standard that would (:func:`geargen.core.load_capacity.rating_scope`);
+    - ``read_table(data, where, name, length_unit)``: its spec from a design table, keys named
+      ``where.KEY`` in errors (:func:`geargen.design.gear.gear_from_table`'s signature);
+    - ``build(spec, check, tolerance)``: its solid (``shape``, ``name``, ``spec``, ``length_unit``);
+      ``tolerance`` (mm) is the spline fit tolerance of a family fitted to a sampled tooth profile
+      (None: its default), which a family with a fixed fit (rack, bevel, worm) does not take;
+    - ``gear_data(spec)``: its gear data (a dict in its length unit, gear-data contract), or None when
+      they come from the cylindrical gear's tooth profile (:func:`geargen.model.gear_data.gear_data`);
+    - ``drawings(data, spec, folder, name, source, design_file)``: its sheets written,
+      ``{"svg"|"pdf": path}``, or None when the cylindrical gear drawing
+      (:func:`geargen.report.drawing.gear_drawings`) draws it;
+    - ``options()``: the module of its own ``geargen gear`` options (``add_arguments(group)``,
+      ``OPTIONS`` {dest: (flag, key stem, is a length)}, ``COMMON``: the common options it reads),
+      or None when it takes the common options only.
+    """
+
+    KIND: str
+    FIELDS: Sequence[Any]
+    RATING_SCOPE: str | None
+
+    def read_table(self, data: Mapping[str, Any], where: str = "gear", name: str | None = None,
+                   length_unit: str | None = None) -> Any: ...
+
+    def build(self, spec: Any, check: bool = False, tolerance: float | None = None) -> Any: ...
+
+    def gear_data(self, spec: Any) -> dict | None: ...
+
+    def drawings(self, data: dict, spec: Any, folder: Any, name: str, source: str,
+                 design_file: str) -> dict | None: ...
+
+    def options(self) -> ModuleType | None: ...
+
+
+__all__ = ["GearFamily"]

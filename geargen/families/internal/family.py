@@ -1,0 +1,30 @@
+"""The internal (ring) gear: a :class:`geargen.design.gear.GearSpec` with ``kind = "internal"``
+and its ``rim_diameter``."""
+
+from __future__ import annotations
+
+from geargen.families.external import family as external
+
+KIND = "internal"
+FIELDS = external.FIELDS  # the cylindrical gear's table (rim_diameter among its keys)
+read_table = external.read_table
+RATING_SCOPE = external.RATING_SCOPE
+
+
+def build(spec, check: bool = False, tolerance: float | None = None):
+    from geargen.families.internal.solid import build_internal
+    return build_internal(spec, tolerance, check=check)
+
+
+def gear_data(spec) -> dict:
+    from geargen.families.internal.data import internal_gear_data
+    return internal_gear_data(spec)
+
+
+def drawings(data, spec, folder, name, source, design_file) -> None:
+    return None  # no sheet of its own yet: the gear command writes its data only
+
+
+def options():
+    from geargen.families.internal import options
+    return options

@@ -1,0 +1,31 @@
+"""Every gear family (:class:`geargen.families.family.GearFamily`), by kind: one line per family."""
+
+from __future__ import annotations
+
+from geargen.families.bevel import family as bevel
+from geargen.families.double_helical import family as double_helical
+from geargen.families.external import family as external
+from geargen.families.family import GearFamily
+from geargen.families.internal import family as internal
+from geargen.families.rack import family as rack
+from geargen.families.worm import family as worm
+from geargen.families.worm_wheel import family as worm_wheel
+
+FAMILIES: dict[str, GearFamily] = {f.KIND: f for f in (
+    external, internal, double_helical, rack, worm, worm_wheel, bevel)}
+
+
+def family_of(spec) -> GearFamily:
+    """The family of a gear spec (by its ``kind``; a spec without one is an external gear's)."""
+    return FAMILIES[getattr(spec, "kind", "external")]
+
+
+def read_gear(data, where: str = "gear", name: str | None = None, length_unit: str | None = None):
+    """Any family's spec from a ``[gear]``/``[gears.NAME]`` table, by its ``kind`` key (default
+    external; a kind no family has is refused by the cylindrical reader, naming the kinds)."""
+    kind = data.get("kind", "external") if hasattr(data, "get") else "external"
+    family = FAMILIES.get(kind) if isinstance(kind, str) else None
+    return (family or external).read_table(data, where=where, name=name, length_unit=length_unit)
+
+
+__all__ = ["FAMILIES", "family_of", "read_gear"]
