@@ -38,7 +38,7 @@ ALLOWED = {
     ("design/feasibility.py", "involute"): "design is the bottom layer (tests/test_layering.py) and may not import "
                                            "core; tests/design/test_feasibility.py checks its closed forms against "
                                            "core.involute and the outline",
-    ("core/worm.py", "Greville abscissae"): "core is below profile (tests/test_layering.py): the helix spline's "
+    ("families/worm/geometry.py", "Greville abscissae"): "a family's geometry is core, below profile (tests/test_layering.py): the helix spline's "
                                             "Greville abscissae of its unclamped knots, one line",
 }
 
