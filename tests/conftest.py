@@ -1,6 +1,7 @@
 """Session fixtures shared by the test folders: the shipped assemblies, each built once per session."""
 
 import contextlib
+import fcntl
 import io
 import os
 import shutil
@@ -38,8 +39,25 @@ class BuiltAssemblies:
 
     def __getitem__(self, name: str) -> Path:
         if name not in self._built:
-            from geargen.cli import main
-            folder = self.root / name / name
+            self._built[name] = self._build_once(name)
+        folder, problem = self._built[name]
+        if problem is not None:
+            pytest.fail(f"geargen build {name} failed: {problem}", pytrace=False)
+        return folder
+
+    def _build_once(self, name: str) -> tuple[Path, str | None]:
+        """Build ``name`` unless another test process (pytest-xdist worker) of this session already
+        did: the first to take the lock builds, the others wait and read its folder or its failure."""
+        from geargen.cli import main
+        folder = self.root / name / name
+        problem_file = self.root / f"{name}.problem"
+        self.root.mkdir(parents=True, exist_ok=True)
+        with open(self.root / f"{name}.lock", "w") as lock:
+            fcntl.flock(lock, fcntl.LOCK_EX)
+            if problem_file.exists():
+                return folder, problem_file.read_text()
+            if (folder / "manifest.json").exists():
+                return folder, None
             err = io.StringIO()
             try:
                 with contextlib.redirect_stderr(err):
@@ -47,11 +65,9 @@ class BuiltAssemblies:
                 problem = None if code == 0 else f"exit status {code}: {err.getvalue()}"
             except BaseException as exc:  # noqa: BLE001 - reported to every test that needs this build
                 problem = f"{type(exc).__name__}: {exc}\n{err.getvalue()}"
-            self._built[name] = (folder, problem)
-        folder, problem = self._built[name]
-        if problem is not None:
-            pytest.fail(f"geargen build {name} failed: {problem}", pytrace=False)
-        return folder
+            if problem is not None:
+                problem_file.write_text(problem)
+            return folder, problem
 
     def step(self, name: str, part: str):
         """The re-imported STEP file of ``part`` (:class:`geargen.cad.export.StepContents`)."""
@@ -65,7 +81,10 @@ class BuiltAssemblies:
 @pytest.fixture(scope="session")
 def built_assemblies(tmp_path_factory) -> BuiltAssemblies:
     """The shipped assemblies built once per session (:class:`BuiltAssemblies`)."""
-    return BuiltAssemblies(tmp_path_factory.mktemp("assemblies"))
+    base = tmp_path_factory.getbasetemp()
+    # pytest-xdist workers each get <session>/popen-gwN: share the session's folder between them
+    shared = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+    return BuiltAssemblies(shared / "shared-assemblies")
 
 
 def debian_tool(executable: str, package: str) -> str:
