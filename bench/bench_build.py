@@ -19,6 +19,13 @@ assembly, each in fresh interpreters, N times (median shown, best in brackets):
   (its manifest's ``timings_s``: each step's time includes the imports it triggers; "mesh checks"
   is the second process's work, done alongside the steps after "gear solids").
 
+``--stages [--repeat N] [--root DIR] [NAME ...]`` (issue 28): only the command, for every shipped
+design (``assemblies/*.toml`` with a drive) unless named, N fresh processes each; a table of the
+median wall and processor time (user + system of the command and its mesh-check process) and the
+median of each step's time from the build's ``manifest.json`` (``timings_s``; "mesh checks" is the
+second process's work, done alongside). ``--root`` measures another checkout (e.g. main's, for the
+"before" numbers) with this script.
+
 Target for the robot joint: 3 s end to end (the ``command`` column, interpreter start
 included), mesh checks included, on a quiet machine.
 
@@ -134,8 +141,65 @@ def _interpreter_start(repeat: int) -> float:
     return min(walls)
 
 
+STAGE_COLUMNS = ("gear solids", "other parts", "render", "export", "figures", "drawings", "mesh checks")
+TARGET_ANY_S = 5.0  # issue 28: every shipped design
+
+
+def _shipped(root: Path) -> list[str]:
+    """The shipped designs ``geargen build`` builds (a drive: [layout] or [synthesis])."""
+    import tomllib
+    names = []
+    for path in sorted((root / "assemblies").glob("*.toml")):
+        data = tomllib.loads(path.read_text())
+        if "layout" in data or "synthesis" in data:
+            names.append(path.stem)
+    return names
+
+
+def _stage_command(root: Path, design: Path, out: Path) -> tuple[float, float, dict[str, float]]:
+    cpu0 = _cpu_of_children()
+    t0 = time.perf_counter()
+    done = subprocess.run([sys.executable, "-m", "geargen.cli", "build", str(design), "--out", str(out), "--quiet"],
+                          capture_output=True, text=True, cwd=root, env=ENV)
+    wall = time.perf_counter() - t0
+    if done.returncode:
+        raise RuntimeError(done.stderr[-3000:])
+    steps = json.loads((out / "manifest.json").read_text())["timings_s"]
+    return wall, _cpu_of_children() - cpu0, steps
+
+
+def stage_table(root: Path, names: list[str], repeat: int) -> None:
+    """The ``--stages`` table of the module docstring."""
+    print(f"{root}: geargen build, {repeat} fresh processes each, medians (s); load average "
+          f"{os.getloadavg()[0]:.2f} on {os.cpu_count()} cores at the start")
+    print(f"{'design':22s} {'wall':>6s} {'cpu':>6s} {'<=5s':>5s} " + " ".join(f"{c:>12s}" for c in STAGE_COLUMNS))
+    for name in names:
+        runs = []
+        try:
+            for _ in range(repeat):
+                with tempfile.TemporaryDirectory() as tmp:
+                    runs.append(_stage_command(root, root / "assemblies" / f"{name}.toml", Path(tmp) / name))
+        except RuntimeError as exc:
+            print(f"{name}: FAILED\n{exc}")
+            continue
+        wall = statistics.median(r[0] for r in runs)
+        cpu = statistics.median(r[1] for r in runs)
+        stages = [statistics.median(r[2].get(c, float("nan")) for r in runs) for c in STAGE_COLUMNS]
+        print(f"{name:22s} {wall:6.2f} {cpu:6.2f} {'ok' if wall <= TARGET_ANY_S else 'OVER':>5s} "
+              + " ".join(f"{v:12.2f}" for v in stages), flush=True)
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
+
+
 def main(argv):
     repeat = 3
+    if argv[:1] == ["--stages"]:
+        argv, root = argv[1:], ROOT
+        if argv[:1] == ["--repeat"]:
+            repeat, argv = int(argv[1]), argv[2:]
+        if argv[:1] == ["--root"]:
+            root, argv = Path(argv[1]).resolve(), argv[2:]
+        stage_table(root, argv or _shipped(root), repeat)
+        return
     if argv[:1] == ["--repeat"]:
         repeat, argv = int(argv[1]), argv[2:]
     names = argv or ASSEMBLIES
