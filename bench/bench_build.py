@@ -11,7 +11,8 @@ assembly, each in fresh interpreters, N times (median shown, best in brackets):
   shared with other work the wall time varies with their load, the processor time much less;
 - the per-step times of the median ``build()`` run. The mesh checks of the gears run in a second
   process alongside stiffness, other parts, render and export (:class:`geargen.pipeline.Alongside`),
-  so the steps add up to more than the build.
+  the drawings and the check-free figures in processes of their own, so the steps add up to more
+  than the build.
 
 - the profile split of the median ``command`` run, as issue 15 asks it to be quoted: the same command
   once more under ``python -X importtime``, its imports summed by package (each module's own time,
@@ -86,16 +87,16 @@ def _cpu_of_children() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def _command(design: Path, out: Path) -> tuple[float, float]:
-    """(wall s, processor s) of one ``geargen build``; the processor time counts the mesh-check process
-    too (reaped by the command before it exits)."""
+def _command(design: Path, out: Path, root: Path = ROOT) -> tuple[float, float]:
+    """(wall s, processor s) of one ``geargen build`` of the checkout ``root``; the processor time
+    counts the processes it forks too (reaped by the command before it exits)."""
     cpu0 = _cpu_of_children()
     t0 = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "geargen.cli", "build", str(design), "--out", str(out), "--quiet"],
-                          capture_output=True, text=True, cwd=ROOT, env=ENV)
+                          capture_output=True, text=True, cwd=root, env=ENV)
     wall = time.perf_counter() - t0
     if done.returncode:
-        raise RuntimeError(done.stderr)
+        raise RuntimeError(done.stderr[-3000:])
     return wall, _cpu_of_children() - cpu0
 
 
@@ -157,15 +158,9 @@ def _shipped(root: Path) -> list[str]:
 
 
 def _stage_command(root: Path, design: Path, out: Path) -> tuple[float, float, dict[str, float]]:
-    cpu0 = _cpu_of_children()
-    t0 = time.perf_counter()
-    done = subprocess.run([sys.executable, "-m", "geargen.cli", "build", str(design), "--out", str(out), "--quiet"],
-                          capture_output=True, text=True, cwd=root, env=ENV)
-    wall = time.perf_counter() - t0
-    if done.returncode:
-        raise RuntimeError(done.stderr[-3000:])
-    steps = json.loads((out / "manifest.json").read_text())["timings_s"]
-    return wall, _cpu_of_children() - cpu0, steps
+    """:func:`_command` and the steps' times of its manifest."""
+    wall, cpu = _command(design, out, root)
+    return wall, cpu, json.loads((out / "manifest.json").read_text())["timings_s"]
 
 
 def stage_table(root: Path, names: list[str], repeat: int) -> None:
