@@ -792,10 +792,17 @@ class Alongside:
             return None
         try:
             import multiprocessing
+            import gc
             ctx = multiprocessing.get_context("fork")
             receiver, sender = ctx.Pipe(duplex=False)
             process = ctx.Process(target=_run_in_child, args=(sender, fn, args, os.getpid()), daemon=True)
-            process.start()
+            # the objects made so far out of the garbage collector's sight while forking: its passes
+            # in the child would write to every one and copy the pages it shares with this process
+            gc.freeze()
+            try:
+                process.start()
+            finally:
+                gc.unfreeze()
         except Exception:  # e.g. inside a daemonic worker, which may not have children
             return None
         sender.close()
