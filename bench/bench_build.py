@@ -11,13 +11,21 @@ assembly, each in fresh interpreters, N times (median shown, best in brackets):
   shared with other work the wall time varies with their load, the processor time much less;
 - the per-step times of the median ``build()`` run. The mesh checks of the gears run in a second
   process alongside stiffness, other parts, render and export (:class:`geargen.pipeline.Alongside`),
-  so the steps add up to more than the build.
+  the drawings and the check-free figures in processes of their own, so the steps add up to more
+  than the build.
 
 - the profile split of the median ``command`` run, as issue 15 asks it to be quoted: the same command
   once more under ``python -X importtime``, its imports summed by package (each module's own time,
   so a package's share excludes what it imports from other packages) and the steps of that run
   (its manifest's ``timings_s``: each step's time includes the imports it triggers; "mesh checks"
   is the second process's work, done alongside the steps after "gear solids").
+
+``--stages [--repeat N] [--root DIR] [NAME ...]`` (issue 28): only the command, for every shipped
+design (``assemblies/*.toml`` with a drive) unless named, N fresh processes each; a table of the
+median wall and processor time (user + system of the command and its mesh-check process) and the
+median of each step's time from the build's ``manifest.json`` (``timings_s``; "mesh checks" is the
+second process's work, done alongside). ``--root`` measures another checkout (e.g. main's, for the
+"before" numbers) with this script.
 
 Target for the robot joint: 3 s end to end (the ``command`` column, interpreter start
 included), mesh checks included, on a quiet machine.
@@ -79,16 +87,16 @@ def _cpu_of_children() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def _command(design: Path, out: Path) -> tuple[float, float]:
-    """(wall s, processor s) of one ``geargen build``; the processor time counts the mesh-check process
-    too (reaped by the command before it exits)."""
+def _command(design: Path, out: Path, root: Path = ROOT) -> tuple[float, float]:
+    """(wall s, processor s) of one ``geargen build`` of the checkout ``root``; the processor time
+    counts the processes it forks too (reaped by the command before it exits)."""
     cpu0 = _cpu_of_children()
     t0 = time.perf_counter()
     done = subprocess.run([sys.executable, "-m", "geargen.cli", "build", str(design), "--out", str(out), "--quiet"],
-                          capture_output=True, text=True, cwd=ROOT, env=ENV)
+                          capture_output=True, text=True, cwd=root, env=ENV)
     wall = time.perf_counter() - t0
     if done.returncode:
-        raise RuntimeError(done.stderr)
+        raise RuntimeError(done.stderr[-3000:])
     return wall, _cpu_of_children() - cpu0
 
 
@@ -134,8 +142,59 @@ def _interpreter_start(repeat: int) -> float:
     return min(walls)
 
 
+STAGE_COLUMNS = ("gear solids", "other parts", "render", "export", "figures", "drawings", "mesh checks")
+TARGET_ANY_S = 5.0  # issue 28: every shipped design
+
+
+def _shipped(root: Path) -> list[str]:
+    """The shipped designs ``geargen build`` builds (a drive: [layout] or [synthesis])."""
+    import tomllib
+    names = []
+    for path in sorted((root / "assemblies").glob("*.toml")):
+        data = tomllib.loads(path.read_text())
+        if "layout" in data or "synthesis" in data:
+            names.append(path.stem)
+    return names
+
+
+def _stage_command(root: Path, design: Path, out: Path) -> tuple[float, float, dict[str, float]]:
+    """:func:`_command` and the steps' times of its manifest."""
+    wall, cpu = _command(design, out, root)
+    return wall, cpu, json.loads((out / "manifest.json").read_text())["timings_s"]
+
+
+def stage_table(root: Path, names: list[str], repeat: int) -> None:
+    """The ``--stages`` table of the module docstring."""
+    print(f"{root}: geargen build, {repeat} fresh processes each, medians (s); load average "
+          f"{os.getloadavg()[0]:.2f} on {os.cpu_count()} cores at the start")
+    print(f"{'design':22s} {'wall':>6s} {'cpu':>6s} {'<=5s':>5s} " + " ".join(f"{c:>12s}" for c in STAGE_COLUMNS))
+    for name in names:
+        runs = []
+        try:
+            for _ in range(repeat):
+                with tempfile.TemporaryDirectory() as tmp:
+                    runs.append(_stage_command(root, root / "assemblies" / f"{name}.toml", Path(tmp) / name))
+        except RuntimeError as exc:
+            print(f"{name}: FAILED\n{exc}")
+            continue
+        wall = statistics.median(r[0] for r in runs)
+        cpu = statistics.median(r[1] for r in runs)
+        stages = [statistics.median(r[2].get(c, float("nan")) for r in runs) for c in STAGE_COLUMNS]
+        print(f"{name:22s} {wall:6.2f} {cpu:6.2f} {'ok' if wall <= TARGET_ANY_S else 'OVER':>5s} "
+              + " ".join(f"{v:12.2f}" for v in stages), flush=True)
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
+
+
 def main(argv):
     repeat = 3
+    if argv[:1] == ["--stages"]:
+        argv, root = argv[1:], ROOT
+        if argv[:1] == ["--repeat"]:
+            repeat, argv = int(argv[1]), argv[2:]
+        if argv[:1] == ["--root"]:
+            root, argv = Path(argv[1]).resolve(), argv[2:]
+        stage_table(root, argv or _shipped(root), repeat)
+        return
     if argv[:1] == ["--repeat"]:
         repeat, argv = int(argv[1]), argv[2:]
     names = argv or ASSEMBLIES

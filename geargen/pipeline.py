@@ -14,7 +14,9 @@ mesh checks fail raises :class:`BuildFailed` and leaves nothing behind, unless `
 the files are written and marked as failing in the manifest and the report. The mesh checks of
 the gears need only the layout and the gear solids, so :func:`build` runs them in a second
 process (:class:`Alongside`) while this one builds the other parts and writes the view and the
-exports into the temporary folder; nothing is moved into place before they have passed.
+exports into the temporary folder; nothing is moved into place before they have passed. The
+drawings (which need only the placed drive) and the figures that need no check result are drawn
+in processes of their own too, so nothing waits for matplotlib.
 
 Placement, tooth thickness and every other length of the drive come from one resolved model,
 :func:`geargen.model.resolve` (step "place"); the checks, the solids, the stiffness and the
@@ -651,7 +653,10 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     builds the other parts and writes the view and the exports into the temporary folder; the
     build waits for them (and checks the parts' overlaps) before anything is moved into place,
     so a failing build still leaves nothing behind. Where no second process can be had, or it
-    delivers nothing, the checks run here, in order, as with ``parallel=False``.
+    delivers nothing, the checks run here, in order, as with ``parallel=False``. The drawings need
+    only the resolved drive: with ``parallel`` they are drawn in a process of their own from the
+    moment it is placed, the figures that need no check result in another from the moment the view
+    is rendered (:func:`_collect`), else (or if one delivers nothing) here.
     """
     progress = progress or Progress(quiet)
     design = progress.run("load", load, design_path)
@@ -661,11 +666,16 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
         progress.note(f"removed the temporary folder of an interrupted build: {folder}")
     try:
         layout = progress.run("place", place, design, position)
-        gears = progress.run("gear solids", gear_solids, layout)
-        alongside = Alongside.start(mesh_checks, layout, gears) if parallel else None
-        if alongside is not None:
-            progress.note("mesh checks: started in a second process, alongside the next steps")
+        if parallel:
+            _import_figure_modules()
+        # the drawings need only the resolved drive: drawn in a process of their own from here
+        sheets_alongside = Alongside.start(drawings, layout, work) if parallel else None
+        alongside = figures_alongside = None
         try:
+            gears = progress.run("gear solids", gear_solids, layout)
+            alongside = Alongside.start(mesh_checks, layout, gears) if parallel else None
+            if alongside is not None:
+                progress.note("mesh checks: started in a second process, alongside the next steps")
             summary = progress.run("stiffness", stiffness, layout)
             parts = progress.run("other parts", other_parts, layout, gears, summary)
             result = None
@@ -674,10 +684,14 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             # the view first: its coarse tessellation is refined by the STL export (not the reverse)
             render_view = progress.run("render", render, parts, design)
+            # the figures that do not depend on the checks (matplotlib only): drawn in a process of
+            # their own while this one exports
+            figures_alongside = Alongside.start(check_free_figures, design, summary, render_view, work) \
+                if parallel else None
             files = progress.run("export", export, layout, parts, work)
-            # the figures that do not depend on the checks, drawn while the second process checks
-            drawn = progress.run("figures", check_free_figures, design, summary, render_view, work)
-            sheets = progress.run("drawings", drawings, layout, work)
+            drawn = progress.run_timed("figures", _collect, figures_alongside, check_free_figures, design, summary,
+                                       render_view, work)
+            sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, alongside, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
@@ -687,8 +701,9 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             progress.run("report", _report_and_manifest, result, work)
             target = output.commit()
         finally:
-            if alongside is not None:
-                alongside.close()
+            for child in (alongside, sheets_alongside, figures_alongside):
+                if child is not None:
+                    child.close()
     except BaseException:
         output.discard()
         raise
@@ -754,6 +769,28 @@ def _collect_checks(alongside: "Alongside", layout: Layout, gears, parts) -> tup
     outcome = _all_checks(layout, gears, parts, meshes, overlaps)
     busy += own + time.perf_counter() - t0
     return outcome, busy, f"(meshes checked in a second process alongside stiffness to export; waited {waited:.2f} s)"
+
+
+def _import_figure_modules() -> None:
+    """Import matplotlib's figure and its PNG and SVG writers: the report needs them in this process
+    anyway; imported before the drawings' and the figures' processes are forked, each inherits them
+    instead of importing them again (~0.2 s of processor time each)."""
+    import matplotlib.backends.backend_agg  # noqa: F401
+    import matplotlib.backends.backend_svg  # noqa: F401
+    import matplotlib.figure  # noqa: F401
+
+
+def _collect(alongside: "Alongside | None", fn: Callable, *args) -> tuple[Any, float, str]:
+    """``fn(*args)`` as the process started for it (:class:`Alongside`) computed it, or computed here
+    if there is none or it delivered nothing; returns (value, seconds of work, note). For steps that
+    only write files into the build's temporary folder and return their names (drawings, figures)."""
+    got = alongside.result() if alongside is not None else None
+    if got is not None:
+        seconds, value = got
+        return value, seconds, "(in a process of their own)"
+    t0 = time.perf_counter()
+    value = fn(*args)
+    return value, time.perf_counter() - t0, "" if alongside is None else "(their process delivered nothing: made here)"
 
 
 _PR_SET_PDEATHSIG = 1  # linux/prctl.h
@@ -823,10 +860,17 @@ class Alongside:
             return None
         try:
             import multiprocessing
+            import gc
             ctx = multiprocessing.get_context("fork")
             receiver, sender = ctx.Pipe(duplex=False)
             process = ctx.Process(target=_run_in_child, args=(sender, fn, args, os.getpid()), daemon=True)
-            process.start()
+            # the objects made so far out of the garbage collector's sight while forking: its passes
+            # in the child would write to every one and copy the pages it shares with this process
+            gc.freeze()
+            try:
+                process.start()
+            finally:
+                gc.unfreeze()
         except Exception:  # e.g. inside a daemonic worker, which may not have children
             return None
         sender.close()

@@ -72,6 +72,10 @@ from geargen.units import LENGTH_SUFFIXES
 NO_ERRORS = GearErrors()
 #: a Monte Carlo value below the worst case by more than this (mm) means the worst case is not a bound
 BOUND_TOLERANCE = 1e-7
+#: the loop search's local refinement stops once an iteration lowers the objective by less than this
+#: (L-BFGS-B's ftol; the objectives are mm below 1 mm, so it is 1e-12 mm): on the shipped designs it
+#: ends within 2e-13 mm of the value 1e-15 gives, with ~45 % fewer loop closures
+SEARCH_FTOL = 1e-12
 
 
 def _amplitudes(e: GearErrors | None) -> tuple[float, float, float]:
@@ -549,14 +553,15 @@ class LoopWorstState:
     evaluations: int
 
 
-def search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: int = 2) -> LoopWorstState:
+def search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: int = 2,
+                ftol: float = SEARCH_FTOL) -> LoopWorstState:
     """Smallest ``objective(sol, offsets, tooth)`` over every error state of the budget.
 
     Variables: each gear's bearing and pitch-line phase (free), each contact's tooth
     displacement in [-t/2, t/2]. A phase grid of ``grid`` x ``grid`` per gear in turn (the
     others held; ``sweeps`` passes, tooth displacements at whichever limit is lower), then
     L-BFGS-B on all variables from the best grid point and from ``starts`` ((phases, tooth)
-    pairs, e.g. the worst Monte Carlo samples).
+    pairs, e.g. the worst Monte Carlo samples), each until an iteration gains less than ``ftol``.
     """
     from scipy.optimize import minimize
 
@@ -660,7 +665,7 @@ def search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: 
         if z0.size == 0:
             continue
         r = minimize(fun, z0, jac=True, method="L-BFGS-B", bounds=bounds,
-                     options={"maxiter": 60, "ftol": 1e-15, "gtol": 1e-14})
+                     options={"maxiter": 60, "ftol": ftol, "gtol": 1e-14})
         p_r, t_r = unpack(r.x)
         v_r = value(p_r[None], t_r[None])[0]
         if v_r < best_state[0]:
@@ -889,5 +894,5 @@ def _carriage_failures(res: ToleranceResult, low: float, high: float, mc_travel:
 
 __all__ = ["alternating_flanks", "worst_flanks", "random_flanks", "worst_case_pair", "PairBuilds", "PairMonteCarlo",
            "pair_minima", "monte_carlo_pair", "eccentric_sweep", "pair_tolerance", "carriage_travel_limits",
-           "CARRIAGE_MESHES", "LOOP_MESHES", "LoopModel", "LoopWorstState", "search_loop", "subset_solution",
+           "CARRIAGE_MESHES", "LOOP_MESHES", "SEARCH_FTOL", "LoopModel", "LoopWorstState", "search_loop", "subset_solution",
            "loop_tolerance", "NO_ERRORS"]

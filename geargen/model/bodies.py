@@ -425,8 +425,10 @@ def _node_sdf(n: _Node, p: np.ndarray) -> np.ndarray:
     if op == "box":
         lo, hi = np.asarray(a[0]), np.asarray(a[1])
         c, h = (lo + hi) / 2, (hi - lo) / 2
-        q = np.abs(p - c) - h
-        return np.linalg.norm(np.maximum(q, 0.0), axis=1) + np.minimum(np.max(q, axis=1), 0.0)
+        # per axis (reductions over an axis of length 3 are slow in numpy)
+        qx, qy, qz = (np.abs(p[:, i] - c[i]) - h[i] for i in range(3))
+        outside = np.sqrt(np.maximum(qx, 0.0) ** 2 + np.maximum(qy, 0.0) ** 2 + np.maximum(qz, 0.0) ** 2)
+        return outside + np.minimum(np.maximum(np.maximum(qx, qy), qz), 0.0)
     if op == "cyl":
         d, height, bore = a
         r = np.hypot(p[:, 0], p[:, 1])
