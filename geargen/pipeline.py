@@ -536,12 +536,19 @@ def rated_material(design, gear: str):
 def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     """The gear data of one gear of the resolved drive, as the build's drawings and ``geargen gear
     --gear`` write it: its ``allowance``, the grade its error budget holds when it has no grade of
-    its own, where its thinning comes from, and its mating gears with the working centre distances."""
+    its own (or the finer one its rating assumed, :func:`geargen.model.gear_data.hold_rated_grade`), where its
+    thinning comes from, and its mating gears with the working centre distances."""
     from geargen.core.accuracy import gear_errors
     from geargen.model.gear_data import gear_data
     from geargen.report.drawing import mates_from_layout
 
-    data = gear_data(spec, profile, allowance, gear_errors(layout.design, spec.name), rated_material(layout.design, spec.name))
+    from geargen.design.duty import duty_settings
+    from geargen.model.gear_data import hold_rated_grade
+
+    design = layout.design
+    data = gear_data(spec, profile, allowance, gear_errors(design, spec.name), rated_material(design, spec.name))
+    if design.section("duty") or design.section("materials"):  # the rating is then a check: hold its grade
+        hold_rated_grade(data, spec, duty_settings(design).accuracy_grade)
     data["thinning_source"] = next((layout.thinning.get(p.name, {}).get("source", "design")
                                     for p in layout.gears if any(g.name == spec.name for g in p.gears)), "design")
     data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]

@@ -229,6 +229,28 @@ def _add_limits(out: dict, spec: GearSpec, allowance, L) -> None:
             out["warnings"].append(f"{key} limits: {exc}")
 
 
+def hold_rated_grade(out: dict, spec: GearSpec, rated_grade: int) -> None:
+    """A drive gear without a grade of its own is made to the finer of its error budget's grade and
+    the ``[duty] accuracy_grade`` its load capacity is rated at: a gear cut coarser than the rating
+    assumed (K_v, K_Hbeta, K_Halpha) would not have the rated safety factors."""
+    from geargen.core.accuracy import gear_tolerances, iso1328_tolerances
+    if gear_tolerances(spec) is not None:  # its own grade: the rating reads it too
+        return
+    budget = out.get("accuracy", {}).get("grade")
+    if budget is not None and budget <= rated_grade:
+        return
+    d, m_n, b = 2 * spec.reference_radius, spec.module, spec.face_width
+    try:
+        tolerances = iso1328_tolerances(rated_grade, d, m_n, b)
+    except GeargenError as exc:  # outside the standard's scope: the budget's block (or none) stays
+        out["warnings"].append(f"accuracy: the rated grade {rated_grade} has no ISO 1328-1:2013 tolerances: {exc}")
+        return
+    why = (f"the [duty] accuracy_grade the load capacity is rated at (finer than grade {budget}, the coarsest "
+           "within the error budget)" if budget is not None else "the [duty] accuracy_grade the load capacity "
+           "is rated at")
+    out["accuracy"] = tolerances.to_dict() | {"grade_source": why}
+
+
 def _add_budget_grade(out: dict, spec: GearSpec, errors) -> None:
     """The accuracy block of the coarsest ISO 1328-1:2013 grade within the gear's error budget."""
     from geargen.core.accuracy import grade_for_budget, iso1328_tolerances
