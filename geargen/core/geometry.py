@@ -39,6 +39,7 @@ __all__ = [
     "tip_land", "check_tip_land",
     "span_length", "span_contact_radius", "recommended_teeth_spanned", "span_measurement",
     "pin_centre_radius", "over_pins_dimension", "ideal_pin_diameter", "over_pins_measurement",
+    "ChordalTooth", "chordal_tooth",
 ]
 
 _REL = 1e-9  # relative tolerance when two specs must agree (module, angles)
@@ -1006,6 +1007,29 @@ def ideal_pin_diameter(spec: GearSpec, contact_radius: float | None = None) -> f
         raise GeometryError("pin_contact", f"{spec.name}: no pin touches the flanks at radius {r_y:.6g} mm "
                             "(the space is closed there)")
     return d
+
+
+@dataclass(frozen=True)
+class ChordalTooth:
+    """The tooth as a gear-tooth vernier caliper measures it: the normal chordal thickness at the
+    reference circle and the chordal height from the tip down to that chord (mm)."""
+
+    thickness: float
+    height: float
+    virtual_diameter: float  # d_v = d / cos^2(beta): the normal section's virtual spur gear
+
+
+def chordal_tooth(spec: GearSpec) -> ChordalTooth:
+    """The chordal tooth thickness and height of an external gear (with its thinning), on the virtual
+    spur gear of the normal section (d_v = d / cos^2 beta, the usual shop convention; exact for a
+    spur gear): psi = s_n / d_v, s_c = d_v sin(psi), h_c = h_a + d_v / 2 (1 - cos(psi)), with s_n the
+    normal tooth thickness at the reference cylinder and h_a = r_a - r."""
+    beta = spec.helix_angle
+    d_v = 2 * spec.reference_radius / math.cos(beta) ** 2
+    psi = reference_tooth_thickness(spec) * math.cos(beta) / d_v
+    return ChordalTooth(thickness=d_v * math.sin(psi),
+                        height=spec.tip_radius - spec.reference_radius + d_v / 2 * (1 - math.cos(psi)),
+                        virtual_diameter=d_v)
 
 
 @dataclass(frozen=True)

@@ -95,6 +95,12 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=Non
     except GeargenError as exc:
         out["over_pins"] = None
         out["warnings"].append(f"over pins: {exc}")
+    if spec.kind != "internal":  # a caliper reaches an external tooth only
+        chord = geometry.chordal_tooth(spec)
+        out["chordal_tooth"] = {"thickness_normal": L(chord.thickness), "height": L(chord.height),
+                                "virtual_diameter": L(chord.virtual_diameter),
+                                "convention": "at the reference circle of the normal section's virtual spur gear "
+                                              "(d_v = d / cos^2 beta), height from the tip"}
     if allowance is not None:
         _add_limits(out, spec, allowance, L)
     out.update(shop_data(spec, profile, out.get("accuracy"), material))
@@ -218,6 +224,11 @@ def _add_limits(out: dict, spec: GearSpec, allowance, L) -> None:
 
     out["thickness_allowance"] = {"method": allowance.method, "upper_um": allowance.upper_um,
                                   "lower_um": allowance.lower_um}
+    if out.get("chordal_tooth"):  # the thinnest and thickest tooth's chords, read at the modelled height
+        from geargen.core.allowance import thickest, thinnest
+        from geargen.core.geometry import chordal_tooth
+        out["chordal_tooth"]["limits"] = [L(chordal_tooth(t(spec, allowance)).thickness)
+                                          for t in (thinnest, thickest)]
     for key, limits, size in (("span", span_limits, "teeth_spanned"), ("over_pins", over_pins_limits, "diameter")):
         if not out.get(key):
             continue
