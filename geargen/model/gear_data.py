@@ -95,12 +95,11 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=Non
     except GeargenError as exc:
         out["over_pins"] = None
         out["warnings"].append(f"over pins: {exc}")
-    if spec.kind != "internal":  # a caliper reaches an external tooth only
-        chord = geometry.chordal_tooth(spec)
-        out["chordal_tooth"] = {"thickness_normal": L(chord.thickness), "height": L(chord.height),
-                                "virtual_diameter": L(chord.virtual_diameter),
-                                "convention": "at the reference circle of the normal section's virtual spur gear "
-                                              "(d_v = d / cos^2 beta), height from the tip"}
+    chord = geometry.chordal_tooth(spec)  # external teeth only reach here (a ring's data is its family's)
+    out["chordal_tooth"] = {"thickness_normal": L(chord.thickness), "height": L(chord.height),
+                            "virtual_diameter": L(chord.virtual_diameter),
+                            "convention": "at the reference circle of the normal section's virtual spur gear "
+                                          "(d_v = d / cos^2 beta), height from the tip"}
     if allowance is not None:
         _add_limits(out, spec, allowance, L)
     out.update(shop_data(spec, profile, out.get("accuracy"), material))

@@ -104,7 +104,8 @@ def check_drawing(folder, data: dict, unit: str) -> None:
     k = LENGTH_SUFFIXES[unit]
     for side in ("upper", "lower"):
         um = allowance[f"{side}_um"]
-        printed_equal(rows[f"Tooth thickness allowance, {side}"], [um * 1e-3 / k, um])
+        # a metric sheet prints the um beside the mm; an inch sheet inches only
+        printed_equal(rows[f"Tooth thickness allowance, {side}"], [um * 1e-3 / k, um] if unit == "mm" else [um * 1e-3 / k])
     printed_equal(rows["Thinning in the model (circumferential)"], [data["thinning_circumferential"]])
     span = data["span"]
     if span:
@@ -146,7 +147,8 @@ def test_exported_gears_measure_inside_their_drawings_limits(name, built_assembl
     for placed in layout.gears:
         for spec in placed.gears:
             data = json.loads((folder / "drawings" / f"{spec.name}.json").read_text())
-            if "thickness_allowance" not in data:
+            if not isinstance(spec, GearSpec) or data.get("thickness_allowance") is None:
+                # a rack is measured by its own sheet (tests/report/test_family_sheets.py)
                 without.add(spec.name)
                 continue
             assert spec.name in allowances

@@ -98,7 +98,8 @@ def test_rack_command_writes_step_stl_json(tmp_path):
     rc = main(["gear", "--kind", "rack", "--module", "2", "--teeth", "30", "--face-width", "20", "--height", "8",
                "--helix-angle", "15", "--tip-rounding", "generating", "--out", str(out), "--name", "slide"])
     assert rc == 0
-    assert {p.name for p in out.iterdir()} == {"slide.step", "slide.stl", "slide.json", "manifest.json"}
+    assert {p.name for p in out.iterdir()} == {"slide.step", "slide.stl", "slide.json", "manifest.json",
+                                               "slide-drawing.svg", "slide-drawing.pdf"}
     data = json.loads((out / "slide.json").read_text())
     spec = RackSpec(teeth=30, module=2.0, pressure_angle=A20, face_width=20.0, pitch_line_height=8.0,
                     helix_angle=math.radians(15), tip_rounding="generating")
