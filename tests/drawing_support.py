@@ -30,3 +30,17 @@ def table_rows(cells, box, join: str = " ") -> dict[str, str]:
                           and cc[3] == c[3]), "")
             rows[" ".join(texts)] = value
     return rows
+
+
+def tolerance_frames(cells, symbol: str) -> list[tuple[tuple, str, str]]:
+    """The feature control frames of the sheet whose first compartment holds ``symbol``: each as
+    (its symbol cell, its value text, its datum letter), from the compartments in line to its right."""
+    out = []
+    for c, texts in cells.items():
+        if texts == [symbol]:
+            row = sorted((cc for cc in cells if cc[1] == c[1] and cc[3] == c[3] and cc[0] >= c[2] - 1e-3
+                          and cc[0] - c[2] < 60), key=lambda cc: cc[0])
+            value, datum = row[0], row[1]
+            assert abs(value[0] - c[2]) < 1e-3 and abs(datum[0] - value[2]) < 1e-3  # adjoining compartments
+            out.append((c, " ".join(cells[value]), " ".join(cells[datum])))
+    return out

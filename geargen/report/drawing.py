@@ -69,6 +69,14 @@ DRAWN_TEXT_LINES = {"material": 4, "heat_treatment": 2, "part_number": 2, "revis
 DATUM_ROOM_MM = 9.0
 #: side (mm) of a datum letter's frame (ISO 5459), the letter at the sheet's lettering size
 DATUM_FRAME_MM = 5.0
+#: ISO 1101 circular runout (radial of the toothed surface, axial of face B)
+RUNOUT_SYMBOL = "↗"
+#: a tolerance frame's height (mm) and the gap (mm) kept between it and the nearest line or text
+TOLERANCE_FRAME_MM = 6.0
+TOLERANCE_GAP_MM = 1.0
+#: below the transverse section (its gear fits within FULL_VIEW's 100 mm square about its centre,
+#: so the view's bottom 20 mm are empty): where the frames stand when the axial section leaves no room
+FRAME_PLACE_MM = (FULL_VIEW[2], FULL_VIEW[1] + 1.0)  # right end, bottom of the lower frame
 
 
 def scale_text(scale: float) -> str:
@@ -106,6 +114,13 @@ def format_um(value_um, unit: str, signed: bool = False) -> str:
     if unit != "mm":  # an inch sheet speaks inches only
         return f"{v:{sign}.{DECIMALS[unit] + 1}f} {unit}"
     return f"{v:{sign}.{DECIMALS[unit]}f} {unit} ({value_um:{sign}.1f} µm)"
+
+
+def format_tolerance(value_um, unit: str) -> str:
+    """A geometric tolerance's value as its frame states it (ISO 1101): in the gear's unit, without
+    the unit, to the decimals of :func:`format_um` (an inch sheet one more)."""
+    v = from_mm(value_um * 1e-3, unit)
+    return f"{v:.{DECIMALS[unit] + (0 if unit == 'mm' else 1)}f}"
 
 
 def format_limits(limits, unit: str) -> str:
@@ -580,8 +595,9 @@ def _full_view(sheet, profile, scale: float) -> None:
     view_title(sheet, box, f"Transverse section ({scale_text(scale)})")
 
 
-def _section_view(sheet, profile, unit: str, scale: float) -> None:
-    """Axial section: the face width, tip, root and bore diameters dimensioned (gear's unit)."""
+def _section_view(sheet, profile, unit: str, scale: float, datum_tolerances: dict | None = None) -> None:
+    """Axial section: the face width, tip, root and bore diameters dimensioned (gear's unit), datums
+    A and B, and the runout frames of ``datum_tolerances`` (the gear data's block) with their leaders."""
     spec = profile.spec
     box = SECTION_VIEW
     k = scale
@@ -635,7 +651,70 @@ def _section_view(sheet, profile, unit: str, scale: float) -> None:
     dimension(sheet, (x0, y), (x1, y), N(spec.face_width), vertical=False)
     for x in (x0, x1):
         sheet.line([x, x], [y - 1.5, cy - ra - 1], lw=thin)
+    # the face width's text reaches 1 mm + a capital's height + descent (~4.5 mm) below its line
+    lowest = y - 1.0 - 4.5 - TOLERANCE_GAP_MM
+    # radial runout: on the tip cylinder's extension line, between the section and the nearest
+    # diameter's dimension line (clear of it, so it means the toothed surface, not the axis)
+    tip_target = (left - 4.0, cy - ra)
+    # axial runout: on face B below the axis, halfway between bore and root, from the right
+    face_target = (x1, cy - (rbore + rf) / 2)
+    _runout_frames(sheet, datum_tolerances or {}, unit, tip_target, face_target, lowest, x1)
     view_title(sheet, box, f"Axial section ({scale_text(scale)})")
+
+
+def _runout_frames(sheet, geo: dict, unit: str, tip_target, face_target, lowest: float, face_x: float) -> None:
+    """The two ISO 1101 frames of the axial section: circular runout of the toothed surface (radial,
+    F_rT) and of face B (axial, t_B), both to datum A, each with a leader ending in an arrow on its
+    feature. They stand at the section view's bottom (radial left, axial right, its leader reaching
+    face B from the right) when that lies below ``lowest`` (the lowest text of the section), else at
+    :data:`FRAME_PLACE_MM` below the transverse section, stacked. A tolerance the data lacks has no frame."""
+    frames = [(geo.get("radial_runout_um"), tip_target), (geo.get("face_axial_runout_um"), face_target)]
+    frames = [(v, t) for v, t in frames if v is not None]
+    if not frames:
+        return
+    widths = [_frame_widths(sheet, format_tolerance(v, unit)) for v, _ in frames]
+    box = SECTION_VIEW
+    bottom = box[1] + TOLERANCE_GAP_MM
+    room = bottom + TOLERANCE_FRAME_MM <= lowest and sum(map(sum, widths)) + 4 * TOLERANCE_GAP_MM <= box[2] - box[0]
+    for i, ((value, target), w) in enumerate(zip(frames, widths)):
+        if room:
+            right_hand = target is face_target
+            x_left = box[2] - sum(w) if right_hand else box[0] + TOLERANCE_GAP_MM
+            y_bottom = bottom
+        else:
+            x_left = FRAME_PLACE_MM[0] - sum(w)
+            y_bottom = FRAME_PLACE_MM[1] + (len(frames) - 1 - i) * (TOLERANCE_FRAME_MM + TOLERANCE_GAP_MM)
+        cells = _tolerance_frame(sheet, (RUNOUT_SYMBOL, format_tolerance(value, unit), "A"), w, x_left, y_bottom)
+        if room and target is face_target:
+            # up from the frame's right end (right of face B, so it crosses no dimension), then onto the face
+            start = (max(cells[-1][2] - 2.0, face_x + 2.0), y_bottom + TOLERANCE_FRAME_MM)
+        elif room:
+            start = (min(max(target[0], cells[0][0] + 2.0), cells[-1][2] - 2.0), y_bottom + TOLERANCE_FRAME_MM)
+        else:  # from the frame's right side, at its mid-height
+            start = (cells[-1][2], y_bottom + TOLERANCE_FRAME_MM / 2)
+        sheet.ax.annotate("", xy=target, xytext=start,
+                          arrowprops=dict(arrowstyle="-|>", lw=0.18 / MM_PER_PT, color="black", shrinkA=0,
+                                          shrinkB=0, mutation_scale=7))
+
+
+def _frame_widths(sheet, value: str) -> tuple[float, float, float]:
+    """The widths (mm) of a tolerance frame's compartments: symbol, value (its text with the cells'
+    padding, measured as the tables wrap), datum letter."""
+    return (TOLERANCE_FRAME_MM, sheet.width_mm(value, MIN_FONT_PT) / WRAP_FILL + 2 * PAD_MM + 1.0, TOLERANCE_FRAME_MM)
+
+
+def _tolerance_frame(sheet, texts, widths, x_left: float, y_bottom: float) -> list[tuple]:
+    """A feature control frame (ISO 1101): compartments of ``widths`` from ``x_left`` holding
+    ``texts`` (symbol, value, datum), each text in its cell (:func:`cell_gid`); returns the cells."""
+    cells, x = [], x_left
+    for text, w in zip(texts, widths):
+        cell = (x, y_bottom, x + w, y_bottom + TOLERANCE_FRAME_MM)
+        _box(sheet, cell, lw=0.35)
+        sheet.in_cell(sheet.text((cell[0] + cell[2]) / 2, (cell[1] + cell[3]) / 2, text, MIN_FONT_PT, ha="center",
+                                 va="center_baseline"), cell)
+        cells.append(cell)
+        x += w
+    return cells
 
 
 def _datum(sheet, letter: str, foot, frame_centre) -> None:
@@ -756,7 +835,7 @@ def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
         sheet = Sheet()
         draw_frame(sheet)
         _full_view(sheet, profile, full)
-        _section_view(sheet, profile, unit, section)
+        _section_view(sheet, profile, unit, section, data.get("datum_tolerances"))
         _detail_view(sheet, profile, unit, detail)
         draw_data_block(sheet, data_rows(data, scale, version, source))
         draw_data_block(sheet, blank_rows(data), BLANK_BLOCK, columns=BLANK_COLUMNS_MM,
@@ -796,8 +875,8 @@ def write_figure(fig, folder, name: str) -> dict[str, Path]:
 
 
 __all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
-           "blank_rows", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
-           "mates_of", "data_rows", "format_length", "format_um", "format_limits", "preferred_scale", "scale_text",
+           "blank_rows", "RUNOUT_SYMBOL", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
+           "mates_of", "data_rows", "format_length", "format_um", "format_tolerance", "format_limits", "preferred_scale", "scale_text",
            "drawing_scales", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
            "draw_title_block", "view_title", "dimension", "outline_points", "bore_points", "centre_cross"]
 

@@ -11,8 +11,8 @@ from geargen.design.gear import gear_from_table
 from geargen.errors import DesignError
 from geargen.model.gear_data import gear_data
 from geargen.profile.tooth import tooth_profile
-from geargen.report.drawing import BLANK_BLOCK, DATA_BLOCK, SECTION_VIEW, write_drawing
-from tests.drawing_support import cell_texts, table_rows
+from geargen.report.drawing import BLANK_BLOCK, DATA_BLOCK, FULL_VIEW, RUNOUT_SYMBOL, SECTION_VIEW, write_drawing
+from tests.drawing_support import cell_texts, table_rows, tolerance_frames
 
 TABLE = {"teeth": 40, "module_mm": 1.0, "pressure_angle_deg": 20, "face_width_mm": 12.0, "bore_diameter_mm": 20.0,
          "part_number": "GG-40-001", "revision": "B", "material": "42CrMo4 (1.7225)",
@@ -126,7 +126,11 @@ def test_the_datum_letters_stand_in_the_axial_section(drawn):
     with the bore's diameter dimension (left of the part), B right of the face at z = b, where the
     tables' tolerances "to datum A" and the blank table's datum rows refer."""
     spec, data, files = drawn
-    letters = {t[0]: c for c, t in cell_texts(files["svg"]).items() if t in (["A"], ["B"])
+    cells = cell_texts(files["svg"])
+    # the runout frames' datum compartments (their symbol's cell 6 mm to the value's left) name A too
+    cited = {c for c, t in cells.items() if t == ["A"] and any(s[1] == c[1] and s[3] == c[3] and s[0] < c[0]
+                                                              and cells[s] == [RUNOUT_SYMBOL] for s in cells)}
+    letters = {t[0]: c for c, t in cells.items() if t in (["A"], ["B"]) and c not in cited
                and SECTION_VIEW[0] <= c[0] and c[2] <= SECTION_VIEW[2] + 5.0 and SECTION_VIEW[1] <= c[1]}
     assert set(letters) == {"A", "B"}
     a, b = letters["A"], letters["B"]
@@ -136,3 +140,27 @@ def test_the_datum_letters_stand_in_the_axial_section(drawn):
         assert c[2] - c[0] == pytest.approx(5.0, abs=1e-3) and c[3] - c[1] == pytest.approx(5.0, abs=1e-3)
     assert a[1] == pytest.approx(b[1], abs=1e-3)
     assert b[0] - a[2] > 0
+
+
+@pytest.mark.parametrize("teeth", [40, 60])
+def test_the_runout_frames_carry_the_jsons_tolerances(teeth, tmp_path):
+    """ISO 1101 frames in the axial section (40 teeth: room below it) or beside it below the
+    transverse section (60 teeth: the 2:1 section reaches the face width's text within 7 mm of the
+    view's bottom): circular runout of the teeth (F_rT) and of face B (t_B), both to datum A, their
+    values in mm to 4 decimals equal to the JSON's um."""
+    spec = gear_from_table({**TABLE, "teeth": teeth}, "gears.wheel", "wheel")
+    profile = tooth_profile(spec, warn=False)
+    data = gear_data(spec, profile, series_allowance(spec))
+    files = write_drawing(data, profile, tmp_path, spec.name, "gear wheel from test", "design.toml", "0.0")
+    frames = tolerance_frames(cell_texts(files["svg"]), RUNOUT_SYMBOL)
+    geo = data["datum_tolerances"]
+    assert geo["radial_runout_um"] == data["accuracy"]["runout_um"]
+    # the sheet gives mm to 4 decimals: 0.05 um of rounding
+    values = sorted((float(v) * 1e3, d) for _, v, d in frames)
+    expected = sorted((geo[k], "A") for k in ("radial_runout_um", "face_axial_runout_um"))
+    assert [d for _, d in values] == ["A", "A"]
+    assert [v for v, _ in values] == pytest.approx([v for v, _ in expected], abs=0.05 + 1e-9)
+    in_section = [SECTION_VIEW[0] <= c[0] and c[1] >= SECTION_VIEW[1] for c, _, _ in frames]
+    assert in_section == ([True, True] if teeth == 40 else [False, False])
+    for c, _, _ in frames:  # every frame inside the views' area, above the blank table
+        assert c[1] > BLANK_BLOCK[3] and FULL_VIEW[0] <= c[0]
