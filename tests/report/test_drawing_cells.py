@@ -138,3 +138,21 @@ def test_in_chromium_every_text_lies_inside_its_cell(make, chromium, tmp_path):
             outside.append((b["text"], round(left - x0, 2), round(x1 - right, 2), round(bottom - y0, 2),
                             round(y1 - top, 2)))
     assert not outside, outside
+
+
+def test_the_chordal_tooth_gives_way_when_the_block_is_full():
+    """The full pinion's block holds its chordal tooth rows with two mates (the most a shipped design
+    gives a gear: split_pinion's output); with three mates it has no room for them, and the sheet is
+    still drawn, the other rows whole (the gear JSON keeps the chordal tooth)."""
+    spec, profile, data = _full()
+
+    def texts(n_mates):
+        data["mating_gears"] = [dict(data["mating_gears"][0], name=f"mate_{i}") for i in range(n_mates)]
+        fig = draw_gear(data, profile, SOURCE, "/a/long/path/design.toml", "0.0")
+        return [t.get_text() for ax in fig.axes for t in ax.texts]
+
+    two = texts(2)
+    assert "Chordal tooth thickness / height" in two and "Centre distance to mate_1" in two
+    three = texts(3)
+    assert "Chordal tooth thickness / height" not in three and "Centre distance to mate_2" in three
+    assert "Over-balls limits" in three or "Over-pins limits" in three

@@ -90,6 +90,13 @@ def test_the_sheet_reads_back_the_jsons_values(drawn):
     assert main["Pin diameter"] == f"{data['over_pins']['diameter']:.4f} mm"
     assert blank["Pin series"] == data["over_pins"]["series"]
     assert main["Runout tolerance"].endswith(", to datum A")
+    chord = data["chordal_tooth"]
+    assert main["Chordal tooth thickness / height"] == f"{chord['thickness_normal']:.4f} / {chord['height']:.4f} mm"
+    lo, hi = chord["limits"]
+    assert main["Chordal thickness limits"] == f"{hi:.4f} / {lo:.4f} mm (max / min)"
+    # spur m 1 z 40 x 0: s = pi/2 mm, s_c = d sin(s/d) = 1.5704 mm, h_c = m + (d/2)(1 - cos(s/d)) = 1.0154 mm
+    assert f"{40 * math.sin(math.pi / 2 / 40):.4f} / {1 + 20 * (1 - math.cos(math.pi / 2 / 40)):.4f} mm" \
+        == main["Chordal tooth thickness / height"]
     title = {" ".join(t) for c, t in cells.items() if c[1] < 51}
     assert "Part number GG-40-001" in title and "Revision B" in title
 
