@@ -18,22 +18,24 @@ PIN_SERIES = {"mm": (0.01, "gauge pin sets in 0.01 mm steps"),
               "in": (0.0254, "gauge pin sets in 0.001 in steps (ASME B89.1.5)")}
 
 
+def series_sizes(ideal: float, unit: str) -> list[float]:
+    """The sizes (mm) of ``unit``'s series to try for the ideal diameter ``ideal`` (mm): the nearest
+    first, then alternately either side of it, three steps each way (none below one step)."""
+    step = PIN_SERIES[unit][0]
+    n0 = round(ideal / step)
+    return [n * step for n in (n0 + k for k in (0, 1, -1, 2, -2, 3, -3)) if n > 0]
+
+
 def standard_pin(spec, unit: str | None = None) -> tuple[PinMeasurement, str]:
     """The measurement over the series' pin (ball) nearest the ideal diameter, and the series' text."""
     unit = unit or spec.length_unit
-    step, series = PIN_SERIES[unit]
-    ideal = ideal_pin_diameter(spec)
-    n0 = round(ideal / step)
-    # the nearest first, then alternately either side of it
-    tried, last = [n0 + k for k in (0, 1, -1, 2, -2, 3, -3)], None
-    for n in tried:
-        if n <= 0:
-            continue
+    last = None
+    for size in series_sizes(ideal_pin_diameter(spec), unit):
         try:
-            return over_pins_measurement(spec, n * step), series
+            return over_pins_measurement(spec, size), PIN_SERIES[unit][1]
         except GeargenError as exc:
             last = exc
     raise last
 
 
-__all__ = ["PIN_SERIES", "standard_pin"]
+__all__ = ["PIN_SERIES", "series_sizes", "standard_pin"]

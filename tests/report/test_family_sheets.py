@@ -448,9 +448,13 @@ def test_rack_allowance_pin_dimension_and_sheet(tmp_path, poppler, helix):
     assert data["tooth_thickness_normal_limits"] == pytest.approx([p_n / 2 - 0.050, p_n / 2 - 0.020], abs=1e-12)
     beta = math.radians(helix)
     assert data["tooth_thickness_normal_model"] == pytest.approx(p_n / 2 - 0.03 * math.cos(beta), abs=1e-12)
-    # the pin touching the zero-backlash tooth at the pitch line: D = (p_n / 2) / cos(20 deg)
+    # the ideal pin touches the zero-backlash tooth at the pitch line: D = (p_n / 2) / cos(20 deg) = 3.3432 mm;
+    # the shop's is the nearest of the 0.01 mm gauge-pin series, 3.34 mm (1e-12 mm: rounding)
     pin = data["over_pin"]
-    assert pin["diameter"] == pytest.approx(p_n / 2 / math.cos(math.radians(20)), abs=1e-12)
+    ideal = p_n / 2 / math.cos(math.radians(20))
+    assert pin["ideal_diameter"] == pytest.approx(ideal, abs=1e-12)
+    assert pin["diameter"] == pytest.approx(3.34, abs=1e-12) and abs(pin["diameter"] - ideal) <= 0.005
+    assert pin["series"] == "gauge pin sets in 0.01 mm steps"
     # over the pin to the back face against the pin resting on the modelled outline, found numerically
     # for the model's tooth and each limit (2e-6 mm: the samples' spacing 6e-5 mm gives a distance error
     # of (6e-5)^2 / D, below 1e-9, and bisection to 1e-15; the bound is the sampled flank's chords)
@@ -468,6 +472,7 @@ def test_rack_allowance_pin_dimension_and_sheet(tmp_path, poppler, helix):
                                 ("Back face to pitch line", "pitch_line_height")], "mm")
     assert_lengths(rows, pin, [(f"{kind.capitalize()} diameter", "diameter"),
                                (f"Back face over {kind}", "dimension_to_back")], "mm")
+    assert rows[f"{kind.capitalize()} series"][1] == pin["series"]
     hi, lo = (float(v) for v in re.findall(r"\d+\.\d+", rows[f"Over-{kind} limits"][1]))
     assert (lo, hi) == pytest.approx(tuple(pin["limits"]), abs=ROUNDING["mm"] * 1.0001)
     hi, lo = (float(v) for v in re.findall(r"\d+\.\d+", rows["Tooth thickness limits"][1]))

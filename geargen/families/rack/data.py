@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 
 from geargen.families.rack.geometry import (normal_section_area_per_pitch, over_pin_to_back, pin_contact_height,
-                               pitch_line_pin_diameter, rack_outline, rack_volume)
+                               pitch_line_pin_diameter, rack_outline, rack_volume, standard_rack_pin)
 from geargen.families.rack.spec import RackSpec
 from geargen.units import from_mm
 
@@ -14,15 +14,16 @@ from geargen.units import from_mm
 def rack_inspection(spec: RackSpec) -> dict:
     """What a shop measures on the rack (mm): the normal tooth thickness at the pitch line and the
     dimension from the back face over a pin (a ball on a helical rack) in a tooth space, each for the
-    model's thinning and at the limits of the allowance (when the rack states one). The pin is the one
-    touching the zero-backlash tooth at the pitch line (:func:`geargen.families.rack.geometry.pitch_line_pin_diameter`);
-    every contact must lie on the straight flank, else a warning."""
+    model's thinning and at the limits of the allowance (when the rack states one). The pin is the
+    series' size nearest the one touching the zero-backlash tooth at the pitch line
+    (:func:`geargen.families.rack.geometry.standard_rack_pin`); every contact must lie on the
+    straight flank, else a warning."""
     outline = rack_outline(spec)
-    pin = pitch_line_pin_diameter(spec)
     model = -spec.thinning_normal
     deviations = {"model": model}
     if spec.thickness_deviations is not None:
         deviations |= {"upper": spec.thickness_deviations[0], "lower": spec.thickness_deviations[1]}
+    pin, series = standard_rack_pin(spec, deviations.values())
     warnings = []
     for name, dev in deviations.items():
         contact = pin_contact_height(spec, pin, dev)[1]
@@ -30,7 +31,7 @@ def rack_inspection(spec: RackSpec) -> dict:
             warnings.append(f"the pin touches the {name} tooth at {contact:.6g} mm from the pitch line, off its "
                             f"straight flank [{outline.flank_root_u:.6g}, {outline.flank_tip_u:.6g}] mm")
     out = {"thickness_nominal": spec.normal_pitch / 2, "thickness_model": spec.normal_pitch / 2 + model,
-           "pin_diameter": pin, "over_pin_model": over_pin_to_back(spec, pin, model), "warnings": warnings}
+           "pin_diameter": pin, "pin_series": series, "over_pin_model": over_pin_to_back(spec, pin, model), "warnings": warnings}
     if spec.thickness_deviations is not None:
         upper, lower = spec.thickness_deviations
         out["thickness_limits"] = [spec.normal_pitch / 2 + lower, spec.normal_pitch / 2 + upper]
@@ -79,10 +80,11 @@ def rack_data(spec: RackSpec) -> dict:
         "tooth_thickness_normal_model": L(shop["thickness_model"]),
         "tooth_thickness_normal_limits": None if allowance is None else [L(v) for v in shop["thickness_limits"]],
         "over_pin": {"kind": "ball" if spec.is_helical else "pin", "diameter": L(shop["pin_diameter"]),
+                     "series": shop["pin_series"], "ideal_diameter": L(pitch_line_pin_diameter(spec)),
                      "section": "normal" if spec.is_helical else "transverse",
                      "dimension_to_back": L(shop["over_pin_model"]),
                      "limits": None if allowance is None else [L(v) for v in shop["over_pin_limits"]],
                      "note": "back face to the top of the pin resting in a tooth space; the pin touches the "
-                             "zero-backlash tooth at the pitch line (not rounded to a standard size)"},
+                             "series' size nearest the ideal_diameter (the pin touching the zero-backlash tooth at the pitch line)"},
         "warnings": shop["warnings"],
     }

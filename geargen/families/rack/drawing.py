@@ -10,11 +10,11 @@ import math
 
 import numpy as np
 
-from geargen.families.rack.geometry import pin_contact_height, pitch_line_pin_diameter, rack_outline
+from geargen.families.rack.geometry import pin_contact_height, rack_outline
 from geargen.report.drawing import pitch_rows, format_limits, format_number, format_um, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet,
                                           polyline, value_text, view_title)
-from geargen.units import from_mm
+from geargen.units import from_mm, to_mm
 
 SIDE_VIEW = (VIEWS[0], 185.0, VIEWS[2], 262.0)
 DETAIL_VIEW = (VIEWS[0], 18.0, VIEWS[2], 165.0)
@@ -47,6 +47,7 @@ def rack_rows(data: dict) -> list[tuple[str, str, str]]:
         ("Tooth thickness limits", "s_n", format_limits(data["tooth_thickness_normal_limits"], u)
          if data["tooth_thickness_normal_limits"] else NOT_SPECIFIED),
         (f"{kind.capitalize()} diameter", "D_M", L(pin["diameter"])),
+        (f"{kind.capitalize()} series", "", pin["series"]),
         (f"Back face over {kind}", "M", L(pin["dimension_to_back"])),
         (f"Over-{kind} limits", "M", format_limits(pin["limits"], u) if pin["limits"] else NOT_SPECIFIED),
         ("Thinning in the model (along the pitch line)", "", L(data["thinning_circumferential"])),
@@ -83,7 +84,7 @@ def _side_views(spec, data, scale_side: float, scale_detail: float):
         detail = np.vstack([[[-1.5 * p, 0.0]], np.column_stack([xs, prof]), [[1.5 * p, 0.0]], [[-1.5 * p, 0.0]]])
         polyline(sheet, detail, (cx, oy), k)
         chain_line(sheet, [cx - 1.5 * p * k - 3, cx + 1.5 * p * k + 3], [oy + H * k] * 2)
-        pin = pitch_line_pin_diameter(spec)
+        pin = to_mm(data["over_pin"]["diameter"], u)  # the series' pin the data block dimensions over
         y_c = H + pin_contact_height(spec, pin, -spec.thinning_normal)[0]
         t = np.linspace(0, 2 * math.pi, 181)
         polyline(sheet, np.column_stack([pin / 2 * np.cos(t), y_c + pin / 2 * np.sin(t)]), (cx, oy), k, lw=0.35)

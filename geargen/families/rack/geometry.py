@@ -153,6 +153,21 @@ def pitch_line_pin_diameter(spec: RackSpec) -> float:
     return spec.normal_pitch / 2 / math.cos(spec.pressure_angle)
 
 
+def standard_rack_pin(spec: RackSpec, deviations) -> tuple[float, str]:
+    """The measuring pin (ball) of the shop's series nearest :func:`pitch_line_pin_diameter`
+    (:func:`geargen.core.measuring_pins.series_sizes`, the cylindrical gears' series in the rack's
+    length unit) whose contact lies on the straight flank for every tooth thickness deviation of
+    ``deviations`` (mm, <= 0); the nearest size when none does (the caller warns). Returns the
+    diameter (mm) and the series' text."""
+    from geargen.core.measuring_pins import PIN_SERIES, series_sizes
+
+    outline = rack_outline(spec)
+    sizes = series_sizes(pitch_line_pin_diameter(spec), spec.length_unit)
+    on_flank = (d for d in sizes if all(outline.flank_root_u <= pin_contact_height(spec, d, dev)[1]
+                                        <= outline.flank_tip_u for dev in deviations))
+    return next(on_flank, sizes[0]), PIN_SERIES[spec.length_unit][1]
+
+
 def pin_contact_height(spec: RackSpec, pin_diameter: float, deviation: float) -> tuple[float, float]:
     """(centre, contact) heights above the pitch line (mm) of a pin of ``pin_diameter`` resting in a
     space of a rack whose normal tooth thickness at the pitch line is p_n / 2 + ``deviation``
@@ -299,6 +314,6 @@ def centre_offset_for_backlash(rack: RackSpec, pinion: GearSpec, backlash_circum
     return (backlash_circumferential - rack.thinning - pinion.thinning) / (2 * math.tan(rack.transverse_pressure_angle))
 
 
-__all__ = ["RackOutline", "rack_outline", "pitch_line_pin_diameter", "pin_contact_height", "over_pin_to_back", "corner_area", "normal_section_area_per_pitch", "transverse_section_area",
+__all__ = ["RackOutline", "rack_outline", "pitch_line_pin_diameter", "standard_rack_pin", "pin_contact_height", "over_pin_to_back", "corner_area", "normal_section_area_per_pitch", "transverse_section_area",
            "rack_volume", "RackPinionGeometry", "rack_pinion_geometry", "check_rack_pinion",
            "centre_offset_for_backlash"]
