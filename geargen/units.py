@@ -66,6 +66,7 @@ def pitch_text(module_mm: float, unit: str, digits: int = 4) -> str:
 # Forces, torques, stiffnesses and stresses: the suffixes a design file may use, and the units its text uses
 
 LBF = 4.4482216152605  # N per pound-force
+KG_PER_LB = 0.45359237  # the avoirdupois pound (exact by definition)
 PSI = LBF / MM_PER_IN ** 2  # MPa per psi
 
 #: factor turning a value in the suffix's unit into the internal unit, per quantity family
@@ -80,7 +81,7 @@ QUANTITY_SUFFIXES: dict[str, dict[str, float]] = {
                             "in_lbf_per_rad": LBF * MM_PER_IN},
     "stress": {"MPa": 1.0, "GPa": 1e3, "Pa": 1e-6, "kPa": 1e-3, "psi": PSI, "ksi": PSI * 1e3, "Mpsi": PSI * 1e6},
     # the servo's quantities ([train]) stay in SI: a motor data sheet's units
-    "inertia": {"kg_m2": 1.0, "kg_cm2": 1e-4, "g_cm2": 1e-7, "kg_mm2": 1e-6, "lb_in2": 0.45359237 * 0.0254 ** 2,
+    "inertia": {"kg_m2": 1.0, "kg_cm2": 1e-4, "g_cm2": 1e-7, "kg_mm2": 1e-6, "lb_in2": KG_PER_LB * 0.0254 ** 2,
                 "oz_in_s2": LBF / 16 * 0.0254},
     "rotary_damping": {"Nm_s_per_rad": 1.0, "Nmm_s_per_rad": 1e-3},
     "torque_constant": {"Nm_per_A": 1.0},
@@ -92,8 +93,13 @@ SUFFIX_TEXT = {"N": "N", "kN": "kN", "lbf": "lbf", "Nmm": "N·mm", "Nm": "N·m",
                "N_per_mm": "N/mm", "N_per_um": "N/µm", "N_per_m": "N/m", "kN_per_mm": "kN/mm", "lbf_per_in": "lbf/in",
                "MPa": "MPa", "GPa": "GPa", "Pa": "Pa", "kPa": "kPa", "psi": "psi", "ksi": "ksi", "Mpsi": "Mpsi"}
 
-#: the families a design's text shows in a unit of its own (the rest stay in SI: masses, inertias, the servo)
+#: the families a design's text shows in a unit of its own (masses and inertias follow the length
+#: unit, :data:`MASS_TEXT`; the servo's quantities stay in SI)
 TEXT_FAMILIES = ("force", "torque", "linear_stiffness", "stress")
+#: length unit -> {family: (text, factor turning the internal SI value into it)}: masses (internal kg)
+#: and moments of inertia (internal kg·m²) in kg and kg·m² for a mm design, lb and lb·in^2 for an inch one
+MASS_TEXT = {"mm": {"mass": ("kg", 1.0), "inertia": ("kg·m^2", 1.0)},
+             "in": {"mass": ("lb", 1.0 / KG_PER_LB), "inertia": ("lb·in^2", 1.0 / QUANTITY_SUFFIXES["inertia"]["lb_in2"])}}
 #: a family's text unit when the file wrote no key of that family: the length unit's usual one
 DEFAULT_TEXT_SUFFIX = {"mm": {"force": "N", "torque": "Nm", "linear_stiffness": "N_per_mm", "stress": "MPa"},
                        "in": {"force": "lbf", "torque": "in_lbf", "linear_stiffness": "lbf_per_in", "stress": "psi"}}
@@ -122,7 +128,8 @@ class TextUnits:
     """The units a design's human-readable output uses: lengths in its ``length_unit``; forces,
     torques, linear stiffnesses and stresses in the suffix its file wrote that family in (the first
     such key), else the length unit's usual one (:data:`DEFAULT_TEXT_SUFFIX`); torsional stiffness
-    as the torque unit per rad. Every report formats these quantities through :meth:`text`."""
+    as the torque unit per rad; masses and moments of inertia (internal kg, kg·m²) by the length unit
+    (:data:`MASS_TEXT`). Every report formats these quantities through :meth:`text`."""
 
     length: str = "mm"
     force: str = "N"
@@ -134,14 +141,18 @@ class TextUnits:
         """The unit's text: ``"in"``, ``"in·lbf"``, ``"in·lbf/rad"``, ``"lbf/in"``."""
         if family == "length":
             return self.length
+        if family in ("mass", "inertia"):
+            return MASS_TEXT[self.length][family][0]
         if family == "torsional_stiffness":
             return f"{SUFFIX_TEXT[self.torque]}/rad"
         return SUFFIX_TEXT[getattr(self, family)]
 
     def value(self, family: str, internal: float):
-        """``internal`` (mm, N, N·mm, N/mm, N·mm/rad, MPa) in this family's text unit."""
+        """``internal`` (mm, N, N·mm, N/mm, N·mm/rad, MPa; kg, kg·m²) in this family's text unit."""
         if family == "length":
             return from_mm(internal, self.length)
+        if family in ("mass", "inertia"):
+            return internal * MASS_TEXT[self.length][family][1]
         if family == "torsional_stiffness":
             return internal / QUANTITY_SUFFIXES["torque"][self.torque]
         return internal / QUANTITY_SUFFIXES[family][getattr(self, family)]

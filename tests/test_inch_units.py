@@ -259,3 +259,31 @@ def test_the_robot_joints_undercut_note_is_in_inches():
         warnings.simplefilter("ignore", UndercutWarning)
         (note,) = tooth_profile(spec).warnings
     assert "the usable involute starts at radius 0.234941 in instead" in note
+
+
+def test_train_gives_an_inch_designs_masses_and_inertias_in_lb_and_lb_in2(tmp_path):
+    """``geargen train`` of the inch design: each part's mass in lb and its inertias in lb·in^2, equal
+    to the JSON's kg and kg·m² over the exact definitions 1 lb = 0.45359237 kg, 1 in = 0.0254 m."""
+    text = _geargen("train", INCH_DESIGN, "--no-plots", "--json", tmp_path / "train.json", "--out", tmp_path / "t",
+                    cwd=tmp_path)
+    data = json.loads((tmp_path / "train.json").read_text())
+    lb, lb_in2 = 0.45359237, 0.45359237 * 0.0254 ** 2
+    assert "mass lb" in text and "lb·in^2" in text and "kg" not in text
+    rows = {line.split()[0]: line.split() for line in text.splitlines() if line.startswith("  ")}
+    for part in data["parts"]:
+        row = rows[part["name"]]
+        # 4 significant digits printed: half a unit of the 4th digit, relative
+        assert float(row[1]) == pytest.approx(part["mass_kg"] / lb, rel=5e-4)
+        assert float(row[2]) == pytest.approx(part["inertia_own_axis_kg_m2"] / lb_in2, rel=5e-4)
+        assert float(row[4]) == pytest.approx(part["reflected_to_motor_kg_m2"] / lb_in2, rel=5e-4)
+    total = re.search(r"inertia at the motor (\S+) lb·in\^2", text)
+    assert float(total.group(1)) == pytest.approx(data["totals"]["inertia_at_motor_kg_m2"] / lb_in2, rel=5e-4)
+
+
+def test_a_metric_designs_masses_stay_in_kg():
+    from geargen.units import TextUnits
+    assert TextUnits(length="mm").text("mass", 1.5) == "1.5 kg"
+    assert TextUnits(length="mm").text("inertia", 2e-4) == "0.0002 kg·m^2"
+    # 1 kg = 2.2046 lb; 1 kg·m^2 = 1 / (0.45359237 x 0.0254^2) = 3417.2 lb·in^2
+    assert TextUnits(length="in").text("mass", 1.0) == "2.205 lb"
+    assert TextUnits(length="in").text("inertia", 1.0) == "3417 lb·in^2"

@@ -83,12 +83,20 @@ def format_train(data: dict[str, Any], units: TextUnits = TextUnits()) -> str:
     def torque(x_nm):  # a torque, or a torque per rad, of the data in the text's unit
         return None if x_nm is None else units.value("torque", x_nm * NM)
 
+    kg, J = units.unit("mass"), units.unit("inertia")
+
+    def mass(x_kg):
+        return units.value("mass", x_kg)
+
+    def inertia(x_kg_m2):  # the data's kg·m² in the text's unit (lb·in^2 for an inch design)
+        return None if x_kg_m2 is None else units.value("inertia", x_kg_m2)
+
     lines = [f"Train of {data['design']}: motor to output {data['motor_speed_over_output']:.6g}:1", "",
-             "Rotating parts (inertia from the parts' geometry; reflected = own / ratio_to_motor^2)",
-             f"  {'part':26s} {'mass kg':>9s} {'J own kg m2':>12s} {'ratio':>8s} {'J at motor':>11s}  turns with"]
+             f"Rotating parts (inertia from the parts' geometry, {J}; reflected = own / ratio_to_motor^2)",
+             f"  {'part':26s} {'mass ' + kg:>9s} {'J own':>12s} {'ratio':>8s} {'J at motor':>11s}  turns with"]
     for p in data["parts"]:
-        lines.append(f"  {p['name']:26s} {p['mass_kg']:9.4g} {p['inertia_own_axis_kg_m2']:12.4g} "
-                     f"{p['ratio_to_motor']:8.4g} {p['reflected_to_motor_kg_m2']:11.4g}  {p['turns_with']}")
+        lines.append(f"  {p['name']:26s} {mass(p['mass_kg']):9.4g} {inertia(p['inertia_own_axis_kg_m2']):12.4g} "
+                     f"{p['ratio_to_motor']:8.4g} {inertia(p['reflected_to_motor_kg_m2']):11.4g}  {p['turns_with']}")
     lines += ["", "Stages, motor first (stiffness and lost motion at the output)",
               f"  {'stage':40s} {'ratio':>6s} {ks:>11s} {'compl.':>7s} {'backlash urad':>13s} {'design range':>13s}"
               f" {'share':>6s} {'left urad':>9s}"]
@@ -103,9 +111,9 @@ def format_train(data: dict[str, Any], units: TextUnits = TextUnits()) -> str:
     for s in data["stages"]:
         if s["components"]:
             lines.append(f"    {s['name'].split(' (')[0]}: " + ", ".join(s["components"]))
-    lines += ["", f"Totals: inertia at the motor {t['inertia_at_motor_kg_m2']:.4g} kg m^2 (rotor "
-              f"{_fmt(t['motor_rotor_inertia_kg_m2'])}, parts {t['parts_inertia_at_motor_kg_m2']:.4g}, load "
-              f"{t['load_inertia_at_motor_kg_m2']:.4g}); stiffness at the output {_fmt(torque(t['stiffness_at_output_Nm_per_rad']), '.6g')} "
+    lines += ["", f"Totals: inertia at the motor {inertia(t['inertia_at_motor_kg_m2']):.4g} {J} (rotor "
+              f"{_fmt(inertia(t['motor_rotor_inertia_kg_m2']))}, parts {inertia(t['parts_inertia_at_motor_kg_m2']):.4g}, load "
+              f"{inertia(t['load_inertia_at_motor_kg_m2']):.4g}); stiffness at the output {_fmt(torque(t['stiffness_at_output_Nm_per_rad']), '.6g')} "
               f"{ks} (geargen stiffness, without the upstream stages: "
               f"{_fmt(torque(t['stiffness_command_drive_with_common_Nm_per_rad']), '.6g')});",
               f"  lost motion at the output {t['lost_motion_at_output_urad']:.1f} urad as built "
