@@ -76,7 +76,7 @@ TOLERANCE_FRAME_MM = 6.0
 TOLERANCE_GAP_MM = 1.0
 #: below the transverse section (its gear fits within FULL_VIEW's 100 mm square about its centre,
 #: so the view's bottom 20 mm are empty): where the frames stand when the axial section leaves no room
-FRAME_PLACE_MM = (FULL_VIEW[2], FULL_VIEW[1] + 1.0)  # right end, bottom of the lower frame
+FRAME_PLACE_MM = (FULL_VIEW[2], FULL_VIEW[1] + 1.0)  # right end of the row of frames, their bottom
 
 
 def scale_text(scale: float) -> str:
@@ -674,8 +674,11 @@ def _runout_frames(sheet, geo: dict, unit: str, tip_target, face_target, lowest:
     """The two ISO 1101 frames of the axial section: circular runout of the toothed surface (radial,
     F_rT) and of face B (axial, t_B), both to datum A, each with a leader ending in an arrow on its
     feature. They stand at the section view's bottom (radial left, axial right, its leader reaching
-    face B from the right) when that lies below ``lowest`` (the lowest text of the section), else at
-    :data:`FRAME_PLACE_MM` below the transverse section, stacked. A tolerance the data lacks has no frame."""
+    face B from the right) when that lies below ``lowest`` (the lowest text of the section), else side
+    by side at :data:`FRAME_PLACE_MM` below the transverse section (radial right), their leaders routed
+    round the section's dimensions: the radial one level to below the tip's extension line, then up
+    onto it; the axial one down under the section's lowest text, along to the right of face B, up and
+    onto the face. A tolerance the data lacks has no frame."""
     frames = [(geo.get("radial_runout_um"), tip_target), (geo.get("face_axial_runout_um"), face_target)]
     frames = [(v, t) for v, t in frames if v is not None]
     if not frames:
@@ -684,23 +687,31 @@ def _runout_frames(sheet, geo: dict, unit: str, tip_target, face_target, lowest:
     box = SECTION_VIEW
     bottom = box[1] + TOLERANCE_GAP_MM
     room = bottom + TOLERANCE_FRAME_MM <= lowest and sum(map(sum, widths)) + 4 * TOLERANCE_GAP_MM <= box[2] - box[0]
-    for i, ((value, target), w) in enumerate(zip(frames, widths)):
+    right_end = FRAME_PLACE_MM[0]
+    for (value, target), w in zip(frames, widths):
+        on_face = target is face_target
         if room:
-            right_hand = target is face_target
-            x_left = box[2] - sum(w) if right_hand else box[0] + TOLERANCE_GAP_MM
-            y_bottom = bottom
+            x_left, y_bottom = (box[2] - sum(w) if on_face else box[0] + TOLERANCE_GAP_MM), bottom
         else:
-            x_left = FRAME_PLACE_MM[0] - sum(w)
-            y_bottom = FRAME_PLACE_MM[1] + (len(frames) - 1 - i) * (TOLERANCE_FRAME_MM + TOLERANCE_GAP_MM)
+            x_left, y_bottom = right_end - sum(w), FRAME_PLACE_MM[1]
+            right_end = x_left - 2 * TOLERANCE_GAP_MM
         cells = _tolerance_frame(sheet, (RUNOUT_SYMBOL, format_tolerance(value, unit), "A"), w, x_left, y_bottom)
-        if room and target is face_target:
+        top, x_right = y_bottom + TOLERANCE_FRAME_MM, cells[-1][2]
+        if room and on_face:
             # up from the frame's right end (right of face B, so it crosses no dimension), then onto the face
-            start = (max(cells[-1][2] - 2.0, face_x + 2.0), y_bottom + TOLERANCE_FRAME_MM)
+            path = [(max(x_right - 2.0, face_x + 2.0), top)]
         elif room:
-            start = (min(max(target[0], cells[0][0] + 2.0), cells[-1][2] - 2.0), y_bottom + TOLERANCE_FRAME_MM)
-        else:  # from the frame's right side, at its mid-height
-            start = (cells[-1][2], y_bottom + TOLERANCE_FRAME_MM / 2)
-        sheet.ax.annotate("", xy=target, xytext=start,
+            path = [(min(max(target[0], cells[0][0] + 2.0), x_right - 2.0), top)]
+        elif on_face:
+            # below the section view, above the blank table (BLANK_BLOCK's top is 4 mm under the view)
+            under, beside = (box[1] + BLANK_BLOCK[3]) / 2, face_x + 4.0
+            path = [(x_right - 2.0, y_bottom), (x_right - 2.0, under), (beside, under), (beside, target[1])]
+        else:
+            mid = y_bottom + TOLERANCE_FRAME_MM / 2
+            path = [(x_right, mid), (target[0], mid)]
+        if len(path) > 1:
+            sheet.line([p[0] for p in path], [p[1] for p in path], lw=0.18)
+        sheet.ax.annotate("", xy=target, xytext=path[-1],
                           arrowprops=dict(arrowstyle="-|>", lw=0.18 / MM_PER_PT, color="black", shrinkA=0,
                                           shrinkB=0, mutation_scale=7))
 
