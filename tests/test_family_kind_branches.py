@@ -38,9 +38,6 @@ NOT_YET_MOVED = {
     ("checks/hardware.py", "internal"): (4, "a ring's section and reach in the hardware clearance check"),
     ("checks/hardware.py", "rack"): (1, "a rack's reach in the hardware clearance check"),
     ("commands/gear.py", "rack"): (2, "--thickness-allowance enters a rack's spec (its deviations)"),
-    ("core/load_capacity.py", "double_helical"): (2, "ISO 6336 factors of a double-helical pair"),
-    ("core/load_capacity.py", "internal"): (10, "ISO 6336 factors of an internal pair"),
-    ("core/load_capacity.py", "rack"): (7, "ISO 6336 factors of a rack pair"),
     ("design/assembly.py", "internal"): (1, "a planetary stage's ring is the one internal gear a drive holds"),
     ("design/gear.py", "double_helical"): (3, "GearSpec: the double-helical halves and centre gap"),
     ("design/gear.py", "internal"): (6, "GearSpec: a ring's tip, root, rim and cutter tip radius"),
@@ -78,8 +75,9 @@ def test_no_new_family_kind_branches_outside_the_families():
 def test_the_count_of_branches_left():
     """85 sites outside the family files before the one registry (95 with them), 52 after it
     replaced the five string registries, 46 after the load-capacity scope asked the family
-    (``RATING_SCOPE``); 4 of them are another vocabulary."""
-    assert sum(family_branch_sites().values()) == 46
+    (``RATING_SCOPE``), 27 after the rating read a ring's and a rack's ISO 6336 geometry from the family
+    (``RATING_FORM``: 19 branches of ``core/load_capacity.py``); 4 of them are another vocabulary."""
+    assert sum(family_branch_sites().values()) == 27
     assert sum(n for n, _ in VOCABULARY.values()) == 4
 
 

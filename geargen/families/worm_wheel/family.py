@@ -10,6 +10,7 @@ KIND = "worm_wheel"
 FIELDS = worm.FIELDS
 read_table = worm.read_table
 RATING_SCOPE = worm.RATING_SCOPE
+RATING_FORM = None  # not rated by ISO 6336 (RATING_SCOPE)
 gear_data = worm.gear_data
 drawings = worm.drawings
 options = worm.options
