@@ -48,8 +48,8 @@ from typing import Any, Sequence
 from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
 from geargen.design.checks import MINIMUM_SAFETY
 from geargen.errors import DesignError
-from geargen.families.family import RatingForm
-from geargen.families.registry import FAMILIES, family_of
+from geargen.families.family import ToothForm
+from geargen.families.registry import FAMILIES, tooth_form
 
 STANDARD = "ISO 6336-2:2019 / ISO 6336-3:2019, method B"
 #: the virtual tooth count standing for z -> infinity (a rack, an internal gear's root, the mesh
@@ -128,7 +128,7 @@ class RatingConditions:
 class RatingGeometry:
     """What the rating needs of a parallel-axis mesh (mm, rad). Per-gear pairs are (gear 1, gear 2);
     gear 2 of a rack mesh has ``teeth`` None and infinite diameters. ``mate_form`` is gear 2's
-    family's :class:`~geargen.families.family.RatingForm` (convex, concave or straight flanks)."""
+    family's :class:`~geargen.families.family.ToothForm` (convex, concave or straight flanks)."""
 
     kind: str  # gear 2's family: "external", "internal" or "rack" (its name, for the reader)
     teeth: tuple[int, int | None]
@@ -154,7 +154,7 @@ class RatingGeometry:
     thinning_normal: tuple[float, float]  # normal tooth thinning at the reference cylinder, mm
     rim_thickness: tuple[float | None, float | None]  # s_R under the root; None: solid to the axis
     rack_teeth: int | None
-    mate_form: RatingForm
+    mate_form: ToothForm
     double_helical: bool = False
 
     def with_face_width(self, face_width: float) -> "RatingGeometry":
@@ -202,7 +202,7 @@ class RatingGeometry:
 def _rim_under_root(spec) -> float | None:
     """s_R of an external gear with a bore (root circle to bore less the keyway), of an internal
     gear (rim outside the root circle); None for a solid gear."""
-    if family_of(spec).RATING_FORM.rim_outside_root:
+    if tooth_form(spec).rim_outside_root:
         return (spec.rim_diameter - 2 * spec.root_radius_standard) / 2
     hub = spec.hub
     if hub.bore_diameter <= 0:
@@ -223,7 +223,7 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
         scope = rating_scope(spec)
         if scope is not None:
             raise DesignError(f"gear{i}.kind", scope, "external, internal, double_helical or rack")
-    forms = (family_of(gear1).RATING_FORM, family_of(gear2).RATING_FORM)
+    forms = (tooth_form(gear1), tooth_form(gear2))
     if forms[0].curvature <= 0:
         raise DesignError("gear1.kind", f"{gear1.kind!r}: gear 1 is the pinion, an external gear",
                           "'external' or 'double_helical' (a ring or a rack is gear 2)")
