@@ -26,6 +26,7 @@ import numpy as np
 
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import GeometryError
+from geargen.families.registry import tooth_form
 from geargen.model.bodies import distance_function, polygon_distance, world_box
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
@@ -80,11 +81,16 @@ def gear_section(spec) -> tuple[np.ndarray, float, float]:
     gear's centre: ``(polygon (m, 2), start angle, pitch angle)``. A point at polar angle phi is in
     the gear's section (for an internal gear: in its hole, the teeth's outline) when, turned back
     by whole pitches into [start, start + pitch), it lies in the polygon."""
-    profile = internal_profile(spec) if getattr(spec, "kind", "external") == "internal" else \
-        tooth_profile(spec, warn=False)
+    profile = internal_profile(spec) if _is_ring(spec) else tooth_profile(spec, warn=False)
     points = np.vstack([seg.sample(24)[:-1] for seg in profile.pitch_segments()])
     start = math.atan2(points[0, 1], points[0, 0])
     return np.vstack([[0.0, 0.0], points]), start, profile.pitch_angle
+
+
+def _is_ring(spec) -> bool:
+    """Whether ``spec``'s body is a rim outside its teeth (its family's tooth form)."""
+    form = tooth_form(spec)
+    return form is not None and form.rim_outside_root
 
 
 def _section_distance(spec, p: np.ndarray) -> np.ndarray:
@@ -112,7 +118,7 @@ def _gear_distance(spec, p: np.ndarray) -> np.ndarray:
     z = 0 and its face width, less its bore (hubs are not teeth: added apart); an internal gear's
     ring between its teeth and its rim."""
     r = np.hypot(p[:, 0], p[:, 1])
-    if getattr(spec, "kind", "external") == "internal":
+    if _is_ring(spec):
         d2 = np.maximum(r - spec.rim_diameter / 2, -_section_distance(spec, p))
     else:
         d2 = _section_distance(spec, p)
@@ -165,15 +171,21 @@ def gear_part(placement, meshes=()) -> AnalyticPart:
 
 
 def _reach(gear) -> float:
-    if getattr(gear, "kind", "external") == "internal":
+    if _is_ring(gear):
         return gear.rim_diameter / 2
-    if getattr(gear, "kind", "external") == "rack":
+    if _is_rack(gear):
         return math.hypot(gear.length, gear.height)
     return max(gear.tip_radius, gear.hub.hub_diameter / 2 if gear.hub.hub_length > 0 else 0.0)
 
 
+def _is_rack(spec) -> bool:
+    """Whether ``spec``'s teeth are straight-flanked (its family's tooth form): read by its box."""
+    form = tooth_form(spec)
+    return form is not None and form.curvature == 0
+
+
 def _member_distance(gear, local: np.ndarray) -> np.ndarray:
-    if getattr(gear, "kind", "external") in ("external", "internal"):
+    if not _is_rack(gear):
         return _gear_distance(gear, local)
     # a rack: its box (x across the teeth from its datum, y along it), an envelope
     dz = np.abs(local[:, 2] - gear.face_width / 2) - gear.face_width / 2

@@ -48,7 +48,8 @@ from typing import Any, Sequence
 from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
 from geargen.design.checks import MINIMUM_SAFETY
 from geargen.errors import DesignError
-from geargen.families.registry import FAMILIES
+from geargen.families.family import ToothForm
+from geargen.families.registry import FAMILIES, tooth_form
 
 STANDARD = "ISO 6336-2:2019 / ISO 6336-3:2019, method B"
 #: the virtual tooth count standing for z -> infinity (a rack, an internal gear's root, the mesh
@@ -126,9 +127,10 @@ class RatingConditions:
 @dataclass(frozen=True)
 class RatingGeometry:
     """What the rating needs of a parallel-axis mesh (mm, rad). Per-gear pairs are (gear 1, gear 2);
-    gear 2 of a rack mesh has ``teeth`` None and infinite diameters."""
+    gear 2 of a rack mesh has ``teeth`` None and infinite diameters. ``mate_form`` is gear 2's
+    family's :class:`~geargen.families.family.ToothForm` (convex, concave or straight flanks)."""
 
-    kind: str  # "external", "internal" or "rack"
+    kind: str  # gear 2's family: "external", "internal" or "rack" (its name, for the reader)
     teeth: tuple[int, int | None]
     normal_module: float
     normal_pressure_angle: float
@@ -152,6 +154,7 @@ class RatingGeometry:
     thinning_normal: tuple[float, float]  # normal tooth thinning at the reference cylinder, mm
     rim_thickness: tuple[float | None, float | None]  # s_R under the root; None: solid to the axis
     rack_teeth: int | None
+    mate_form: ToothForm
     double_helical: bool = False
 
     def with_face_width(self, face_width: float) -> "RatingGeometry":
@@ -166,10 +169,10 @@ class RatingGeometry:
     @property
     def gear_ratio(self) -> float:
         """u = z_2 / z_1: negative for an internal pair, inf for a rack."""
-        if self.kind == "rack":
+        if self.mate_form.curvature == 0:
             return math.inf
         u = self.teeth[1] / self.teeth[0]
-        return -u if self.kind == "internal" else u
+        return self.mate_form.curvature * u
 
     @property
     def eps_gamma(self) -> float:
@@ -181,26 +184,25 @@ class RatingGeometry:
 
     def line_of_action_radii(self, pinion_roll: float) -> tuple[float, float]:
         """Radii of curvature (transverse) of both flanks at the contact point where the pinion's
-        involute has roll length ``pinion_roll``; the ring's is concave (its own, positive)."""
-        if self.kind == "rack":
+        involute has roll length ``pinion_roll``; the ring's is concave (its own, positive: its
+        base circle's tangent point lies beyond the pinion's, ``line + roll``)."""
+        if self.mate_form.curvature == 0:
             return pinion_roll, math.inf
         line = self.centre_distance * math.sin(self.working_pressure_angle)
-        if self.kind == "internal":
-            return pinion_roll, pinion_roll + line
-        return pinion_roll, line - pinion_roll
+        return pinion_roll, line - self.mate_form.curvature * pinion_roll
 
     def curvature(self, pinion_roll: float) -> float:
         """Relative curvature 1/rho_red of the flanks at that contact point (1/mm)."""
         r1, r2 = self.line_of_action_radii(pinion_roll)
-        if self.kind == "rack":
+        if self.mate_form.curvature == 0:
             return 1.0 / r1
-        return 1.0 / r1 - 1.0 / r2 if self.kind == "internal" else 1.0 / r1 + 1.0 / r2
+        return 1.0 / r1 + self.mate_form.curvature / r2
 
 
 def _rim_under_root(spec) -> float | None:
     """s_R of an external gear with a bore (root circle to bore less the keyway), of an internal
     gear (rim outside the root circle); None for a solid gear."""
-    if spec.kind == "internal":
+    if tooth_form(spec).rim_outside_root:
         return (spec.rim_diameter - 2 * spec.root_radius_standard) / 2
     hub = spec.hub
     if hub.bore_diameter <= 0:
@@ -221,13 +223,14 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
         scope = rating_scope(spec)
         if scope is not None:
             raise DesignError(f"gear{i}.kind", scope, "external, internal, double_helical or rack")
-    if gear1.kind not in ("external", "double_helical"):
+    forms = (tooth_form(gear1), tooth_form(gear2))
+    if forms[0].curvature <= 0:
         raise DesignError("gear1.kind", f"{gear1.kind!r}: gear 1 is the pinion, an external gear",
                           "'external' or 'double_helical' (a ring or a rack is gear 2)")
     m_n, a_n, beta = gear1.module, gear1.pressure_angle, gear1.helix_angle
     alpha_t = gear1.transverse_pressure_angle
     beta_b = gear1.base_helix_angle
-    double = gear1.kind == "double_helical"
+    double = forms[0].helices == 2
     narrow = min(gear1.face_width, gear2.face_width)
     half = min(gear1.half_face_width, getattr(gear2, "half_face_width", gear2.face_width))
     if face_width is not None:
@@ -240,8 +243,8 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
     d1, db1, da1 = 2 * gear1.reference_radius, 2 * gear1.base_radius, 2 * gear1.tip_radius
     common = dict(normal_module=m_n, normal_pressure_angle=a_n, helix_angle=beta, base_helix_angle=beta_b,
                   transverse_pressure_angle=alpha_t, face_width=b, half_face_width=half, double_helical=double,
-                  eps_beta=half * math.sin(beta) / (math.pi * m_n))
-    if gear2.kind == "rack":
+                  eps_beta=half * math.sin(beta) / (math.pi * m_n), mate_form=forms[1])
+    if forms[1].curvature == 0:
         from geargen.families.rack.geometry import rack_pinion_geometry
         rp = rack_pinion_geometry(gear2, gear1)
         inf = math.inf
@@ -255,7 +258,7 @@ def rating_geometry(gear1, gear2, centre_distance: float | None = None,
             rack_tip_radius_coefficients=(gear1.rack_tip_radius_coefficient, gear2.root_fillet_coefficient),
             thinning_normal=(gear1.thinning_normal, gear2.thinning * math.cos(beta)),
             rim_thickness=(_rim_under_root(gear1), None), rack_teeth=gear2.teeth, **common)
-    if gear2.kind == "internal":
+    if forms[1].curvature < 0:
         from geargen.families.internal.geometry import internal_pair_geometry
         ip = internal_pair_geometry(gear1, gear2, centre_distance)
         return RatingGeometry(
@@ -378,7 +381,7 @@ def single_pair_contact_factors(geo: RatingGeometry) -> tuple[float, float]:
             return 1.0
         return max(1.0, m - geo.eps_beta * (m - 1.0))
 
-    z_d = 1.0 if geo.kind in ("internal", "rack") else reduce(m_d)
+    z_d = reduce(m_d) if geo.mate_form.curvature > 0 else 1.0
     return reduce(m_b), z_d
 
 
@@ -487,7 +490,7 @@ def dynamic_factor(geo: RatingGeometry, materials: tuple[Material, Material], sp
     (d_a + d_f)/2 (ISO 6336-1), a ring's or a rack's taken as infinite (m_red = m_1*)."""
     dm1 = (geo.tip_diameters[0] + geo.root_diameters[0]) / 2
     m1 = math.pi / 8 * materials[0].density * dm1 ** 4 / geo.base_diameters[0] ** 2
-    if geo.kind == "external":
+    if geo.mate_form.curvature > 0:
         dm2 = (geo.tip_diameters[1] + geo.root_diameters[1]) / 2
         m2 = math.pi / 8 * materials[1].density * dm2 ** 4 / geo.base_diameters[1] ** 2
         m_red = m1 * m2 / (m1 + m2)
@@ -733,7 +736,7 @@ class PairRating:
 def _stiffness(geo: RatingGeometry, materials, specific_load: float):
     from geargen.core.iso6336 import iso6336_stiffness
 
-    z2 = geo.teeth[1] if geo.kind == "external" else RACK_VIRTUAL_TEETH
+    z2 = geo.teeth[1] if geo.mate_form.curvature > 0 else RACK_VIRTUAL_TEETH
     return iso6336_stiffness((geo.teeth[0], z2), geo.profile_shift, geo.normal_module, geo.normal_pressure_angle,
                              geo.helix_angle, geo.eps_alpha, dedendum_coefficients=geo.dedendum_coefficients,
                              elastic_moduli=(materials[0].elastic_modulus, materials[1].elastic_modulus),
@@ -811,7 +814,7 @@ def rate_pair(geo: RatingGeometry, tangential_load: float, conditions: RatingCon
 
     turns1 = 60.0 * c.speed * c.life
     n_l1 = turns1 * c.load_cycles_per_turn[0]
-    if geo.kind == "rack":
+    if geo.rack_teeth is not None:
         n_l2 = turns1 * geo.teeth[0] / geo.rack_teeth * c.load_cycles_per_turn[1]
         notes.append("N_L of the rack: every rack tooth meshes once while the pinion travels the rack's whole "
                      "length (z_1/z_rack of the pinion's cycles); a shorter stroke loads the teeth in it more often")
@@ -842,10 +845,10 @@ def rate_pair(geo: RatingGeometry, tangential_load: float, conditions: RatingCon
     # --- tooth root
     roots = []
     for i in (0, 1):
-        ring_or_rack = geo.kind == "rack" and i == 1 or geo.kind == "internal" and i == 1
-        if ring_or_rack:
+        if i == 1 and geo.mate_form.curvature <= 0:  # a ring's or a rack's root: a rack's (z -> infinity)
             teeth = RACK_VIRTUAL_TEETH
-            shift = -geo.profile_shift[1] if geo.kind == "internal" else 0.0
+            # a ring's shift, seen from its teeth (its material outside), counts negative; a rack's is 0
+            shift = geo.mate_form.curvature * geo.profile_shift[1]
             tip_height = (geo.addendum_coefficients[1] + shift) * m_n
         else:
             teeth = geo.teeth[i]
@@ -854,11 +857,11 @@ def rate_pair(geo: RatingGeometry, tangential_load: float, conditions: RatingCon
         roots.append(tooth_root_form(teeth, shift, m_n, geo.normal_pressure_angle, geo.helix_angle,
                                      geo.base_helix_angle, tip_height, geo.eps_alpha, geo.dedendum_coefficients[i],
                                      geo.rack_tip_radius_coefficients[i], geo.thinning_normal[i]))
-    if geo.kind == "internal":
-        notes.append("internal gear root: ISO 6336-3's approximation by a rack (z_n -> infinity) with the ring's "
-                     "basic rack and tooth height")
+    if geo.mate_form.root_note:
+        notes.append(geo.mate_form.root_note)
     y_beta = helix_angle_factor_root(geo.eps_beta, geo.helix_angle)
-    y_b = tuple(rim_thickness_factor(geo.rim_thickness[i], tooth_depths[i], m_n, geo.kind == "internal" and i == 1)
+    y_b = tuple(rim_thickness_factor(geo.rim_thickness[i], tooth_depths[i], m_n,
+                                    i == 1 and geo.mate_form.rim_outside_root)
                 for i in (0, 1))
     eps_an = geo.eps_alpha / math.cos(geo.base_helix_angle) ** 2
     y_dt = deep_tooth_factor(eps_an, c.accuracy_grade)

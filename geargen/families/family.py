@@ -19,8 +19,34 @@ another's files (the worm wheel reads the worm set's spec, data, options and dra
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from types import ModuleType
 from typing import Any, Mapping, Protocol, Sequence
+
+
+@dataclass(frozen=True)
+class ToothForm:
+    """What the cylindrical-gear layers (the ISO 6336 rating :mod:`geargen.core.load_capacity`, the
+    mass, the mesh loads, the hardware clearance) see of a family's teeth, as data, so that they
+    read it instead of asking the kind:
+
+    - ``curvature``: the sign of the family's flank curvature as the mate of an external pinion:
+      +1 convex (an external gear: 1/rho_red = 1/rho_1 + 1/rho_2, u = z_2/z_1), -1 concave (a ring:
+      1/rho_red = 1/rho_1 - 1/rho_2, u = -z_2/z_1, its loaded flank faces the pinion's way), 0
+      straight (a rack: rho_2 and u infinite). A gear that is not convex is rated at its root as a
+      rack (z -> infinity, ISO 6336-3), has Z_D = 1 (ISO 6336-2), no finite mass in K_v and cannot
+      be the pinion;
+    - ``helices``: helices across the face (2: a double-helical gear, each half carrying b/2);
+    - ``rim_outside_root``: its body is a rim outside its teeth (a ring: its section is the rim disc
+      less the teeth's outline; ISO 6336-3's internal rim factor Y_B = 1.15 ln(8.324 m_n/s_R)); else
+      its body is inside the root circle (Y_B = 1.6 ln(2.242 h_t/s_R));
+    - ``root_note``: the sentence the rating adds when the family is gear 2 (None: none).
+    """
+
+    curvature: int
+    helices: int = 1
+    rim_outside_root: bool = False
+    root_note: str | None = None
 
 
 class GearFamily(Protocol):
@@ -30,6 +56,7 @@ class GearFamily(Protocol):
     - ``FIELDS``: the :class:`geargen.design.schema.Field` list of its table (validation, reference);
     - ``RATING_SCOPE``: None when ISO 6336 rates the family's load capacity, else the sentence naming
       the standard that would (:func:`geargen.core.load_capacity.rating_scope`);
+    - ``TOOTH_FORM``: its :class:`ToothForm` (None: not a cylindrical involute form, bevel and worm);
     - ``read_table(data, where, name, length_unit)``: its spec from a design table, keys named
       ``where.KEY`` in errors (:func:`geargen.design.gear.gear_from_table`'s signature);
     - ``build(spec, check, tolerance)``: its solid (``shape``, ``name``, ``spec``, ``length_unit``);
@@ -48,6 +75,7 @@ class GearFamily(Protocol):
     KIND: str
     FIELDS: Sequence[Any]
     RATING_SCOPE: str | None
+    TOOTH_FORM: ToothForm | None
 
     def read_table(self, data: Mapping[str, Any], where: str = "gear", name: str | None = None,
                    length_unit: str | None = None) -> Any: ...
@@ -62,4 +90,4 @@ class GearFamily(Protocol):
     def options(self) -> ModuleType | None: ...
 
 
-__all__ = ["GearFamily"]
+__all__ = ["GearFamily", "ToothForm"]

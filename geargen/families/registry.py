@@ -5,7 +5,7 @@ from __future__ import annotations
 from geargen.families.bevel import family as bevel
 from geargen.families.double_helical import family as double_helical
 from geargen.families.external import family as external
-from geargen.families.family import GearFamily
+from geargen.families.family import GearFamily, ToothForm
 from geargen.families.internal import family as internal
 from geargen.families.rack import family as rack
 from geargen.families.worm import family as worm
@@ -20,6 +20,14 @@ def family_of(spec) -> GearFamily:
     return FAMILIES[getattr(spec, "kind", "external")]
 
 
+def tooth_form(spec) -> ToothForm | None:
+    """The :class:`~geargen.families.family.ToothForm` of a spec's family (a spec without a ``kind``
+    is an external gear's); None for a form that is not cylindrical involute (bevel, worm) or a
+    ``kind`` no family has."""
+    family = FAMILIES.get(getattr(spec, "kind", "external"))
+    return None if family is None else family.TOOTH_FORM
+
+
 def read_gear(data, where: str = "gear", name: str | None = None, length_unit: str | None = None):
     """Any family's spec from a ``[gear]``/``[gears.NAME]`` table, by its ``kind`` key (default
     external; a kind no family has is refused by the cylindrical reader, naming the kinds)."""
@@ -28,4 +36,4 @@ def read_gear(data, where: str = "gear", name: str | None = None, length_unit: s
     return (family or external).read_table(data, where=where, name=name, length_unit=length_unit)
 
 
-__all__ = ["FAMILIES", "family_of", "read_gear"]
+__all__ = ["FAMILIES", "family_of", "read_gear", "tooth_form"]

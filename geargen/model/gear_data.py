@@ -64,7 +64,7 @@ def gear_data(spec: GearSpec, profile, allowance=None, errors=None, material=Non
         "undercut": profile.undercut, "involute_start_radius": L(profile.involute_start_radius),
         "warnings": list(profile.warnings),
     }
-    if spec.kind == "double_helical":
+    if family_of(spec).TOOTH_FORM.helices == 2:
         # two helical halves of opposite hand from z = 0 up, the relief groove (root diameter) between
         out["double_helical"] = {"centre_gap": L(spec.centre_gap), "half_face_width": L(spec.half_face_width),
                                  "half_hands": list(spec.half_hands)}

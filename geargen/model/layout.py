@@ -35,6 +35,7 @@ from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.design.layout import MODEL_POINTS, MODEL_TOOTH_THICKNESS, POSITIONS
+from geargen.families.registry import tooth_form
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -67,7 +68,8 @@ class GearPlacement:
     def rotation_at(self, gear: GearSpec, z: float) -> float:
         """Rotation of ``gear``'s transverse section at world height ``z`` (tooth 0 centreline)."""
         z0 = self.face_z(gear)[0]
-        if getattr(gear, "kind", "external") == "rack":
+        form = tooth_form(gear)
+        if form is not None and form.curvature == 0:  # straight flanks: a rack's section slides
             if gear.is_helical:  # a helical rack's section slides along it: no rotation to give
                 raise ValueError(f"{self.name}: a helical rack's section is not a rotation")
             return self.rotation

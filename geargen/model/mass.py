@@ -19,6 +19,7 @@ import numpy as np
 
 from geargen.families.bevel.geometry import bevel_axial_moment, bevel_volume
 from geargen.design.cluster import ClusterSpec
+from geargen.families.registry import tooth_form
 from geargen.model.bodies import MassProperties, mass_properties
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
@@ -66,7 +67,8 @@ def bore_moments(hub) -> tuple[float, float]:
 def section_moments(spec) -> tuple[float, float]:
     """(area, polar moment) of a cylindrical gear's transverse section with its bore (mm^2, mm^4):
     an external gear's outline less the bore; a ring's rim disc less its teeth's outline."""
-    if getattr(spec, "kind", "external") == "internal":
+    form = tooth_form(spec)
+    if form is not None and form.rim_outside_root:
         hole = sample_outline(internal_profile(spec).outline(), STEP_PER_MODULE * spec.module)
         area, polar = polygon_moments(hole)
         rim_area, rim_polar = _disc(spec.rim_diameter / 2)

@@ -53,6 +53,7 @@ from geargen.design.duty import DutySpec
 from geargen.design.stages import stages as design_stages
 from geargen.design.stiffness import stiffness_design
 from geargen.errors import DesignError
+from geargen.families.registry import tooth_form
 
 #: where a load comes from: the preload alone (zero drive torque); the preload with the path's share of
 #: the drive torque (both paths loaded); all of the drive torque (the other path unloaded); the drive
@@ -305,10 +306,11 @@ def _with_reversed_bending(layout, meshes: tuple[MeshLoads, ...]) -> tuple[MeshL
     seen: list[tuple[str, str, tuple[float, float] | None]] = []  # part, facing, contact heights
     for ml in meshes:
         height = _contact_height(layout, ml.part1, ml.gear1, ml.part2, ml.gear2)
-        internal = getattr(ml.gear2, "kind", "") == "internal"
+        form = tooth_form(ml.gear2)
+        concave = form is not None and form.curvature < 0  # a ring's loaded flank faces the pinion's way
         for load in ml.loads:
             seen.append((ml.part1, load.flank, height))
-            seen.append((ml.part2, flipped(load.flank) if internal else load.flank, height))
+            seen.append((ml.part2, flipped(load.flank) if concave else load.flank, height))
 
     def both(part: str, height) -> bool:
         facings = {f for p, f, h in seen if p == part and _overlap(h, height)}

@@ -8,6 +8,7 @@ KIND = "bevel"
 FIELDS = BEVEL_FIELDS
 read_table = bevel_from_table
 RATING_SCOPE = "not rated by ISO 6336: bevel gears are rated by ISO 10300 (not implemented)"
+TOOTH_FORM = None  # not a cylindrical involute form (nor rated by ISO 6336)
 
 
 def build(spec, check: bool = False, tolerance: float | None = None):

@@ -5,11 +5,13 @@ external cylindrical gear; its own file is the solid."""
 from __future__ import annotations
 
 from geargen.families.external import family as external
+from geargen.families.family import ToothForm
 
 KIND = "double_helical"
 FIELDS = external.FIELDS
 read_table = external.read_table
 RATING_SCOPE = external.RATING_SCOPE
+TOOTH_FORM = ToothForm(curvature=+1, helices=2)  # two halves of opposite hand, b/2 each
 gear_data = external.gear_data
 drawings = external.drawings
 options = external.options  # the common options (--centre-gap among them)

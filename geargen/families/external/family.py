@@ -5,11 +5,13 @@ with ``kind = "external"``; its spec, profile, solid and data are the project's 
 from __future__ import annotations
 
 from geargen.design.gear import GEAR_FIELDS, gear_from_table
+from geargen.families.family import ToothForm
 
 KIND = "external"
 FIELDS = GEAR_FIELDS
 read_table = gear_from_table
 RATING_SCOPE = None  # rated by ISO 6336
+TOOTH_FORM = ToothForm(curvature=+1)  # convex flanks, one helix, rim under the root
 
 
 def build(spec, check: bool = False, tolerance: float | None = None):

@@ -4,11 +4,16 @@ and its ``rim_diameter``."""
 from __future__ import annotations
 
 from geargen.families.external import family as external
+from geargen.families.family import ToothForm
 
 KIND = "internal"
 FIELDS = external.FIELDS  # the cylindrical gear's table (rim_diameter among its keys)
 read_table = external.read_table
 RATING_SCOPE = external.RATING_SCOPE
+#: concave flanks; its root rated as a rack's with its own basic rack, its rim outside the root circle
+TOOTH_FORM = ToothForm(curvature=-1, rim_outside_root=True, root_note=(
+    "internal gear root: ISO 6336-3's approximation by a rack (z_n -> infinity) with the ring's basic rack "
+    "and tooth height"))
 
 
 def build(spec, check: bool = False, tolerance: float | None = None):

@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 from geargen.families.rack.spec import RACK_FIELDS, rack_from_table
+from geargen.families.family import ToothForm
 
 KIND = "rack"
 FIELDS = RACK_FIELDS
 read_table = rack_from_table
 RATING_SCOPE = None  # rated by ISO 6336
+TOOTH_FORM = ToothForm(curvature=0)  # straight flanks: rho and u infinite, its root a rack's
 
 
 def build(spec, check: bool = False, tolerance: float | None = None):

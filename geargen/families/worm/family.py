@@ -9,6 +9,7 @@ KIND = "worm"
 FIELDS = WORM_FIELDS
 read_table = worm_set_from_table
 RATING_SCOPE = "not rated by ISO 6336: worm gears are rated by ISO/TS 14521 (not implemented)"
+TOOTH_FORM = None  # not a cylindrical involute form (nor rated by ISO 6336)
 
 
 def build(spec, check: bool = False, tolerance: float | None = None):

@@ -10,6 +10,7 @@ KIND = "worm_wheel"
 FIELDS = worm.FIELDS
 read_table = worm.read_table
 RATING_SCOPE = worm.RATING_SCOPE
+TOOTH_FORM = None  # not a cylindrical involute form (nor rated by ISO 6336)
 gear_data = worm.gear_data
 drawings = worm.drawings
 options = worm.options
