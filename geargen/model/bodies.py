@@ -397,67 +397,103 @@ def _rect_sdf(qx: np.ndarray, qz: np.ndarray) -> np.ndarray:
     return outside + np.minimum(np.maximum(qx, qz), 0.0)
 
 
+#: points x edges per block of :func:`polygon_distance` (bounds its temporaries, ~8 MB an array)
+_POLYGON_BLOCK = 1_000_000
+
+
 def polygon_distance(px, py, poly) -> np.ndarray:
-    """Signed distance (negative inside) of points (px, py) from the closed polygon ``poly`` (m, 2)."""
-    d = np.full(px.shape, np.inf)
-    inside = np.zeros(px.shape, bool)
-    m = len(poly)
-    for i in range(m):
-        ax, ay = poly[i]
-        bx, by = poly[(i + 1) % m]
-        ex, ey = bx - ax, by - ay
-        wx, wy = px - ax, py - ay
-        length2 = ex * ex + ey * ey
-        t = np.clip((wx * ex + wy * ey) / length2, 0.0, 1.0) if length2 > 0 else 0.0
-        d = np.minimum(d, np.hypot(wx - t * ex, wy - t * ey))
-        crosses = (ay > py) != (by > py)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            xc = ax + (py - ay) * ex / np.where(ey == 0, 1.0, ey)
-        inside ^= crosses & (px < xc)
-    return np.where(inside, -d, d)
+    """Signed distance (negative inside) of points (px, py) from the closed polygon ``poly`` (m, 2).
+
+    All edges at once over blocks of points (an edge at a time was a numpy call per edge: the
+    gear sections have ~150 edges and most calls a few hundred points)."""
+    px, py = np.asarray(px, dtype=float), np.asarray(py, dtype=float)
+    poly = np.asarray(poly, dtype=float)
+    ax, ay = poly[:, 0], poly[:, 1]
+    nxt = np.roll(poly, -1, axis=0)
+    ex, ey = nxt[:, 0] - ax, nxt[:, 1] - ay
+    length2 = ex * ex + ey * ey
+    degenerate = length2 <= 0
+    inv_len = np.where(degenerate, 0.0, 1.0)  # a zero-length edge: its start point (t = 0)
+    safe_len = np.where(degenerate, 1.0, length2)
+    ey_safe = np.where(ey == 0, 1.0, ey)
+    flat_x, flat_y = px.ravel(), py.ravel()
+    d = np.empty(flat_x.shape)
+    inside = np.empty(flat_x.shape, bool)
+    step = max(1, _POLYGON_BLOCK // max(len(poly), 1))
+    for s in range(0, flat_x.size, step):
+        x, y = flat_x[s:s + step, None], flat_y[s:s + step, None]
+        wx, wy = x - ax, y - ay
+        t = np.clip((wx * ex + wy * ey) / safe_len, 0.0, 1.0) * inv_len
+        d[s:s + step] = np.min(np.hypot(wx - t * ex, wy - t * ey), axis=1)
+        crosses = (ay > y) != (nxt[:, 1] > y)
+        xc = ax + (y - ay) * ex / ey_safe
+        inside[s:s + step] = np.count_nonzero(crosses & (x < xc), axis=1) % 2 == 1
+    return np.where(inside, -d, d).reshape(px.shape)
+
+
+def _compiled(n: _Node):
+    """``n``'s signed distance as a function of points (k, 3): the tree read once, its constants
+    (box centres, polygons, offsets) computed once, so a call does only the points' arithmetic."""
+    op, a = n.op, n.args
+    if op == "box":
+        lo, hi = np.asarray(a[0]), np.asarray(a[1])
+        c, h = (lo + hi) / 2, (hi - lo) / 2
+
+        def box(p):
+            # per axis (reductions over an axis of length 3 are slow in numpy)
+            qx, qy, qz = (np.abs(p[:, i] - c[i]) - h[i] for i in range(3))
+            outside = np.sqrt(np.maximum(qx, 0.0) ** 2 + np.maximum(qy, 0.0) ** 2 + np.maximum(qz, 0.0) ** 2)
+            return outside + np.minimum(np.maximum(np.maximum(qx, qy), qz), 0.0)
+        return box
+    if op == "cyl":
+        d, height, bore = a
+
+        def cyl(p):
+            r = np.hypot(p[:, 0], p[:, 1])
+            qr = r - d / 2
+            if bore > 0:
+                qr = np.maximum(qr, bore / 2 - r)
+            return _rect_sdf(qr, np.abs(p[:, 2] - height / 2) - height / 2)
+        return cyl
+    if op in ("cone", "rev"):
+        if op == "cone":
+            r0, r1, height, bore = a
+            poly = np.array([[bore / 2, 0.0], [r0, 0.0], [r1, height], [bore / 2, height]])
+        else:
+            poly = np.asarray(a)
+        return lambda p: polygon_distance(np.hypot(p[:, 0], p[:, 1]), p[:, 2], poly)
+    if op == "spring":
+        return lambda p: _spring_sdf(a, p)
+    if op == "move":
+        inner, offset = _compiled(a[0]), np.asarray(a[1])
+        return lambda p: inner(p - offset)
+    if op in ("union", "inter"):
+        parts = [_compiled(c) for c in a]
+        join = np.minimum if op == "union" else np.maximum
+
+        def joined(p):
+            out = parts[0](p)
+            for f in parts[1:]:
+                out = join(out, f(p))
+            return out
+        return joined
+    if op == "diff":
+        base, tools = _compiled(a[0]), [_compiled(t) for t in a[1]]
+
+        def diff(p):
+            out = base(p)
+            for f in tools:
+                out = np.maximum(out, -f(p))
+            return out
+        return diff
+    raise ValueError(op)
 
 
 def _node_sdf(n: _Node, p: np.ndarray) -> np.ndarray:
     """Signed distance (mm, negative inside) of points ``p`` (k, 3). Exact for the primitives;
     for unions, intersections and differences the usual min/max bound (exact in sign, a lower
     bound of the distance outside)."""
-    op, a = n.op, n.args
-    if op == "box":
-        lo, hi = np.asarray(a[0]), np.asarray(a[1])
-        c, h = (lo + hi) / 2, (hi - lo) / 2
-        # per axis (reductions over an axis of length 3 are slow in numpy)
-        qx, qy, qz = (np.abs(p[:, i] - c[i]) - h[i] for i in range(3))
-        outside = np.sqrt(np.maximum(qx, 0.0) ** 2 + np.maximum(qy, 0.0) ** 2 + np.maximum(qz, 0.0) ** 2)
-        return outside + np.minimum(np.maximum(np.maximum(qx, qy), qz), 0.0)
-    if op == "cyl":
-        d, height, bore = a
-        r = np.hypot(p[:, 0], p[:, 1])
-        qr = r - d / 2
-        if bore > 0:
-            qr = np.maximum(qr, bore / 2 - r)
-        qz = np.abs(p[:, 2] - height / 2) - height / 2
-        return _rect_sdf(qr, qz)
-    if op == "cone":
-        r0, r1, height, bore = a
-        r = np.hypot(p[:, 0], p[:, 1])
-        poly = np.array([[bore / 2, 0.0], [r0, 0.0], [r1, height], [bore / 2, height]])
-        return polygon_distance(r, p[:, 2], poly)
-    if op == "spring":
-        return _spring_sdf(a, p)
-    if op == "rev":
-        return polygon_distance(np.hypot(p[:, 0], p[:, 1]), p[:, 2], np.asarray(a))
-    if op == "move":
-        return _node_sdf(a[0], p - np.asarray(a[1]))
-    if op == "union":
-        return np.min([_node_sdf(c, p) for c in a], axis=0)
-    if op == "inter":
-        return np.max([_node_sdf(c, p) for c in a], axis=0)
-    if op == "diff":
-        out = _node_sdf(a[0], p)
-        for t in a[1]:
-            out = np.maximum(out, -_node_sdf(t, p))
-        return out
-    raise ValueError(op)
+    return _compiled(n)(p)
 
 
 def _spring_sdf(args, p: np.ndarray) -> np.ndarray:
@@ -495,8 +531,8 @@ def signed_distance(body: Body, points: np.ndarray) -> np.ndarray:
 
 def distance_function(body: Body):
     """:func:`signed_distance` of ``body`` as a function of the points (the body read once)."""
-    tree = primitive_tree(body)
-    return lambda points: _node_sdf(tree, np.asarray(points, dtype=float).reshape(-1, 3))
+    sdf = _compiled(primitive_tree(body))
+    return lambda points: sdf(np.asarray(points, dtype=float).reshape(-1, 3))
 
 
 # ---------------------------------------------------------------- mass properties
