@@ -308,6 +308,9 @@ class TipExcess:
 
 # -------------------------------------------------------------------- the hunting-period search
 _GOLDEN = 0.3819660112501051
+#: positions per block of :meth:`HuntingSearch.evaluate` (its temporaries, positions x window, stay
+#: in cache; one block for all 5e4 positions of a search was slower than the pair-at-a-time loop)
+_EVALUATE_BLOCK = 2048
 
 
 class HuntingSearch:
@@ -419,6 +422,11 @@ class HuntingSearch:
         """Play of both sides (mm along the line of action) and centre distance at positions
         ``s`` ``(n,)`` of builds ``rows`` ``(n,)``: ``phases`` ``(S, 4)``, ``disp*`` ``(S, z)``
         tooth angles (rad). Tip-corner contacts come from the :class:`TipExcess` table."""
+        rows, s = np.asarray(rows), np.asarray(s, dtype=float)
+        if s.ndim == 1 and s.size > _EVALUATE_BLOCK:
+            parts = [self.evaluate(phases, disp1, disp2, rows[i:i + _EVALUATE_BLOCK], s[i:i + _EVALUATE_BLOCK])
+                     for i in range(0, s.size, _EVALUATE_BLOCK)]
+            return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
         m, g1, g2 = self.model, self.model.gear1, self.model.gear2
         su = m.setup
         c1, c2 = self.centres(phases[rows], s)
@@ -442,8 +450,12 @@ class HuntingSearch:
             u = m.flank_position(wide, a2[..., None] + j * g2.pitch + e2, side)
             k = m.mate_tooth(wide, a1[..., None], u, side).astype(int)
             D = side * (g1.base_radius * disp1[rows_w, k % g1.teeth] + g2.base_radius * e2)
-            e = np.where(u < wide.u_min, self.excess(0, wide.distance, wide.u_min - u),
-                         np.where(u > wide.u_max, self.excess(1, wide.distance, u - wide.u_max), 0.0))
+            # the tip-corner excess only where a pair is past an end of the stretch (most of the window)
+            below, above = u < wide.u_min, u > wide.u_max
+            distance = np.broadcast_to(wide.distance, u.shape)
+            e = np.zeros(u.shape)
+            e[below] = self.excess(0, distance[below], (wide.u_min - u)[below])
+            e[above] = self.excess(1, distance[above], (u - wide.u_max)[above])
             H[side] = np.maximum(H[side], np.max(D - e, axis=-1, initial=-np.inf))
         return m.total_play(geo.distance) - H[1] - H[-1], geo.distance
 
