@@ -512,10 +512,11 @@ def _spring_sdf(args, p: np.ndarray) -> np.ndarray:
         t = np.clip(theta + 2 * math.pi * (k0 + dk), 0.0, 2 * math.pi * coils)
         for _ in range(4):  # Newton on the squared distance to (R cos t, R sin t, z0 + pitch t / 2 pi)
             c = pitch / (2 * math.pi)
-            hx, hy, hz = radius * np.cos(t), radius * np.sin(t), z0 + c * t
+            cos_t, sin_t = np.cos(t), np.sin(t)  # each read once: the trigonometry is most of the time
+            hx, hy, hz = radius * cos_t, radius * sin_t, z0 + c * t
             dx, dy, dz = hx - p[:, 0], hy - p[:, 1], hz - p[:, 2]
-            g = dx * (-radius * np.sin(t)) + dy * (radius * np.cos(t)) + dz * c
-            h = radius * radius + c * c - (dx * radius * np.cos(t) + dy * radius * np.sin(t))
+            g = dx * (-radius * sin_t) + dy * (radius * cos_t) + dz * c
+            h = radius * radius + c * c - (dx * radius * cos_t + dy * radius * sin_t)
             t = np.clip(t - g / np.where(np.abs(h) < 1e-12, 1e-12, h), 0.0, 2 * math.pi * coils)
         c = pitch / (2 * math.pi)
         dist = np.sqrt((radius * np.cos(t) - p[:, 0]) ** 2 + (radius * np.sin(t) - p[:, 1]) ** 2

@@ -10,7 +10,9 @@ import pytest
 
 from geargen.design.assembly import load_design
 from geargen.drives.resolver import resolve
-from geargen.model.bodies import _spring_sdf, _rect_sdf, polygon_distance, primitive_tree, signed_distance, _node_box
+import math
+
+from geargen.model.bodies import _node_box, _rect_sdf, polygon_distance, primitive_tree, signed_distance, spring_helix
 from geargen.model.components import analytic_body
 
 ASSEMBLIES = Path(__file__).resolve().parents[2] / "assemblies"
@@ -37,6 +39,30 @@ def reference_polygon_distance(px, py, poly):
     return np.where(inside, -d, d)
 
 
+def reference_spring_sdf(args, p):
+    """The spring's distance with each Newton step's sines and cosines computed twice (before issue 28)."""
+    d, mean, length, coils = args[:4]
+    z0, pitch = spring_helix(args)
+    radius = mean / 2
+    theta = np.arctan2(p[:, 1], p[:, 0]) % (2 * math.pi)
+    best = np.full(len(p), np.inf)
+    k0 = np.floor((p[:, 2] - z0) / pitch - theta / (2 * math.pi))
+    for dk in (-1.0, 0.0, 1.0, 2.0):
+        t = np.clip(theta + 2 * math.pi * (k0 + dk), 0.0, 2 * math.pi * coils)
+        for _ in range(4):
+            c = pitch / (2 * math.pi)
+            hx, hy, hz = radius * np.cos(t), radius * np.sin(t), z0 + c * t
+            dx, dy, dz = hx - p[:, 0], hy - p[:, 1], hz - p[:, 2]
+            g = dx * (-radius * np.sin(t)) + dy * (radius * np.cos(t)) + dz * c
+            h = radius * radius + c * c - (dx * radius * np.cos(t) + dy * radius * np.sin(t))
+            t = np.clip(t - g / np.where(np.abs(h) < 1e-12, 1e-12, h), 0.0, 2 * math.pi * coils)
+        c = pitch / (2 * math.pi)
+        dist = np.sqrt((radius * np.cos(t) - p[:, 0]) ** 2 + (radius * np.sin(t) - p[:, 1]) ** 2
+                       + (z0 + c * t - p[:, 2]) ** 2)
+        best = np.minimum(best, dist)
+    return np.maximum(best - d / 2, np.abs(p[:, 2] - length / 2) - length / 2)
+
+
 def reference_node_sdf(n, p):
     """The per-node recursion (geargen before issue 28)."""
     op, a = n.op, n.args
@@ -60,7 +86,7 @@ def reference_node_sdf(n, p):
         poly = np.array([[bore / 2, 0.0], [r0, 0.0], [r1, height], [bore / 2, height]])
         return reference_polygon_distance(r, p[:, 2], poly)
     if op == "spring":
-        return _spring_sdf(a, p)
+        return reference_spring_sdf(a, p)
     if op == "rev":
         return reference_polygon_distance(np.hypot(p[:, 0], p[:, 1]), p[:, 2], np.asarray(a))
     if op == "move":
@@ -116,3 +142,13 @@ def test_random_polygons_read_as_edge_by_edge():
     # a grid of points (2-D shape kept) and more points than one block of edges
     px, py = np.meshgrid(np.linspace(-3, 3, 300), np.linspace(-3, 3, 40))
     _same(polygon_distance(px, py, poly), reference_polygon_distance(px, py, poly))
+
+
+def test_cone_and_nested_trees_read_as_the_recursion():
+    """A cone (no shipped body has one) inside a union, an intersection and a difference."""
+    from geargen.model.bodies import _Node, _node_sdf
+    cone = _Node("cone", (12.0, 5.0, 20.0, 4.0))
+    tree = _Node("diff", (_Node("union", (cone, _Node("move", (_Node("cyl", (30.0, 3.0, 8.0)), (0.0, 0.0, 20.0))))),
+                          (_Node("inter", (_Node("box", ((-2.0, -2.0, -1.0), (2.0, 2.0, 30.0))), cone)),)))
+    points = np.random.default_rng(5).uniform(-20.0, 30.0, size=(5000, 3))
+    _same(_node_sdf(tree, points), reference_node_sdf(tree, points))
