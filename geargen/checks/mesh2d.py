@@ -211,10 +211,9 @@ class PolarOutline:
         w_up = np.zeros(u.shape)
         kind = self.kinds[s]
         half_gap = 0.5 * self.pitch - self.root_half
-        for k, seg in enumerate(self.segments):
+        for k in np.flatnonzero(np.bincount(s, minlength=self.segment_count)):  # the segments present
+            seg = self.segments[k]
             m = s == k
-            if not np.any(m):
-                continue
             t = seg.t0 + f[m] * (seg.t1 - seg.t0)
             code = self.kinds[k]
             if code == INVOLUTE:
@@ -339,11 +338,22 @@ def _flanks(offsets, rows, teeth, z):
 
 def _place(held: PolarOutline, c, a, offsets, rows, teeth, rho, phi, w_lo, w_up):
     """Mesh-frame x, y of held-gear boundary points (broadcasting)."""
-    ang = a + teeth * held.pitch + phi
-    if offsets is not None:
-        lo, up = _flanks(offsets, rows, teeth, held.teeth)
-        ang = ang + up * w_up - lo * w_lo
-    return c[..., 0] + rho * np.cos(ang), c[..., 1] + rho * np.sin(ang)
+    return _placer(held, c, a, offsets, rows, teeth)(rho, phi, w_lo, w_up)
+
+
+def _placer(held: PolarOutline, c, a, offsets, rows, teeth):
+    """:func:`_place` of fixed teeth as a function of the points: each tooth's angle and flank
+    offsets read once (a refinement places the same teeth at every step)."""
+    base = a + teeth * held.pitch
+    lo, up = _flanks(offsets, rows, teeth, held.teeth) if offsets is not None else (None, None)
+    cx, cy = c[..., 0], c[..., 1]
+
+    def place(rho, phi, w_lo, w_up):
+        ang = base + phi
+        if lo is not None:
+            ang = ang + up * w_up - lo * w_lo
+        return cx + rho * np.cos(ang), cy + rho * np.sin(ang)
+    return place
 
 
 def _rotations(moving: PolarOutline, c, a, offsets, rows, x, y, exact: bool = True):
@@ -449,9 +459,11 @@ def _refine(moving, held, state: MeshState, teeth, i, t, m, ccw_side, conjugate:
     c_h, a_h = state.centre2[i], state.angle2[i]
     c_m, a_m = state.centre1[i], state.angle1[i]
 
+    place = _placer(held, c_h, a_h, state.flanks2, i, tooth)
+
     def evaluate(u):
         rho, phi, w_lo, w_up, kind = held.sector_polar(u)
-        x, y = _place(held, c_h, a_h, state.flanks2, i, tooth, rho, phi, w_lo, w_up)
+        x, y = place(rho, phi, w_lo, w_up)
         ccw, cw, rho_m = _rotations(moving, c_m, a_m, state.flanks1, i, x, y)
         v = np.where(ccw_side, ccw, cw)
         if conjugate:
