@@ -57,20 +57,45 @@ def _flank_points(spec: BevelGearSpec, samples: int) -> tuple[np.ndarray, np.nda
 
 
 def _sph(polar, azimuth) -> np.ndarray:
-    return np.stack([np.sin(polar) * np.cos(azimuth), np.sin(polar) * np.sin(azimuth), np.cos(polar)], axis=-1)
+    return _unit(np.sin(polar), np.cos(polar), azimuth)
+
+
+def _unit(sin_polar, cos_polar, azimuth) -> np.ndarray:
+    """:func:`_sph` with the polar angle's sine and cosine given (the flanks' own, read once)."""
+    return np.stack([sin_polar * np.cos(azimuth), sin_polar * np.sin(azimuth), cos_polar], axis=-1)
+
+
+@dataclass(frozen=True)
+class _Reading:
+    """Unit vectors read in a gear's frame once: polar angle, azimuth, whether within the tooth band,
+    the tooth's half angle there and sin(polar) (all that :func:`_depth` needs but the phase)."""
+
+    azimuth: np.ndarray
+    inside: np.ndarray
+    half: np.ndarray
+    sin_polar: np.ndarray
+
+
+def _reading(points: np.ndarray, spec: BevelGearSpec) -> _Reading:
+    g = bevel_geometry(spec)
+    th = np.arccos(np.clip(points[:, 2], -1, 1))
+    return _Reading(np.arctan2(points[:, 1], points[:, 0]), (th >= g.root_cone_angle) & (th <= g.tip_cone_angle),
+                    tooth_half_angle(spec, th), np.sin(th))
+
+
+def _depth(r: _Reading, spec: BevelGearSpec, phase: float) -> float:
+    """Deepest (angle, rad) of the read points inside one of the gear's teeth, the teeth centred at
+    azimuth phase + k pitch; negative: none inside (distance to the nearest)."""
+    ph = r.azimuth - phase
+    pitch = 2 * math.pi / spec.teeth
+    local = np.abs(ph - pitch * np.round(ph / pitch))
+    return float(np.where(r.inside, (r.half - local) * r.sin_polar, -np.inf).max())
 
 
 def _penetration(points: np.ndarray, spec: BevelGearSpec, phase: float) -> float:
     """Deepest (angle, rad) of unit vectors ``points`` (in the gear's frame) inside one of its teeth,
     the teeth centred at azimuth phase + k pitch; negative: none inside (distance to the nearest)."""
-    g = bevel_geometry(spec)
-    th = np.arccos(np.clip(points[:, 2], -1, 1))
-    ph = np.arctan2(points[:, 1], points[:, 0]) - phase
-    pitch = 2 * math.pi / spec.teeth
-    local = np.abs(ph - pitch * np.round(ph / pitch))
-    inside = (th >= g.root_cone_angle) & (th <= g.tip_cone_angle)
-    depth = np.where(inside, (tooth_half_angle(spec, th) - local) * np.sin(th), -np.inf)
-    return float(depth.max())
+    return _depth(_reading(points, spec), spec, phase)
 
 
 def check_bevel_pair(gear1: BevelGearSpec, gear2: BevelGearSpec, samples: int = 4000,
@@ -89,17 +114,17 @@ def check_bevel_pair(gear1: BevelGearSpec, gear2: BevelGearSpec, samples: int = 
     start = -turn * gear2.teeth / gear1.teeth  # gear 1 turned with it (the pitch cones roll)
     pitch1 = 2 * math.pi / gear1.teeth
 
+    # gear 2 is held: its flank points in gear 1's frame are read once; only gear 1's phase moves
+    gear2_in_1 = _reading(np.concatenate([_sph(th2, off2 + phase2 + k * 2 * math.pi / gear2.teeth) @ rot.T
+                                          for k in (-1, 0, 1)]), gear1)
+    sin1, cos1 = np.sin(th1), np.cos(th1)
+
     def overlap(phi1: float) -> float:
         # gear 1's flank points (its tooth nearest the generator and its neighbours) in gear 2's frame,
         # and gear 2's flank points in gear 1's frame: the deeper penetration of the two
-        worst = -np.inf
-        for k in (-1, 0, 1):
-            p1 = _sph(th1, off1 + phi1 + k * pitch1) @ rot  # rot.T applied to row vectors
-            worst = max(worst, _penetration(p1, gear2, phase2))
-        for k in (-1, 0, 1):
-            p2 = _sph(th2, off2 + phase2 + k * 2 * math.pi / gear2.teeth) @ rot.T
-            worst = max(worst, _penetration(p2, gear1, phi1))
-        return worst
+        p1 = np.concatenate([_unit(sin1, cos1, off1 + phi1 + k * pitch1) @ rot  # rot.T applied to row vectors
+                             for k in (-1, 0, 1)])
+        return max(_penetration(p1, gear2, phase2), _depth(gear2_in_1, gear1, phi1))
 
     def contact(direction: float) -> float:
         lo, hi = start, start + direction * pitch1 / 2

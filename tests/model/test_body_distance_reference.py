@@ -1,0 +1,154 @@
+"""The signed distances of geargen.model.bodies (compiled once per body, polygons read all edges at
+once) against the per-node recursion they replaced (issue 28), kept here as the reference: on
+every hardware body of the shipped designs and on random polygons, the two agree to the last bit
+but signed zeros (both are the same float operations on each point, in the same order)."""
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from geargen.design.assembly import load_design
+from geargen.drives.resolver import resolve
+import math
+
+from geargen.model.bodies import _node_box, _rect_sdf, polygon_distance, primitive_tree, signed_distance, spring_helix
+from geargen.model.components import analytic_body
+
+ASSEMBLIES = Path(__file__).resolve().parents[2] / "assemblies"
+DESIGNS = sorted(p.stem for p in ASSEMBLIES.glob("*.toml"))
+
+
+def reference_polygon_distance(px, py, poly):
+    """The edge-by-edge reading (geargen before issue 28)."""
+    d = np.full(px.shape, np.inf)
+    inside = np.zeros(px.shape, bool)
+    m = len(poly)
+    for i in range(m):
+        ax, ay = poly[i]
+        bx, by = poly[(i + 1) % m]
+        ex, ey = bx - ax, by - ay
+        wx, wy = px - ax, py - ay
+        length2 = ex * ex + ey * ey
+        t = np.clip((wx * ex + wy * ey) / length2, 0.0, 1.0) if length2 > 0 else 0.0
+        d = np.minimum(d, np.hypot(wx - t * ex, wy - t * ey))
+        crosses = (ay > py) != (by > py)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            xc = ax + (py - ay) * ex / np.where(ey == 0, 1.0, ey)
+        inside ^= crosses & (px < xc)
+    return np.where(inside, -d, d)
+
+
+def reference_spring_sdf(args, p):
+    """The spring's distance with each Newton step's sines and cosines computed twice (before issue 28)."""
+    d, mean, length, coils = args[:4]
+    z0, pitch = spring_helix(args)
+    radius = mean / 2
+    theta = np.arctan2(p[:, 1], p[:, 0]) % (2 * math.pi)
+    best = np.full(len(p), np.inf)
+    k0 = np.floor((p[:, 2] - z0) / pitch - theta / (2 * math.pi))
+    for dk in (-1.0, 0.0, 1.0, 2.0):
+        t = np.clip(theta + 2 * math.pi * (k0 + dk), 0.0, 2 * math.pi * coils)
+        for _ in range(4):
+            c = pitch / (2 * math.pi)
+            hx, hy, hz = radius * np.cos(t), radius * np.sin(t), z0 + c * t
+            dx, dy, dz = hx - p[:, 0], hy - p[:, 1], hz - p[:, 2]
+            g = dx * (-radius * np.sin(t)) + dy * (radius * np.cos(t)) + dz * c
+            h = radius * radius + c * c - (dx * radius * np.cos(t) + dy * radius * np.sin(t))
+            t = np.clip(t - g / np.where(np.abs(h) < 1e-12, 1e-12, h), 0.0, 2 * math.pi * coils)
+        c = pitch / (2 * math.pi)
+        dist = np.sqrt((radius * np.cos(t) - p[:, 0]) ** 2 + (radius * np.sin(t) - p[:, 1]) ** 2
+                       + (z0 + c * t - p[:, 2]) ** 2)
+        best = np.minimum(best, dist)
+    return np.maximum(best - d / 2, np.abs(p[:, 2] - length / 2) - length / 2)
+
+
+def reference_node_sdf(n, p):
+    """The per-node recursion (geargen before issue 28)."""
+    op, a = n.op, n.args
+    if op == "box":
+        lo, hi = np.asarray(a[0]), np.asarray(a[1])
+        c, h = (lo + hi) / 2, (hi - lo) / 2
+        qx, qy, qz = (np.abs(p[:, i] - c[i]) - h[i] for i in range(3))
+        outside = np.sqrt(np.maximum(qx, 0.0) ** 2 + np.maximum(qy, 0.0) ** 2 + np.maximum(qz, 0.0) ** 2)
+        return outside + np.minimum(np.maximum(np.maximum(qx, qy), qz), 0.0)
+    if op == "cyl":
+        d, height, bore = a
+        r = np.hypot(p[:, 0], p[:, 1])
+        qr = r - d / 2
+        if bore > 0:
+            qr = np.maximum(qr, bore / 2 - r)
+        qz = np.abs(p[:, 2] - height / 2) - height / 2
+        return _rect_sdf(qr, qz)
+    if op == "cone":
+        r0, r1, height, bore = a
+        r = np.hypot(p[:, 0], p[:, 1])
+        poly = np.array([[bore / 2, 0.0], [r0, 0.0], [r1, height], [bore / 2, height]])
+        return reference_polygon_distance(r, p[:, 2], poly)
+    if op == "spring":
+        return reference_spring_sdf(a, p)
+    if op == "rev":
+        return reference_polygon_distance(np.hypot(p[:, 0], p[:, 1]), p[:, 2], np.asarray(a))
+    if op == "move":
+        return reference_node_sdf(a[0], p - np.asarray(a[1]))
+    if op == "union":
+        return np.min([reference_node_sdf(c, p) for c in a], axis=0)
+    if op == "inter":
+        return np.max([reference_node_sdf(c, p) for c in a], axis=0)
+    if op == "diff":
+        out = reference_node_sdf(a[0], p)
+        for t in a[1]:
+            out = np.maximum(out, -reference_node_sdf(t, p))
+        return out
+    raise ValueError(op)
+
+
+def _same(new, old):
+    # exact equality: the same operations on the same floats (np.array_equal treats -0.0 == 0.0)
+    assert new.shape == old.shape
+    assert np.array_equal(new, old)
+
+
+@pytest.mark.parametrize("name", DESIGNS)
+def test_every_shipped_body_reads_as_the_per_node_recursion(name):
+    design = load_design(ASSEMBLIES / f"{name}.toml")
+    if not (design.section("layout") or design.section("synthesis")):
+        pytest.skip(f"{name} has no drive to resolve")
+    layout = resolve(design)
+    if layout.hardware is None:
+        pytest.skip(f"{name} has no hardware bodies")
+    rng = np.random.default_rng(28)
+    for component in layout.hardware.components:
+        body = analytic_body(component)
+        tree = primitive_tree(body)
+        lo, hi = _node_box(tree)
+        span = np.maximum(hi - lo, 1.0)
+        # the box widened by a fifth each way: points inside, on the boundary band and outside
+        points = lo - 0.2 * span + rng.uniform(0.0, 1.4, size=(4000, 3)) * span
+        _same(signed_distance(body, points), reference_node_sdf(tree, points))
+
+
+def test_random_polygons_read_as_edge_by_edge():
+    rng = np.random.default_rng(7)
+    for m in (3, 4, 17, 150):
+        angles = np.sort(rng.uniform(0.0, 2 * np.pi, m))
+        radii = rng.uniform(0.5, 2.0, m)
+        poly = np.column_stack([radii * np.cos(angles), radii * np.sin(angles)])
+        poly[1] = poly[0]  # a zero-length edge: read at its start point
+        poly[2, 1] = poly[3, 1] if m > 3 else poly[2, 1]  # a horizontal edge (ey == 0)
+        px, py = rng.uniform(-2.5, 2.5, (2, 3000))
+        px[:m], py[:m] = poly[:, 0], poly[:, 1]  # on the vertices
+        _same(polygon_distance(px, py, poly), reference_polygon_distance(px, py, poly))
+    # a grid of points (2-D shape kept) and more points than one block of edges
+    px, py = np.meshgrid(np.linspace(-3, 3, 300), np.linspace(-3, 3, 40))
+    _same(polygon_distance(px, py, poly), reference_polygon_distance(px, py, poly))
+
+
+def test_cone_and_nested_trees_read_as_the_recursion():
+    """A cone (no shipped body has one) inside a union, an intersection and a difference."""
+    from geargen.model.bodies import _Node, _node_sdf
+    cone = _Node("cone", (12.0, 5.0, 20.0, 4.0))
+    tree = _Node("diff", (_Node("union", (cone, _Node("move", (_Node("cyl", (30.0, 3.0, 8.0)), (0.0, 0.0, 20.0))))),
+                          (_Node("inter", (_Node("box", ((-2.0, -2.0, -1.0), (2.0, 2.0, 30.0))), cone)),)))
+    points = np.random.default_rng(5).uniform(-20.0, 30.0, size=(5000, 3))
+    _same(_node_sdf(tree, points), reference_node_sdf(tree, points))
