@@ -29,6 +29,7 @@ import json
 import math
 import os
 import platform
+import signal
 import sys
 import time
 from dataclasses import dataclass, field, replace
@@ -813,7 +814,6 @@ def _die_with_parent(parent_pid: int) -> None:
     handler would turn it into an interruption here) and SIGINT is ignored: Ctrl-C reaches the
     whole process group, and the parent, which handles it, ends this process itself."""
     import ctypes
-    import signal
     signal.signal(signal.SIGTERM, signal.SIG_DFL)
     signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
@@ -828,7 +828,8 @@ def _die_with_parent(parent_pid: int) -> None:
 def _run_in_child(conn, fn, args, parent_pid: int | None = None) -> None:
     """Body of the second process: send ``("ok", seconds, fn(*args))`` or ``("error", 0, text)``."""
     if parent_pid is not None:
-        _die_with_parent(parent_pid)
+        _die_with_parent(parent_pid)  # its own signal dispositions first, then what was held arrives
+    signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})  # held by Alongside.start
     try:
         t0 = time.perf_counter()
         value = fn(*args)
@@ -874,10 +875,15 @@ class Alongside:
             # the objects made so far out of the garbage collector's sight while forking: its passes
             # in the child would write to every one and copy the pages it shares with this process
             gc.freeze()
+            # Ctrl-C and SIGTERM held while forking: one arriving in the fork's at-fork hooks raised
+            # Interrupted where Python ignores exceptions, and the build went on and exited 0; held,
+            # it is raised here once the child exists (which unblocks them, _run_in_child)
+            held = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT, signal.SIGTERM})
             try:
                 process.start()
             finally:
                 gc.unfreeze()
+                signal.pthread_sigmask(signal.SIG_SETMASK, held)
         except Exception:  # e.g. inside a daemonic worker, which may not have children
             return None
         sender.close()

@@ -14,6 +14,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import textwrap
 import threading
 import time
 from pathlib import Path
@@ -410,6 +411,29 @@ def test_an_interrupted_build_cleans_up_and_exits_3(tmp_path, sig):
     assert f"interrupted ({how})" in text and "Traceback" not in text
     assert not out.exists() and _temporaries(tmp_path) == []
     assert _wait_group_gone(p.pid) == []
+
+
+def test_a_signal_while_forking_interrupts_the_build():
+    """A SIGTERM that arrived while the build forked one of its processes (the drawings', the
+    figures', the mesh checks') was raised inside the fork's at-fork hooks, where Python ignores
+    exceptions: the build went on and exited 0 (seen once in CI-like runs). The hook here sends
+    the signal at exactly that moment."""
+    code = textwrap.dedent("""
+        import os, signal
+        from geargen.cli import _sigterm_as_interrupt
+        from geargen.errors import Interrupted
+        from geargen.pipeline import Alongside
+        os.register_at_fork(after_in_parent=lambda: os.kill(os.getpid(), signal.SIGTERM))
+        with _sigterm_as_interrupt():
+            try:
+                job = Alongside.start(sum, [1, 2])
+            except Interrupted:
+                print("interrupted")
+            else:
+                print("went on", job.result(30))
+    """)
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert done.stdout.strip() == "interrupted", done.stdout + done.stderr
 
 
 @pytest.mark.slow
