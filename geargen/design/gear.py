@@ -133,8 +133,29 @@ class ShopData:
     thickness_allowance_series: str | None = None
 
 
+class HelicalTeeth:
+    """The transverse quantities of teeth cut by a rack of normal ``module`` and ``pressure_angle``
+    at ``helix_angle`` (a cylindrical gear's and a rack's: one home for both)."""
+
+    module: float
+    pressure_angle: float
+    helix_angle: float
+
+    @property
+    def is_helical(self) -> bool:
+        return self.helix_angle > 0.0
+
+    @property
+    def transverse_module(self) -> float:
+        return self.module / math.cos(self.helix_angle)
+
+    @property
+    def transverse_pressure_angle(self) -> float:
+        return math.atan(math.tan(self.pressure_angle) / math.cos(self.helix_angle))
+
+
 @dataclass(frozen=True)
-class GearSpec:
+class GearSpec(HelicalTeeth):
     """An external involute gear (spur when ``helix_angle`` is 0), normal system, mm and rad.
 
     ``thinning`` is the tooth-thickness reduction for backlash, as a transverse arc length at
@@ -282,19 +303,7 @@ class GearSpec:
                                   "whose formulas must not be extrapolated",
                                   f"a gear with {what} in {iso1328_scope_text(quantity)}, or no accuracy_grade")
 
-    # --- closed-form basics; the full involute geometry lives in geargen.core ---
-    @property
-    def is_helical(self) -> bool:
-        return self.helix_angle > 0.0
-
-    @property
-    def transverse_module(self) -> float:
-        return self.module / math.cos(self.helix_angle)
-
-    @property
-    def transverse_pressure_angle(self) -> float:
-        return math.atan(math.tan(self.pressure_angle) / math.cos(self.helix_angle))
-
+    # --- closed-form basics (and HelicalTeeth's); the full involute geometry lives in geargen.core ---
     @property
     def transverse_pitch(self) -> float:
         """Circular pitch on the reference circle, transverse section (mm)."""
@@ -635,6 +644,6 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
 
 
 __all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter",
-           "INTERNAL_RIM_MODULES", "GearSpec", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS",
+           "INTERNAL_RIM_MODULES", "GearSpec", "HelicalTeeth", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS",
            "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
            "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

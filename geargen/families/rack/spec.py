@@ -31,7 +31,7 @@ import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 
-from geargen.design.gear import DEG, HANDS, check_number, with_field_prefix
+from geargen.design.gear import DEG, HANDS, HelicalTeeth, check_number, with_field_prefix
 from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
 from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, module_from_diametral_pitch
@@ -61,7 +61,7 @@ def corner_tangent_length(pressure_angle: float) -> float:
 
 
 @dataclass(frozen=True)
-class RackSpec:
+class RackSpec(HelicalTeeth):
     """A straight-tooth (spur, ``helix_angle`` 0) or helical rack, normal system, mm and rad.
 
     Frame of the solid (:mod:`geargen.families.rack.solid`): x along the rack's length (0 .. length),
@@ -158,19 +158,7 @@ class RackSpec:
                                   "build", f"a {what} of 0 (the largest radius) or of at least {SHORTEST_SEGMENT:g} "
                                   "modules")
 
-    # --- closed-form basics (the pair geometry lives in geargen.families.rack.geometry)
-    @property
-    def is_helical(self) -> bool:
-        return self.helix_angle > 0.0
-
-    @property
-    def transverse_module(self) -> float:
-        return self.module / math.cos(self.helix_angle)
-
-    @property
-    def transverse_pressure_angle(self) -> float:
-        return math.atan(math.tan(self.pressure_angle) / math.cos(self.helix_angle))
-
+    # --- closed-form basics (and HelicalTeeth's; the pair geometry lives in geargen.families.rack.geometry)
     @property
     def normal_pitch(self) -> float:
         return math.pi * self.module
