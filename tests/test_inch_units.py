@@ -287,3 +287,14 @@ def test_a_metric_designs_masses_stay_in_kg():
     # 1 kg = 2.2046 lb; 1 kg·m^2 = 1 / (0.45359237 x 0.0254^2) = 3417.2 lb·in^2
     assert TextUnits(length="in").text("mass", 1.0) == "2.205 lb"
     assert TextUnits(length="in").text("inertia", 1.0) == "3417 lb·in^2"
+
+
+def test_the_robot_joints_family_sheets_give_the_diametral_pitch(built_assemblies):
+    # the inch robot joint's bevel and cluster sheets printed their module in mm
+    # ("Module at the heel m_e 0.79375 mm", "Large gear: teeth, module 48, 0.79375 mm") beside inch
+    # lengths; an inch sheet names the diametral pitch instead (32 1/in: 25.4 / 0.79375)
+    drawings = built_assemblies["robot_joint"] / "drawings"
+    for name in ("bevel_gear", "bevel_pinion", "cluster"):
+        text = _svg_text(drawings / f"{name}-drawing.svg")
+        assert not re.search(r"(?<![A-Za-z_])mm(?![A-Za-z_])", text), name
+        assert "1/in" in text and "diametral pitch" in text, name

@@ -202,12 +202,19 @@ def _rack_text(data: dict) -> str:
     return text
 
 
+def pitch_row(module_mm: float, unit: str, kind: str = "Normal", symbol: str = "n") -> tuple[str, str, str]:
+    """The pitch as one sheet row in the design's system: the module on a metric sheet, the
+    diametral pitch on an inch one (no mm on it); ``kind`` "" names it plainly."""
+    if unit == "in":
+        return f"{kind} diametral pitch".strip(), f"P_{symbol}", f"{LENGTH_SUFFIXES['in'] / module_mm:.6g} 1/in"
+    return f"{kind} module".strip(), f"m_{symbol}", f"{module_mm:.6g} mm"
+
+
 def pitch_rows(module_mm: float, unit: str, kind: str = "Normal", symbol: str = "n") -> list[tuple[str, str, str]]:
-    """The pitch as a sheet row in the design's system: a metric sheet gives the module (and the
-    diametral pitch it equals, for inch tooling), an inch sheet the diametral pitch only (no mm on it)."""
-    module = (f"{kind} module", f"m_{symbol}", f"{module_mm:.6g} mm")
-    pitch = (f"{kind} diametral pitch", f"P_{symbol}", f"{LENGTH_SUFFIXES['in'] / module_mm:.6g} 1/in")
-    return [pitch] if unit == "in" else [module, pitch]
+    """The gear's pitch rows: a metric sheet gives the module and the diametral pitch it equals (for
+    inch tooling), an inch sheet the diametral pitch only."""
+    own = pitch_row(module_mm, unit, kind, symbol)
+    return [own] if unit == "in" else [own, pitch_row(module_mm, "in", kind, symbol)]
 
 
 def data_rows(data: dict, scale: str, version: str, source: str, chordal: bool = True) -> list[tuple[str, str, str]]:
@@ -901,7 +908,7 @@ def write_figure(fig, folder, name: str) -> dict[str, Path]:
 __all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
            "blank_rows", "RUNOUT_SYMBOL", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_tolerance", "format_limits", "preferred_scale", "scale_text",
-           "drawing_scales", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
+           "drawing_scales", "pitch_row", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
            "draw_title_block", "view_title", "dimension", "outline_points", "bore_points", "centre_cross"]
 
 

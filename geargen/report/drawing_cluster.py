@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from geargen.report import drawing as sheet_parts
-from geargen.report.drawing import write_figure
+from geargen.report.drawing import pitch_row, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet,
                                           polyline, value_text, view_title)
 from geargen.units import from_mm
@@ -31,7 +31,8 @@ def cluster_rows(data: dict) -> list[tuple[str, str, str]]:
     for key, label in (("large", "Large gear"), ("small", "Small gear")):
         g = data[key]
         helix = f"{g['helix_angle_deg']:.4f}° {g['hand']}" if g["hand"] else "0° (spur)"
-        rows += [(f"{label}: teeth, module", "z, m_n", f"{g['teeth']}, {g['normal_module_mm']:.6g} mm"),
+        pitch = pitch_row(g["normal_module_mm"], u, "")
+        rows += [(f"{label}: teeth, {pitch[0]}", f"z, {pitch[1]}", f"{g['teeth']}, {pitch[2]}"),
                  (f"{label}: pressure angle, helix", "α_n, β", f"{g['normal_pressure_angle_deg']:.4f}°, {helix}"),
                  (f"{label}: profile shift", "x_n", f"{g['profile_shift_normal']:+.4f}"),
                  (f"{label}: reference diameter", "d", L(g["reference_diameter"])),

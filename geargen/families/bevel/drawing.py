@@ -12,7 +12,7 @@ import numpy as np
 from geargen.families.bevel.geometry import bevel_geometry, flat_back_envelope
 from geargen.families.bevel.spec import BevelGearSpec
 from geargen.families.bevel.geometry import back_plane_distance
-from geargen.report.drawing import format_number, NOT_SPECIFIED, scale_text, write_figure
+from geargen.report.drawing import pitch_row, format_number, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
                                           polyline, value_text, view_title)
 from geargen.units import from_mm
@@ -26,7 +26,7 @@ def bevel_rows(data: dict) -> list[tuple[str, str, str]]:
     mate = data.get("mating_gear")
     rows = [
         ("Number of teeth", "z", f"{data['teeth']}"),
-        ("Module at the heel", "m_e", f"{data['module_mm']:.6g} mm"),
+        pitch_row(data["module_mm"], u, "Heel", "e"),
         ("Pressure angle", "α", angle_text(data["pressure_angle_deg"])),
         ("Shaft angle", "Σ", angle_text(data["shaft_angle_deg"])),
         ("Profile shift coefficient", "x", f"{data['profile_shift']:+.4f}"),

@@ -15,7 +15,7 @@ import math
 import numpy as np
 
 from geargen.families.worm.geometry import rim_radius, worm_geometry
-from geargen.report.drawing import pitch_rows, format_number, NOT_SPECIFIED, scale_text, write_figure
+from geargen.report.drawing import pitch_row, pitch_rows, format_number, NOT_SPECIFIED, scale_text, write_figure
 from geargen.report.drawing_sheet import (VIEWS, angle_text, chain_line, closing_rows, dimension, draw_sheet, fit_scale,
                                           polyline, value_text, view_title)
 from geargen.units import from_mm
@@ -67,7 +67,7 @@ def wheel_rows(data: dict) -> list[tuple[str, str, str]]:
     hob = data["hob"]
     return [
         ("Number of teeth", "z_2", f"{data['wheel_teeth']}"),
-        ("Transverse module (= worm m_x)", "m_t", f"{data['axial_module_mm']:.6g} mm"),
+        pitch_row(data["axial_module_mm"], u, "Transverse", "t"),  # = the worm's axial pitch
         ("Transverse pressure angle (= α_x)", "α_t", angle_text(data["axial_pressure_angle_deg"])),
         ("Hand and lead angle", "γ", f"{data['hand']}, {angle_text(data['lead_angle_deg'])}"),
         ("Profile shift coefficient", "x_2", f"{data['wheel_profile_shift']:+.4f}"),
