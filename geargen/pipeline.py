@@ -1014,11 +1014,11 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     planetary = list(dc.planetary) if dc is not None else []  # mm, rad (geargen.drives.planetary.verdict)
     rack = list(dc.rack) if dc is not None else []  # mm, N (geargen.drives.rack_dual_pinion.verdict)
     structure = result.checks.structure
-    from geargen.checks.results import _BEVEL_LENGTHS, _PLANETARY_LENGTHS, _RACK_LENGTHS
+    from geargen.checks.results import BEVEL_LENGTHS, PLANETARY_LENGTHS, RACK_LENGTHS
     u = result.design.length_unit
     meshes, tolerances = _in_design_unit(meshes, _MESH_LENGTHS, u), _in_design_unit(tolerances, _TOLERANCE_LENGTHS, u)
-    bevel, planetary = _in_design_unit(bevel, _BEVEL_LENGTHS, u), _in_design_unit(planetary, _PLANETARY_LENGTHS, u)
-    rack = _in_design_unit(rack, _RACK_LENGTHS, u)
+    bevel, planetary = _in_design_unit(bevel, BEVEL_LENGTHS, u), _in_design_unit(planetary, PLANETARY_LENGTHS, u)
+    rack = _in_design_unit(rack, RACK_LENGTHS, u)
     if overlaps is not None:
         overlaps[f"contact_tolerance_{u}"] = float(from_mm(ov.contact_tolerance, u))
         overlaps[f"missing_contacts_{u}"] = [[a, b, float(from_mm(gap, u))] for a, b, gap in overlaps["missing_contacts"]]
