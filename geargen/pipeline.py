@@ -45,7 +45,7 @@ from geargen.design.export import export_settings
 from geargen.errors import GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement
 from geargen.drives.resolver import resolve
-from geargen.units import LENGTH_SUFFIXES
+from geargen.units import LENGTH_SUFFIXES, from_mm
 
 #: the build folder's sub-folder of the gears' drawings, DXF profiles and gear data
 DRAWING_FOLDER = "drawings"
@@ -498,7 +498,6 @@ def bevel_pair_drawings(layout: Layout, out_folder: Path, source: str, design_fi
     from geargen.drives.dual_pinion.bevel import bevel_drive
     from geargen.families.bevel.data import bevel_gear_data
     from geargen.families.bevel.drawing import bevel_drawings
-    from geargen.units import from_mm
 
     placed = bevel_drive(layout)
     if placed is None:
@@ -965,8 +964,29 @@ def write_resolved(layout: Layout, folder: Path) -> Path:
     return path
 
 
+#: the lengths (mm) of the manifest's check records, each also written under ``<key>_<design unit>``
+#: (issue 27: JSON keys carry their unit, and an inch design's numbers are read in inches)
+_MESH_LENGTHS = ("design_min", "design_max", "modelled", "centre_distance", "plane_z", "backlash_min", "backlash_max",
+                 "path2_backlash_min", "path2_backlash_max", "axial_clearance", "min_tip_clearance",
+                 "interference_depth_max")
+_TOLERANCE_LENGTHS = ("nominal_min_backlash", "worst_case_min_backlash", "worst_case_min_normal_backlash",
+                      "worst_case_centre_distance_change", "monte_carlo_min_backlash", "monte_carlo_min_backlash_p01",
+                      "monte_carlo_min_backlash_median", "monte_carlo_model_difference", "carriage_travel",
+                      "carriage_travel_low", "carriage_travel_high", "monte_carlo_carriage_travel_low",
+                      "monte_carlo_carriage_travel_high", "carriage_travel_limit_low", "carriage_travel_limit_high")
+
+
+def _in_design_unit(records: list[dict], lengths, unit: str) -> list[dict]:
+    """``records`` (lengths in mm) with every number of ``lengths`` also under ``<key>_<unit>`` in the
+    design's ``unit``: keys are added, none changes meaning."""
+    def converted(v):
+        return float(from_mm(v, unit)) if isinstance(v, (int, float, np.floating)) and not isinstance(v, bool) else v
+    return [r | {f"{k}_{unit}": converted(r[k]) for k in lengths if k in r} for r in records]
+
+
 def _checks_summary(result: BuildResult) -> dict[str, Any]:
-    """Mesh-check and overlap results for the manifest (lengths in mm)."""
+    """Mesh-check and overlap results for the manifest: lengths in mm under the plain keys (the
+    block's ``length_unit``), each also under ``<key>_<design unit>`` (``design_length_unit``)."""
     meshes = []
     for m in result.checks.meshes:
         e = {k: m[k] for k in ("mesh", "gear1", "gear2", "engaged", "design_min", "design_max", "modelled",
@@ -994,7 +1014,15 @@ def _checks_summary(result: BuildResult) -> dict[str, Any]:
     planetary = list(dc.planetary) if dc is not None else []  # mm, rad (geargen.drives.planetary.verdict)
     rack = list(dc.rack) if dc is not None else []  # mm, N (geargen.drives.rack_dual_pinion.verdict)
     structure = result.checks.structure
-    return {"length_unit": "mm", "backlash_kind": BACKLASH_KIND,
+    from geargen.checks.results import BEVEL_LENGTHS, PLANETARY_LENGTHS, RACK_LENGTHS
+    u = result.design.length_unit
+    meshes, tolerances = _in_design_unit(meshes, _MESH_LENGTHS, u), _in_design_unit(tolerances, _TOLERANCE_LENGTHS, u)
+    bevel, planetary = _in_design_unit(bevel, BEVEL_LENGTHS, u), _in_design_unit(planetary, PLANETARY_LENGTHS, u)
+    rack = _in_design_unit(rack, RACK_LENGTHS, u)
+    if overlaps is not None:
+        overlaps[f"contact_tolerance_{u}"] = float(from_mm(ov.contact_tolerance, u))
+        overlaps[f"missing_contacts_{u}"] = [[a, b, float(from_mm(gap, u))] for a, b, gap in overlaps["missing_contacts"]]
+    return {"length_unit": "mm", "design_length_unit": u, "backlash_kind": BACKLASH_KIND,
             "meshes": meshes, "bevel_meshes": bevel, "planetary_meshes": planetary, "tolerances": tolerances,
             "overlaps": overlaps,
             "rack_meshes": [r for r in rack if r["mesh"] != "carriage"],

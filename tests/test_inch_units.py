@@ -116,7 +116,15 @@ def _svg_text(path: Path) -> str:
 
 
 @pytest.fixture(scope="module")
-def outputs(tmp_path_factory) -> dict[str, tuple[str, set[str]]]:
+def inch_build(tmp_path_factory) -> tuple[Path, str]:
+    """The one build of the inch design: its folder, and what ``geargen build`` printed."""
+    tmp = tmp_path_factory.mktemp("inch_build")
+    build = tmp / "build"
+    return build, _geargen("build", "--quiet", INCH_DESIGN, "--out", build, cwd=tmp)
+
+
+@pytest.fixture(scope="module")
+def outputs(tmp_path_factory, inch_build) -> dict[str, tuple[str, set[str]]]:
     """Every human-readable output: where -> (text, the metric units its design file used)."""
     tmp = tmp_path_factory.mktemp("inch")
     design_units = units_used_by(INCH_DESIGN)
@@ -139,18 +147,19 @@ def outputs(tmp_path_factory) -> dict[str, tuple[str, set[str]]]:
                                               "--bore-in", 0.5, "--no-stl", "--out", tmp / "gear", cwd=tmp), set())
     for svg in sorted((tmp / "gear").glob("*.svg")):
         out[f"gear drawing/{svg.name}"] = (_svg_text(svg), set())
-    build = tmp / "build"
-    out["build split_pinion_inch"] = (_geargen("build", "--quiet", INCH_DESIGN, "--out", build, cwd=tmp), design_units)
+    build, printed = inch_build
+    out["build split_pinion_inch"] = (printed, design_units)
     for path in sorted(build.rglob("*")):
+        where = str(path.relative_to(build.parent))
         if path.suffix in (".md", ".txt", ".html"):
-            out[str(path.relative_to(tmp))] = (path.read_text(), design_units)
+            out[where] = (path.read_text(), design_units)
         elif path.suffix == ".svg" and path.parent.name == "drawings":
-            out[str(path.relative_to(tmp))] = (_svg_text(path), design_units)
+            out[where] = (_svg_text(path), design_units)
         elif path.suffix == ".json":
-            out[str(path.relative_to(tmp))] = ("\n".join(_json_strings(json.loads(path.read_text()))), design_units)
+            out[where] = ("\n".join(_json_strings(json.loads(path.read_text()))), design_units)
         elif path.name == "data.js":  # the review page's data: one JSON object assigned to a global
             data = json.loads(path.read_text().split("=", 1)[1].strip().rstrip(";"))
-            out[str(path.relative_to(tmp))] = ("\n".join(_json_strings(data)), design_units)
+            out[where] = ("\n".join(_json_strings(data)), design_units)
     return out
 
 
@@ -190,6 +199,29 @@ def test_stiffness_torques_come_back_in_the_files_unit(outputs):
     # [preload] max_output_torque_in_lbf = 120: the stiffness summary prints 120 in·lbf back
     text = outputs["stiffness split_pinion_inch"][0]
     assert re.search(r"maximum drive torque\s+120 in·lbf", text), text
+
+
+def test_the_manifests_check_lengths_come_in_inches_too(inch_build):
+    # the checks block keeps its mm keys (length_unit "mm") and adds each length as <key>_in; the
+    # file's own numbers come back: [layout] centre_distance_in = 2.7, circumferential_backlash_min_in =
+    # 0.0015 and _max_in = 0.003 for each pinion's mesh with the output
+    checks = json.loads((inch_build[0] / "manifest.json").read_text())["checks"]
+    assert checks["length_unit"] == "mm" and checks["design_length_unit"] == "in"
+    output_meshes = [m for m in checks["meshes"] if "output" in (m["gear1"], m["gear2"])]
+    assert output_meshes
+    for m in output_meshes:
+        # 1e-9 in: the file's decimal inches round-trip through mm (x 25.4 and back) in floating point
+        assert m["centre_distance_in"] == pytest.approx(2.7, abs=1e-9)
+        assert (m["design_min_in"], m["design_max_in"]) == (pytest.approx(0.0015, abs=1e-9), pytest.approx(0.003, abs=1e-9))
+    converted = 0
+    for record in checks["meshes"] + checks["tolerances"] + checks["bevel_meshes"]:
+        for key, value in record.items():
+            if key.endswith("_in") and isinstance(value, float):
+                # one inch is 25.4 mm exactly; 1e-12 relative: one floating-point division
+                assert value == pytest.approx(record[key[:-3]] / 25.4, rel=1e-12), key
+                converted += 1
+    # the meshes' backlash range, centre distance and plane and the tolerance study's backlashes at least
+    assert converted >= 3 * len(checks["meshes"])
 
 
 def _inch_design_with(replace: dict[str, str]):

@@ -118,12 +118,12 @@ class Failure:
 
 
 #: quantities (names used in Failure.quantity) that are lengths
-_PLANETARY_LENGTHS = ("centre_distance", "backlash", "closed_form_backlash", "play_ccw", "play_cw", "design_min",
+PLANETARY_LENGTHS = ("centre_distance", "backlash", "closed_form_backlash", "play_ccw", "play_cw", "design_min",
                       "sweep_min", "sweep_max",
                       "design_max", "carrier_radius", "coaxiality_difference", "coaxiality_tolerance",
                       "neighbour_tip_gap", "planet_tip_clearance")
-_BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")
-_RACK_LENGTHS = ("backlash_min", "backlash_max", "design_min", "design_max", "placed_backlash", "working_flank_gap",
+BEVEL_LENGTHS = ("backlash", "design_backlash", "play_positive", "play_negative", "tip_clearance", "apex_distance")
+RACK_LENGTHS = ("backlash_min", "backlash_max", "design_min", "design_max", "placed_backlash", "working_flank_gap",
                  "free_flank_gap", "tip_clearance", "centre_offset", "carriage_y", "carriage_deviation",
                  "carriage_needed", "carriage_travel", "carriage_y_nominal", "loop_error_travel", "rack_offset",
                  "rack_backlash")
@@ -495,14 +495,15 @@ class DesignCheck:
                           for key, v in b.items()} for b in self.backlash],
             "backlash_range": [{key: (_scaled(v, s) if key in _RANGE_LENGTHS else v) for key, v in r.items()}
                                for r in self.backlash_range],
-            "bevel": [{key: (_num(v * s) if key in _BEVEL_LENGTHS else v) for key, v in b.items()} for b in self.bevel],
-            "planetary": [{key: (_num(v * s) if key in _PLANETARY_LENGTHS else v) for key, v in b.items()}
+            "bevel": [{key: (_num(v * s) if key in BEVEL_LENGTHS else v) for key, v in b.items()} for b in self.bevel],
+            "planetary": [{key: (_num(v * s) if key in PLANETARY_LENGTHS else v) for key, v in b.items()}
                           for b in self.planetary],
-            "rack": [{key: (_num(v * s) if key in _RACK_LENGTHS and v is not None else v) for key, v in b.items()}
+            "rack": [{key: (_num(v * s) if key in RACK_LENGTHS and v is not None else v) for key, v in b.items()}
                      for b in self.rack],
             "load_capacity": None if self.load_capacity is None else self.load_capacity.to_dict(),
         }
 
 
 __all__ = ["FAILURE_KINDS", "INTERFERENCE_KINDS", "INTERFERENCE_CODES", "Failure", "MeshSweep", "MeshCheck",
-           "CarriageTravelLimits", "ToleranceResult", "DesignCheck"]
+           "CarriageTravelLimits", "ToleranceResult", "DesignCheck", "BEVEL_LENGTHS", "PLANETARY_LENGTHS",
+           "RACK_LENGTHS"]

@@ -34,6 +34,10 @@ Sources of the formula text (the standard itself is not public): independent pub
 implementations quoting formulas 5-12, clause 5.2.2 and the rounding of 5.2.3 agree term for
 term; the scope ranges are quoted in FreeCAD pull request #26676.
 
+Radial composite (double-flank) tolerances are those of ISO 1328-2:1997 ("Cylindrical gears - ISO
+system of accuracy - Part 2: Definitions and allowable values of deviations relevant to radial
+composite deviations and runout information"), clause 7, see :func:`iso1328_2_radial_composite`.
+
 ANSI/AGMA 2015-1-A01 (classes A2..A11) is not implemented: its formulas and rounding could not
 be established from a citable source. Inch designs use ISO 1328-1:2013 with the gear's own mm
 values (the formulas are in mm and um).
@@ -95,16 +99,19 @@ class AccuracyTolerances:
     helix_form: float
     helix_total: float
     runout: float
+    #: the radial composite block (:func:`radial_composite_block`) of the same grade number
+    radial_composite: dict | None = None
 
     def to_dict(self) -> dict:
         """The gear-data contract's ``accuracy`` block (keys of ../shared/contracts/gear-data.md,
-        plus the slope and form tolerances)."""
+        plus the slope and form tolerances and the ``radial_composite`` block)."""
         return {"standard": self.standard, "grade": self.grade,
                 "single_pitch_um": self.single_pitch, "cumulative_pitch_um": self.cumulative_pitch,
                 "profile_total_um": self.profile_total, "helix_total_um": self.helix_total,
                 "runout_um": self.runout,
                 "profile_slope_um": self.profile_slope, "profile_form_um": self.profile_form,
-                "helix_slope_um": self.helix_slope, "helix_form_um": self.helix_form}
+                "helix_slope_um": self.helix_slope, "helix_form_um": self.helix_form,
+                "radial_composite": self.radial_composite}
 
 
 def _check_scope(field: str, quantity: str, value) -> None:
@@ -137,7 +144,98 @@ def iso1328_tolerances(grade: int, reference_diameter: float, normal_module: flo
         single_pitch=r(f_pt), cumulative_pitch=r(F_pt), profile_slope=r(f_hat), profile_form=r(f_fat),
         profile_total=r(math.hypot(f_hat, f_fat)),  # 9: from the unrounded slope and form values
         helix_slope=r(f_hbt), helix_form=r(f_fbt), helix_total=r(math.hypot(f_hbt, f_fbt)),  # 12: likewise
-        runout=r(0.9 * F_pt))
+        runout=r(0.9 * F_pt), radial_composite=radial_composite_block(grade, d, mn))
+
+
+# --- ISO 1328-2:1997: radial composite (double-flank) tolerances ------------------------------------
+
+ISO_1328_2 = "ISO 1328-2:1997"
+#: ISO 1328-2:1997 clause 6 and 7: grades 4 (finest) .. 12; normal module 0.2 .. 10 mm and reference
+#: diameter 5 .. 1000 mm, each in ranges whose bounds are these (a value on a bound belongs to the
+#: range below it, the first range includes its lower bound)
+ISO_1328_2_GRADES = (4, 12)
+ISO_1328_2_MODULE_BOUNDS = (0.2, 0.5, 0.8, 1.0, 1.5, 2.5, 4.0, 6.0, 10.0)
+ISO_1328_2_DIAMETER_BOUNDS = (5.0, 20.0, 50.0, 125.0, 280.0, 560.0, 1000.0)
+
+
+def _range_mean(field: str, value: float, bounds: tuple[float, ...]) -> float:
+    """The geometric mean sqrt(lo hi) of the ISO 1328-2:1997 range holding ``value`` (mm): the
+    standard evaluates its formulas there, not at the gear's own value."""
+    if not (isinstance(value, (int, float)) and math.isfinite(value) and bounds[0] <= value <= bounds[-1]):
+        raise DesignError(field, f"{value!r} is outside the range of {ISO_1328_2} (its formulas must not be "
+                          "extrapolated)", f"[{bounds[0]:g}, {bounds[-1]:g}] mm")
+    hi = next(b for b in bounds[1:] if value <= b)
+    lo = bounds[bounds.index(hi) - 1]
+    return math.sqrt(lo * hi)
+
+
+@dataclass(frozen=True)
+class RadialCompositeTolerances:
+    """ISO 1328-2:1997 radial composite tolerances (um) of one gear and grade, rounded as ISO 1328
+    rounds; ``diameter_mean`` and ``module_mean`` (mm) are the range means the formulas used."""
+
+    standard: str
+    grade: int
+    diameter_mean: float
+    module_mean: float
+    total: float  # F_i'' : total radial composite deviation, one revolution against a master gear
+    tooth_to_tooth: float  # f_i'' : its largest change over one pitch
+
+    def to_dict(self) -> dict:
+        return {"standard": self.standard, "grade": self.grade,
+                "total_radial_composite_um": self.total, "tooth_to_tooth_radial_composite_um": self.tooth_to_tooth,
+                "range_mean_diameter_mm": self.diameter_mean, "range_mean_normal_module_mm": self.module_mean}
+
+
+def iso1328_2_radial_composite(grade: int, reference_diameter: float, normal_module: float) -> RadialCompositeTolerances:
+    """ISO 1328-2:1997 clause 7 tolerances of grade ``grade`` (4..12) for a gear of reference diameter and
+    normal module in mm, with d and m_n the geometric means of the standard's ranges holding them:
+
+        F_i'' = (3.2 m_n + 1.01 sqrt(d) + 6.4) sqrt(2)^(grade - 5)    total radial composite
+        f_i'' = (2.96 m_n + 0.01 sqrt(d) + 0.8) sqrt(2)^(grade - 5)   tooth-to-tooth radial composite
+
+    each rounded as :func:`iso1328_round` (the 1997 edition's rule is the same: whole um above 10 um,
+    0.5 um from 5 to 10 um, 0.1 um below). Source of the formula text (the standard is not public): a
+    public implementation quoting it with the ranges above, geometric means and rounding (the MITCalc
+    web port's "Standard Engineering Tables", ``calcISO1328Tolerances``, "ISO 1328 - Part 2 (Radial
+    composite and runout)"); the grade range 4..12 and module range 0.2..10 mm are also stated in the
+    edition's published abstract (Document Center, ISO-1328-2 1997 edition)."""
+    if isinstance(grade, bool) or not isinstance(grade, int) or not ISO_1328_2_GRADES[0] <= grade <= ISO_1328_2_GRADES[1]:
+        raise DesignError("grade", f"{grade!r} is not a radial composite grade of {ISO_1328_2}",
+                          f"a whole number in [{ISO_1328_2_GRADES[0]}, {ISO_1328_2_GRADES[1]}]")
+    d = _range_mean("reference_diameter", reference_diameter, ISO_1328_2_DIAMETER_BOUNDS)
+    mn = _range_mean("normal_module", normal_module, ISO_1328_2_MODULE_BOUNDS)
+    step = math.sqrt(2.0) ** (grade - 5)
+    return RadialCompositeTolerances(
+        standard=ISO_1328_2, grade=grade, diameter_mean=d, module_mean=mn,
+        total=iso1328_round((3.2 * mn + 1.01 * math.sqrt(d) + 6.4) * step),
+        tooth_to_tooth=iso1328_round((2.96 * mn + 0.01 * math.sqrt(d) + 0.8) * step))
+
+
+#: how the radial composite grade is chosen: ISO 1328-2 grades are a system of their own, not the flank
+#: tolerance class; geargen gives the radial grade of the same number so that a shop inspecting
+#: double-flank gets limits of the accuracy the drawing names, and says so
+RADIAL_GRADE_RULE = ("the grade number of the flank tolerance class (ISO 1328-2 grades are a separate system; "
+                     "agree another with the shop if double-flank inspection is used)")
+
+
+def radial_composite_block(grade: int, reference_diameter: float, normal_module: float) -> dict:
+    """The gear data's ``accuracy.radial_composite`` block: the ISO 1328-2:1997 tolerances of the grade
+    with the flank class's number, or, where the standard gives none (grade or size outside its range),
+    ``{"standard": ..., "grade": None, "not_given": why, "scope": its ranges}``: never an extrapolated value.
+    ``why`` names no unit (the JSON's text is read in the design's unit); the ranges' keys carry theirs."""
+    scope = {"grades": list(ISO_1328_2_GRADES),
+             "normal_module_mm": [ISO_1328_2_MODULE_BOUNDS[0], ISO_1328_2_MODULE_BOUNDS[-1]],
+             "reference_diameter_mm": [ISO_1328_2_DIAMETER_BOUNDS[0], ISO_1328_2_DIAMETER_BOUNDS[-1]]}
+    outside = [what for what, value, (lo, hi) in (
+        ("grade", grade, scope["grades"]), ("normal module", normal_module, scope["normal_module_mm"]),
+        ("reference diameter", reference_diameter, scope["reference_diameter_mm"])) if not lo <= value <= hi]
+    if outside:
+        return {"standard": ISO_1328_2, "grade": None, "scope": scope,
+                "not_given": f"the {' and the '.join(outside)} {'is' if len(outside) == 1 else 'are'} outside the "
+                             "standard's range (its formulas must not be extrapolated)"}
+    return iso1328_2_radial_composite(grade, reference_diameter, normal_module).to_dict() | {
+        "grade_rule": RADIAL_GRADE_RULE}
 
 
 def gear_tolerances(spec: GearSpec) -> AccuracyTolerances | None:
@@ -218,5 +316,6 @@ def gear_errors(design, gear: str) -> GearErrors | None:
     return gear_error_budget(design, gear, required=False)
 
 
-__all__ = ["AccuracyTolerances", "iso1328_round", "iso1328_tolerances", "gear_tolerances", "grade_for_budget",
+__all__ = ["AccuracyTolerances", "RadialCompositeTolerances", "iso1328_2_radial_composite", "radial_composite_block",
+           "ISO_1328_2", "iso1328_round", "iso1328_tolerances", "gear_tolerances", "grade_for_budget",
            "GRADED_ROWS", "graded_errors", "gear_error_budget", "error_budget_inputs", "gear_errors", "ROUNDING_BANDS"]

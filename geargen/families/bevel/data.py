@@ -11,7 +11,10 @@ from geargen.families.bevel.spec import BevelGearSpec
 from geargen.units import from_mm
 
 
-#: ISO 17485 accuracy grades are accepted and recorded; their tolerance values are not computed
+#: ISO 17485 accuracy grades are accepted and recorded; their tolerance values are not computed. Searched
+#: again 2026-11 (issue 27): the public abstracts (NEN, SAI Global, iTeh) give the scope (grades 2..11,
+#: 1 <= m_mn <= 50 mm, 5 <= z <= 400, 5 <= d_T <= 2500 mm) and name the equations of clause 5.4, but no
+#: citable text of those equations nor of the tolerance diameter d_T, nor of ANSI/AGMA 2009-B01's 7.2, was found
 ACCURACY_NOTE = ("ISO 17485 tolerance values not computed: the standard's tolerance equations could not be "
                  "established from a citable source; the grade is stated for the shop to apply")
 
