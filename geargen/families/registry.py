@@ -9,7 +9,8 @@ from types import ModuleType
 from geargen.errors import DesignError
 from geargen.families.family import GearFamily, ToothForm
 
-from geargen.families.external import family as external  # noqa: I001 (the order is FAMILIES' order)
+# a family's line: its registration (in FAMILIES' order, not sorted)
+from geargen.families.external import family as external
 from geargen.families.internal import family as internal
 from geargen.families.double_helical import family as double_helical
 from geargen.families.rack import family as rack
