@@ -21,14 +21,15 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from geargen.design.gear import GearSpec, Hub  # noqa: E402
+from geargen.design.gear import Hub  # noqa: E402
+from geargen.families.double_helical.spec import DoubleHelicalGearSpec  # noqa: E402
 
 DEG = math.pi / 180
 
 
-def spec(gap: float) -> GearSpec:
-    return GearSpec(teeth=19, module=1.0, pressure_angle=20 * DEG, face_width=14.0, helix_angle=30 * DEG,
-                    kind="double_helical", centre_gap=gap, hub=Hub(6.0), name=f"dh_gap{gap:g}")
+def spec(gap: float) -> DoubleHelicalGearSpec:
+    return DoubleHelicalGearSpec(teeth=19, module=1.0, pressure_angle=20 * DEG, face_width=14.0,
+                                 helix_angle=30 * DEG, centre_gap=gap, hub=Hub(6.0), name=f"dh_gap{gap:g}")
 
 
 def best(fn, repeat: int) -> float:

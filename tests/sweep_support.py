@@ -396,17 +396,17 @@ def double_helical_parameters(rng: np.random.Generator) -> dict:
 
 def double_helical_spec(p: dict):
     """The double-helical GearSpec of a parameter set (raises DesignError for values it refuses)."""
-    from geargen.design.gear import GearSpec
+    from geargen.families.double_helical.spec import DoubleHelicalGearSpec
     m = p["module"]
     face = p["face_modules"] * m
     base = dict(teeth=p["teeth"], module=m, pressure_angle=math.radians(p["pressure_angle_deg"]), face_width=face,
                 helix_angle=math.radians(p["helix_angle_deg"]), hand=p["hand"], profile_shift=p["profile_shift"],
                 addendum_coefficient=p["addendum_coefficient"], dedendum_coefficient=p["dedendum_coefficient"],
-                kind="double_helical", centre_gap=p["gap_fraction"] * face)
-    plain = GearSpec(**base)
+                centre_gap=p["gap_fraction"] * face)
+    plain = DoubleHelicalGearSpec(**base)
     if p["rack_tip_fraction"] is not None:
         base["rack_tip_radius_coefficient"] = p["rack_tip_fraction"] * plain.max_rack_tip_radius_coefficient
-    return GearSpec(**base, hub=_random_hub(plain, m, p))
+    return DoubleHelicalGearSpec(**base, hub=_random_hub(plain, m, p))
 
 
 def double_helical_check(p: dict) -> tuple[str, str]:
@@ -491,18 +491,18 @@ def internal_parameters(rng: np.random.Generator) -> dict:
 
 
 def internal_spec(p: dict):
-    from geargen.design.gear import GearSpec
+    from geargen.families.internal.spec import InternalGearSpec
     m = p["module"]
     base = dict(teeth=p["teeth"], module=m, pressure_angle=math.radians(p["pressure_angle_deg"]),
                 face_width=p["face_modules"] * m, helix_angle=math.radians(p["helix_angle_deg"]), hand=p["hand"],
                 profile_shift=p["profile_shift"], addendum_coefficient=p["addendum_coefficient"],
-                dedendum_coefficient=p["dedendum_coefficient"], thinning=p["thinning_modules"] * m, kind="internal")
-    plain = GearSpec(**base)
+                dedendum_coefficient=p["dedendum_coefficient"], thinning=p["thinning_modules"] * m)
+    plain = InternalGearSpec(**base)
     if p["cutter_tip_fraction"] is not None:
         base["rack_tip_radius_coefficient"] = p["cutter_tip_fraction"] * plain.max_rack_tip_radius_coefficient
     if p["rim_modules"] is not None:
         base["rim_diameter"] = 2 * plain.root_radius_standard + 2 * p["rim_modules"] * m
-    return GearSpec(**base)
+    return InternalGearSpec(**base)
 
 
 def internal_check(p: dict) -> tuple[str, str]:

@@ -57,3 +57,17 @@ def test_a_kind_no_family_has_is_refused_naming_the_key():
     with pytest.raises(DesignError) as e:
         read_gear({"kind": "hypoid", "teeth": 20, "module_mm": 2, "face_width_mm": 10}, where="gears.g")
     assert e.value.field == "gears.g.kind"
+
+
+def test_every_family_folder_is_registered_by_its_one_line():
+    """A folder with a ``family.py`` is a family: its import line in the registry is all that
+    registers it (FAMILIES collects the imported family modules), so a folder without the line, or a
+    line without the folder, fails here."""
+    from pathlib import Path
+
+    import geargen.families as package
+    folders = {p.parent.name for p in Path(package.__file__).parent.glob("*/family.py")}
+    assert folders == set(FAMILIES) == set(TABLES)
+    registry = (Path(package.__file__).parent / "registry.py").read_text()
+    lines = [line for line in registry.splitlines() if line.startswith("from geargen.families.") and " import family as " in line]
+    assert len(lines) == len(FAMILIES)  # one line each

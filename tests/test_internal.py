@@ -12,9 +12,11 @@ from geargen.families.internal.pair import (RingMaterial, check_internal, free_p
                                           radial_assembly_margin, tip_margin, trochoid_margin, undercut_recess)
 from geargen.families.internal.geometry import internal_pair_geometry
 from geargen.core.involute import involute
-from geargen.design.gear import GearSpec, gear_from_table
+from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
 from geargen.families.internal.data import between_pins, internal_gear_data, reference_pin_diameter
+from geargen.families.internal.spec import InternalGearSpec
+from geargen.families.registry import read_gear
 from geargen.profile.internal import internal_profile
 from geargen.profile.segments import sample_outline
 from geargen.profile.tooth import tooth_profile
@@ -27,7 +29,7 @@ def pinion(z, x=0.0, m=1.0, **kw):
 
 
 def ring(z, x=0.0, m=1.0, **kw):
-    return GearSpec(teeth=z, module=m, pressure_angle=A20, face_width=5.0, profile_shift=x, kind="internal", **kw)
+    return InternalGearSpec(teeth=z, module=m, pressure_angle=A20, face_width=5.0, profile_shift=x, **kw)
 
 
 def pair_parts(z1, x1, z2, x2, m=1.0, ring_kw=None, pinion_kw=None, centre_distance=None):
@@ -234,7 +236,7 @@ def test_design_inputs_are_validated():
     from geargen.design.gear import Hub
     with pytest.raises(DesignError, match="bore"):
         ring(60, hub=Hub(bore_diameter=10.0))
-    spec = gear_from_table({"kind": "internal", "teeth": 60, "module_mm": 1, "pressure_angle_deg": 20,
+    spec = read_gear({"kind": "internal", "teeth": 60, "module_mm": 1, "pressure_angle_deg": 20,
                             "face_width_mm": 10, "rim_diameter_mm": 80})
     assert spec.rim_diameter == 80.0 and spec.tip_radius == 29.0
     # ISO 6336-3's Y_B = 1 rim by default: root diameter + 2 x 3.5 m

@@ -32,11 +32,15 @@ import time
 import warnings
 from pathlib import Path
 
-from geargen.design.gear import CYLINDRICAL_KINDS, DRAWN_TEXT_MAX, GearSpec
+from geargen.design.gear import DRAWN_TEXT_MAX, GEAR_FIELDS, GearSpec
 from geargen.design.schema import GEAR_NAME_MAX, check_name, shown
 from geargen.errors import DesignError, clipped
 from geargen.families.registry import FAMILIES, family_of, read_gear
 from geargen.units import from_mm, to_mm
+
+
+#: the kinds read from the cylindrical gear's table (its teeth, face width and pitch options required)
+CYLINDRICAL_KINDS = tuple(kind for kind, family in FAMILIES.items() if family.FIELDS is GEAR_FIELDS)
 
 
 def add_arguments(p) -> None:
@@ -371,7 +375,7 @@ def gear_allowance(args, spec: GearSpec):
     from geargen.model.allowance import entered_allowance
 
     given = getattr(args, "thickness_allowance", None)
-    if getattr(spec, "kind", None) == "rack":  # a rack carries its allowance in its spec (with_rack_allowance)
+    if _spec_allowance(spec) is not None:  # its spec carries the allowance (with_entered_allowance)
         return None
     if not isinstance(spec, GearSpec):  # the other families enter their thinning only
         if given is not None:
@@ -390,20 +394,18 @@ def gear_allowance(args, spec: GearSpec):
     return None
 
 
-def with_rack_allowance(args, spec):
-    """A rack with the allowance ``--thickness-allowance`` gives it (refused when its design table
-    gives one too); any other spec as it is."""
-    import dataclasses
+def _spec_allowance(spec):
+    """``with_allowance(spec, given)`` of the options module of a family whose spec carries an
+    entered allowance (the rack's), else None."""
+    return getattr(family_of(spec).options(), "with_allowance", None)
 
-    from geargen.core.allowance import ThicknessAllowance
+
+def with_entered_allowance(args, spec):
+    """A spec that carries its allowance with the one ``--thickness-allowance`` gives it (its
+    family's ``with_allowance``); any other spec as it is (:func:`gear_allowance` reads theirs)."""
     given = getattr(args, "thickness_allowance", None)
-    if given is None or getattr(spec, "kind", None) != "rack":
-        return spec
-    if spec.thickness_deviations is not None:
-        raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
-                          f"rack {spec.name}", "the option or the design keys, not both")
-    checked = ThicknessAllowance(given[0] * 1e-3, given[1] * 1e-3, field="--thickness-allowance")
-    return dataclasses.replace(spec, thickness_deviations=(checked.upper, checked.lower))
+    enter = _spec_allowance(spec)
+    return spec if given is None or enter is None else enter(spec, given)
 
 
 def _check_shop_keys(args, spec) -> None:
@@ -438,7 +440,7 @@ def standalone_allowance(args, spec, layout):
 def run(args) -> int:
     layout = drive_layout(args)
     spec, thinning_source = spec_from_args(args, layout)
-    spec = with_rack_allowance(args, spec)
+    spec = with_entered_allowance(args, spec)
     _check_shop_keys(args, spec)
     allowance = gear_allowance(args, spec)
     if allowance is None and layout is not None:

@@ -36,8 +36,9 @@ import sys
 from dataclasses import replace
 
 from geargen.design.checks import MINIMUM_SAFETY
-from geargen.design.gear import GearSpec, gear_from_table
+from geargen.design.gear import GearSpec
 from geargen.errors import DesignError
+from geargen.families.registry import read_gear
 from geargen.units import from_mm, to_mm
 
 #: face width the gears are given when --face-width is not: as wide as GearSpec allows (mm), so
@@ -184,7 +185,7 @@ def gears_from_args(args) -> tuple[GearSpec, GearSpec, str]:
         else:
             table[f"face_width_{unit}"] = args.face_width
         try:
-            gears.append(gear_from_table(table, where="options", name=f"gear {i + 1}", length_unit=unit))
+            gears.append(read_gear(table, where="options", name=f"gear {i + 1}", length_unit=unit))
         except DesignError as exc:
             flag = _flag(exc.field.split(".", 1)[1]) if exc.field.startswith("options.") else exc.field
             problem = exc.problem if flag in _COMMON else f"gear {i + 1}: {exc.problem}"

@@ -249,7 +249,8 @@ def design_from_dict(data: Mapping[str, Any], path: Path | None = None, sha256: 
             rings = {t.get("ring") for t in (design.section("stages") or {}).values()
                      if isinstance(t, Mapping) and t.get("kind") == "planetary" and isinstance(t.get("ring"), str)}
             for gname, spec in gears.items():
-                if getattr(spec, "kind", "external") != "external" and not (spec.kind == "internal" and gname in rings):
+                if getattr(spec, "kind", "external") != "external" and not (getattr(spec, "is_internal", False)
+                                                                            and gname in rings):
                     problems.add(DesignError(f"gears.{gname}.kind", f"{spec.kind!r}: the drives geargen places "
                                              "([layout] dual_pinion, split_pinion) are of external gears",
                                              "'external', or the gear in its own design file"))

@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field, replace
-from typing import Any, Mapping
+from typing import Any, ClassVar, Mapping
 
 from geargen.design.schema import GEAR_NAME_MAX, Field, read_table
 from geargen.errors import DesignError
@@ -36,10 +36,6 @@ from geargen.units import LENGTH_SUFFIXES, MM_PER_IN, from_mm, length_text, modu
 DEG = math.pi / 180.0
 
 HANDS = ("right", "left")
-
-#: gear kinds a :class:`GearSpec` describes (cylindrical involute gears); ``double_helical`` is two
-#: helical halves of opposite hand
-CYLINDRICAL_KINDS = ("external", "internal", "double_helical")
 
 #: the accuracy standards a gear may name; ISO 1328-1:2013 only (AGMA 2015-1-A01 is not implemented:
 #: its formulas and rounding could not be established from a citable source; inch designs use ISO)
@@ -162,7 +158,17 @@ class GearSpec(HelicalTeeth):
     the reference circle (circumferential); :attr:`thinning_normal` gives the normal one.
     ``rack_tip_radius_coefficient`` is the generating rack's tip radius over the normal module;
     it shapes the trochoidal root.
+
+    The other cylindrical families are its subclasses in their folders (the ring
+    :class:`geargen.families.internal.spec.InternalGearSpec`, the double-helical gear
+    :class:`geargen.families.double_helical.spec.DoubleHelicalGearSpec`): each sets ``kind`` and
+    overrides what its teeth do differently (tip and root radii, rim, halves), so that this class
+    asks no family's name. ``rim_diameter`` and ``centre_gap`` are keys of the cylindrical table all
+    of them read; this class refuses them (:meth:`_check_rim_given`, :meth:`_check_halves`).
     """
+
+    #: the default tip radius of the generating tool over m_n: ISO 53 profile A's rack (0.38)
+    DEFAULT_TOOL_TIP_RADIUS: ClassVar[float] = 0.38
 
     teeth: int
     module: float
@@ -183,20 +189,17 @@ class GearSpec(HelicalTeeth):
     length_unit: str = "mm"  # the unit the design was written in; reports and exports use it
     accuracy_grade: int | None = None  # flank tolerance class of accuracy_standard; None: not specified
     accuracy_standard: str | None = None  # None with a grade: ISO 1328-1:2013
-    kind: str = "external"  # one of CYLINDRICAL_KINDS
-    # internal gears only: outer diameter of the ring blank (mm); None: internal_rim_diameter's rule
+    kind: str = field(default="external", init=False)  # the family's (a subclass sets its own)
+    # a ring's (InternalGearSpec): outer diameter of the ring blank (mm); None: its default rule
     rim_diameter: float | None = None
-    # double_helical only: axial gap between the two halves (mm), a relief groove at the root
+    # a double-helical gear's: axial gap between the two halves (mm), a relief groove at the root
     # diameter; 0 is a herringbone whose flanks meet at the apex
     centre_gap: float = 0.0
     # drawing data: part number, material, finish, blank tolerances (geargen.report.drawing)
     shop: ShopData = field(default_factory=ShopData)
 
     def __post_init__(self):
-        if self.kind not in CYLINDRICAL_KINDS:
-            raise DesignError("kind", f"{self.kind!r} is not a cylindrical gear kind", ", ".join(map(repr, CYLINDRICAL_KINDS)))
-        if self.kind != "internal" and self.rim_diameter is not None:
-            raise DesignError("rim_diameter", f"{self.kind} gears have no rim", "only with kind = 'internal'")
+        self._check_rim_given()
         check_number("teeth", self.teeth, 4, 2000, "")
         if not isinstance(self.teeth, int):
             raise DesignError("teeth", f"expected a whole number, got {self.teeth!r}")
@@ -204,7 +207,7 @@ class GearSpec(HelicalTeeth):
         check_number("pressure_angle", self.pressure_angle, 10 * DEG, 35 * DEG, "rad")
         check_number("face_width", self.face_width, 0.0, 5000.0, "mm", exclusive_lo=True, length_unit=self.length_unit)
         check_number("helix_angle", self.helix_angle, 0.0, 45 * DEG, "rad")
-        self._check_double_helical()
+        self._check_halves()
         if self.hand not in HANDS:
             raise DesignError("hand", f"{self.hand!r} is not a valid choice", "'right', 'left'")
         check_number("profile_shift", self.profile_shift, -1.5, 1.5, "")
@@ -212,11 +215,8 @@ class GearSpec(HelicalTeeth):
         check_number("dedendum_coefficient", self.dedendum_coefficient, 0.5, 2.0, "")
         rho_max = self.max_rack_tip_radius_coefficient
         if self.rack_tip_radius_coefficient is None:
-            # ISO 53 profile A's 0.38, or the full-radius fillet when 0.38 does not fit the rack;
-            # an internal gear's is its shaper cutter's tip radius: 0.2, which leaves a tip land on
-            # cutters of 12 teeth and more (geargen.profile.internal)
-            default = INTERNAL_CUTTER_TIP_RADIUS if self.kind == "internal" else 0.38
-            object.__setattr__(self, "rack_tip_radius_coefficient", min(default, rho_max))
+            # the family's tool (DEFAULT_TOOL_TIP_RADIUS), or the full-radius fillet when it does not fit
+            object.__setattr__(self, "rack_tip_radius_coefficient", min(self.DEFAULT_TOOL_TIP_RADIUS, rho_max))
         check_number("rack_tip_radius_coefficient", self.rack_tip_radius_coefficient, 0.0, rho_max, "")
         check_number("thinning", self.thinning, 0.0, 0.5 * self.transverse_pitch / 2, "mm", length_unit=self.length_unit)
         if self.thickness_deviations is not None:
@@ -227,54 +227,38 @@ class GearSpec(HelicalTeeth):
         if self.length_unit not in ("mm", "in"):
             raise DesignError("length_unit", f"{self.length_unit!r} is not a valid choice", "'mm', 'in'")
         self._check_accuracy()
-        if self.kind == "internal":
-            self._check_internal()
+        self._check_body()
         # a root at or below the axis is the profile's "negative_root" error, not a bore problem
         if (self.hub.bore_diameter > 0 and self.root_radius_standard > 0
                 and self.hub.bore_diameter + 2 * self.hub.keyway_depth >= 2 * self.root_radius_standard * 0.98):
             raise DesignError("bore_diameter", "bore (with keyway) cuts into the tooth root",
                               f"< {length_text(2 * self.root_radius_standard * 0.98 - 2 * self.hub.keyway_depth, self.length_unit)}")
 
-    def _check_internal(self) -> None:
-        """A ring has no bore, keyway or hub; its rim must enclose the root circle with some wall."""
-        h = self.hub
-        if h.bore_diameter or h.hub_diameter or h.keyway_width:
-            raise DesignError("bore_diameter", "an internal gear has no bore, keyway or hub", "0 (use rim_diameter)")
-        least = 2 * self.root_radius_standard + 2 * MIN_RIM_WALL_MODULES * self.module
-        if self.rim_diameter is None:
-            object.__setattr__(self, "rim_diameter", internal_rim_diameter(self))
-        check_number("rim_diameter", self.rim_diameter, least, 100000.0, "mm", length_unit=self.length_unit)
+    def _check_rim_given(self) -> None:
+        """A rim belongs to a ring (its subclass accepts one)."""
+        if self.rim_diameter is not None:
+            raise DesignError("rim_diameter", f"{self.kind} gears have no rim", "only with kind = 'internal'")
 
-    def _check_double_helical(self) -> None:
-        """A centre gap belongs to a double-helical gear and leaves both halves some face; a
-        double-helical gear needs a helix (with none it would be a spur gear in two pieces)."""
+    def _check_halves(self) -> None:
+        """A centre gap belongs to a double-helical gear (its subclass checks its halves)."""
         gap = self.centre_gap
-        written = length_text(gap, self.length_unit, 6) if isinstance(gap, (int, float)) else repr(gap)
-        if self.kind != "double_helical":
-            if gap != 0:
-                raise DesignError("centre_gap", f"{written}: only a double_helical gear has a centre gap", "0")
-            return
-        if not (isinstance(gap, (int, float)) and math.isfinite(gap) and 0 <= gap < self.face_width):
-            raise DesignError("centre_gap", f"{written} is out of range",
-                              f"[0, {length_text(self.face_width, self.length_unit, 6)}) (below the face width)")
-        if not self.helix_angle > 0:
-            raise DesignError("helix_angle", "a double_helical gear needs a helix", "(0, 45] deg")
+        if gap != 0:
+            written = length_text(gap, self.length_unit, 6) if isinstance(gap, (int, float)) else repr(gap)
+            raise DesignError("centre_gap", f"{written}: only a double_helical gear has a centre gap", "0")
+
+    def _check_body(self) -> None:
+        """The body's own rules once the teeth are valid (a ring's rim); none for a gear on a bore."""
 
     @property
     def half_face_width(self) -> float:
-        """Face width of each helical half of a double-helical gear, (b - gap) / 2 (mm); the whole
-        face width for the other kinds."""
-        if self.kind != "double_helical":
-            return self.face_width
-        return (self.face_width - self.centre_gap) / 2
+        """Face width of each helical half: the whole face width (one helix; a double-helical gear's
+        halves are (b - gap) / 2)."""
+        return self.face_width
 
     @property
     def half_hands(self) -> tuple[str, ...]:
-        """Hand of each helical half from z = 0 up: a double-helical gear's first half has the
-        spec's hand, the second the other one."""
-        if self.kind != "double_helical":
-            return (self.hand,)
-        return (self.hand, "left" if self.hand == "right" else "right")
+        """Hand of each helical half from z = 0 up: the spec's hand (one helix)."""
+        return (self.hand,)
 
     def _check_accuracy(self) -> None:
         """A grade is a whole number of the standard's classes, and the gear lies in the standard's
@@ -335,21 +319,17 @@ class GearSpec(HelicalTeeth):
 
     @property
     def is_internal(self) -> bool:
-        return self.kind == "internal"
+        """Whether its teeth point inward (a ring: its subclass)."""
+        return False
 
     @property
     def tip_radius(self) -> float:
-        """r + m_n (h_a* + x); internal gear (tips point inward, x > 0 moves the profile outward,
-        ISO 21771 / KHK convention): r - m_n (h_a* - x)."""
-        if self.kind == "internal":
-            return self.reference_radius - self.module * (self.addendum_coefficient - self.profile_shift)
+        """r + m_n (h_a* + x)."""
         return self.reference_radius + self.module * (self.addendum_coefficient + self.profile_shift)
 
     @property
     def root_radius_standard(self) -> float:
-        """Root radius cut by the rack: r - m_n (h_f* - x); internal gear: r + m_n (h_f* + x)."""
-        if self.kind == "internal":
-            return self.reference_radius + self.module * (self.dedendum_coefficient + self.profile_shift)
+        """Root radius cut by the rack: r - m_n (h_f* - x)."""
         return self.reference_radius - self.module * (self.dedendum_coefficient - self.profile_shift)
 
     @property
@@ -369,20 +349,6 @@ class GearSpec(HelicalTeeth):
         return self.thinning * math.cos(self.helix_angle)
 
 
-#: ISO 6336-3 (rim thickness factor Y_B): an internal gear's rim needs s_R >= 3.5 m_n for Y_B = 1
-INTERNAL_RIM_MODULES = 3.5
-#: default tip radius of an internal gear's shaper cutter over m_n
-INTERNAL_CUTTER_TIP_RADIUS = 0.2
-#: the thinnest rim accepted (a ring, not a membrane), in normal modules
-MIN_RIM_WALL_MODULES = 0.5
-
-
-def internal_rim_diameter(spec: GearSpec) -> float:
-    """Default ring blank diameter (mm): root diameter + 2 x 3.5 m_n, the rim thickness from which
-    ISO 6336-3 takes the rim thickness factor Y_B = 1 for internal gears."""
-    return 2 * spec.root_radius_standard + 2 * INTERNAL_RIM_MODULES * spec.module
-
-
 def check_number(name: str, value, lo: float, hi: float, unit: str = "", exclusive_lo: bool = False,
                  length_unit: str = "mm") -> None:
     """DesignError naming ``name`` unless ``value`` is a finite number (not a bool) in [lo, hi] (or (lo, hi]);
@@ -400,7 +366,7 @@ def check_number(name: str, value, lo: float, hi: float, unit: str = "", exclusi
 
 
 GEAR_FIELDS: list[Field] = [
-    Field("kind", "string", required=False, default="external", choices=CYLINDRICAL_KINDS,
+    Field("kind", "string", required=False, default="external",
           help="the gear's kind: external (spur or helical), internal (a ring), double_helical (two helical halves "
                "of opposite hand); the other families have their own tables"),
     Field("name", "name", required=False, default=None, maximum=GEAR_NAME_MAX,
@@ -506,7 +472,14 @@ GEAR_FIELDS: list[Field] = [
 
 def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | None = None,
                     length_unit: str | None = None) -> GearSpec:
-    """Build a :class:`GearSpec` from a design table, converting the transverse system if used.
+    """An external gear's :class:`GearSpec` from a design table (:func:`cylindrical_from_table`)."""
+    return cylindrical_from_table(data, where, name, length_unit, GearSpec)
+
+
+def cylindrical_from_table(data: Mapping[str, Any], where: str, name: str | None, length_unit: str | None,
+                           spec_class: type[GearSpec]) -> GearSpec:
+    """Build a ``spec_class`` (:class:`GearSpec` or a cylindrical family's subclass of it, whose
+    ``kind`` the table must name) from a design table, converting the transverse system if used.
 
     ``name`` is the gear's identity (an assembly's table key), which the table's own ``name`` key
     (a label) never replaces; without it the table's ``name`` names the gear. ``length_unit`` is
@@ -515,6 +488,9 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
     """
     v = read_table(data, GEAR_FIELDS, where)
     p = f"{where}."
+    if v["kind"] != spec_class.kind:  # another family's table: read_gear reads it with its family's reader
+        raise DesignError(p + "kind", f"{v['kind']!r} is not read as a {spec_class.kind} gear",
+                          f"{spec_class.kind!r}, or the table read by geargen.families.registry.read_gear")
     if (v["module"] is None) == (v["diametral_pitch_per_in"] is None):
         raise DesignError(p + "module_mm", "give exactly one of module_mm and diametral_pitch_per_in",
                           "module_mm in (0.01, 200] or diametral_pitch_per_in in [0.127, 2540)")
@@ -569,13 +545,13 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
                   addendum_coefficient=v["addendum_coefficient"], dedendum_coefficient=v["dedendum_coefficient"],
                   thinning=thinning, hub=hub, name=name or v["name"] or "gear", thickness_deviations=deviations,
                   length_unit=length_unit or unit, accuracy_grade=v["accuracy_grade"],
-                  accuracy_standard=v["accuracy_standard"], kind=v["kind"], rim_diameter=v["rim_diameter"],
+                  accuracy_standard=v["accuracy_standard"], rim_diameter=v["rim_diameter"],
                   centre_gap=v["centre_gap"])
     kwargs["rack_tip_radius_coefficient"] = v["rack_tip_radius_coefficient"]
     kwargs["shop"] = _shop_data(v, p)
     if hub.bore_diameter > 0:
         # GearSpec's bore rule, checked first so that the message is in the unit of the key
-        plain = with_field_prefix(p, lambda: GearSpec(**{**kwargs, "hub": Hub()}), v["_units"])
+        plain = with_field_prefix(p, lambda: spec_class(**{**kwargs, "hub": Hub()}), v["_units"])
         root = plain.root_radius_standard
         most = 2 * root * 0.98 - 2 * hub.keyway_depth
         if root > 0 and hub.bore_diameter >= most:
@@ -583,7 +559,7 @@ def gear_from_table(data: Mapping[str, Any], where: str = "gear", name: str | No
             scale = LENGTH_SUFFIXES[unit_b]
             raise DesignError(f"{p}bore_diameter_{unit_b}", f"{hub.bore_diameter / scale:.6g} {unit_b}: the bore (with "
                               "keyway) cuts into the tooth root", f"< {most / scale:.6g} {unit_b}")
-    return with_field_prefix(p, lambda: GearSpec(**kwargs), v["_units"])
+    return with_field_prefix(p, lambda: spec_class(**kwargs), v["_units"])
 
 
 def _shop_data(v: Mapping[str, Any], p: str) -> ShopData:
@@ -643,7 +619,7 @@ def with_changes(spec: GearSpec, **changes) -> GearSpec:
     return replace(spec, **changes)
 
 
-__all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS", "internal_rim_diameter",
-           "INTERNAL_RIM_MODULES", "GearSpec", "HelicalTeeth", "Hub", "GEAR_FIELDS", "CYLINDRICAL_KINDS",
+__all__ = ["DRAWN_TEXT_MAX", "ShopData", "DEFAULT_TIP_CLASS", "DEFAULT_FACE_WIDTH_CLASS",
+           "GearSpec", "HelicalTeeth", "Hub", "GEAR_FIELDS",
            "ISO_1328", "ACCURACY_STANDARDS", "ISO_1328_SCOPE",
-           "iso1328_scope_problem", "iso1328_scope_text", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]
+           "iso1328_scope_problem", "iso1328_scope_text", "cylindrical_from_table", "gear_from_table", "gear_keys_written", "with_changes", "MM_PER_IN"]

@@ -67,9 +67,14 @@ class GearFamily(Protocol):
     - ``drawings(data, spec, folder, name, source, design_file)``: its sheets written,
       ``{"svg"|"pdf": path}``, or None when the cylindrical gear drawing
       (:func:`geargen.report.drawing.gear_drawings`) draws it;
+    - ``toothed_mass(spec, back)``: (volume mm^3, axial moment mm^5, unit density) of the family's
+      solid with ``back`` when a drive holds it as a toothed hardware part
+      (:class:`geargen.model.components.Toothed`, :func:`geargen.model.mass.component_mass`), from
+      its closed forms; None for a family no drive holds so;
     - ``options()``: the module of its own ``geargen gear`` options (``add_arguments(group)``,
-      ``OPTIONS`` {dest: (flag, key stem, is a length)}, ``COMMON``: the common options it reads),
-      or None when it takes the common options only.
+      ``OPTIONS`` {dest: (flag, key stem, is a length)}, ``COMMON``: the common options it reads;
+      ``with_allowance(spec, (upper_um, lower_um))`` when its spec carries the allowance
+      ``--thickness-allowance`` enters, the rack's), or None when it takes the common options only.
     """
 
     KIND: str
@@ -86,6 +91,8 @@ class GearFamily(Protocol):
 
     def drawings(self, data: dict, spec: Any, folder: Any, name: str, source: str,
                  design_file: str) -> dict | None: ...
+
+    def toothed_mass(self, spec: Any, back: str) -> tuple[float, float] | None: ...
 
     def options(self) -> ModuleType | None: ...
 

@@ -5,7 +5,8 @@ A cylindrical gear is its exact transverse outline (sampled densely: the polygon
 moment converge as the square of the spacing) times its face width, less its bore, with its hub;
 a one-piece cluster its two gears and the spacer between them; a double-helical gear its two
 halves and the groove's cylinder in the gap (:func:`geargen.profile.tooth.centre_gap_radius`); a ring (internal gear) its rim less its teeth's outline; a bevel
-gear its closed forms (:func:`geargen.families.bevel.geometry.bevel_volume`, :func:`bevel_axial_moment`); a
+gear of the hardware its family's closed forms (``toothed_mass``: the bevel's :func:`geargen.families.bevel.geometry.bevel_volume`,
+:func:`~geargen.families.bevel.geometry.bevel_axial_moment`); a
 hardware component its body (:func:`geargen.model.bodies.mass_properties`). All of unit density, in
 the part's own frame: ``axial_moment`` about its own axis, the one it turns about.
 """
@@ -17,9 +18,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from geargen.families.bevel.geometry import bevel_axial_moment, bevel_volume
 from geargen.design.cluster import ClusterSpec
-from geargen.families.registry import tooth_form
+from geargen.families.registry import family_of, tooth_form
 from geargen.model.bodies import MassProperties, mass_properties
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
@@ -134,9 +134,11 @@ def placed_gear_mass(placed) -> MassProperties:
 
 def component_mass(component) -> MassProperties:
     """Mass properties of a hardware component: its body's, or a toothed part's closed forms."""
-    if component.toothed is not None and getattr(component.toothed.spec, "kind", "") == "bevel":
-        spec, back = component.toothed.spec, component.toothed.back
-        return MassProperties(bevel_volume(spec, back), (0.0, 0.0, math.nan), bevel_axial_moment(spec, back))
+    closed = None if component.toothed is None else family_of(component.toothed.spec).toothed_mass(
+        component.toothed.spec, component.toothed.back)
+    if closed is not None:  # its family's closed forms (a bevel gear's); the centre is not needed
+        volume, axial_moment = closed
+        return MassProperties(volume, (0.0, 0.0, math.nan), axial_moment)
     return mass_properties(analytic_body(component))
 
 

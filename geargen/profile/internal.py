@@ -36,7 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from geargen.core.involute import involute, inverse_involute
-from geargen.design.gear import MIN_RIM_WALL_MODULES, GearSpec
+from geargen.design.gear import GearSpec
+from geargen.families.internal.spec import MIN_RIM_WALL_MODULES, InternalGearSpec
 from geargen.errors import GeometryError
 from geargen.profile.segments import ArcCurve, InvoluteCurve, Segment, outline_area
 from geargen.units import length_text
@@ -210,7 +211,7 @@ def internal_profile(spec: GearSpec, cutter: int | None = None) -> InternalProfi
     the tip circle), ``pointed_tooth`` (ring tooth land below ``MIN_TIP_LAND_MODULES`` m_n),
     ``fillet_loop`` (the generated fillet is not monotone in radius).
     """
-    if spec.kind != "internal":
+    if not isinstance(spec, InternalGearSpec):
         raise GeometryError("not_internal", f"{spec.name} is an {spec.kind} gear, not an internal one")
     if cutter is not None:
         return _cut_by(spec, int(cutter))

@@ -20,6 +20,7 @@ from geargen.cad.families import build_part
 from geargen.cad.gear_solid import check_solid, solid_volume
 from geargen.cad.measure import flank_deviation, section
 from geargen.design.gear import GearSpec, Hub
+from geargen.families.double_helical.spec import DoubleHelicalGearSpec
 from geargen.errors import DesignError
 from geargen.profile.tooth import section_rotation
 from geargen.profile.tooth import tooth_profile
@@ -30,8 +31,8 @@ DEG = math.pi / 180
 
 
 def herringbone(gap=0.0, hand="right", hub=Hub(), teeth=19, face=14.0):
-    return GearSpec(teeth=teeth, module=1.0, pressure_angle=20 * DEG, face_width=face, helix_angle=30 * DEG,
-                    hand=hand, kind="double_helical", centre_gap=gap, hub=hub, profile_shift=0.2)
+    return DoubleHelicalGearSpec(teeth=teeth, module=1.0, pressure_angle=20 * DEG, face_width=face,
+                                 helix_angle=30 * DEG, hand=hand, centre_gap=gap, hub=hub, profile_shift=0.2)
 
 
 @pytest.fixture(scope="module")
@@ -183,7 +184,7 @@ def test_spec_refusals():
         GearSpec(teeth=19, module=1.0, pressure_angle=20 * DEG, face_width=10, helix_angle=20 * DEG, centre_gap=2.0)
     assert err.value.field == "centre_gap"  # only a double-helical gear has one
     with pytest.raises(DesignError) as err:
-        GearSpec(teeth=19, module=1.0, pressure_angle=20 * DEG, face_width=10, kind="double_helical")
+        DoubleHelicalGearSpec(teeth=19, module=1.0, pressure_angle=20 * DEG, face_width=10)
     assert err.value.field == "helix_angle"
     assert herringbone(gap=4.0).half_face_width == pytest.approx(5.0)
     assert herringbone(hand="left").half_hands == ("left", "right")

@@ -11,15 +11,14 @@ import pytest
 from geargen.cad.families import build_part
 from geargen.cad.gear_solid import check_solid, solid_volume
 from geargen.cad.measure import flank_deviation
-from geargen.design.gear import GearSpec
+from geargen.families.internal.spec import InternalGearSpec
 
 pytestmark = pytest.mark.slow
 
 
 def ring(**kw):
-    base = dict(teeth=40, module=1.0, pressure_angle=math.radians(20), face_width=6.0, profile_shift=0.5,
-                kind="internal")
-    return GearSpec(**{**base, **kw})
+    base = dict(teeth=40, module=1.0, pressure_angle=math.radians(20), face_width=6.0, profile_shift=0.5)
+    return InternalGearSpec(**{**base, **kw})
 
 
 @pytest.fixture(scope="module")

@@ -523,7 +523,9 @@ def test_internal_pair_and_rack_change_what_the_standard_says():
     from geargen.families.rack.spec import RackSpec
 
     pinion = GearSpec(teeth=18, module=2.0, pressure_angle=20 * DEG, face_width=20.0)
-    ring = GearSpec(teeth=60, module=2.0, pressure_angle=20 * DEG, face_width=20.0, kind="internal")
+    from geargen.families.internal.spec import InternalGearSpec
+
+    ring = InternalGearSpec(teeth=60, module=2.0, pressure_angle=20 * DEG, face_width=20.0)
     rack = RackSpec(teeth=40, module=2.0, pressure_angle=20 * DEG, face_width=20.0, pitch_line_height=10.0)
     cond = lc.RatingConditions(speed=600, life=5000, accuracy_grade=6, roughness=0.8, viscosity=100)
     mats = (Material("through_hardened", "MQ", 300), Material("through_hardened", "MQ", 280))

@@ -6,7 +6,7 @@ import math
 import pytest
 
 from geargen.cli import main
-from geargen.design.gear import gear_from_table
+from geargen.families.registry import read_gear
 from geargen.errors import DesignError
 
 
@@ -16,13 +16,13 @@ def table(**kw):
 
 
 def test_table_reads_the_gap_and_halves():
-    spec = gear_from_table(table())
+    spec = read_gear(table())
     assert spec.kind == "double_helical" and spec.centre_gap == 8.0
     assert spec.half_face_width == 16.0 and spec.half_hands == ("left", "right")
-    inch = gear_from_table(_drop_none(table(module_mm=None, diametral_pitch_per_in=12, face_width_mm=None,
+    inch = read_gear(_drop_none(table(module_mm=None, diametral_pitch_per_in=12, face_width_mm=None,
                                             face_width_in=2.0, centre_gap_mm=None, centre_gap_in=0.25)))
     assert inch.centre_gap == pytest.approx(0.25 * 25.4)
-    assert gear_from_table(_drop_none(table(centre_gap_mm=None))).centre_gap == 0.0  # default: herringbone apex
+    assert read_gear(_drop_none(table(centre_gap_mm=None))).centre_gap == 0.0  # default: herringbone apex
 
 
 def _drop_none(d):
@@ -37,7 +37,7 @@ def _drop_none(d):
 ])
 def test_table_refusals_name_the_key(changes, key):
     with pytest.raises(DesignError) as err:
-        gear_from_table(_drop_none(table(**changes)))
+        read_gear(_drop_none(table(**changes)))
     assert err.value.field == key
 
 
@@ -51,7 +51,7 @@ def test_option_refused_for_an_external_gear(capsys):
 def test_gear_data_gains_gap_and_hands():
     from geargen.model.gear_data import gear_data
     from geargen.profile.tooth import tooth_profile
-    spec = gear_from_table(_drop_none(table(module_mm=None, diametral_pitch_per_in=12, face_width_mm=None,
+    spec = read_gear(_drop_none(table(module_mm=None, diametral_pitch_per_in=12, face_width_mm=None,
                                             face_width_in=2.0, centre_gap_mm=None, centre_gap_in=0.25)))
     data = gear_data(spec, tooth_profile(spec))
     assert data["double_helical"] == {"centre_gap": pytest.approx(0.25), "half_face_width": pytest.approx(0.875),

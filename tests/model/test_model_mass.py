@@ -11,6 +11,8 @@ from geargen.cad.gear_solid import build_cluster
 from geargen.cad.mass import mass_properties
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec, Hub
+from geargen.families.double_helical.spec import DoubleHelicalGearSpec
+from geargen.families.internal.spec import InternalGearSpec
 from geargen.model.mass import cluster_mass, gear_mass
 from geargen.profile.tooth import UndercutWarning
 
@@ -26,10 +28,10 @@ def quiet_undercut_fixture():
         yield
 
 
-def spec(teeth, **kw):
+def spec(teeth, spec_class=GearSpec, **kw):
     base = dict(teeth=teeth, module=1.0, pressure_angle=20 * DEG, face_width=6.0, name="g")
     base.update(kw)
-    return GearSpec(**base)
+    return spec_class(**base)
 
 
 CASES = {
@@ -37,9 +39,9 @@ CASES = {
                                                  hub_diameter=14.0, hub_length=5.0)),
     "undercut pinion": spec(11, module=0.8, hub=Hub(bore_diameter=3.0)),
     "shifted helical": spec(31, helix_angle=25 * DEG, profile_shift=0.3, hub=Hub(bore_diameter=10.0)),
-    "double helical with a gap": spec(40, helix_angle=30 * DEG, kind="double_helical", face_width=20.0,
+    "double helical with a gap": spec(40, DoubleHelicalGearSpec, helix_angle=30 * DEG, face_width=20.0,
                                       centre_gap=4.0, hub=Hub(bore_diameter=12.0)),
-    "internal ring": spec(60, kind="internal"),
+    "internal ring": spec(60, InternalGearSpec),
 }
 
 

@@ -26,6 +26,12 @@ def drawings(data, spec, folder, name, source, design_file) -> dict:
     return bevel_drawings(data, spec, folder, name, source, design_file)
 
 
+def toothed_mass(spec, back: str) -> tuple[float, float]:
+    """Its closed forms: volume (mm^3) and axial moment (mm^5) of the solid with ``back``."""
+    from geargen.families.bevel.geometry import bevel_axial_moment, bevel_volume
+    return bevel_volume(spec, back), bevel_axial_moment(spec, back)
+
+
 def options():
     from geargen.families.bevel import options
     return options

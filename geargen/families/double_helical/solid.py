@@ -26,13 +26,14 @@ option took 0.7 s. Only a hub is fused on (glue option: it only touches the firs
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import fields
 
 from OCP.BOPAlgo import BOPAlgo_GlueFull, BOPAlgo_GlueShift
 
 from geargen.cad.gear_solid import GearSolid, check_solid, default_tolerance, hub_body, toothed_body
 from geargen.cad.kernel import fused_solid
 from geargen.design.gear import GearSpec, Hub
+from geargen.families.double_helical.spec import DoubleHelicalGearSpec
 from geargen.errors import BuildError
 from geargen.profile.tessellate import Layer
 from geargen.profile.tooth import ToothProfile, centre_gap_radius, tooth_profile, twist_rate
@@ -48,11 +49,12 @@ def half_spec(spec: GearSpec) -> GearSpec:
     """The first (lower) half of a double-helical ``spec`` as an external helical gear: face width
     :attr:`~GearSpec.half_face_width`, the spec's hand, bore and keyway but no hub (the hub belongs
     to the whole gear), no accuracy grade (the grade's scope is the whole gear's face width)."""
-    if spec.kind != "double_helical":
+    if not isinstance(spec, DoubleHelicalGearSpec):
         raise _internal("kind", f"{spec.kind!r} is not a double_helical gear", "'double_helical'")
     hub = Hub(spec.hub.bore_diameter, spec.hub.keyway_width, spec.hub.keyway_depth)
-    return replace(spec, kind="external", centre_gap=0.0, face_width=spec.half_face_width, hub=hub,
-                   accuracy_grade=None, accuracy_standard=None)
+    given = {f.name: getattr(spec, f.name) for f in fields(GearSpec) if f.init}  # the external gear's keys
+    return GearSpec(**{**given, "centre_gap": 0.0, "face_width": spec.half_face_width, "hub": hub,
+                       "accuracy_grade": None, "accuracy_standard": None})
 
 
 def double_helical_layers(spec: GearSpec, profile: ToothProfile) -> list[Layer]:

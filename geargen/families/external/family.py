@@ -27,5 +27,9 @@ def drawings(data, spec, folder, name, source, design_file) -> None:
     return None  # the cylindrical gear drawing: geargen.report.drawing.gear_drawings
 
 
+def toothed_mass(spec, back: str) -> None:
+    return None  # a gear of the layout: its outline's mass (geargen.model.mass.gear_mass)
+
+
 def options() -> None:
     return None  # the common options only

@@ -27,6 +27,10 @@ def drawings(data, spec, folder, name, source, design_file) -> dict:
     return rack_drawings(data, spec, folder, name, source, design_file)
 
 
+def toothed_mass(spec, back: str) -> None:
+    return None  # a drive's rack is a gear of the layout, not a toothed hardware part
+
+
 def options():
     from geargen.families.rack import options
     return options

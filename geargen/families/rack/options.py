@@ -6,6 +6,9 @@ table with ``kind = "rack"`` go through one reader (:func:`geargen.families.rack
 
 from __future__ import annotations
 
+import dataclasses
+
+from geargen.errors import DesignError
 from geargen.families.rack.spec import TIP_ROUNDINGS
 
 #: argparse dest -> (flag, design-table key stem, whether the value is a length in the pitch system's unit)
@@ -40,3 +43,14 @@ def add_arguments(group) -> None:
     group.add_argument("--root-fillet-coefficient", dest="rack_root_fillet_coefficient", type=float, default=None,
                        metavar="RHO", help="rack: root fillet radius over the module (default 0.38 or the largest "
                                            "that fits; 0: sharp)")
+
+
+def with_allowance(spec, given: tuple[float, float]):
+    """The rack with the allowance ``--thickness-allowance UPPER LOWER`` (um) gives it: a rack carries
+    its allowance in its spec (its deviations); refused when its design table gives one too."""
+    from geargen.core.allowance import ThicknessAllowance
+    if spec.thickness_deviations is not None:
+        raise DesignError("--thickness-allowance", f"conflicts with the thickness deviations the design file gives "
+                          f"rack {spec.name}", "the option or the design keys, not both")
+    checked = ThicknessAllowance(given[0] * 1e-3, given[1] * 1e-3, field="--thickness-allowance")
+    return dataclasses.replace(spec, thickness_deviations=(checked.upper, checked.lower))

@@ -29,6 +29,10 @@ def drawings(data, spec, folder, name, source, design_file) -> dict:
     return worm_drawings(data, spec, folder, name, source, design_file)
 
 
+def toothed_mass(spec, back: str) -> None:
+    return None  # no drive holds a worm set as a toothed hardware part
+
+
 def options():
     from geargen.families.worm import options
     return options

@@ -14,6 +14,7 @@ TOOTH_FORM = None  # not a cylindrical involute form (nor rated by ISO 6336)
 gear_data = worm.gear_data
 drawings = worm.drawings
 options = worm.options
+toothed_mass = worm.toothed_mass
 
 
 def build(spec, check: bool = False, tolerance: float | None = None):
