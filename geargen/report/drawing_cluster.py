@@ -61,7 +61,7 @@ def _turned(points: np.ndarray, angle: float) -> np.ndarray:
 
 
 def draw_cluster(data: dict, large, small, source: str, design_file: str, version: str):
-    """The cluster's sheet (a matplotlib Figure); ``large``/``small`` the two gears' specs (mm)."""
+    """The cluster's sheet (a :class:`geargen.report.drawing.Sheet`); ``large``/``small`` the two gears' specs (mm)."""
     from geargen.profile.tooth import tooth_profile
 
     u = data["length_unit"]
