@@ -48,11 +48,14 @@ PREFERRED_SCALES = (50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02)
 DECIMALS = {"mm": 4, "in": 5}
 NOT_SPECIFIED = "not specified"
 PAD_MM = 1.2  # clearance between a text and its cell's side
-WRAP_FILL = 0.95  # the share of a cell's width a wrapped line may fill (as Agg measures it)
+WRAP_FILL = 0.95  # the share of a cell's width a wrapped line may fill (as the font's advance widths measure it)
 ROW_PAD_MM = 0.6  # and its cell's top and bottom
 #: the row padding of a data block that does not fit with :data:`ROW_PAD_MM` (a gear with three or more
 #: mates): a line's 1.2 em still holds the font's ascent and descent (1.164 em), so text stays in its cell
 TIGHT_ROW_PAD_MM = 0.1
+#: the longest chord (sheet mm) of a drawn tooth outline: its sagitta on a 0.5 mm radius of the sheet is
+#: under 3 um, a hundredth of the outline's 0.5 mm line
+OUTLINE_STEP_MM = 0.1
 HATCH_PITCH_MM = 25.4 / 24  # section hatching's spacing along x (matplotlib's "////" the sheets had)
 ARROW_MM = (2.0, 0.4)  # a filled arrowhead's length and half width (ISO 129-1: closed, filled, about 23°)
 
@@ -397,7 +400,7 @@ class Sheet:
         text.gid = cell_gid(len(self.cells), cell)
 
     def text(self, x, y, s, size=MIN_FONT_PT, ha="left", va="baseline", weight="normal", color="black",
-             rotation=0.0, **_):
+             rotation=0.0):
         """A one-line text at ``(x, y)`` aligned by ``ha`` (left, center, right) and ``va`` (top, bottom,
         center, center_baseline: the box of ascent and descent centred, baseline), turned ``rotation``
         degrees about that point; returns the recorded text."""
@@ -420,7 +423,7 @@ class Sheet:
             self.drawing.items.append(t)
         return t
 
-    def line(self, xs, ys, lw=0.35, color="black", linestyle=None, clip=None, closed=False, **_):
+    def line(self, xs, ys, lw=0.35, color="black", linestyle=None, clip=None, closed=False):
         """A polyline through ``xs``, ``ys`` (sheet mm), ``lw`` mm wide (ISO 128: 0.35 thick, 0.18 thin);
         ``linestyle`` ``(0, (on, off, ...))`` in line widths (as matplotlib's dashes); ``clip`` a box."""
         from geargen.report.vector import Path_, grey
@@ -486,8 +489,8 @@ class Sheet:
     def wrap(self, text: str, width_mm: float, size: float, most: int | None = None) -> list[str]:
         """``text`` broken into lines no wider than ``width_mm`` (at spaces, else after ``/``,
         else anywhere), measured with :data:`WRAP_FILL` of the width: a browser lays the SVG's text
-        out with its own shaping, up to 3 % wider than Agg's metrics (a run of ``/`` measured in
-        headless Chromium, tests/report/test_drawing_cells.py). With ``most``, a text that needs
+        out with its own shaping and rounding, which may differ a little from the advance widths summed
+        here (headless Chromium checks it, tests/report/test_drawing_cells.py). With ``most``, a text that needs
         more lines broken at words is broken anywhere instead, each line filled: then ``most`` lines
         hold ``most`` times the letters of the widest that fit one line, whatever the spaces."""
         width_mm *= WRAP_FILL
@@ -686,7 +689,7 @@ def _full_view(sheet, profile, scale: float) -> None:
     cx, cy = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
     k = scale  # sheet mm per gear mm
     to = lambda p: (cx + p[:, 0] * k, cy + p[:, 1] * k)  # noqa: E731
-    pts = outline_points(profile, 0.05 / k)
+    pts = outline_points(profile, OUTLINE_STEP_MM / k)
     sheet.line(*to(pts), lw=0.5)
     bore = bore_points(profile.spec.hub)
     if bore is not None:
@@ -872,7 +875,7 @@ def _detail_view(sheet, profile, unit: str, scale: float) -> None:
     from geargen.profile.segments import sample_outline
     segs = [s.rotated(turn + j * profile.pitch_angle) for j in range(-n // 2 - 1, n // 2 + 2)
             for s in profile.pitch_segments()]
-    pts = sample_outline(segs, 0.05 / k)
+    pts = sample_outline(segs, OUTLINE_STEP_MM / k)
     sheet.line(cx + pts[:, 0] * k, cy + pts[:, 1] * k, lw=0.5, clip=box)
     circles = [("d_a", profile.tip_radius, dict(lw=0.18)),
                ("d", profile.reference_radius, dict(lw=0.18, linestyle=(0, (12, 2, 1.5, 2)))),

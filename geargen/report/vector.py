@@ -82,7 +82,8 @@ class Face:
         return total
 
     def char_proc(self, ch: str) -> bytes:
-        """The Type 3 glyph procedure of ``ch``: its advance (``d0``) and filled outline, font units."""
+        """The Type 3 glyph procedure of ``ch``: its advance (``d0``) and filled outline in font units,
+        deflated (a PDF stream's data; once per glyph and process)."""
         proc = self._procs.get(ch)
         if proc is None:
             if self._glyphs is None:
@@ -90,7 +91,8 @@ class Face:
             pen = _pen_class()(self._glyphs)
             self._glyphs[self.glyph_name(ch)].draw(pen)
             body = " ".join(pen.ops)
-            proc = self._procs[ch] = (f"{self.advance_units(ch)} 0 d0\n" + (body + " f" if body else "")).encode()
+            proc = self._procs[ch] = zlib.compress(
+                (f"{self.advance_units(ch)} 0 d0\n" + (body + " f" if body else "")).encode(), 6)
         return proc
 
 
@@ -340,7 +342,7 @@ def pdf_bytes(drawing: Drawing) -> bytes:
             for font, codes in runs:
                 parts.append(f"/{font} {_num(size, 3)} Tf {_pdf_string(codes)} Tj")
             ops.append(" ".join(parts) + " ET")
-    content = zlib.compress("\n".join(ops).encode("latin-1"), 6)
+    content = zlib.compress("\n".join(ops).encode("latin-1"), 1)  # the fastest level: whole numbers deflate well
 
     objects: list[bytes] = []
 
@@ -359,8 +361,7 @@ def pdf_bytes(drawing: Drawing) -> bytes:
         f = face(weight)
         procs = {}
         for i, ch in enumerate(chars, start=1):
-            data = zlib.compress(f.char_proc(ch), 6)
-            procs[f"g{i}"] = add(stream(data, " /Filter /FlateDecode"))
+            procs[f"g{i}"] = add(stream(f.char_proc(ch), " /Filter /FlateDecode"))
         cmap = add(stream(zlib.compress(_to_unicode(chars), 6), " /Filter /FlateDecode"))
         widths = " ".join(str(f.advance_units(ch)) for ch in chars)
         char_procs = " ".join(f"/{n} {r} 0 R" for n, r in procs.items())
