@@ -10,6 +10,8 @@ moved away from its anchor gets a leader line.
 
 Obstacles are given in data coordinates and tested in display pixels, after the axes' limits
 are final (the caller sets them before placing).
+:func:`place_sheet_labels` places the same way on a drawing sheet (sheet mm, each text measured by
+the drawing font's advance widths).
 """
 
 from __future__ import annotations
