@@ -1,4 +1,4 @@
-"""The manufacturing drawing of one gear: an A3 landscape sheet as SVG and PDF (matplotlib).
+"""The manufacturing drawing of one gear: an A3 landscape sheet as SVG and PDF (:mod:`geargen.report.vector`).
 
 What the sheet shows (420 x 297 mm, ISO 5457 frame: 20 mm filing margin on the left, 10 mm
 elsewhere; every length on it in the gear's length unit):
@@ -18,7 +18,7 @@ elsewhere; every length on it in the gear's length unit):
 Every value comes from the gear data dict (:func:`geargen.model.gear_data.gear_data`, with the
 keys of ``../shared/contracts/gear-data.md``) through :func:`data_rows`; a key the gear lacks
 (no accuracy grade, no allowance, no mating gear) reads "not specified", never a made-up value.
-The block is laid out deterministically: every text is measured with the renderer and wrapped
+The block is laid out deterministically: every text is measured with the font's advance widths and wrapped
 to its column, and rows stack downwards from their measured heights, so long values cannot
 run into each other. Fonts are at least :data:`MIN_FONT_PT` (3.5 mm body, 2.5 mm capitals, the
 smallest lettering of ISO 3098 for A3). Two builds give the same bytes (no dates, fixed salt).
@@ -48,8 +48,16 @@ PREFERRED_SCALES = (50.0, 20.0, 10.0, 5.0, 2.0, 1.0, 0.5, 0.2, 0.1, 0.05, 0.02)
 DECIMALS = {"mm": 4, "in": 5}
 NOT_SPECIFIED = "not specified"
 PAD_MM = 1.2  # clearance between a text and its cell's side
-WRAP_FILL = 0.95  # the share of a cell's width a wrapped line may fill (as Agg measures it)
+WRAP_FILL = 0.95  # the share of a cell's width a wrapped line may fill (as the font's advance widths measure it)
 ROW_PAD_MM = 0.6  # and its cell's top and bottom
+#: the row padding of a data block that does not fit with :data:`ROW_PAD_MM` (a gear with three or more
+#: mates): a line's 1.2 em still holds the font's ascent and descent (1.164 em), so text stays in its cell
+TIGHT_ROW_PAD_MM = 0.1
+#: the longest chord (sheet mm) of a drawn tooth outline: its sagitta on a 0.5 mm radius of the sheet is
+#: under 3 um, a hundredth of the outline's 0.5 mm line
+OUTLINE_STEP_MM = 0.1
+HATCH_PITCH_MM = 25.4 / 24  # section hatching's spacing along x (matplotlib's "////" the sheets had)
+ARROW_MM = (2.0, 0.4)  # a filled arrowhead's length and half width (ISO 129-1: closed, filled, about 23°)
 
 # the sheet's areas (mm): data block and title block on the right, views on the left
 DATA_BLOCK = (230.0, 52.0, 410.0, 287.0)
@@ -217,12 +225,11 @@ def pitch_rows(module_mm: float, unit: str, kind: str = "Normal", symbol: str = 
     return [own] if unit == "in" else [own, pitch_row(module_mm, "in", kind, symbol)]
 
 
-def data_rows(data: dict, scale: str, version: str, source: str, chordal: bool = True) -> list[tuple[str, str, str]]:
+def data_rows(data: dict, scale: str, version: str, source: str) -> list[tuple[str, str, str]]:
     """The gear data block as ``(name, symbol, value)`` rows, in the order of ISO 1340.
 
     ``data``: the gear data dict (lengths in ``data["length_unit"]``), with ``mating_gears``
-    when the gear meshes with others; ``scale``, ``version``, ``source``: the drawing's;
-    ``chordal``: with the chordal tooth's rows (when the data has them)."""
+    when the gear meshes with others; ``scale``, ``version``, ``source``: the drawing's."""
     u = data["length_unit"]
     L = lambda v: format_length(v, u)  # noqa: E731 - one formatter for every length on the sheet
     rows = [("Number of teeth", "z", f"{data['teeth']}")] + pitch_rows(data["normal_module_mm"], u)
@@ -278,7 +285,7 @@ def data_rows(data: dict, scale: str, version: str, source: str, chordal: bool =
         (f"Over-{kind} limits", "M_dK", format_limits(pins.get("limits"), u) if pins else "-"),
     ]
     chord = data.get("chordal_tooth")
-    if chord and chordal:  # a gear-tooth caliper's reading: normal chord at the virtual gear's reference circle, height from the tip
+    if chord:  # a gear-tooth caliper's reading: normal chord at the virtual gear's reference circle, height from the tip
         rows += [("Chordal tooth thickness / height", "s_c / h_c",
                   f"{format_number(chord['thickness_normal'], u)} / {format_number(chord['height'], u)} {u}"),
                  ("Chordal thickness limits", "s_c", format_limits(chord.get("limits"), u))]
@@ -366,52 +373,124 @@ def parse_cell_gid(gid: str) -> tuple[float, float, float, float] | None:
 
 
 class Sheet:
-    """The figure (A3, 72 dpi: 1 px = 1 pt) and one axes spanning it in sheet mm."""
+    """The A3 sheet being drawn: primitives recorded in sheet mm (y up) by :mod:`geargen.report.vector`,
+    written as SVG and PDF from the one record (:meth:`write`). Text is measured with the drawing
+    font's own advance widths (DejaVu Sans, what the SVG names and a browser renders)."""
 
     def __init__(self):
-        from matplotlib.backends.backend_agg import FigureCanvasAgg
-        from matplotlib.figure import Figure
+        from geargen.report.vector import Drawing
 
-        self.fig = Figure(figsize=(SHEET_MM[0] / 25.4, SHEET_MM[1] / 25.4), dpi=72)
-        FigureCanvasAgg(self.fig)
-        self.ax = self.fig.add_axes((0, 0, 1, 1))
-        self.ax.set_xlim(0, SHEET_MM[0])
-        self.ax.set_ylim(0, SHEET_MM[1])
-        self.ax.set_axis_off()
-        self.renderer = self.fig.canvas.get_renderer()
-        self._widths: dict[tuple[str, float, str], float] = {}
+        self.drawing = Drawing(SHEET_MM)
         self.cells: list[tuple[object, tuple[float, float, float, float]]] = []
 
+    @property
+    def texts(self) -> list:
+        """Every recorded text (:class:`geargen.report.vector.Text`: its string, box and group id)."""
+        from geargen.report.vector import Text
+        return [item for item in self.drawing.items if isinstance(item, Text)]
+
     def width_mm(self, text: str, size: float, weight: str = "normal") -> float:
-        # the renderer's own metrics (what a drawn Text measures), without making an artist per trial;
-        # wrapping asks for the same prefixes again and again
-        key = (text, size, weight)
-        if key not in self._widths:
-            from matplotlib.font_manager import FontProperties
-            prop = FontProperties(family=FONT, size=size, weight=weight)
-            w_px = self.renderer.get_text_width_height_descent(text, prop, ismath=False)[0]
-            self._widths[key] = w_px * 72.0 / self.fig.dpi * MM_PER_PT
-        return self._widths[key]
+        from geargen.report.vector import face
+        return face(weight).width_em(text) * size * MM_PER_PT
 
     def in_cell(self, text, cell) -> None:
-        """Record that ``text`` (an artist) must lie inside ``cell`` (x0, y0, x1, y1 sheet mm, y up):
+        """Record that ``text`` (a recorded text) must lie inside ``cell`` (x0, y0, x1, y1 sheet mm, y up):
         its SVG group id carries the cell (:func:`cell_gid`), and :attr:`cells` keeps the pair."""
         self.cells.append((text, tuple(float(c) for c in cell)))
-        text.set_gid(cell_gid(len(self.cells), cell))
+        text.gid = cell_gid(len(self.cells), cell)
 
-    def text(self, x, y, s, size=MIN_FONT_PT, **kw):
-        kw.setdefault("family", FONT)
-        return self.ax.text(x, y, s, fontsize=size, **kw)
+    def text(self, x, y, s, size=MIN_FONT_PT, ha="left", va="baseline", weight="normal", color="black",
+             rotation=0.0):
+        """A one-line text at ``(x, y)`` aligned by ``ha`` (left, center, right) and ``va`` (top, bottom,
+        center, center_baseline: the box of ascent and descent centred, baseline), turned ``rotation``
+        degrees about that point; returns the recorded text."""
+        from geargen.report.vector import Text, face, grey
 
-    def line(self, xs, ys, lw=0.35, **kw):
-        # line widths given in mm on the sheet (ISO 128: 0.35 thick, 0.18 thin)
-        return self.ax.plot(xs, ys, lw=lw / MM_PER_PT, color=kw.pop("color", "black"), solid_capstyle="butt", **kw)[0]
+        f = face(weight)
+        em = size * MM_PER_PT
+        width = f.width_em(s) * em
+        ascent, descent = f.ascent * em, f.descent * em
+        lift = {"top": -ascent, "bottom": descent, "baseline": 0.0}.get(va, (descent - ascent) / 2)
+        share = {"left": 0.0, "center": 0.5, "right": 1.0}[ha]
+        c, sn = math.cos(math.radians(rotation)), math.sin(math.radians(rotation))
+        bx, by = x - sn * lift, y + c * lift  # the baseline's point under the anchor
+        corners = [(u, v) for u in (-share * width, (1 - share) * width) for v in (-descent, ascent)]
+        xs = [bx + c * u - sn * v for u, v in corners]
+        ys = [by + sn * u + c * v for u, v in corners]
+        t = Text(s, bx, by, size, weight, grey(color), {0.0: "start", 0.5: "middle", 1.0: "end"}[share], rotation,
+                 (min(xs), min(ys), max(xs), max(ys)))
+        if s:  # an empty cell (a row without a symbol) draws nothing
+            self.drawing.items.append(t)
+        return t
+
+    def line(self, xs, ys, lw=0.35, color="black", linestyle=None, clip=None, closed=False):
+        """A polyline through ``xs``, ``ys`` (sheet mm), ``lw`` mm wide (ISO 128: 0.35 thick, 0.18 thin);
+        ``linestyle`` ``(0, (on, off, ...))`` in line widths (as matplotlib's dashes); ``clip`` a box."""
+        from geargen.report.vector import Path_, grey
+
+        pts = np.column_stack([np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)])
+        dash = tuple(v * lw for v in linestyle[1]) if linestyle else None
+        path = Path_(pts, lw, grey(color), None, closed, dash, clip)
+        self.drawing.items.append(path)
+        return path
+
+    def polygon(self, points, fill="black", lw=0.18, edge="black") -> None:
+        """A filled polygon (sheet mm), outlined ``lw`` mm in ``edge`` (None: no outline)."""
+        from geargen.report.vector import Path_, grey
+
+        self.drawing.items.append(Path_(np.asarray(points, dtype=float), lw, None if edge is None else grey(edge),
+                                        grey(fill), True))
+
+    def hatch(self, points, pitch: float = HATCH_PITCH_MM, lw: float = 0.18, color: str = "0.35") -> None:
+        """Section hatching (ISO 128-50: thin lines at 45°, ``pitch`` mm apart along x) across the
+        convex polygon ``points`` (sheet mm)."""
+        pts = np.asarray(points, dtype=float)
+        d = pts[:, 0] - pts[:, 1]  # constant along a 45° line
+        for c in np.arange(math.ceil(d.min() / pitch) * pitch, d.max(), pitch):
+            hits = []
+            for a, b in zip(pts, np.roll(pts, -1, axis=0)):
+                da, db = a[0] - a[1] - c, b[0] - b[1] - c
+                if (da <= 0 < db) or (db <= 0 < da):
+                    t = da / (da - db)
+                    hits.append(a + t * (b - a))
+            if len(hits) >= 2:
+                hits.sort(key=lambda p: p[0])
+                self.line([hits[0][0], hits[-1][0]], [hits[0][1], hits[-1][1]], lw=lw, color=color)
+
+    def arrow(self, tail, head, lw: float = 0.18, both: bool = False) -> None:
+        """A line from ``tail`` to ``head`` with a filled arrowhead (:data:`ARROW_MM`) at ``head``
+        (and at ``tail`` with ``both``: a dimension line)."""
+        tail, head = np.asarray(tail, dtype=float), np.asarray(head, dtype=float)
+        self.line([tail[0], head[0]], [tail[1], head[1]], lw=lw)
+        length, half = ARROW_MM
+        ends = [(tail, head), (head, tail)] if both else [(tail, head)]
+        for a, b in ends:
+            u = b - a
+            n = float(np.hypot(*u))
+            if n == 0:
+                continue
+            u /= n
+            v = np.array([-u[1], u[0]])
+            base = b - u * min(length, n / 2 if both else n)
+            self.polygon([b, base + v * half, base - v * half], lw=lw)
+
+    def text_boxes(self) -> list[tuple[str, tuple[float, float, float, float], str | None]]:
+        """Every recorded text with its box (sheet mm) and group id: what a test measures."""
+        return [(t.text, t.box, t.gid) for t in self.texts]
+
+    def svg(self) -> bytes:
+        from geargen.report.vector import svg_bytes
+        return svg_bytes(self.drawing)
+
+    def pdf(self) -> bytes:
+        from geargen.report.vector import pdf_bytes
+        return pdf_bytes(self.drawing)
 
     def wrap(self, text: str, width_mm: float, size: float, most: int | None = None) -> list[str]:
         """``text`` broken into lines no wider than ``width_mm`` (at spaces, else after ``/``,
         else anywhere), measured with :data:`WRAP_FILL` of the width: a browser lays the SVG's text
-        out with its own shaping, up to 3 % wider than Agg's metrics (a run of ``/`` measured in
-        headless Chromium, tests/report/test_drawing_cells.py). With ``most``, a text that needs
+        out with its own shaping and rounding, which may differ a little from the advance widths summed
+        here (headless Chromium checks it, tests/report/test_drawing_cells.py). With ``most``, a text that needs
         more lines broken at words is broken anywhere instead, each line filled: then ``most`` lines
         hold ``most`` times the letters of the widest that fit one line, whatever the spaces."""
         width_mm *= WRAP_FILL
@@ -476,10 +555,11 @@ def _box(sheet, box, lw=0.35):
 
 
 def draw_data_block(sheet: Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_PT, columns=COLUMNS_MM,
-                header=("Gear data (ISO 1340)", "Symbol", "Value")) -> list[float]:
+                header=("Gear data (ISO 1340)", "Symbol", "Value"), row_pad: float = ROW_PAD_MM) -> list[float]:
     """Draw ``rows`` as a table in ``box`` (from its top) with ``columns`` widths (mm) under
-    ``header``; returns the bottom of each row (mm). Raises ValueError when the rows do not fit
-    the box. Each text carries its cell (:func:`cell_gid`) so a test can find it outside."""
+    ``header``, ``row_pad`` mm above and below each row's lines; returns the bottom of each row (mm).
+    Raises ValueError when the rows do not fit the box. Each text carries its cell (:func:`cell_gid`)
+    so a test can find it outside."""
     x0, y0, x1, y1 = box
     line_h = size * 1.2 * MM_PER_PT
     cols = np.cumsum((x0,) + tuple(columns))
@@ -493,7 +573,7 @@ def draw_data_block(sheet: Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_P
         if most is not None and len(cells[2]) > most:
             raise ValueError(f"{row[0]!r} needs {len(cells[2])} lines, more than its {most}")
         wrapped.append(cells)
-    heights = [max(len(c) for c in cells) * line_h + 2 * ROW_PAD_MM for cells in wrapped]
+    heights = [max(len(c) for c in cells) * line_h + 2 * row_pad for cells in wrapped]
     if sum(heights) > y1 - y0:
         raise ValueError(f"the gear data block needs more than {y1 - y0:g} mm")
     y = y1
@@ -502,7 +582,7 @@ def draw_data_block(sheet: Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_P
         weight = "bold" if i == 0 else "normal"
         for j, lines in enumerate(cells):
             for k, text in enumerate(lines):
-                t = sheet.text(cols[j] + PAD_MM, y - ROW_PAD_MM - (k + 0.5) * line_h, text, size,
+                t = sheet.text(cols[j] + PAD_MM, y - row_pad - (k + 0.5) * line_h, text, size,
                                va="center_baseline", weight=weight)
                 sheet.in_cell(t, (cols[j], y - height, cols[j + 1], y))
         y -= height
@@ -512,6 +592,17 @@ def draw_data_block(sheet: Sheet, rows, box=DATA_BLOCK, size: float = MIN_FONT_P
         sheet.line([c, c], [y, y1], lw=0.18)
     _box(sheet, (x0, y, x1, y1))
     return bottoms
+
+
+def fit_data_block(sheet: Sheet, rows) -> list[float]:
+    """The gear data block of ``rows`` (:func:`draw_data_block`), its rows closer together
+    (:data:`TIGHT_ROW_PAD_MM`) when they do not fit otherwise: a gear with three or more mates, long
+    texts and a helix keeps every row, the chordal tooth's too (tests/report/test_drawing_cells.py).
+    Raises ValueError when even that does not fit."""
+    try:
+        return draw_data_block(sheet, rows)
+    except ValueError:
+        return draw_data_block(sheet, rows, row_pad=TIGHT_ROW_PAD_MM)
 
 
 def title_cells() -> dict[str, tuple[float, float, float, float]]:
@@ -598,7 +689,7 @@ def _full_view(sheet, profile, scale: float) -> None:
     cx, cy = (box[0] + box[2]) / 2, (box[1] + box[3]) / 2
     k = scale  # sheet mm per gear mm
     to = lambda p: (cx + p[:, 0] * k, cy + p[:, 1] * k)  # noqa: E731
-    pts = outline_points(profile, 0.05 / k)
+    pts = outline_points(profile, OUTLINE_STEP_MM / k)
     sheet.line(*to(pts), lw=0.5)
     bore = bore_points(profile.spec.hub)
     if bore is not None:
@@ -628,8 +719,7 @@ def _section_view(sheet, profile, unit: str, scale: float, datum_tolerances: dic
     thick, thin = 0.5, 0.18
     # body between bore and root circle hatched (teeth are drawn unsectioned, ISO 2203)
     for sign in (1, -1):
-        sheet.ax.fill([x0, x1, x1, x0], [cy + sign * rbore, cy + sign * rbore, cy + sign * rf, cy + sign * rf],
-                      facecolor="none", edgecolor="none", hatch="////", linewidth=0)
+        sheet.hatch([(x0, cy + sign * rbore), (x1, cy + sign * rbore), (x1, cy + sign * rf), (x0, cy + sign * rf)])
         sheet.line([x0, x1, x1, x0, x0], [cy + sign * rbore, cy + sign * rbore, cy + sign * ra, cy + sign * ra,
                                           cy + sign * rbore], lw=thick)
         sheet.line([x0, x1], [cy + sign * rf, cy + sign * rf], lw=thin)
@@ -638,9 +728,8 @@ def _section_view(sheet, profile, unit: str, scale: float, datum_tolerances: dic
         if hub_len > 0:
             sheet.line([x0, x0 - hub_len, x0 - hub_len, x0], [cy + sign * rhub, cy + sign * rhub,
                                                               cy + sign * rbore, cy + sign * rbore], lw=thick)
-            sheet.ax.fill([x0 - hub_len, x0, x0, x0 - hub_len],
-                          [cy + sign * rbore, cy + sign * rbore, cy + sign * rhub, cy + sign * rhub],
-                          facecolor="none", edgecolor="none", hatch="////", linewidth=0)
+            sheet.hatch([(x0 - hub_len, cy + sign * rbore), (x0, cy + sign * rbore), (x0, cy + sign * rhub),
+                         (x0 - hub_len, cy + sign * rhub)])
     sheet.line([x0 - hub_len - 4, x1 + 4], [cy, cy], lw=thin, linestyle=(0, (12, 2, 1.5, 2)))
     N = lambda v: format_number(from_mm(v, unit), unit)  # noqa: E731
     left = x0 - hub_len
@@ -718,9 +807,7 @@ def _runout_frames(sheet, geo: dict, unit: str, tip_target, face_target, lowest:
             path = [(x_right, mid), (target[0], mid)]
         if len(path) > 1:
             sheet.line([p[0] for p in path], [p[1] for p in path], lw=0.18)
-        sheet.ax.annotate("", xy=target, xytext=path[-1],
-                          arrowprops=dict(arrowstyle="-|>", lw=0.18 / MM_PER_PT, color="black", shrinkA=0,
-                                          shrinkB=0, mutation_scale=7))
+        sheet.arrow(path[-1], target)
 
 
 def _frame_widths(sheet, value: str) -> tuple[float, float, float]:
@@ -747,15 +834,13 @@ def _datum(sheet, letter: str, foot, frame_centre) -> None:
     """A datum feature indicator (ISO 5459): a filled triangle standing on ``foot``, a leader to a
     square frame around ``letter`` centred at ``frame_centre``. The triangle points along the leader;
     the letter's SVG id carries its frame (:func:`cell_gid`), so a reader finds the datum there."""
-    from matplotlib.patches import Polygon
     (fx, fy), (cx, cy) = foot, frame_centre
     length = math.hypot(cx - fx, cy - fy)
     ux, uy = (cx - fx) / length, (cy - fy) / length  # along the leader
     side = 3.0  # mm: the triangle's base on the feature; its height sqrt(3)/2 of it
     tip = (fx + ux * side * 0.866, fy + uy * side * 0.866)
     base = [(fx - uy * side / 2, fy + ux * side / 2), (fx + uy * side / 2, fy - ux * side / 2)]
-    sheet.ax.add_patch(Polygon([base[0], base[1], tip], closed=True, facecolor="black", edgecolor="black",
-                               lw=0.18 / MM_PER_PT))
+    sheet.polygon([base[0], base[1], tip])
     half = DATUM_FRAME_MM / 2
     # the leader ends where it meets the frame's side
     reach = half / max(abs(ux), abs(uy))
@@ -767,37 +852,31 @@ def _datum(sheet, letter: str, foot, frame_centre) -> None:
 
 def dimension(sheet, p, q, text, vertical: bool) -> None:
     """A dimension line from ``p`` to ``q`` with arrows at both ends and its text beside it."""
-    sheet.ax.annotate("", xy=p, xytext=q, arrowprops=dict(arrowstyle="<|-|>", lw=0.18 / MM_PER_PT, color="black",
-                                                          shrinkA=0, shrinkB=0, mutation_scale=7))
+    sheet.arrow(q, p, both=True)
     mx, my = (p[0] + q[0]) / 2, (p[1] + q[1]) / 2
     if vertical:
-        sheet.text(mx - 1.0, my, text, MIN_FONT_PT, rotation=90, ha="center", va="bottom", rotation_mode="anchor")
+        sheet.text(mx - 1.0, my, text, MIN_FONT_PT, rotation=90, ha="center", va="bottom")
     else:
         sheet.text(mx, my - 1.0, text, MIN_FONT_PT, ha="center", va="top")
 
 
 def _detail_view(sheet, profile, unit: str, scale: float) -> None:
     """Two teeth around the +y axis, enlarged, with the four circles named."""
-    from matplotlib.patches import Rectangle
-
-    from geargen.report.labels import Obstacles, place_labels
+    from geargen.report.labels import Obstacles, place_sheet_labels
 
     box = DETAIL_VIEW
     k = scale
     cx = (box[0] + box[2]) / 2
     cy = box[3] - 12.0 - profile.tip_radius * k  # the gear centre, below the window
     turn = math.pi / 2 - profile.pitch_angle / 2  # the gap between two teeth on +y
-    clip = Rectangle((box[0], box[1]), box[2] - box[0], box[3] - box[1], transform=sheet.ax.transData,
-                     facecolor="none", edgecolor="black", lw=0.35 / MM_PER_PT)
-    sheet.ax.add_patch(clip)
+    _box(sheet, box)
     half = (box[2] - box[0]) / 2 / k  # gear mm across half the window
     n = int(math.ceil(2 * math.asin(min(1.0, half / profile.root_radius)) / profile.pitch_angle)) + 2
     from geargen.profile.segments import sample_outline
     segs = [s.rotated(turn + j * profile.pitch_angle) for j in range(-n // 2 - 1, n // 2 + 2)
             for s in profile.pitch_segments()]
-    pts = sample_outline(segs, 0.05 / k)
-    line = sheet.line(cx + pts[:, 0] * k, cy + pts[:, 1] * k, lw=0.5)
-    line.set_clip_path(clip)
+    pts = sample_outline(segs, OUTLINE_STEP_MM / k)
+    sheet.line(cx + pts[:, 0] * k, cy + pts[:, 1] * k, lw=0.5, clip=box)
     circles = [("d_a", profile.tip_radius, dict(lw=0.18)),
                ("d", profile.reference_radius, dict(lw=0.18, linestyle=(0, (12, 2, 1.5, 2)))),
                ("d_b", profile.base_radius, dict(lw=0.18, linestyle=(0, (3, 1.5)))),
@@ -806,15 +885,14 @@ def _detail_view(sheet, profile, unit: str, scale: float) -> None:
     t = np.linspace(math.pi / 2 - width_angle, math.pi / 2 + width_angle, 721)
     labels, obstacles = [], Obstacles(boxes=[])
     for sym, r, style in circles:
-        c = sheet.line(cx + r * k * np.cos(t), cy + r * k * np.sin(t), color="0.25", **style)
-        c.set_clip_path(clip)
+        sheet.line(cx + r * k * np.cos(t), cy + r * k * np.sin(t), color="0.25", clip=box, **style)
         # anchor: the circle's point farthest right that is well inside the window
         for frac in (0.7, 0.55, 0.4, 0.25, 0.1):
             x_label = cx + frac * (box[2] - box[0]) / 2
             y = cy + math.sqrt(max((r * k) ** 2 - (x_label - cx) ** 2, 0.0))
             if box[1] + 4 < y < box[3] - 4:
                 labels.append((f"{sym} ⌀{format_number(from_mm(2 * r, unit), unit)}", (x_label, y),
-                               dict(fontsize=MIN_FONT_PT, family=FONT, color="0.15")))
+                               dict(size=MIN_FONT_PT, color="0.15")))
                 break
         obstacles.circles.append((cx, cy, r * k))
     # the outline as an obstacle: 2 mm chords on the sheet, those inside the window
@@ -823,16 +901,8 @@ def _detail_view(sheet, profile, unit: str, scale: float) -> None:
     keep = inside[:-1] | inside[1:]
     obstacles.segments += [(tuple(a), tuple(b)) for a, b, ok in zip(coarse[:-1], coarse[1:], keep) if ok]
     # the labels go into the window's right part, clear of each other (hard) and of the outline (soft)
-    sub = sheet.fig.add_axes(_axes_rect(box), facecolor="none")
-    sub.set_xlim(box[0], box[2])
-    sub.set_ylim(box[1], box[3])
-    sub.set_axis_off()
-    place_labels(sub, labels, obstacles, leader_from_ring=1)
+    place_sheet_labels(sheet, box, labels, obstacles, leader_from_ring=1)
     view_title(sheet, box, f"Detail: tooth form ({scale_text(scale)})")
-
-
-def _axes_rect(box):
-    return (box[0] / SHEET_MM[0], box[1] / SHEET_MM[1], (box[2] - box[0]) / SHEET_MM[0], (box[3] - box[1]) / SHEET_MM[1])
 
 
 def drawing_scales(profile) -> tuple[float, float, float]:
@@ -851,29 +921,21 @@ def drawing_scales(profile) -> tuple[float, float, float]:
 
 
 def draw_gear(data: dict, profile, source: str, design_file: str, version: str):
-    """The drawing (a matplotlib ``Figure``) of the gear of ``profile`` with the data ``data``."""
-    import matplotlib
-
+    """The drawing (a :class:`Sheet`) of the gear of ``profile`` with the data ``data``."""
     unit = data["length_unit"]
     full, section, detail = drawing_scales(profile)
     scale = f"{scale_text(full)} (section {scale_text(section)}, detail {scale_text(detail)})"
-    with matplotlib.rc_context({"hatch.linewidth": 0.18 / MM_PER_PT, "hatch.color": "0.35"}):
-        sheet = Sheet()
-        draw_frame(sheet)
-        _full_view(sheet, profile, full)
-        _section_view(sheet, profile, unit, section, data.get("datum_tolerances"))
-        _detail_view(sheet, profile, unit, detail)
-        try:
-            draw_data_block(sheet, data_rows(data, scale, version, source))
-        except ValueError:
-            # the chordal tooth (the JSON keeps it) gives way first: a gear with three or more mates,
-            # long texts and a helix fills the block without it (tests/report/test_drawing_cells.py)
-            draw_data_block(sheet, data_rows(data, scale, version, source, chordal=False))
-        draw_data_block(sheet, blank_rows(data), BLANK_BLOCK, columns=BLANK_COLUMNS_MM,
+    sheet = Sheet()
+    draw_frame(sheet)
+    _full_view(sheet, profile, full)
+    _section_view(sheet, profile, unit, section, data.get("datum_tolerances"))
+    _detail_view(sheet, profile, unit, detail)
+    fit_data_block(sheet, data_rows(data, scale, version, source))
+    draw_data_block(sheet, blank_rows(data), BLANK_BLOCK, columns=BLANK_COLUMNS_MM,
                     header=("Blank", "", "Value"))
-        draw_title_block(sheet, data["name"], design_file, unit, scale, version, data.get("part_number"),
+    draw_title_block(sheet, data["name"], design_file, unit, scale, version, data.get("part_number"),
                      data.get("revision"))
-    return sheet.fig
+    return sheet
 
 
 def write_drawing(data: dict, profile, folder, name: str, source: str, design_file: str,
@@ -884,31 +946,26 @@ def write_drawing(data: dict, profile, folder, name: str, source: str, design_fi
     return write_figure(draw_gear(data, profile, source, design_file, version or __version__), folder, name)
 
 
-def write_figure(fig, folder, name: str) -> dict[str, Path]:
-    """``folder/name-drawing.svg`` and ``.pdf`` from the one figure ``fig`` (atomically, folder
-    created); returns ``{"svg": path, "pdf": path}``."""
-    import matplotlib
-
+def write_figure(sheet: Sheet, folder, name: str) -> dict[str, Path]:
+    """``folder/name-drawing.svg`` and ``.pdf`` from the one recorded ``sheet`` (atomically, folder
+    created; no dates: same bytes twice); returns ``{"svg": path, "pdf": path}``."""
     from geargen.outputs import atomic_path
 
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
     out = {}
-    # SVG text stays text; the PDF's Type 3 fonts keep the text extractable (pdftotext reads every
-    # field) at a third of the TrueType subsetting's time; no dates: same bytes twice
-    with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen", "pdf.fonttype": 3}):
-        for fmt, meta in (("svg", {"Date": None}), ("pdf", {"CreationDate": None, "ModDate": None})):
-            path = folder / f"{name}-drawing.{fmt}"
-            with atomic_path(path) as tmp:
-                fig.savefig(tmp, format=fmt, facecolor="white", metadata=meta)
-            out[fmt] = path
+    for fmt, encode in (("svg", sheet.svg), ("pdf", sheet.pdf)):
+        path = folder / f"{name}-drawing.{fmt}"
+        with atomic_path(path) as tmp:
+            Path(tmp).write_bytes(encode())
+        out[fmt] = path
     return out
 
 
 __all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
            "blank_rows", "RUNOUT_SYMBOL", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_tolerance", "format_limits", "preferred_scale", "scale_text",
-           "drawing_scales", "pitch_row", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block",
+           "drawing_scales", "pitch_row", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block", "fit_data_block",
            "draw_title_block", "view_title", "dimension", "outline_points", "bore_points", "centre_cross"]
 
 

@@ -61,7 +61,7 @@ def _turned(points: np.ndarray, angle: float) -> np.ndarray:
 
 
 def draw_cluster(data: dict, large, small, source: str, design_file: str, version: str):
-    """The cluster's sheet (a matplotlib Figure); ``large``/``small`` the two gears' specs (mm)."""
+    """The cluster's sheet (a :class:`geargen.report.drawing.Sheet`); ``large``/``small`` the two gears' specs (mm)."""
     from geargen.profile.tooth import tooth_profile
 
     u = data["length_unit"]
@@ -78,8 +78,8 @@ def draw_cluster(data: dict, large, small, source: str, design_file: str, versio
     def views(sheet):
         # end view, from the small gear's end: +z towards the reader, counter-clockwise as drawn
         cx, cy = (END_VIEW[0] + END_VIEW[2]) / 2, (END_VIEW[1] + END_VIEW[3]) / 2
-        polyline(sheet, sheet_parts.outline_points(lp, 0.05 / k), (cx, cy), k, lw=0.18, color="0.35")
-        polyline(sheet, _turned(sheet_parts.outline_points(sp, 0.05 / k), phase), (cx, cy), k, lw=0.5)
+        polyline(sheet, sheet_parts.outline_points(lp, sheet_parts.OUTLINE_STEP_MM / k), (cx, cy), k, lw=0.18, color="0.35")
+        polyline(sheet, _turned(sheet_parts.outline_points(sp, sheet_parts.OUTLINE_STEP_MM / k), phase), (cx, cy), k, lw=0.5)
         bore = sheet_parts.bore_points(large.hub)
         if bore is not None:
             polyline(sheet, np.vstack([bore, bore[:1]]), (cx, cy), k, lw=0.5)

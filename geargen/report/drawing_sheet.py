@@ -33,17 +33,14 @@ def closing_rows(unit: str, scale: float, version: str, source: str) -> list[tup
 
 
 def draw_sheet(name: str, rows, draw_views, design_file: str, unit: str, scale: float, version: str):
-    """The figure: frame, ``draw_views(sheet)`` (a :class:`geargen.report.drawing.Sheet`), the data
+    """The sheet (a :class:`geargen.report.drawing.Sheet`): frame, ``draw_views(sheet)``, the data
     block of ``rows`` and the title block."""
-    import matplotlib
-
-    with matplotlib.rc_context({"hatch.linewidth": 0.18 / sheet_parts.MM_PER_PT, "hatch.color": "0.35"}):
-        sheet = sheet_parts.Sheet()
-        sheet_parts.draw_frame(sheet)
-        draw_views(sheet)
-        sheet_parts.draw_data_block(sheet, rows)
-        sheet_parts.draw_title_block(sheet, name, design_file, unit, sheet_parts.scale_text(scale), version)
-    return sheet.fig
+    sheet = sheet_parts.Sheet()
+    sheet_parts.draw_frame(sheet)
+    draw_views(sheet)
+    sheet_parts.draw_data_block(sheet, rows)
+    sheet_parts.draw_title_block(sheet, name, design_file, unit, sheet_parts.scale_text(scale), version)
+    return sheet
 
 
 def polyline(sheet, points, origin, scale: float, lw: float = 0.5, **kw):

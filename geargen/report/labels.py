@@ -10,6 +10,8 @@ moved away from its anchor gets a leader line.
 
 Obstacles are given in data coordinates and tested in display pixels, after the axes' limits
 are final (the caller sets them before placing).
+:func:`place_sheet_labels` places the same way on a drawing sheet (sheet mm, each text measured by
+the drawing font's advance widths).
 """
 
 from __future__ import annotations
@@ -96,16 +98,16 @@ def _alignment(dx: float, dy: float) -> tuple[str, str]:
     return ha, va
 
 
-def _box_at(anchor_px, size, dx_px: float, dy_px: float) -> tuple[float, float, float, float]:
+def _box_at(anchor_px, size, dx_px: float, dy_px: float, pad: float = PAD_PX) -> tuple[float, float, float, float]:
     """The display box of a text of ``size`` (w, h) set at ``anchor_px`` + offset, aligned as
-    :func:`_alignment` aligns it, with :data:`PAD_PX` around it."""
+    :func:`_alignment` aligns it, with ``pad`` (:data:`PAD_PX`) around it."""
     w, h = size
     ha, va = _alignment(dx_px, dy_px)
     x = anchor_px[0] + dx_px
     y = anchor_px[1] + dy_px
     x0 = x if ha == "left" else x - w if ha == "right" else x - w / 2
     y0 = y if va == "bottom" else y - h if va == "top" else y - h / 2
-    return (x0 - PAD_PX, y0 - PAD_PX, x0 + w + PAD_PX, y0 + h + PAD_PX)
+    return (x0 - pad, y0 - pad, x0 + w + pad, y0 + h + pad)
 
 
 def _overlaps_any(box, boxes: np.ndarray) -> int:
@@ -155,21 +157,8 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
         probe = ax.annotate(text, anchor, ha="center", va="center", annotation_clip=False, **style)
         extent = text_extent(probe, renderer)
         probe.remove()
-        size = (extent.width, extent.height)
-        anchor_px = to_px(anchor)
-        taken = np.array(placed).reshape(-1, 4)
-        best = None
-        for dx, dy, ring in _candidates():
-            box = _box_at(anchor_px, size, dx * px_per_pt, dy * px_per_pt)
-            outside = not (box[0] >= frame.x0 and box[1] >= frame.y0 and box[2] <= frame.x1 and box[3] <= frame.y1)
-            hard = _overlaps_any(box, taken) + _circles_crossing(box, circles) + outside
-            soft = _segments_crossing(box, segments) + _overlaps_any(box, regions)
-            score = (hard, soft, ring)
-            if best is None or score < best[0]:
-                best = (score, box, dx, dy, ring)
-            if score[:2] == (0, 0):
-                break
-        score, box, dx, dy, ring = best
+        box, dx, dy, ring = _choose((extent.width, extent.height), to_px(anchor), (frame.x0, frame.y0, frame.x1, frame.y1),
+                                    np.array(placed).reshape(-1, 4), circles, segments, regions, px_per_pt, PAD_PX)
         ha, va = _alignment(dx, dy)
         leader = dict(arrowprops=dict(arrowstyle="-", color=leader_colour, lw=0.6, shrinkA=1, shrinkB=0)) \
             if ring >= leader_from_ring else {}
@@ -178,6 +167,59 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
         placed.append(box)
         artists.append(artist)
     return artists
+
+
+def _choose(size, anchor, frame, taken, circles, segments, regions, unit_per_pt: float, pad: float):
+    """The first free candidate position of a text of ``size`` about ``anchor`` (all in one unit: display
+    px or sheet mm, ``unit_per_pt`` of them a point), else the one with the fewest conflicts: returns
+    its box, offset (pt) and ring."""
+    best = None
+    for dx, dy, ring in _candidates():
+        box = _box_at(anchor, size, dx * unit_per_pt, dy * unit_per_pt, pad)
+        outside = not (box[0] >= frame[0] and box[1] >= frame[1] and box[2] <= frame[2] and box[3] <= frame[3])
+        hard = _overlaps_any(box, taken) + _circles_crossing(box, circles) + outside
+        soft = _segments_crossing(box, segments) + _overlaps_any(box, regions)
+        score = (hard, soft, ring)
+        if best is None or score < best[0]:
+            best = (score, box, dx, dy, ring)
+        if score[:2] == (0, 0):
+            break
+    return best[1:]
+
+
+def place_sheet_labels(sheet, frame, labels, obstacles: Obstacles | None = None, leader_from_ring: int = 2,
+                       leader_colour: str = "0.35") -> list:
+    """:func:`place_labels` on a drawing sheet (:class:`geargen.report.drawing.Sheet`, sheet mm):
+    ``labels`` ``(text, (x, y) anchor, {"size": pt, "color": ...})`` placed inside ``frame`` (x0, y0,
+    x1, y1) by the same candidates and rules, each text measured by the sheet's font metrics; a
+    label at the ``leader_from_ring``-th ring or farther gets a leader line to its anchor. Returns the
+    recorded texts."""
+    from geargen.report.vector import MM_PER_PT
+
+    obstacles = obstacles or Obstacles()
+    circles = np.array(obstacles.circles, dtype=float).reshape(-1, 3)
+    segments = np.array([(*p, *q) for p, q in obstacles.segments], dtype=float).reshape(-1, 4)
+    regions = np.array(obstacles.boxes, dtype=float).reshape(-1, 4)
+    placed, out = [], []
+    for text, anchor, style in labels:
+        probe = sheet.text(anchor[0], anchor[1], text, ha="center", va="center", **style)
+        sheet.drawing.items.remove(probe)
+        size = (probe.box[2] - probe.box[0], probe.box[3] - probe.box[1])
+        box, dx, dy, ring = _choose(size, anchor, frame, np.array(placed).reshape(-1, 4), circles, segments, regions,
+                                    MM_PER_PT, PAD_PX * MM_PER_PT)
+        ha, va = _alignment(dx, dy)
+        x, y = anchor[0] + dx * MM_PER_PT, anchor[1] + dy * MM_PER_PT
+        if ring >= leader_from_ring:
+            # from the anchor to the text's box (its nearest point, 1 pt short of it)
+            t0 = probe.box
+            w, h = t0[2] - t0[0], t0[3] - t0[1]
+            bx0 = x if ha == "left" else x - w if ha == "right" else x - w / 2
+            by0 = y if va == "bottom" else y - h if va == "top" else y - h / 2
+            nx, ny = min(max(anchor[0], bx0), bx0 + w), min(max(anchor[1], by0), by0 + h)
+            sheet.line([anchor[0], nx], [anchor[1], ny], lw=0.6 * MM_PER_PT, color=leader_colour)
+        out.append(sheet.text(x, y, text, ha=ha, va=va, **style))
+        placed.append(box)
+    return out
 
 
 def text_extent(text, renderer=None):
@@ -202,5 +244,5 @@ def text_boxes(fig) -> list[tuple[str, tuple[float, float, float, float]]]:
     return out
 
 
-__all__ = ["Obstacles", "place_labels", "text_boxes", "text_extent", "circle_crosses_box", "segment_crosses_box",
+__all__ = ["Obstacles", "place_labels", "place_sheet_labels", "text_boxes", "text_extent", "circle_crosses_box", "segment_crosses_box",
            "boxes_overlap"]

@@ -162,12 +162,14 @@ def test_a_name_of_a_file_geargen_writes_itself_is_refused(name, tmp_path, capsy
 def test_the_drawing_holds_the_longest_gear_name():
     """A gear with two mates (a split pinion's output: the most any placed drive gives a gear) whose
     three names are GEAR_NAME_MAX of the widest letter, and a 100-character design file path: the
-    gear data block holds it; two letters more overflow it (the limit is the drawing's)."""
+    gear data block holds it at its own row spacing without the chordal tooth's rows, two letters more
+    overflow that (the limit is the drawing's); and as drawn (every row, closer together when full:
+    geargen.report.drawing.fit_data_block) the block holds it with the chordal tooth's rows."""
     from geargen.core.allowance import ThicknessAllowance
     from geargen.design.gear import GearSpec
     from geargen.model.gear_data import gear_data
     from geargen.profile.tooth import tooth_profile
-    from geargen.report.drawing import draw_data_block, Sheet, data_rows
+    from geargen.report.drawing import draw_data_block, fit_data_block, Sheet, data_rows
 
     spec = GearSpec(teeth=21, module=1.0, pressure_angle=0.3490658503988659, face_width=10.0, helix_angle=0.3,
                     accuracy_grade=6)  # every row the block can have: helical, graded, an allowance
@@ -175,22 +177,24 @@ def test_the_drawing_holds_the_longest_gear_name():
     allowance = ThicknessAllowance(-0.02, -0.045, "entered (--thickness-allowance)", "--thickness-allowance")
     path = "/" + "d" * 94 + ".toml"
 
-    def fits(length: int) -> bool:
-        name = "m" * length  # "m" and "W" are the widest of the allowed letters in DejaVu Sans (3.53 mm at 10 pt)
+    def fits(length: int, chordal: bool = False, draw=draw_data_block) -> bool:
+        name = "W" * length  # "W" is the widest of a name's letters in DejaVu Sans (2025 of 2048 units an em)
         data = gear_data(spec, profile, allowance)
+        if not chordal:
+            del data["chordal_tooth"]
         data["name"] = name
         data["mating_gears"] = [{"name": name, "teeth": 90, "centre_distance": 55.5,
                                  "centre_distance_tolerance": [-0.01, 0.01]}] * 2
         source = f"gear {name} from {path} [gears.{name}]"  # geargen gear FILE --gear NAME: the longest source
         try:
-            # the chordal tooth's rows give way on a full block (draw_gear): the name's room is the block's without them
-            draw_data_block(Sheet(), data_rows(data, "2:1 (section 1:1, detail 10:1)", "0.0.0", source, chordal=False))
+            draw(Sheet(), data_rows(data, "2:1 (section 1:1, detail 10:1)", "0.0.0", source))
             return True
         except ValueError:
             return False
 
     assert fits(GEAR_NAME_MAX)
     assert not fits(GEAR_NAME_MAX + 2)
+    assert fits(GEAR_NAME_MAX, chordal=True, draw=fit_data_block)
 
 
 # ------------------------------------------------------------------ the name only labels

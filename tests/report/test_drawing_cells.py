@@ -3,10 +3,11 @@
 Each text drawn in a table (data block, blank table, title block) carries its cell in its SVG group
 id (``cell-<n>-x0_y0_x1_y1``, sheet mm, y up). Two independent measurements of the drawn text:
 
-- matplotlib: each text's window extent from the Agg renderer (what the layout wrapped against);
+- the sheet's record: each text's box as laid out by the drawing font's advance widths, ascent and
+  descent (what the layout wrapped against);
 - headless Chromium: the SVG opened in a page whose script maps each text's getBBox through its
   getCTM into the sheet and writes the boxes into the DOM (--dump-dom); Chromium lays the text out
-  with its own font engine, so a wrap that fits only matplotlib's metrics is caught here.
+  with its own font engine, so a wrap that fits only the sheet's own metrics is caught here.
 
 The sheets: a metric helical pinion with every drawing key given and the accuracy grade the error
 budget chose (the longest accuracy-grade text), an inch spur gear with only its teeth, and a gear whose
@@ -26,6 +27,7 @@ from geargen.design.gear import GearSpec, Hub, ShopData
 from geargen.model.gear_data import gear_data
 from geargen.profile.tooth import tooth_profile
 from geargen.report.drawing import MM_PER_PT, SHEET_MM, draw_gear, parse_cell_gid, write_drawing
+from tests.drawing_support import cell_texts, table_rows
 
 #: a text may reach this far (mm) past its cell's line: half the thinnest rule (0.18 mm) drawn on it
 SLACK_MM = 0.09
@@ -63,7 +65,7 @@ def _longest():
     from geargen.design.gear import DRAWN_TEXT_MAX, gear_from_table
     spec = gear_from_table({"teeth": 40, "module_mm": 1.0, "pressure_angle_deg": 20, "face_width_mm": 12.0,
                             "bore_diameter_mm": 20.0, "bore_fit": "H7",
-                            **{key: "m" * n for key, n in DRAWN_TEXT_MAX.items()}}, "gears.wheel", "wheel")
+                            **{key: "—" * n for key, n in DRAWN_TEXT_MAX.items()}}, "gears.wheel", "wheel")
     profile = tooth_profile(spec, warn=False)
     return spec, profile, gear_data(spec, profile)
 
@@ -72,21 +74,18 @@ SOURCE = "gear x from " + "/a/long/path" * 10 + "/design.toml [gear]"
 
 
 @pytest.mark.parametrize("make", [_full, _bare, _longest])
-def test_matplotlib_extents_lie_inside_their_cells(make):
+def test_recorded_text_boxes_lie_inside_their_cells(make):
     spec, profile, data = make()
-    fig = draw_gear(data, profile, SOURCE, "/a/long/path/design.toml", "0.0")
-    renderer = fig.canvas.get_renderer()
+    sheet = draw_gear(data, profile, SOURCE, "/a/long/path/design.toml", "0.0")
     checked, outside = 0, []
-    for text in fig.texts + [t for ax in fig.axes for t in ax.texts]:
-        cell = parse_cell_gid(text.get_gid())
+    for text, box, gid in sheet.text_boxes():  # sheet mm, y up from the sheet's bottom
+        cell = parse_cell_gid(gid)
         if cell is None:
             continue
-        e = text.get_window_extent(renderer)  # px at 72 dpi: 1 px = 1 pt, y up from the sheet's bottom
-        box = (e.x0 * MM_PER_PT, e.y0 * MM_PER_PT, e.x1 * MM_PER_PT, e.y1 * MM_PER_PT)
         checked += 1
         if not (box[0] >= cell[0] - SLACK_MM and box[2] <= cell[2] + SLACK_MM
                 and box[1] >= cell[1] - SLACK_MM and box[3] <= cell[3] + SLACK_MM):
-            outside.append((text.get_text(), [round(v, 2) for v in box], cell))
+            outside.append((text, [round(v, 2) for v in box], cell))
     assert checked > 100  # the data block, blank table and title block
     assert not outside, outside
 
@@ -140,19 +139,25 @@ def test_in_chromium_every_text_lies_inside_its_cell(make, chromium, tmp_path):
     assert not outside, outside
 
 
-def test_the_chordal_tooth_gives_way_when_the_block_is_full():
-    """The full pinion's block holds its chordal tooth rows with two mates (the most a shipped design
-    gives a gear: split_pinion's output); with three mates it has no room for them, and the sheet is
-    still drawn, the other rows whole (the gear JSON keeps the chordal tooth)."""
-    spec, profile, data = _full()
-
-    def texts(n_mates):
-        data["mating_gears"] = [dict(data["mating_gears"][0], name=f"mate_{i}") for i in range(n_mates)]
-        fig = draw_gear(data, profile, SOURCE, "/a/long/path/design.toml", "0.0")
-        return [t.get_text() for ax in fig.axes for t in ax.texts]
-
-    two = texts(2)
-    assert "Chordal tooth thickness / height" in two and "Centre distance to mate_1" in two
-    three = texts(3)
-    assert "Chordal tooth thickness / height" not in three and "Centre distance to mate_2" in three
-    assert "Over-balls limits" in three or "Over-pins limits" in three
+def test_the_chordal_tooth_stays_on_a_gear_with_three_mates(tmp_path):
+    """The full pinion's data block keeps its chordal tooth rows with three mates (before: they gave
+    way on a full block; the gear JSON kept them). Read back from the SVG's cells, the rows are the
+    JSON's chordal tooth, and every mate's centre distance is there too."""
+    from geargen.report.drawing import DATA_BLOCK, format_limits, format_number
+    from geargen.core.allowance import ThicknessAllowance
+    spec, profile, full = _full()
+    # with an allowance: every row the block can have (limits of span, over balls and chordal tooth)
+    allowance = ThicknessAllowance(-0.02, -0.045, "entered (--thickness-allowance)", "--thickness-allowance")
+    data = gear_data(spec, profile, allowance)
+    data["accuracy"] = full["accuracy"]
+    data["mating_gears"] = [dict(full["mating_gears"][0], name=f"mate_{i}") for i in range(3)]
+    chord = data["chordal_tooth"]
+    assert chord["limits"]
+    files = write_drawing(data, profile, tmp_path, spec.name, SOURCE, "/a/long/path/design.toml", "0.0")
+    rows = table_rows(cell_texts(files["svg"]), DATA_BLOCK)
+    u = data["length_unit"]
+    assert rows["Chordal tooth thickness / height"] == \
+        f"{format_number(chord['thickness_normal'], u)} / {format_number(chord['height'], u)} {u}"
+    assert rows["Chordal thickness limits"] == format_limits(chord["limits"], u)
+    assert all(f"Centre distance to mate_{i}" in rows for i in range(3))
+    assert "Over-balls limits" in rows or "Over-pins limits" in rows

@@ -23,7 +23,7 @@ from geargen.report.drawing import (BLANK_BLOCK, BLANK_COLUMNS_MM, DRAWN_TEXT_LI
                                     WRAP_FILL, Sheet, draw_gear, title_cell_width, title_cells, write_drawing)
 from tests.drawing_support import cell_texts, table_rows
 
-WIDEST = "m"  # "m", "W", "æ", "—": 3.53 mm at 10 pt, the widest the drawn characters have (measured below)
+WIDEST = "—"  # "@", "©", "®", "—", "―", "…": one em (3.53 mm at 10 pt), the widest the drawn characters have (measured below)
 
 TABLE = {"teeth": 40, "module_mm": 1.0, "pressure_angle_deg": 20, "face_width_mm": 12.0, "bore_diameter_mm": 20.0,
          "bore_fit": "H7", "accuracy_grade": 6, "hardness_HV": 650, "flank_roughness_Ra_um": 0.4}
@@ -41,7 +41,7 @@ def test_no_drawn_character_is_wider_than_the_widest_letter_and_the_font_has_eac
     allowed += list(DRAWN_TEXT_EXTRA)
     assert len(allowed) > 400  # Latin-1, Latin Extended-A, Greek, punctuation
     assert all(ord(c) in charmap for c in allowed), [c for c in allowed if ord(c) not in charmap]
-    # ten of a kind measured: Agg rounds each glyph's advance to whole pixels (1 px = 0.353 mm)
+    # ten of a kind measured: the font's own advance widths, as the sheet lays text out
     w = width(WIDEST * 10)
     wider = [c for c in allowed if width(c * 10) > w]
     assert not wider, wider
@@ -73,20 +73,17 @@ def test_the_longest_values_are_drawn_inside_their_cells(make, tmp_path):
                         "profile_total_um": 6.5, "helix_total_um": 9.0, "runout_um": 13.0,
                         "grade_source": "the coarsest grade within the design's error budget"}
     data["datum_tolerances"]["face_axial_runout_um"] = 0.2 * (2 * profile.root_radius / spec.face_width) * 9.0
-    fig = draw_gear(data, profile, "gear wheel from test", "design.toml", "0.0")
-    renderer = fig.canvas.get_renderer()
-    from geargen.report.drawing import MM_PER_PT, parse_cell_gid
+    sheet = draw_gear(data, profile, "gear wheel from test", "design.toml", "0.0")
+    from geargen.report.drawing import parse_cell_gid
     outside = []
-    for text in [t for ax in fig.axes for t in ax.texts]:
-        cell = parse_cell_gid(text.get_gid())
+    for text, box, gid in sheet.text_boxes():  # as laid out by the font's metrics, sheet mm
+        cell = parse_cell_gid(gid)
         if cell is None:
             continue
-        e = text.get_window_extent(renderer)
-        box = (e.x0 * MM_PER_PT, e.y0 * MM_PER_PT, e.x1 * MM_PER_PT, e.y1 * MM_PER_PT)
         slack = 0.09  # half the thinnest rule (0.18 mm) drawn on the cell's side
         if not (box[0] >= cell[0] - slack and box[2] <= cell[2] + slack and box[1] >= cell[1] - slack
                 and box[3] <= cell[3] + slack):
-            outside.append((text.get_text(), cell))
+            outside.append((text, cell))
     assert not outside, outside
     files = write_drawing(data, profile, tmp_path, spec.name, "gear wheel from test", "design.toml", "0.0")
     cells = cell_texts(files["svg"])

@@ -74,7 +74,7 @@ def _half_section(spec: BevelGearSpec, points: int = 48) -> list[np.ndarray]:
 
 
 def draw_bevel(data: dict, spec: BevelGearSpec, source: str, design_file: str, version: str):
-    """The bevel gear's sheet (a matplotlib Figure)."""
+    """The bevel gear's sheet (a :class:`geargen.report.drawing.Sheet`)."""
     u = data["length_unit"]
     g = bevel_geometry(spec)
     # apex to the back face along the axis (mm), as the JSON's mounting distance

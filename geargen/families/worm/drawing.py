@@ -173,7 +173,7 @@ def _wheel_views(spec, data, scale):
 
 
 def draw_worm_part(data: dict, spec, source: str, design_file: str, version: str):
-    """The worm's or the wheel's sheet (a matplotlib Figure)."""
+    """The worm's or the wheel's sheet (a :class:`geargen.report.drawing.Sheet`)."""
     g = worm_geometry(spec.set)
     u = data["length_unit"]
     if spec.kind == "worm":
