@@ -267,6 +267,16 @@ def _inside(points: np.ndarray, segs: np.ndarray, centre) -> np.ndarray:
     return np.bincount(v[hit], minlength=points.shape[0]) % 2 == 1
 
 
+def _vertices(segs: np.ndarray) -> np.ndarray:
+    """The vertices ``(V, 2)`` of the segments ``(m, 2, 2)``, each end shared by two segments of a
+    chain (one's end is, bit for bit, the next one's start) once: half the vertices of a section
+    to turn, with the same results (the two copies give the same values)."""
+    if len(segs) < 2:
+        return segs.reshape(-1, 2)
+    shared = (segs[1:, 0, 0] == segs[:-1, 1, 0]) & (segs[1:, 0, 1] == segs[:-1, 1, 1])
+    return np.concatenate([segs[np.concatenate([[True], ~shared]), 0], segs[:, 1]])
+
+
 def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> tuple[float, float]:
     """Free rotation (rad) of polygon 1 about ``centre1`` against polygon 2 held: (ccw, cw).
 
@@ -279,8 +289,8 @@ def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> t
     c = np.asarray(centre1, dtype=float)
     c2 = c if centre2 is None else np.asarray(centre2, dtype=float)
     ccw_c, cw_c = [math.inf], [math.inf]
-    for verts, edges, own, inside_of in ((seg2.reshape(-1, 2), seg1, False, (seg1, c)),
-                                         (seg1.reshape(-1, 2), seg2, True, (seg2, c2))):
+    for verts, edges, own, inside_of in ((_vertices(seg2), seg1, False, (seg1, c)),
+                                         (_vertices(seg1), seg2, True, (seg2, c2))):
         vi, x = _circle_hits(verts - c, edges - c)
         if vi.size == 0:
             continue
@@ -316,7 +326,7 @@ def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarra
     diagonals, inside the surface by up to the chordal tolerance), but at least ``2e-7 r``
     (float32 rounding of STL coordinates). Fillet points that close to the root circle count as
     root; the smallest clearance, with a tip centred over a root, is not affected."""
-    v = own.reshape(-1, 2)
+    v = _vertices(own)
     oc = np.asarray(other_centre, dtype=float)
     r = np.linalg.norm(v - np.asarray(own_centre), axis=1)
     v = v[r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)]
