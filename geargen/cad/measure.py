@@ -102,10 +102,16 @@ class SectionCurve:
             return None
         if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
             d1(u, v, p, du, dv)
-        return np.array([p.X(), p.Y()])
+        return p.X(), p.Y()
 
     def point(self, t: float):
         """Section point (x, y) at face parameter ``t``, or None off the face."""
+        xy = self._solve(float(t))
+        return None if xy is None else np.array(xy)
+
+    def xy(self, t: float):
+        """:meth:`point` as a tuple of two floats (no array: for a caller that solves thousands of
+        points one at a time and does its arithmetic on floats)."""
         return self._solve(float(t))
 
 
