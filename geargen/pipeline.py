@@ -228,7 +228,14 @@ def _member_height(layout: Layout, part: str, gear) -> float:
 def mesh_checks(layout: Layout, gears: dict[str, Any] | None = None, path2: bool = True) -> CheckOutcome:
     """Step 5: the verdict of ``geargen check`` on the resolved drive (:func:`geargen.checks.verdict.verify`:
     path 1 of every mesh, the design ranges, the ratio and the error budget), plus path 2 (sections
-    of the built gear solids) when ``gears`` are given. Every failure of the verdict fails the build."""
+    of the built gear solids) when ``gears`` are given. Every failure of the verdict fails the build.
+    Runs on one BLAS thread (:mod:`geargen.checks.blas`)."""
+    from geargen.checks.blas import one_blas_thread
+    with one_blas_thread():
+        return _mesh_checks(layout, gears, path2)
+
+
+def _mesh_checks(layout: Layout, gears: dict[str, Any] | None, path2: bool) -> CheckOutcome:
     from geargen.checks.verdict import design_backlash, sections_decide, undecided, verify
     dc = verify(layout)
     outcome = CheckOutcome(meshes=[], design_check=dc)

@@ -59,42 +59,59 @@ class SectionCurve:
         self.s0, self.s1 = (self.v0, self.v1) if self.along_u else (self.u0, self.u1)
         self._guess = 0.5 * (self.s0 + self.s1)
         self._classifier = None
+        # what every solve uses, made once (a section solves ~40,000 points, most in one Newton step)
+        self._p, self._du, self._dv = gp_Pnt(), gp_Vec(), gp_Vec()
+        span = self.s1 - self.s0
+        self._clip_lo, self._clip_hi = self.s0 - 0.01 * span, self.s1 + 0.01 * span
+        self._rounding = 1e-12 * max(1.0, abs(span))
 
     def _solve(self, t: float):
         s = self._guess
-        p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
-        span = self.s1 - self.s0
+        p, du, dv = self._p, self._du, self._dv
+        d1, z, along_u = self.surface.D1, self.z, self.along_u
+        clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
         last = math.inf
         for _ in range(40):
-            u, v = (t, s) if self.along_u else (s, t)
-            self.surface.D1(u, v, p, du, dv)
-            f = p.Z() - self.z
-            dz = dv.Z() if self.along_u else du.Z()
+            at = s
+            if along_u:
+                d1(t, s, p, du, dv)
+                dz = dv.Z()
+            else:
+                d1(s, t, p, du, dv)
+                dz = du.Z()
+            f = p.Z() - z
             if dz == 0.0:
                 return None
             step = f / dz
-            s = min(max(s - step, self.s0 - 0.01 * span), self.s1 + 0.01 * span)
+            s = min(max(s - step, clip_lo), clip_hi)
             # converged, or down to rounding: a step no smaller than the last one once it is below
             # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
             if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
-                    (abs(step) >= last and abs(step) <= 1e-12 * max(1.0, abs(span))):
+                    (abs(step) >= last and abs(step) <= rounding):
                 break
             last = abs(step)
         else:
             return None
-        if not (self.s0 - 1e-12 * max(1.0, abs(span)) <= s <= self.s1 + 1e-12 * max(1.0, abs(span))):
+        if not (self.s0 - rounding <= s <= self.s1 + rounding):
             return None
         self._guess = s
-        u, v = (t, s) if self.along_u else (s, t)
+        u, v = (t, s) if along_u else (s, t)
         if self._classifier is None:
             self._classifier = BRepTopAdaptor_FClass2d(self.face, 1e-9)
         if self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
             return None
-        self.surface.D1(u, v, p, du, dv)
-        return np.array([p.X(), p.Y()])
+        if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
+            d1(u, v, p, du, dv)
+        return p.X(), p.Y()
 
     def point(self, t: float):
         """Section point (x, y) at face parameter ``t``, or None off the face."""
+        xy = self._solve(float(t))
+        return None if xy is None else np.array(xy)
+
+    def xy(self, t: float):
+        """:meth:`point` as a tuple of two floats (no array: for a caller that solves thousands of
+        points one at a time and does its arithmetic on floats)."""
         return self._solve(float(t))
 
 

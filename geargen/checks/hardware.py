@@ -27,7 +27,7 @@ import numpy as np
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import GeometryError
 from geargen.families.registry import tooth_form
-from geargen.model.bodies import distance_function, polygon_distance, world_box
+from geargen.model.bodies import PolygonDistance, distance_function, world_box
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
 from geargen.profile.tooth import section_rotation, tooth_profile
@@ -87,6 +87,12 @@ def gear_section(spec) -> tuple[np.ndarray, float, float]:
     return np.vstack([[0.0, 0.0], points]), start, profile.pitch_angle
 
 
+@lru_cache(maxsize=64)
+def _section_polygon(spec) -> PolygonDistance:
+    """The polygon of :func:`gear_section` for many distance calls (the parts check's octree)."""
+    return PolygonDistance(gear_section(spec)[0])
+
+
 def _is_ring(spec) -> bool:
     """Whether ``spec``'s body is a rim outside its teeth (its family's tooth form)."""
     form = tooth_form(spec)
@@ -109,7 +115,7 @@ def _section_distance(spec, p: np.ndarray) -> np.ndarray:
         q = p[band]
         phi = np.arctan2(q[:, 1], q[:, 0]) - section_rotation(spec, q[:, 2])
         folded = start + np.mod(phi - start, pitch)
-        d2[band] = polygon_distance(r[band] * np.cos(folded), r[band] * np.sin(folded), polygon)
+        d2[band] = _section_polygon(spec)(r[band] * np.cos(folded), r[band] * np.sin(folded))
     return d2
 
 

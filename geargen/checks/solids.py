@@ -106,39 +106,41 @@ def sections_from_shape(spec: GearSpec, shape, planes, samples_per_face: int = 6
             rows = np.nonzero(cut.edge_index == e)[0]
             if rows.size < 2:
                 continue
-            t = list(cut.params[rows])
-            p = [q for q in cut.points[rows]]
+            t = cut.params[rows].tolist()
+            # points as pairs of floats: the bisection below solves ~20,000 of them one at a time,
+            # where numpy's arithmetic on two numbers costs more than the numbers
+            p = [tuple(q) for q in cut.points[rows].tolist()]
             k = 0
             while k < len(t) - 1:  # bisect chords until their middles lie on the curve
                 if p[k] is None or p[k + 1] is None:
                     k += 1
                     continue
                 tm = 0.5 * (t[k] + t[k + 1])
-                q = curve.point(tm)
+                q = curve.xy(tm)
                 if q is None:  # the chord leaves the face: end both sides at the face's boundary
                     ends = []
                     for on, off in ((t[k], tm), (t[k + 1], tm)):
                         for _ in range(40):
                             mid = 0.5 * (on + off)
-                            if curve.point(mid) is None:
+                            if curve.xy(mid) is None:
                                 off = mid
                             else:
                                 on = mid
                         ends.append(on)
                     t[k + 1:k + 1] = [ends[0], math.nan, ends[1]]
-                    p[k + 1:k + 1] = [curve.point(ends[0]), None, curve.point(ends[1])]
+                    p[k + 1:k + 1] = [curve.xy(ends[0]), None, curve.xy(ends[1])]
                     continue
-                dev = float(np.linalg.norm(q - 0.5 * (p[k] + p[k + 1])))
+                (ax, ay), (bx, by) = p[k], p[k + 1]
+                dx, dy = q[0] - 0.5 * (ax + bx), q[1] - 0.5 * (ay + by)
+                dev = math.sqrt(dx * dx + dy * dy)  # numpy's norm of (dx, dy), the same bits
                 if dev > chord_tolerance and abs(t[k + 1] - t[k]) > 1e-12 * max(1.0, abs(tm)):
                     t.insert(k + 1, tm)
                     p.insert(k + 1, q)
                     continue
                 worst = max(worst, dev)
                 k += 1
-            for k in range(len(p) - 1):
-                if p[k] is not None and p[k + 1] is not None:
-                    parts.append(np.stack([p[k], p[k + 1]]))
-        segs.append(np.array(parts) if parts else np.empty((0, 2, 2)))
+            parts += [(p[k], p[k + 1]) for k in range(len(p) - 1) if p[k] is not None and p[k + 1] is not None]
+        segs.append(np.array(parts, dtype=float) if parts else np.empty((0, 2, 2)))
     return GearSections(spec, np.atleast_1d(np.asarray(planes, dtype=float)), segs, worst, source)
 
 
@@ -267,6 +269,16 @@ def _inside(points: np.ndarray, segs: np.ndarray, centre) -> np.ndarray:
     return np.bincount(v[hit], minlength=points.shape[0]) % 2 == 1
 
 
+def _vertices(segs: np.ndarray) -> np.ndarray:
+    """The vertices ``(V, 2)`` of the segments ``(m, 2, 2)``, each end shared by two segments of a
+    chain (one's end is, bit for bit, the next one's start) once: half the vertices of a section
+    to turn, with the same results (the two copies give the same values)."""
+    if len(segs) < 2:
+        return segs.reshape(-1, 2)
+    shared = (segs[1:, 0, 0] == segs[:-1, 1, 0]) & (segs[1:, 0, 1] == segs[:-1, 1, 1])
+    return np.concatenate([segs[np.concatenate([[True], ~shared]), 0], segs[:, 1]])
+
+
 def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> tuple[float, float]:
     """Free rotation (rad) of polygon 1 about ``centre1`` against polygon 2 held: (ccw, cw).
 
@@ -279,8 +291,8 @@ def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> t
     c = np.asarray(centre1, dtype=float)
     c2 = c if centre2 is None else np.asarray(centre2, dtype=float)
     ccw_c, cw_c = [math.inf], [math.inf]
-    for verts, edges, own, inside_of in ((seg2.reshape(-1, 2), seg1, False, (seg1, c)),
-                                         (seg1.reshape(-1, 2), seg2, True, (seg2, c2))):
+    for verts, edges, own, inside_of in ((_vertices(seg2), seg1, False, (seg1, c)),
+                                         (_vertices(seg1), seg2, True, (seg2, c2))):
         vi, x = _circle_hits(verts - c, edges - c)
         if vi.size == 0:
             continue
@@ -316,7 +328,7 @@ def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarra
     diagonals, inside the surface by up to the chordal tolerance), but at least ``2e-7 r``
     (float32 rounding of STL coordinates). Fillet points that close to the root circle count as
     root; the smallest clearance, with a tip centred over a root, is not affected."""
-    v = own.reshape(-1, 2)
+    v = _vertices(own)
     oc = np.asarray(other_centre, dtype=float)
     r = np.linalg.norm(v - np.asarray(own_centre), axis=1)
     v = v[r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)]

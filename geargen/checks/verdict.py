@@ -21,6 +21,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from geargen.checks.blas import one_blas_thread
 from geargen.checks.hardware import parts_check
 from geargen.checks.mesh2d import CheckSettings, MeshSetup, check_mesh
 from geargen.checks.results import DesignCheck, Failure
@@ -78,6 +79,7 @@ def mesh_settings(settings: ChecksSettings, require_backlash: bool | None = None
                          require_backlash=settings.require_backlash if require_backlash is None else require_backlash)
 
 
+@one_blas_thread()
 def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: bool | None = None) -> DesignCheck:
     """Every check of the resolved drive that needs no solid (see the module docstring)."""
     design = layout.design

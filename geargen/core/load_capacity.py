@@ -966,8 +966,12 @@ def _narrowest_face_width(geo: RatingGeometry, safeties, minimum_safety: tuple[f
     m_n = geo.normal_module
     lo, hi = math.log(0.05 * m_n), math.log(1000.0 * m_n)
 
+    rated = {}  # log b -> (S_H, S_F): both searches and brentq start at the same two ends
+
     def margin(log_b, which, minimum):
-        return safeties(geo.with_face_width(math.exp(log_b)))[which] - minimum
+        if log_b not in rated:
+            rated[log_b] = safeties(geo.with_face_width(math.exp(log_b)))
+        return rated[log_b][which] - minimum
 
     def solve(which, key, minimum):
         try:

@@ -149,3 +149,42 @@ def test_cone_and_nested_trees_read_as_the_recursion():
                           (_Node("inter", (_Node("box", ((-2.0, -2.0, -1.0), (2.0, 2.0, 30.0))), cone)),)))
     points = np.random.default_rng(5).uniform(-20.0, 30.0, size=(5000, 3))
     _same(_node_sdf(tree, points), reference_node_sdf(tree, points))
+
+
+def _shipped_gear_sections():
+    from geargen.checks.hardware import gear_section
+    from geargen.errors import GeometryError
+    seen = {}
+    for name in DESIGNS:
+        for spec in resolve(load_design(ASSEMBLIES / f"{name}.toml")).design.gears.values():
+            try:
+                seen.setdefault(repr(spec), gear_section(spec)[0])
+            except GeometryError:
+                continue
+    return list(seen.values())
+
+
+def test_polygon_grid_reads_as_every_edge():
+    """PolygonDistance (each point against its grid cell's edges, issue 28) against polygon_distance
+    (every edge): on the shipped gears' sections and random polygons, points spread over the
+    polygon's box and beyond it (the outside ones read every edge), on the vertices, on the grid's
+    lines and cells' corners (the bounds' own points), exactly the same."""
+    from geargen.model.bodies import PolygonDistance
+    rng = np.random.default_rng(28)
+    polygons = _shipped_gear_sections()
+    assert len(polygons) >= 5
+    for m in (3, 17, 150):
+        angles = np.sort(rng.uniform(0.0, 2 * np.pi, m))
+        poly = np.column_stack([np.cos(angles), np.sin(angles)]) * rng.uniform(0.5, 2.0, (m, 1))
+        poly[1] = poly[0]  # a zero-length edge
+        polygons.append(poly)
+    for poly in polygons:
+        grid = PolygonDistance(poly)
+        lo, hi = poly.min(axis=0), poly.max(axis=0)
+        pad = 0.2 * (hi - lo)
+        px, py = rng.uniform(lo - pad, hi + pad, (4000, 2)).T
+        lines = lo + grid.size * np.arange(grid.cells + 1)[:, None]
+        gx, gy = np.meshgrid(lines[:, 0], lines[:, 1])
+        px = np.concatenate([px, poly[:, 0], gx.ravel(), rng.uniform(lo[0], hi[0], 200)])
+        py = np.concatenate([py, poly[:, 1], gy.ravel(), np.repeat(lines[5, 1], 200)])
+        _same(grid(px, py), polygon_distance(px, py, poly))

@@ -100,6 +100,15 @@ def _max_depth(material: RingMaterial, pts, a, z1, z2, phase, turn) -> float:
     return float(np.max(material.depth(placed, phase * z1 / z2)))
 
 
+def _reaching(pts: np.ndarray, a: float, turn: float, half_width: float, tip_radius: float) -> np.ndarray:
+    """The pinion points that can reach the ring's tip circle while the pinion turns within
+    ``half_width`` (rad) of ``turn``: the others have a negative depth there (below the ring's tip
+    circle), so leaving them out answers "does any point reach the ring?" the same. A point at
+    ``|p|`` from the pinion's centre moves at most ``|p| half_width``; 1e-9 mm covers rounding."""
+    r = np.hypot(*_placed(pts, (a, 0.0), turn).T)
+    return pts[r + np.hypot(pts[:, 0], pts[:, 1]) * half_width + 1e-9 >= tip_radius]
+
+
 @dataclass(frozen=True)
 class InternalPlay:
     """Free rotation of the pinion (rad) counter-clockwise and clockwise from mesh position
@@ -138,11 +147,12 @@ def free_play(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalPr
             lo = hi
             if hi > pinion.pitch_angle:
                 raise GeargenError("no contact within one pitch")
+        near = _reaching(pts, a, phase + sign * 0.5 * (lo + hi), 0.5 * (hi - lo), ring.tip_radius)
         for _ in range(80):
             mid = 0.5 * (lo + hi)
             if hi - lo < 1e-13:
                 break
-            if _max_depth(material, pts, a, z1, z2, phase, sign * mid) >= 0:
+            if _max_depth(material, near, a, z1, z2, phase, sign * mid) >= 0:
                 hi = mid
             else:
                 lo = mid

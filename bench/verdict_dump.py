@@ -1,0 +1,143 @@
+"""The build's mesh-check outcome of shipped designs, written whole, to show that a change meant to
+save CPU moves no number (run by hand).
+
+``python bench/verdict_dump.py dump FOLDER [NAME ...]``: ``pipeline.mesh_checks(layout, gear solids)``
+of each design (default: every file in assemblies/) walked into plain values (dataclasses, dicts,
+lists, numpy arrays, numbers, strings) and pickled to FOLDER/NAME.pkl, with its CPU seconds.
+
+``python bench/verdict_dump.py compare BEFORE AFTER``: every pair of values that differs, numbers
+beyond ``--abs`` (mm, default 1e-9) and ``--rel`` (default 1e-12) both; exit 1 on any difference.
+
+``--root DIR``: run another checkout's geargen and its assemblies (e.g. main's, for BEFORE).
+
+Issue 28 (meshfast branch), on this 2-core machine shared with other jobs (load average 9-15), median
+of 3 fresh processes, mesh_checks CPU seconds, main (1ac074a) -> meshfast: robot joint 3.77 -> 2.51,
+C-axis 5.11 -> 3.46, metric dual pinion 4.42 -> 2.87, planetary dual pinion 6.46 -> 4.12 (each
+includes ~0.2 s compiling the check modules: PYTHONDONTWRITEBYTECODE is set here). The outcome of
+every buildable shipped design compared with main's: zero differences, bit for bit (--abs 0 --rel 0).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import pickle
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+ROOT = Path(__file__).resolve().parents[1]
+if "--root" in sys.argv:  # another checkout's geargen (main's, for the "before" of a comparison)
+    _i = sys.argv.index("--root")
+    ROOT = Path(sys.argv[_i + 1]).resolve()
+    del sys.argv[_i:_i + 2]
+sys.path.insert(0, str(ROOT))
+
+
+def plain(v, depth=0):
+    """``v`` as nested dicts, lists, numbers, strings and arrays (objects by their fields)."""
+    if depth > 40:
+        return repr(v)
+    if v is None or isinstance(v, (bool, int, float, str, complex)):
+        return v
+    if isinstance(v, (np.floating, np.integer, np.bool_)):
+        return v.item()
+    if isinstance(v, np.ndarray):
+        return v.copy() if v.dtype != object else [plain(x, depth + 1) for x in v.ravel()]
+    if isinstance(v, dict):
+        return {str(k): plain(x, depth + 1) for k, x in v.items()}
+    if isinstance(v, (list, tuple, set, frozenset)):
+        items = sorted(v, key=repr) if isinstance(v, (set, frozenset)) else v
+        return [plain(x, depth + 1) for x in items]
+    if dataclasses.is_dataclass(v):
+        return {"<type>": type(v).__name__,
+                **{f.name: plain(getattr(v, f.name), depth + 1) for f in dataclasses.fields(v)}}
+    if hasattr(v, "__dict__"):
+        return {"<type>": type(v).__name__, **{k: plain(x, depth + 1) for k, x in vars(v).items()
+                                                if not k.startswith("_")}}
+    return repr(v)
+
+
+def differences(a, b, where, abs_tol, rel_tol):
+    if isinstance(a, dict) and isinstance(b, dict):
+        for k in sorted(set(a) | set(b)):
+            if k not in a or k not in b:
+                yield f"{where}/{k}: only in {'after' if k in b else 'before'}"
+            else:
+                yield from differences(a[k], b[k], f"{where}/{k}", abs_tol, rel_tol)
+    elif isinstance(a, list) and isinstance(b, list):
+        if len(a) != len(b):
+            yield f"{where}: length {len(a)} != {len(b)}"
+        else:
+            for i, (x, y) in enumerate(zip(a, b)):
+                yield from differences(x, y, f"{where}[{i}]", abs_tol, rel_tol)
+    elif isinstance(a, np.ndarray) or isinstance(b, np.ndarray):
+        a, b = np.asarray(a), np.asarray(b)
+        if a.shape != b.shape:
+            yield f"{where}: shape {a.shape} != {b.shape}"
+        elif a.dtype.kind in "fc" or b.dtype.kind in "fc":
+            d = np.abs(a - b)
+            bad = ~((d <= abs_tol) | (d <= rel_tol * np.maximum(np.abs(a), np.abs(b)))
+                    | (np.isnan(a) & np.isnan(b)) | (a == b))
+            if np.any(bad):
+                i = np.flatnonzero(bad.ravel())[0]
+                yield f"{where}: {int(bad.sum())} entries differ, first {a.ravel()[i]!r} != {b.ravel()[i]!r}"
+        elif not np.array_equal(a, b):
+            yield f"{where}: arrays differ"
+    elif isinstance(a, float) and isinstance(b, float):
+        if not (a == b or (math.isnan(a) and math.isnan(b)) or abs(a - b) <= abs_tol
+                or abs(a - b) <= rel_tol * max(abs(a), abs(b))):
+            yield f"{where}: {a!r} != {b!r}"
+    elif a != b:
+        yield f"{where}: {a!r} != {b!r}"
+
+
+def dump(folder: Path, names: list[str]) -> None:
+    from geargen import pipeline
+    from geargen.errors import GeargenError
+    folder.mkdir(parents=True, exist_ok=True)
+    for name in names or sorted(p.stem for p in (ROOT / "assemblies").glob("*.toml")):
+        d = pipeline.load(ROOT / "assemblies" / f"{name}.toml")
+        try:
+            lay = pipeline.place(d)
+        except GeargenError as exc:  # not a buildable assembly (a drive study's input)
+            print(f"{name}: skipped, {exc}")
+            continue
+        g = pipeline.gear_solids(lay)
+        t0 = time.process_time()
+        out = pipeline.mesh_checks(lay, g)
+        cpu = time.process_time() - t0
+        (folder / f"{name}.pkl").write_bytes(pickle.dumps(plain(out)))
+        print(f"{name}: mesh_checks {cpu:.2f} s CPU", flush=True)
+
+
+def compare(before: Path, after: Path, abs_tol: float, rel_tol: float) -> int:
+    bad = 0
+    for p in sorted(before.glob("*.pkl")):
+        q = after / p.name
+        if not q.exists():
+            print(f"{p.stem}: missing in {after}")
+            bad += 1
+            continue
+        diffs = list(differences(pickle.loads(p.read_bytes()), pickle.loads(q.read_bytes()), "", abs_tol, rel_tol))
+        print(f"{p.stem}: {len(diffs)} differences")
+        for line in diffs[:20]:
+            print("   ", line)
+        bad += len(diffs)
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    args = sys.argv[1:]
+    opts = {"--abs": 1e-9, "--rel": 1e-12}
+    for key in list(opts):
+        if key in args:
+            i = args.index(key)
+            opts[key] = float(args[i + 1])
+            del args[i:i + 2]
+    if args[0] == "dump":
+        dump(Path(args[1]), args[2:])
+    else:
+        sys.exit(compare(Path(args[1]), Path(args[2]), opts["--abs"], opts["--rel"]))

@@ -1,0 +1,162 @@
+"""The section's Newton solve (geargen.cad.measure.SectionCurve._solve) after issue 28 (its OCCT
+points and vectors made once per face; the last surface evaluation skipped where the last Newton
+step left the point where it was evaluated) against the code it replaced, kept here as the
+reference: the same points to the last bit, in the same order of calls (each solve starts from
+the last one's result), on the faces of a spur and a helical gear solid."""
+
+import math
+
+import numpy as np
+import pytest
+from OCP.BRepAdaptor import BRepAdaptor_Surface
+from OCP.BRepTopAdaptor import BRepTopAdaptor_FClass2d
+from OCP.GeomAbs import GeomAbs_Plane
+from OCP.gp import gp_Pnt, gp_Pnt2d, gp_Vec
+from OCP.TopAbs import TopAbs_FACE, TopAbs_OUT
+from OCP.TopExp import TopExp_Explorer
+from OCP.TopoDS import TopoDS
+
+from geargen.cad.measure import SectionCurve, section
+
+pytestmark = pytest.mark.slow
+
+
+class ReferenceCurve(SectionCurve):
+    def _solve(self, t: float):
+        """geargen before issue 28."""
+        s = self._guess
+        p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
+        span = self.s1 - self.s0
+        last = math.inf
+        for _ in range(40):
+            u, v = (t, s) if self.along_u else (s, t)
+            self.surface.D1(u, v, p, du, dv)
+            f = p.Z() - self.z
+            dz = dv.Z() if self.along_u else du.Z()
+            if dz == 0.0:
+                return None
+            step = f / dz
+            s = min(max(s - step, self.s0 - 0.01 * span), self.s1 + 0.01 * span)
+            if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
+                    (abs(step) >= last and abs(step) <= 1e-12 * max(1.0, abs(span))):
+                break
+            last = abs(step)
+        else:
+            return None
+        if not (self.s0 - 1e-12 * max(1.0, abs(span)) <= s <= self.s1 + 1e-12 * max(1.0, abs(span))):
+            return None
+        self._guess = s
+        u, v = (t, s) if self.along_u else (s, t)
+        if self._classifier is None:
+            self._classifier = BRepTopAdaptor_FClass2d(self.face, 1e-9)
+        if self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
+            return None
+        self.surface.D1(u, v, p, du, dv)
+        return np.array([p.X(), p.Y()])
+
+
+def _faces(shape):
+    exp = TopExp_Explorer(shape, TopAbs_FACE)
+    while exp.More():
+        face = TopoDS.Face_s(exp.Current())
+        exp.Next()
+        ad = BRepAdaptor_Surface(face)
+        if not (ad.GetType() == GeomAbs_Plane and abs(abs(ad.Plane().Axis().Direction().Z()) - 1.0) < 1e-12):
+            yield face
+
+
+@pytest.mark.parametrize("which", ["spur112", "helical21"])
+def test_section_points_as_before(which, request):
+    gear = request.getfixturevalue(which)
+    rng = np.random.default_rng(28)
+    faces = list(_faces(gear.shape))
+    z = 0.37 * gear.spec.face_width
+    checked = off = 0
+    for face in faces[:: max(1, len(faces) // 40)]:  # ~40 faces of every kind around the gear
+        new, ref, floats = SectionCurve(face, z), ReferenceCurve(face, z), SectionCurve(face, z)
+        # sorted (as the section samples and bisects) and shuffled (far jumps: several Newton steps),
+        # and some beyond the face's range (points off the face)
+        span = new.t1 - new.t0
+        ts = np.concatenate([np.linspace(new.t0, new.t1, 64), rng.uniform(new.t0 - 0.1 * span, new.t1 + 0.1 * span, 64)])
+        for t in ts:
+            a, b = new.point(t), ref.point(t)
+            assert floats.xy(t) == (None if a is None else tuple(a))  # the same solve, as floats
+            assert (a is None) == (b is None)
+            if a is None:
+                off += 1
+            else:
+                assert np.array_equal(a, b)
+                checked += 1
+    assert checked > 1000 and off > 0  # both branches were met
+
+
+def test_whole_section_as_before(helical21, monkeypatch):
+    z = 0.61 * helical21.spec.face_width
+    got = section(helical21.shape, z, 64)
+    monkeypatch.setattr("geargen.cad.measure.SectionCurve._solve", ReferenceCurve._solve)
+    want = section(helical21.shape, z, 64)
+    assert np.array_equal(got.points, want.points) and np.array_equal(got.params, want.params)
+    assert np.array_equal(got.edge_index, want.edge_index)
+
+
+def reference_sections_from_shape(spec, shape, planes, samples_per_face=64, source="", chord_tolerance=5e-5):
+    """geargen.checks.solids.sections_from_shape before issue 28 (its chords bisected on arrays)."""
+    from geargen.checks.solids import GearSections
+
+    segs, worst = [], 0.0
+    for z in np.atleast_1d(planes):
+        cut = section(shape, float(z), samples_per_face)
+        parts = []
+        for e, curve in enumerate(cut.curves):
+            rows = np.nonzero(cut.edge_index == e)[0]
+            if rows.size < 2:
+                continue
+            t = list(cut.params[rows])
+            p = [q for q in cut.points[rows]]
+            k = 0
+            while k < len(t) - 1:
+                if p[k] is None or p[k + 1] is None:
+                    k += 1
+                    continue
+                tm = 0.5 * (t[k] + t[k + 1])
+                q = curve.point(tm)
+                if q is None:
+                    ends = []
+                    for on, off in ((t[k], tm), (t[k + 1], tm)):
+                        for _ in range(40):
+                            mid = 0.5 * (on + off)
+                            if curve.point(mid) is None:
+                                off = mid
+                            else:
+                                on = mid
+                        ends.append(on)
+                    t[k + 1:k + 1] = [ends[0], math.nan, ends[1]]
+                    p[k + 1:k + 1] = [curve.point(ends[0]), None, curve.point(ends[1])]
+                    continue
+                dev = float(np.linalg.norm(q - 0.5 * (p[k] + p[k + 1])))
+                if dev > chord_tolerance and abs(t[k + 1] - t[k]) > 1e-12 * max(1.0, abs(tm)):
+                    t.insert(k + 1, tm)
+                    p.insert(k + 1, q)
+                    continue
+                worst = max(worst, dev)
+                k += 1
+            for k in range(len(p) - 1):
+                if p[k] is not None and p[k + 1] is not None:
+                    parts.append(np.stack([p[k], p[k + 1]]))
+        segs.append(np.array(parts) if parts else np.empty((0, 2, 2)))
+    return GearSections(spec, np.atleast_1d(np.asarray(planes, dtype=float)), segs, worst, source)
+
+
+@pytest.mark.parametrize("which", ["spur112", "helical21"])
+def test_chord_bisected_sections_as_before(which, request):
+    """Coarse and fine chords; a plane near an end face, where section curves end on a face's
+    boundary (the bisection onto it)."""
+    from geargen.checks.solids import sections_from_shape
+    gear = request.getfixturevalue(which)
+    planes = np.array([0.3, 0.5, 0.999]) * gear.spec.face_width
+    for tolerance in (5e-5, 2e-3):
+        got = sections_from_shape(gear.spec, gear.shape, planes, chord_tolerance=tolerance)
+        want = reference_sections_from_shape(gear.spec, gear.shape, planes, chord_tolerance=tolerance)
+        assert got.deviation == want.deviation
+        for a, b in zip(got.segments, want.segments, strict=True):
+            assert a.shape == b.shape and np.array_equal(a, b)

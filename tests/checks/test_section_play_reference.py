@@ -1,0 +1,107 @@
+"""Path 2's polygon play and root clearance (geargen.checks.solids) after issue 28 (each vertex
+shared by two chained segments turned once, not twice) against the code they replaced, kept here
+as the reference: the same sweep to the last bit, with and without overlap, on chained sections
+and on sections with segments missing (broken chains, as a face's boundary leaves them)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from geargen.checks import solids
+from geargen.checks.mesh2d import MeshSetup, mesh_positions
+from geargen.checks.solids import _circle_hits, _inside, _wrap, check_mesh_sections, section_planes
+
+from checks_support import gear, tight_centre_distance
+from test_check_sections import _sampled_sections
+
+
+def reference_polygon_play(seg1, seg2, centre1, centre2=None):
+    """geargen before issue 28: every segment's two ends turned."""
+    c = np.asarray(centre1, dtype=float)
+    c2 = c if centre2 is None else np.asarray(centre2, dtype=float)
+    ccw_c, cw_c = [math.inf], [math.inf]
+    for verts, edges, own, inside_of in ((seg2.reshape(-1, 2), seg1, False, (seg1, c)),
+                                         (seg1.reshape(-1, 2), seg2, True, (seg2, c2))):
+        vi, x = _circle_hits(verts - c, edges - c)
+        if vi.size == 0:
+            continue
+        pv = verts[vi] - c
+        if own:
+            d = _wrap(np.arctan2(x[:, 1], x[:, 0]) - np.arctan2(pv[:, 1], pv[:, 0]))
+        else:
+            d = _wrap(np.arctan2(pv[:, 1], pv[:, 0]) - np.arctan2(x[:, 1], x[:, 0]))
+        n = verts.shape[0]
+        pos = np.full(n, np.inf)
+        neg = np.full(n, np.inf)
+        np.minimum.at(pos, vi[d >= 0], d[d >= 0])
+        np.minimum.at(neg, vi[d < 0], -d[d < 0])
+        inside = _inside(verts, *inside_of)
+        out = ~inside
+        ccw_c.append(np.min(pos[out], initial=math.inf))
+        cw_c.append(np.min(neg[out], initial=math.inf))
+        free_ccw = inside & (pos <= neg)
+        free_cw = inside & (neg < pos)
+        cw_c.append(np.min(-pos[free_ccw], initial=math.inf))
+        ccw_c.append(np.min(-neg[free_cw], initial=math.inf))
+    return float(min(ccw_c)), float(min(cw_c))
+
+
+def reference_root_clearance(own, own_centre, r_root, other, other_centre, r_tip, deviation=0.0):
+    """geargen before issue 28: every segment's two ends measured."""
+    v = own.reshape(-1, 2)
+    oc = np.asarray(other_centre, dtype=float)
+    r = np.linalg.norm(v - np.asarray(own_centre), axis=1)
+    v = v[r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)]
+    ends = np.linalg.norm(other - oc, axis=2)
+    land = other[np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)]
+    if v.size == 0 or land.size == 0:
+        return math.inf
+    a0, d = land[:, 0], land[:, 1] - land[:, 0]
+    wx, wy = v[:, None, 0] - a0[None, :, 0], v[:, None, 1] - a0[None, :, 1]
+    dx, dy = d[None, :, 0], d[None, :, 1]
+    t = np.clip((wx * dx + wy * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0, 1)
+    dist = np.hypot(wx - t * dx, wy - t * dy).min(axis=1)
+    u = v - oc
+    rad = np.linalg.norm(u, axis=1)
+    cand = np.nonzero(rad < r_tip)[0]
+    inside = np.zeros(v.shape[0], dtype=bool)
+    if cand.size:
+        un = u[cand] / rad[cand, None]
+        q0 = other[:, 0] - oc
+        dq = other[:, 1] - other[:, 0]
+        cross_d = un[:, None, 0] * dq[None, :, 1] - un[:, None, 1] * dq[None, :, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s = (un[:, None, 0] * q0[None, :, 1] - un[:, None, 1] * q0[None, :, 0]) / -cross_d
+            lam = (q0[None, :, 0] * dq[None, :, 1] - q0[None, :, 1] * dq[None, :, 0]) / cross_d
+        hits = (s >= 0) & (s < 1) & (lam > rad[cand, None])
+        inside[cand] = np.count_nonzero(hits, axis=1) % 2 == 1
+    return float(np.min(np.where(inside, -dist, dist)))
+
+
+def _broken(sections, rng):
+    """The sections with one segment in 40 dropped (chains broken where a face's boundary would)."""
+    segs = [s[rng.uniform(size=len(s)) > 1 / 40] for s in sections.segments]
+    return type(sections)(sections.spec, sections.planes, segs, sections.deviation, sections.source)
+
+
+@pytest.mark.parametrize("pair, gap", [((gear(20), gear(41)), 0.02), ((gear(20), gear(41)), -0.03),
+                                       ((gear(17, 1.5, beta_deg=18), gear(43, 1.5, beta_deg=18, hand="left")), 0.01)],
+                         ids=["apart", "overlapping", "helical"])
+def test_sections_sweep_as_before(pair, gap, monkeypatch):
+    g1, g2 = pair
+    su = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + gap)
+    planes = section_planes(su, 2)
+    s1, s2 = _sampled_sections(g1, planes, 0.01), _sampled_sections(g2, planes, 0.01)
+    rng = np.random.default_rng(28)
+    pos = mesh_positions(su, 8)
+    for a, b in ((s1, s2), (_broken(s1, rng), _broken(s2, rng))):
+        got = check_mesh_sections(su, a, b, positions=pos).sweep
+        with monkeypatch.context() as m:
+            m.setattr(solids, "polygon_play", reference_polygon_play)
+            m.setattr(solids, "_root_clearance", reference_root_clearance)
+            want = check_mesh_sections(su, a, b, positions=pos).sweep
+        for name in ("play_ccw", "play_cw", "min_clearance", "normal_backlash", "interference"):
+            assert np.array_equal(getattr(got, name), getattr(want, name)), name
+    if gap < 0:  # the inside branches were taken
+        assert np.min(got.play_ccw + got.play_cw) < 0
