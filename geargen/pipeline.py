@@ -40,7 +40,6 @@ from typing import Any, Callable
 import numpy as np
 
 from geargen.design.assembly import Design, load_design
-from geargen.design.checks import checks_settings
 from geargen.design.export import export_settings
 from geargen.errors import GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement
@@ -130,7 +129,7 @@ def gear_solids(layout: Layout) -> dict[str, Any]:
     """Step 3: the solid of every toothed part (identical specs are built once), by part name;
     ``[export] gear_solid_tolerance`` bounds the flank splines' distance from the exact surface."""
     from geargen.cad.assembly import gear_parts
-    return gear_parts(layout, export_config(layout.design)["gear_solid_tolerance"])
+    return gear_parts(layout, layout.resolved.export["gear_solid_tolerance"])
 
 
 def other_parts(layout: Layout, gears: dict[str, Any] | None = None, stiffness=None) -> Any:
@@ -197,9 +196,8 @@ def section_check(layout: Layout, mesh: MeshPlacement, shape1, shape2, planes: i
     """
     from geargen.checks.solids import check_mesh_sections, section_planes, sections_from_shape
     from geargen.checks.verdict import mesh_settings, mesh_setup
-    from geargen.design.checks import checks_settings
     setup = mesh_setup(layout, mesh)
-    settings = mesh_settings(checks_settings(layout.design), mesh.backlash_min > 0)
+    settings = mesh_settings(layout.resolved.checks, mesh.backlash_min > 0)
     if near:
         from geargen.cad.assembly import faces_near
         q1, q2 = contact_region(setup, settings)
@@ -233,7 +231,7 @@ def mesh_checks(layout: Layout, gears: dict[str, Any] | None = None, path2: bool
     dc = verify(layout)
     outcome = CheckOutcome(meshes=[], design_check=dc)
     for f in dc.all_failures:
-        outcome.failures.append(f"{f.mesh or layout.design.name} ({f.kind}): {f.message}")
+        outcome.failures.append(f"{f.mesh or layout.identity.name} ({f.kind}): {f.message}")
     sections = path2 and gears is not None
     exact = {m.mesh: m for m in dc.meshes}
     for mesh, b in zip(layout.meshes, dc.backlash):
@@ -353,7 +351,7 @@ def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = N
            export_settings: dict | None = None) -> dict[str, Any]:
     """Step 7: assembly STEP, one STEP and one STL per part, into ``folder``; returns the file records."""
     from geargen.cad.assembly import export_parts
-    return export_parts(layout, parts, Path(folder), export_settings or export_config(layout.design))
+    return export_parts(layout, parts, Path(folder), export_settings or layout.resolved.export)
 
 
 def export_config(design: Design) -> dict[str, Any]:
@@ -397,7 +395,7 @@ def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
     carriage = None
     if layout.carriage_x is not None and layout.carriage_travel:
         carriage = ((layout.carriage_x, 0.0), layout.carriage_travel)
-    return layout_figure(gears, meshes, layout.design.length_unit, layout.design.name, carriage,
+    return layout_figure(gears, meshes, layout.identity.length_unit, layout.identity.name, carriage,
                          symmetry_line=layout.drive is not None and layout.drive.symmetry_line)
 
 
@@ -520,7 +518,7 @@ def drive_allowances_of(layout: Layout) -> dict:
     """Every gear's thickness allowance in the resolved drive (entered, or chosen from its meshes'
     backlash ranges at the design's ``[checks] centre_distance_tolerance``)."""
     from geargen.model.allowance import drive_allowances
-    return drive_allowances(layout, checks_settings(layout.design).centre_distance_tolerance, strict=False)
+    return drive_allowances(layout, layout.resolved.checks.centre_distance_tolerance, strict=False)
 
 
 def rated_material(design, gear: str):
@@ -961,7 +959,7 @@ def write_resolved(layout: Layout, folder: Path) -> Path:
     """resolved.json: the resolved drive (:meth:`geargen.model.Layout.to_dict`) the exports were built from."""
     from geargen.cad.export import write_json
     path = Path(folder) / "resolved.json"
-    write_json(path, _jsonable({"generator": "geargen build", "design": layout.design.name, **layout.to_dict()}))
+    write_json(path, _jsonable({"generator": "geargen build", "design": layout.identity.name, **layout.to_dict()}))
     return path
 
 

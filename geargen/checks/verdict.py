@@ -176,7 +176,7 @@ def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> Non
     kinds = {"overlap": "parts_overlap", "interpenetrating": "parts_interpenetrating",
              "missing_contact": "contact_missing"}
     fixes = layout.hardware.fixes
-    scale = LENGTH_SUFFIXES[layout.design.length_unit]
+    scale = LENGTH_SUFFIXES[layout.identity.length_unit]
     for f in report.findings:
         offered = [fixes[p] for p in (f.part1, f.part2) if f.kind == "overlap" and p in fixes]
         hint = "".join(f" (fix: {key} = {value / scale:.6g}: {why})" for key, value, why in offered)

@@ -36,6 +36,7 @@ from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.design.layout import MODEL_POINTS, MODEL_TOOTH_THICKNESS, POSITIONS
 from geargen.families.registry import tooth_form
+from geargen.design.resolved import DesignIdentity, ResolvedSettings, identity_of
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
 
@@ -148,6 +149,17 @@ class Layout:
     hardware: Any = None
     # the drive kind (geargen.drives.kind.DriveKind): what the verdict and the reports ask of it
     drive: Any = field(default=None, compare=False, repr=False)
+    # the design's name, path and units, and its settings read once (geargen.design.resolved): what
+    # every module downstream of the resolution reads instead of the design; made from ``design``
+    # when the Layout is made (a replace() carries them)
+    identity: DesignIdentity = field(default=None, compare=False, repr=False)
+    resolved: ResolvedSettings = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.identity is None:
+            object.__setattr__(self, "identity", identity_of(self.design))
+        if self.resolved is None:
+            object.__setattr__(self, "resolved", ResolvedSettings(self.design))
 
     def gear(self, name: str) -> GearPlacement:
         for g in self.gears:
@@ -164,7 +176,7 @@ class Layout:
     def to_dict(self) -> dict[str, Any]:
         """The resolved values in the design's length unit (angles in rad and deg): what is
         written beside every export and what every command reports."""
-        unit = self.design.length_unit
+        unit = self.identity.length_unit
         k = 1.0 / LENGTH_SUFFIXES[unit]
         gears = []
         for g in self.gears:
@@ -187,7 +199,7 @@ class Layout:
                 "loaded_flank_gap": (self.settings.get("loaded_flank_gap") or 0.0) * k,
                 "carriage_x": None if self.carriage_x is None else self.carriage_x * k,
                 "gears": gears, "meshes": meshes, "notes": list(self.notes),
-                "defaulted": {d.key: d.value for d in self.design.defaulted},
+                "defaulted": {d.key: d.value for d in self.identity.defaulted},
                 **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {}),
                 **({"hardware": self.hardware.to_dict(1.0 / k)} if self.hardware is not None else {})}
 

@@ -246,7 +246,7 @@ def _upstream_pair(layout, z1: int, z2: int, driven_speed: float) -> MeshLoads:
     """An upstream stage known by its teeth only ([layout] upstream_stages): the robot joint's
     bevel pair when [parts] places one of these teeth, else a stage without gears."""
     from geargen.drives.dual_pinion.bevel import bevel_drive
-    placed = bevel_drive(layout) if layout.design.section("parts") else None
+    placed = bevel_drive(layout) if layout.resolved.has("parts") else None
     speed1 = driven_speed * z2 / z1
     name = f"upstream {z1}:{z2}"
     if placed is not None and (placed.pinion.teeth, placed.gear.teeth) == (z1, z2):

@@ -397,9 +397,8 @@ def _planet_motions(layout, train) -> dict[str, tuple[float, float, float]]:
     relative to the carrier the ring turns at -w_c and the planet at -w_c z_r / z_p (an internal
     mesh turns both one way), so its spin is w_c (1 - z_r / z_p), a speed |1 - z_r / z_p| times the
     carrier's; a pin, fixed in the carrier, turns with it."""
-    from geargen.design.stages import stages as design_stages
     out = {}
-    for st in design_stages(layout.design):
+    for st in layout.resolved.stages:
         if st.kind != "planetary":
             continue
         group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
@@ -618,8 +617,7 @@ def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | N
     gear = placed.gear
     r_mean = gear.reference_diameter / 2 - gear.face_width / 2 * math.sin(gear.pitch_cone_angle)
     r_base = r_mean * math.cos(gear.pressure_angle)
-    from geargen.design.stiffness import stiffness_design
-    k = float(mesh_stiffness(stiffness_design(layout.design).stiffness.elastic_modulus, gear.face_width))
+    k = float(mesh_stiffness(layout.resolved.stiffness.stiffness.elastic_modulus, gear.face_width))
     return float(reflect(torsional_from_linear(k, r_base), driven_speed))
 
 

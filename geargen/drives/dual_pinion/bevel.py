@@ -60,12 +60,11 @@ def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
     ``bevel_backlash``, or the [train] ``upstream_backlash_arcmin`` of the stage
     ``pinion_teeth:gear_teeth`` of [layout] ``upstream_stages`` (rad at its driven shaft, the bevel
     gear's) times the gear's heel pitch radius; both given: they must agree."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
-    from geargen.design.train import train_settings
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in messages: the design's unit
     zp, zg = parts["bevel_pinion_teeth"], parts["bevel_gear_teeth"]
     module = parts["bevel_module"] or 25.4 / parts["bevel_diametral_pitch_per_in"]
     stages = [tuple(p) for p in layout.settings.get("upstream_stages", ())]
-    angles = train_settings(layout.design).upstream_backlash
+    angles = layout.resolved.train.upstream_backlash
     train = None
     if (zp, zg) in stages and len(angles) > stages.index((zp, zg)):
         train = angles[stages.index((zp, zg))] * zg * module / 2

@@ -49,7 +49,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     the inner ring and the shaft end (the upper ones sit in the removed cover, as in the paper's
     figure).
     """
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     design = layout.design
     sd = stiffness_design(design)
     if sd.flexures is None or sd.springs is None:
@@ -307,8 +307,8 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     # the gear's back face (its heel root circle's plane) must clear the carriage arm under it
     lowest = z_arm_top + gap + (back_plane_distance(gear_spec) - bev.apex_height("gear"))
     if z_heel < lowest - 1e-9:
-        unit = layout.design.length_unit
-        shift = (lowest - z_heel) / layout.design.mm_per_unit
+        unit = layout.identity.length_unit
+        shift = (lowest - z_heel) / layout.identity.mm_per_unit
         raise RuleBroken(f"parts.input_shaft_to_bevel_{unit}", f"puts the bevel gear's back (its heel root circle) "
                          f"{shift:.4g} {unit} into the carriage arm under it", None, "bevel_above_arm",
                          z_heel - lowest, (Candidate("input_shaft_to_bevel", +1, "the bevel pair higher"),
@@ -330,13 +330,13 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     clear = motor_clear_x(layout.gears, z_apex, s["motor_body_diameter"], s["motor_flange"], gap)
     stub_clear = clear - x_pinion_back
     stub = s["motor_shaft_length"]
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     key = f"parts.motor_shaft_length_{unit}"
     if stub < stub_clear:
         # the defaults' step: 0.5 mm, or 1/32 in
         step = 0.5 if unit == "mm" else MM_PER_IN / 32
         stub_clear = math.ceil(stub_clear / step - 1e-9) * step
-        if key in {d.key for d in layout.design.defaulted}:
+        if key in {d.key for d in layout.identity.defaulted}:
             out.defaults.append((key, stub_clear, "the stub that puts the motor's flange beyond the gears its body "
                                                   "would reach"))
             stub = stub_clear
@@ -366,7 +366,7 @@ def _stage_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shafts,
     under it) and an upper one under the bridge; two side columns on the base plate carry the
     bridge clear of every stage gear; the first driver sits on the motor's shaft, which comes
     down through the bridge."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     g = {p.name: p for p in layout.gears}
     shafts = [placed_shafts[k] for k in sorted(k for k in placed_shafts if k.startswith("stage_"))]
