@@ -429,7 +429,7 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     from geargen.profile.tooth import tooth_profile
     from geargen.report.drawing import gear_drawings
 
-    design = layout.design
+    design = layout.identity
     out_folder = Path(folder) / DRAWING_FOLDER
     source = design_source(design)
     allowances = drive_allowances_of(layout)
@@ -521,33 +521,18 @@ def drive_allowances_of(layout: Layout) -> dict:
     return drive_allowances(layout, layout.resolved.checks.centre_distance_tolerance, strict=False)
 
 
-def rated_material(design, gear: str):
-    """The ISO 6336-5 material the design's rating names for ``gear`` (its [materials.GEAR] table or
-    a [duty] material key), or None where the design names none (geargen's default is not a
-    designer's choice to put on a drawing)."""
-    from geargen.design.duty import duty_settings, gear_materials
-    duty = duty_settings(design)
-    tables = design.section("materials")
-    named = gear in (tables or {}) or "material" not in duty.defaulted
-    return gear_materials(design, duty).get(gear) if named else None
-
-
 def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     """The gear data of one gear of the resolved drive, as the build's drawings and ``geargen gear
     --gear`` write it: its ``allowance``, the grade its error budget holds when it has no grade of
     its own (or the finer one its rating assumed, :func:`geargen.model.gear_data.hold_rated_grade`), where its
     thinning comes from, and its mating gears with the working centre distances."""
-    from geargen.core.accuracy import gear_errors
-    from geargen.model.gear_data import gear_data
+    from geargen.model.gear_data import gear_data, hold_rated_grade
     from geargen.report.drawing import mates_from_layout
 
-    from geargen.design.duty import duty_settings
-    from geargen.model.gear_data import hold_rated_grade
-
-    design = layout.design
-    data = gear_data(spec, profile, allowance, gear_errors(design, spec.name), rated_material(design, spec.name))
-    if design.section("duty") or design.section("materials"):  # the rating is then a check: hold its grade
-        hold_rated_grade(data, spec, duty_settings(design).accuracy_grade)
+    resolved = layout.resolved
+    data = gear_data(spec, profile, allowance, resolved.gear_errors(spec.name), resolved.rated_material(spec.name))
+    if resolved.has("duty") or resolved.has("materials"):  # the rating is then a check: hold its grade
+        hold_rated_grade(data, spec, resolved.duty.accuracy_grade)
     data["thinning_source"] = next((layout.thinning.get(p.name, {}).get("source", "design")
                                     for p in layout.gears if any(g.name == spec.name for g in p.gears)), "design")
     data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]
@@ -623,7 +608,8 @@ def default_out_dir(design: Design) -> Path:
 
 
 def design_source(design: Design, design_path: str | Path | None = None) -> str:
-    """What a build is of, as its manifest records it (``"source"``): the design file's absolute path."""
+    """What a build is of, as its manifest records it (``"source"``): the design file's absolute path
+    (``design``: a Design, or a resolved drive's :class:`~geargen.design.resolved.DesignIdentity`)."""
     return str(Path(design.path or design_path).resolve()) if (design.path or design_path) else design.name
 
 

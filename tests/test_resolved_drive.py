@@ -27,20 +27,17 @@ RESOLUTION = ("geargen/design/", "geargen/model/layout.py", "geargen/drives/reso
 RESOLUTION_NAMES = ("place.py",)  # geargen/drives/<kind>/place.py
 
 #: file -> (reads of the design through a Layout, why it still reads it); 75 reads in 28 files before
-#: the settings were resolved once. Each of these passes the
-#: Design on to a function that takes one (the stiffness summary, the gear errors, the materials and
-#: duty, the train's inertias, the planetary stage): moving them means those functions take the
-#: resolved values instead, the next step of issue 26.
+#: the settings were resolved once. Each passes the Design on to a function of the core that takes
+#: one: the stiffness summary (geargen.core.stiffness.stiffness_summary, through
+#: geargen.model.analysis.stiffness), the train it builds (drive_train), and the carriage's travel
+#: limits (geargen.checks.tolerance.carriage_travel_limits, which reads [flexures] and [springs]
+#: itself). Moving them means those functions take the resolved values instead.
 REMAINING: dict[str, tuple[int, str]] = {
-    "geargen/model/mesh_loads.py": (3, "drive_train(design), stiffness_design via stiffness summaries, stage ratios"),
-    "geargen/model/train.py": (3, "drive_train(design), gear_errors(design), st.ratio(design)"),
-    "geargen/checks/rating.py": (1, "stiffness(design, layout), gear_materials(design), duty_settings(design)"),
-    "geargen/checks/verdict.py": (2, "gear_errors(design), carriage_travel_limits(design), stiffness(design, layout)"),
-    "geargen/drives/beam_pinion/shafts.py": (2, "sized_beam_pinion(design, spec) reads the beam gear's spec"),
-    "geargen/drives/planetary/verdict.py": (1, "core_stage(design, ...) and st.ratio(design)"),
-    "geargen/drives/dual_pinion/bevel.py": (1, "bevel gears and stages read through design.gear / design.section"),
-    "geargen/drives/dual_pinion/hardware.py": (1, "stiffness summary and stage gears read from the design"),
-    "geargen/pipeline.py": (3, "summary(design, layout), rated_material(design), gear_errors(design), design_source"),
+    "geargen/checks/rating.py": (1, "stiffness(design, layout) when no summary is given"),
+    "geargen/checks/verdict.py": (1, "carriage_travel_limits(design, ...)"),
+    "geargen/model/mesh_loads.py": (1, "drive_train(design, spec)"),
+    "geargen/model/train.py": (1, "drive_train(design, spec) and stiffness(design, layout)"),
+    "geargen/pipeline.py": (1, "stiffness(design, layout): the build's stiffness step"),
 }
 
 

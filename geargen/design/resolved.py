@@ -1,29 +1,14 @@
-"""What the resolved drive carries of its design file: the design's identity and its settings,
-read and validated once (issue 26), so nothing downstream of :func:`geargen.drives.resolver.resolve`
-reads the design file again.
-
-:class:`DesignIdentity`: the name, source path and length unit the reports and exports name.
-:class:`ResolvedSettings`: each section a downstream module needs, read by the module that owns
-it (``[checks]`` by :func:`geargen.design.checks.checks_settings`, ...) the first time it is
-asked for and kept: a section the drive never needs is never read (a design built without
-validation, e.g. while its defaults are sized, is placed without the sections it lacks being
-refused), and one it needs is read once per resolved drive.
+"""What the resolved drive carries of its design file's identity (issue 26): the name, source path
+and length unit the reports and exports name, so nothing downstream of
+:func:`geargen.drives.resolver.resolve` reads them off the design (its settings:
+:class:`geargen.model.layout.ResolvedSettings`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
 from pathlib import Path
-from typing import Any
 
-from geargen.design.checks import checks_settings
-from geargen.design.duty import duty_settings
-from geargen.design.export import export_settings
-from geargen.design.parts import parts_settings
-from geargen.design.stages import stages
-from geargen.design.stiffness import stiffness_design
-from geargen.design.train import train_settings
 from geargen.units import LENGTH_SUFFIXES, TextUnits
 
 
@@ -70,52 +55,4 @@ def identity_of(design) -> DesignIdentity:
                                                     and any(key.startswith("thinning_normal_") for key in table)))
 
 
-class ResolvedSettings:
-    """The design's sections as the drive's downstream modules read them, each read by its own
-    reader once (see the module docstring); internal units."""
-
-    def __init__(self, design) -> None:
-        self._design = design
-
-    def has(self, section: str) -> bool:
-        """Whether the file gives (or the default hardware fills in) ``[section]``."""
-        return bool(self._design.section(section))
-
-    @cached_property
-    def checks(self):
-        """``[checks]`` (:class:`geargen.design.checks.ChecksSettings`; absent: every default)."""
-        return checks_settings(self._design)
-
-    @cached_property
-    def export(self) -> dict[str, Any]:
-        """``[export]`` (:func:`geargen.design.export.export_settings`)."""
-        return export_settings(self._design)
-
-    @cached_property
-    def parts(self) -> dict[str, Any]:
-        """``[parts]`` for the drive's hardware (:func:`geargen.design.parts.parts_settings`); refused
-        when the design has none (ask :meth:`has` first)."""
-        return parts_settings(self._design)
-
-    @cached_property
-    def train(self):
-        """``[train]`` (:class:`geargen.design.train.TrainSettings`; absent: every default)."""
-        return train_settings(self._design)
-
-    @cached_property
-    def stiffness(self):
-        """The stiffness-step sections (:class:`geargen.design.stiffness.StiffnessDesign`)."""
-        return stiffness_design(self._design)
-
-    @cached_property
-    def stages(self) -> tuple:
-        """The upstream stages of ``[stages]`` (:func:`geargen.design.stages.stages`)."""
-        return stages(self._design)
-
-    @cached_property
-    def duty(self):
-        """``[duty]`` (:class:`geargen.design.duty.DutySpec`; absent: every default)."""
-        return duty_settings(self._design)
-
-
-__all__ = ["DesignIdentity", "ResolvedSettings", "identity_of"]
+__all__ = ["DesignIdentity", "identity_of"]

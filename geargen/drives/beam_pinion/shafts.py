@@ -46,7 +46,7 @@ def beam_pinion_input_shaft(layout: Layout, parts: dict[str, Any]) -> Shaft:
     spec = layout.resolved.stiffness.beam_pinion
     if spec is None:
         raise DesignError("beam_pinion", "missing: the long pinion's span comes from it", "a [beam_pinion] section")
-    span = sized_beam_pinion(layout.design, spec).span
+    span = sized_beam_pinion(layout.resolved.gears, spec).span
     width, outer, diameter = parts["input_bearing_width"], parts["input_bearing_outer_diameter"], \
         parts["input_shaft_diameter"]
     z_lo, z_hi = beam_pinion_bearings(layout, parts, span)
@@ -118,7 +118,7 @@ def beam_supports(layout: Layout, engagement) -> tuple[float, float] | None:
     from geargen.core.stiffness import sized_beam_pinion
     parts = layout.resolved.parts
     sd = layout.resolved.stiffness
-    span = sized_beam_pinion(layout.design, sd.beam_pinion).span
+    span = sized_beam_pinion(layout.resolved.gears, sd.beam_pinion).span
     return drive_column(layout, parts, span, engagement).support_stiffness(sd.beam_pinion.elastic_modulus)
 
 

@@ -82,12 +82,9 @@ def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
 def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDrive | None:
     """The robot joint's bevel pair as placed (see the module docstring); None for a design
     without one (no [parts] bevel keys, or [stages] driving the input)."""
-    from geargen.design.parts import parts_settings
-    from geargen.design.stages import stages
-    design = layout.design
-    if not design.section("parts") or stages(design):
+    if not layout.resolved.has("parts") or layout.resolved.stages:
         return None
-    s = parts_settings(design) if parts is None else parts
+    s = layout.resolved.parts if parts is None else parts
     if s.get("bevel_pinion_teeth") is None:
         return None
     from geargen.drives.dual_pinion.shafts import carriage_shafts
@@ -97,7 +94,7 @@ def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDri
     shaft = carriage_shafts(layout, s)["input"]
     spec_in = layout.gear("input").spec
     bore = (spec_in.large if isinstance(spec_in, ClusterSpec) else spec_in).hub.bore_diameter  # the input shaft
-    unit = design.length_unit if design.length_unit in ("mm", "in") else "mm"
+    unit = layout.identity.length_unit if layout.identity.length_unit in ("mm", "in") else "mm"
     common = dict(module=module, face_width=s["bevel_face_width"], thinning=thinning, length_unit=unit)
     gear = BevelGearSpec(teeth=zg, mate_teeth=zp, bore_diameter=bore, name="bevel_gear", **common)
     pinion = BevelGearSpec(teeth=zp, mate_teeth=zg, name="bevel_pinion", **common)

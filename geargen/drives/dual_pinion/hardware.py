@@ -22,8 +22,6 @@ import numpy as np
 
 from geargen.families.bevel.geometry import back_plane_distance, bevel_core, bevel_pair_geometry
 from geargen.core.flexures import spring_total_coils
-from geargen.design.stages import stages
-from geargen.design.stiffness import stiffness_design
 from geargen.drives.planetary.hardware import planetary_drive
 from geargen.drives.rules import Candidate, RuleBroken
 from geargen.errors import BuildError, DesignError
@@ -50,8 +48,8 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     figure).
     """
     size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
-    design = layout.design
-    sd = stiffness_design(design)
+    identity = layout.identity
+    sd = layout.resolved.stiffness
     if sd.flexures is None or sd.springs is None:
         raise DesignError("flexures", "the robot joint's carriage needs [flexures] and [springs]", "both sections")
     fl, sp = sd.flexures, sd.springs
@@ -91,7 +89,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
     zo_lo, zo_hi = (b.z for b in placed_shafts["output"].bearings)
 
-    stage_list = stages(design)
+    stage_list = layout.resolved.stages
     ish = placed_shafts["input"]
     ibod = s["input_bearing_outer_diameter"]
     d_in = bore_of(inp.spec)
@@ -220,7 +218,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     x_end = x_first - gap
     reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
     if not x_end > reach:
-        unit = design.length_unit
+        unit = identity.length_unit
         candidates = (Candidate("cluster_bearing_outer_diameter", -1, "smaller cluster bearings"),)
         if stage_list:
             candidates += (Candidate("stage_bearing_outer_diameter", -1, "smaller stage bearings"),)
@@ -229,9 +227,9 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
                           Candidate("bevel_face_width", -1, "a narrower bevel pair: its toe further out"),
                           Candidate("motor_shaft_length", +1, "the motor further out")) + candidates
         raise RuleBroken(f"parts.{candidates[0].name}_{unit}",
-                         f"{first} rises above the link cover's plane within {(reach - x_end) / design.mm_per_unit:.4g} "
-                         f"{unit} of the upper bearings' seats (x {x_first / design.mm_per_unit:.5g} {unit}; the seats "
-                         f"reach x {reach / design.mm_per_unit:.5g} {unit}): no room for the cover", None,
+                         f"{first} rises above the link cover's plane within {(reach - x_end) / identity.mm_per_unit:.4g} "
+                         f"{unit} of the upper bearings' seats (x {x_first / identity.mm_per_unit:.5g} {unit}; the seats "
+                         f"reach x {reach / identity.mm_per_unit:.5g} {unit}): no room for the cover", None,
                          "link_cover_room", x_end - reach, candidates)
     seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width),
               B.ring_relief(b.outer_diameter, sh.diameter)) for sh, b in uppers]
