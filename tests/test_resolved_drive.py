@@ -29,14 +29,12 @@ RESOLUTION_NAMES = ("place.py",)  # geargen/drives/<kind>/place.py
 #: file -> (reads of the design through a Layout, why it still reads it); 75 reads in 28 files before
 #: the settings were resolved once. Each passes the Design on to a function of the core that takes
 #: one: the stiffness summary (geargen.core.stiffness.stiffness_summary, through
-#: geargen.model.analysis.stiffness), the train it builds (drive_train), and the carriage's travel
+#: geargen.model.analysis.stiffness), and the carriage's travel
 #: limits (geargen.checks.tolerance.carriage_travel_limits, which reads [flexures] and [springs]
 #: itself). Moving them means those functions take the resolved values instead.
 REMAINING: dict[str, tuple[int, str]] = {
     "geargen/checks/rating.py": (1, "stiffness(design, layout) when no summary is given"),
     "geargen/checks/verdict.py": (1, "carriage_travel_limits(design, ...)"),
-    "geargen/model/mesh_loads.py": (1, "drive_train(design, spec)"),
-    "geargen/model/train.py": (1, "drive_train(design, spec) and stiffness(design, layout)"),
     "geargen/pipeline.py": (1, "stiffness(design, layout): the build's stiffness step"),
 }
 
@@ -100,6 +98,7 @@ def test_nothing_downstream_reads_the_design_through_the_layout():
 @pytest.mark.parametrize("name", ["robot_joint", "split_pinion"])
 def test_the_drive_carries_what_the_design_says(name):
     # the values carried are the design's own, read by the section's own reader (an inch and a mm design)
+    from geargen.core.stiffness import drive_train
     from geargen.design.assembly import load_design
     from geargen.design.checks import checks_settings
     from geargen.design.export import export_settings
@@ -122,6 +121,7 @@ def test_the_drive_carries_what_the_design_says(name):
     assert layout.resolved.train == train_settings(design)
     assert layout.resolved.stiffness == stiffness_design(design)
     assert layout.resolved.stages == stages(design)
+    assert layout.resolved.drive_train == drive_train(design, stiffness_design(design).stiffness)
     # read once: the second ask is the same object, not a second reading
     assert layout.resolved.checks is layout.resolved.checks
     assert layout.resolved.parts is layout.resolved.parts

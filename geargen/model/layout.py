@@ -32,6 +32,7 @@ from functools import cached_property
 from typing import Any
 
 from geargen.core.involute import reference_tooth_thickness
+from geargen.core.stiffness import drive_train
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
@@ -96,6 +97,12 @@ class ResolvedSettings:
     def stiffness(self):
         """The stiffness-step sections (:class:`geargen.design.stiffness.StiffnessDesign`)."""
         return stiffness_design(self._design)
+
+    @cached_property
+    def drive_train(self):
+        """The train ``[stiffness] train`` names (:func:`geargen.core.stiffness.drive_train`; None
+        for a custom train)."""
+        return drive_train(self._design, self.stiffness.stiffness)
 
     @cached_property
     def stages(self) -> tuple:

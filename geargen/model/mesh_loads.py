@@ -48,9 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from geargen.core.load_capacity import rating_scope
-from geargen.core.stiffness import drive_train
 from geargen.design.duty import DutySpec
-from geargen.design.stiffness import stiffness_design
 from geargen.errors import DesignError
 from geargen.families.registry import tooth_form
 
@@ -149,10 +147,9 @@ def mesh_loads(layout, summary, duty: DutySpec) -> tuple[MeshLoads, ...]:
     """Every mesh of the resolved drive ``layout`` with the loads it carries over ``duty``, from the
     stiffness ``summary`` (see the module docstring): the loop's meshes first, then the upstream
     stages from the loop towards the motor."""
-    design = layout.design
     drive = summary.drive
-    spec = stiffness_design(design).stiffness
-    train = drive_train(design, spec)
+    spec = layout.resolved.stiffness.stiffness
+    train = layout.resolved.drive_train
     speeds = _SpeedOf(train, spec.components)
     paths = loop_paths(layout, spec.components)
     levels = duty.signed_levels()

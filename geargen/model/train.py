@@ -332,12 +332,8 @@ class TrainAnalysis:
 def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
     """The train of the resolved drive ``layout`` with the stiffness ``summary``
     (:func:`geargen.model.analysis.stiffness`) and the rotating solids' ``parts``."""
-    from geargen.core.stiffness import drive_train
-    from geargen.design.stiffness import stiffness_design
-    design = layout.design
-    settings = train_settings(design)
-    sd = stiffness_design(design)
-    train = drive_train(design, sd.stiffness)
+    settings = layout.resolved.train
+    train = layout.resolved.drive_train
     if train is None:
         raise DesignError("stiffness.train", "'custom': geargen train needs the gears of a dual or split pinion",
                           "'dual_pinion' or 'split_pinion'")
@@ -387,7 +383,7 @@ def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
         notes.append(f"the preload spring stores {spring / loop_c:.1%} of the loop's drive compliance (unequal paths)")
     if settings.motor_rotor_inertia is None:
         warnings.append("no motor_rotor_inertia_* in [train]: the inertia at the motor leaves the rotor out")
-    return TrainAnalysis(design.name, motor_speed, tuple(inertias), tuple(stages), settings, summary,
+    return TrainAnalysis(layout.identity.name, motor_speed, tuple(inertias), tuple(stages), settings, summary,
                          loop_spring_compliance=spring, warnings=tuple(warnings), notes=tuple(notes))
 
 
