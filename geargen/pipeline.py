@@ -40,7 +40,6 @@ from typing import Any, Callable
 import numpy as np
 
 from geargen.design.assembly import Design, load_design
-from geargen.design.checks import checks_settings
 from geargen.design.export import export_settings
 from geargen.errors import GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement
@@ -130,7 +129,7 @@ def gear_solids(layout: Layout) -> dict[str, Any]:
     """Step 3: the solid of every toothed part (identical specs are built once), by part name;
     ``[export] gear_solid_tolerance`` bounds the flank splines' distance from the exact surface."""
     from geargen.cad.assembly import gear_parts
-    return gear_parts(layout, export_config(layout.design)["gear_solid_tolerance"])
+    return gear_parts(layout, layout.resolved.export["gear_solid_tolerance"])
 
 
 def other_parts(layout: Layout, gears: dict[str, Any] | None = None, stiffness=None) -> Any:
@@ -197,9 +196,8 @@ def section_check(layout: Layout, mesh: MeshPlacement, shape1, shape2, planes: i
     """
     from geargen.checks.solids import check_mesh_sections, section_planes, sections_from_shape
     from geargen.checks.verdict import mesh_settings, mesh_setup
-    from geargen.design.checks import checks_settings
     setup = mesh_setup(layout, mesh)
-    settings = mesh_settings(checks_settings(layout.design), mesh.backlash_min > 0)
+    settings = mesh_settings(layout.resolved.checks, mesh.backlash_min > 0)
     if near:
         from geargen.cad.assembly import faces_near
         q1, q2 = contact_region(setup, settings)
@@ -240,7 +238,7 @@ def _mesh_checks(layout: Layout, gears: dict[str, Any] | None, path2: bool) -> C
     dc = verify(layout)
     outcome = CheckOutcome(meshes=[], design_check=dc)
     for f in dc.all_failures:
-        outcome.failures.append(f"{f.mesh or layout.design.name} ({f.kind}): {f.message}")
+        outcome.failures.append(f"{f.mesh or layout.identity.name} ({f.kind}): {f.message}")
     sections = path2 and gears is not None
     exact = {m.mesh: m for m in dc.meshes}
     for mesh, b in zip(layout.meshes, dc.backlash):
@@ -360,7 +358,7 @@ def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = N
            export_settings: dict | None = None) -> dict[str, Any]:
     """Step 7: assembly STEP, one STEP and one STL per part, into ``folder``; returns the file records."""
     from geargen.cad.assembly import export_parts
-    return export_parts(layout, parts, Path(folder), export_settings or export_config(layout.design))
+    return export_parts(layout, parts, Path(folder), export_settings or layout.resolved.export)
 
 
 def export_config(design: Design) -> dict[str, Any]:
@@ -404,7 +402,7 @@ def layout_drawing(layout: Layout, checks: CheckOutcome | None = None):
     carriage = None
     if layout.carriage_x is not None and layout.carriage_travel:
         carriage = ((layout.carriage_x, 0.0), layout.carriage_travel)
-    return layout_figure(gears, meshes, layout.design.length_unit, layout.design.name, carriage,
+    return layout_figure(gears, meshes, layout.identity.length_unit, layout.identity.name, carriage,
                          symmetry_line=layout.drive is not None and layout.drive.symmetry_line)
 
 
@@ -438,7 +436,7 @@ def drawings(layout: Layout, folder: Path) -> dict[str, Path]:
     from geargen.profile.tooth import tooth_profile
     from geargen.report.drawing import gear_drawings
 
-    design = layout.design
+    design = layout.identity
     out_folder = Path(folder) / DRAWING_FOLDER
     source = design_source(design)
     allowances = drive_allowances_of(layout)
@@ -526,18 +524,7 @@ def drive_allowances_of(layout: Layout) -> dict:
     """Every gear's thickness allowance in the resolved drive (entered, or chosen from its meshes'
     backlash ranges at the design's ``[checks] centre_distance_tolerance``)."""
     from geargen.model.allowance import drive_allowances
-    return drive_allowances(layout, checks_settings(layout.design).centre_distance_tolerance, strict=False)
-
-
-def rated_material(design, gear: str):
-    """The ISO 6336-5 material the design's rating names for ``gear`` (its [materials.GEAR] table or
-    a [duty] material key), or None where the design names none (geargen's default is not a
-    designer's choice to put on a drawing)."""
-    from geargen.design.duty import duty_settings, gear_materials
-    duty = duty_settings(design)
-    tables = design.section("materials")
-    named = gear in (tables or {}) or "material" not in duty.defaulted
-    return gear_materials(design, duty).get(gear) if named else None
+    return drive_allowances(layout, layout.resolved.checks.centre_distance_tolerance, strict=False)
 
 
 def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
@@ -545,17 +532,13 @@ def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     --gear`` write it: its ``allowance``, the grade its error budget holds when it has no grade of
     its own (or the finer one its rating assumed, :func:`geargen.model.gear_data.hold_rated_grade`), where its
     thinning comes from, and its mating gears with the working centre distances."""
-    from geargen.core.accuracy import gear_errors
-    from geargen.model.gear_data import gear_data
+    from geargen.model.gear_data import gear_data, hold_rated_grade
     from geargen.report.drawing import mates_from_layout
 
-    from geargen.design.duty import duty_settings
-    from geargen.model.gear_data import hold_rated_grade
-
-    design = layout.design
-    data = gear_data(spec, profile, allowance, gear_errors(design, spec.name), rated_material(design, spec.name))
-    if design.section("duty") or design.section("materials"):  # the rating is then a check: hold its grade
-        hold_rated_grade(data, spec, duty_settings(design).accuracy_grade)
+    resolved = layout.resolved
+    data = gear_data(spec, profile, allowance, resolved.gear_errors(spec.name), resolved.rated_material(spec.name))
+    if resolved.has("duty") or resolved.has("materials"):  # the rating is then a check: hold its grade
+        hold_rated_grade(data, spec, resolved.duty.accuracy_grade)
     data["thinning_source"] = next((layout.thinning.get(p.name, {}).get("source", "design")
                                     for p in layout.gears if any(g.name == spec.name for g in p.gears)), "design")
     data["mating_gears"] = [m.to_dict() for m in mates_from_layout(layout, spec.name, spec.length_unit)]
@@ -631,7 +614,8 @@ def default_out_dir(design: Design) -> Path:
 
 
 def design_source(design: Design, design_path: str | Path | None = None) -> str:
-    """What a build is of, as its manifest records it (``"source"``): the design file's absolute path."""
+    """What a build is of, as its manifest records it (``"source"``): the design file's absolute path
+    (``design``: a Design, or a resolved drive's :class:`~geargen.design.resolved.DesignIdentity`)."""
     return str(Path(design.path or design_path).resolve()) if (design.path or design_path) else design.name
 
 
@@ -967,7 +951,7 @@ def write_resolved(layout: Layout, folder: Path) -> Path:
     """resolved.json: the resolved drive (:meth:`geargen.model.Layout.to_dict`) the exports were built from."""
     from geargen.cad.export import write_json
     path = Path(folder) / "resolved.json"
-    write_json(path, _jsonable({"generator": "geargen build", "design": layout.design.name, **layout.to_dict()}))
+    write_json(path, _jsonable({"generator": "geargen build", "design": layout.identity.name, **layout.to_dict()}))
     return path
 
 

@@ -259,12 +259,12 @@ def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapp
     from geargen.cad.export import export_step, export_stl
 
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     folder.mkdir(parents=True, exist_ok=True)
     records: dict[str, Any] = {}
     info: dict[str, Any] = {}
     volumes: list[tuple[Any, float]] = []  # (shape, mm^3) already integrated
-    asm = write_assembly_step(layout.design.name, parts, folder / "assembly.step", unit)
+    asm = write_assembly_step(layout.identity.name, parts, folder / "assembly.step", unit)
     records[asm.name] = {"format": "step", "length_unit": unit, "bytes": asm.stat().st_size,
                          "role": "assembly", "parts": [p.name for p in parts]}
     chord = settings["stl_chordal_tolerance"]

@@ -36,7 +36,7 @@ from geargen.checks.mesh2d import MeshSetup, mesh_positions, sweep_mesh
 from geargen.checks.results import Failure
 from geargen.core.allowance import ThicknessAllowance, mesh_backlash_range, thickest, thinnest
 from geargen.design.gear import GearSpec
-from geargen.model.allowance import design_tolerance, drive_allowances, mesh_range
+from geargen.model.allowance import drive_allowances, mesh_range
 from geargen.model.layout import Layout
 from geargen.units import LENGTH_SUFFIXES
 
@@ -72,9 +72,9 @@ def backlash_ranges(layout: Layout, centre_distance_tolerance: float | None = No
     failures (see the module docstring); ``centre_distance_tolerance`` None: the design's (the one
     its model was made with). Meshes of the same gears at the same centre distance (the two loops
     of a dual pinion) are measured once."""
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     k = LENGTH_SUFFIXES[unit]
-    f = design_tolerance(layout.design) if centre_distance_tolerance is None else centre_distance_tolerance
+    f = layout.resolved.checks.centre_distance_tolerance if centre_distance_tolerance is None else centre_distance_tolerance
     allowances = drive_allowances(layout, f)
     records, failures = [], []
     seen: dict[tuple, tuple] = {}
@@ -116,7 +116,7 @@ def backlash_ranges(layout: Layout, centre_distance_tolerance: float | None = No
 def thinning_outside_allowances(layout: Layout, allowances: dict[str, ThicknessAllowance]) -> list[Failure]:
     """``thinning_outside_allowance`` for every gear of ``layout`` whose modelled thinning lies
     outside its allowance (to 1e-9 mm), naming its gear table's key and the middle of the allowance."""
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     k = LENGTH_SUFFIXES[unit]
     out, seen = [], set()
     for placed in layout.gears:
@@ -130,8 +130,7 @@ def thinning_outside_allowances(layout: Layout, allowances: dict[str, ThicknessA
             if band[0] - 1e-9 <= spec.thinning <= band[1] + 1e-9:
                 continue
             mesh = next((m.name for m in layout.meshes if spec.name in (m.gear1.name, m.gear2.name)), placed.name)
-            raw = layout.design.section("gears").get(spec.name, {})
-            normal = any(key.startswith("thinning_normal_") for key in raw)
+            normal = spec.name in layout.identity.normal_thinning
             key = f"gears.{spec.name}.{'thinning_normal' if normal else 'thinning_circumferential'}_{unit}"
             fix = (band[0] + band[1]) / 2 * (c if normal else 1.0)
             out.append(Failure(

@@ -350,7 +350,7 @@ def parts_check(layout, tolerance: float = OVERLAP_TOLERANCE, contact_tolerance:
                 resolution: float = 0.05) -> PartsReport:
     """The parts check of the module docstring on the resolved drive ``layout``."""
     hardware = layout.hardware
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     parts = analytic_parts(layout)
     report = PartsReport(len(parts), 0, tolerance=tolerance, contact_tolerance=contact_tolerance)
     if hardware is None:

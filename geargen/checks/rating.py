@@ -34,8 +34,7 @@ from typing import Any
 
 from geargen.core.iso6336_materials import Material
 from geargen.core.load_capacity import STANDARD, LoadCase, MeshRating, RatingConditions, rate_mesh
-from geargen.design.checks import checks_settings
-from geargen.design.duty import DutySpec, GearMaterial, duty_settings, gear_materials
+from geargen.design.duty import DutySpec, GearMaterial
 from geargen.design.stiffness import QUANTITY_SUFFIXES
 from geargen.errors import DesignError
 from geargen.model.mesh_loads import MeshLoads, mesh_loads
@@ -360,22 +359,23 @@ def rate_drive(layout, summary=None) -> DriveRating:
     (:func:`geargen.drives.resolver.resolve`), with its stiffness ``summary``
     (:func:`geargen.model.analysis.stiffness`'s first value; computed when None). A drive without
     ``[stiffness]`` and ``[preload]`` is returned not rated, saying why."""
-    design = layout.design
-    checks = checks_settings(design)
+    identity, resolved = layout.identity, layout.resolved
+    checks = resolved.checks
     minimum = (checks.min_S_H, checks.min_S_F)
-    base = dict(design=design.name, kind=layout.kind, drive_type=design.drive_type, length_unit=design.length_unit,
-                minimum_safety=minimum, duty_stated=bool(design.section("duty") or design.section("materials")))
+    base = dict(design=identity.name, kind=layout.kind, drive_type=identity.drive_type,
+                length_unit=identity.length_unit, minimum_safety=minimum,
+                duty_stated=resolved.has("duty") or resolved.has("materials"))
     if summary is None:
         from geargen.model.analysis import stiffness
-        summary = stiffness(design, layout)[0]
+        summary = stiffness(layout.design, layout)[0]
     if summary is None:
         return DriveRating(duty=None, reason="the drive has no [stiffness] and [preload] sections: the loads of its "
                            "preloaded meshes come from the stiffness model", **base)
-    duty = duty_settings(design)
+    duty = resolved.duty
     if not duty.levels:
         return DriveRating(duty=duty, reason="no load: give [duty] output_torque_levels_* or [preload] "
                            "max_output_torque_*", **base)
-    materials = gear_materials(design, duty)
+    materials = resolved.materials
     warnings = []
     peak = max(abs(t) for t, _ in duty.levels)
     if peak > summary.max_output_torque * (1 + 1e-9):

@@ -82,12 +82,12 @@ def mesh_settings(settings: ChecksSettings, require_backlash: bool | None = None
 @one_blas_thread()
 def verify(layout: Layout, settings: ChecksSettings | None = None, tolerances: bool | None = None) -> DesignCheck:
     """Every check of the resolved drive that needs no solid (see the module docstring)."""
-    design = layout.design
-    settings = checks_settings(design) if settings is None else settings
-    unit = design.length_unit
+    identity = layout.identity
+    settings = layout.resolved.checks if settings is None else settings
+    unit = identity.length_unit
     k = LENGTH_SUFFIXES[unit]
-    result = DesignCheck(design=design.name, length_unit=unit, meshes=[],
-                         notes=list(design.unit_warnings) + list(layout.notes))
+    result = DesignCheck(design=identity.name, length_unit=unit, meshes=[],
+                         notes=list(identity.unit_warnings) + list(layout.notes))
     setups = {}
     for mesh in layout.meshes:
         entry = {"mesh": mesh.name, "gear1": mesh.part1, "gear2": mesh.part2, "kind": BACKLASH_KIND,
@@ -178,7 +178,7 @@ def _parts(layout: Layout, result: DesignCheck, settings: ChecksSettings) -> Non
     kinds = {"overlap": "parts_overlap", "interpenetrating": "parts_interpenetrating",
              "missing_contact": "contact_missing"}
     fixes = layout.hardware.fixes
-    scale = LENGTH_SUFFIXES[layout.design.length_unit]
+    scale = LENGTH_SUFFIXES[layout.identity.length_unit]
     for f in report.findings:
         offered = [fixes[p] for p in (f.part1, f.part2) if f.kind == "overlap" and p in fixes]
         hint = "".join(f" (fix: {key} = {value / scale:.6g}: {why})" for key, value, why in offered)
@@ -196,28 +196,27 @@ def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSe
     from geargen.checks.tolerance import LOOP_MESHES, carriage_travel_limits, loop_tolerance, pair_tolerance
     from geargen.design.synthesis import GEAR_ROLES
 
-    design = layout.design
     rng = np.random.default_rng(settings.seed)
     if layout.synthesis is not None:  # the loop placed by the centre synthesis: its error budget
-        errors = {role: e for role in GEAR_ROLES if (e := gear_errors(design, role)) is not None}
+        errors = {role: e for role in GEAR_ROLES if (e := layout.resolved.gear_errors(role)) is not None}
         if not errors or set(LOOP_MESHES) - set(setups):
             return []  # no budget, or the pinions are slid out of mesh (disengaged)
         placement = layout.placement
         gap = placement.loaded_flank_gap
         return loop_tolerance(layout.synthesis.synthesis, setups, errors, placement.backlash_mesh1 - 2 * gap,
                               placement.backlash_mesh2 - 2 * gap, settings.monte_carlo_samples, rng,
-                              carriage_travel_limits(design, settings.carriage_travel_limit), settings.steps_per_tooth,
-                              design.length_unit)
+                              carriage_travel_limits(layout.design, settings.carriage_travel_limit),
+                              settings.steps_per_tooth, layout.identity.length_unit)
     out = []
     for mesh in layout.meshes:
         if mesh.name not in setups:
             continue
-        e1, e2 = gear_errors(design, mesh.gear1.name), gear_errors(design, mesh.gear2.name)
+        e1, e2 = layout.resolved.gear_errors(mesh.gear1.name), layout.resolved.gear_errors(mesh.gear2.name)
         if e1 is None and e2 is None:
             continue
         out.append(pair_tolerance(setups[mesh.name], e1, e2, settings.monte_carlo_samples, rng,
                                   "backlash" if settings.require_backlash and mesh.backlash_min > 0 else "zero_backlash",
-                                  settings.steps_per_tooth, design.length_unit))
+                                  settings.steps_per_tooth, layout.identity.length_unit))
     return out
 
 

@@ -959,7 +959,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     beam_spec = sd.beam_pinion
     beam_stiffness = None
     if beam_spec is not None:
-        probe = sized_beam_pinion(design, beam_spec)
+        probe = sized_beam_pinion(design.gears, beam_spec)
         beam_stiffness = probe.stiffness
         if beam_supports is not None:
             # the supports give way under their reactions, (L - a)/L and a/L of the mesh force
@@ -1079,7 +1079,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     # --- beam pinion at the preload force ---
     beam = None
     if beam_spec is not None:
-        pin = _beam_gear(design, beam_spec.gear)
+        pin = _beam_gear(design.gears, beam_spec.gear)
         force = (fe - fixed_forces) if fe is not None else 0.0
         beam = beam_pinion(probe.diameter, beam_spec.elastic_modulus, force, span=probe.span,
                            mesh_position=probe.mesh_position, face_width=pin.face_width,
@@ -1094,7 +1094,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     engagement = None
     if sd.engagement is not None:
         eg = sd.engagement
-        gear = _beam_gear(design, eg.gear, "engagement.gear")
+        gear = _beam_gear(design.gears, eg.gear, "engagement.gear")
         windup = eg.preload_windup
         if windup is None:
             ratio = None if train is None else train.gear_ratio(eg.gear)
@@ -1144,9 +1144,10 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         warnings=tuple(warnings), supports=tuple(supports))
 
 
-def sized_beam_pinion(design, beam_spec) -> BeamPinion:
-    """The ``[beam_pinion]`` beam, unloaded: its span given, or sized for its target stiffness."""
-    pin = _beam_gear(design, beam_spec.gear)
+def sized_beam_pinion(gears, beam_spec) -> BeamPinion:
+    """The ``[beam_pinion]`` beam, unloaded: its span given, or sized for its target stiffness
+    (``gears``: the design's gears by table name)."""
+    pin = _beam_gear(gears, beam_spec.gear)
     diameter = beam_spec.diameter or 2.0 * pin.root_radius_standard
     return beam_pinion(diameter, beam_spec.elastic_modulus, 0.0, span=beam_spec.span,
                        mesh_position=beam_spec.mesh_position, target_stiffness=beam_spec.target_stiffness)
@@ -1154,15 +1155,15 @@ def sized_beam_pinion(design, beam_spec) -> BeamPinion:
 
 def _sliding_mesh(design, gear: str, mate: str) -> SlidingMesh:
     """``gear`` of the sliding cluster against its ``mate`` (both named by the [stiffness] gear roles)."""
-    g = _beam_gear(design, gear, "engagement.gear")
-    _beam_gear(design, mate, "engagement.gear")
+    g = _beam_gear(design.gears, gear, "engagement.gear")
+    _beam_gear(design.gears, mate, "engagement.gear")
     return SlidingMesh(gear, mate, g.helix_angle, g.reference_radius, g.hand)
 
 
-def _beam_gear(design, name: str, where: str = "beam_pinion.gear"):
-    if name not in design.gears:
-        raise DesignError(where, f"no gear named {name!r} in the design", ", ".join(design.gears))
-    return design.gears[name]
+def _beam_gear(gears, name: str, where: str = "beam_pinion.gear"):
+    if name not in gears:
+        raise DesignError(where, f"no gear named {name!r} in the design", ", ".join(gears))
+    return gears[name]
 
 
 __all__ = [

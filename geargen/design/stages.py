@@ -70,9 +70,9 @@ class Stage:
     backlash_max: float
     kind: str = "pair"
 
-    def ratio(self, design) -> Fraction:
-        """Driver speed over driven speed."""
-        return Fraction(design.gears[self.driven].teeth, design.gears[self.driver].teeth)
+    def ratio(self, gears) -> Fraction:
+        """Driver speed over driven speed (``gears``: the design's gears by table name)."""
+        return Fraction(gears[self.driven].teeth, gears[self.driver].teeth)
 
 
 def stages(design) -> tuple[Stage, ...]:
@@ -140,7 +140,7 @@ def shaft_speeds(design, stage_list: tuple[Stage, ...], input_speed: float) -> d
     for s in reversed(stage_list):
         if s.driven is not None:  # a planetary stage's carrier is no gear
             speeds[s.driven] = speed
-        speed *= float(s.ratio(design))
+        speed *= float(s.ratio(design.gears))
         speeds[s.driver] = speed
     return speeds
 

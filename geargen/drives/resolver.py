@@ -14,7 +14,7 @@ from typing import Any
 
 from geargen.design.assembly import Design
 from geargen.design.layout import POSITIONS, layout_settings
-from geargen.design.parts import hardware_fields, parts_settings
+from geargen.design.parts import hardware_fields
 from geargen.drives.registry import DRIVES
 from geargen.drives.rules import RuleBroken, find_fixes, offered
 from geargen.errors import DesignError
@@ -45,9 +45,9 @@ def resolve(design: Design, position: str | None = None) -> Layout:
     ``position`` overrides ``[layout] position``. A hardware rule the drive breaks is refused
     naming its key and the values found to fix it (:mod:`geargen.drives.rules`)."""
     try:
-        return with_hardware(place(design, position))
+        return with_hardware(place(design, position), design)
     except RuleBroken as exc:
-        fixes = find_fixes(lambda d: with_hardware(place(d, position)), design, exc)
+        fixes = find_fixes(lambda d: with_hardware(place(d, position), d), design, exc)
         exc.fixes = fixes
         allowed = offered(fixes, exc, design.length_unit)
         error = RuleBroken(next(iter(fixes), exc.field), exc.problem, allowed or "no value of the keys that move it "
@@ -57,12 +57,12 @@ def resolve(design: Design, position: str | None = None) -> Layout:
         raise error from None
 
 
-def with_hardware(layout: Layout) -> Layout:
-    """``layout`` with its hardware laid out, when the design gives (or defaults) a ``[parts]`` table."""
-    design = layout.design
-    if not design.section("parts"):
+def with_hardware(layout: Layout, design: Design) -> Layout:
+    """``layout`` (placed from ``design``) with its hardware laid out, when the design gives (or
+    defaults) a ``[parts]`` table, read once into the resolved drive (``layout.resolved.parts``)."""
+    if not layout.resolved.has("parts"):
         return layout
-    settings = parts_settings(design)
+    settings = layout.resolved.parts
     lay_out = layout.drive.hardware
     summary: dict[str, Any] = {}
 
@@ -76,7 +76,7 @@ def with_hardware(layout: Layout) -> Layout:
     except RuleBroken:
         raise
     except DesignError as exc:
-        defaulted = {d.key.split(".")[0] for d in design.defaulted}
+        defaulted = {d.key.split(".")[0] for d in layout.identity.defaulted}
         section = exc.field.split(".")[0]
         if section not in defaulted:
             raise
@@ -84,7 +84,7 @@ def with_hardware(layout: Layout) -> Layout:
                           "geargen sized it; see geargen check)",
                           f"{exc.allowed}; or a [{section}] table of your own") from None
     except ValueError as exc:
-        problem = exc.in_unit(design.length_unit) if isinstance(exc, SizeError) else str(exc)
+        problem = exc.in_unit(layout.identity.length_unit) if isinstance(exc, SizeError) else str(exc)
         raise DesignError("parts", f"the hardware cannot be made: {problem}",
                           "other [parts] sizes (the part named is what does not fit)") from None
     return replace(layout, hardware=hardware)
@@ -95,23 +95,22 @@ def defaulted(layout: Layout) -> tuple:
     defaults (its kind's ``defaults.py``), those the hardware sized from the placed
     drive replacing theirs (:attr:`geargen.model.components.Hardware.defaults`)."""
     from geargen.design.catalogue import Defaulted
-    design = layout.design
-    sized = {key: (value / design.mm_per_unit, why) for key, value, why in
+    identity = layout.identity
+    sized = {key: (value / identity.mm_per_unit, why) for key, value, why in
              (layout.hardware.defaults if layout.hardware is not None else ())}
     return tuple(Defaulted(d.key, round(sized[d.key][0], 6), sized[d.key][1]) if d.key in sized else d
-                 for d in design.defaulted)
+                 for d in identity.defaulted)
 
 
 def parts_table(layout: Layout) -> str:
     """The resolved drive's ``[parts]`` as TOML a designer can paste into the file: every key the
     drive's hardware reads, the file's value or the default used, lengths in the design's unit."""
-    design = layout.design
-    if not design.section("parts"):
+    if not layout.resolved.has("parts"):
         return ""
-    settings = parts_settings(design)
+    settings = layout.resolved.parts
     sized = {key.split(".", 1)[1]: value for key, value, _ in
              (layout.hardware.defaults if layout.hardware is not None else ())}
-    unit = design.length_unit
+    unit, mm_per_unit = layout.identity.length_unit, layout.identity.mm_per_unit
     lines = [f"[parts]  # resolved ({settings['hardware']} hardware): the file's values and the defaults used"]
     for f in hardware_fields(settings["hardware"]):
         value = settings.get(f.name)
@@ -119,7 +118,7 @@ def parts_table(layout: Layout) -> str:
             continue
         if f.kind == "length":
             key = f"{f.name}_{unit}"
-            value = sized.get(key, value) / design.mm_per_unit
+            value = sized.get(key, value) / mm_per_unit
             lines.append(f"{key} = {float(f'{value:.6g}')!r}")
         elif isinstance(value, str):
             lines.append(f'{f.name} = "{value}"')

@@ -112,7 +112,9 @@ def _makeable(spec: GearSpec, allowance: ThicknessAllowance, route: BacklashRout
 def decide(design, meshes: Iterable[MeshRange], tolerance: float | None = None, strict: bool = True,
            gears: Iterable[GearSpec] = ()) -> dict[str, ThicknessAllowance]:
     """Gear name -> allowance for every gear of ``meshes`` (and of ``gears``) that has one (see the
-    module docstring); ``tolerance`` the centre-distance tolerance (mm; None: the design's). A mesh
+    module docstring); ``tolerance`` the centre-distance tolerance (mm; None: the design's). Of
+    ``design`` only its ``length_unit`` is read when ``tolerance`` is given (the resolved drive passes
+    its :class:`~geargen.design.resolved.DesignIdentity`). A mesh
     whose range no allowance meets, or whose allowance asks a gear for more thinning than it can
     take, raises the DesignError naming the key; with ``strict`` False its gears are left without
     one (the drawings then say so; the check's verdict has the failure)."""
@@ -167,5 +169,6 @@ def drive_allowances(layout: Layout, centre_distance_tolerance: float | None = N
     """Gear name (``GearSpec.name``) -> allowance, for every gear of ``layout`` that has one
     (:func:`decide` over its meshes where they are placed, in order; ``centre_distance_tolerance``
     None: the design's)."""
-    return decide(layout.design, [mesh_range(m) for m in layout.meshes], centre_distance_tolerance, strict,
+    f = layout.resolved.checks.centre_distance_tolerance if centre_distance_tolerance is None else centre_distance_tolerance
+    return decide(layout.identity, [mesh_range(m) for m in layout.meshes], f, strict,
                   [g for placed in layout.gears for g in placed.gears])

@@ -16,10 +16,9 @@ def loop_error_travels(layout: Layout | None) -> tuple[dict[str, float] | None, 
     """The synthesis error budget as carriage travels (mm: ``sum``, ``rss``, ``mean``) when the
     preload carriage of the drive absorbs them, and a note saying where the loop error comes from."""
     run = layout.synthesis if layout is not None else None
-    design = layout.design if layout is not None else None
     if run is None or run.budget is None:
         return None, "loop error from the design's [preload] (no [synthesis] with [errors] budget)"
-    if design.preload_method not in ("radial", "axial") or (layout.drive is not None
+    if layout.identity.preload_method not in ("radial", "axial") or (layout.drive is not None
                                                             and not layout.drive.carriage_error_budget):
         return None, ("loop error from the design's [preload]: the synthesis budget is a carriage travel, and this "
                       "drive's preload is not set by a sliding carriage")

@@ -121,7 +121,7 @@ def _gear_block(spec, unit: str) -> dict:
 
 def cluster_data(layout, cluster: PlacedCluster) -> dict:
     """The cluster's data dict (module docstring)."""
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     large, small = cluster.large, cluster.small
 
     def L(v):

@@ -28,16 +28,117 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from fractions import Fraction
+from functools import cached_property
 from typing import Any
 
 from geargen.core.involute import reference_tooth_thickness
+from geargen.core.stiffness import drive_train
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
 from geargen.design.layout import MODEL_POINTS, MODEL_TOOTH_THICKNESS, POSITIONS
 from geargen.families.registry import tooth_form
+from geargen.core.accuracy import gear_errors
+from geargen.design.checks import checks_settings
+from geargen.design.duty import duty_settings, gear_materials
+from geargen.design.export import export_settings
+from geargen.design.parts import parts_settings
+from geargen.design.resolved import DesignIdentity, identity_of
+from geargen.design.stages import stages
+from geargen.design.stiffness import stiffness_design
+from geargen.design.train import train_settings
 from geargen.profile.tooth import section_rotation
 from geargen.units import LENGTH_SUFFIXES
+
+class ResolvedSettings:
+    """The design's sections as the drive's downstream modules read them (issue 26), internal
+    units: each section a downstream module needs, read by the module that owns it (``[checks]``
+    by :func:`geargen.design.checks.checks_settings`, ...) the first time it is asked for and
+    kept. A section the drive never needs is never read (a design built without validation, e.g.
+    while its defaults are sized, is placed without the sections it lacks being refused), and one
+    it needs is read once per resolved drive."""
+
+    def __init__(self, design) -> None:
+        self._design = design
+        self._errors: dict[str, Any] = {}
+        self._rated: dict[str, Any] = {}
+
+    @property
+    def gears(self) -> dict[str, Any]:
+        """The design's gears as read (table name -> spec; the modelled teeth are the Layout's)."""
+        return self._design.gears
+
+    def has(self, section: str) -> bool:
+        """Whether the file gives (or the default hardware fills in) ``[section]``."""
+        return bool(self._design.section(section))
+
+    @cached_property
+    def checks(self):
+        """``[checks]`` (:class:`geargen.design.checks.ChecksSettings`; absent: every default)."""
+        return checks_settings(self._design)
+
+    @cached_property
+    def export(self) -> dict[str, Any]:
+        """``[export]`` (:func:`geargen.design.export.export_settings`)."""
+        return export_settings(self._design)
+
+    @cached_property
+    def parts(self) -> dict[str, Any]:
+        """``[parts]`` for the drive's hardware (:func:`geargen.design.parts.parts_settings`); refused
+        when the design has none (ask :meth:`has` first)."""
+        return parts_settings(self._design)
+
+    @cached_property
+    def train(self):
+        """``[train]`` (:class:`geargen.design.train.TrainSettings`; absent: every default)."""
+        return train_settings(self._design)
+
+    @cached_property
+    def stiffness(self):
+        """The stiffness-step sections (:class:`geargen.design.stiffness.StiffnessDesign`)."""
+        return stiffness_design(self._design)
+
+    @cached_property
+    def drive_train(self):
+        """The train ``[stiffness] train`` names (:func:`geargen.core.stiffness.drive_train`; None
+        for a custom train)."""
+        return drive_train(self._design, self.stiffness.stiffness)
+
+    @cached_property
+    def stages(self) -> tuple:
+        """The upstream stages of ``[stages]`` (:func:`geargen.design.stages.stages`)."""
+        return stages(self._design)
+
+    @cached_property
+    def duty(self):
+        """``[duty]`` (:class:`geargen.design.duty.DutySpec`; absent: every default)."""
+        return duty_settings(self._design)
+
+    @cached_property
+    def materials(self) -> dict[str, Any]:
+        """Gear name -> its ISO 6336-5 material (:func:`geargen.design.duty.gear_materials`)."""
+        return gear_materials(self._design, self.duty)
+
+    def rated_material(self, gear: str):
+        """The ISO 6336-5 material the design's rating names for ``gear`` (its [materials.GEAR] table
+        or a [duty] material key), or None where the design names none (geargen's default is not a
+        designer's choice to put on a drawing)."""
+        if gear not in self._rated:
+            named = gear in self._design.section("materials") or "material" not in self.duty.defaulted
+            self._rated[gear] = self.materials.get(gear) if named else None
+        return self._rated[gear]
+
+    def gives_errors(self, gear: str) -> bool:
+        """Whether ``[errors]`` gives a budget of its own for ``gear``."""
+        return bool(self._design.section("errors").get(gear))
+
+    def gear_errors(self, gear: str):
+        """One gear's error budget (:func:`geargen.core.accuracy.gear_errors`; None: none given)."""
+        if gear not in self._errors:
+            self._errors[gear] = gear_errors(self._design, gear)
+        return self._errors[gear]
+
+
 
 @dataclass(frozen=True)
 class GearPlacement:
@@ -148,6 +249,17 @@ class Layout:
     hardware: Any = None
     # the drive kind (geargen.drives.kind.DriveKind): what the verdict and the reports ask of it
     drive: Any = field(default=None, compare=False, repr=False)
+    # the design's name, path and units (geargen.design.resolved), and its settings read once: what
+    # every module downstream of the resolution reads instead of the design; made from ``design``
+    # when the Layout is made (a replace() carries them)
+    identity: DesignIdentity = field(default=None, compare=False, repr=False)
+    resolved: ResolvedSettings = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        if self.identity is None:
+            object.__setattr__(self, "identity", identity_of(self.design))
+        if self.resolved is None:
+            object.__setattr__(self, "resolved", ResolvedSettings(self.design))
 
     def gear(self, name: str) -> GearPlacement:
         for g in self.gears:
@@ -164,7 +276,7 @@ class Layout:
     def to_dict(self) -> dict[str, Any]:
         """The resolved values in the design's length unit (angles in rad and deg): what is
         written beside every export and what every command reports."""
-        unit = self.design.length_unit
+        unit = self.identity.length_unit
         k = 1.0 / LENGTH_SUFFIXES[unit]
         gears = []
         for g in self.gears:
@@ -187,7 +299,7 @@ class Layout:
                 "loaded_flank_gap": (self.settings.get("loaded_flank_gap") or 0.0) * k,
                 "carriage_x": None if self.carriage_x is None else self.carriage_x * k,
                 "gears": gears, "meshes": meshes, "notes": list(self.notes),
-                "defaulted": {d.key: d.value for d in self.design.defaulted},
+                "defaulted": {d.key: d.value for d in self.identity.defaulted},
                 **({"drive_report (mm, rad, N, N mm)": self.drive_report} if self.drive_report else {}),
                 **({"hardware": self.hardware.to_dict(1.0 / k)} if self.hardware is not None else {})}
 
@@ -218,7 +330,7 @@ def ratio_check(design: Design, settings: dict, train_ratio: Fraction, what: str
     from geargen.design.stages import stages
     stage_list = stages(design)
     for st in stage_list:
-        total *= st.ratio(design)
+        total *= st.ratio(design.gears)
         if st.kind == "planetary":  # ring fixed, sun in, carrier out
             described.append(f"(1 + {design.gear(st.ring).teeth}/{design.gear(st.sun).teeth})")
         else:
@@ -249,5 +361,5 @@ def running_backlash(a: GearSpec, b: GearSpec, centre_distance: float) -> float:
     return float(backlash_from_thickness_deficit(deficit, centre_distance, standard, a.transverse_pressure_angle))
 
 
-__all__ = ["MODEL_TOOTH_THICKNESS", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
+__all__ = ["ResolvedSettings", "MODEL_TOOTH_THICKNESS", "POSITIONS", "BACKLASH_KIND", "GearPlacement", "MeshPlacement", "Layout",
            "layout_settings", "is_drive", "running_backlash", "modelled_backlash", "ratio_check"]

@@ -48,10 +48,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from geargen.core.load_capacity import rating_scope
-from geargen.core.stiffness import drive_train
 from geargen.design.duty import DutySpec
-from geargen.design.stages import stages as design_stages
-from geargen.design.stiffness import stiffness_design
 from geargen.errors import DesignError
 from geargen.families.registry import tooth_form
 
@@ -150,10 +147,9 @@ def mesh_loads(layout, summary, duty: DutySpec) -> tuple[MeshLoads, ...]:
     """Every mesh of the resolved drive ``layout`` with the loads it carries over ``duty``, from the
     stiffness ``summary`` (see the module docstring): the loop's meshes first, then the upstream
     stages from the loop towards the motor."""
-    design = layout.design
     drive = summary.drive
-    spec = stiffness_design(design).stiffness
-    train = drive_train(design, spec)
+    spec = layout.resolved.stiffness.stiffness
+    train = layout.resolved.drive_train
     speeds = _SpeedOf(train, spec.components)
     paths = loop_paths(layout, spec.components)
     levels = duty.signed_levels()
@@ -220,10 +216,9 @@ def _level_loads(levels, positive: str, to_force: float) -> tuple[FlankLoad, ...
 
 def _upstream(layout, train, levels, input_sense: str) -> list[MeshLoads]:
     """The stages between the motor and the loop, from the loop towards the motor."""
-    design = layout.design
     out: list[MeshLoads] = []
     shaft_sense = input_sense  # the sense, at positive output torque, of the shaft the next stage drives
-    for st in reversed(design_stages(design)):
+    for st in reversed(layout.resolved.stages):
         if st.kind == "planetary":
             out += _planetary(layout, train, st, levels, shaft_sense)
             continue
@@ -234,7 +229,7 @@ def _upstream(layout, train, levels, input_sense: str) -> list[MeshLoads]:
         out.append(MeshLoads(m.name, f"stage {st.name}", m.part1, m.part2, m.gear1, m.gear2, m.centre_distance,
                              speed1, 1.0 / speed1, None, None, loads))
         shaft_sense = driver_sense
-    if not design_stages(design):
+    if not layout.resolved.stages:
         speed = float(layout.ratio.get("train", 1))
         for z1, z2 in reversed(list(layout.settings.get("upstream_stages", ()))):
             out.append(_upstream_pair(layout, int(z1), int(z2), speed))
@@ -246,7 +241,7 @@ def _upstream_pair(layout, z1: int, z2: int, driven_speed: float) -> MeshLoads:
     """An upstream stage known by its teeth only ([layout] upstream_stages): the robot joint's
     bevel pair when [parts] places one of these teeth, else a stage without gears."""
     from geargen.drives.dual_pinion.bevel import bevel_drive
-    placed = bevel_drive(layout) if layout.design.section("parts") else None
+    placed = bevel_drive(layout) if layout.resolved.has("parts") else None
     speed1 = driven_speed * z2 / z1
     name = f"upstream {z1}:{z2}"
     if placed is not None and (placed.pinion.teeth, placed.gear.teeth) == (z1, z2):
@@ -260,13 +255,12 @@ def _upstream_pair(layout, z1: int, z2: int, driven_speed: float) -> MeshLoads:
 def _planetary(layout, train, st, levels, carrier_sense: str) -> list[MeshLoads]:
     """The sun-planet and planet-ring meshes of a planetary stage (ring fixed, sun in, carrier on
     the shaft the loop's input turns), in the carrier's frame."""
-    design = layout.design
     group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
     ring = next(g for g in group if "planetary_ring" in g.roles)
     planets = [g for g in group if "planetary_planet" in g.roles]
     k = len(planets)
     sun_speed = train.gear_ratio(st.sun)
-    carrier = sun_speed / float(st.ratio(design))
+    carrier = sun_speed / float(st.ratio(layout.resolved.gears))
     relative = sun_speed - carrier  # the sun in the carrier's frame: the same sense as the carrier
     out = []
     for i, planet in enumerate(planets):

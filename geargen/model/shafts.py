@@ -137,10 +137,9 @@ def loop_shafts(gears, parts: dict[str, Any]) -> dict[str, Shaft]:
 def shafts(layout: Layout) -> dict[str, Shaft]:
     """The placed shafts of the resolved drive, as its kind places them (:attr:`geargen.drives.kind.DriveKind.shafts`;
     empty without a [parts] table or for a kind that places none here)."""
-    from geargen.design.parts import parts_settings
-    if not layout.design.section("parts") or layout.drive is None or layout.drive.shafts is None:
+    if not layout.resolved.has("parts") or layout.drive is None or layout.drive.shafts is None:
         return {}
-    return layout.drive.shafts(layout, parts_settings(layout.design))
+    return layout.drive.shafts(layout, layout.resolved.parts)
 
 
 __all__ = ["Bearing", "Shaft", "loop_shafts", "mid_face", "shafts", "bore_of"]

@@ -332,12 +332,8 @@ class TrainAnalysis:
 def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
     """The train of the resolved drive ``layout`` with the stiffness ``summary``
     (:func:`geargen.model.analysis.stiffness`) and the rotating solids' ``parts``."""
-    from geargen.core.stiffness import drive_train
-    from geargen.design.stiffness import stiffness_design
-    design = layout.design
-    settings = train_settings(design)
-    sd = stiffness_design(design)
-    train = drive_train(design, sd.stiffness)
+    settings = layout.resolved.train
+    train = layout.resolved.drive_train
     if train is None:
         raise DesignError("stiffness.train", "'custom': geargen train needs the gears of a dual or split pinion",
                           "'dual_pinion' or 'split_pinion'")
@@ -387,7 +383,7 @@ def analyse(layout, summary, parts: list[BodyPart]) -> TrainAnalysis:
         notes.append(f"the preload spring stores {spring / loop_c:.1%} of the loop's drive compliance (unequal paths)")
     if settings.motor_rotor_inertia is None:
         warnings.append("no motor_rotor_inertia_* in [train]: the inertia at the motor leaves the rotor out")
-    return TrainAnalysis(design.name, motor_speed, tuple(inertias), tuple(stages), settings, summary,
+    return TrainAnalysis(layout.identity.name, motor_speed, tuple(inertias), tuple(stages), settings, summary,
                          loop_spring_compliance=spring, warnings=tuple(warnings), notes=tuple(notes))
 
 
@@ -397,14 +393,13 @@ def _planet_motions(layout, train) -> dict[str, tuple[float, float, float]]:
     relative to the carrier the ring turns at -w_c and the planet at -w_c z_r / z_p (an internal
     mesh turns both one way), so its spin is w_c (1 - z_r / z_p), a speed |1 - z_r / z_p| times the
     carrier's; a pin, fixed in the carrier, turns with it."""
-    from geargen.design.stages import stages as design_stages
     out = {}
-    for st in design_stages(layout.design):
+    for st in layout.resolved.stages:
         if st.kind != "planetary":
             continue
         group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
         ring = next(g for g in group if "planetary_ring" in g.roles)
-        carrier = train.gear_ratio(st.sun) / float(st.ratio(layout.design))
+        carrier = train.gear_ratio(st.sun) / float(st.ratio(layout.resolved.gears))
         planets = [g for g in group if "planetary_planet" in g.roles]
         for i, g in enumerate(planets, start=1):
             radius = math.dist(g.centre, ring.centre)
@@ -436,17 +431,15 @@ def _path_shares(summary) -> tuple[float, float]:
 def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
             warnings: list) -> tuple[list[TrainStage], float]:
     """The stages, motor first, and the compliance the two paths' shares give the loop's stages."""
-    from geargen.design.stages import stages as design_stages
-    design = layout.design
+    resolved = layout.resolved
     mu = settings.mesh_friction_coefficient
     shares = _path_shares(summary)
     out: list[dict] = []
 
     def runout(*names) -> float | None:
-        from geargen.core.accuracy import gear_errors
         total = 0.0
         for n in names:
-            e = gear_errors(design, n) if design.section("errors").get(n) else None
+            e = resolved.gear_errors(n) if resolved.gives_errors(n) else None
             if e is None:
                 return None
             total += e.bearing_eccentricity_tir + e.pitch_line_eccentricity_tir + e.tooth_to_tooth_tir
@@ -479,7 +472,6 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         and the ring's mounting rigid. Loss: both meshes' losses in the carrier's frame, z_r / (z_s + z_r)
         of the input power."""
         from geargen.core.stiffness import gear_mesh_stiffness, reflect
-        from geargen.design.stiffness import stiffness_design
         from geargen.drives.planetary.place import internal_backlash
         group = [g for g in layout.gears if g.group == f"stage_{st.name}"]
         sun, planet, ring = (next(g.spec for g in group if role in g.roles)
@@ -487,10 +479,10 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         planets = sum("planetary_planet" in g.roles for g in group)
         sun_mesh = next(m for m in layout.meshes if m.name.startswith(f"stage_{st.name}_sun_"))
         a = sun_mesh.centre_distance
-        carrier_speed = train.gear_ratio(st.sun) / float(st.ratio(design))
+        carrier_speed = train.gear_ratio(st.sun) / float(st.ratio(resolved.gears))
         at_output = 1.0 / ((sun.reference_radius + ring.reference_radius) * carrier_speed)
         backlash = sun_mesh.modelled_backlash + internal_backlash(planet, ring, a)
-        spec = stiffness_design(design).stiffness
+        spec = resolved.stiffness.stiffness
         k_sp = gear_mesh_stiffness(sun, planet, min(sun.face_width, planet.face_width), spec.elastic_modulus,
                                    spec.mesh_stiffness, f"stages.{st.name}")[0]
         k_pr = gear_mesh_stiffness(planet, ring, min(planet.face_width, ring.face_width), spec.elastic_modulus,
@@ -500,7 +492,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
         loss = (mesh_loss_factor(mu, sun.teeth, planet.teeth)
                 + mesh_loss_factor(mu, planet.teeth, -ring.teeth)) * ring.teeth / (sun.teeth + ring.teeth)
         return dict(name=f"stage {st.name} ({st.sun}-{st.planet} x{planets}-{st.ring})", driver=st.sun,
-                    driven="carrier", ratio=float(st.ratio(design)), speed=train.gear_ratio(st.sun),
+                    driven="carrier", ratio=float(st.ratio(resolved.gears)), speed=train.gear_ratio(st.sun),
                     driven_speed=carrier_speed, preloaded=False, lost_motion=backlash * at_output,
                     lost_motion_min=2 * st.backlash_min * at_output, lost_motion_max=2 * st.backlash_max * at_output,
                     loss_factor=loss, fixed_stiffness=float(reflect(at_carrier, carrier_speed)),
@@ -509,7 +501,7 @@ def _stages(layout, summary, train, settings: TrainSettings, motor_speed: float,
                     f"stiffness: {planets} planets, each its two meshes in series, sharing equally")
 
     # upstream stages
-    st_list = design_stages(design)
+    st_list = resolved.stages
     if st_list:
         for st in st_list:
             if st.kind == "planetary":
@@ -618,8 +610,7 @@ def _bevel_stiffness(layout, z1: int, z2: int, driven_speed: float) -> float | N
     gear = placed.gear
     r_mean = gear.reference_diameter / 2 - gear.face_width / 2 * math.sin(gear.pitch_cone_angle)
     r_base = r_mean * math.cos(gear.pressure_angle)
-    from geargen.design.stiffness import stiffness_design
-    k = float(mesh_stiffness(stiffness_design(layout.design).stiffness.elastic_modulus, gear.face_width))
+    k = float(mesh_stiffness(layout.resolved.stiffness.stiffness.elastic_modulus, gear.face_width))
     return float(reflect(torsional_from_linear(k, r_base), driven_speed))
 
 

@@ -164,9 +164,8 @@ def mates_from_layout(layout, gear_name: str, unit: str) -> list[Mate]:
     """The gears ``gear_name`` meshes with in the resolved drive (engaged meshes), each with the
     centre distance of the placed centres (where the mesh runs) and the design's centre-distance
     tolerance (``[checks] centre_distance_tolerance_*``, when given), in ``unit``."""
-    from geargen.design.checks import checks_settings
 
-    f_a = checks_settings(layout.design).centre_distance_tolerance  # [checks], 0 when the design gives none
+    f_a = layout.resolved.checks.centre_distance_tolerance  # [checks], 0 when the design gives none
     tolerance = (float(from_mm(-f_a, unit)), float(from_mm(f_a, unit))) if f_a > 0 else None
     out = []
     for m in layout.meshes:

@@ -25,13 +25,13 @@ def _cup(bore: float, wall: float, depth: float):
 
 def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     """The parts of the module docstring, with their joints and how they hold together."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     hw = axial_preload_hardware(layout, dict(s))
     out = ComponentSet()
     ish, osh = hw.input, hw.output
     x_in = ish.centre[0]
     shaft_in = out.add(ish.name, B.shaft(ish.diameter, ish.length), at(x_in, 0, ish.z_lo), "input", "shaft",
-                       description=f"input shaft d {size(ish.diameter)}, slid {small_length_text(hw.shift, layout.design.length_unit)} along +z by the "
+                       description=f"input shaft d {size(ish.diameter)}, slid {small_length_text(hw.shift, layout.identity.length_unit)} along +z by the "
                                    "preload spring (the placement's take-up)")
     for name in ish.loads:
         out.join(shaft_in, name, "pinion on the input shaft")
@@ -96,7 +96,7 @@ def axial_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     travel = hw.stroke_z - (upper_in.z + upper_in.width)
     out.dimensions["axial_preload"] = dict(shift=hw.shift, spring_length=z1 - z0, spring_active_coils=hw.spring_active_coils,
                                      stroke_left=travel)
-    out.notes.append(f"axial preload: input shaft slid {small_length_text(hw.shift, layout.design.length_unit)}; spring {size(z1 - z0)} long "
+    out.notes.append(f"axial preload: input shaft slid {small_length_text(hw.shift, layout.identity.length_unit)}; spring {size(z1 - z0)} long "
                      f"({hw.spring_active_coils:.3g} active coils); {size(travel)} of stroke left")
     return out.freeze()
 

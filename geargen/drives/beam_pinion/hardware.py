@@ -39,7 +39,7 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     lowest a large gear comes (the trailer retracted); the quills reach down through it to their
     lugs, which play between the stops under it.
     """
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     summary = stiffness()
     beam = summary.beam
     eng = layout.engagement if layout.engagement is not None else summary.engagement
@@ -246,8 +246,8 @@ def beam_pinion_hardware(layout, s: Mapping[str, Any], stiffness) -> Hardware:
     out.dimensions.update(beam=beam, engagement=eng, z_mesh=z_mesh, housing=dict(lo=lo, hi=hi),
                     drive_column=dict(x=x_col, width=width, thickness=thick, z=(z_lo_bearing, z_plate)))
     out.notes.append(f"long pinion: bearing span {size(span)} symmetric about the engaged mesh at z = {size(z_mesh)} "
-                     f"(zero slope there), beam stiffness {layout.design.text_units.text('linear_stiffness', beam.stiffness)}; static deflection at the preload "
-                     f"{small_length_text(beam.deflection, layout.design.length_unit, 3)} (the model shows the straight beam)")
+                     f"(zero slope there), beam stiffness {layout.identity.text_units.text('linear_stiffness', beam.stiffness)}; static deflection at the preload "
+                     f"{small_length_text(beam.deflection, layout.identity.length_unit, 3)} (the model shows the straight beam)")
     out.notes.append(f"axial engagement: lead {size(eng.lead)} between the pinions, strokes "
                      f"{-eng.leader_retracted_stop:.4g} / {size(-eng.trailer_retracted_stop)}, relative rotation "
                      f"{eng.relative_rotation * 1e3:.3g} mrad")

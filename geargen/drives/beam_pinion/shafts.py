@@ -43,11 +43,10 @@ def beam_pinion_input_shaft(layout: Layout, parts: dict[str, Any]) -> Shaft:
     half and leaves at the meshes with the large gears: it twists from the middle of the one to the
     large gears' mid-face (engaged)."""
     from geargen.core.stiffness import sized_beam_pinion
-    from geargen.design.stiffness import stiffness_design
-    spec = stiffness_design(layout.design).beam_pinion
+    spec = layout.resolved.stiffness.beam_pinion
     if spec is None:
         raise DesignError("beam_pinion", "missing: the long pinion's span comes from it", "a [beam_pinion] section")
-    span = sized_beam_pinion(layout.design, spec).span
+    span = sized_beam_pinion(layout.resolved.gears, spec).span
     width, outer, diameter = parts["input_bearing_width"], parts["input_bearing_outer_diameter"], \
         parts["input_shaft_diameter"]
     z_lo, z_hi = beam_pinion_bearings(layout, parts, span)
@@ -114,14 +113,12 @@ def beam_supports(layout: Layout, engagement) -> tuple[float, float] | None:
     """Radial stiffness (N/mm) of the drive column under the long pinion's two bearings
     (:func:`drive_column`) where the design builds one and the sliding pinions' strokes
     (``engagement``, which set the housing block's height) are known; else None (rigid supports)."""
-    if engagement is None or not layout.design.section("parts"):
+    if engagement is None or not layout.resolved.has("parts"):
         return None
     from geargen.core.stiffness import sized_beam_pinion
-    from geargen.design.parts import parts_settings
-    from geargen.design.stiffness import stiffness_design
-    parts = parts_settings(layout.design)
-    sd = stiffness_design(layout.design)
-    span = sized_beam_pinion(layout.design, sd.beam_pinion).span
+    parts = layout.resolved.parts
+    sd = layout.resolved.stiffness
+    span = sized_beam_pinion(layout.resolved.gears, sd.beam_pinion).span
     return drive_column(layout, parts, span, engagement).support_stiffness(sd.beam_pinion.elastic_modulus)
 
 

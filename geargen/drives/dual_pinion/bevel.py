@@ -60,12 +60,11 @@ def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
     ``bevel_backlash``, or the [train] ``upstream_backlash_arcmin`` of the stage
     ``pinion_teeth:gear_teeth`` of [layout] ``upstream_stages`` (rad at its driven shaft, the bevel
     gear's) times the gear's heel pitch radius; both given: they must agree."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
-    from geargen.design.train import train_settings
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in messages: the design's unit
     zp, zg = parts["bevel_pinion_teeth"], parts["bevel_gear_teeth"]
     module = parts["bevel_module"] or 25.4 / parts["bevel_diametral_pitch_per_in"]
     stages = [tuple(p) for p in layout.settings.get("upstream_stages", ())]
-    angles = train_settings(layout.design).upstream_backlash
+    angles = layout.resolved.train.upstream_backlash
     train = None
     if (zp, zg) in stages and len(angles) > stages.index((zp, zg)):
         train = angles[stages.index((zp, zg))] * zg * module / 2
@@ -83,12 +82,9 @@ def bevel_backlash(layout: Layout, parts: dict[str, Any]) -> float:
 def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDrive | None:
     """The robot joint's bevel pair as placed (see the module docstring); None for a design
     without one (no [parts] bevel keys, or [stages] driving the input)."""
-    from geargen.design.parts import parts_settings
-    from geargen.design.stages import stages
-    design = layout.design
-    if not design.section("parts") or stages(design):
+    if not layout.resolved.has("parts") or layout.resolved.stages:
         return None
-    s = parts_settings(design) if parts is None else parts
+    s = layout.resolved.parts if parts is None else parts
     if s.get("bevel_pinion_teeth") is None:
         return None
     from geargen.drives.dual_pinion.shafts import carriage_shafts
@@ -98,7 +94,7 @@ def bevel_drive(layout: Layout, parts: dict[str, Any] | None = None) -> BevelDri
     shaft = carriage_shafts(layout, s)["input"]
     spec_in = layout.gear("input").spec
     bore = (spec_in.large if isinstance(spec_in, ClusterSpec) else spec_in).hub.bore_diameter  # the input shaft
-    unit = design.length_unit if design.length_unit in ("mm", "in") else "mm"
+    unit = layout.identity.length_unit if layout.identity.length_unit in ("mm", "in") else "mm"
     common = dict(module=module, face_width=s["bevel_face_width"], thinning=thinning, length_unit=unit)
     gear = BevelGearSpec(teeth=zg, mate_teeth=zp, bore_diameter=bore, name="bevel_gear", **common)
     pinion = BevelGearSpec(teeth=zp, mate_teeth=zg, name="bevel_pinion", **common)

@@ -93,7 +93,7 @@ def rows(layout, result) -> list[dict]:
     if placed is None:
         return []
     name = "bevel"
-    k, unit = LENGTH_SUFFIXES[layout.design.length_unit], layout.design.length_unit
+    k, unit = LENGTH_SUFFIXES[layout.identity.length_unit], layout.identity.length_unit
     c = check_placed_bevel_pair(placed.gear, placed.gear_matrix, placed.pinion, placed.pinion_matrix)
     clearance = min(c.pair.tip_clearance_1, c.pair.tip_clearance_2)
     if min(c.play_positive, c.play_negative) < 0:

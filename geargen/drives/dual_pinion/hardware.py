@@ -22,8 +22,6 @@ import numpy as np
 
 from geargen.families.bevel.geometry import back_plane_distance, bevel_core, bevel_pair_geometry
 from geargen.core.flexures import spring_total_coils
-from geargen.design.stages import stages
-from geargen.design.stiffness import stiffness_design
 from geargen.drives.planetary.hardware import planetary_drive
 from geargen.drives.rules import Candidate, RuleBroken
 from geargen.errors import BuildError, DesignError
@@ -49,9 +47,9 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     the inner ring and the shaft end (the upper ones sit in the removed cover, as in the paper's
     figure).
     """
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
-    design = layout.design
-    sd = stiffness_design(design)
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
+    identity = layout.identity
+    sd = layout.resolved.stiffness
     if sd.flexures is None or sd.springs is None:
         raise DesignError("flexures", "the robot joint's carriage needs [flexures] and [springs]", "both sections")
     fl, sp = sd.flexures, sd.springs
@@ -91,7 +89,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     obw, obod = s["output_bearing_width"], s["output_bearing_outer_diameter"]
     zo_lo, zo_hi = (b.z for b in placed_shafts["output"].bearings)
 
-    stage_list = stages(design)
+    stage_list = layout.resolved.stages
     ish = placed_shafts["input"]
     ibod = s["input_bearing_outer_diameter"]
     d_in = bore_of(inp.spec)
@@ -220,7 +218,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     x_end = x_first - gap
     reach = max(sh.centre[0] + b.outer_diameter / 2 for sh, b in uppers)
     if not x_end > reach:
-        unit = design.length_unit
+        unit = identity.length_unit
         candidates = (Candidate("cluster_bearing_outer_diameter", -1, "smaller cluster bearings"),)
         if stage_list:
             candidates += (Candidate("stage_bearing_outer_diameter", -1, "smaller stage bearings"),)
@@ -229,9 +227,9 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
                           Candidate("bevel_face_width", -1, "a narrower bevel pair: its toe further out"),
                           Candidate("motor_shaft_length", +1, "the motor further out")) + candidates
         raise RuleBroken(f"parts.{candidates[0].name}_{unit}",
-                         f"{first} rises above the link cover's plane within {(reach - x_end) / design.mm_per_unit:.4g} "
-                         f"{unit} of the upper bearings' seats (x {x_first / design.mm_per_unit:.5g} {unit}; the seats "
-                         f"reach x {reach / design.mm_per_unit:.5g} {unit}): no room for the cover", None,
+                         f"{first} rises above the link cover's plane within {(reach - x_end) / identity.mm_per_unit:.4g} "
+                         f"{unit} of the upper bearings' seats (x {x_first / identity.mm_per_unit:.5g} {unit}; the seats "
+                         f"reach x {reach / identity.mm_per_unit:.5g} {unit}): no room for the cover", None,
                          "link_cover_room", x_end - reach, candidates)
     seats = [(sh.centre[0], sh.centre[1], b.outer_diameter, z_cover - (b.z + b.width),
               B.ring_relief(b.outer_diameter, sh.diameter)) for sh, b in uppers]
@@ -307,8 +305,8 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     # the gear's back face (its heel root circle's plane) must clear the carriage arm under it
     lowest = z_arm_top + gap + (back_plane_distance(gear_spec) - bev.apex_height("gear"))
     if z_heel < lowest - 1e-9:
-        unit = layout.design.length_unit
-        shift = (lowest - z_heel) / layout.design.mm_per_unit
+        unit = layout.identity.length_unit
+        shift = (lowest - z_heel) / layout.identity.mm_per_unit
         raise RuleBroken(f"parts.input_shaft_to_bevel_{unit}", f"puts the bevel gear's back (its heel root circle) "
                          f"{shift:.4g} {unit} into the carriage arm under it", None, "bevel_above_arm",
                          z_heel - lowest, (Candidate("input_shaft_to_bevel", +1, "the bevel pair higher"),
@@ -330,13 +328,13 @@ def _bevel_drive(out: ComponentSet, layout, s: Mapping[str, Any], ish, x_in: flo
     clear = motor_clear_x(layout.gears, z_apex, s["motor_body_diameter"], s["motor_flange"], gap)
     stub_clear = clear - x_pinion_back
     stub = s["motor_shaft_length"]
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     key = f"parts.motor_shaft_length_{unit}"
     if stub < stub_clear:
         # the defaults' step: 0.5 mm, or 1/32 in
         step = 0.5 if unit == "mm" else MM_PER_IN / 32
         stub_clear = math.ceil(stub_clear / step - 1e-9) * step
-        if key in {d.key for d in layout.design.defaulted}:
+        if key in {d.key for d in layout.identity.defaulted}:
             out.defaults.append((key, stub_clear, "the stub that puts the motor's flange beyond the gears its body "
                                                   "would reach"))
             stub = stub_clear
@@ -366,7 +364,7 @@ def _stage_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shafts,
     under it) and an upper one under the bridge; two side columns on the base plate carry the
     bridge clear of every stage gear; the first driver sits on the motor's shaft, which comes
     down through the bridge."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     g = {p.name: p for p in layout.gears}
     shafts = [placed_shafts[k] for k in sorted(k for k in placed_shafts if k.startswith("stage_"))]

@@ -9,7 +9,6 @@ import math
 from functools import partial
 from typing import Any
 
-from geargen.design.stages import stages
 from geargen.drives.planetary.place import carrier
 from geargen.errors import DesignError
 from geargen.model.layout import Layout
@@ -27,10 +26,10 @@ def carriage_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaft]:
     """The robot joint's shafts (Fig. 10): the loop's (:func:`loop_shafts`), the input's running
     on to the gear that drives it (the bevel gear, or the last of the [stages]), and the stage
     shafts (:func:`stage_shafts`)."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in messages: the design's unit
     out = loop_shafts(layout.gears, parts)
     shaft = out["input"]
-    stage_list = stages(layout.design)
+    stage_list = layout.resolved.stages
     if not stage_list:
         # the input shaft runs on to the bevel gear, whose heel is input_shaft_to_bevel above the input's mid-face
         bevel_heel = shaft.loads["input"] + parts["input_shaft_to_bevel"]
@@ -58,7 +57,7 @@ def stage_shafts(layout: Layout, parts: dict[str, Any], stage_list) -> dict[str,
     """The shafts between the upstream stages (:mod:`geargen.design.stages`): each carries one
     stage's driven gear and the next stage's driver, from its lower bearing standing on the
     carriage arm to its upper bearing under the bridge over the highest stage."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in messages: the design's unit
     gap, width, outer = parts["bearing_clearance"], parts["stage_bearing_width"], parts["stage_bearing_outer_diameter"]
     by = {p.name: p for p in layout.gears}
     loop = [p for p in layout.gears if not p.group.startswith("stage_")]

@@ -30,7 +30,7 @@ def planetary_drive(out: ComponentSet, layout, s: Mapping[str, Any], placed_shaf
                     post_x0: float) -> dict[str, Any]:
     """Add the stage's hardware to ``out``; returns what the carriage
     (:func:`geargen.drives.dual_pinion.hardware.carriage_hardware`) reads of its motor drive."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
 
     gap, t = s["bearing_clearance"], s["carriage_plate_thickness"]
     c = carrier(layout, s, st)

@@ -85,9 +85,9 @@ class PlanetaryStageSpec:
     def driven(self) -> None:
         return None
 
-    def ratio(self, design) -> Fraction:
-        """Sun speed over carrier speed, ring fixed: 1 + z_r / z_s."""
-        return 1 + Fraction(design.gears[self.ring].teeth, design.gears[self.sun].teeth)
+    def ratio(self, gears) -> Fraction:
+        """Sun speed over carrier speed, ring fixed: 1 + z_r / z_s (``gears``: the design's gears by table name)."""
+        return 1 + Fraction(gears[self.ring].teeth, gears[self.sun].teeth)
 
 
 

@@ -34,11 +34,11 @@ class PlacedPlanetary:
     height: float
 
 
-def core_stage(design, st, sun=None, planet=None, ring=None):
-    """The stage ``st`` as :class:`geargen.core.planetary.PlanetaryStage` (the design's gears, or
-    the modelled ones given)."""
+def core_stage(gears, st, sun=None, planet=None, ring=None):
+    """The stage ``st`` as :class:`geargen.core.planetary.PlanetaryStage` (the design's ``gears`` by
+    table name, or the modelled ones given)."""
     from geargen.core.planetary import PlanetaryStage
-    s, p, r = (g if g is not None else design.gear(n) for g, n in ((sun, st.sun), (planet, st.planet), (ring, st.ring)))
+    s, p, r = (g if g is not None else gears[n] for g, n in ((sun, st.sun), (planet, st.planet), (ring, st.ring)))
     return PlanetaryStage(s.teeth, p.teeth, r.teeth, st.planets, s.module, s.pressure_angle, s.helix_angle,
                           s.profile_shift, p.profile_shift, r.profile_shift, 2 * p.tip_radius,
                           st.planet_tip_clearance, st.coaxiality_tolerance)
@@ -99,7 +99,7 @@ def place_planetary_stage(design, st, centre: tuple[float, float], level: float,
     if plate is None:
         raise DesignError("parts.carriage_plate_thickness", "missing: the planet carrier's plates are this thick",
                           "a length")
-    stage = core_stage(design, st)
+    stage = core_stage(design.gears, st)
     a = st.carrier_radius if st.carrier_radius is not None else sun_planet_working(stage)[1]
     sun, planet, ring, notes = _modelled_gears(design, st, a, rule)
     angles = assembly_angles(stage, equal_spacing=st.planet_spacing == "equal")

@@ -105,13 +105,12 @@ def planetary_meshes(layout, result) -> list[dict]:
     ``result.failures``."""
     from geargen.families.internal.pair import check_internal
     from geargen.core.planetary import planet_ring_working, sun_planet_working
-    from geargen.design.stages import stages
     from geargen.drives.planetary.place import core_stage, internal_backlash, planet_part
 
-    design = layout.design
-    k, unit = LENGTH_SUFFIXES[design.length_unit], design.length_unit
+    gears = layout.resolved.gears
+    k, unit = LENGTH_SUFFIXES[layout.identity.length_unit], layout.identity.length_unit
     rows = []
-    for st in stages(design):
+    for st in layout.resolved.stages:
         if st.kind != "planetary":
             continue
         sun, ring = layout.gear(st.sun), layout.gear(st.ring)
@@ -120,7 +119,7 @@ def planetary_meshes(layout, result) -> list[dict]:
         ring_spec, sun_spec = ring.spec, sun.spec
         z_s, z_r = sun_spec.teeth, ring_spec.teeth
         # the stage's conditions
-        core = core_stage(design, st)
+        core = core_stage(gears, st)
         coax = planet_ring_working(core)[1] - sun_planet_working(core)[1]
         if abs(coax) > st.coaxiality_tolerance:
             result.failures.append(Failure("planetary_coaxiality", stage_name,
@@ -185,7 +184,7 @@ def planetary_meshes(layout, result) -> list[dict]:
                              margins={m: v for m, v in named.margins.items()},
                              contact_ratio=named.geometry.contact_ratio,
                              where="planet's reference circle, circumferential, on the exact outlines as placed"))
-        rows.append(dict(table="planetary", mesh=stage_name, stage=st.name, ratio=float(st.ratio(design)), carrier_radius=a,
+        rows.append(dict(table="planetary", mesh=stage_name, stage=st.name, ratio=float(st.ratio(gears)), carrier_radius=a,
                          coaxiality_difference=coax, coaxiality_tolerance=st.coaxiality_tolerance,
                          assembly_step_error=off, neighbour_tip_gap=gap, planet_tip_clearance=st.planet_tip_clearance,
                          planets=len(planets), minimum_tooth_difference=named.minimum_tooth_difference))

@@ -32,7 +32,7 @@ from geargen.units import sizes_text
 
 def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     """The parts listed in the module docstring, placed, with their joints."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     placed = rack_drive(layout)
     out = ComponentSet()
     gap = s["bearing_clearance"]
@@ -130,10 +130,10 @@ def rack_drive_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardwar
     spring_matrix = transform((xi, y_post, z_spring), (1, 0, 0), math.pi / 2)
     spring = out.add("carriage_spring", B.coil_envelope(spring_d, spring_mean, installed), spring_matrix, "carriage",
                      "spring", description=f"compression spring d {size(spring_d)} x D {size(spring_mean)}, "
-                                           f"{coils:.3g} active coils ({layout.design.text_units.text('linear_stiffness', rate)}), "
+                                           f"{coils:.3g} active coils ({layout.identity.text_units.text('linear_stiffness', rate)}), "
                                            f"installed {size(installed)}, "
                                            f"free {size(installed + placed.spring_force / rate)}: "
-                                           f"{layout.design.text_units.text('force', placed.spring_force)}")
+                                           f"{layout.identity.text_units.text('force', placed.spring_force)}")
     post = out.add("spring_post", B.box(2 * (spring_mean / 2 + spring_d + margin), post_t, z_spring + spring_mean / 2
                                         + spring_d + margin - z_plate_top,
                                         (xi - spring_mean / 2 - spring_d - margin, y_post, 0.0)),

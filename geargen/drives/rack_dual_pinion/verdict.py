@@ -124,7 +124,7 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
     placed = rack_drive(layout)
     if placed is None:
         return []
-    unit = layout.design.length_unit
+    unit = layout.identity.length_unit
     k = LENGTH_SUFFIXES[unit]
     lo, hi = placed.rack_backlash_range
     rows = []
@@ -193,8 +193,7 @@ def rack_meshes(layout, result: DesignCheck) -> list[dict]:
                                        f"{values['unloading_rack_force']:.4g} N: the carriage spring's "
                                        f"{placed.spring_force:.4g} N is too weak (Fig. 9)", "rack_force_N",
                                        placed.max_rack_force, values["unloading_rack_force"]))
-    from geargen.design.parts import parts_settings
-    spring = carriage_spring_failure(placed, parts_settings(layout.design), unit)
+    spring = carriage_spring_failure(placed, layout.resolved.parts, unit)
     if spring is not None:
         result.failures.append(spring)
     rows.append(dict(table="rack", mesh="carriage", gear1="input", gear2="", carriage_y=placed.carriage_y,

@@ -22,7 +22,7 @@ from geargen.units import sizes_text
 
 
 def split_pinion_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in descriptions: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in descriptions: the design's unit
     out = ComponentSet()
     g = {p.name: p for p in layout.gears}
     st = layout.settings

@@ -27,7 +27,7 @@ def split_pinion_shafts(layout: Layout, parts: dict[str, Any]) -> dict[str, Shaf
     it clears both). It is carried by the collar (on the hollow shaft) and the outboard bearing,
     so the compliant pinion sits between two supports; it twists from the collar's face to the
     compliant pinion's face."""
-    size = partial(sizes_text, layout.design.length_unit)  # lengths in messages: the design's unit
+    size = partial(sizes_text, layout.identity.length_unit)  # lengths in messages: the design's unit
     gap = parts["bearing_clearance"]
     stiff, compl = layout.gear(layout.settings["pinion_stiff"]), layout.gear(layout.settings["pinion_compliant"])
     output = layout.gear(layout.settings["output"])
