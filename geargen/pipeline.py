@@ -290,8 +290,8 @@ def overlap_check(parts, layout: Layout | None = None) -> Any:
 def stiffness(layout: Layout):
     """Step 6: the stiffness summary of the resolved drive (:func:`geargen.model.analysis.stiffness`;
     None when the design has no [stiffness]/[preload])."""
-    from geargen.model.analysis import stiffness as summary
-    return summary(layout.design, layout)[0]
+    from geargen.model.analysis import drive_stiffness
+    return drive_stiffness(layout)[0]
 
 
 # ============================================================================ export

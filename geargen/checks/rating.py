@@ -366,8 +366,8 @@ def rate_drive(layout, summary=None) -> DriveRating:
                 length_unit=identity.length_unit, minimum_safety=minimum,
                 duty_stated=resolved.has("duty") or resolved.has("materials"))
     if summary is None:
-        from geargen.model.analysis import stiffness
-        summary = stiffness(layout.design, layout)[0]
+        from geargen.model.analysis import drive_stiffness
+        summary = drive_stiffness(layout)[0]
     if summary is None:
         return DriveRating(duty=None, reason="the drive has no [stiffness] and [preload] sections: the loads of its "
                            "preloaded meshes come from the stiffness model", **base)

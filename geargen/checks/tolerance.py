@@ -322,27 +322,31 @@ def pair_tolerance(setup: MeshSetup, errors1: GearErrors | None, errors2: GearEr
 
 
 # ------------------------------------------------------------------------- carriage travel limits
-def carriage_travel_limits(design, explicit: float | None = None) -> CarriageTravelLimits:
-    """How far the preload carriage of ``design`` may travel from its nominal position (mm, + away
-    from the output), from its hardware: the blade flexures' travel about their unstressed
-    position (``[flexures] travel``, ``neutral_offset``), and the springs' stroke (``[springs]``:
-    moving out compresses them, down to solid height; moving in lets them extend, up to their
-    free length, where they leave their seats). ``explicit`` (``[checks] carriage_travel_limit``,
-    either way) applies where it is smaller than the hardware's.
+def carriage_travel_limits(sections, explicit: float | None = None, length_unit: str | None = None) -> CarriageTravelLimits:
+    """How far the preload carriage may travel from its nominal position (mm, + away from the
+    output), from its hardware: the blade flexures' travel about their unstressed position
+    (``[flexures] travel``, ``neutral_offset``), and the springs' stroke (``[springs]``: moving out
+    compresses them, down to solid height; moving in lets them extend, up to their free length,
+    where they leave their seats). ``explicit`` (``[checks] carriage_travel_limit``, either way)
+    applies where it is smaller than the hardware's. ``sections``: the design's stiffness-step
+    sections as the resolved drive carries them (:class:`geargen.design.stiffness.StiffnessDesign`,
+    with the design's ``length_unit`` for the text), or a design, read here.
     """
     from geargen.core.flexures import spring_solid_height
-    from geargen.design.stiffness import flexure_spec_from_table, spring_spec_from_table
+    from geargen.design.stiffness import StiffnessDesign, stiffness_design
 
+    if not isinstance(sections, StiffnessDesign):
+        sections, length_unit = stiffness_design(sections), sections.length_unit
     low, high = [], []  # (limit, source)
     notes = []
-    u = design.length_unit
-    if design.section("flexures"):
-        f = flexure_spec_from_table(design.section("flexures"))
+    u = length_unit
+    if sections.flexures is not None:
+        f = sections.flexures
         # the blades are unstressed neutral_offset towards the output from the operating position
         high.append((f.travel - f.neutral_offset, f"[flexures] travel {_length(f.travel, u)}"))
         low.append((-f.travel - f.neutral_offset, f"[flexures] travel {_length(f.travel, u)}"))
-    if design.section("springs"):
-        sp = spring_spec_from_table(design.section("springs"))
+    if sections.springs is not None:
+        sp = sections.springs
         if sp.installed_length is None:
             notes.append("[springs] has no installed_length: the springs' stroke is not checked")
         else:

@@ -205,7 +205,8 @@ def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSe
         gap = placement.loaded_flank_gap
         return loop_tolerance(layout.synthesis.synthesis, setups, errors, placement.backlash_mesh1 - 2 * gap,
                               placement.backlash_mesh2 - 2 * gap, settings.monte_carlo_samples, rng,
-                              carriage_travel_limits(layout.design, settings.carriage_travel_limit),
+                              carriage_travel_limits(layout.resolved.stiffness, settings.carriage_travel_limit,
+                                                     layout.identity.length_unit),
                               settings.steps_per_tooth, layout.identity.length_unit)
     out = []
     for mesh in layout.meshes:

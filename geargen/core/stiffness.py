@@ -376,15 +376,15 @@ def _component_location(spec: ComponentSpec, train: DualPinionTrain | SplitPinio
     return known
 
 
-def _gear_base_radius(design, name: str, where: str) -> float:
-    if name not in design.gears:
-        raise DesignError(where, f"no gear named {name!r} in the design", ", ".join(design.gears))
-    return design.gears[name].base_radius
+def _gear_base_radius(gears: Mapping[str, Any], name: str, where: str) -> float:
+    if name not in gears:
+        raise DesignError(where, f"no gear named {name!r} in the design", ", ".join(gears))
+    return gears[name].base_radius
 
 
-def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
+def component_stiffness(spec: ComponentSpec, gears: Mapping[str, Any], stiffness: StiffnessSpec,
                         train: DualPinionTrain | SplitPinionTrain | None) -> ComponentStiffness:
-    """Reduce one design component to torsion at the output."""
+    """Reduce one design component to torsion at the output (``gears``: the design's, by name)."""
     where = f"stiffness.components.{spec.name}"
     if spec.from_geometry and not spec.placed:
         raise DesignError(f"{where}.from_geometry", "its lengths come from the placed shafts, which only the resolved "
@@ -401,7 +401,7 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
         unit, detail = "N·mm/rad", f"shaft d={spec.diameter:.4g} mm, L={spec.length:.4g} mm, G J / L"
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind in ("linear", "shaft_bending"):
-        radius = (_gear_base_radius(design, spec.gear, f"{where}.gear") if spec.gear is not None else spec.radius)
+        radius = (_gear_base_radius(gears, spec.gear, f"{where}.gear") if spec.gear is not None else spec.radius)
         if spec.kind == "linear":
             local, detail = spec.stiffness, "given linear stiffness"
         else:
@@ -411,7 +411,7 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
         unit = "N/mm"
         ratio = _component_location(spec, train, spec.gear, where)
     elif spec.kind == "shaft_support":
-        radius = _gear_base_radius(design, spec.gear, f"{where}.gear")
+        radius = _gear_base_radius(gears, spec.gear, f"{where}.gear")
         local, unit = 1.0 / supported_gear_response(spec, e)[2], "N/mm"
         supports = spec.support_stiffness or (spec.stiffness, spec.stiffness)
         where_load = ("between its supports" if 0 <= spec.load_position <= spec.span else "overhung")
@@ -426,13 +426,13 @@ def component_stiffness(spec: ComponentSpec, design, stiffness: StiffnessSpec,
     elif spec.kind == "mesh":
         a, b = spec.gears
         for gname in (a, b):
-            if gname not in design.gears:
-                raise DesignError(f"{where}.gears", f"no gear named {gname!r} in the design", ", ".join(design.gears))
-        w = spec.face_width or min(design.gears[a].face_width, design.gears[b].face_width)
-        local, detail, notes = gear_mesh_stiffness(design.gears[a], design.gears[b], w, e, stiffness.mesh_stiffness,
+            if gname not in gears:
+                raise DesignError(f"{where}.gears", f"no gear named {gname!r} in the design", ", ".join(gears))
+        w = spec.face_width or min(gears[a].face_width, gears[b].face_width)
+        local, detail, notes = gear_mesh_stiffness(gears[a], gears[b], w, e, stiffness.mesh_stiffness,
                                                    f"{where}.gears")
         unit = "N/mm"
-        radius = design.gears[b].base_radius
+        radius = gears[b].base_radius
         ratio = _component_location(spec, train, b, where)
     else:  # pragma: no cover - the spec validates kinds
         raise DesignError(f"{where}.kind", f"unknown kind {spec.kind!r}")
@@ -888,11 +888,41 @@ def loop_errors_from_travels(travels: Mapping[str, float], lever: float, source:
             for label, t in travels.items()]
 
 
+@dataclass(frozen=True)
+class StiffnessInputs:
+    """What the stiffness summary reads of a design, read and validated once: its stiffness-step
+    sections, drive type and preload method, the units its text speaks, its gears by name and the
+    train ``[stiffness] train`` names (the resolved drive carries them:
+    :attr:`geargen.model.layout.ResolvedSettings.stiffness_inputs`)."""
+
+    name: str
+    length_unit: str
+    sections: StiffnessDesign
+    drive_type: str
+    preload_method: str | None
+    text_units: TextUnits
+    gears: Mapping[str, Any]
+    train: DualPinionTrain | SplitPinionTrain | None
+
+
+def stiffness_inputs(design, sections: StiffnessDesign | None = None) -> StiffnessInputs:
+    """The :class:`StiffnessInputs` of ``design`` (``sections``: its stiffness-step sections if already
+    read); refuses a design without ``[preload]`` or a drive type, naming the key."""
+    sd = sections if sections is not None else stiffness_design(design)
+    if sd.preload is None:
+        raise DesignError("preload", "missing", "a [preload] section with max_output_torque_*")
+    if design.drive_type is None:
+        raise DesignError("drive.type", "missing", "'type1', 'type2'")
+    return StiffnessInputs(design.name, design.length_unit, sd, design.drive_type, design.preload_method, design.text_units, design.gears,
+                           drive_train(design, sd.stiffness))
+
+
 def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = None,
                       travel_source: str = "synthesis", components=None,
                       beam_supports: tuple[float, float] | None = None,
                       placed_lever: float | None = None, placed_friction: float = 0.0) -> StiffnessSummary:
-    """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design``.
+    """Path, drive and loop stiffness, preload and its variation, preload hardware of ``design`` (a
+    design, or its :class:`StiffnessInputs` already read).
 
     ``beam_supports``: radial stiffness (N/mm) of the structure under the long pinion's lower and
     upper bearing (:meth:`geargen.drives.beam_pinion.shafts.DriveColumn.support_stiffness`); the beam pinion's
@@ -907,22 +937,18 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     :mod:`geargen.drives.axial_preload.place`); ``placed_friction``: the friction force of its sliding fit
     over the spring force (the preload band then includes the friction's, :class:`PreloadVariation`).
     """
-    sd = stiffness_design(design)
-    if sd.preload is None:
-        raise DesignError("preload", "missing", "a [preload] section with max_output_torque_*")
-    if design.drive_type is None:
-        raise DesignError("drive.type", "missing", "'type1', 'type2'")
+    inputs = design if isinstance(design, StiffnessInputs) else stiffness_inputs(design)
+    sd, train = inputs.sections, inputs.train
     spec, pre = sd.stiffness, sd.preload
-    drive_type = design.drive_type
+    drive_type = inputs.drive_type
     warnings: list[str] = []
-    u = design.text_units  # the warnings speak the design's units
+    u = inputs.text_units  # the warnings speak the design's units
 
-    train = drive_train(design, spec)
     comps: list[ComponentStiffness] = []
     if isinstance(train, DualPinionTrain):
         comps += train_mesh_components(train, spec.elastic_modulus, spec.mesh_stiffness)
-    comps += [component_stiffness(c, design, spec, train) for c in (spec.components if components is None
-                                                                    else components)]
+    comps += [component_stiffness(c, inputs.gears, spec, train) for c in (spec.components if components is None
+                                                                          else components)]
     warnings += [f"{c.name}: {w}" for c in comps for w in c.warnings]
     path1, path2, common = split_paths(comps)
     for p in (path1, path2):
@@ -930,7 +956,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
             raise DesignError("stiffness.components", f"{p.name} has no components", "components with scope each_path")
     k1, k2 = path1.stiffness, path2.stiffness
 
-    method = design.preload_method
+    method = inputs.preload_method
     lever = None
     if isinstance(train, DualPinionTrain) and method in ("radial", "axial"):
         lever = preload_lever(train, method, pre.line_of_action_angle)
@@ -959,7 +985,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     beam_spec = sd.beam_pinion
     beam_stiffness = None
     if beam_spec is not None:
-        probe = sized_beam_pinion(design.gears, beam_spec)
+        probe = sized_beam_pinion(inputs.gears, beam_spec)
         beam_stiffness = probe.stiffness
         if beam_supports is not None:
             # the supports give way under their reactions, (L - a)/L and a/L of the mesh force
@@ -1079,7 +1105,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     # --- beam pinion at the preload force ---
     beam = None
     if beam_spec is not None:
-        pin = _beam_gear(design.gears, beam_spec.gear)
+        pin = _beam_gear(inputs.gears, beam_spec.gear)
         force = (fe - fixed_forces) if fe is not None else 0.0
         beam = beam_pinion(probe.diameter, beam_spec.elastic_modulus, force, span=probe.span,
                            mesh_position=probe.mesh_position, face_width=pin.face_width,
@@ -1094,7 +1120,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     engagement = None
     if sd.engagement is not None:
         eg = sd.engagement
-        gear = _beam_gear(design.gears, eg.gear, "engagement.gear")
+        gear = _beam_gear(inputs.gears, eg.gear, "engagement.gear")
         windup = eg.preload_windup
         if windup is None:
             ratio = None if train is None else train.gear_ratio(eg.gear)
@@ -1104,7 +1130,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
             # the loop deflection at the preload, as relative rotation of the pinions, at the reference circle
             windup = preload / drive.loop_stiffness * ratio * gear.reference_radius
         # the whole cluster slides: its other gear's helix turns it too (geargen.core.flexures.helical_engagement)
-        engaging, other = (_sliding_mesh(design, g, m) for g, m in engagement_meshes(eg.gear, spec))
+        engaging, other = (_sliding_mesh(inputs.gears, g, m) for g, m in engagement_meshes(eg.gear, spec))
         engagement = helical_engagement(engaging, eg.backlash, windup, eg.engagement_length or gear.face_width,
                                         eg.clearance, other=other)
 
@@ -1119,7 +1145,7 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
         compliance, tilt, _ = supported_gear_response(c, e)
         force = preload / (comp.ratio * comp.radius)  # the path's preload torque as mesh force at the gear
         sup = SupportDeflection(c.name, c.gear, force, force * compliance, force * tilt,
-                                design.gears[c.gear].face_width)
+                                inputs.gears[c.gear].face_width)
         supports.append(sup)
         if sup.misalignment > MISALIGNMENT_WARNING:
             warnings.append(f"{c.name}: at the preload's mesh force {u.text('force', force)} gears.{c.gear} deflects "
@@ -1130,8 +1156,8 @@ def stiffness_summary(design, carriage_travels: Mapping[str, float] | None = Non
     location = spec.reduce_to
     ratios = {"output": 1.0} if train is None else {s: train.shaft_ratio(s) for s in train.shafts}
     return StiffnessSummary(
-        name=design.name, drive_type=drive_type, preload_method=method, location=location,
-        location_ratio=ratios[location], shaft_ratios=ratios, length_unit=design.length_unit, units=design.text_units,
+        name=inputs.name, drive_type=drive_type, preload_method=method, location=location,
+        location_ratio=ratios[location], shaft_ratios=ratios, length_unit=inputs.length_unit, units=inputs.text_units,
         components=tuple(comps), path1=path1,
         path2=path2, common=common, preload_spring=preload_spring, drive=drive,
         max_output_torque=pre.max_output_torque, preload_source=source, required_preload=rule,
@@ -1153,10 +1179,10 @@ def sized_beam_pinion(gears, beam_spec) -> BeamPinion:
                        mesh_position=beam_spec.mesh_position, target_stiffness=beam_spec.target_stiffness)
 
 
-def _sliding_mesh(design, gear: str, mate: str) -> SlidingMesh:
+def _sliding_mesh(gears: Mapping[str, Any], gear: str, mate: str) -> SlidingMesh:
     """``gear`` of the sliding cluster against its ``mate`` (both named by the [stiffness] gear roles)."""
-    g = _beam_gear(design.gears, gear, "engagement.gear")
-    _beam_gear(design.gears, mate, "engagement.gear")
+    g = _beam_gear(gears, gear, "engagement.gear")
+    _beam_gear(gears, mate, "engagement.gear")
     return SlidingMesh(gear, mate, g.helix_angle, g.reference_radius, g.hand)
 
 
@@ -1170,7 +1196,7 @@ __all__ = [
     "MESH_DIVISOR", "mesh_stiffness", "gear_mesh_stiffness", "shaft_torsional_stiffness", "shaft_bending_stiffness",
     "supported_shaft_compliance", "series", "parallel",
     "reflect", "torsional_from_linear", "linear_from_torsional", "DualPinionTrain", "train_from_design",
-    "SplitPinionTrain", "split_pinion_train", "drive_train",
+    "SplitPinionTrain", "split_pinion_train", "drive_train", "StiffnessInputs", "stiffness_inputs",
     "ComponentStiffness", "component_stiffness", "train_mesh_components", "PathStiffness", "split_paths",
     "preload_lever", "preload_spring_at_output", "loop_error_from_carriage_travel", "carriage_force",
     "required_preload", "preload_to_carry", "LoopError", "PreloadVariation", "preload_variation", "PreloadSpring",

@@ -31,8 +31,9 @@ def loop_error_travels(layout: Layout | None) -> tuple[dict[str, float] | None, 
 _PLACED = {"cluster": "cluster_a", "input": "input", "output": "output"}
 
 
-def placed_components(design: Design, layout: Layout | None) -> tuple:
-    """The design's stiffness components, those with ``from_geometry = true`` completed from the
+def placed_components(design, layout: Layout | None) -> tuple:
+    """The stiffness components of ``design`` (a design, or its stiffness-step sections already read:
+    :class:`geargen.design.stiffness.StiffnessDesign`), those with ``from_geometry = true`` completed from the
     placed shafts (:func:`geargen.model.shafts.shafts`): a shaft in bending, or on its bearings
     (``shaft_support``), gets the shaft's diameter, its bearings' span and the gear's mid-face
     distance from the lower bearing (beyond the span: overhung); a shaft
@@ -40,11 +41,12 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
     gears, the input gear and its bevel gear)."""
     from dataclasses import replace
 
-    from geargen.design.stiffness import stiffness_design
+    from geargen.design.stiffness import StiffnessDesign, stiffness_design
     from geargen.errors import DesignError
     from geargen.model.shafts import shafts
 
-    components = stiffness_design(design).stiffness.components
+    sections = design if isinstance(design, StiffnessDesign) else stiffness_design(design)
+    components = sections.stiffness.components
     if not any(c.from_geometry for c in components):
         return components
     placed = shafts(layout) if layout is not None else {}
@@ -67,7 +69,7 @@ def placed_components(design: Design, layout: Layout | None) -> tuple:
                                   "two bearings")
             extra = {}
             if c.kind == "shaft_support":
-                e = c.elastic_modulus or stiffness_design(design).stiffness.elastic_modulus
+                e = c.elastic_modulus or sections.stiffness.elastic_modulus
                 extra = dict(bore_diameter=shaft.bore or c.bore_diameter,
                              support_stiffness=tuple(_support_stiffness(b, c.stiffness, e, placed)
                                                      for b in shaft.supports()),
@@ -151,9 +153,12 @@ def _support_stiffness(bearing, bearing_stiffness: float, elastic_modulus: float
     return 1.0 / compliance
 
 
-def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
-    """``(StiffnessSummary or None, note)``: None when the design has no [stiffness]/[preload]."""
-    if not design.section("stiffness") or not design.section("preload"):
+def stiffness(design: Design | None, layout: Layout | None) -> tuple[Any, str]:
+    """``(StiffnessSummary or None, note)``: None when the design has no [stiffness]/[preload]. With
+    ``layout`` (the resolved drive of ``design``) the sections it carries are read, not the design's
+    again (``design`` may then be None: :func:`drive_stiffness`)."""
+    given = layout.resolved.has if layout is not None else design.section
+    if not given("stiffness") or not given("preload"):
         return None, "no [stiffness] and [preload] sections"
     from geargen.core.stiffness import stiffness_summary
     travels, note = loop_error_travels(layout)
@@ -162,9 +167,16 @@ def stiffness(design: Design, layout: Layout | None) -> tuple[Any, str]:
     report = layout.drive_report if layout is not None else {}
     lever = report.get("stiffness", {}).get("lever_rad_per_mm")
     friction = report.get("friction", {}).get("friction_to_preload", 0.0)
-    return stiffness_summary(design, travels, components=placed_components(design, layout),
+    source, sections = ((layout.resolved.stiffness_inputs, layout.resolved.stiffness) if layout is not None
+                        else (design, design))
+    return stiffness_summary(source, travels, components=placed_components(sections, layout),
                              beam_supports=beam_supports(layout, layout.engagement if layout else None),
                              placed_lever=lever, placed_friction=friction), note
+
+
+def drive_stiffness(layout: Layout) -> tuple[Any, str]:
+    """:func:`stiffness` of the resolved drive ``layout``, from the sections it carries."""
+    return stiffness(None, layout)
 
 
 def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | None:
@@ -177,4 +189,4 @@ def beam_supports(layout: Layout | None, engagement) -> tuple[float, float] | No
     return layout.drive.beam_supports(layout, engagement)
 
 
-__all__ = ["loop_error_travels", "placed_components", "stiffness", "beam_supports"]
+__all__ = ["loop_error_travels", "placed_components", "stiffness", "drive_stiffness", "beam_supports"]

@@ -32,7 +32,7 @@ from functools import cached_property
 from typing import Any
 
 from geargen.core.involute import reference_tooth_thickness
-from geargen.core.stiffness import drive_train
+from geargen.core.stiffness import drive_train, stiffness_inputs
 from geargen.design.assembly import Design
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
@@ -103,6 +103,12 @@ class ResolvedSettings:
         """The train ``[stiffness] train`` names (:func:`geargen.core.stiffness.drive_train`; None
         for a custom train)."""
         return drive_train(self._design, self.stiffness.stiffness)
+
+    @cached_property
+    def stiffness_inputs(self):
+        """What the stiffness summary reads (:class:`geargen.core.stiffness.StiffnessInputs`); refused
+        without ``[preload]`` or a drive type (ask :meth:`has` first)."""
+        return stiffness_inputs(self._design, self.stiffness)
 
     @cached_property
     def stages(self) -> tuple:

@@ -198,7 +198,7 @@ def test_a_torsion_sits_on_the_shaft_of_the_gear_it_names():
     design = load_design(ROBOT)
     spec = stiffness_design(design).stiffness
     key = component_from_table("key", {"kind": "torsion", "gear": "cluster_small", "stiffness_Nm_per_rad": 100})
-    c = component_stiffness(key, design, spec, train_from_design(design, spec))
+    c = component_stiffness(key, design.gears, spec, train_from_design(design, spec))
     assert c.ratio == pytest.approx(112 / 21, rel=1e-15)
     assert c.at_output == pytest.approx(100e3 * (112 / 21) ** 2, rel=1e-12)
 
