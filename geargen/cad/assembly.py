@@ -430,9 +430,9 @@ def _facts(shape, cache: dict | None) -> SolidFacts:
 
 
 def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
-    """The material of a gear part between its bore and its root circle (and its hubs), in the
-    assembly frame: a cheap solid wholly inside the gear, so what runs into it runs into the gear
-    (a shaft too big for the bore). None for a part that is not a gear, or one with a keyway
+    """The material of a gear part between its bore and its root circle (and its hubs; a ring
+    gear's between its root circle and its rim), in the assembly frame: a cheap solid wholly inside
+    the gear, so what runs into it runs into the gear (a shaft too big for the bore). None for a part that is not a gear, or one with a keyway
     (the core would not be all material)."""
     solid = part.solid
     if solid is None:
@@ -445,6 +445,12 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
         return None
     pieces = []
     for g, z0 in zip(gears, (0.0, spec.small_gear_z) if isinstance(spec, ClusterSpec) else (0.0,)):
+        if getattr(g, "is_internal", False):
+            # a ring gear's material is outside its teeth: from 2 % outside the root circle (or
+            # halfway to the rim, if the rim is thinner than that) to the rim
+            inner = min(1.02 * g.root_radius_standard, (g.root_radius_standard + g.rim_diameter / 2) / 2)
+            pieces.append(P.translate(P.cylinder(g.rim_diameter, g.face_width, 2 * inner), (0, 0, z0)))
+            continue
         bore = g.hub.bore_diameter
         # 2 % inside the root circle (the margin the design rules keep a bore from it): all material
         pieces.append(P.translate(P.cylinder(2 * 0.98 * g.root_radius_standard, g.face_width, bore), (0, 0, z0)))
@@ -455,8 +461,8 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
 
 
 def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
-    """A cheap solid that contains the part, in the assembly frame: a gear's tip cylinders (with
-    hubs and spacer), another part's ``envelope``; None if the part has none."""
+    """A cheap solid that contains the part, in the assembly frame: a gear's tip cylinders (a ring
+    gear's rim cylinder; with hubs and spacer), another part's ``envelope``; None if the part has none."""
     solid = part.solid
     if solid is None:
         return None if part.envelope is None else part.envelope.Moved(location(part.matrix))
@@ -466,7 +472,9 @@ def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
     pieces = []
 
     def gear_body(g, z0):
-        pieces.append(P.translate(P.cylinder(2 * g.tip_radius, g.face_width), (0, 0, z0)))
+        # a ring gear's teeth point inwards: its rim holds it
+        outer = g.rim_diameter if getattr(g, "is_internal", False) else 2 * g.tip_radius
+        pieces.append(P.translate(P.cylinder(outer, g.face_width), (0, 0, z0)))
         if g.hub.hub_length > 0:
             pieces.append(P.translate(P.cylinder(g.hub.hub_diameter, g.hub.hub_length), (0, 0, z0 - g.hub.hub_length)))
 

@@ -278,3 +278,30 @@ def test_seeded_perturbations_match_the_reference(name):
     # with this seed every design gets at least two moves that fail the check (a bearing moved
     # halfway along its own shaft's axis can stay clear): the fast paths are compared on failures
     assert positive >= 2
+
+
+def test_a_part_in_a_ring_gears_rim_is_an_overlap():
+    """A ring gear's screen is its rim cylinder and its core the material from its root circle to
+    the rim (an internal gear's tip circle is the hole): a 2 mm cube put wholly inside the
+    planetary ring's rim (root circle r 24.36, rim r 29; the cube 25..27 mm from the axis) is an
+    overlap of its whole 8 mm^3, and a cube meant to touch the rim but run 1 mm into it
+    (28..30 mm from the axis) interpenetrates by the part of it inside r 29. Before, the check
+    passed both (screen and core were the tip-circle disc)."""
+    from scipy import integrate
+    parts, _, _ = built("planetary_dual_pinion")
+    ring = next(p for p in parts if p.name == "ring")
+
+    def cube_at(r):
+        m = np.eye(4)
+        m[:3, 3] = ring.matrix[:3, 3] + (r, 0.0, 1.0)  # the ring's face spans its z 0..6
+        return A.PlacedPart("cube", P.box_between((-1, -1, 0), (1, 1, 2)), m, "g", "carriage")
+
+    report = A.pairwise_overlaps([ring, cube_at(26.0)])
+    assert [(o.part1, o.part2) for o in report.unintended] == [("ring", "cube")]
+    assert report.unintended[0].volume == pytest.approx(8.0, rel=1e-9)  # a box in analytic material: exact
+    held = A.pairwise_overlaps([ring, cube_at(29.0)], [("ring", "cube", "cube on the ring's rim")])
+    # the square [28, 30] x [-1, 1] inside the circle r 29, 2 mm high
+    inside = 2.0 * integrate.quad(lambda y: math.sqrt(29.0 ** 2 - y * y) - 28.0, -1.0, 1.0, epsabs=1e-12)[0]
+    assert not held.missing_contacts
+    assert [(o.part1, o.part2) for o in held.interpenetrating] == [("ring", "cube")]
+    assert held.interpenetrating[0].volume == pytest.approx(inside, rel=1e-7)  # analytic faces: integration noise only
