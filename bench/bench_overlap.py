@@ -3,12 +3,14 @@
 Run by hand: ``python bench/bench_overlap.py [--repeat N] [--root DIR] [NAME ...]``. For each shipped
 design that builds (``assemblies/*.toml`` unless named), its parts are built once, then the
 check runs N times on them (each part's moved shape rebuilt before each run, so nothing the check
-caches carries over); the median and best seconds are printed, with the check's verdict (pairs
-checked, ok). ``--root`` measures another checkout (e.g. the commit before the fast paths, for the
+caches carries over); the median and best wall seconds and the median processor seconds (this
+process's user + system: on a machine shared with other work the wall time varies with their load,
+the processor time much less) are printed, with the check's verdict (pairs checked, ok). ``--root`` measures another checkout (e.g. the commit before the fast paths, for the
 "before" numbers): its ``geargen`` is imported instead of this one's.
 """
 
 import argparse
+import os
 import statistics
 import sys
 import time
@@ -27,7 +29,8 @@ def main() -> None:
     from geargen import pipeline
     from geargen.errors import GeargenError
     names = args.names or sorted(p.stem for p in (HERE / "assemblies").glob("*.toml"))
-    print(f"overlap_check, {args.repeat} runs each, geargen from {args.root}")
+    print(f"overlap_check, {args.repeat} runs each, geargen from {args.root}; load average "
+          f"{os.getloadavg()[0]:.2f} on {os.cpu_count()} cores at the start")
     for name in names:
         try:
             layout = pipeline.place(pipeline.load(HERE / "assemblies" / f"{name}.toml"))
@@ -35,15 +38,18 @@ def main() -> None:
         except GeargenError as exc:
             print(f"{name:24s} does not build: {str(exc)[:60]}")
             continue
-        seconds = []
+        seconds, cpu = [], []
         for _ in range(args.repeat):
             for p in parts.parts:
                 p._world = None
-            start = time.perf_counter()
+            start, cpu0 = time.perf_counter(), time.process_time()
             report = pipeline.overlap_check(parts, layout)
             seconds.append(time.perf_counter() - start)
+            cpu.append(time.process_time() - cpu0)
         print(f"{name:24s} median {statistics.median(seconds):7.3f} s  best {min(seconds):7.3f} s  "
+              f"cpu {statistics.median(cpu):7.3f} s  "
               f"parts {report.parts:3d}  pairs {report.pairs_checked:3d}  ok {report.ok}", flush=True)
+    print(f"load average {os.getloadavg()[0]:.2f} at the end")
 
 
 if __name__ == "__main__":
