@@ -31,7 +31,8 @@ from OCP.TopoDS import TopoDS_Shape
 from geargen.cad import parts as P
 from geargen.cad.families import build_part
 from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
-from geargen.cad.kernel import volume
+from geargen.cad.kernel import boolean, volume
+from geargen.cad.solid_proofs import SolidFacts, face_set_distance, prism_common_volume, share_no_volume
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import BuildError
 from geargen.model.components import COLOURS, transform
@@ -379,38 +380,59 @@ def _faces_with_boxes(shape):
         yield face, box
 
 
-def _faces_within(shape, box: Bnd_Box) -> list:
-    """The faces of ``shape`` whose geometric bounding box meets ``box``."""
-    return [face for face, fb in _faces_with_boxes(shape) if not fb.IsOut(box)]
-
-
-def contact_gap(a, b, tolerance: float) -> float:
+def contact_gap(a, b, tolerance: float, facts: dict | None = None) -> float:
     """The smallest distance (mm) between the solids ``a`` and ``b``. Where they come within
     ``tolerance`` of each other only the faces of each that can are measured (a gear's teeth
-    never come near its shaft), so a shaft in a 112-tooth gear's bore costs milliseconds."""
-    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
-    box_a, box_b = _bbox(a), _bbox(b)
+    never come near its shaft), pair by pair from the closest bound up
+    (:func:`geargen.cad.solid_proofs.face_set_distance`), so a shaft in a 112-tooth gear's bore,
+    or a ring gear in its housing, costs milliseconds. ``facts`` as for :func:`intersection_volume`."""
+    fa, fb = _facts(a, facts), _facts(b, facts)
+    box_a, box_b = Bnd_Box(), Bnd_Box()
+    box_a.Add(fa.kernel_box)
+    box_b.Add(fb.kernel_box)
     box_a.Enlarge(tolerance)
     box_b.Enlarge(tolerance)
-    fa, fb = ([], []) if box_a.IsOut(box_b) else (_faces_within(a, box_b), _faces_within(b, box_a))
+    if not box_a.IsOut(box_b):
+        faces_a, surfaces_a, boxes_a = fa.faces_meeting(box_b)
+        faces_b, surfaces_b, boxes_b = fb.faces_meeting(box_a)
+        if faces_a and faces_b:
+            return face_set_distance(faces_a, faces_b, surfaces_a, boxes_a, surfaces_b, boxes_b)
     # apart: measured on the whole solids (only a missing contact, the failure, pays for that)
-    dist = BRepExtrema_DistShapeShape(P.compound(fa), P.compound(fb)) if fa and fb else BRepExtrema_DistShapeShape(a, b)
+    from OCP.BRepExtrema import BRepExtrema_DistShapeShape
+    dist = BRepExtrema_DistShapeShape(a, b)
     return float(dist.Value()) if dist.IsDone() else math.inf
 
-def intersection_volume(a, b) -> float:
-    """Volume (mm^3) of the boolean common of two shapes (0 if they only touch)."""
-    op = BRepAlgoAPI_Common(a, b)
-    op.SetRunParallel(False)
-    op.Build()
-    if not op.IsDone():
-        raise BuildError("boolean common failed")
-    return abs(volume(op.Shape()))
+
+def intersection_volume(a, b, facts: dict | None = None) -> float:
+    """Volume (mm^3) of the boolean common of two shapes (0 if they only touch).
+
+    Before the solid boolean, two proofs read from the shapes' own faces
+    (:mod:`geargen.cad.solid_proofs`): boundaries that do not come near each other, no piece of
+    either inside the other, is no shared volume (a shaft beside a plate); two right prisms along
+    z (spur gears, shafts, bearings, plates) share their end regions' common area times their
+    common height, a planar boolean (a ring gear with a planet: 0.1 s instead of 2.5 s).
+    ``facts`` caches what is learnt of each shape (by ``id``; the facts keep the shape alive)."""
+    fa, fb = (_facts(s, facts) for s in (a, b))
+    if share_no_volume(fa, fb):
+        return 0.0
+    if fa.prism is not None and fb.prism is not None:
+        return prism_common_volume(fa.prism, fb.prism)
+    common = boolean(BRepAlgoAPI_Common(), [a], [b], parallel=False, failure="boolean common failed")
+    return abs(volume(common))
+
+
+def _facts(shape, cache: dict | None) -> SolidFacts:
+    if cache is None:
+        return SolidFacts(shape)
+    if id(shape) not in cache:
+        cache[id(shape)] = SolidFacts(shape)
+    return cache[id(shape)]
 
 
 def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
-    """The material of a gear part between its bore and its root circle (and its hubs), in the
-    assembly frame: a cheap solid wholly inside the gear, so what runs into it runs into the gear
-    (a shaft too big for the bore). None for a part that is not a gear, or one with a keyway
+    """The material of a gear part between its bore and its root circle (and its hubs; a ring
+    gear's between its root circle and its rim), in the assembly frame: a cheap solid wholly inside
+    the gear, so what runs into it runs into the gear (a shaft too big for the bore). None for a part that is not a gear, or one with a keyway
     (the core would not be all material)."""
     solid = part.solid
     if solid is None:
@@ -423,6 +445,12 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
         return None
     pieces = []
     for g, z0 in zip(gears, (0.0, spec.small_gear_z) if isinstance(spec, ClusterSpec) else (0.0,)):
+        if getattr(g, "is_internal", False):
+            # a ring gear's material is outside its teeth: from 2 % outside the root circle (or
+            # halfway to the rim, if the rim is thinner than that) to the rim
+            inner = min(1.02 * g.root_radius_standard, (g.root_radius_standard + g.rim_diameter / 2) / 2)
+            pieces.append(P.translate(P.cylinder(g.rim_diameter, g.face_width, 2 * inner), (0, 0, z0)))
+            continue
         bore = g.hub.bore_diameter
         # 2 % inside the root circle (the margin the design rules keep a bore from it): all material
         pieces.append(P.translate(P.cylinder(2 * 0.98 * g.root_radius_standard, g.face_width, bore), (0, 0, z0)))
@@ -433,8 +461,8 @@ def gear_core(part: PlacedPart) -> TopoDS_Shape | None:
 
 
 def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
-    """A cheap solid that contains the part, in the assembly frame: a gear's tip cylinders (with
-    hubs and spacer), another part's ``envelope``; None if the part has none."""
+    """A cheap solid that contains the part, in the assembly frame: a gear's tip cylinders (a ring
+    gear's rim cylinder; with hubs and spacer), another part's ``envelope``; None if the part has none."""
     solid = part.solid
     if solid is None:
         return None if part.envelope is None else part.envelope.Moved(location(part.matrix))
@@ -444,7 +472,9 @@ def part_envelope(part: PlacedPart) -> TopoDS_Shape | None:
     pieces = []
 
     def gear_body(g, z0):
-        pieces.append(P.translate(P.cylinder(2 * g.tip_radius, g.face_width), (0, 0, z0)))
+        # a ring gear's teeth point inwards: its rim holds it
+        outer = g.rim_diameter if getattr(g, "is_internal", False) else 2 * g.tip_radius
+        pieces.append(P.translate(P.cylinder(outer, g.face_width), (0, 0, z0)))
         if g.hub.hub_length > 0:
             pieces.append(P.translate(P.cylinder(g.hub.hub_diameter, g.hub.hub_length), (0, 0, z0 - g.hub.hub_length)))
 
@@ -483,6 +513,7 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
     envelopes = [part_envelope(p) for p in parts]
     overlaps: list[Overlap] = []
     checked = 0
+    facts: dict = {}  # what is learnt of each solid, once (intersection_volume)
     for i in range(len(parts)):
         for j in range(i + 1, len(parts)):
             if boxes[i].IsOut(boxes[j]):
@@ -494,9 +525,9 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
             a = envelopes[i] if envelopes[i] is not None else parts[i].world()
             b = envelopes[j] if envelopes[j] is not None else parts[j].world()
             if envelopes[i] is not None or envelopes[j] is not None:
-                if intersection_volume(a, b) <= tolerance:
+                if intersection_volume(a, b, facts) <= tolerance:
                     continue
-            v = intersection_volume(parts[i].world(), parts[j].world())
+            v = intersection_volume(parts[i].world(), parts[j].world(), facts)
             if v > tolerance or key in wanted:
                 overlaps.append(Overlap(parts[i].name, parts[j].name, v, key in wanted, wanted.get(key, "")))
     # every intended contact must be one: the two solids touch (a check that can fail), and
@@ -507,7 +538,7 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
         if a not in by_name or b not in by_name:
             missing.append((a, b, math.inf, why + " (no such part)"))
             continue
-        gap = contact_gap(by_name[a].world(), by_name[b].world(), contact_tolerance)
+        gap = contact_gap(by_name[a].world(), by_name[b].world(), contact_tolerance, facts)
         if gap > contact_tolerance:
             missing.append((a, b, gap, why))
         elif skip_intended:
@@ -515,13 +546,13 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
             # run into it (the exact helix is intersected only when the tube shares volume)
             tubes = [part_envelope(by_name[n]) if by_name[n].envelope is not None else None for n in (a, b)]
             if any(t is not None for t in tubes) and intersection_volume(
-                    *(t if t is not None else by_name[n].world() for t, n in zip(tubes, (a, b)))) <= tolerance:
+                    *(t if t is not None else by_name[n].world() for t, n in zip(tubes, (a, b))), facts) <= tolerance:
                 continue
             # a gear is represented by its core (bore to root circle): exact for what comes in
             # through the bore, and milliseconds instead of a boolean with every tooth
             core_a, core_b = gear_core(by_name[a]), gear_core(by_name[b])
             v = intersection_volume(core_a if core_a is not None else by_name[a].world(),
-                                    core_b if core_b is not None else by_name[b].world())
+                                    core_b if core_b is not None else by_name[b].world(), facts)
             if v > tolerance:
                 overlaps.append(Overlap(a, b, v, True, why))
     report = OverlapReport(len(parts), checked, overlaps, tolerance, list(intended), missing_contacts=missing,
