@@ -108,7 +108,7 @@ def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5, meshe
     (:func:`geargen.profile.tessellate.tessellate_layers`, ~50x faster than the kernel and a
     third of the triangles at a view's tolerance) and moved by the part's placement; any other
     part, or a gear that mesher cannot lay out, by the kernel. ``meshes``: the
-    (:class:`geargen.cad.export.Tessellations`) of the parts drawn together, so a solid placed more
+    :class:`geargen.cad.export.Tessellations` of the parts drawn together, so a solid placed more
     than once is meshed once.
     """
     from geargen.cad.export import Tessellations
