@@ -257,7 +257,7 @@ def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapp
     Returns ``{"records": {file: manifest entry}, "parts": {name: placement and files},
     "tolerances": {...}}``.
     """
-    from geargen.cad.export import export_step, export_stl
+    from geargen.cad.export import Tessellations, export_step, export_stl
 
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
     unit = layout.identity.length_unit
@@ -271,6 +271,7 @@ def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapp
     chord = settings["stl_chordal_tolerance"]
     chord_parts = settings.get("stl_chordal_tolerance_parts") or chord
     ang = settings["stl_angular_tolerance"]
+    meshes = Tessellations()
     for p in parts:
         rs = export_step((p.name, p.world()), folder / f"{p.name}.step", unit)
         # every part meshed in its own frame and moved by its placement: gears by the exact mesher on
@@ -278,7 +279,7 @@ def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapp
         # the shape, so parts sharing a shape (two bearings alike) are meshed once
         rl = export_stl(p.solid if p.solid is not None else p.shape, folder / f"{p.name}.stl",
                         chordal_tolerance=chord if p.role == "gear" else chord_parts, angular_tolerance=ang,
-                        transform=p.matrix)
+                        transform=p.matrix, meshes=meshes)
         records[rs.path.name] = rs.manifest_entry()
         records[rl.path.name] = rl.manifest_entry()
         vol = next((v for shape, v in volumes if shape.IsSame(p.shape)), None)

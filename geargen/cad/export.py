@@ -136,7 +136,7 @@ def write_step_file(writer, path) -> Path:
 
 
 def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: float = 0.5,
-               transform=None) -> ExportRecord:
+               transform=None, meshes: "Tessellations | None" = None) -> ExportRecord:
     """Write a binary STL (mm) of ``solid`` within ``chordal_tolerance`` (mm) of its surface.
 
     A :class:`~geargen.cad.gear_solid.GearSolid` is meshed from its exact geometry
@@ -146,12 +146,13 @@ def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: 
     control, where ``angular_tolerance`` (rad) also bounds the angle between neighbouring facet
     normals. ``transform``: optional ``(4, 4)`` matrix (mm) applied to the triangles, e.g. to
     place a GearSolid built in its own frame into an assembly frame (rigid motions keep the
-    tolerance).
+    tolerance). ``meshes``: the :class:`Tessellations` of a set of parts, so a solid placed more
+    than once is meshed once.
     """
     if chordal_tolerance <= 0 or angular_tolerance <= 0:
         raise ValueError("tolerances must be > 0")
     t0 = time.perf_counter()
-    triangles, mesher = solid_triangles(solid, chordal_tolerance, angular_tolerance, transform)
+    triangles, mesher = (meshes or Tessellations()).triangles(solid, chordal_tolerance, angular_tolerance, transform)
     with atomic_path(Path(path)) as tmp:
         written = write_stl(tmp, triangles)
     size = Path(path).stat().st_size
@@ -191,10 +192,36 @@ def solid_triangles(solid, chordal_tolerance: float, angular_tolerance: float = 
     if triangles is None:
         triangles = kernel_triangles(getattr(solid, "shape", solid), chordal_tolerance, angular_tolerance,
                                      skip_unmeshed)
-    if transform is not None:
-        m = np.asarray(transform, dtype=float)
-        triangles = triangles @ m[:3, :3].T + m[:3, 3]
-    return triangles, mesher
+    return placed_triangles(triangles, transform), mesher
+
+
+def placed_triangles(triangles, transform=None):
+    """``triangles`` ``(n, 3, 3)`` moved by the ``(4, 4)`` matrix ``transform`` (mm; None: as they are)."""
+    if transform is None:
+        return triangles
+    import numpy as np
+    m = np.asarray(transform, dtype=float)
+    return triangles @ m[:3, :3].T + m[:3, 3]
+
+
+class Tessellations:
+    """Each solid's triangles in its own frame (:func:`solid_triangles`), made once per solid and
+    tolerance and placed as often as asked: the parts that share one solid (a cluster's two gears
+    alike, a stage's planets, bearings alike) are meshed once, for the STL files as for the view."""
+
+    def __init__(self):
+        self._made: dict[tuple, tuple] = {}
+
+    def triangles(self, solid, chordal_tolerance: float, angular_tolerance: float = 0.5, transform=None,
+                  skip_unmeshed: bool = False):
+        """As :func:`solid_triangles`: ``(triangles (n, 3, 3) mm, mesher)``."""
+        key = (id(solid), chordal_tolerance, angular_tolerance, skip_unmeshed)
+        made = self._made.get(key)
+        if made is None:  # the solid is kept with its triangles, so its id stays its own
+            made = self._made[key] = (solid, *solid_triangles(solid, chordal_tolerance, angular_tolerance,
+                                                              skip_unmeshed=skip_unmeshed))
+        _, triangles, mesher = made
+        return placed_triangles(triangles, transform), mesher
 
 
 def kernel_triangles(shape, chordal_tolerance: float, angular_tolerance: float, skip_unmeshed: bool = False):
@@ -382,5 +409,5 @@ def exported_triangles(parts, folder) -> dict:
     return {name: read_stl(path) for name, path in stls.items() if path.is_file()}
 
 
-__all__ = ["export_step", "write_step_file", "export_stl", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
+__all__ = ["export_step", "write_step_file", "export_stl", "Tessellations", "placed_triangles", "solid_triangles", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
            "read_step", "read_stl", "exported_triangles", "StepContents", "STEP_UNITS", "MANIFEST"]

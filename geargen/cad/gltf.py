@@ -125,11 +125,13 @@ def assembly_glb(name: str, parts: Iterable, folder: Path | None = None, detail:
     meshes = exported_triangles(parts, folder)
     todo = [p for p in parts if p.name not in meshes]
     if todo:
+        from geargen.cad.export import Tessellations
         from geargen.cad.parts import bounding_box
         from geargen.cad.render import part_triangles
         boxes = np.array([np.concatenate(bounding_box(p.world(), optimal=False)) for p in todo])
         extent = float(np.max(boxes[:, 3:].max(axis=0) - boxes[:, :3].min(axis=0)))
-        meshes.update({p.name: part_triangles(p, extent / detail) for p in todo})
+        made = Tessellations()  # parts sharing a solid are meshed once
+        meshes.update({p.name: part_triangles(p, extent / detail, meshes=made) for p in todo})
     return glb(name, ((p.name, p.group, p.kind, p.colour, meshes[p.name]) for p in parts))
 
 

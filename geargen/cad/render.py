@@ -89,28 +89,33 @@ def render_parts(parts: Iterable, view=(-60.0, 30.0), size=(9.0, 6.5), dpi: int 
         maxs = np.array([hi for _, hi in boxes])
         extent = float(np.max(maxs.max(axis=0) - mins.min(axis=0)))
     items = []
+    from geargen.cad.export import Tessellations
+    made = Tessellations()  # parts sharing a solid are meshed once
     for p in parts:
         tri = meshes.get(p.name)
         if tri is None:
-            tri = part_triangles(p, extent / detail)
+            tri = part_triangles(p, extent / detail, meshes=made)
         items.append((p.name, tri, p.colour))
     out = rasterise(items, view, (round(size[0] * dpi), round(size[1] * dpi)), title)
     out.kinds = [p.kind for p in parts]
     return out
 
 
-def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5) -> np.ndarray:
+def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5, meshes=None) -> np.ndarray:
     """Triangles ``(n, 3, 3)`` (mm, assembly frame) of a placed part within ``tolerance`` mm.
 
     A gear (a part carrying its ``GearSolid``) is meshed from its exact geometry
     (:func:`geargen.profile.tessellate.tessellate_layers`, ~50x faster than the kernel and a
     third of the triangles at a view's tolerance) and moved by the part's placement; any other
-    part, or a gear that mesher cannot lay out, by the kernel.
+    part, or a gear that mesher cannot lay out, by the kernel. ``meshes``: the
+    :class:`geargen.cad.export.Tessellations` of the parts drawn together, so a solid placed more
+    than once is meshed once.
     """
-    from geargen.cad.export import solid_triangles
+    from geargen.cad.export import Tessellations
 
     source = part.solid if getattr(part, "solid", None) is not None else part.shape
-    return solid_triangles(source, tolerance, angular_tolerance, transform=part.matrix, skip_unmeshed=True)[0]
+    return (meshes or Tessellations()).triangles(source, tolerance, angular_tolerance, transform=part.matrix,
+                                                 skip_unmeshed=True)[0]
 
 
 def _shaded(tri: np.ndarray, rgba, basis: np.ndarray, light: np.ndarray):

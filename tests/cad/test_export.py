@@ -140,3 +140,24 @@ def test_kernel_stl_of_a_sphere_is_watertight(tmp_path):
     # no triangle lost but the degenerate ones: the mesh (vertices on the sphere, chords inside it
     # by at most the 0.01 mm tolerance) encloses a volume between the balls of radius 9.99 and 10
     assert 4 / 3 * math.pi * 9.99 ** 3 < mesh_volume(tri) < 4 / 3 * math.pi * 10 ** 3
+
+
+def test_a_solid_placed_twice_is_meshed_once_into_the_same_triangles(helical21, monkeypatch):
+    # the build meshes each solid once (Tessellations) and places it per part: the placed triangles
+    # must be exactly those of meshing it for that placement, and the mesher must run once
+    angle = 0.7
+    m = np.eye(4)
+    m[:2, :2] = [[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]]
+    m[:3, 3] = [4.0, 3.0, -1.0]
+    direct = [export.solid_triangles(helical21, 2e-3, transform=t)[0] for t in (None, m)]
+    calls = []
+    meshing = export.solid_triangles
+    monkeypatch.setattr(export, "solid_triangles", lambda *a, **k: calls.append(a) or meshing(*a, **k))
+    meshes = export.Tessellations()
+    placed = [meshes.triangles(helical21, 2e-3, transform=t)[0] for t in (None, m)]
+    assert len(calls) == 1
+    for a, b in zip(direct, placed):
+        assert np.array_equal(a, b)  # bit for bit: the files written from them stay the same
+    # another tolerance is another mesh
+    meshes.triangles(helical21, 4e-3)
+    assert len(calls) == 2
