@@ -14,6 +14,8 @@ SVG's does. Both encodings are deterministic (no dates, no ids from memory).
 
 from __future__ import annotations
 
+import io
+
 import zlib
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -52,7 +54,8 @@ class Face:
     def __init__(self, weight: str):
         from fontTools.ttLib import TTFont
 
-        self.font = TTFont(str(_font_path(weight)), lazy=True)
+        # read from memory: a lazy font on the file would hold it open for the process's life
+        self.font = TTFont(io.BytesIO(_font_path(weight).read_bytes()), lazy=True)
         self.cmap = self.font.getBestCmap()
         self.upm = self.font["head"].unitsPerEm
         hhea = self.font["hhea"]
