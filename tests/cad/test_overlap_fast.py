@@ -211,10 +211,26 @@ def assert_same_outcome(parts, intended, meshing):
     return fast
 
 
-SHIPPED = sorted(p.stem for p in (ROOT / "assemblies").glob("*.toml"))
+def _shipped_sample() -> list[str]:
+    """Every shipped design with GEARGEN_FULL_OVERLAP=1 (bench, by hand); per push three of them,
+    drawn with the commit's seed (each push compares others, a failure reproduces at its commit):
+    the reference's own run on the planetary stage alone takes 15 s."""
+    import os
+    import random
+    import subprocess
+
+    names = sorted(p.stem for p in (ROOT / "assemblies").glob("*.toml"))
+    if os.environ.get("GEARGEN_FULL_OVERLAP", "") not in ("", "0"):
+        return names
+    try:
+        head = subprocess.run(["git", "rev-parse", "HEAD"], cwd=ROOT, capture_output=True, text=True, timeout=10)
+        seed = int(head.stdout.strip()[:8], 16)
+    except (OSError, ValueError, subprocess.SubprocessError):
+        seed = 28
+    return sorted(random.Random(seed).sample(names, 3))
 
 
-@pytest.mark.parametrize("name", SHIPPED)
+@pytest.mark.parametrize("name", _shipped_sample())
 def test_shipped_design_outcome_matches_the_reference(name):
     from geargen.errors import GeargenError
     try:
