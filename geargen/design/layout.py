@@ -16,7 +16,7 @@ Layout::
 A split pinion also needs ``centre_distance_*`` and ``circumferential_backlash_min_*`` /
 ``_max_*``; an axial preload (``kind = "axial_preload"``, :mod:`geargen.drives.axial_preload.place`) those
 and ``input_stroke_*``, its four helical gears named by ``pinion_left``, ``pinion_right``,
-``output_right``, ``output_left`` (rules: :mod:`geargen.design.axial_preload`), its preload and
+``output_right``, ``output_left`` (rules: :mod:`geargen.drives.axial_preload.keys`), its preload and
 spring in ``[preload]``. :func:`layout_settings` reads the table; :func:`check_layout` adds the rules that
 involve other sections (the gears named, the synthesis, the engagement).
 """

@@ -53,7 +53,6 @@ def test_every_drive_folder_is_registered_by_its_one_line():
     assert registration_problems(drive_folders(), text) == []
     # KEYS and DRIVES hold exactly the registered kinds, in the order of the lines
     assert list(KEYS) == list(DRIVES) == [folder for folder, _ in registration_lines(text)]
-    assert set(KEYS) == {"dual_pinion", "beam_pinion", "split_pinion", "axial_preload", "rack_dual_pinion"}
 
 
 @pytest.mark.parametrize("defect, expected", [
