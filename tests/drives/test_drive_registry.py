@@ -84,6 +84,9 @@ def test_each_drive_is_the_kind_module_of_its_keys_package(name):
     drive = DRIVES[name]
     assert drive is import_module(f"geargen.drives.{name}.kind").DRIVE
     assert drive.name == name and drive.keys is keys
+    if keys.LAYOUT_KIND == name:  # selected by a [layout] kind of its own: the key's help says what it is
+        assert keys.LAYOUT_HELP and f"{name} ({keys.LAYOUT_HELP})" in next(
+            f.help for f in import_module("geargen.design.layout").COMMON_FIELDS if f.name == "kind")
 
 
 def test_the_drive_registry_names_no_kind():
