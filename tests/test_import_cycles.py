@@ -54,6 +54,13 @@ def import_graph() -> dict[str, set[str]]:
                     prefix = ".".join(parts[:i])
                     if prefix in modules and prefix != name:
                         graph[name].add(prefix)
+    # the drive registry imports each registered kind's kind.py by its keys module's package
+    # (geargen.drives.registry: import_module, which the reading above does not see)
+    for keys in graph.get("geargen.drives.keys", ()):
+        if keys.startswith("geargen.drives.") and keys.endswith(".keys") and keys != "geargen.drives.keys":
+            kind = keys.removesuffix(".keys") + ".kind"
+            assert kind in modules, f"{keys} is registered but {kind} does not exist"
+            graph["geargen.drives.registry"].add(kind)
     return graph
 
 
@@ -101,6 +108,7 @@ def test_the_graph_sees_function_level_imports():
     graph = import_graph()
     assert "geargen.cad.assembly" in graph["geargen.pipeline"]  # imported inside pipeline's functions
     assert "geargen.drives" in graph["geargen.drives.dual_pinion.keys"]  # the package runs first
+    assert "geargen.drives.axial_preload.kind" in graph["geargen.drives.registry"]  # derived from its keys line
 
 
 def test_no_import_cycles():

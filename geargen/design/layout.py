@@ -16,7 +16,7 @@ Layout::
 A split pinion also needs ``centre_distance_*`` and ``circumferential_backlash_min_*`` /
 ``_max_*``; an axial preload (``kind = "axial_preload"``, :mod:`geargen.drives.axial_preload.place`) those
 and ``input_stroke_*``, its four helical gears named by ``pinion_left``, ``pinion_right``,
-``output_right``, ``output_left`` (rules: :mod:`geargen.design.axial_preload`), its preload and
+``output_right``, ``output_left`` (rules: :mod:`geargen.drives.axial_preload.keys`), its preload and
 spring in ``[preload]``. :func:`layout_settings` reads the table; :func:`check_layout` adds the rules that
 involve other sections (the gears named, the synthesis, the engagement).
 """
@@ -45,14 +45,13 @@ MODEL_TOOTH_THICKNESS = (*MODEL_POINTS, "as_designed")
 MAX_TEETH = 2000
 MAX_RATIO = 1_000_000
 
+#: each [layout] kind with what it is (its keys module's LAYOUT_HELP), in KEYS' order
+_KINDS_HELP = [f"{kind} ({KEYS[kind].LAYOUT_HELP})" for kind in LAYOUT_KINDS]
 #: the [layout] keys of every drive kind; each kind reads its own besides (geargen.drives.<kind>.keys)
 COMMON_FIELDS = [
     Field("kind", "string", required=False, default=None, choices=LAYOUT_KINDS,
-          help="the drive: dual_pinion (gears placed by the centre synthesis of [synthesis]; the default when there "
-               "is one), split_pinion (two pinions side by side on one output), axial_preload (a left- and a "
-               "right-hand helical pinion on an input shaft that slides axially under a preload spring, each "
-               "meshing its own output gear of the opposite hand) or rack_dual_pinion (two rack pinions driven "
-               "through a preload carriage); each kind's keys are listed under it"),
+          help="the drive: " + " or ".join((", ".join(_KINDS_HELP[:-1]), _KINDS_HELP[-1]))
+               + "; each kind's keys are listed under it"),
     Field("model_tooth_thickness", "string", required=False, default=None, choices=MODEL_TOOTH_THICKNESS,
           help="where in its tooth-thickness allowance (taken where its mesh runs) each gear of the model - its solids, "
                "STEP, STL, DXF and gear data - is made: mid_tolerance (the default), max_material (the upper "

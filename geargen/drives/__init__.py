@@ -9,8 +9,10 @@ A kind's folder holds:
 - ``kind.py``: its :class:`geargen.drives.kind.DriveKind`, what the resolver and the verdict call
   (placement, hardware, extra verdict rows, starter file);
 
-and registers in two lines: its keys module in :data:`geargen.drives.keys.KEYS` (which the loader
-reads), its kind in :mod:`geargen.drives.registry`. Upstream stages (a planetary stage) live alike in their own folder.
+and registers in one line, the import of its keys module in :mod:`geargen.drives.keys`: the loader
+reads :data:`geargen.drives.keys.KEYS`, and :data:`geargen.drives.registry.DRIVES` takes each
+registered kind's ``kind.py`` from the same module's package. Upstream stages (a planetary stage)
+live alike in their own folder (not registered: the only stage kind).
 :mod:`geargen.drives.resolver` resolves a design (gears placed, hardware laid out); nothing else
 asks which drive a design is: :func:`geargen.drives.keys.kind_of` answers once.
 """

@@ -1,19 +1,28 @@
-"""Every drive kind's keys module (its [layout] and [parts] keys and rules), by the kind's name: what
-the design loader reads (one line per kind), and :func:`kind_of`, the one place that says which
-drive a design is. Imports only the kinds' keys modules (the design layer)."""
+"""The drive-kind registry: one import line per drive kind, which is its registration. :data:`KEYS`
+holds every kind's keys module imported here (its ``[layout]`` and ``[parts]`` keys and rules), by
+the kind's name, in the order of the lines; the design loader reads it, and
+:mod:`geargen.drives.registry` derives each kind's :class:`~geargen.drives.kind.DriveKind` from the
+same module's package. :func:`kind_of` is the one place that says which drive a design is. Imports
+only the kinds' keys modules (the design layer), so reading a design never loads a kind's placement
+or hardware."""
 
 from __future__ import annotations
 
+from types import ModuleType
 from typing import Any, Mapping
 
-from geargen.drives.axial_preload import keys as axial_preload
-from geargen.drives.beam_pinion import keys as beam_pinion
+# a drive kind's line: its registration (in KEYS' order, not sorted: the order of the reference's
+# and the refusals' lists of kinds)
 from geargen.drives.dual_pinion import keys as dual_pinion
-from geargen.drives.rack_dual_pinion import keys as rack_dual_pinion
+from geargen.drives.beam_pinion import keys as beam_pinion
 from geargen.drives.split_pinion import keys as split_pinion
+from geargen.drives.axial_preload import keys as axial_preload
+from geargen.drives.rack_dual_pinion import keys as rack_dual_pinion
 
 #: each drive kind's keys module, by the kind's name
-KEYS = {k.NAME: k for k in (dual_pinion, beam_pinion, split_pinion, axial_preload, rack_dual_pinion)}
+KEYS: dict[str, ModuleType] = {module.NAME: module for module in dict(globals()).values()
+                               if isinstance(module, ModuleType) and module.__name__.startswith("geargen.drives.")
+                               and module.__name__.endswith(".keys") and hasattr(module, "NAME")}
 
 #: the [layout] kinds a file may name (several drive kinds may share one: a dual pinion's hardware)
 LAYOUT_KINDS = tuple(dict.fromkeys(k.LAYOUT_KIND for k in KEYS.values()))

@@ -2,7 +2,8 @@
 the commands call, so that none of them asks which drive a design is.
 
 Each kind's ``kind.py`` builds one :class:`DriveKind` from its own modules (``keys``, ``place``,
-``hardware``, ``verdict``) and :mod:`geargen.drives.registry` lists them. The resolved drive
+``hardware``, ``verdict``) and :mod:`geargen.drives.registry` collects them (from the kinds registered
+in :mod:`geargen.drives.keys`). The resolved drive
 carries its kind (:attr:`geargen.model.Layout.drive`), so the verdict and the reports reach the
 kind's own rows through the data, never by importing a kind.
 """

@@ -1,11 +1,21 @@
-"""Every drive kind (:class:`geargen.drives.kind.DriveKind`), by name: one line per kind."""
+"""Every drive kind (:class:`geargen.drives.kind.DriveKind`), by name, derived from the kinds
+registered in :mod:`geargen.drives.keys` (one line per kind, there): each kind's ``DRIVE`` is read
+from the ``kind.py`` of its keys module's package (``geargen/drives/<kind>/kind.py``), in KEYS'
+order. The kinds are imported here, above the design loader, not by the keys registry: the loader
+reads the keys without loading a kind's placement and hardware (which import the loader: no
+cycle). ``tests/test_import_cycles.py`` counts these imports as edges."""
 
-from geargen.drives.axial_preload.kind import DRIVE as AXIAL_PRELOAD
-from geargen.drives.beam_pinion.kind import DRIVE as BEAM_PINION
-from geargen.drives.dual_pinion.kind import DRIVE as DUAL_PINION
-from geargen.drives.rack_dual_pinion.kind import DRIVE as RACK_DUAL_PINION
-from geargen.drives.split_pinion.kind import DRIVE as SPLIT_PINION
+from __future__ import annotations
 
-DRIVES = {d.name: d for d in (DUAL_PINION, BEAM_PINION, SPLIT_PINION, AXIAL_PRELOAD, RACK_DUAL_PINION)}
+from importlib import import_module
 
-__all__ = ["DRIVES"]
+from geargen.drives.keys import KEYS
+from geargen.drives.kind import DriveKind
+
+#: the module of a kind's package that holds its DriveKind (``DRIVE``)
+KIND_MODULE = "kind"
+
+DRIVES: dict[str, DriveKind] = {name: import_module(f"{keys.__package__}.{KIND_MODULE}").DRIVE
+                                for name, keys in KEYS.items()}
+
+__all__ = ["DRIVES", "KIND_MODULE"]

@@ -23,6 +23,9 @@ from geargen.errors import DesignError
 NAME = "axial_preload"
 #: the [layout] kind that selects the drive
 LAYOUT_KIND = "axial_preload"
+#: what it is, in the [layout] kind key's help (the reference's list of kinds)
+LAYOUT_HELP = ("a left- and a right-hand helical pinion on an input shaft that slides axially under a preload "
+               "spring, each meshing its own output gear of the opposite hand")
 
 #: the [layout] keys this kind reads besides the common ones
 LAYOUT_FIELDS = [

@@ -16,6 +16,8 @@ NAME = "dual_pinion"
 POSITIONS = ("engaged", "disengaged")
 #: the [layout] kind that selects the drive
 LAYOUT_KIND = "dual_pinion"
+#: what it is, in the [layout] kind key's help (the reference's list of kinds)
+LAYOUT_HELP = "gears placed by the centre synthesis of [synthesis]; the default when there is one"
 
 #: the [layout] keys this kind reads besides the common ones
 LAYOUT_FIELDS = [

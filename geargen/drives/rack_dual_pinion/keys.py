@@ -9,6 +9,8 @@ from geargen.drives.rack_dual_pinion import defaults  # noqa: F401  (its default
 NAME = "rack_dual_pinion"
 #: the [layout] kind that selects the drive
 LAYOUT_KIND = "rack_dual_pinion"
+#: what it is, in the [layout] kind key's help (the reference's list of kinds)
+LAYOUT_HELP = "two rack pinions driven through a preload carriage"
 
 #: the [layout] keys this kind reads besides the common ones
 LAYOUT_FIELDS = [

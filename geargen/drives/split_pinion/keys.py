@@ -10,6 +10,8 @@ from geargen.errors import DesignError
 NAME = "split_pinion"
 #: the [layout] kind that selects the drive
 LAYOUT_KIND = "split_pinion"
+#: what it is, in the [layout] kind key's help (the reference's list of kinds)
+LAYOUT_HELP = "two pinions side by side on one output"
 
 #: the [layout] keys this kind reads besides the common ones
 LAYOUT_FIELDS = [
