@@ -181,6 +181,16 @@ def test_colour_entities_in_either_order_come_out_the_same():
     assert canonical_styles(SWAPPED.encode()) == CANONICAL.encode()  # a string's '#9' is text, not renumbered
     plain = (HEAD + END).encode()
     assert canonical_styles(plain) == plain  # no colours: as it is
+    # two colours on one solid (parts sharing a shape, coloured apart): ordered by their content
+    one = HEAD + """#4 = MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION('',(#5),#3);
+#5 = STYLED_ITEM('color',(#6),#1);
+#6 = COLOUR_RGB('',{},0.5,0.5);
+#7 = MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION('',(#8),#3);
+#8 = STYLED_ITEM('color',(#9),#1);
+#9 = COLOUR_RGB('',{},0.5,0.5);
+""" + END
+    light_first, dark_first = one.format(0.75, 0.25).encode(), one.format(0.25, 0.75).encode()
+    assert canonical_styles(light_first) == canonical_styles(dark_first) == dark_first
     # an earlier entity referring into the colours is no file the kernel writes: left alone, not reordered wrongly
     odd = SWAPPED.replace("#3 = GEOMETRIC_REPRESENTATION_CONTEXT(3);", "#3 = GEOMETRIC_REPRESENTATION_CONTEXT(#9);")
     assert canonical_styles(odd.encode()) == odd.encode()

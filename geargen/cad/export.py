@@ -186,23 +186,24 @@ def canonical_styles(step: bytes) -> bytes:
     ``MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION`` per coloured product and what it
     refers to, :data:`_PRESENTATION`) numbered and ordered by the geometry they colour, not by the
     kernel's memory addresses: the representations sorted by the numbers of the entities before
-    them that they reach, each followed by what it refers to, depth first, in the order written.
-    The same entities with the same content, renumbered; a file without colours comes back as it
-    is, and so does one in which an earlier entity refers into that end (not a file the kernel
-    writes), rather than be reordered wrongly."""
-    start = step.find(b"#", step.find(b"\nDATA;\n"))
-    first = step.find(b"= " + _PRESENTATION, start)
+    them that they reach (then by their own content, for two that colour the same geometry), each
+    followed by what it refers to, depth first, in the order written. The same entities with the
+    same content, renumbered; a file without colours comes back as it is, and so does one in which
+    an earlier entity refers into that end (not a file the kernel writes), rather than be
+    reordered wrongly."""
+    data = step.find(b"\nDATA;\n")
+    start = step.find(b"#", data) if data >= 0 else -1
+    first = step.find(b"= " + _PRESENTATION, start) if start >= 0 else -1
     end = step.rfind(b"\nENDSEC;")
-    if start < 0 or first < 0 or end < 0:
+    if first < 0 or end < first:
         return step
     first = step.rfind(b"\n#", 0, first) + 1
     bodies: dict[int, bytes] = {}  # number -> the record's text after "#n = ", on one line
-    for chunk in step[first:end + 1].split(b"\n#")[0:]:
-        chunk = chunk.lstrip(b"#").strip()
-        m = _RECORD.match(b"#" + chunk)
+    for chunk in step[first:end + 1].split(b"\n#"):
+        m = _RECORD.match(b"#" + chunk.lstrip(b"#"))
         if m is None:
             return step
-        text = chunk[m.end() - 1:]
+        text = m.string[m.end():].strip()
         bodies[int(m.group(1))] = b"".join(p if s else re.sub(rb"\n\s*", b"", p) for s, p in _outside_strings(text))
     tail = min(bodies)
     if sorted(bodies) != list(range(tail, tail + len(bodies))):
@@ -228,20 +229,23 @@ def canonical_styles(step: bytes) -> bytes:
                 stack.extend(reversed(references(n)))
         return inside, before
 
-    roots = [n for n, body in bodies.items() if body.startswith(_PRESENTATION)]
-    roots.sort(key=lambda n: reached(n, set())[1])
+    def renumbered(body, numbers):
+        return b"".join(p if s else _REFERENCE.sub(lambda m: b"#%d" % numbers.get(int(m.group(1)), int(m.group(1))), p)
+                        for s, p in _outside_strings(body))
+
+    def sort_key(root):
+        inside, before = reached(root, set())
+        local = {n: i for i, n in enumerate(inside)}  # its own entities by their place, not their number
+        return before, [renumbered(bodies[n], local) for n in inside]
+
+    roots = sorted((n for n, body in bodies.items() if body.startswith(_PRESENTATION)), key=sort_key)
     order: list[int] = []
     seen: set[int] = set()
     for n in roots:
         order += reached(n, seen)[0]
     order += [n for n in sorted(bodies) if n not in seen]
     renumber = {old: tail + i for i, old in enumerate(order)}
-
-    def renumbered(body):
-        return b"".join(p if s else _REFERENCE.sub(lambda m: b"#%d" % renumber.get(int(m.group(1)), int(m.group(1))), p)
-                        for s, p in _outside_strings(body))
-
-    records = [_wrapped(b"#%d = " % renumber[n] + renumbered(bodies[n])) for n in order]
+    records = [_wrapped(b"#%d = " % renumber[n] + renumbered(bodies[n], renumber)) for n in order]
     return head + b"\n".join(records) + step[end:]
 
 
