@@ -51,6 +51,11 @@ from pathlib import Path, PurePosixPath
 from geargen.errors import EnvironmentProblem, OutputRefused
 
 MANIFEST = "manifest.json"
+#: the date every exported file's header carries where its format asks for one (the STEP header's
+#: time_stamp, ISO 8601; the DXF's creation and update dates): fixed, so that two builds of one
+#: design give the same bytes and a shop's revision control sees no change where there is none;
+#: the start of the Unix epoch, which no reader takes for a real date of writing
+EXPORT_DATE = "1970-01-01T00:00:00"
 MARKER = "geargen-temporary.json"
 WORK = "out"
 #: an empty temporary folder without a marker (a process killed between creating it and writing
@@ -699,6 +704,6 @@ def manifest_files(folder: Path, skip: tuple[str, ...] = (MANIFEST,)) -> dict[st
             if p.is_file() and p.name not in skip}
 
 
-__all__ = ["MANIFEST", "OutputFolder", "FolderState", "Cleanup", "atomic_path", "confined", "os_cause", "check_file_target",
+__all__ = ["MANIFEST", "EXPORT_DATE", "OutputFolder", "FolderState", "Cleanup", "atomic_path", "confined", "os_cause", "check_file_target",
            "check_output_folder", "clean_stale_temporaries", "current_umask", "exchange", "file_mode", "write_file",
            "inspect_folder", "manifest_files", "process_alive", "swap_into_place", "write_text"]

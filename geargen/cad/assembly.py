@@ -224,12 +224,11 @@ def assembly_document(name: str, parts: Iterable[PlacedPart]):
 def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, length_unit: str = "mm") -> Path:
     """The assembly STEP: tree root/group/part, names and colours, declared in ``length_unit``
     (geometry in mm, converted by the writer); edges as 3-D curves only, as the part files."""
-    from OCP.IFSelect import IFSelect_RetDone
     from OCP.Interface import Interface_Static
     from OCP.STEPCAFControl import STEPCAFControl_Writer
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
     from OCP.XSControl import XSControl_WorkSession
-    from geargen.cad.export import STEP_UNITS, atomic_path
+    from geargen.cad.export import STEP_UNITS, write_step_file
     from geargen.cad.kernel import quiet_kernel
 
     doc = assembly_document(name, parts)
@@ -245,10 +244,7 @@ def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, leng
     Interface_Static.SetCVal_s("write.step.unit", STEP_UNITS[length_unit])
     if not writer.Transfer(doc, STEPControl_AsIs):
         raise BuildError(f"assembly STEP transfer failed: {path}")
-    with atomic_path(Path(path)) as tmp:
-        if writer.Write(str(tmp)) != IFSelect_RetDone:
-            raise BuildError(f"assembly STEP export failed: {path}")
-    return Path(path)
+    return write_step_file(writer, path)  # reproducible bytes: a fixed header date, colours in a stable order
 
 
 def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any]) -> dict[str, Any]:

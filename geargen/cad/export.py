@@ -12,23 +12,29 @@
 - Atomic: each file is written to a temporary name in its folder and moved into place with
   ``os.replace`` (:func:`geargen.outputs.atomic_path`), with the user's umask mode; a failed
   write leaves no partial file (and the old one, if any, untouched).
+- Reproducible: two exports of the same parts give the same bytes. The STEP header's time_stamp
+  is :data:`geargen.outputs.EXPORT_DATE` (fixed, not the clock), and the presentation entities an
+  assembly's colours become (which the kernel lists in the order of its shapes' memory addresses)
+  are put in the order of the geometry they colour (:func:`canonical_styles`).
 """
 
 from __future__ import annotations
 
 import json
+import re
 import time
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Iterable
 
+from OCP.APIHeaderSection import APIHeaderSection_MakeHeader
 from OCP.BRep import BRep_Tool
 from OCP.BRepMesh import BRepMesh_IncrementalMesh
 from OCP.IFSelect import IFSelect_RetDone
 from OCP.Interface import Interface_Static
 from OCP.STEPCAFControl import STEPCAFControl_Writer
 from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
-from OCP.TCollection import TCollection_ExtendedString
+from OCP.TCollection import TCollection_ExtendedString, TCollection_HAsciiString
 from OCP.TColStd import TColStd_SequenceOfAsciiString
 from OCP.TDataStd import TDataStd_Name
 from OCP.TDF import TDF_Label, TDF_LabelSequence
@@ -41,7 +47,7 @@ from OCP.XCAFDoc import XCAFDoc_DocumentTool
 
 from geargen.cad.kernel import quiet_kernel
 from geargen.errors import BuildError
-from geargen.outputs import atomic_path  # noqa: F401 - part of this module's interface
+from geargen.outputs import EXPORT_DATE, atomic_path  # noqa: F401 - atomic_path: part of this module's interface
 
 #: STEP unit names by design length unit
 STEP_UNITS = {"mm": "MM", "in": "INCH"}
@@ -122,17 +128,125 @@ def export_step(parts, path, length_unit: str = "mm") -> ExportRecord:
 
 
 def write_step_file(writer, path) -> Path:
-    """Write a STEP writer's transferred document to ``path`` (atomically, through
-    :func:`geargen.outputs.atomic_path`). The kernel writes into memory and Python writes the file,
-    so a full disk, a quota or a read-only file system is the OSError it is (an environment
+    """Write a STEP writer's transferred document (a ``STEPControl_Writer`` or
+    ``STEPCAFControl_Writer``) to ``path`` (atomically, through :func:`geargen.outputs.atomic_path`),
+    reproducibly: the header's time_stamp :data:`~geargen.outputs.EXPORT_DATE`, the colours' entities
+    in a stable order (:func:`canonical_styles`). The kernel writes into memory and Python writes the
+    file, so a full disk, a quota or a read-only file system is the OSError it is (an environment
     problem, exit 3), not the kernel's bare "write failed"."""
     import io
+    step_writer = writer.ChangeWriter() if hasattr(writer, "ChangeWriter") else writer
+    header = APIHeaderSection_MakeHeader(step_writer.Model())  # edits the model's own FILE_NAME entity
+    header.SetTimeStamp(TCollection_HAsciiString(EXPORT_DATE))
     buffer = io.BytesIO()
     if writer.WriteStream(buffer) != IFSelect_RetDone:
         raise BuildError(f"STEP write failed: {path}")
     with atomic_path(Path(path)) as tmp:
-        tmp.write_bytes(buffer.getvalue())
+        tmp.write_bytes(canonical_styles(buffer.getvalue()))
     return Path(path)
+
+
+#: the entity that holds one product's colours; the kernel adds these to the file last, each with the
+#: styles, colours and renderings it refers to, in the order of a hash of its shapes' memory addresses
+_PRESENTATION = b"MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION("
+_STRING = re.compile(rb"'(?:[^']|'')*'")  # a STEP string literal ('' is a quote inside it)
+_REFERENCE = re.compile(rb"#(\d+)")
+_RECORD = re.compile(rb"#(\d+) = ")
+#: a physical line's length in the rewritten records (the kernel's lines are at most about 80 long)
+_LINE = 80
+
+
+def _outside_strings(body: bytes):
+    """``(is_string, piece)`` for the pieces of a record's text, string literals apart."""
+    at = 0
+    for m in _STRING.finditer(body):
+        yield False, body[at:m.start()]
+        yield True, m.group()
+        at = m.end()
+    yield False, body[at:]
+
+
+def _wrapped(record: bytes) -> bytes:
+    """One record (``#n = ...;``) on lines of at most :data:`_LINE` characters where it can be: broken
+    after commas outside strings, continuation lines indented, as the kernel writes them."""
+    tokens = []
+    for is_string, piece in _outside_strings(record):
+        tokens.extend([piece] if is_string else re.split(rb"(?<=,)", piece))
+    lines, line = [], b""
+    for token in tokens:
+        if line and len(line) + len(token) > _LINE:
+            lines.append(line)
+            line = b"  "
+        line += token
+    return b"\n".join(lines + [line])
+
+
+def canonical_styles(step: bytes) -> bytes:
+    """``step`` (a STEP file's bytes) with the presentation entities at its end (one
+    ``MECHANICAL_DESIGN_GEOMETRIC_PRESENTATION_REPRESENTATION`` per coloured product and what it
+    refers to, :data:`_PRESENTATION`) numbered and ordered by the geometry they colour, not by the
+    kernel's memory addresses: the representations sorted by the numbers of the entities before
+    them that they reach (then by their own content, for two that colour the same geometry), each
+    followed by what it refers to, depth first, in the order written. The same entities with the
+    same content, renumbered; a file without colours comes back as it is, and so does one in which
+    an earlier entity refers into that end (not a file the kernel writes), rather than be
+    reordered wrongly."""
+    data = step.find(b"\nDATA;\n")
+    start = step.find(b"#", data) if data >= 0 else -1
+    first = step.find(b"= " + _PRESENTATION, start) if start >= 0 else -1
+    end = step.rfind(b"\nENDSEC;")
+    if first < 0 or end < first:
+        return step
+    first = step.rfind(b"\n#", 0, first) + 1
+    bodies: dict[int, bytes] = {}  # number -> the record's text after "#n = ", on one line
+    for chunk in step[first:end + 1].split(b"\n#"):
+        m = _RECORD.match(b"#" + chunk.lstrip(b"#"))
+        if m is None:
+            return step
+        text = m.string[m.end():].strip()
+        bodies[int(m.group(1))] = b"".join(p if s else re.sub(rb"\n\s*", b"", p) for s, p in _outside_strings(text))
+    tail = min(bodies)
+    if sorted(bodies) != list(range(tail, tail + len(bodies))):
+        return step
+    head = step[:first]
+    if any(int(n) >= tail for s, p in _outside_strings(head[start:]) if not s for n in _REFERENCE.findall(p)):
+        return step
+
+    def references(number):
+        return [int(n) for s, p in _outside_strings(bodies[number]) if not s for n in _REFERENCE.findall(p)]
+
+    def reached(number, seen):
+        """The entities ``number`` reaches in the tail (depth first, itself first) and the earlier ones it names."""
+        inside, before = [], []
+        stack = [number]
+        while stack:
+            n = stack.pop()
+            if n < tail:
+                before.append(n)
+            elif n not in seen:
+                seen.add(n)
+                inside.append(n)
+                stack.extend(reversed(references(n)))
+        return inside, before
+
+    def renumbered(body, numbers):
+        return b"".join(p if s else _REFERENCE.sub(lambda m: b"#%d" % numbers.get(int(m.group(1)), int(m.group(1))), p)
+                        for s, p in _outside_strings(body))
+
+    def sort_key(root):
+        inside, before = reached(root, set())
+        local = {n: i for i, n in enumerate(inside)}  # its own entities by their place, not their number
+        return before, [renumbered(bodies[n], local) for n in inside]
+
+    roots = sorted((n for n, body in bodies.items() if body.startswith(_PRESENTATION)), key=sort_key)
+    order: list[int] = []
+    seen: set[int] = set()
+    for n in roots:
+        order += reached(n, seen)[0]
+    order += [n for n in sorted(bodies) if n not in seen]
+    renumber = {old: tail + i for i, old in enumerate(order)}
+    records = [_wrapped(b"#%d = " % renumber[n] + renumbered(bodies[n], renumber)) for n in order]
+    return head + b"\n".join(records) + step[end:]
 
 
 def export_stl(solid, path, chordal_tolerance: float = 1e-3, angular_tolerance: float = 0.5,
@@ -409,5 +523,5 @@ def exported_triangles(parts, folder) -> dict:
     return {name: read_stl(path) for name, path in stls.items() if path.is_file()}
 
 
-__all__ = ["export_step", "write_step_file", "export_stl", "Tessellations", "placed_triangles", "solid_triangles", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
+__all__ = ["export_step", "write_step_file", "canonical_styles", "export_stl", "Tessellations", "placed_triangles", "solid_triangles", "write_stl", "update_manifest", "write_json", "atomic_path", "ExportRecord",
            "read_step", "read_stl", "exported_triangles", "StepContents", "STEP_UNITS", "MANIFEST"]

@@ -15,16 +15,29 @@ What the file holds, in the z = 0 transverse section (tooth 0 centred on +x, as
 Consecutive entities share their end points (each spline starts and ends on the exact joint the
 arcs end on), so the chain is closed to rounding (~1e-12 of the radius). Tooth 0's splines are
 fitted once and turned for the other teeth.
+
+Two writes of one gear give the same bytes (:func:`write_reproducibly`): where ezdxf would stamp
+the clock and draw random GUIDs, the header's dates are :data:`geargen.outputs.EXPORT_DATE`,
+``$FINGERPRINTGUID`` (the drawing's identity, kept by every revision) is a UUID 5 of the gear's
+name and ``$VERSIONGUID`` (this revision's) a UUID 5 of the geometry drawn, so the file changes
+exactly when the outline does (not when another value of the design file does); the CLASSES
+section, which ezdxf fills from a set, is sorted.
 """
 
 from __future__ import annotations
 
+import hashlib
+import io
 import math
+import uuid
+from collections import OrderedDict
 from dataclasses import dataclass
+from datetime import datetime
 from pathlib import Path
 
 import numpy as np
 
+from geargen.outputs import EXPORT_DATE, atomic_path
 from geargen.profile.hermite import segment_spline
 from geargen.units import from_mm
 
@@ -34,6 +47,8 @@ SPLINE_TOLERANCE_MM = 1e-5
 INSUNITS = {"mm": 4, "in": 1}
 OUTLINE_LAYER = "GEAR_OUTLINE"
 BORE_LAYER = "BORE"
+#: the name space of the DXF's UUID 5 GUIDs
+GUID_NAMESPACE = uuid.uuid5(uuid.NAMESPACE_URL, "geargen:dxf")
 
 
 @dataclass(frozen=True)
@@ -93,8 +108,6 @@ def write_profile_dxf(profile, path, tolerance: float = SPLINE_TOLERANCE_MM) -> 
     (atomically) in its gear's length unit; see the module docstring."""
     import ezdxf
 
-    from geargen.outputs import atomic_path
-
     spec = profile.spec
     unit = spec.length_unit
     s = float(from_mm(1.0, unit))  # mm -> the drawing's unit
@@ -106,10 +119,16 @@ def write_profile_dxf(profile, path, tolerance: float = SPLINE_TOLERANCE_MM) -> 
         doc.layers.add(name, color=colour)
     msp = doc.modelspace()
     counts: dict[str, int] = {}
+    geometry = hashlib.sha256(unit.encode())  # what is drawn, for the revision's GUID
+
+    def drawn(kind, layer, *numbers):
+        counts[kind] = counts.get(kind, 0) + 1
+        geometry.update(f"{kind} {layer}".encode())
+        geometry.update(np.asarray(numbers, dtype=float).tobytes())
 
     def arc(r, a0, a1, layer):
         msp.add_arc((0.0, 0.0), r * s, math.degrees(a0), math.degrees(a1), dxfattribs={"layer": layer})
-        counts["ARC"] = counts.get("ARC", 0) + 1
+        drawn("ARC", layer, r * s, math.degrees(a0), math.degrees(a1))
 
     for e in outline_entities(profile, tolerance):
         if e[0] == "arc":
@@ -119,22 +138,51 @@ def write_profile_dxf(profile, path, tolerance: float = SPLINE_TOLERANCE_MM) -> 
             spline = msp.add_spline(dxfattribs={"layer": OUTLINE_LAYER, "degree": 3, "flags": 8})  # 8: planar
             spline.control_points = [(x * s, y * s, 0.0) for x, y in poles]
             spline.knots = [float(t) * s for t in knots]  # the curve's parameter is its length scale
-            counts["SPLINE"] = counts.get("SPLINE", 0) + 1
+            drawn("SPLINE", OUTLINE_LAYER, *(np.asarray(poles, dtype=float) * s).ravel(), *(np.asarray(knots) * s))
     for e in bore_entities(spec.hub):
         if e[0] == "circle":
             msp.add_circle((0.0, 0.0), e[1] * s, dxfattribs={"layer": BORE_LAYER})
-            counts["CIRCLE"] = counts.get("CIRCLE", 0) + 1
+            drawn("CIRCLE", BORE_LAYER, e[1] * s)
         elif e[0] == "arc":
             arc(e[1], e[2], e[3], BORE_LAYER)
         else:
             (x0, y0), (x1, y1) = e[1], e[2]
             msp.add_line((x0 * s, y0 * s), (x1 * s, y1 * s), dxfattribs={"layer": BORE_LAYER})
-            counts["LINE"] = counts.get("LINE", 0) + 1
+            drawn("LINE", BORE_LAYER, x0 * s, y0 * s, x1 * s, y1 * s)
     path = Path(path)
     with atomic_path(path) as tmp:
-        doc.saveas(tmp)
+        tmp.write_bytes(write_reproducibly(doc, uuid.uuid5(GUID_NAMESPACE, f"gear {spec.name}"),
+                                           uuid.uuid5(GUID_NAMESPACE, geometry.hexdigest())))
     return DxfRecord(path, unit, counts, path.stat().st_size)
 
 
-__all__ = ["SPLINE_TOLERANCE_MM", "INSUNITS", "OUTLINE_LAYER", "BORE_LAYER", "DxfRecord", "outline_entities",
-           "bore_entities", "write_profile_dxf"]
+def write_reproducibly(doc, fingerprint: uuid.UUID, version: uuid.UUID) -> bytes:
+    """The bytes of ezdxf's ``doc.saveas`` (ASCII DXF) with nothing of the moment in them: the
+    creation and update dates :data:`~geargen.outputs.EXPORT_DATE` (also in ezdxf's
+    written-by marker), ``$FINGERPRINTGUID`` ``fingerprint`` and ``$VERSIONGUID`` ``version``, the
+    CLASSES in order of name (ezdxf adds one per entity type in use from a set, whose order
+    follows the interpreter's hash seed). ezdxf's ``Drawing.write`` stamps the clock as it writes, so
+    its steps are taken here with those values set between them."""
+    import ezdxf
+    from ezdxf.document import CREATED_BY_EZDXF, WRITTEN_BY_EZDXF
+    from ezdxf.lldxf.tagwriter import TagWriter
+    from ezdxf.tools.juliandate import juliandate
+
+    doc.commit_pending_changes()
+    doc.update_all()  # the classes, header and metadata, with the clock's values, replaced below
+    doc.classes.classes = OrderedDict(sorted(doc.classes.classes.items()))
+    date = juliandate(datetime.fromisoformat(EXPORT_DATE))
+    for name in ("$TDCREATE", "$TDUCREATE", "$TDUPDATE", "$TDUUPDATE"):
+        doc.header[name] = date
+    doc.header["$FINGERPRINTGUID"] = "{%s}" % str(fingerprint).upper()
+    doc.header["$VERSIONGUID"] = "{%s}" % str(version).upper()
+    marker = doc.ezdxf_metadata()
+    for key in (CREATED_BY_EZDXF, WRITTEN_BY_EZDXF):
+        marker[key] = f"{ezdxf.__version__} @ {EXPORT_DATE}+00:00"
+    text = io.StringIO()
+    doc.export_sections(TagWriter(text, write_handles=True, dxfversion=doc.dxfversion))
+    return doc.encode(text.getvalue())
+
+
+__all__ = ["SPLINE_TOLERANCE_MM", "INSUNITS", "OUTLINE_LAYER", "BORE_LAYER", "GUID_NAMESPACE", "DxfRecord",
+           "outline_entities", "bore_entities", "write_profile_dxf", "write_reproducibly"]
