@@ -93,7 +93,6 @@ def pair(teeth: Sequence[int], *, module: float | None = None, diametral_pitch: 
     backlash without ``thinning``); with ``centre_distance`` and no ``profile_shift`` the shifts are
     the recommended split of the sum it needs, as ``geargen pair`` reports them.
     """
-    import math
     from dataclasses import replace
 
     from geargen.cad.assembly import PlacedPart, transform

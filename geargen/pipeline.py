@@ -25,7 +25,6 @@ reports all read it, and ``resolved.json`` beside the exports records it.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 import platform
@@ -44,7 +43,7 @@ from geargen.design.export import export_settings
 from geargen.errors import GeargenError
 from geargen.model import POSITIONS, GearPlacement, Layout, MeshPlacement
 from geargen.drives.resolver import resolve
-from geargen.units import LENGTH_SUFFIXES, from_mm
+from geargen.units import from_mm
 
 #: the build folder's sub-folder of the gears' drawings, DXF profiles and gear data
 DRAWING_FOLDER = "drawings"

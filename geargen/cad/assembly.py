@@ -30,7 +30,7 @@ from OCP.TopoDS import TopoDS_Shape
 
 from geargen.cad import parts as P
 from geargen.cad.families import build_part
-from geargen.cad.gear_solid import build_cluster, build_gear, solid_volume
+from geargen.cad.gear_solid import build_cluster, solid_volume
 from geargen.cad.kernel import boolean, volume
 from geargen.cad.solid_proofs import SolidFacts, face_set_distance, prism_common_volume, share_no_volume
 from geargen.design.cluster import ClusterSpec

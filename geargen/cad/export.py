@@ -285,7 +285,6 @@ def solid_triangles(solid, chordal_tolerance: float, angular_tolerance: float = 
     ("occt", see :func:`kernel_triangles`). ``transform``: optional ``(4, 4)`` matrix (mm)
     applied to the triangles (rigid motions keep the tolerance).
     """
-    import numpy as np
     triangles, mesher = None, "occt"
     layers = getattr(solid, "layers", None)
     exact = getattr(solid, "exact_triangles", None)  # a family's own exact mesher (the worm's, the wheel's)

@@ -18,7 +18,6 @@ Frames, unless a builder says otherwise: the part's axis is +z, its lowest face 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from OCP.Bnd import Bnd_Box

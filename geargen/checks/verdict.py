@@ -17,7 +17,6 @@ same number ``synth``, ``build`` and the exported solids give.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
 
 import numpy as np
 

@@ -44,7 +44,6 @@ needs its hardness (the default material's is the default hardness).
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any, Mapping
 

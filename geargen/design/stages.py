@@ -31,7 +31,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from fractions import Fraction
-from typing import Any
 
 from geargen.design.schema import Field, check_name, read_table, shown
 from geargen.drives.planetary.keys import read_planetary_stage, stage_gear

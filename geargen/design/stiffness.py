@@ -1046,7 +1046,7 @@ def engagement_spec_from_table(data: Mapping[str, Any], gears: Mapping[str, Any]
                f"gears.{spec.gear} and gears.{other} have one hand and one helix lead: the cluster slides like a screw")
         raise DesignError("engagement.gear", f"sliding the cluster cannot turn gears.{spec.gear} against gears.{mate} "
                           f"to open backlash: {why}",
-                          f"a cluster whose gears turn by different rates as it slides (tan(helix) / reference radius, "
+                          "a cluster whose gears turn by different rates as it slides (tan(helix) / reference radius, "
                           "signed by hand)")
     per_lead = abs(kappa_o - kappa_e) * gear.reference_radius  # opened at the pinion's reference circle per mm
     windup = spec.preload_windup or 0.0

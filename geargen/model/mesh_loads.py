@@ -49,7 +49,6 @@ import numpy as np
 
 from geargen.core.load_capacity import rating_scope
 from geargen.design.duty import DutySpec
-from geargen.errors import DesignError
 from geargen.families.registry import tooth_form
 
 #: where a load comes from: the preload alone (zero drive torque); the preload with the path's share of

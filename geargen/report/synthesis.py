@@ -10,14 +10,12 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass
 from decimal import ROUND_HALF_UP, Decimal
 from pathlib import Path
 
-from geargen.core.synthesis import CentreSynthesis, LoopSolution, Placement
-from geargen.core.tolerance import ErrorBudget, ExactErrorBudget, MonteCarloResult, SensitivityTable
-from geargen.design.synthesis import ERROR_KINDS, GEAR_ROLES, GearErrors, MonteCarloSettings, SynthesisInputs
-from geargen.units import LENGTH_SUFFIXES, MM_PER_IN
+from geargen.core.synthesis import Placement
+from geargen.design.synthesis import ERROR_KINDS, GEAR_ROLES
+from geargen.units import MM_PER_IN
 from geargen.model.synthesis import SynthesisRun
 from geargen.report.figures import save_png
 
