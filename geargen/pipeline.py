@@ -226,19 +226,44 @@ def mesh_checks(layout: Layout, gears: dict[str, Any] | None = None, path2: bool
     """Step 5: the verdict of ``geargen check`` on the resolved drive (:func:`geargen.checks.verdict.verify`:
     path 1 of every mesh, the design ranges, the ratio and the error budget), plus path 2 (sections
     of the built gear solids) when ``gears`` are given. Every failure of the verdict fails the build.
-    Runs on one BLAS thread (:mod:`geargen.checks.blas`)."""
+    The build computes the two parts in two processes (:func:`design_verdict`, :func:`mesh_sections`)
+    and puts them together here (:func:`meshes_outcome`)."""
+    sections = mesh_sections(layout, gears) if path2 and gears is not None else None
+    return meshes_outcome(layout, design_verdict(layout), sections)
+
+
+def design_verdict(layout: Layout):
+    """Path 1: :func:`geargen.checks.verdict.verify` of the resolved drive, on one BLAS thread
+    (:mod:`geargen.checks.blas`). It needs no solid, so the build starts it as soon as the drive is placed."""
     from geargen.checks.blas import one_blas_thread
+    from geargen.checks.verdict import verify
     with one_blas_thread():
-        return _mesh_checks(layout, gears, path2)
+        return verify(layout)
 
 
-def _mesh_checks(layout: Layout, gears: dict[str, Any] | None, path2: bool) -> CheckOutcome:
-    from geargen.checks.verdict import design_backlash, sections_decide, undecided, verify
-    dc = verify(layout)
+def mesh_sections(layout: Layout, gears: dict[str, Any]) -> dict[str, Any]:
+    """Path 2 of every engaged mesh: mesh name -> its :func:`section_check` on the gear solids, or the
+    text of the exception that stopped it (reported as a warning: the exact check still decides)."""
+    from geargen.checks.blas import one_blas_thread
+    out: dict[str, Any] = {}
+    with one_blas_thread():
+        for mesh in layout.meshes:
+            if not mesh.engaged:
+                continue
+            try:
+                out[mesh.name] = section_check(layout, mesh, gears[mesh.part1].shape, gears[mesh.part2].shape)
+            except Exception as exc:  # report, do not hide: the exact check still decides
+                out[mesh.name] = f"{exc}"
+    return out
+
+
+def meshes_outcome(layout: Layout, dc, sections: dict[str, Any] | None) -> CheckOutcome:
+    """The mesh checks' outcome from the verdict ``dc`` (:func:`design_verdict`) and path 2's
+    ``sections`` (:func:`mesh_sections`; None: not made)."""
+    from geargen.checks.verdict import design_backlash, sections_decide, undecided
     outcome = CheckOutcome(meshes=[], design_check=dc)
     for f in dc.all_failures:
         outcome.failures.append(f"{f.mesh or layout.identity.name} ({f.kind}): {f.message}")
-    sections = path2 and gears is not None
     exact = {m.mesh: m for m in dc.meshes}
     for mesh, b in zip(layout.meshes, dc.backlash):
         entry: dict[str, Any] = {"mesh": mesh.name, "gear1": mesh.part1, "gear2": mesh.part2, "engaged": mesh.engaged,
@@ -253,9 +278,11 @@ def _mesh_checks(layout: Layout, gears: dict[str, Any] | None, path2: bool) -> C
         entry.update(path1=result, backlash_min=b["min"], backlash_max=b["max"],
                      contact_ratio=result.total_contact_ratio, failures=[f.message for f in result.failures],
                      notes=list(result.notes))
-        if sections:
-            try:
-                s2 = section_check(layout, mesh, gears[mesh.part1].shape, gears[mesh.part2].shape)
+        if sections is not None:
+            s2 = sections[mesh.name]
+            if isinstance(s2, str):
+                outcome.warnings.append(f"{mesh.name}: section check (path 2) failed to run: {s2}")
+            else:
                 lo2, hi2 = design_backlash(s2, mesh.gear1.reference_radius)
                 entry.update(path2=s2, path2_backlash_min=lo2, path2_backlash_max=hi2)
                 if sections_decide(s2, layout.settings.get("loaded_flank_gap")):
@@ -263,8 +290,6 @@ def _mesh_checks(layout: Layout, gears: dict[str, Any] | None, path2: bool) -> C
                                          for f in s2.failures]
                 else:
                     outcome.warnings += undecided(s2)
-            except Exception as exc:  # report, do not hide: the exact check still decides
-                outcome.warnings.append(f"{mesh.name}: section check (path 2) failed to run: {exc}")
         outcome.meshes.append(entry)
         if result.total_contact_ratio < 1.2:
             outcome.warnings.append(f"{mesh.name}: low contact ratio {result.total_contact_ratio:.3g}")
@@ -645,12 +670,14 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     interruption (Ctrl-C, SIGTERM) removes it, and one left by a killed build is removed by the
     next build into the same parent folder.
 
-    ``parallel``: the mesh checks of the gears (:func:`mesh_checks`, the longest step) run in a
-    second process (:class:`Alongside`) from the moment the gear solids exist, while this one
-    builds the other parts and writes the view and the exports into the temporary folder; the
-    build waits for them (and checks the parts' overlaps) before anything is moved into place,
-    so a failing build still leaves nothing behind. Where no second process can be had, or it
-    delivers nothing, the checks run here, in order, as with ``parallel=False``. The drawings need
+    ``parallel``: the mesh checks (:func:`mesh_checks`, the longest step) run in two processes of
+    their own (:class:`Alongside`): the verdict (:func:`design_verdict`) from the moment the drive
+    is placed, path 2's sections of the solids (:func:`mesh_sections`) from the moment the gear
+    solids exist, while this one builds the other parts and writes the view and the exports into
+    the temporary folder; the build waits for them (and checks the parts' overlaps) before
+    anything is moved into place, so a failing build still leaves nothing behind. Where no process
+    can be had the checks run here, in order, as with ``parallel=False``; a part whose process
+    delivers nothing is made here. The drawings need
     only the resolved drive: with ``parallel`` they are drawn in a process of their own from the
     moment it is placed, the figures that need no check result in another from the moment the view
     is rendered (:func:`_collect`), else (or if one delivers nothing) here.
@@ -663,21 +690,25 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
         progress.note(f"removed the temporary folder of an interrupted build: {folder}")
     try:
         layout = progress.run("place", place, design, position)
+        # the verdict needs only the resolved drive, and no kernel: checked in a process of its own
+        # from here, before the kernel is imported (the longest step starts first)
+        verdict_alongside = Alongside.start(design_verdict, layout) if parallel else None
         if parallel:
             _import_figure_modules()
             _import_kernel_modules()
         # the drawings need only the resolved drive: drawn in a process of their own from here
         sheets_alongside = Alongside.start(drawings, layout, work) if parallel else None
-        alongside = figures_alongside = None
+        sections_alongside = figures_alongside = None
         try:
             gears = progress.run("gear solids", gear_solids, layout)
-            alongside = Alongside.start(mesh_checks, layout, gears) if parallel else None
-            if alongside is not None:
-                progress.note("mesh checks: started in a second process, alongside the next steps")
+            # path 2 (sections of the gear solids) in another from the moment the solids exist
+            sections_alongside = Alongside.start(mesh_sections, layout, gears) if parallel else None
+            if verdict_alongside is not None or sections_alongside is not None:
+                progress.note("mesh checks: started in processes of their own, alongside the next steps")
             summary = progress.run("stiffness", stiffness, layout)
             parts = progress.run("other parts", other_parts, layout, gears, summary)
             result = None
-            if alongside is None:
+            if verdict_alongside is None and sections_alongside is None:
                 checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             # the view first: its coarse tessellation is refined by the STL export (not the reverse)
@@ -691,7 +722,8 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                                        render_view, work)
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
-                checks = progress.run_timed("mesh checks", _collect_checks, alongside, layout, gears, parts)
+                checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside, sections_alongside,
+                                            layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             result.render_view, result.files, result.figures = render_view, files, drawn
             result.drawings = sheets
@@ -699,7 +731,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             progress.run("report", _report_and_manifest, result, work)
             target = output.commit()
         finally:
-            for child in (alongside, sheets_alongside, figures_alongside):
+            for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside):
                 if child is not None:
                     child.close()
     except BaseException:
@@ -748,25 +780,38 @@ def structure_check(parts, layout: Layout):
     return drive_structure(layout)
 
 
-def _collect_checks(alongside: "Alongside", layout: Layout, gears, parts) -> tuple[CheckOutcome, float, str]:
-    """The mesh checks from the second process (or made here if it delivered nothing), completed by
-    :func:`_all_checks`; returns (outcome, seconds of checking, a note for the progress line).
-    The parts' overlaps are checked here while the second process may still be busy."""
+def _collect_checks(verdict: "Alongside | None", sections: "Alongside | None", layout: Layout, gears,
+                    parts) -> tuple[CheckOutcome, float, str]:
+    """The mesh checks from their two processes (``verdict``: :func:`design_verdict`, started when
+    the drive was placed; ``sections``: :func:`mesh_sections`, started when the gear solids were
+    built), each made here if its process is missing or delivered nothing, completed by
+    :func:`_all_checks`; returns (outcome, seconds of checking, a note for the progress line). The
+    parts' overlaps are checked here while the two processes may still be busy."""
     t0 = time.perf_counter()
     overlaps = overlap_check(parts, layout)
-    own = time.perf_counter() - t0
+    busy = time.perf_counter() - t0
     t0 = time.perf_counter()
-    got = alongside.result()
+    got = [child.result() if child is not None else None for child in (verdict, sections)]
     waited = time.perf_counter() - t0
-    if got is None:
-        t0 = time.perf_counter()
-        outcome = _all_checks(layout, gears, parts, overlaps=overlaps)
-        return outcome, own + time.perf_counter() - t0, "(the second process delivered nothing: checked here)"
-    busy, meshes = got
+    here = []
+    values = []
+    for what, fn, args, delivered in (("verdict", design_verdict, (layout,), got[0]),
+                                      ("sections", mesh_sections, (layout, gears), got[1])):
+        if delivered is None:
+            t0 = time.perf_counter()
+            values.append(fn(*args))
+            busy += time.perf_counter() - t0
+            here.append(what)
+        else:
+            busy += delivered[0]
+            values.append(delivered[1])
     t0 = time.perf_counter()
-    outcome = _all_checks(layout, gears, parts, meshes, overlaps)
-    busy += own + time.perf_counter() - t0
-    return outcome, busy, f"(meshes checked in a second process alongside stiffness to export; waited {waited:.2f} s)"
+    outcome = _all_checks(layout, gears, parts, meshes_outcome(layout, *values), overlaps)
+    busy += time.perf_counter() - t0
+    if here:
+        return outcome, busy, f"(the {' and the '.join(here)} of a second process delivered nothing: checked here)"
+    return outcome, busy, (f"(verdict and sections checked in processes of their own alongside the solids and "
+                           f"exports; waited {waited:.2f} s)")
 
 
 def _import_figure_modules() -> None:
@@ -1050,6 +1095,7 @@ def _jsonable(value):
 
 
 __all__ = ["STEPS", "Progress", "GearPlacement", "MeshPlacement", "Layout", "CheckOutcome", "BuildResult",
-           "check_free_figures", "BuildFailed", "load", "place", "gear_solids", "other_parts", "mesh_checks", "overlap_check",
+           "check_free_figures", "BuildFailed", "load", "place", "gear_solids", "other_parts", "mesh_checks", "design_verdict", "mesh_sections",
+           "meshes_outcome", "overlap_check",
            "stiffness", "export", "report", "manifest", "build", "export_config", "versions",
            "section_check", "contact_region", "Alongside"]
