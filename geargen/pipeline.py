@@ -929,7 +929,15 @@ class Alongside:
                 process.start()
             finally:
                 gc.unfreeze()
-                signal.pthread_sigmask(signal.SIG_SETMASK, held)
+                try:
+                    signal.pthread_sigmask(signal.SIG_SETMASK, held)
+                except BaseException:
+                    # the signal held while forking is raised here, before the caller holds the child
+                    # to close it: ended now, or it would go on writing into a folder being removed
+                    if process.pid is not None:
+                        process.terminate()
+                        process.join(timeout=5.0)
+                    raise
         except Exception:  # e.g. inside a daemonic worker, which may not have children
             return None
         sender.close()
