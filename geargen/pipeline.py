@@ -688,6 +688,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     work = output.prepare()
     for folder in output.cleanup.removed:
         progress.note(f"removed the temporary folder of an interrupted build: {folder}")
+    children = Alongside.started()
     try:
         layout = progress.run("place", place, design, position)
         # the verdict needs only the resolved drive, and no kernel: checked in a process of its own
@@ -735,8 +736,10 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                 if child is not None:
                     child.close()
     except BaseException:
+        Alongside.end_started_since(children)
         output.discard()
         raise
+    Alongside.end_started_since(children)
     result.out_dir = target
     result.timings = dict(progress.timings)
     return result
@@ -904,9 +907,31 @@ class Alongside:
     when the caller dies without running anything (SIGKILL, a crash): :func:`_die_with_parent`.
     """
 
+    #: every child started and not yet ended by :meth:`end_started_since` (a signal held while forking
+    #: is raised once the child exists, possibly before the caller holds it to :meth:`close` it)
+    _started: list = []
+
     def __init__(self, process, receiver):
         self._process = process
         self._receiver = receiver
+
+    @classmethod
+    def started(cls) -> int:
+        """A mark for :meth:`end_started_since`: how many children are recorded now."""
+        return len(cls._started)
+
+    @classmethod
+    def end_started_since(cls, mark: int) -> None:
+        """End every child started since ``mark`` that still runs, held by its caller or not: an
+        interrupted build must not leave one writing into the folder it removes."""
+        for process in cls._started[mark:]:
+            if process.is_alive():
+                process.terminate()
+            process.join(timeout=5.0)
+            if process.is_alive():
+                process.kill()
+                process.join(timeout=5.0)
+        del cls._started[mark:]
 
     @classmethod
     def start(cls, fn: Callable, *args) -> "Alongside | None":
@@ -929,15 +954,9 @@ class Alongside:
                 process.start()
             finally:
                 gc.unfreeze()
-                try:
-                    signal.pthread_sigmask(signal.SIG_SETMASK, held)
-                except BaseException:
-                    # the signal held while forking is raised here, before the caller holds the child
-                    # to close it: ended now, or it would go on writing into a folder being removed
-                    if process.pid is not None:
-                        process.terminate()
-                        process.join(timeout=5.0)
-                    raise
+                if process.pid is not None:  # recorded before a held signal can be raised
+                    cls._started.append(process)
+                signal.pthread_sigmask(signal.SIG_SETMASK, held)
         except Exception:  # e.g. inside a daemonic worker, which may not have children
             return None
         sender.close()
