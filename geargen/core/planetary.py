@@ -20,11 +20,12 @@ import math
 from dataclasses import dataclass
 
 from geargen.core.involute import involute, inverse_involute, working_pressure_angle_at
+from geargen.design.gear import HelicalTeeth
 from geargen.errors import DesignError
 
 
 @dataclass(frozen=True)
-class PlanetaryStage:
+class PlanetaryStage(HelicalTeeth):
     """Tooth numbers, the number of planets, the normal module and pressure angle, the helix angle
     (0: spur), the normal profile shifts (the ring's x_r widens its tooth spaces, 2 x_r tan(alpha_n)
     m_n at the reference circle, and so increases the planet-ring working centre distance), the
@@ -62,14 +63,6 @@ class PlanetaryStage:
             raise DesignError("pressure_angle", f"{self.pressure_angle!r} rad is out of range", "[10, 35] deg")
         if not 0 <= self.helix_angle <= math.pi / 4:
             raise DesignError("helix_angle", f"{self.helix_angle!r} rad is out of range", "[0, 45] deg")
-
-    @property
-    def transverse_module(self) -> float:
-        return self.module / math.cos(self.helix_angle)
-
-    @property
-    def transverse_pressure_angle(self) -> float:
-        return math.atan(math.tan(self.pressure_angle) / math.cos(self.helix_angle))
 
     @property
     def planet_tip_diameter_resolved(self) -> float:
