@@ -60,10 +60,10 @@ from OCP.gp import gp_Ax1, gp_Ax2, gp_Ax2d, gp_Ax3, gp_Circ, gp_Dir, gp_Dir2d, g
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
-from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex,
+from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Vertex,
                         TopoDS_Wire)
 
-from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d,
+from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d, closed_solid,
                                 bspline_surface, fused_solid, make_edge, make_vertex, make_wire, volume)
 from geargen.design.cluster import ClusterSpec
 from geargen.design.gear import GearSpec
@@ -528,14 +528,7 @@ def toothed_body(spec: GearSpec, profile: ToothProfile, tolerance: float,
             builder.Add(face, hole)
         cap_faces.append(face if up else face.Reversed())
 
-    shell = TopoDS_Shell()
-    builder.MakeShell(shell)
-    for f in faces + cap_faces + bore_faces + extra:
-        builder.Add(shell, f)
-    shell.Closed(True)
-    solid = TopoDS_Solid()
-    builder.MakeSolid(solid)
-    builder.Add(solid, shell)
+    solid = closed_solid(builder, faces + cap_faces + bore_faces + extra)
     info = [ToothFace(c.kind, c.side, (len(c.fit.poles), len(axial.z)) if c.fit is not None else (0, 0),
                       c.fit.max_error if c.fit is not None else 0.0) for c in curves]
     return solid, info

@@ -25,7 +25,7 @@ from OCP.TColgp import TColgp_Array1OfPnt, TColgp_Array1OfPnt2d, TColgp_Array2Of
 from OCP.TColStd import TColStd_Array1OfInteger, TColStd_Array1OfReal
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED, TopAbs_SOLID
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape, TopoDS_Vertex, TopoDS_Wire
+from OCP.TopoDS import TopoDS, TopoDS_Edge, TopoDS_Shape, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex, TopoDS_Wire
 from OCP.TopTools import TopTools_ListOfShape
 
 from geargen.errors import BuildError
@@ -110,6 +110,24 @@ def make_wire(builder: BRep_Builder, edges, orientations=None) -> TopoDS_Wire:
     return w
 
 
+def closed_shell(builder: BRep_Builder, faces) -> TopoDS_Shell:
+    """The closed shell of ``faces`` (each already oriented outward)."""
+    shell = TopoDS_Shell()
+    builder.MakeShell(shell)
+    for face in faces:
+        builder.Add(shell, face)
+    shell.Closed(True)
+    return shell
+
+
+def closed_solid(builder: BRep_Builder, faces) -> TopoDS_Solid:
+    """The solid bounded by the closed shell of ``faces`` (:func:`closed_shell`)."""
+    solid = TopoDS_Solid()
+    builder.MakeSolid(solid)
+    builder.Add(solid, closed_shell(builder, faces))
+    return solid
+
+
 def single_solid(shape: TopoDS_Shape) -> TopoDS_Shape:
     """The one solid ``shape`` holds; BuildError when it holds none or several."""
     exp = TopExp_Explorer(shape, TopAbs_SOLID)
@@ -172,5 +190,5 @@ def quiet_kernel() -> None:
 
 
 __all__ = ["KERNEL_TOLERANCE", "Z_AXIS", "ORIGIN_2D", "occ_knots", "bspline_curve_3d", "bspline_curve_2d",
-           "bspline_surface", "make_vertex", "make_edge", "make_wire", "single_solid", "volume", "boolean", "fused_solid",
+           "bspline_surface", "make_vertex", "make_edge", "make_wire", "closed_shell", "closed_solid", "single_solid", "volume", "boolean", "fused_solid",
            "quiet_kernel"]

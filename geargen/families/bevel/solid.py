@@ -45,10 +45,10 @@ from OCP.TColgp import TColgp_Array2OfPnt
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopExp import TopExp
 from OCP.TopLoc import TopLoc_Location
-from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid
+from OCP.TopoDS import TopoDS_Edge, TopoDS_Face
 
 from geargen.cad.gear_solid import check_solid
-from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d, make_edge,
+from geargen.cad.kernel import (KERNEL_TOLERANCE, ORIGIN_2D, Z_AXIS, bspline_curve_2d, bspline_curve_3d, closed_solid, make_edge,
                                 make_vertex, make_wire, occ_knots)
 from geargen.families.bevel.geometry import (bevel_core, bevel_geometry, bevel_volume, check_tooth, lower_flank_points,
                                 tooth_half_angle, tooth_outline)
@@ -297,15 +297,7 @@ class _Shell:
         return f
 
     def solid(self):
-        shell = TopoDS_Shell()
-        self.builder.MakeShell(shell)
-        for f in self.faces:
-            self.builder.Add(shell, f)
-        shell.Closed(True)
-        solid = TopoDS_Solid()
-        self.builder.MakeSolid(solid)
-        self.builder.Add(solid, shell)
-        return solid
+        return closed_solid(self.builder, self.faces)
 
 
 def _degenerate_edge(shell: _Shell, vertex, pcurve, surface):

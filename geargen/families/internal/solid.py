@@ -20,9 +20,10 @@ from OCP.BRepPrimAPI import BRepPrimAPI_MakeCylinder
 from OCP.GeomAbs import GeomAbs_Plane
 from OCP.TopAbs import TopAbs_FACE, TopAbs_FORWARD, TopAbs_WIRE
 from OCP.TopExp import TopExp_Explorer
-from OCP.TopoDS import TopoDS, TopoDS_Shell, TopoDS_Solid
+from OCP.TopoDS import TopoDS
 
 from geargen.cad.gear_solid import GearSolid, check_solid, default_tolerance, toothed_body
+from geargen.cad.kernel import closed_solid
 from geargen.design.gear import GearSpec
 from geargen.errors import BuildError
 from geargen.profile.internal import InternalProfile, internal_profile
@@ -102,18 +103,9 @@ def ring_from_hole(hole, rim_radius: float, length: float):
             caps[round(z / length)] = f
     if rim_side is None or set(discs) != {0, 1} or set(caps) != {0, 1}:
         raise BuildError("the hole or the rim does not have two end caps")
-    shell = TopoDS_Shell()
-    builder.MakeShell(shell)
-    for f in sides:
-        builder.Add(shell, f.Reversed())  # the hole's outside is the ring's inside
-    builder.Add(shell, rim_side)
-    for end in (0, 1):
-        builder.Add(shell, _annulus(builder, discs[end], caps[end]))
-    shell.Closed(True)
-    solid = TopoDS_Solid()
-    builder.MakeSolid(solid)
-    builder.Add(solid, shell)
-    return solid
+    # the hole's sides turned: the hole's outside is the ring's inside
+    return closed_solid(builder, [f.Reversed() for f in sides] + [rim_side]
+                        + [_annulus(builder, discs[end], caps[end]) for end in (0, 1)])
 
 
 def build_internal(spec: GearSpec, tolerance: float | None = None, check: bool = False) -> GearSolid:

@@ -32,11 +32,11 @@ from OCP.GeomAPI import GeomAPI
 from OCP.gp import gp_Ax2, gp_Ax3, gp_Dir, gp_Dir2d, gp_Pnt, gp_Pnt2d, gp_Vec, gp_Vec2d
 from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
 from OCP.TopLoc import TopLoc_Location
-from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Shell, TopoDS_Solid, TopoDS_Vertex,
+from OCP.TopoDS import (TopoDS, TopoDS_Edge, TopoDS_Face, TopoDS_Shape, TopoDS_Solid, TopoDS_Vertex,
                         TopoDS_Wire)
 
 from geargen.cad.gear_solid import check_solid, solid_volume
-from geargen.cad.kernel import KERNEL_TOLERANCE, bspline_curve_2d, make_edge
+from geargen.cad.kernel import KERNEL_TOLERANCE, bspline_curve_2d, closed_solid, make_edge
 from geargen.families.rack.geometry import RackOutline, rack_outline
 from geargen.families.rack.spec import ZERO_SEGMENT, RackSpec
 from geargen.errors import BuildError
@@ -452,15 +452,7 @@ class _HelicalRack:
         back = Geom_Plane(gp_Pnt(0.0, 0.0, 0.0), gp_Dir(0.0, -1.0, 0.0))
         faces.append(self._face(back, bottoms, [None] * 4, points, down, True))
 
-        shell = TopoDS_Shell()
-        self.builder.MakeShell(shell)
-        for f in faces:
-            self.builder.Add(shell, f)
-        shell.Closed(True)
-        solid = TopoDS_Solid()
-        self.builder.MakeSolid(solid)
-        self.builder.Add(solid, shell)
-        return solid
+        return closed_solid(self.builder, faces)
 
 
 def flank_straightness(solid: RackSolid, z: float, samples_per_face: int = 64) -> tuple[float, int]:

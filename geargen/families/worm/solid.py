@@ -151,10 +151,10 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
     from OCP.Geom import Geom_Circle, Geom_CylindricalSurface, Geom_Plane
     from OCP.gp import gp_Ax2, gp_Ax3, gp_Dir, gp_Pnt
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
-    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell
+    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face
 
     from geargen.cad.kernel import KERNEL_TOLERANCE as tol
-    from geargen.cad.kernel import bspline_curve_2d, bspline_surface, make_edge
+    from geargen.cad.kernel import bspline_curve_2d, bspline_surface, closed_shell, make_edge
 
     def segment(a, b, t0, t1, knots=()):
         """The straight pcurve a -> b, parameter t0 .. t1, with a knot at each of ``knots`` inside:
@@ -226,12 +226,7 @@ def _worm_shell(g: WormGeometry, p: float, starts: int, length: float):
             BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
         centre = _add_outer_wire(builder, face, end_edges[e])
         faces.append(_outward(face, plane, centre, (0.0, 0.0, float(e))))
-    shell = TopoDS_Shell()
-    builder.MakeShell(shell)
-    for face in faces:
-        builder.Add(shell, face)
-    shell.Closed(True)
-    return shell, axis.error
+    return closed_shell(builder, faces), axis.error
 
 
 def _loop(edges):

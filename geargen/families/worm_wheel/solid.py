@@ -202,10 +202,10 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
     from OCP.Geom import Geom_Plane
     from OCP.gp import gp_Ax3, gp_Dir, gp_Pnt
     from OCP.TopAbs import TopAbs_FORWARD, TopAbs_REVERSED
-    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face, TopoDS_Shell, TopoDS_Solid
+    from OCP.TopoDS import TopoDS_Edge, TopoDS_Face
 
     from geargen.cad.kernel import KERNEL_TOLERANCE as tol
-    from geargen.cad.kernel import (bspline_curve_2d, bspline_curve_3d, bspline_surface, make_edge, make_vertex,
+    from geargen.cad.kernel import (bspline_curve_2d, bspline_curve_3d, bspline_surface, closed_solid, make_edge, make_vertex,
                                     make_wire)
 
     builder = BRep_Builder()
@@ -311,15 +311,7 @@ def _wheel_solid(fit: WheelFit, teeth: int, half: float):
             BRepLib.BuildPCurveForEdgeOnPlane_s(edge, face)
         builder.Add(face, make_wire(builder, edges))  # counterclockwise seen from +z
         faces.append(face if v == v_hi else face.Reversed())
-    shell = TopoDS_Shell()
-    builder.MakeShell(shell)
-    for face in faces:
-        builder.Add(shell, face)
-    shell.Closed(True)
-    solid = TopoDS_Solid()
-    builder.MakeSolid(solid)
-    builder.Add(solid, shell)
-    return solid
+    return closed_solid(builder, faces)
 
 
 def build_worm_wheel(spec: WormWheelSpec, check: bool = False, tolerance: float = FIT_TOLERANCE) -> WormPartSolid:
