@@ -670,12 +670,12 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     interruption (Ctrl-C, SIGTERM) removes it, and one left by a killed build is removed by the
     next build into the same parent folder.
 
-    ``parallel``: the mesh checks (:func:`mesh_checks`, the longest step) run in two processes of
-    their own (:class:`Alongside`): the verdict (:func:`design_verdict`) from the moment the drive
-    is placed, path 2's sections of the solids (:func:`mesh_sections`) from the moment the gear
-    solids exist, while this one builds the other parts and writes the view and the exports into
-    the temporary folder; the build waits for them (and checks the parts' overlaps) before
-    anything is moved into place, so a failing build still leaves nothing behind. Where no process
+    ``parallel``: the checks run in three processes of their own (:class:`Alongside`): the verdict
+    (:func:`design_verdict`) from the moment the drive is placed, path 2's sections of the solids
+    (:func:`mesh_sections`) from the moment the gear solids exist, the parts' overlaps
+    (:func:`overlap_check`) from the moment the other parts do, while this one writes the view
+    and the exports into the temporary folder; the build waits for them before anything is moved
+    into place, so a failing build still leaves nothing behind. Where no process
     can be had the checks run here, in order, as with ``parallel=False``; a part whose process
     delivers nothing is made here. The drawings need
     only the resolved drive: with ``parallel`` they are drawn in a process of their own from the
@@ -699,7 +699,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             _import_kernel_modules()
         # the drawings need only the resolved drive: drawn in a process of their own from here
         sheets_alongside = Alongside.start(drawings, layout, work) if parallel else None
-        sections_alongside = figures_alongside = None
+        sections_alongside = figures_alongside = overlaps_alongside = None
         try:
             gears = progress.run("gear solids", gear_solids, layout)
             # path 2 (sections of the gear solids) in another from the moment the solids exist
@@ -708,6 +708,9 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                 progress.note("mesh checks: started in processes of their own, alongside the next steps")
             summary = progress.run("stiffness", stiffness, layout)
             parts = progress.run("other parts", other_parts, layout, gears, summary)
+            # the parts' overlap check reads the finished solids with the kernel's serial calls only:
+            # checked in a process of its own from here (the main process is the build's longest path)
+            overlaps_alongside = Alongside.start(overlap_check, parts, layout) if parallel else None
             result = None
             if verdict_alongside is None and sections_alongside is None:
                 checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
@@ -724,7 +727,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside, sections_alongside,
-                                            layout, gears, parts)
+                                            layout, gears, parts, overlaps_alongside)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             result.render_view, result.files, result.figures = render_view, files, drawn
             result.drawings = sheets
@@ -732,7 +735,8 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             progress.run("report", _report_and_manifest, result, work)
             target = output.commit()
         finally:
-            for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside):
+            for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside,
+                          overlaps_alongside):
                 if child is not None:
                     child.close()
     except BaseException:
@@ -784,37 +788,37 @@ def structure_check(parts, layout: Layout):
 
 
 def _collect_checks(verdict: "Alongside | None", sections: "Alongside | None", layout: Layout, gears,
-                    parts) -> tuple[CheckOutcome, float, str]:
-    """The mesh checks from their two processes (``verdict``: :func:`design_verdict`, started when
-    the drive was placed; ``sections``: :func:`mesh_sections`, started when the gear solids were
-    built), each made here if its process is missing or delivered nothing, completed by
-    :func:`_all_checks`; returns (outcome, seconds of checking, a note for the progress line). The
-    parts' overlaps are checked here while the two processes may still be busy."""
+                    parts, overlaps: "Alongside | None" = None) -> tuple[CheckOutcome, float, str]:
+    """The mesh checks from their processes (``verdict``: :func:`design_verdict`, started when the
+    drive was placed; ``sections``: :func:`mesh_sections`, started when the gear solids were built;
+    ``overlaps``: :func:`overlap_check`, started when the other parts were), each made here if its
+    process is missing or delivered nothing, completed by :func:`_all_checks`; returns (outcome,
+    seconds of checking, a note for the progress line)."""
+    busy = 0.0
     t0 = time.perf_counter()
-    overlaps = overlap_check(parts, layout)
-    busy = time.perf_counter() - t0
-    t0 = time.perf_counter()
-    got = [child.result() if child is not None else None for child in (verdict, sections)]
+    got = [child.result() if child is not None else None for child in (verdict, sections, overlaps)]
     waited = time.perf_counter() - t0
     here = []
     values = []
-    for what, fn, args, delivered in (("verdict", design_verdict, (layout,), got[0]),
-                                      ("sections", mesh_sections, (layout, gears), got[1])):
+    for what, child, fn, args, delivered in (("verdict", verdict, design_verdict, (layout,), got[0]),
+                                             ("sections", sections, mesh_sections, (layout, gears), got[1]),
+                                             ("overlaps", overlaps, overlap_check, (parts, layout), got[2])):
         if delivered is None:
             t0 = time.perf_counter()
             values.append(fn(*args))
             busy += time.perf_counter() - t0
-            here.append(what)
+            if child is not None:  # started, and delivered nothing (one never started is simply made here)
+                here.append(what)
         else:
             busy += delivered[0]
             values.append(delivered[1])
     t0 = time.perf_counter()
-    outcome = _all_checks(layout, gears, parts, meshes_outcome(layout, *values), overlaps)
+    outcome = _all_checks(layout, gears, parts, meshes_outcome(layout, *values[:2]), values[2])
     busy += time.perf_counter() - t0
     if here:
         return outcome, busy, f"(the {' and the '.join(here)} of a second process delivered nothing: checked here)"
-    return outcome, busy, (f"(verdict and sections checked in processes of their own alongside the solids and "
-                           f"exports; waited {waited:.2f} s)")
+    return outcome, busy, (f"(verdict, sections and overlaps checked in processes of their own alongside the "
+                           f"solids and exports; waited {waited:.2f} s)")
 
 
 def _import_figure_modules() -> None:
@@ -878,6 +882,9 @@ def _run_in_child(conn, fn, args, parent_pid: int | None = None) -> None:
     """Body of the second process: send ``("ok", seconds, fn(*args))`` or ``("error", 0, text)``."""
     if parent_pid is not None:
         _die_with_parent(parent_pid)  # its own signal dispositions first, then what was held arrives
+    kernel = sys.modules.get("geargen.cad.kernel")  # not imported here if the parent had not (the verdict)
+    if kernel is not None:
+        kernel.forked()  # the parent's kernel thread pool did not come along
     signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT, signal.SIGTERM})  # held by Alongside.start
     try:
         t0 = time.perf_counter()

@@ -232,6 +232,27 @@ def test_a_second_process_that_delivers_nothing_leaves_the_work_to_the_caller():
     assert pl.Alongside.start(_raise).result() is None  # raised: the caller's own run raises it
 
 
+def _ring_volume(outer: float, inner: float, height: float) -> float:
+    from geargen.cad import parts as P
+    from geargen.cad.kernel import volume
+    return volume(P.cylinder(outer, height, inner))  # a parallel boolean (cut) unless in a forked child
+
+
+def test_a_forked_process_runs_the_kernel_on_its_one_thread():
+    """A process forked after the kernel's thread pool started has no pool threads: a parallel
+    boolean there waited for them for ever (the overlap check's process hung on a gear's core). In
+    the child the kernel runs serially, and computes the same solid."""
+    here = _ring_volume(20.0, 8.0, 5.0)  # starts the pool in this process
+    child = pl.Alongside.start(_ring_volume, 20.0, 8.0, 5.0)
+    if child is None:
+        pytest.skip("no fork on this platform")
+    got = child.result(timeout=60.0)  # seconds of a serial cut; hung for ever before
+    assert got is not None
+    # closed form pi/4 (D^2 - d^2) h; the kernel's integration is exact to ~1e-12 for a ring
+    assert got[1] == pytest.approx(here, rel=1e-12)
+    assert here == pytest.approx(math.pi / 4 * (20.0 ** 2 - 8.0 ** 2) * 5.0, rel=1e-9)
+
+
 class _DeliversNothing:
     """A second process that died: its result is None."""
 
@@ -240,9 +261,9 @@ class _DeliversNothing:
 
 
 def test_collected_checks_are_those_of_the_build_in_order():
-    """The parts' overlaps are checked while two processes check the meshes (the verdict, path 2's
-    sections); the collected outcome is the in-order one, from the processes or made here for the
-    one that delivers nothing."""
+    """Three processes check the meshes (the verdict, path 2's sections) and the parts' overlaps; the
+    collected outcome is the in-order one, from the processes or made here for the one that
+    delivers nothing (or was never started)."""
     layout = pl.place(pl.load(DESIGNS["split_pinion"]))
     gears = pl.gear_solids(layout)
     parts = pl.other_parts(layout, gears, pl.stiffness(layout))
@@ -270,6 +291,16 @@ def test_collected_checks_are_those_of_the_build_in_order():
     there, _, note = pl._collect_checks(verdict, sections, layout, gears, parts)
     assert "processes of their own" in note
     assert summary(there) == summary(in_order)
+    verdict = pl.Alongside.start(pl.design_verdict, layout)
+    sections = pl.Alongside.start(pl.mesh_sections, layout, gears)
+    overlaps = pl.Alongside.start(pl.overlap_check, parts, layout)
+    there, _, note = pl._collect_checks(verdict, sections, layout, gears, parts, overlaps)
+    assert "processes of their own" in note
+    assert summary(there) == summary(in_order)
+    lost, _, note = pl._collect_checks(pl.Alongside.start(pl.design_verdict, layout), _DeliversNothing(),
+                                       layout, gears, parts, _DeliversNothing())
+    assert "the sections and the overlaps of a second process delivered nothing" in note
+    assert summary(lost) == summary(in_order)
 
 
 def test_drawings_from_their_own_process_are_those_drawn_here(tmp_path):

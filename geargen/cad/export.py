@@ -45,7 +45,7 @@ from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Shape
 from OCP.XCAFDoc import XCAFDoc_DocumentTool
 
-from geargen.cad.kernel import quiet_kernel
+from geargen.cad.kernel import quiet_kernel, threads_usable
 from geargen.errors import BuildError
 from geargen.outputs import EXPORT_DATE, atomic_path  # noqa: F401 - atomic_path: part of this module's interface
 
@@ -347,7 +347,7 @@ def kernel_triangles(shape, chordal_tolerance: float, angular_tolerance: float, 
     params.Deflection = chordal_tolerance
     params.Angle = angular_tolerance
     params.Relative = False
-    params.InParallel = True
+    params.InParallel = threads_usable()
     BRepMesh_IncrementalMesh(shape, params)
     out = []
     exp = TopExp_Explorer(shape, TopAbs_FACE)

@@ -33,6 +33,23 @@ from geargen.errors import BuildError
 #: edge/vertex tolerance given to the kernel (mm)
 KERNEL_TOLERANCE = 1e-7
 
+#: whether the kernel's parallel algorithms may run in this process: not in one forked from a
+#: process that may have started the kernel's thread pool (its threads are not copied by the fork,
+#: and a parallel boolean or mesh waits for them for ever); :func:`forked` says so in the child
+_threads_usable = True
+
+
+def forked() -> None:
+    """Called in a forked process: from now on the kernel's operations run on this thread alone."""
+    global _threads_usable
+    _threads_usable = False
+
+
+def threads_usable() -> bool:
+    """Whether the kernel's parallel algorithms may run in this process (see :func:`forked`)."""
+    return _threads_usable
+
+
 #: the z axis through the origin (every gear's axis), and the origin of a plane's pcurves
 Z_AXIS = gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(0, 0, 1))
 ORIGIN_2D = gp_Pnt2d(0, 0)
@@ -163,7 +180,7 @@ def boolean(op, args, tools, parallel: bool | None = None, fuzzy: float | None =
     op.SetArguments(a)
     op.SetTools(t)
     if parallel is not None:
-        op.SetRunParallel(parallel)
+        op.SetRunParallel(parallel and _threads_usable)
     if fuzzy is not None:
         op.SetFuzzyValue(fuzzy)
     if glue is not None:
