@@ -228,8 +228,9 @@ def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: 
     parameter, or (``by_length``) the arc length itself (unit speed, within ~1e-6). Raises
     ValueError if ``max_spans`` uniform spans do not reach ``tolerance`` mm.
 
-    ``one_span``: one span of the lowest degree (up to :data:`ONE_SPAN_MAX_DEGREE`) with no more
-    poles than the spans of ``degree`` that reach ``tolerance`` and no larger error, if there is one. A surface
+    ``one_span``: one span of the lowest degree (up to :data:`ONE_SPAN_MAX_DEGREE`, found by
+    bisection) with no more poles than the spans of ``degree`` that reach ``tolerance`` and no larger
+    error, if there is one. A surface
     made of it is one polynomial across its profile: OCCT evaluates it from one cached polynomial,
     where a many-span surface rebuilds its cache (BSplSLib::BuildCache) each time its mesher crosses
     a knot - 20 % of the re-tessellation time of the helical bench gear (bench/bench_step.py).
@@ -256,13 +257,18 @@ def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: 
 
     poles, knots, mults, err = _fit(point, deriv, length, tolerance, degree, max_spans)
     if one_span and len(knots) > 2:
-        for high in range(degree + 1, min(ONE_SPAN_MAX_DEGREE, len(poles) - 1) + 1):
-            try:  # no more poles and no larger error than the spans of ``degree``
-                poles, knots, mults, err = _fit(point, deriv, length, err, high, 1)
+        # bisect on the degree (the error falls as it rises): no more poles and no larger error
+        # than the spans of ``degree``
+        low, high, found = degree + 1, min(ONE_SPAN_MAX_DEGREE, len(poles) - 1), None
+        while low <= high:
+            mid = (low + high) // 2
+            try:
+                found = mid, _fit(point, deriv, length, err, mid, 1)
+                high = mid - 1
             except ValueError:
-                continue
-            degree = high
-            break
+                low = mid + 1
+        if found is not None:
+            degree, (poles, knots, mults, err) = found
     return SplineFit(degree, knots, mults, poles, err, length, (t0, t1), mapped is not None)
 
 
