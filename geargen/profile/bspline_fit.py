@@ -38,8 +38,8 @@ from geargen.profile.segments import InvoluteCurve
 
 #: default B-spline degree of the fitted curves (fewest poles at the gear tolerances, module docstring)
 FIT_DEGREE = 7
-#: the highest degree of a one-span fit (:func:`fit_segment` ``one_span``): well-conditioned Bernstein
-#: basis, and what CAD systems read without splitting the curve
+#: the highest degree of a one-span fit (:func:`fit_segment` ``one_span``): its least-squares problem
+#: stays well conditioned, and it is well inside OCCT's limit of 25 (Geom_BSplineCurve::MaxDegree)
 ONE_SPAN_MAX_DEGREE = 15
 
 
