@@ -141,22 +141,26 @@ def write_profile_dxf(profile, path, tolerance: float = SPLINE_TOLERANCE_MM) -> 
         entities.append(f"  0\n{kind}\n  5\n{handle}\n330\n{frame.owner}\n100\nAcDbEntity\n  8\n{layer}\n{body}")
         counts[kind] = counts.get(kind, 0) + 1
         geometry.update(f"{kind} {layer}".encode())
-        geometry.update(np.asarray(numbers, dtype=float).tobytes())
+        geometry.update(np.asarray(numbers, dtype=float).tobytes())  # the numbers drawn, as doubles
 
     def arc(r, a0, a1, layer):
         r, d0, d1 = float(r * s), math.degrees(a0), math.degrees(a1)
         drawn("ARC", layer, (r, d0, d1), f"100\nAcDbCircle\n{_CENTRE} 40\n{r!r}\n100\nAcDbArc\n 50\n{d0!r}\n 51\n{d1!r}\n")
 
+    knots_text: dict[int, tuple[str, np.ndarray]] = {}  # every tooth's splines share tooth 0's knots
     for e in outline_entities(profile, tolerance):
         if e[0] == "arc":
             arc(e[1], e[2], e[3], OUTLINE_LAYER)
         else:
             poles = np.asarray(e[1], dtype=float) * s
-            knots = [float(t) * s for t in e[2]]  # the curve's parameter is its length scale
-            body = (f"100\nAcDbSpline\n 70\n8\n 71\n3\n 72\n{len(knots)}\n 73\n{len(poles)}\n 74\n0\n"  # 8: planar
-                    + "".join([f" 40\n{t!r}\n" for t in knots])
-                    + "".join([f" 10\n{x!r}\n 20\n{y!r}\n 30\n0.0\n" for x, y in poles.tolist()]))
-            drawn("SPLINE", OUTLINE_LAYER, (*poles.ravel(), *(np.asarray(e[2]) * s)), body)
+            if id(e[2]) not in knots_text:
+                knots = [float(t) * s for t in e[2]]  # the curve's parameter is its length scale
+                knots_text[id(e[2])] = ((f"100\nAcDbSpline\n 70\n8\n 71\n3\n 72\n{len(knots)}\n 73\n{len(poles)}\n"
+                                         " 74\n0\n") + (" 40\n%r\n" * len(knots)) % tuple(knots),  # 70: 8 planar
+                                        np.asarray(e[2]) * s)
+            head, knots = knots_text[id(e[2])]
+            body = head + (" 10\n%r\n 20\n%r\n 30\n0.0\n" * len(poles)) % tuple(poles.ravel().tolist())
+            drawn("SPLINE", OUTLINE_LAYER, np.concatenate([poles.ravel(), knots]), body)
     for e in bore_entities(spec.hub):
         if e[0] == "circle":
             r = float(e[1] * s)
