@@ -177,8 +177,18 @@ def _choose(size, anchor, frame, taken, circles, segments, regions, unit_per_pt:
     for dx, dy, ring in _candidates():
         box = _box_at(anchor, size, dx * unit_per_pt, dy * unit_per_pt, pad)
         outside = not (box[0] >= frame[0] and box[1] >= frame[1] and box[2] <= frame[2] and box[3] <= frame[3])
-        hard = _overlaps_any(box, taken) + _circles_crossing(box, circles) + outside
-        soft = _segments_crossing(box, segments) + _overlaps_any(box, regions)
+        # the counts are added cheapest first; a candidate already worse than the best is not counted on
+        # (every count is >= 0 and the rings come in growing order: it could not win)
+        hard = _overlaps_any(box, taken) + outside
+        if best is not None and hard > best[0][0]:
+            continue
+        hard += _circles_crossing(box, circles)
+        if best is not None and hard > best[0][0]:
+            continue
+        soft = _overlaps_any(box, regions)
+        if best is not None and (hard, soft) >= best[0][:2]:  # at best a tie, at a ring no nearer
+            continue
+        soft += _segments_crossing(box, segments)
         score = (hard, soft, ring)
         if best is None or score < best[0]:
             best = (score, box, dx, dy, ring)
