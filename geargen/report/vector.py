@@ -59,10 +59,14 @@ class Face:
         self.descent = -self.font.descent / self.upm  # and below
         self.bbox = self.font.bbox
         self._advance: dict[str, float] = {}
+        self._units: dict[str, int] = {}
         self._procs: dict[str, bytes] = {}
 
     def advance_units(self, ch: str) -> int:
-        return self.font.advance(self.font.glyph_id(ord(ch)))
+        units = self._units.get(ch)
+        if units is None:
+            units = self._units[ch] = self.font.advance(self.font.glyph_id(ord(ch)))
+        return units
 
     def width_em(self, text: str) -> float:
         adv = self._advance
@@ -300,7 +304,7 @@ def pdf_bytes(drawing: Drawing) -> bytes:
         else:
             share = _ANCHOR_SHARE[item.anchor]
             width = face(item.weight).width_em(item.text) * item.size * MM_PER_PT
-            c, s = np.cos(np.radians(item.rotation)), np.sin(np.radians(item.rotation))
+            c, s = (np.cos(np.radians(item.rotation)), np.sin(np.radians(item.rotation))) if item.rotation else (1.0, 0.0)
             x, y = item.x - c * share * width, item.y - s * share * width  # the baseline's start
             size = item.size * MM_PER_PT * UNITS_PER_MM
             runs = fonts.encode(item.weight, item.text)
