@@ -11,6 +11,13 @@ moved by other load on the machine, unlike its wall time. ``--root`` measures an
 (e.g. main's, for the "before" numbers). Median of N (default 3).
 
 Target (issue 28): the robot joint's drawings step <= 0.6 s.
+
+Measured 2026-11-28 10:17 UTC (session 15, load 7-14, alternated runs, medians of 3), main b589202 ->
+branch drawcpu: robot_joint 0.53-0.55 -> 0.15-0.17, metric_dual_pinion 0.79-0.81 -> 0.25-0.28,
+planetary_dual_pinion 0.73-0.74 -> 0.21-0.24, c_axis 0.53-0.56 -> 0.16, axial_preload 0.45-0.50 ->
+0.13-0.14: the profile DXF written without ezdxf (geargen.report.dxf, its frame from ezdxf), the font
+read without fontTools (geargen.report.truetype), each tooth's outline points computed once for all
+teeth (profile.segments.sample_outline), the label placer counting a ring of candidates at once.
 """
 
 import argparse

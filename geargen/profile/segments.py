@@ -78,8 +78,12 @@ class Segment:
     tooth: int = 0
 
     def _place(self, xy: np.ndarray) -> np.ndarray:
-        if self.mirrored:
-            xy = xy * np.array([1.0, -1.0])
+        return self._turn(self._mirror(xy))
+
+    def _mirror(self, xy: np.ndarray) -> np.ndarray:
+        return xy * np.array([1.0, -1.0]) if self.mirrored else xy
+
+    def _turn(self, xy: np.ndarray) -> np.ndarray:
         if self.rotation:
             c, s = math.cos(self.rotation), math.sin(self.rotation)
             xy = xy @ np.array([[c, s], [-s, c]])
@@ -152,10 +156,26 @@ def sample_outline(segments, max_step: float) -> np.ndarray:
 
     The chain's joints appear once (the end of one segment is the start of the next).
     """
+    unturned: dict[tuple, np.ndarray] = {}  # a piece's points before its turn: once for all the teeth
+    counts: dict[tuple, int] = {}  # a piece's point count, where its turned copies' cannot differ
+
+    def points(s: Segment, n: int) -> np.ndarray:  # s.sample(n), the same arithmetic
+        key = (id(s.curve), s.t0, s.t1, s.mirrored, n)
+        xy = unturned.get(key)
+        if xy is None:
+            xy = unturned[key] = s._mirror(s.curve.point(s.parameters(n)))
+        return s._turn(xy)
+
     parts = []
     for s in segments:
-        t = s.parameters(9)
-        chord = float(np.sum(np.linalg.norm(np.diff(s.point(t), axis=0), axis=1)))
-        n = max(2, int(math.ceil(chord / max_step)) + 1)
-        parts.append(s.sample(n)[:-1])
+        piece = (id(s.curve), s.t0, s.t1, s.mirrored)
+        n = counts.get(piece)
+        if n is None:
+            steps = float(np.sum(np.linalg.norm(np.diff(points(s, 9), axis=0), axis=1))) / max_step
+            n = max(2, int(math.ceil(steps)) + 1)
+            # a turn changes the chord by rounding only (~1e-15 of it): the count holds for every turned
+            # copy unless the chord is that close to a whole number of steps (then each copy counts its own)
+            if abs(steps - round(steps)) > 1e-9 * max(1.0, steps):
+                counts[piece] = n
+        parts.append(points(s, n)[:-1])
     return np.concatenate(parts)

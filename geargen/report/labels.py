@@ -63,13 +63,18 @@ def segment_crosses_box(p, q, box) -> bool:
 def _segments_crossing(box, segments: np.ndarray) -> int:
     """How many of ``segments`` ``(k, 4)`` (x0, y0, x1, y1) meet ``box``: :func:`segment_crosses_box`
     on all of them at once (the same arithmetic, so the same answers)."""
+    return int(_segments_crossing_boxes(np.array([box], dtype=float), segments)[0])
+
+
+def _segments_crossing_boxes(boxes: np.ndarray, segments: np.ndarray) -> np.ndarray:
+    """:func:`_segments_crossing` for each of ``boxes`` ``(m, 4)``: counts ``(m,)``."""
     if not len(segments):
-        return 0
-    x0, y0, x1, y1 = box
+        return np.zeros(len(boxes), dtype=np.int64)
     px, py = segments[:, 0], segments[:, 1]
-    t0, t1 = np.zeros(len(segments)), np.ones(len(segments))
-    meets = np.ones(len(segments), dtype=bool)
-    for d, lo, hi, s in ((segments[:, 2] - px, x0, x1, px), (segments[:, 3] - py, y0, y1, py)):
+    t0, t1 = np.zeros((len(boxes), len(segments))), np.ones((len(boxes), len(segments)))
+    meets = np.ones((len(boxes), len(segments)), dtype=bool)
+    for d, lo, hi, s in ((segments[:, 2] - px, boxes[:, 0:1], boxes[:, 2:3], px),
+                         (segments[:, 3] - py, boxes[:, 1:2], boxes[:, 3:4], py)):
         parallel = np.abs(d) < 1e-12
         meets &= ~(parallel & ((s < lo) | (s > hi)))
         step = np.where(parallel, 1.0, d)
@@ -77,7 +82,7 @@ def _segments_crossing(box, segments: np.ndarray) -> int:
         t0 = np.where(parallel, t0, np.maximum(t0, np.minimum(a, b)))
         t1 = np.where(parallel, t1, np.minimum(t1, np.maximum(a, b)))
         meets &= ~(t0 > t1)
-    return int(np.count_nonzero(meets))
+    return np.count_nonzero(meets, axis=1)
 
 
 def boxes_overlap(a, b) -> bool:
@@ -111,20 +116,32 @@ def _box_at(anchor_px, size, dx_px: float, dy_px: float, pad: float = PAD_PX) ->
 
 
 def _overlaps_any(box, boxes: np.ndarray) -> int:
-    if not len(boxes):
-        return 0
-    return int(np.count_nonzero((boxes[:, 0] < box[2]) & (box[0] < boxes[:, 2]) &
-                                (boxes[:, 1] < box[3]) & (box[1] < boxes[:, 3])))
+    return int(_overlaps_boxes(np.array([box], dtype=float), boxes)[0])
+
+
+def _overlaps_boxes(boxes: np.ndarray, others: np.ndarray) -> np.ndarray:
+    """How many of ``others`` ``(k, 4)`` each of ``boxes`` ``(m, 4)`` overlaps: counts ``(m,)``."""
+    if not len(others):
+        return np.zeros(len(boxes), dtype=np.int64)
+    b = boxes[:, :, None]
+    return np.count_nonzero((others[:, 0] < b[:, 2]) & (b[:, 0] < others[:, 2]) &
+                            (others[:, 1] < b[:, 3]) & (b[:, 1] < others[:, 3]), axis=1)
 
 
 def _circles_crossing(box, circles: np.ndarray) -> int:
     """How many of ``circles`` ``(k, 3)`` (x, y, r) have their outline through ``box``."""
+    return int(_circles_crossing_boxes(np.array([box], dtype=float), circles)[0])
+
+
+def _circles_crossing_boxes(boxes: np.ndarray, circles: np.ndarray) -> np.ndarray:
+    """:func:`_circles_crossing` for each of ``boxes`` ``(m, 4)``: counts ``(m,)``."""
     if not len(circles):
-        return 0
+        return np.zeros(len(boxes), dtype=np.int64)
     cx, cy, r = circles[:, 0], circles[:, 1], circles[:, 2]
-    near = np.hypot(np.clip(cx, box[0], box[2]) - cx, np.clip(cy, box[1], box[3]) - cy)
-    far = np.max([np.hypot(x - cx, y - cy) for x in (box[0], box[2]) for y in (box[1], box[3])], axis=0)
-    return int(np.count_nonzero((near <= r) & (r <= far)))
+    b = boxes[:, :, None]
+    near = np.hypot(np.clip(cx, b[:, 0], b[:, 2]) - cx, np.clip(cy, b[:, 1], b[:, 3]) - cy)
+    far = np.max([np.hypot(x - cx, y - cy) for x in (b[:, 0], b[:, 2]) for y in (b[:, 1], b[:, 3])], axis=0)
+    return np.count_nonzero((near <= r) & (r <= far), axis=1)
 
 
 def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | None = None,
@@ -172,18 +189,27 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
 def _choose(size, anchor, frame, taken, circles, segments, regions, unit_per_pt: float, pad: float):
     """The first free candidate position of a text of ``size`` about ``anchor`` (all in one unit: display
     px or sheet mm, ``unit_per_pt`` of them a point), else the one with the fewest conflicts: returns
-    its box, offset (pt) and ring."""
+    its box, offset (pt) and ring. The candidates are counted a ring at a time (the centre, then each
+    ring's directions), up to the ring where one is free."""
     best = None
-    for dx, dy, ring in _candidates():
-        box = _box_at(anchor, size, dx * unit_per_pt, dy * unit_per_pt, pad)
-        outside = not (box[0] >= frame[0] and box[1] >= frame[1] and box[2] <= frame[2] and box[3] <= frame[3])
-        hard = _overlaps_any(box, taken) + _circles_crossing(box, circles) + outside
-        soft = _segments_crossing(box, segments) + _overlaps_any(box, regions)
-        score = (hard, soft, ring)
-        if best is None or score < best[0]:
-            best = (score, box, dx, dy, ring)
-        if score[:2] == (0, 0):
-            break
+    candidates = list(_candidates())
+    rings = [c[2] for c in candidates]
+    start = 0
+    while start < len(candidates):
+        end = rings.index(rings[start] + 1) if rings[start] + 1 in rings else len(candidates)
+        ring = candidates[start:end]
+        boxes = np.array([_box_at(anchor, size, dx * unit_per_pt, dy * unit_per_pt, pad) for dx, dy, _ in ring])
+        outside = ~((boxes[:, 0] >= frame[0]) & (boxes[:, 1] >= frame[1]) & (boxes[:, 2] <= frame[2]) &
+                    (boxes[:, 3] <= frame[3]))
+        hard = _overlaps_boxes(boxes, taken) + _circles_crossing_boxes(boxes, circles) + outside
+        soft = _segments_crossing_boxes(boxes, segments) + _overlaps_boxes(boxes, regions)
+        for k, (dx, dy, r) in enumerate(ring):  # in order: the first of the fewest conflicts
+            score = (int(hard[k]), int(soft[k]), r)
+            if best is None or score < best[0]:
+                best = (score, tuple(float(v) for v in boxes[k]), dx, dy, r)
+            if score[:2] == (0, 0):
+                return best[1:]
+        start = end
     return best[1:]
 
 

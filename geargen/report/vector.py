@@ -6,15 +6,13 @@ pt, weight, grey, alignment point, rotation, an optional SVG group id). :func:`s
 :func:`pdf_bytes` encode the same record, so the two files are one drawing.
 
 Text is DejaVu Sans (regular and bold), the font the SVG names and a browser renders: its advance
-widths (unhinted, read once per glyph from the font file with fontTools) lay the text out, and the
+widths (unhinted, read once per glyph from the font file: geargen.report.truetype) lay the text out, and the
 PDF draws the very glyphs as Type 3 fonts (each glyph's outline once per process) with a ToUnicode
 map, so a PDF reader extracts every character (±, °, µ, Greek, ⌀, ↗) and the text sits where the
 SVG's does. Both encodings are deterministic (no dates, no ids from memory).
 """
 
 from __future__ import annotations
-
-import io
 
 import zlib
 from dataclasses import dataclass, field
@@ -49,30 +47,26 @@ def _font_path(weight: str) -> Path:
 
 class Face:
     """One weight of the drawing font: advance widths (em) per character, cached, and each glyph's
-    outline as a PDF path in font units (for the PDF's Type 3 font)."""
+    outline as a PDF path in font units (for the PDF's Type 3 font), read by
+    :class:`geargen.report.truetype.TrueTypeFont`."""
 
     def __init__(self, weight: str):
-        from fontTools.ttLib import TTFont
+        from geargen.report.truetype import TrueTypeFont
 
-        # read from memory: a lazy font on the file would hold it open for the process's life
-        self.font = TTFont(io.BytesIO(_font_path(weight).read_bytes()), lazy=True)
-        self.cmap = self.font.getBestCmap()
-        self.upm = self.font["head"].unitsPerEm
-        hhea = self.font["hhea"]
-        self.ascent = hhea.ascent / self.upm  # em: what a browser's text box reaches above the baseline
-        self.descent = -hhea.descent / self.upm  # and below
-        head = self.font["head"]
-        self.bbox = (head.xMin, head.yMin, head.xMax, head.yMax)
-        self._metrics = self.font["hmtx"].metrics
+        self.font = TrueTypeFont(_font_path(weight).read_bytes())
+        self.upm = self.font.units_per_em
+        self.ascent = self.font.ascent / self.upm  # em: what a browser's text box reaches above the baseline
+        self.descent = -self.font.descent / self.upm  # and below
+        self.bbox = self.font.bbox
         self._advance: dict[str, float] = {}
+        self._units: dict[str, int] = {}
         self._procs: dict[str, bytes] = {}
-        self._glyphs = None
-
-    def glyph_name(self, ch: str) -> str:
-        return self.cmap.get(ord(ch), ".notdef")
 
     def advance_units(self, ch: str) -> int:
-        return self._metrics[self.glyph_name(ch)][0]
+        units = self._units.get(ch)
+        if units is None:
+            units = self._units[ch] = self.font.advance(self.font.glyph_id(ord(ch)))
+        return units
 
     def width_em(self, text: str) -> float:
         adv = self._advance
@@ -89,40 +83,14 @@ class Face:
         deflated (a PDF stream's data; once per glyph and process)."""
         proc = self._procs.get(ch)
         if proc is None:
-            if self._glyphs is None:
-                self._glyphs = self.font.getGlyphSet()
-            pen = _pen_class()(self._glyphs)
-            self._glyphs[self.glyph_name(ch)].draw(pen)
+            from geargen.report.truetype import OutlinePen
+
+            pen = OutlinePen()
+            self.font.draw(self.font.glyph_id(ord(ch)), pen)
             body = " ".join(pen.ops)
             proc = self._procs[ch] = zlib.compress(
                 (f"{self.advance_units(ch)} 0 d0\n" + (body + " f" if body else "")).encode(), 6)
         return proc
-
-
-@lru_cache(maxsize=None)
-def _pen_class():
-    from fontTools.pens.basePen import BasePen
-
-    class Pen(BasePen):
-        """A glyph outline as PDF path operators (quadratic segments raised to cubic by BasePen)."""
-
-        def __init__(self, glyphs):
-            super().__init__(glyphs)
-            self.ops: list[str] = []
-
-        def _moveTo(self, p):
-            self.ops.append(f"{p[0]:g} {p[1]:g} m")
-
-        def _lineTo(self, p):
-            self.ops.append(f"{p[0]:g} {p[1]:g} l")
-
-        def _curveToOne(self, a, b, c):
-            self.ops.append(" ".join(f"{v:.1f}" for v in (*a, *b, *c)) + " c")
-
-        def _closePath(self):
-            self.ops.append("h")
-
-    return Pen
 
 
 @lru_cache(maxsize=None)
@@ -336,7 +304,7 @@ def pdf_bytes(drawing: Drawing) -> bytes:
         else:
             share = _ANCHOR_SHARE[item.anchor]
             width = face(item.weight).width_em(item.text) * item.size * MM_PER_PT
-            c, s = np.cos(np.radians(item.rotation)), np.sin(np.radians(item.rotation))
+            c, s = (np.cos(np.radians(item.rotation)), np.sin(np.radians(item.rotation))) if item.rotation else (1.0, 0.0)
             x, y = item.x - c * share * width, item.y - s * share * width  # the baseline's start
             size = item.size * MM_PER_PT * UNITS_PER_MM
             runs = fonts.encode(item.weight, item.text)
