@@ -60,7 +60,11 @@ def view_figure(view, length_unit: str = "mm", labels: list[tuple[str, str]] | N
     FigureCanvasAgg(fig)
     ax = fig.add_axes((0, 0, 1, h / (h + (0.3 * dpi if view.title else 0.0))))
     left, right, bottom, top = view.extent
-    ax.imshow(view.image, extent=view.extent, interpolation="nearest", origin="upper")
+    # RGBA with alpha 1 is what matplotlib makes of an RGB image at every draw (PNG, then SVG): made once here
+    rgba = np.empty((h, w, 4))
+    rgba[..., :3] = view.image
+    rgba[..., 3] = 1.0
+    ax.imshow(rgba, extent=view.extent, interpolation="nearest", origin="upper")
     ax.set_xlim(left, right)
     ax.set_ylim(bottom, top)
     ax.set_aspect("equal")
