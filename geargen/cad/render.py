@@ -272,9 +272,10 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         pixels_hit = p[starts]
         total_keep = np.exp(np.add.reduceat(log_keep, starts))
         group = np.repeat(np.arange(starts.size), sizes)  # each fragment's pixel among the pixels hit
-        blended = np.column_stack([np.bincount(group, channel[t] * weight, minlength=starts.size)
-                                   for channel in rgb.T])
-        image[pixels_hit] = image[pixels_hit] * total_keep[:, None] + blended
+        flat = image.reshape(-1)  # the image's channels addressed flat: faster than its rows by index
+        for k, channel in enumerate(rgb.T):
+            at = pixels_hit * 3 + k
+            flat[at] = flat[at] * total_keep + np.bincount(group, channel[t] * weight, minlength=starts.size)
         # where no opaque part is seen, the pixel shows its nearest translucent one (sorted first)
         bare = part_index[pixels_hit] < 0
         part_index[pixels_hit[bare]] = part[t[starts][bare]]
