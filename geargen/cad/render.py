@@ -249,6 +249,7 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         t = np.concatenate([c[0] for c in chunks])
         p = np.concatenate([c[1] for c in chunks])
         z = np.concatenate([c[2] for c in chunks])
+    if ids.size and t.size:  # none when the translucent parts lie wholly behind opaque ones
         span = max(float(z.max() - z.min()), 1e-12)
         order = np.argsort(p + 0.5 * (z.max() - z) / span)  # by pixel, nearest first (one float key)
         t, p = t[order], p[order]
