@@ -14,6 +14,12 @@ shared: compare trees with ``--root``, e.g. ``--root /work/main``, in alternated
 
 with matplotlib imported before the clock starts (its import, ~0.3-1 s, is paid once by the
 report step whatever it draws). Medians of N runs, best in brackets.
+
+Measured (session 15, 2026-11-28 10:30 UTC, load 8-12 on 2 cores, ``--repeat 2`` twice, main and the
+rendercpu branch alternated; processor s, medians): robot_joint render 0.505 / 0.563 -> 0.384 / 0.390,
+figure 0.095 / 0.075 -> 0.071 / 0.071, save 0.208 / 0.175 -> 0.169 / 0.164, layout 0.202 / 0.174 ->
+0.150 / 0.154; planetary_dual_pinion render 0.516 / 0.497 -> 0.543 / 0.493 (the tessellation dominates
+and varies), layout 0.262 / 0.253 -> 0.212 / 0.205. Every PNG and SVG the same bytes (bench/diff_builds.py).
 """
 
 import statistics
