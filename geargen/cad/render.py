@@ -151,6 +151,13 @@ def _fragments(xy: np.ndarray, depth: np.ndarray, width: int, height: int):
     gx = ((zb - za) * (c[:, 1] - a[:, 1]) - (zc - za) * (b[:, 1] - a[:, 1])) / area
     gy = ((zc - za) * (b[:, 0] - a[:, 0]) - (zb - za) * (c[:, 0] - a[:, 0])) / area
     z0 = za - gx * a[:, 0] - gy * a[:, 1]
+    # each edge's x at height y is x0 + (y - y0) * dx / dy, the products per triangle computed once
+    x0, y0 = xy[:, :, 0], xy[:, :, 1]
+    dx = np.roll(x0, -1, axis=1) - x0
+    dy = np.roll(y0, -1, axis=1) - y0
+    y_min = np.minimum(y0, np.roll(y0, -1, axis=1))
+    y_max = np.maximum(y0, np.roll(y0, -1, axis=1))
+    dy_safe = np.where(dy != 0, dy, 1.0)
     ends = np.cumsum(rows)
     start = 0
     while start < live.size:
@@ -159,24 +166,24 @@ def _fragments(xy: np.ndarray, depth: np.ndarray, width: int, height: int):
         stop = max(int(np.searchsorted(ends, (ends[start - 1] if start else 0) + budget, side="right")), start + 1)
         k = np.arange(start, stop)
         t = np.repeat(k, rows[k])
-        y = row_lo[t] + (np.arange(t.size) - np.repeat(np.cumsum(rows[k]) - rows[k], rows[k])) + 0.5
+        y = (np.arange(t.size) - np.repeat(np.cumsum(rows[k]) - rows[k] - row_lo[k], rows[k])) + 0.5
         lo = np.full(t.size, np.inf)
         hi = np.full(t.size, -np.inf)
-        for i, j in ((0, 1), (1, 2), (2, 0)):
-            p, q = xy[t, i], xy[t, j]
-            dy = q[:, 1] - p[:, 1]
-            crosses = (np.minimum(p[:, 1], q[:, 1]) <= y) & (y <= np.maximum(p[:, 1], q[:, 1])) & (dy != 0)
-            x = p[:, 0] + (y - p[:, 1]) * (q[:, 0] - p[:, 0]) / np.where(dy != 0, dy, 1.0)
-            lo = np.where(crosses, np.minimum(lo, x), lo)
-            hi = np.where(crosses, np.maximum(hi, x), hi)
+        for i in range(3):
+            crosses = (y_min[t, i] <= y) & (y <= y_max[t, i]) & (dy[t, i] != 0)
+            x = x0[t, i] + (y - y0[t, i]) * dx[t, i] / dy_safe[t, i]
+            np.minimum(lo, x, out=lo, where=crosses)
+            np.maximum(hi, x, out=hi, where=crosses)
         c_lo = np.clip(np.ceil(lo - 0.5 - 1e-9), 0, width).astype(np.int64)
         c_hi = np.clip(np.floor(hi - 0.5 + 1e-9), -1, width - 1).astype(np.int64)
         n = np.maximum(c_hi - c_lo + 1, 0)
         f_t = np.repeat(t, n)
-        col = np.repeat(c_lo, n) + (np.arange(f_t.size) - np.repeat(np.cumsum(n) - n, n))
-        f_y = np.repeat(y, n)
-        z = gx[f_t] * (col + 0.5) + gy[f_t] * f_y + z0[f_t]
-        yield live[f_t], (f_y - 0.5).astype(np.int64) * width + col, z
+        col = np.arange(f_t.size) - np.repeat(np.cumsum(n) - n - c_lo, n)
+        # per row what does not change along it; z summed in the same order as gx x + gy y + z0
+        z = gx[f_t] * (col + 0.5)
+        z += np.repeat(gy[t] * y, n)
+        z += z0[f_t]
+        yield live[f_t], np.repeat((y - 0.5).astype(np.int64) * width, n) + col, z
         start = stop
 
 
@@ -233,34 +240,46 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
 
     ids = np.flatnonzero(~opaque)
     if ids.size:
-        chunks = [(ids[t], p, z) for t, p, z in _fragments(pix[ids], depth[ids], width, height)]
+        # a translucent surface lying on an opaque one (a housing's bore round its bearing) is
+        # behind it: without half a pixel of margin, rounding would show it on scattered pixels
+        chunks = []
+        for t, p, z in _fragments(pix[ids], depth[ids], width, height):
+            visible = z > zbuf[p] + 0.5 / scale
+            chunks.append((ids[t[visible]], p[visible], z[visible]))
         t = np.concatenate([c[0] for c in chunks])
         p = np.concatenate([c[1] for c in chunks])
         z = np.concatenate([c[2] for c in chunks])
-        # a translucent surface lying on an opaque one (a housing's bore round its bearing) is
-        # behind it: without half a pixel of margin, rounding would show it on scattered pixels
-        visible = z > zbuf[p] + 0.5 / scale
-        t, p, z = t[visible], p[visible], z[visible]
+    if ids.size and t.size:  # none when the translucent parts lie wholly behind opaque ones
         span = max(float(z.max() - z.min()), 1e-12)
         order = np.argsort(p + 0.5 * (z.max() - z) / span)  # by pixel, nearest first (one float key)
         t, p = t[order], p[order]
         # "over" from far to near, in closed form: each layer weighs alpha times the
         # transmittance of the layers in front of it; the background keeps the product of all
-        log_keep = np.log1p(-alpha[t])
+        log_keep_of = np.zeros(alpha.size)  # each translucent triangle's log(1 - alpha)
+        log_keep_of[ids] = np.log1p(-alpha[ids])
+        log_keep = log_keep_of[t]
         run = np.cumsum(log_keep)
-        head = np.ones(p.size, bool)
-        head[1:] = p[1:] != p[:-1]
-        group_start = np.maximum.accumulate(np.where(head, np.arange(p.size), 0))
-        before = run - log_keep - np.where(group_start > 0, run[group_start - 1], 0.0)
-        weight = alpha[t] * np.exp(before)
-        pixels_hit = p[head]
-        total_keep = np.exp(np.add.reduceat(log_keep, np.flatnonzero(head)))
-        blended = np.column_stack([np.bincount(p, rgb[t, k] * weight, minlength=height * width)[pixels_hit]
-                                   for k in range(3)])
-        image[pixels_hit] = image[pixels_hit] * total_keep[:, None] + blended
+        head = np.empty(p.size, bool)
+        head[0] = True
+        np.not_equal(p[1:], p[:-1], out=head[1:])
+        starts = np.flatnonzero(head)
+        sizes = np.diff(starts, append=p.size)
+        run_before = np.zeros(starts.size)
+        run_before[1:] = run[starts[1:] - 1]
+        run -= log_keep
+        run -= np.repeat(run_before, sizes)
+        weight = np.exp(run, out=run)
+        weight *= alpha[t]
+        pixels_hit = p[starts]
+        total_keep = np.exp(np.add.reduceat(log_keep, starts))
+        group = np.repeat(np.arange(starts.size), sizes)  # each fragment's pixel among the pixels hit
+        flat = image.reshape(-1)  # the image's channels addressed flat: faster than its rows by index
+        for k, channel in enumerate(rgb.T):
+            at = pixels_hit * 3 + k
+            flat[at] = flat[at] * total_keep + np.bincount(group, channel[t] * weight, minlength=starts.size)
         # where no opaque part is seen, the pixel shows its nearest translucent one (sorted first)
         bare = part_index[pixels_hit] < 0
-        part_index[pixels_hit[bare]] = part[t[head][bare]]
+        part_index[pixels_hit[bare]] = part[t[starts][bare]]
     right = left + width / scale
     bottom = top - height / scale
     return RenderedView(image.reshape(height, width, 3), part_index.reshape(height, width), names, colours,

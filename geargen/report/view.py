@@ -60,7 +60,13 @@ def view_figure(view, length_unit: str = "mm", labels: list[tuple[str, str]] | N
     FigureCanvasAgg(fig)
     ax = fig.add_axes((0, 0, 1, h / (h + (0.3 * dpi if view.title else 0.0))))
     left, right, bottom, top = view.extent
-    ax.imshow(view.image, extent=view.extent, interpolation="nearest", origin="upper")
+    # the picture as the bytes matplotlib makes of a float RGB image at each draw (PNG, then SVG), made
+    # once: 8-bit RGBA, alpha 255, each channel truncated as matplotlib truncates (value * 255); it
+    # resamples 8-bit images as float32 k / 255, which gives back the same k (every k of 0..255)
+    rgba = np.empty((h, w, 4), np.uint8)
+    rgba[..., :3] = view.image * 255
+    rgba[..., 3] = 255
+    ax.imshow(rgba, extent=view.extent, interpolation="nearest", origin="upper")
     ax.set_xlim(left, right)
     ax.set_ylim(bottom, top)
     ax.set_aspect("equal")

@@ -160,6 +160,21 @@ def test_render_blends_a_translucent_part_over_what_is_behind_it():
     assert np.all(view.part_index[60:140, 60:140] == 0)
 
 
+def test_render_of_a_translucent_part_wholly_behind_an_opaque_one_shows_the_opaque_one():
+    """A reference body hidden behind an opaque plate leaves no fragment to blend: the picture is
+    the plate alone (the rasteriser raised on the empty blend before)."""
+    from geargen.cad.render import rasterise
+    square = np.array([[(-50, -50, 0), (50, -50, 0), (50, 50, 0)], [(-50, -50, 0), (50, 50, 0), (-50, 50, 0)]], float)
+    view = rasterise([("plate", square + [0, 0, 10], (1.0, 0.0, 0.0, 1.0)), ("glass", 0.5 * square, (0.0, 0.0, 1.0, 0.35))],
+                     (0.0, 90.0 - 1e-6), (200, 200))
+    shade = 0.35 + 0.65 * abs(np.array([0, 0, 1.0]) @ (view.basis.T @ np.array([-0.35, 0.45, 1.0])) /
+                               np.linalg.norm([-0.35, 0.45, 1.0]))
+    inner = view.image[20:180, 20:180].reshape(-1, 3)
+    # the plate's flat shade exactly: nothing of the blue glass is added (1e-12: rounding of the shade only)
+    np.testing.assert_allclose(inner, np.tile([shade, 0.0, 0.0], (len(inner), 1)), atol=1e-12)
+    assert np.all(view.part_index[20:180, 20:180] == 0)
+
+
 @pytest.mark.slow
 def test_render_of_the_split_pinion_shows_its_output_bearing_whole(built_assemblies):
     """The artefact the issue reported, on the shipped design's exported meshes: the output
