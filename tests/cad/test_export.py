@@ -161,3 +161,17 @@ def test_a_solid_placed_twice_is_meshed_once_into_the_same_triangles(helical21, 
     # another tolerance is another mesh
     meshes.triangles(helical21, 4e-3)
     assert len(calls) == 2
+
+
+def test_the_step_writer_skips_the_kernels_model_check_and_writes_the_same_bytes(helical21, tmp_path, monkeypatch):
+    """The kernel's check of every entity (which nothing written reads) is marked done before the
+    transfer: the model ends up without its results, and the file is byte for byte the one a writer
+    that checks writes."""
+    writers = []
+    skip_check = export.unchecked
+    monkeypatch.setattr(export, "unchecked", lambda writer: writers.append(skip_check(writer)) or writer)
+    fast = export_step(helical21, tmp_path / "fast.step").path.read_bytes()
+    monkeypatch.setattr(export, "unchecked", lambda writer: writers.append(writer) or writer)
+    checked = export_step(helical21, tmp_path / "checked.step").path.read_bytes()
+    assert [w.ChangeWriter().WS().Model().HasSemanticChecks() for w in writers] == [False, True]
+    assert fast == checked
