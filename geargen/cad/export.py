@@ -20,7 +20,9 @@
 
 from __future__ import annotations
 
+import itertools
 import json
+import operator
 import re
 import time
 from dataclasses import dataclass
@@ -402,16 +404,34 @@ def kernel_triangles(shape, chordal_tolerance: float, angular_tolerance: float, 
                 exp.Next()
                 continue
             raise BuildError("a face was not meshed")
-        trsf = loc.Transformation()
-        nodes = np.array([[p.X(), p.Y(), p.Z()] for p in
-                          (tri.Node(i + 1).Transformed(trsf) for i in range(tri.NbNodes()))])
+        nodes = _triangulation_nodes(tri, loc)
         _collapse_degenerate_edges(face, nodes)
-        idx = np.array([tri.Triangle(i + 1).Get() for i in range(tri.NbTriangles())]) - 1
+        idx = _triangulation_triangles(tri)
         if face.Orientation() == TopAbs_REVERSED:
             idx = idx[:, ::-1]
         out.append(nodes[idx])
         exp.Next()
     return _without_repeated_vertices(np.concatenate(out)) if out else np.zeros((0, 3, 3))
+
+
+def _triangulation_nodes(tri, loc):
+    """The nodes ``(n, 3)`` (mm) of the kernel's triangulation ``tri`` of a face at location ``loc``:
+    one call per node into the kernel and none per coordinate, streamed into the array (a third of
+    the time of a list of lists); moved only when the location is not the identity (the same numbers)."""
+    import numpy as np
+    points = map(tri.Node, range(1, tri.NbNodes() + 1))
+    if not loc.IsIdentity():
+        points = map(operator.methodcaller("Transformed", loc.Transformation()), points)
+    coordinates = itertools.chain.from_iterable(map(operator.methodcaller("Coord"), points))
+    return np.fromiter(coordinates, float, 3 * tri.NbNodes()).reshape(-1, 3)
+
+
+def _triangulation_triangles(tri):
+    """The triangles ``(m, 3)`` of ``tri`` as 0-based node indices, in the kernel's order."""
+    import numpy as np
+    from OCP.Poly import Poly_Triangle
+    corners = itertools.chain.from_iterable(map(Poly_Triangle.Get, map(tri.Triangle, range(1, tri.NbTriangles() + 1))))
+    return np.fromiter(corners, np.int64, 3 * tri.NbTriangles()).reshape(-1, 3) - 1
 
 
 def _collapse_degenerate_edges(face, nodes) -> None:
