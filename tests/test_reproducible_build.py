@@ -194,6 +194,10 @@ def test_colour_entities_in_either_order_come_out_the_same():
     # an earlier entity referring into the colours is no file the kernel writes: left alone, not reordered wrongly
     odd = SWAPPED.replace("#3 = GEOMETRIC_REPRESENTATION_CONTEXT(3);", "#3 = GEOMETRIC_REPRESENTATION_CONTEXT(#9);")
     assert canonical_styles(odd.encode()) == odd.encode()
+    # an earlier string naming '#9' is text (the fast search finds it, the exact scan sets it aside): reordered
+    quoted = "#1 = CARTESIAN_POINT('see #9',(0.,0.,0.));"
+    assert canonical_styles(SWAPPED.replace("#1 = CARTESIAN_POINT('',(0.,0.,0.));", quoted).encode()) == \
+        CANONICAL.replace("#1 = CARTESIAN_POINT('',(0.,0.,0.));", quoted).encode()
 
 
 def test_dxf_version_guid_follows_the_geometry_and_the_fingerprint_the_name(tmp_path):

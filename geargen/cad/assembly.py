@@ -228,13 +228,13 @@ def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, leng
     from OCP.STEPCAFControl import STEPCAFControl_Writer
     from OCP.STEPControl import STEPControl_AsIs, STEPControl_Controller
     from OCP.XSControl import XSControl_WorkSession
-    from geargen.cad.export import STEP_UNITS, write_step_file
+    from geargen.cad.export import STEP_UNITS, unchecked, write_step_file
     from geargen.cad.kernel import quiet_kernel
 
     doc = assembly_document(name, parts)
     STEPControl_Controller.Init_s()
     quiet_kernel()
-    writer = STEPCAFControl_Writer(XSControl_WorkSession(), False)
+    writer = unchecked(STEPCAFControl_Writer(XSControl_WorkSession(), False))
     writer.SetColorMode(True)
     writer.SetLayerMode(True)
     writer.SetNameMode(True)

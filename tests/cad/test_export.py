@@ -161,3 +161,35 @@ def test_a_solid_placed_twice_is_meshed_once_into_the_same_triangles(helical21, 
     # another tolerance is another mesh
     meshes.triangles(helical21, 4e-3)
     assert len(calls) == 2
+
+
+def test_the_step_writer_skips_the_kernels_model_check_and_writes_the_same_bytes(helical21, tmp_path, monkeypatch):
+    """The kernel's check of every entity (which nothing written reads) is marked done before the
+    transfer: the model ends up without its results, and the file is byte for byte the one a writer
+    that checks writes."""
+    writers = []
+    skip_check = export.unchecked
+    monkeypatch.setattr(export, "unchecked", lambda writer: writers.append(skip_check(writer)) or writer)
+    fast = export_step(helical21, tmp_path / "fast.step").path.read_bytes()
+    monkeypatch.setattr(export, "unchecked", lambda writer: writers.append(writer) or writer)
+    checked = export_step(helical21, tmp_path / "checked.step").path.read_bytes()
+    assert [w.ChangeWriter().WS().Model().HasSemanticChecks() for w in writers] == [False, True]
+    assert fast == checked
+
+
+def test_kernel_triangles_of_a_located_shape_are_moved_by_its_location():
+    """A shape placed by a location (its faces' triangulations are the unplaced shape's, read at that
+    location) comes out moved by it: the same triangles as the unplaced shape's moved in numpy."""
+    from OCP.BRepPrimAPI import BRepPrimAPI_MakeBox
+    from OCP.gp import gp_Ax1, gp_Dir, gp_Pnt, gp_Trsf, gp_Vec
+    from OCP.TopLoc import TopLoc_Location
+    box = BRepPrimAPI_MakeBox(10.0, 20.0, 30.0).Shape()
+    trsf = gp_Trsf()
+    trsf.SetRotation(gp_Ax1(gp_Pnt(0, 0, 0), gp_Dir(1, 1, 1)), 0.7)
+    trsf.SetTranslationPart(gp_Vec(5.0, -3.0, 2.0))
+    placed = export.kernel_triangles(box.Moved(TopLoc_Location(trsf)), 0.01, 0.5)
+    matrix = np.array([[trsf.Value(i, j) for j in range(1, 5)] for i in range(1, 4)])
+    expected = export.kernel_triangles(box, 0.01, 0.5) @ matrix[:, :3].T + matrix[:, 3]
+    assert placed.shape == (12, 3, 3)  # a box's six faces, two triangles each
+    # two roundings of a product of 30 mm coordinates and unit rotation terms: ~1e-14 mm apart
+    assert np.abs(placed - expected).max() < 1e-12
