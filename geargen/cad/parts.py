@@ -318,7 +318,9 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
                         "longer than the solid height")
     # ground: the end half turns are edges (so faces) of their own, and the slab's planes meet only
     # them (p > d: the grinding reaches d / 2p < 1/2 turn in): the cut intersects two small faces,
-    # not the whole coil's (robot joint spring 0.26 -> 0.08 s)
+    # not the whole coil's (robot joint spring 0.26 -> 0.08 s). The middle face keeps the whole
+    # sweep's spans over fewer turns, so it meshes finer: STL 7,792 -> 13,142 triangles, +0.07 s
+    # (planetary's spring 15,408 -> 15,448), less than the cut saves
     ends = (0.5, total_coils - 0.5) if ground else ()
     helix = _helix(pitch, pitch * total_coils, mean / 2, ends)
     circle = BRepBuilderAPI_MakeWire(
