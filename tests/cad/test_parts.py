@@ -86,6 +86,20 @@ def test_spring_wire_volume_is_the_swept_circle(ground):
     assert 0.8 * wire < P.volume(spring) < wire
 
 
+@pytest.mark.parametrize("ground", [True, False])
+def test_spring_volume_is_pappus_less_the_ground_ends(ground):
+    """The wire circle lies in a plane through the axis: by Pappus the swept volume is
+    pi^2 d^2 D n / 4; grinding takes the half discs below each end plane, pi D d^3 / (6 p)."""
+    from geargen.cad.gear_solid import solid_volume
+    from geargen.model.bodies import spring_helix
+    d, mean, length, coils = 1.143, 11.43, 8.89, 6.0
+    _, pitch = spring_helix((d, mean, length, coils, ground))
+    expected = math.pi ** 2 * d * d * mean * coils / 4 - (math.pi * mean * d ** 3 / (6 * pitch) if ground else 0.0)
+    # the kernel's swept surface approximates the tube (measured 2e-7 .. 6e-7 of the volume); the
+    # adaptive integration is needed: the default one is 3e-3 off on the trimmed ground ends
+    assert solid_volume(P.compression_spring(d, mean, length, coils, ground)) == pytest.approx(expected, rel=2e-6)
+
+
 def test_ground_spring_is_made_down_to_its_solid_height():
     """d N_t is the solid height of ground ends (geargen.design.stiffness.SPRING_ENDS): 1 % above it
     the spring is one valid solid, at it the body is refused with the solid height named."""
