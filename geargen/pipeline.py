@@ -65,7 +65,7 @@ class BuildFailed(GeargenError):
 class Progress:
     """Step-by-step progress on standard error: ``[3/8] gear solids ... 0.41 s``."""
 
-    def __init__(self, quiet: bool = False, stream=None, total: int = len(STEPS) + 1):
+    def __init__(self, quiet: bool = False, stream=None, total: int = len(STEPS)):
         self.quiet = quiet
         self.stream = stream or sys.stderr
         self.total = total
@@ -442,6 +442,16 @@ def render(parts, design: Design, settings: dict | None = None, folder: Path | N
     return render_parts(parts.parts, view=view, size=size, title=design.name, meshes=meshes)
 
 
+def view_and_figures(parts, design: Design, summary, folder: Path) -> tuple[tuple, float]:
+    """The rendered view of ``parts`` (:func:`render`) and the figures that need no check result
+    (:func:`check_free_figures`) written into ``folder``: what the build's figures process does.
+    Returns (what :func:`check_free_figures` returns, seconds the view took)."""
+    t0 = time.perf_counter()
+    view = render(parts, design)
+    seconds = time.perf_counter() - t0
+    return check_free_figures(design, summary, view, folder), seconds
+
+
 def check_free_figures(design: Design, summary, view, folder: Path) -> tuple[dict[str, Path], dict[str, str], list[str]]:
     """The figures that need no check result (the rendered ``view``, the preload diagram of the
     stiffness ``summary``) written into ``folder`` (:func:`geargen.report.review.write_figures`)."""
@@ -679,8 +689,9 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     can be had the checks run here, in order, as with ``parallel=False``; a part whose process
     delivers nothing is made here. The drawings need
     only the resolved drive: with ``parallel`` they are drawn in a process of their own from the
-    moment it is placed, the figures that need no check result in another from the moment the view
-    is rendered (:func:`_collect`), else (or if one delivers nothing) here.
+    moment it is placed, the view and the figures that need no check result
+    (:func:`view_and_figures`) in another from the moment the other parts exist (:func:`_collect`),
+    else (or if one delivers nothing) here.
     """
     progress = progress or Progress(quiet)
     design = progress.run("load", load, design_path)
@@ -715,21 +726,23 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             if verdict_alongside is None and sections_alongside is None:
                 checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
-            # the view first: its coarse tessellation is refined by the STL export (not the reverse)
-            render_view = progress.run("render", render, parts, design)
-            # the figures that do not depend on the checks (matplotlib only): drawn in a process of
-            # their own while this one exports
-            figures_alongside = Alongside.start(check_free_figures, design, summary, render_view, work) \
-                if parallel else None
+            # the view and the figures that need no check result: in a process of their own while this
+            # one exports; made here first otherwise, so that in both the view meshes the solids before
+            # the STL export does (a solid meshed finer first would be drawn from its finer mesh)
+            figures_alongside = Alongside.start(view_and_figures, parts, design, summary, work) if parallel else None
+            drawn = None if figures_alongside is not None else \
+                progress.run_timed("figures", _collect, None, view_and_figures, parts, design, summary, work)
             files = progress.run("export", export, layout, parts, work)
-            drawn = progress.run_timed("figures", _collect, figures_alongside, check_free_figures, design, summary,
-                                       render_view, work)
+            if drawn is None:
+                drawn = progress.run_timed("figures", _collect, figures_alongside, view_and_figures, parts, design,
+                                           summary, work)
+            drawn, progress.timings["render"] = drawn
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside, sections_alongside,
                                             layout, gears, parts, overlaps_alongside)
                 result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
-            result.render_view, result.files, result.figures = render_view, files, drawn
+            result.files, result.figures = files, drawn
             result.drawings = sheets
             result.timings = dict(progress.timings)
             progress.run("report", _report_and_manifest, result, work)
