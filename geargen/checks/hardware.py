@@ -89,8 +89,17 @@ def gear_section(spec) -> tuple[np.ndarray, float, float]:
 
 @lru_cache(maxsize=64)
 def _section_polygon(spec) -> PolygonDistance:
-    """The polygon of :func:`gear_section` for many distance calls (the parts check's octree)."""
-    return PolygonDistance(gear_section(spec)[0])
+    """The polygon of :func:`gear_section` for many distance calls (the parts check's octree), its
+    grid over the box of the pitch sector's tooth band, where :func:`_section_distance` folds every
+    point it asks about (not over the centre the polygon closes through; a point outside the grid
+    is still measured, against every edge)."""
+    polygon, start, pitch = gear_section(spec)
+    radii = np.hypot(*polygon[1:].T)
+    turn = np.linspace(start, start + pitch, 257)
+    edge = np.concatenate([r * np.column_stack([np.cos(turn), np.sin(turn)]) for r in (radii.min(), radii.max())])
+    lo, hi = edge.min(axis=0), edge.max(axis=0)
+    pad = 1e-3 * (hi - lo)  # the arcs bulge past their 257 chords by (pitch / 256)^2 / 8 of the radius at most
+    return PolygonDistance(polygon, box=(lo - pad, hi + pad))
 
 
 def _is_ring(spec) -> bool:
