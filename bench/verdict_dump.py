@@ -15,6 +15,23 @@ of 3 fresh processes, mesh_checks CPU seconds, main (1ac074a) -> meshfast: robot
 C-axis 5.11 -> 3.46, metric dual pinion 4.42 -> 2.87, planetary dual pinion 6.46 -> 4.12 (each
 includes ~0.2 s compiling the check modules: PYTHONDONTWRITEBYTECODE is set here). The outcome of
 every buildable shipped design compared with main's: zero differences, bit for bit (--abs 0 --rel 0).
+
+Issue 28 (verdictcpu branch, 2026-11-28 10:36-10:38 UTC, load average 6-8 on the 2 cores), the verdict
+process's work, ``pipeline.design_verdict`` CPU seconds (process_time, 2nd and 3rd call in one process,
+main (fd19f92, the branch's base) and the branch alternated twice): planetary_dual_pinion 2.62-2.92 -> 2.33-2.43, robot_joint
+1.72-1.82 -> 1.58-1.65, c_axis 2.37-2.54 -> 2.33-2.41, metric_dual_pinion 1.50-1.60 -> 1.50-1.54. Its
+parts measured apart, alternated: rate_drive (planetary / c_axis / robot) 0.16 / 0.075 / 0.081 ->
+0.095 / 0.046 / 0.048 (ISO 1328 values and root forms kept by their exact inputs); planetary_meshes
+0.54 -> 0.38 (the planet's outline sampled once, placed_ring_play's bisection on the reaching points);
+robot joint bevel rows 0.153 -> 0.075 (gear 1's points read only when gear 2's do not already penetrate);
+planetary parts_check polygon distances 0.55-0.69 -> 0.31-0.44 (the section grid over the tooth band);
+parts_check robot / c_axis 0.51-0.55 / 0.99-1.06 -> 0.49-0.50 / 0.92-0.94 (bodies read column by column).
+``bench/bench_build.py --stages --repeat 3 c_axis planetary_dual_pinion robot_joint`` with and without
+``--root /work/main``, twice (10:40-10:53, load 1.5-8 and changing within a run): cpu column main /
+branch c_axis 8.60 / 9.33 and 8.60 / 9.33, planetary 12.26 / 11.73 and 11.76 / 11.85, robot joint
+9.21 / 8.65 and 8.54 / 9.51: no comparison (the other jobs' load moved each figure by more than the
+0.05-0.3 s saved, and main took the exportcpu and partscpu merges while it ran).
+The outcome of the 8 buildable shipped designs against main's: zero differences (--abs 0 --rel 0).
 """
 
 from __future__ import annotations

@@ -27,7 +27,7 @@ import numpy as np
 from geargen.design.cluster import ClusterSpec
 from geargen.errors import GeometryError
 from geargen.families.registry import tooth_form
-from geargen.model.bodies import PolygonDistance, distance_function, world_box
+from geargen.model.bodies import PolygonDistance, column_distance_function, world_box
 from geargen.model.components import analytic_body
 from geargen.profile.internal import internal_profile
 from geargen.profile.tooth import section_rotation, tooth_profile
@@ -59,11 +59,12 @@ def _inverse(m: np.ndarray) -> np.ndarray:
     return inv
 
 
-def _local(points: np.ndarray, inverse: np.ndarray) -> np.ndarray:
+def _local(points: np.ndarray, inverse: np.ndarray) -> list[np.ndarray]:
+    """The points' coordinates (x, y, z) in the frame of ``inverse``, as three columns."""
     # column by column: numpy's matmul of a (k, 3) array by a 3 x 3 is ~6x slower than these sums
     x, y, z = points[:, 0], points[:, 1], points[:, 2]
     r, t = inverse[:3, :3], inverse[:3, 3]
-    return np.column_stack([r[i, 0] * x + r[i, 1] * y + r[i, 2] * z + t[i] for i in range(3)])
+    return [r[i, 0] * x + r[i, 1] * y + r[i, 2] * z + t[i] for i in range(3)]
 
 
 def component_part(component) -> AnalyticPart:
@@ -71,8 +72,8 @@ def component_part(component) -> AnalyticPart:
     body = analytic_body(component)
     lo, hi = world_box(body, component.placement)
     inverse = _inverse(np.asarray(component.placement, float))
-    distance = distance_function(body)
-    return AnalyticPart(component.name, lo, hi, lambda p: distance(_local(p, inverse)))
+    distance = column_distance_function(body)
+    return AnalyticPart(component.name, lo, hi, lambda p: distance(*_local(p, inverse)))
 
 
 @lru_cache(maxsize=64)
@@ -89,8 +90,17 @@ def gear_section(spec) -> tuple[np.ndarray, float, float]:
 
 @lru_cache(maxsize=64)
 def _section_polygon(spec) -> PolygonDistance:
-    """The polygon of :func:`gear_section` for many distance calls (the parts check's octree)."""
-    return PolygonDistance(gear_section(spec)[0])
+    """The polygon of :func:`gear_section` for many distance calls (the parts check's octree), its
+    grid over the box of the pitch sector's tooth band, where :func:`_section_distance` folds every
+    point it asks about (not over the centre the polygon closes through; a point outside the grid
+    is still measured, against every edge)."""
+    polygon, start, pitch = gear_section(spec)
+    radii = np.hypot(*polygon[1:].T)
+    turn = np.linspace(start, start + pitch, 257)
+    edge = np.concatenate([r * np.column_stack([np.cos(turn), np.sin(turn)]) for r in (radii.min(), radii.max())])
+    lo, hi = edge.min(axis=0), edge.max(axis=0)
+    pad = 1e-3 * (hi - lo)  # the arcs bulge past their 257 chords by (pitch / 256)^2 / 8 of the radius at most
+    return PolygonDistance(polygon, box=(lo - pad, hi + pad))
 
 
 def _is_ring(spec) -> bool:

@@ -336,6 +336,17 @@ def _flanks(offsets, rows, teeth, z):
     return v[..., 0], v[..., 1]
 
 
+def _facing_flanks(offsets, rows, teeth, z):
+    """The upper flank offsets of ``teeth`` and the lower ones of ``teeth + 1`` (as :func:`_flanks`
+    reads them): one remainder for both teeth, and only the flank used of each gathered."""
+    n = z if offsets.ndim == 2 else offsets.shape[1]
+    t = np.mod(teeth, n)
+    after = np.where(t + 1 == n, 0, t + 1)  # = np.mod(teeth + 1, n)
+    if offsets.ndim == 2:
+        return offsets[t, 1], offsets[after, 0]
+    return offsets[rows, t, 1], offsets[rows, after, 0]
+
+
 def _place(held: PolarOutline, c, a, offsets, rows, teeth, rho, phi, w_lo, w_up):
     """Mesh-frame x, y of held-gear boundary points (broadcasting)."""
     return _placer(held, c, a, offsets, rows, teeth)(rho, phi, w_lo, w_up)
@@ -374,9 +385,9 @@ def _rotations(moving: PolarOutline, c, a, offsets, rows, x, y, exact: bool = Tr
     ccw = fr - psi
     cw = p - fr - psi
     if offsets is not None:
-        ki = k.astype(int)
-        ccw = ccw - _flanks(offsets, rows, ki, moving.teeth)[1]
-        cw = cw - _flanks(offsets, rows, ki + 1, moving.teeth)[0]
+        upper, lower = _facing_flanks(offsets, rows, k.astype(int), moving.teeth)
+        ccw = ccw - upper
+        cw = cw - lower
     beyond = rho > moving.r_tip * (1 + 1e-13)
     return np.where(beyond, np.inf, ccw), np.where(beyond, np.inf, cw), rho
 

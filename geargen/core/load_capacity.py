@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from typing import Any, Sequence
 
 from geargen.core.iso6336_materials import MATERIALS, Material, allowable_stress
@@ -402,7 +403,6 @@ class Tolerances:
 def _tolerances(geo: RatingGeometry, grade: int) -> tuple[Tolerances, str | None]:
     """The tolerances and, where the face width is outside ISO 1328-1's range (only the helix slope
     tolerance depends on it), the warning that it was taken at the nearest width in the range."""
-    from geargen.core.accuracy import iso1328_tolerances
     from geargen.design.gear import ISO_1328_SCOPE
 
     lo, hi, _ = ISO_1328_SCOPE["face_width"]
@@ -415,9 +415,21 @@ def _tolerances(geo: RatingGeometry, grade: int) -> tuple[Tolerances, str | None
         d = geo.reference_diameters[i]
         if not math.isfinite(d):  # a rack: the pinion's values (its own are not in ISO 1328's scope)
             continue
-        rows.append(iso1328_tolerances(grade, d, geo.normal_module, width))
-    return Tolerances(f_pb=max(r.single_pitch for r in rows), f_falpha=max(r.profile_form for r in rows),
-                      f_Hbeta=max(r.helix_slope for r in rows)), warning
+        rows.append(_grade_tolerances(grade, d, geo.normal_module, width))
+    return Tolerances(f_pb=max(r[0] for r in rows), f_falpha=max(r[1] for r in rows),
+                      f_Hbeta=max(r[2] for r in rows)), warning
+
+
+@lru_cache(maxsize=256, typed=True)
+def _grade_tolerances(grade: int, reference_diameter: float, normal_module: float,
+                      face_width: float) -> tuple[float, float, float]:
+    """(f_pb, f_falpha, f_Hbeta) um of :func:`geargen.core.accuracy.iso1328_tolerances`, kept: a face
+    width search rates one mesh some 25 times, each at a width clamped into ISO 1328's range or at the
+    same few widths (the inputs are positive numbers in the standard's scope, so equal keys are the
+    same floats; an out-of-scope input raises each time, exceptions are not kept)."""
+    from geargen.core.accuracy import iso1328_tolerances
+    t = iso1328_tolerances(grade, reference_diameter, normal_module, face_width)
+    return t.single_pitch, t.profile_form, t.helix_slope
 
 
 def running_in_allowance(deviation: float, material_class, sigma_hlim: float, velocity: float) -> float:
@@ -634,6 +646,24 @@ def tooth_root_form(teeth: float, profile_shift: float, normal_module: float, no
     y_s = (1.2 + 0.13 * l_ratio) * q_s ** (1.0 / (1.21 + 2.3 / l_ratio))
     return ToothRootForm(Y_F=y_f, Y_S=y_s, virtual_teeth=z_n, theta=theta, s_Fn=s_fn, h_Fe=h_fe, rho_F=rho_f,
                          alpha_Fen=a_fen, d_en=d_en, q_s=q_s, L=l_ratio)
+
+
+#: :func:`tooth_root_form` by its exact inputs (:func:`_kept_root_form`)
+_ROOT_FORMS: dict[tuple, ToothRootForm] = {}
+
+
+def _kept_root_form(*args) -> ToothRootForm:
+    """:func:`tooth_root_form` of ``args``, kept: it does not depend on the face width, which a face
+    width search varies (some 25 ratings of one mesh). Keyed by each input's type, value and sign
+    bit (0.0 and -0.0 are equal keys otherwise), so a kept form is of the very same numbers; the
+    result is a frozen dataclass of floats."""
+    key = tuple((type(a), a, math.copysign(1.0, a)) for a in args)
+    form = _ROOT_FORMS.get(key)
+    if form is None:
+        if len(_ROOT_FORMS) >= 1024:
+            _ROOT_FORMS.clear()
+        form = _ROOT_FORMS[key] = tooth_root_form(*args)
+    return form
 
 
 def helix_angle_factor_root(eps_beta: float, helix_angle: float) -> float:
@@ -854,7 +884,7 @@ def rate_pair(geo: RatingGeometry, tangential_load: float, conditions: RatingCon
             teeth = geo.teeth[i]
             shift = geo.profile_shift[i]
             tip_height = (geo.tip_diameters[i] - geo.reference_diameters[i]) / 2
-        roots.append(tooth_root_form(teeth, shift, m_n, geo.normal_pressure_angle, geo.helix_angle,
+        roots.append(_kept_root_form(teeth, shift, m_n, geo.normal_pressure_angle, geo.helix_angle,
                                      geo.base_helix_angle, tip_height, geo.eps_alpha, geo.dedendum_coefficients[i],
                                      geo.rack_tip_radius_coefficients[i], geo.thinning_normal[i]))
     if geo.mate_form.root_note:

@@ -463,15 +463,21 @@ class PolygonDistance:
     edges kept always hold the nearest one and every crossing, and each distance is the same
     formula on the same numbers: the result is :func:`polygon_distance`'s to the last bit. Points
     outside the grid are measured against every edge.
+
+    ``box`` ``(lo, hi)``: the grid's rectangle, where the calls' points lie if not the polygon's
+    box (a gear section's teeth: the points come from its tooth band, a thin part of the box that
+    reaches the centre); the edges kept per cell follow from the cell alone, so any box gives the
+    same numbers, a tighter one fewer edges per point.
     """
 
-    def __init__(self, poly, cells: int = 32):
+    def __init__(self, poly, cells: int = 32, box=None):
         poly = np.asarray(poly, dtype=float)
         self.poly = poly
         nxt, ex, ey, inv_len, safe_len, ey_safe = _edges(poly)
         self._edges = (poly[:, 0], poly[:, 1], nxt[:, 1], ex, ey, inv_len, safe_len, ey_safe)
-        lo, hi = poly.min(axis=0), poly.max(axis=0)
-        margin = 1e-9 * max(float(np.max(hi - lo)), 1e-300)
+        margin = 1e-9 * max(float(np.max(poly.max(axis=0) - poly.min(axis=0))), 1e-300)
+        lo, hi = (poly.min(axis=0), poly.max(axis=0)) if box is None else (np.asarray(box[0], float),
+                                                                            np.asarray(box[1], float))
         self.lo, self.cells = lo, cells
         self.size = np.maximum(hi - lo, 1e-300) / cells
         gx = lo[0] + self.size[0] * np.arange(cells + 1)
@@ -533,28 +539,37 @@ class PolygonDistance:
 
 
 def _compiled(n: _Node):
-    """``n``'s signed distance as a function of points (k, 3): the tree read once, its constants
-    (box centres, polygons, offsets) computed once, so a call does only the points' arithmetic."""
+    """``n``'s signed distance as a function of points (k, 3) (:func:`_compiled_columns` of their columns)."""
+    f = _compiled_columns(n)
+    return lambda p: f(p[:, 0], p[:, 1], p[:, 2])
+
+
+def _compiled_columns(n: _Node):
+    """``n``'s signed distance as a function of the points' coordinates ``(x, y, z)`` (arrays of one
+    shape): the tree read once, its constants (box centres, polygons, offsets) computed once, so a
+    call does only the points' arithmetic, column by column (a move shifts three columns, not a
+    (k, 3) copy; the primitives read contiguous columns, not strided ones: the same operations on
+    the same numbers as on rows of points)."""
     op, a = n.op, n.args
     if op == "box":
         lo, hi = np.asarray(a[0]), np.asarray(a[1])
         c, h = (lo + hi) / 2, (hi - lo) / 2
 
-        def box(p):
+        def box(x, y, z):
             # per axis (reductions over an axis of length 3 are slow in numpy)
-            qx, qy, qz = (np.abs(p[:, i] - c[i]) - h[i] for i in range(3))
+            qx, qy, qz = (np.abs(v - c[i]) - h[i] for i, v in enumerate((x, y, z)))
             outside = np.sqrt(np.maximum(qx, 0.0) ** 2 + np.maximum(qy, 0.0) ** 2 + np.maximum(qz, 0.0) ** 2)
             return outside + np.minimum(np.maximum(np.maximum(qx, qy), qz), 0.0)
         return box
     if op == "cyl":
         d, height, bore = a
 
-        def cyl(p):
-            r = np.hypot(p[:, 0], p[:, 1])
+        def cyl(x, y, z):
+            r = np.hypot(x, y)
             qr = r - d / 2
             if bore > 0:
                 qr = np.maximum(qr, bore / 2 - r)
-            return _rect_sdf(qr, np.abs(p[:, 2] - height / 2) - height / 2)
+            return _rect_sdf(qr, np.abs(z - height / 2) - height / 2)
         return cyl
     if op in ("cone", "rev"):
         if op == "cone":
@@ -562,29 +577,30 @@ def _compiled(n: _Node):
             poly = np.array([[bore / 2, 0.0], [r0, 0.0], [r1, height], [bore / 2, height]])
         else:
             poly = np.asarray(a)
-        return lambda p: polygon_distance(np.hypot(p[:, 0], p[:, 1]), p[:, 2], poly)
+        return lambda x, y, z: polygon_distance(np.hypot(x, y), z, poly)
     if op == "spring":
-        return lambda p: _spring_sdf(a, p)
+        return lambda x, y, z: _spring_columns(a, x, y, z)
     if op == "move":
-        inner, offset = _compiled(a[0]), np.asarray(a[1])
-        return lambda p: inner(p - offset)
+        inner, offset = _compiled_columns(a[0]), np.asarray(a[1])
+        ox, oy, oz = offset[0], offset[1], offset[2]
+        return lambda x, y, z: inner(x - ox, y - oy, z - oz)
     if op in ("union", "inter"):
-        parts = [_compiled(c) for c in a]
+        parts = [_compiled_columns(c) for c in a]
         join = np.minimum if op == "union" else np.maximum
 
-        def joined(p):
-            out = parts[0](p)
+        def joined(x, y, z):
+            out = parts[0](x, y, z)
             for f in parts[1:]:
-                out = join(out, f(p))
+                out = join(out, f(x, y, z))
             return out
         return joined
     if op == "diff":
-        base, tools = _compiled(a[0]), [_compiled(t) for t in a[1]]
+        base, tools = _compiled_columns(a[0]), [_compiled_columns(t) for t in a[1]]
 
-        def diff(p):
-            out = base(p)
+        def diff(x, y, z):
+            out = base(x, y, z)
             for f in tools:
-                out = np.maximum(out, -f(p))
+                out = np.maximum(out, -f(x, y, z))
             return out
         return diff
     raise ValueError(op)
@@ -601,28 +617,33 @@ def _spring_sdf(args, p: np.ndarray) -> np.ndarray:
     """The swept wire of :func:`compression_spring`: distance from its helix (:func:`spring_helix`)
     less d/2, cut to the slab [0, L]. The helix's nearest point is sought among the turns above
     and below the point's own angle, each refined by Newton steps."""
+    return _spring_columns(args, p[:, 0], p[:, 1], p[:, 2])
+
+
+def _spring_columns(args, px: np.ndarray, py: np.ndarray, pz: np.ndarray) -> np.ndarray:
+    """:func:`_spring_sdf` of the points' coordinates."""
     d, mean, length, coils = args[:4]
     z0, pitch = spring_helix(args)
     radius = mean / 2
-    theta = np.arctan2(p[:, 1], p[:, 0]) % (2 * math.pi)
-    best = np.full(len(p), np.inf)
-    k0 = np.floor((p[:, 2] - z0) / pitch - theta / (2 * math.pi))
+    theta = np.arctan2(py, px) % (2 * math.pi)
+    best = np.full(len(px), np.inf)
+    k0 = np.floor((pz - z0) / pitch - theta / (2 * math.pi))
     for dk in (-1.0, 0.0, 1.0, 2.0):
         t = np.clip(theta + 2 * math.pi * (k0 + dk), 0.0, 2 * math.pi * coils)
         for _ in range(4):  # Newton on the squared distance to (R cos t, R sin t, z0 + pitch t / 2 pi)
             c = pitch / (2 * math.pi)
             cos_t, sin_t = np.cos(t), np.sin(t)  # each read once: the trigonometry is most of the time
             hx, hy, hz = radius * cos_t, radius * sin_t, z0 + c * t
-            dx, dy, dz = hx - p[:, 0], hy - p[:, 1], hz - p[:, 2]
+            dx, dy, dz = hx - px, hy - py, hz - pz
             g = dx * (-radius * sin_t) + dy * (radius * cos_t) + dz * c
             h = radius * radius + c * c - (dx * radius * cos_t + dy * radius * sin_t)
             t = np.clip(t - g / np.where(np.abs(h) < 1e-12, 1e-12, h), 0.0, 2 * math.pi * coils)
         c = pitch / (2 * math.pi)
-        dist = np.sqrt((radius * np.cos(t) - p[:, 0]) ** 2 + (radius * np.sin(t) - p[:, 1]) ** 2
-                       + (z0 + c * t - p[:, 2]) ** 2)
+        dist = np.sqrt((radius * np.cos(t) - px) ** 2 + (radius * np.sin(t) - py) ** 2
+                       + (z0 + c * t - pz) ** 2)
         best = np.minimum(best, dist)
     wire = best - d / 2
-    slab = np.abs(p[:, 2] - length / 2) - length / 2
+    slab = np.abs(pz - length / 2) - length / 2
     return np.maximum(wire, slab)
 
 
@@ -635,6 +656,12 @@ def distance_function(body: Body):
     """:func:`signed_distance` of ``body`` as a function of the points (the body read once)."""
     sdf = _compiled(primitive_tree(body))
     return lambda points: sdf(np.asarray(points, dtype=float).reshape(-1, 3))
+
+
+def column_distance_function(body: Body):
+    """:func:`distance_function` of ``body`` as a function of the points' coordinates ``(x, y, z)``
+    (float arrays of one shape: the same numbers, without stacking them into rows)."""
+    return _compiled_columns(primitive_tree(body))
 
 
 # ---------------------------------------------------------------- mass properties
@@ -961,4 +988,4 @@ def describe(body: Body) -> dict[str, Any]:
 __all__ = ["Body", "KINDS", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "servo_motor",
            "blade_flexure", "compression_spring", "spring_helix", "coil_envelope", "plate_with_holes", "link_tray", "link_cover",
            "quill", "quill_lug_root", "split_collar", "revolve", "fuse", "cut", "translate", "single", "ring_relief", "relieved",
-           "primitive_tree", "signed_distance", "distance_function", "polygon_distance", "lowest_x_above", "world_box", "MassProperties", "mass_properties", "describe"]
+           "primitive_tree", "signed_distance", "distance_function", "column_distance_function", "polygon_distance", "lowest_x_above", "world_box", "MassProperties", "mass_properties", "describe"]

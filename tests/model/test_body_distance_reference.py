@@ -179,12 +179,15 @@ def test_polygon_grid_reads_as_every_edge():
         poly[1] = poly[0]  # a zero-length edge
         polygons.append(poly)
     for poly in polygons:
-        grid = PolygonDistance(poly)
         lo, hi = poly.min(axis=0), poly.max(axis=0)
-        pad = 0.2 * (hi - lo)
-        px, py = rng.uniform(lo - pad, hi + pad, (4000, 2)).T
-        lines = lo + grid.size * np.arange(grid.cells + 1)[:, None]
-        gx, gy = np.meshgrid(lines[:, 0], lines[:, 1])
-        px = np.concatenate([px, poly[:, 0], gx.ravel(), rng.uniform(lo[0], hi[0], 200)])
-        py = np.concatenate([py, poly[:, 1], gy.ravel(), np.repeat(lines[5, 1], 200)])
-        _same(grid(px, py), polygon_distance(px, py, poly))
+        # the grid over the polygon's box, over a part of it (as the parts check's tooth band) and
+        # over a larger box: the edges kept per cell follow from the cell alone
+        for box in (None, (lo + 0.55 * (hi - lo), hi - 0.05 * (hi - lo)), (lo - 0.3 * (hi - lo), hi + 0.1 * (hi - lo))):
+            grid = PolygonDistance(poly, box=box)
+            pad = 0.2 * (hi - lo)
+            px, py = rng.uniform(lo - pad, hi + pad, (4000, 2)).T
+            lines = grid.lo + grid.size * np.arange(grid.cells + 1)[:, None]
+            gx, gy = np.meshgrid(lines[:, 0], lines[:, 1])
+            px = np.concatenate([px, poly[:, 0], gx.ravel(), rng.uniform(lo[0], hi[0], 200)])
+            py = np.concatenate([py, poly[:, 1], gy.ravel(), np.repeat(lines[5, 1], 200)])
+            _same(grid(px, py), polygon_distance(px, py, poly))

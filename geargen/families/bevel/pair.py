@@ -119,20 +119,23 @@ def check_bevel_pair(gear1: BevelGearSpec, gear2: BevelGearSpec, samples: int = 
                                           for k in (-1, 0, 1)]), gear1)
     sin1, cos1 = np.sin(th1), np.cos(th1)
 
-    def overlap(phi1: float) -> float:
-        # gear 1's flank points (its tooth nearest the generator and its neighbours) in gear 2's frame,
-        # and gear 2's flank points in gear 1's frame: the deeper penetration of the two
+    def overlaps(phi1: float) -> bool:
+        # gear 2's flank points in gear 1's frame (read once: cheap), then gear 1's flank points (its
+        # tooth nearest the generator and its neighbours) in gear 2's frame: whether either penetrates
+        # (the second is not read when the first already does: only the answer is used)
+        if _depth(gear2_in_1, gear1, phi1) > 0:
+            return True
         p1 = np.concatenate([_unit(sin1, cos1, off1 + phi1 + k * pitch1) @ rot  # rot.T applied to row vectors
                              for k in (-1, 0, 1)])
-        return max(_penetration(p1, gear2, phase2), _depth(gear2_in_1, gear1, phi1))
+        return _penetration(p1, gear2, phase2) > 0
 
     def contact(direction: float) -> float:
         lo, hi = start, start + direction * pitch1 / 2
-        if overlap(lo) > 0:
+        if overlaps(lo):
             return start
         for _ in range(45):  # pitch / 2^46: far below the sampling error
             mid = 0.5 * (lo + hi)
-            if overlap(mid) > 0:
+            if overlaps(mid):
                 hi = mid
             else:
                 lo = mid

@@ -122,14 +122,16 @@ class InternalPlay:
 
 
 def free_play(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalProfile, phase: float = 0.0,
-              step: float | None = None, material: RingMaterial | None = None) -> InternalPlay:
+              step: float | None = None, material: RingMaterial | None = None,
+              points: np.ndarray | None = None) -> InternalPlay:
     """The pinion's free rotation both ways at mesh position ``phase`` on the exact outlines
     (bisection on the contact, to 1e-13 rad). Raises GeargenError when the pinion already overlaps
-    the ring there."""
+    the ring there. ``points``: the pinion's :func:`pinion_points` at ``step`` if already sampled
+    (a sweep over mesh positions samples them once; they are only read)."""
     # 1e-3 m_n apart: between samples the gap to a touching flank is below h^2 / (8 rho), < 0.1 nm
     step = step or 1e-3 * pair.pinion.module
     material = material or RingMaterial(ring)
-    pts = pinion_points(pinion, step)
+    pts = pinion_points(pinion, step) if points is None else points
     z1, z2, a = pair.pinion.teeth, pair.ring.teeth, pair.centre_distance
     # only the points that a turn of up to one pitch can bring to the ring's teeth
     reach = np.hypot(*_placed(pts, (a, 0.0), phase).T)
