@@ -18,39 +18,13 @@ this project's python (OCCT 7.9 from cadquery-ocp), ``STEPControl_Reader`` then
 ``BRepMesh_IncrementalMesh(shape, 0.001 mm, relative=False, angular=ANGLE rad, parallel=False)``
 - 1 um, what a CAM station asks for finishing; ``--angle`` default 0.5 rad, OCCT's own default.
 Times are the best (and the median) of ``--repeat`` fresh processes (each pays the kernel import, not
-counted); ``mesh cpu s`` is the mesher's processor time, which the other work on a shared machine
-changes much less than the wall time.
+counted).
 The flank deviation is measured on the STEP read back: transverse sections at five heights
 (geargen.cad.measure.section), points on the involute band (radius between the involute start +
 0.1 m and the tip - 0.05 m of geargen's profile) compared with the exact involute helicoid;
 a peer's tooth may sit at another phase or thickness, so per section and flank side the mean
 offset is removed and reported apart (``thickness um``, + = thicker than geargen's zero-backlash
 tooth) and the column shows the form deviation that remains.
-
-Measured (session 15, 2026-11-28 ~10:05 UTC, load 5-14 on 2 cores, so wall times 2-9x the processor
-times; best of 3): geargen 7.13 s processor time (wall 20.5 s), 689 296 triangles, flank form
-0.0005 um; geargen before (main at b589202: flanks 8 spans and fillets 4 spans of degree 7; its
-STEP is this script's own ``geargen.step`` of that commit) 9.73 s (87.7 s wall), 689 772;
-bd_warehouse 2.16 s, 217 520 (no root fillet; flank form 8.3 um); py_gearworks 4.25 s, 653 502
-(flank form 0.33 um). In an earlier run at load 5-7: geargen 7.02 s against before 8.76 s. Triangles by
-face kind, geargen: 42 fillets (one span of degree 10 x 6, smallest radius 0.346 mm) 529 758,
-12 613 each; 42 flanks (one span of degree 14 x 6) 154 334, 3 675 each; lands 55, end planes
-1 447; before: 12 621 and 3 678. py_gearworks' fillet face (a rational arc of radius 0.569 mm,
-degree 2 x 3) takes 10 906 at 7.4 us each, geargen's 12 613 at ~10 us.
-
-The root fillets' triangle count is set by their surface, not by how it is fitted: OCCT refines a
-B-spline face's grid by inserting the centroids of triangles that miss the deflection until its
-triangles are about as wide as long in the face's own length scale, so the count follows the area
-times the curvature (the fillet turns 80 deg in 0.67 mm, the flank 28 deg in 1.45 mm). Measured on
-one fillet face meshed alone at 1 um: degree 3-15, 1-32 uniform spans across the profile, 1-48 knot
-spans along the face (knots inserted: the same surface), the parameters scaled 0.01-100x, u and v
-exchanged: 11 672-13 510 triangles every time (12 600 as built). What the fit does set is the cost
-per triangle: a surface of several spans makes the mesher rebuild its evaluation cache
-(BSplSLib::BuildCache) each time it crosses a knot; one span does not (geargen.profile.bspline_fit
-``one_span``: 20-27 % less processor time above). Issue 28's target, within 2x of the fastest peer,
-is out of reach this way: bd_warehouse's gear has no root fillet (217 520 triangles), and at
-py_gearworks' processor time per triangle (6.5 us over its whole mesh, its faces of degree 2 x 3)
-geargen's 689 296 would still take 4.5 s, over 2 x 2.16 s.
 """
 
 from __future__ import annotations
@@ -99,9 +73,9 @@ def measure_worker(path: str, deflection: float, angle: float) -> dict:
     reader.TransferRoots()
     shape = reader.OneShape()
     t_read = time.perf_counter() - t0
-    t0, c0 = time.perf_counter(), time.process_time()
+    t0 = time.perf_counter()
     BRepMesh_IncrementalMesh(shape, deflection, False, angle, False)
-    t_mesh, c_mesh = time.perf_counter() - t0, time.process_time() - c0
+    t_mesh = time.perf_counter() - t0
     triangles = faces = 0
     kinds = {}  # surface kind -> [faces, triangles, smallest radius of curvature mm]
     exp = TopExp_Explorer(shape, TopAbs_FACE)
@@ -115,8 +89,7 @@ def measure_worker(path: str, deflection: float, angle: float) -> dict:
         row = kinds.setdefault(kind, [0, 0, radius])
         row[0], row[1], row[2] = row[0] + 1, row[1] + count, min(row[2], radius)
         exp.Next()
-    return dict(import_s=t_import, read_s=t_read, mesh_s=t_mesh, mesh_cpu_s=c_mesh, triangles=triangles, faces=faces,
-                kinds=kinds)
+    return dict(import_s=t_import, read_s=t_read, mesh_s=t_mesh, triangles=triangles, faces=faces, kinds=kinds)
 
 
 def face_kind(face) -> tuple[str, float]:
@@ -146,7 +119,7 @@ def measure(path: Path, deflection: float, angle: float, repeat: int) -> dict:
         out = subprocess.run([sys.executable, __file__, "--worker", str(path), "--deflection", str(deflection),
                               "--angle", str(angle)], capture_output=True, text=True, check=True)
         runs.append(json.loads(out.stdout.strip().splitlines()[-1]))
-    best = {key: min(r[key] for r in runs) for key in ("read_s", "mesh_s", "mesh_cpu_s")}
+    best = {key: min(r[key] for r in runs) for key in ("read_s", "mesh_s")}
     return dict(runs[0], **best, mesh_median_s=statistics.median(r["mesh_s"] for r in runs))
 
 
@@ -206,8 +179,8 @@ def main(argv=None) -> int:
 
     print(f"\nSTEP re-tessellation at {args.deflection * 1e3:g} um, angular {args.angle:g} rad "
           f"(best of {args.repeat} fresh processes); files in {out}")
-    header = ("source", "STEP MB", "faces", "read s", "mesh s", "mesh s median", "mesh cpu s", "triangles",
-              "flank form um", "thickness um")
+    header = ("source", "STEP MB", "faces", "read s", "mesh s", "mesh s median", "triangles", "flank form um",
+              "thickness um")
     kinds = {}
     print(" | ".join(header))
     print(" | ".join("---" for _ in header))
@@ -222,14 +195,12 @@ def main(argv=None) -> int:
         except Exception as exc:  # a peer's surface the section cannot follow: say so, keep the row
             dev = (f"n/a ({type(exc).__name__})", "")
         print(" | ".join([name, f"{path.stat().st_size / 1e6:.2f}", str(m["faces"]), f"{m['read_s']:.3f}",
-                          f"{m['mesh_s']:.3f}", f"{m['mesh_median_s']:.3f}", f"{m['mesh_cpu_s']:.3f}",
-                          str(m["triangles"]), *dev]))
+                          f"{m['mesh_s']:.3f}", f"{m['mesh_median_s']:.3f}", str(m["triangles"]), *dev]))
         kinds[name] = m["kinds"]
     for name, path in extra.items():
         m = measure(path, args.deflection, args.angle, args.repeat)
         print(" | ".join([name, f"{path.stat().st_size / 1e6:.2f}", str(m["faces"]), f"{m['read_s']:.3f}",
-                          f"{m['mesh_s']:.3f}", f"{m['mesh_median_s']:.3f}", f"{m['mesh_cpu_s']:.3f}",
-                          str(m["triangles"]), "", ""]))
+                          f"{m['mesh_s']:.3f}", f"{m['mesh_median_s']:.3f}", str(m["triangles"]), "", ""]))
     print("\nTriangles by face kind (the 21 T gear; smallest radius of curvature across the face)")
     header = ("source", "surface", "faces", "triangles", "per face", "radius mm")
     print(" | ".join(header))

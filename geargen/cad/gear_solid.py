@@ -17,19 +17,15 @@ How: every tooth has its own face for each flank, each fillet, the tip land and 
 (when the rack's tip line cuts a root circle), so a CAM or inspection program can pick a flank
 by itself. The lands are exact cylinders (for helical gears too: their edges are helices on
 them), the ends planes, and the flanks and fillets B-spline surfaces with as few poles as their
-accuracy needs: each profile segment is one clamped B-spline, parametrised by arc length, exact
-at its ends with the exact end tangents and least-squares fitted in between, with as few spans of
-degree 7 as keep it within the tolerance of the exact curve, or one span of a higher degree where
-that needs no more poles and misses the curve by no more (:mod:`geargen.profile.bspline_fit`,
-``one_span``; an involute takes 8-15 poles, a fillet 9-12; the bench gear's flank one span of
-degree 14, its fillet one of degree 10). One span makes a face one polynomial across the profile,
-which OCCT's mesher evaluates from one cache: 20 % less processor time to re-tessellate the bench
-gear's STEP at 1 um (bench/bench_step.py). Along the axis a spur gear's surfaces are linear
-(two rows of poles); a helical gear's are the profile poles turned by a fitted rotation
-``(cos kz, sin kz)``: one span of the lowest degree within 0.02 nm at the tip over the whole face
-(5-8 rows), so the helicoid's error is that of the profile fit plus at most 0.02 nm. A helical
-gear's poles inside a face are rounded to a 1e-8 mm grid (:func:`_grid`: its STEP file 4-6 %
-smaller).
+accuracy needs: each profile segment is one clamped degree-7 B-spline on uniform knots,
+parametrised by arc length, exact at its ends with the exact end tangents and least-squares
+fitted in between, with as few spans as keep it within the tolerance of the exact curve
+(:mod:`geargen.profile.bspline_fit`; an involute takes one to four spans, 8-15 poles, a fillet
+9-12). Along the axis a spur gear's surfaces are linear (two rows of poles); a helical gear's are
+the profile poles turned by a fitted rotation ``(cos kz, sin kz)``: one span of the lowest degree
+within 0.02 nm at the tip over the whole face (5-8 rows), so the helicoid's error is that of the
+profile fit plus at most 0.02 nm. A helical gear's poles inside a face are rounded to a 1e-8 mm
+grid (:func:`_grid`: its STEP file 4-6 % smaller).
 
 The flanks are not the ruled surfaces the involute helicoid also is (swept by the base helix's
 tangents: two rows of poles, 8-10 x 2 against 8-15 x 5-8, and OCCT meshes them in 1 400 triangles
@@ -183,13 +179,13 @@ def _tooth_curves(profile: ToothProfile, tolerance: float) -> list[_Curve]:
             out.append(_Curve(s.kind, s.side, s.end, radius=s.curve.radius, angles=(s.t0, s.t1)))
         else:
             try:
-                fit = fit_segment(s, tolerance, by_length=True, one_span=True)
+                fit = fit_segment(s, tolerance, by_length=True)
             except ValueError:
                 # a fillet whose speed grows steeply toward its end (a trochoid near its cusp) fits in
                 # its own parameter where the arc-length map needs too many spans (64: 20 spans on the
                 # m 18, x -0.5 sweep case of seed 4187320065)
                 try:
-                    fit = fit_segment(s, tolerance, one_span=True)
+                    fit = fit_segment(s, tolerance)
                 except ValueError as exc:
                     raise BuildError(f"{profile.spec.name}: {s.side} {s.kind}: {exc}") from exc
             out.append(_Curve(s.kind, s.side, fit.poles[-1], fit=fit))

@@ -3,12 +3,10 @@
 The CAD layer gives every flank and fillet of a gear its own face; each face's curve is one
 clamped B-spline of degree ``degree`` (default 7) on uniform knots. The end points and end
 tangents are exact (neighbouring faces meet in the exact joint with the exact tangent); the
-poles in between are a least-squares fit to exact points (3 per pole of a span: 24 at degree 7,
-Chebyshev-spaced), and the number of spans grows until the distance between the spline and the
-exact curve at the same parameter - an upper bound on the geometric distance - is within
-``tolerance`` at every check point (4 per pole of a span: 32 at degree 7, evenly spaced, none a
-fit point). ``one_span`` trades the spans for one span of a higher degree when that needs no
-more poles (:func:`fit_segment`). A high degree on few spans keeps
+poles in between are a least-squares fit to exact points (24 per span, Chebyshev-spaced), and
+the number of spans grows until the distance between the spline and the exact curve at the
+same parameter - an upper bound on the geometric distance - is within ``tolerance`` at every
+check point (32 per span, evenly spaced, none a fit point). A high degree on few spans keeps
 the pole count low: the curves are analytic, so the error falls like ``h^(degree + 1)``
 (degree 3 needs 3-4x the poles of degree 7 for a fillet at 1 nm; degrees 5-9 differ little).
 
@@ -38,20 +36,9 @@ from geargen.profile.segments import InvoluteCurve
 
 #: default B-spline degree of the fitted curves (fewest poles at the gear tolerances, module docstring)
 FIT_DEGREE = 7
-#: the highest degree of a one-span fit (:func:`fit_segment` ``one_span``): its least-squares problem
-#: stays well conditioned, and it is well inside OCCT's limit of 25 (Geom_BSplineCurve::MaxDegree)
-ONE_SPAN_MAX_DEGREE = 15
-
-
-def _fit_per_span(degree: int) -> int:
-    """Fitted points per span (the least-squares problem): 3 per pole of a span (24 at degree 7)."""
-    return 3 * (degree + 1)
-
-
-def _check_per_span(degree: int) -> int:
-    """Check points per span: 4 per pole of a span (32 at degree 7), so that a high-degree span's
-    error, which has about ``degree`` lobes, is sampled as densely as a degree-7 span's."""
-    return 4 * (degree + 1)
+#: fitted points per span (the least-squares problem), and check points per span
+_FIT_PER_SPAN = 24
+_CHECK_PER_SPAN = 32
 
 
 @dataclass(frozen=True)
@@ -141,7 +128,7 @@ def _fit(point, deriv, length: float, tolerance: float, degree: int, max_spans: 
         fixed = {0: p0, 1: p0 + d0 * h0 / degree, n - 2: p1 - d1 * h1 / degree, n - 1: p1}
         free = [i for i in range(n) if i not in fixed]
         # fit points: interior Chebyshev-like nodes per span (denser at the span ends)
-        frac = fit_fractions(_fit_per_span(degree))
+        frac = fit_fractions(_FIT_PER_SPAN)
         s_fit = (knots[:-1, None] + np.diff(knots)[:, None] * frac[None, :]).ravel()
         a = BSpline.design_matrix(s_fit, t, degree).toarray()
         rhs = point(s_fit) - sum(a[:, i:i + 1] * v[None, :] for i, v in fixed.items())
@@ -151,7 +138,7 @@ def _fit(point, deriv, length: float, tolerance: float, degree: int, max_spans: 
         if free:
             poles[free] = np.linalg.lstsq(a[:, free], rhs, rcond=None)[0]
         # check points: evenly spaced, none of them a fit point
-        s_chk = np.linspace(0.0, length, spans * _check_per_span(degree) + 2)
+        s_chk = np.linspace(0.0, length, spans * _CHECK_PER_SPAN + 2)
         err = float(np.max(np.linalg.norm(BSpline(t, poles, degree)(s_chk) - point(s_chk), axis=1)))
         if err <= tolerance:
             return poles, knots, mults, err
@@ -221,19 +208,12 @@ def _involute_length_map(segment):
 
 
 def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: int = 64,
-                by_length: bool = False, one_span: bool = False) -> SplineFit:
+                by_length: bool = False) -> SplineFit:
     """Fit a :class:`geargen.profile.segments.Segment` in its direction of traversal (t0 -> t1).
 
     The spline parameter s runs from 0 to the segment's length: linear in the segment's own
     parameter, or (``by_length``) the arc length itself (unit speed, within ~1e-6). Raises
     ValueError if ``max_spans`` uniform spans do not reach ``tolerance`` mm.
-
-    ``one_span``: one span of the lowest degree (up to :data:`ONE_SPAN_MAX_DEGREE`, found by
-    bisection) with no more poles than the spans of ``degree`` that reach ``tolerance`` and no larger
-    error, if there is one. A surface
-    made of it is one polynomial across its profile: OCCT evaluates it from one cached polynomial,
-    where a many-span surface rebuilds its cache (BSplSLib::BuildCache) each time its mesher crosses
-    a knot - 20 % of the re-tessellation time of the helical bench gear (bench/bench_step.py).
     """
     t0, t1 = segment.t0, segment.t1
     mapped = _arc_length_map(segment) if by_length else None
@@ -256,19 +236,6 @@ def fit_segment(segment, tolerance: float, degree: int = FIT_DEGREE, max_spans: 
         return segment.derivative(t_of(s)) * dt_ds(s)[:, None]
 
     poles, knots, mults, err = _fit(point, deriv, length, tolerance, degree, max_spans)
-    if one_span and len(knots) > 2:
-        # bisect on the degree (the error falls as it rises): no more poles and no larger error
-        # than the spans of ``degree``
-        low, high, found = degree + 1, min(ONE_SPAN_MAX_DEGREE, len(poles) - 1), None
-        while low <= high:
-            mid = (low + high) // 2
-            try:
-                found = mid, _fit(point, deriv, length, err, mid, 1)
-                high = mid - 1
-            except ValueError:
-                low = mid + 1
-        if found is not None:
-            degree, (poles, knots, mults, err) = found
     return SplineFit(degree, knots, mults, poles, err, length, (t0, t1), mapped is not None)
 
 
@@ -313,5 +280,5 @@ def greville(fit: SplineFit) -> np.ndarray:
     return greville_abscissae(fit.full_knots(), fit.degree)
 
 
-__all__ = ["SplineFit", "fit_segment", "fit_function", "fit_rotation", "greville", "FIT_DEGREE", "ONE_SPAN_MAX_DEGREE",
-           "fit_fractions", "fit_nodes", "clamped_uniform_knots", "fit_clamped", "clamped_values", "greville_abscissae"]
+__all__ = ["SplineFit", "fit_segment", "fit_function", "fit_rotation", "greville", "FIT_DEGREE", "fit_fractions",
+           "fit_nodes", "clamped_uniform_knots", "fit_clamped", "clamped_values", "greville_abscissae"]

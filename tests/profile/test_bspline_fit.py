@@ -41,8 +41,7 @@ def polyline_distance(points, line):
 
 @pytest.mark.parametrize("name", GEARS)
 @pytest.mark.parametrize("by_length", [False, True])
-@pytest.mark.parametrize("one_span", [False, True])
-def test_fit_within_tolerance_of_the_exact_curve(name, by_length, one_span):
+def test_fit_within_tolerance_of_the_exact_curve(name, by_length):
     """Distance from the exact segment, measured here: for 20 001 points of the exact curve the
     distance to a polyline through 200 001 spline points (chords ~1e-5 mm long, so the polyline
     is within ~1e-10 mm of the spline: curvature radius >= 0.3 mm)."""
@@ -50,7 +49,7 @@ def test_fit_within_tolerance_of_the_exact_curve(name, by_length, one_span):
     for seg in tooth_profile(GEARS[name], warn=False).tooth_segments():
         if seg.kind not in ("involute", "fillet"):
             continue
-        fit = fit_segment(seg, tol, by_length=by_length, one_span=one_span)
+        fit = fit_segment(seg, tol, by_length=by_length)
         exact = seg.point(np.linspace(seg.t0, seg.t1, 20001))
         approx = spline(fit, np.linspace(0.0, fit.length, 200001))
         assert polyline_distance(exact, approx).max() <= tol
@@ -62,27 +61,6 @@ def test_fit_within_tolerance_of_the_exact_curve(name, by_length, one_span):
         d_fit /= np.linalg.norm(d_fit, axis=1, keepdims=True)
         assert np.allclose(d_fit, t_exact, rtol=0, atol=1e-12)
         assert len(fit.poles) <= 16  # few poles: what keeps the STEP small (bench/bench_step.py)
-
-
-@pytest.mark.parametrize("name", GEARS)
-def test_one_span_fit_has_no_more_poles_and_no_larger_error(name):
-    """``one_span`` trades the spans of degree 7 for one span of a higher degree only when that
-    needs no more poles and misses the exact curve by no more: its distance from 20 001 exact points
-    (measured here as in the test above) within the largest error the fitter found for the spans, +
-    2 % (the fitter's 4 check points per pole may sit a little below a lobe's peak). The bench gear's
-    flanks and fillets (bench/bench_step.py) get one span."""
-    tol = 1e-6
-    for seg in tooth_profile(GEARS[name], warn=False).tooth_segments():
-        if seg.kind not in ("involute", "fillet"):
-            continue
-        spans = fit_segment(seg, tol, by_length=True)
-        one = fit_segment(seg, tol, by_length=True, one_span=True)
-        assert len(one.poles) <= len(spans.poles)
-        exact = seg.point(np.linspace(seg.t0, seg.t1, 20001))
-        approx = spline(one, np.linspace(0.0, one.length, 200001))
-        assert polyline_distance(exact, approx).max() <= 1.02 * spans.max_error
-        if name == "21T 32DP helical":
-            assert len(one.knots) == 2 and one.degree <= 15
 
 
 @pytest.mark.parametrize("name", GEARS)
