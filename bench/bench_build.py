@@ -41,6 +41,15 @@ never against figures of another hour. Since the verdict runs from the moment th
 path 2 from the gear solids (pipeline.build), the build no longer waits for its checks ("waited 0.01 s"):
 the main process (other parts, render, export, the solids' overlap check) is the critical path.
 
+Session 15 (2026-11-28 11:10-11:20 UTC, load 1.8-2.4, two alternated passes, base b589202 -> main; wall /
+CPU s): robot_joint 5.77-5.82 / 8.71-8.80 -> 4.50-4.62 / 7.55-7.67; split_pinion 3.31-3.34 -> 2.85-2.89;
+split_pinion_inch 3.15-3.34 -> 2.87-2.95; rack_drive 3.79-4.00 -> 3.32-3.48; axial_preload 4.45-4.79 ->
+3.57-3.93; c_axis 5.42-5.62 / 9.0-9.1 -> 4.78-5.03 / 8.0-8.5; metric_dual_pinion 6.40-6.82 / 9.7-10.3 ->
+5.05-5.25 / 8.2-8.6; planetary_dual_pinion 7.56-7.67 / 11.8-11.9 -> 5.90-6.21 / 10.1-10.5. The view is now
+rendered and the overlap check made in processes of their own (the "render" column is the figures
+process's), so the main process holds only the solids, the export and the report; the build's floor is
+its CPU over 2 cores.
+
 The commands run without ``PYTHONDONTWRITEBYTECODE`` (an installed geargen has its bytecode
 cached; without it each run compiles geargen's ~100 modules again, ~0.6 s).
 """
