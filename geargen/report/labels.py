@@ -16,6 +16,7 @@ the drawing font's advance widths).
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -115,10 +116,6 @@ def _box_at(anchor_px, size, dx_px: float, dy_px: float, pad: float = PAD_PX) ->
     return (x0 - pad, y0 - pad, x0 + w + pad, y0 + h + pad)
 
 
-def _overlaps_any(box, boxes: np.ndarray) -> int:
-    return int(_overlaps_boxes(np.array([box], dtype=float), boxes)[0])
-
-
 def _overlaps_boxes(boxes: np.ndarray, others: np.ndarray) -> np.ndarray:
     """How many of ``others`` ``(k, 4)`` each of ``boxes`` ``(m, 4)`` overlaps: counts ``(m,)``."""
     if not len(others):
@@ -192,12 +189,8 @@ def _choose(size, anchor, frame, taken, circles, segments, regions, unit_per_pt:
     its box, offset (pt) and ring. The candidates are counted a ring at a time (the centre, then each
     ring's directions), up to the ring where one is free."""
     best = None
-    candidates = list(_candidates())
-    rings = [c[2] for c in candidates]
-    start = 0
-    while start < len(candidates):
-        end = rings.index(rings[start] + 1) if rings[start] + 1 in rings else len(candidates)
-        ring = candidates[start:end]
+    for _, ring in itertools.groupby(_candidates(), key=lambda candidate: candidate[2]):
+        ring = list(ring)
         boxes = np.array([_box_at(anchor, size, dx * unit_per_pt, dy * unit_per_pt, pad) for dx, dy, _ in ring])
         outside = ~((boxes[:, 0] >= frame[0]) & (boxes[:, 1] >= frame[1]) & (boxes[:, 2] <= frame[2]) &
                     (boxes[:, 3] <= frame[3]))
@@ -209,7 +202,6 @@ def _choose(size, anchor, frame, taken, circles, segments, regions, unit_per_pt:
                 best = (score, tuple(float(v) for v in boxes[k]), dx, dy, r)
             if score[:2] == (0, 0):
                 return best[1:]
-        start = end
     return best[1:]
 
 
