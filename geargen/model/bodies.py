@@ -613,15 +613,10 @@ def _node_sdf(n: _Node, p: np.ndarray) -> np.ndarray:
     return _compiled(n)(p)
 
 
-def _spring_sdf(args, p: np.ndarray) -> np.ndarray:
-    """The swept wire of :func:`compression_spring`: distance from its helix (:func:`spring_helix`)
-    less d/2, cut to the slab [0, L]. The helix's nearest point is sought among the turns above
-    and below the point's own angle, each refined by Newton steps."""
-    return _spring_columns(args, p[:, 0], p[:, 1], p[:, 2])
-
-
 def _spring_columns(args, px: np.ndarray, py: np.ndarray, pz: np.ndarray) -> np.ndarray:
-    """:func:`_spring_sdf` of the points' coordinates."""
+    """The swept wire of :func:`compression_spring` at the points ``(px, py, pz)``: distance from its
+    helix (:func:`spring_helix`) less d/2, cut to the slab [0, L]. The helix's nearest point is sought
+    among the turns above and below the point's own angle, each refined by Newton steps."""
     d, mean, length, coils = args[:4]
     z0, pitch = spring_helix(args)
     radius = mean / 2
