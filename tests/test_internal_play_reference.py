@@ -27,8 +27,8 @@ def reference_free_play(pair, pinion, ring, phase=0.0, step=None, material=None)
     material = material or RingMaterial(ring)
     pts = pinion_points(pinion, step)
     z1, z2, a = pair.pinion.teeth, pair.ring.teeth, pair.centre_distance
-    from geargen.families.internal.pair import _placed
-    reach = np.hypot(*_placed(pts, (a, 0.0), phase).T)
+    from geargen.families.internal.pair import placed_points
+    reach = np.hypot(*placed_points(pts, (a, 0.0), phase).T)
     pts = pts[reach > ring.tip_radius - pinion.tip_radius * pinion.pitch_angle]
     if _max_depth(material, pts, a, z1, z2, phase, 0.0) >= 0:
         raise GeargenError(f"the pinion overlaps the ring at mesh position {phase!r} rad")

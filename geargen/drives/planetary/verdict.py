@@ -31,27 +31,25 @@ PLANETARY_BACKLASH_TOLERANCE = 1e-4
 
 
 def placed_ring_play(planet_spec, planet_centre, planet_rotation, ring_spec, ring_centre, ring_rotation,
-                     step: float | None = None, points: np.ndarray | None = None) -> tuple[float, float]:
+                     step: float | None = None) -> tuple[float, float]:
     """Free rotation (rad) of the placed planet counter-clockwise and clockwise about its own
     centre, the ring held, on the exact outlines (both sections at the same height; rotations of
     that section). Negative both: the planet already overlaps the ring (the deepest point's
-    depth over the planet's reference radius, as an angle). ``points``: the planet's
-    :func:`~geargen.families.internal.pair.pinion_points` at ``step`` if already sampled (only read)."""
-    from geargen.families.internal.pair import RingMaterial, pinion_points
+    depth over the planet's reference radius, as an angle)."""
+    from geargen.families.internal.pair import RingMaterial, pinion_points, placed_points
     from geargen.profile.internal import internal_profile
     from geargen.profile.tooth import tooth_profile
     profile = tooth_profile(planet_spec, warn=False)
     material = RingMaterial(internal_profile(ring_spec))
-    pts = pinion_points(profile, step or 1e-3 * planet_spec.module) if points is None else points
-    cx, cy = planet_centre[0] - ring_centre[0], planet_centre[1] - ring_centre[1]
-    # only the points a turn of up to one pitch can bring to the ring's teeth
-    c, s = math.cos(planet_rotation), math.sin(planet_rotation)
-    reach = np.hypot(cx + c * pts[:, 0] - s * pts[:, 1], cy + s * pts[:, 0] + c * pts[:, 1])
-    pts = pts[reach > material.ring.tip_radius - profile.tip_radius * 2 * math.pi / planet_spec.teeth]
+    pts = pinion_points(profile, step or 1e-3 * planet_spec.module)
+    centre = (planet_centre[0] - ring_centre[0], planet_centre[1] - ring_centre[1])
 
     def placed(turn: float, pts: np.ndarray) -> np.ndarray:
-        c, s = math.cos(planet_rotation + turn), math.sin(planet_rotation + turn)
-        return np.column_stack([cx + c * pts[:, 0] - s * pts[:, 1], cy + s * pts[:, 0] + c * pts[:, 1]])
+        return placed_points(pts, centre, planet_rotation + turn)
+
+    # only the points a turn of up to one pitch can bring to the ring's teeth
+    reach = np.hypot(*placed(0.0, pts).T)
+    pts = pts[reach > material.ring.tip_radius - profile.tip_radius * 2 * math.pi / planet_spec.teeth]
 
     def depth(turn: float, pts: np.ndarray = pts) -> float:
         return float(np.max(material.depth(placed(turn, pts), ring_rotation)))
@@ -95,18 +93,16 @@ def ring_mesh_sweep(planet, ring, centre_distance: float) -> tuple[float, float]
     :data:`RING_SWEEP_POSITIONS` mesh positions of one planet pitch, on the exact outlines
     (:func:`geargen.families.internal.pair.free_play`; the same for every planet of a stage: one
     geometry at one carrier radius)."""
-    from geargen.families.internal.pair import RingMaterial, free_play, pinion_points
+    from geargen.families.internal.pair import RingMaterial, free_play
     from geargen.families.internal.geometry import internal_pair_geometry
     from geargen.profile.internal import internal_profile
     from geargen.profile.tooth import tooth_profile
     pair = internal_pair_geometry(planet, ring, centre_distance)
     profile, ring_profile = tooth_profile(planet, warn=False), internal_profile(ring)
     material = RingMaterial(ring_profile)
-    step = 1e-3 * pair.pinion.module  # free_play's own sampling, the outline sampled once for every position
-    points = pinion_points(profile, step)
     values = []
     for phase in np.linspace(0.0, 2 * math.pi / planet.teeth, RING_SWEEP_POSITIONS, endpoint=False):
-        play = free_play(pair, profile, ring_profile, float(phase), step, material, points)
+        play = free_play(pair, profile, ring_profile, float(phase), material=material)
         values.append(planet.reference_radius * (play.ccw + play.cw))
     return min(values), max(values)
 
@@ -114,8 +110,7 @@ def ring_mesh_sweep(planet, ring, centre_distance: float) -> tuple[float, float]
 def planetary_meshes(layout, result) -> list[dict]:
     """Rows (mm, rad) of every planet-ring mesh and every stage's conditions; the failures go to
     ``result.failures``."""
-    from geargen.families.internal.pair import check_internal, pinion_points
-    from geargen.profile.tooth import tooth_profile
+    from geargen.families.internal.pair import check_internal
     from geargen.core.planetary import planet_ring_working, sun_planet_working
     from geargen.drives.planetary.place import core_stage, internal_backlash, planet_part
 
@@ -157,15 +152,12 @@ def planetary_meshes(layout, result) -> list[dict]:
         a = math.dist(planets[0].centre, sun.centre)
         named = check_internal(planets[0].spec, ring_spec, a, mesh=f"{stage_name}_ring")
         sweep = ring_mesh_sweep(planets[0].spec, ring_spec, a)
-        outlines = {}  # id(planet spec) -> its sampled outline: a stage's planets are most often one spec
         for i, p in enumerate(planets, start=1):
             name = f"{stage_name}_{planet_part(st.planet, i)}_ring"
             a_i = math.dist(p.centre, ring.centre)
             z = max(p.face_z(p.spec)[0], ring.face_z(ring_spec)[0])
-            if id(p.spec) not in outlines:
-                outlines[id(p.spec)] = pinion_points(tooth_profile(p.spec, warn=False), 1e-3 * p.spec.module)
             ccw, cw = placed_ring_play(p.spec, p.centre, p.rotation_at(p.spec, z), ring_spec, ring.centre,
-                                       ring.rotation_at(ring_spec, z), 1e-3 * p.spec.module, outlines[id(p.spec)])
+                                       ring.rotation_at(ring_spec, z))
             measured = p.spec.reference_radius * (ccw + cw)
             closed = internal_backlash(p.spec, ring_spec, a_i)
             for f in named.failures:  # the same geometry for every planet: named per mesh

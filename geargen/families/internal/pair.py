@@ -84,19 +84,34 @@ class RingMaterial:
         return np.minimum(r - self.ring.tip_radius, r * (local - self.half_angle(r)))
 
 
+#: (id of a profile, step) -> (the profile, kept alive so that its id stays its own; its outline)
+_OUTLINES: dict[tuple[int, float], tuple[ToothProfile, np.ndarray]] = {}
+
+
 def pinion_points(profile: ToothProfile, step: float) -> np.ndarray:
-    """The pinion's whole exact outline sampled at most ``step`` mm apart, ``(n, 2)``, pinion frame."""
-    return sample_outline(profile.outline(), step)
+    """The pinion's whole exact outline sampled at most ``step`` mm apart, ``(n, 2)``, pinion frame.
+    Sampled once per profile and step (a sweep over mesh positions and a stage's planets read one
+    outline many times) and handed out read-only."""
+    key = (id(profile), step)
+    kept = _OUTLINES.get(key)
+    if kept is None:
+        if len(_OUTLINES) >= 64:
+            _OUTLINES.clear()
+        points = sample_outline(profile.outline(), step)
+        points.setflags(write=False)
+        kept = _OUTLINES[key] = (profile, points)
+    return kept[1]
 
 
-def _placed(points: np.ndarray, centre: tuple[float, float], turn: float) -> np.ndarray:
+def placed_points(points: np.ndarray, centre: tuple[float, float], turn: float) -> np.ndarray:
+    """``points`` ``(n, 2)`` turned by ``turn`` about the origin, then moved to ``centre``."""
     c, s = math.cos(turn), math.sin(turn)
     return np.column_stack([centre[0] + c * points[:, 0] - s * points[:, 1],
                             centre[1] + s * points[:, 0] + c * points[:, 1]])
 
 
 def _max_depth(material: RingMaterial, pts, a, z1, z2, phase, turn) -> float:
-    placed = _placed(pts, (a, 0.0), phase + turn)
+    placed = placed_points(pts, (a, 0.0), phase + turn)
     return float(np.max(material.depth(placed, phase * z1 / z2)))
 
 
@@ -105,7 +120,7 @@ def _reaching(pts: np.ndarray, a: float, turn: float, half_width: float, tip_rad
     ``half_width`` (rad) of ``turn``: the others have a negative depth there (below the ring's tip
     circle), so leaving them out answers "does any point reach the ring?" the same. A point at
     ``|p|`` from the pinion's centre moves at most ``|p| half_width``; 1e-9 mm covers rounding."""
-    r = np.hypot(*_placed(pts, (a, 0.0), turn).T)
+    r = np.hypot(*placed_points(pts, (a, 0.0), turn).T)
     return pts[r + np.hypot(pts[:, 0], pts[:, 1]) * half_width + 1e-9 >= tip_radius]
 
 
@@ -122,19 +137,17 @@ class InternalPlay:
 
 
 def free_play(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalProfile, phase: float = 0.0,
-              step: float | None = None, material: RingMaterial | None = None,
-              points: np.ndarray | None = None) -> InternalPlay:
+              step: float | None = None, material: RingMaterial | None = None) -> InternalPlay:
     """The pinion's free rotation both ways at mesh position ``phase`` on the exact outlines
     (bisection on the contact, to 1e-13 rad). Raises GeargenError when the pinion already overlaps
-    the ring there. ``points``: the pinion's :func:`pinion_points` at ``step`` if already sampled
-    (a sweep over mesh positions samples them once; they are only read)."""
+    the ring there."""
     # 1e-3 m_n apart: between samples the gap to a touching flank is below h^2 / (8 rho), < 0.1 nm
     step = step or 1e-3 * pair.pinion.module
     material = material or RingMaterial(ring)
-    pts = pinion_points(pinion, step) if points is None else points
+    pts = pinion_points(pinion, step)
     z1, z2, a = pair.pinion.teeth, pair.ring.teeth, pair.centre_distance
     # only the points that a turn of up to one pitch can bring to the ring's teeth
-    reach = np.hypot(*_placed(pts, (a, 0.0), phase).T)
+    reach = np.hypot(*placed_points(pts, (a, 0.0), phase).T)
     pts = pts[reach > ring.tip_radius - pinion.tip_radius * pinion.pitch_angle]
     if _max_depth(material, pts, a, z1, z2, phase, 0.0) >= 0:
         raise GeargenError(f"the pinion overlaps the ring at mesh position {phase!r} rad")
@@ -301,7 +314,7 @@ def radial_assembly_margin(pair: InternalPairGeometry, pinion: ToothProfile, rin
         ring_turn = phase * z1 / z2
         worst = -math.inf
         for e in np.linspace(start, a, steps):
-            placed = _placed(pts, (float(e), 0.0), float(phase))
+            placed = placed_points(pts, (float(e), 0.0), float(phase))
             depth = float(np.max(material.depth(placed, ring_turn)))
             if e == a and depth <= touch:
                 depth = min(depth, 0.0)
@@ -372,5 +385,5 @@ def minimum_tooth_difference(pinion: GearSpec, ring: GearSpec) -> int | None:
     return None
 
 
-__all__ = ["RingMaterial", "InternalPlay", "InternalCheck", "free_play", "overlap_depth", "check_internal",
+__all__ = ["RingMaterial", "InternalPlay", "pinion_points", "placed_points", "InternalCheck", "free_play", "overlap_depth", "check_internal",
            "involute_margin", "ring_tip_roll_length", "undercut_recess", "usable_roll", "tip_margin", "trochoid_margin", "radial_assembly_margin", "minimum_tooth_difference"]
