@@ -730,13 +730,14 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             # one exports; made here first otherwise, so that in both the view meshes the solids before
             # the STL export does (a solid meshed finer first would be drawn from its finer mesh)
             figures_alongside = Alongside.start(view_and_figures, parts, design, summary, work) if parallel else None
-            drawn = None if figures_alongside is not None else \
-                progress.run_timed("figures", _collect, None, view_and_figures, parts, design, summary, work)
+
+            def figures_step():
+                return progress.run_timed("figures", _collect, figures_alongside, view_and_figures, parts, design,
+                                          summary, work)
+
+            made = figures_step() if figures_alongside is None else None
             files = progress.run("export", export, layout, parts, work)
-            if drawn is None:
-                drawn = progress.run_timed("figures", _collect, figures_alongside, view_and_figures, parts, design,
-                                           summary, work)
-            drawn, progress.timings["render"] = drawn
+            drawn, progress.timings["render"] = made or figures_step()
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
                 checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside, sections_alongside,
