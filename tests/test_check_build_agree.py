@@ -70,6 +70,10 @@ start_angle_A1_deg = -70
 rounding = "half_nearest"
 """
 
+# a drive whose gear names a bore fit ISO 286 does not define: both commands refuse it naming the key
+ROBOT_UNKNOWN_FIT = (ASSEMBLIES / "robot_joint.toml").read_text().replace(
+    "bore_diameter_in = 0.1875\n", 'bore_diameter_in = 0.1875\nbore_fit = "Q3"\n', 1)
+
 CASES = [
     ("rotary_table_no_parts", None, ROTARY_TABLE),
     ("rotary_table_two_parts_keys", None, ROTARY_TABLE + "\n[parts]\nmotor_body_length_mm = 70\n"
@@ -92,6 +96,13 @@ CASES = [
     ("c_axis_bearing_spacing", "c_axis", {"cluster_bearing_spacing_mm": None}),  # placeholder replaced below
     ("planetary_stage_bearing", "planetary_dual_pinion", {"stage_bearing_width_mm": None}),
     ("split_inch_teeth", "split_pinion_inch", {"teeth": None}),
+    ("robot_unknown_bore_fit", None, ROBOT_UNKNOWN_FIT),
+]
+#: designs that place no drive (gears and [checks] meshes): built as a gear set in 2-3 s, so all run on every push
+GEAR_SETS = [
+    ("dual_motor", "dual_motor", {}),
+    ("dual_motor_tip_interference", "dual_motor", {"centre_distance_mm": "[160.5, 162.0]"}),
+    ("dual_motor_unknown_bore_fit", "dual_motor", {"bore_diameter_mm": '20\nbore_fit = "Q3"'}),
 ]
 
 
@@ -163,8 +174,8 @@ def _sample() -> list:
     return random.Random(seed).sample(CASES, 3)
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("name, base, change", _sample(), ids=lambda v: v if isinstance(v, str) else "")
+@pytest.mark.parametrize("name, base, change", [pytest.param(*c, marks=pytest.mark.slow) for c in _sample()] + GEAR_SETS,
+                         ids=lambda v: v if isinstance(v, str) else "")
 def test_check_and_build_agree(tmp_path, name, base, change):
     path = tmp_path / f"{name}.toml"
     path.write_text(_design_text(name, base, change))
@@ -184,3 +195,44 @@ def test_check_and_build_agree(tmp_path, name, base, change):
     analytic = {frozenset(re.match(r"parts overlap: (\S+) and (\S+) share", f["message"]).groups())
                 for f in data["failures"] if f["kind"] == "parts_overlap"}
     assert solid_overlaps <= analytic, (solid_overlaps, analytic)
+
+
+def test_a_gear_set_is_each_gear_as_geargen_gear_builds_it(tmp_path):
+    """A design that places no drive builds as its gears: the same bytes `geargen gear --gear NAME`
+    writes for each (the data file's timings aside), listed in one manifest with the check's verdict."""
+    design = ASSEMBLIES / "dual_motor.toml"
+    code, out, err = _cli("build", design, "--out", tmp_path / "set", "--quiet")
+    assert code == 0, err
+    manifest = json.loads((tmp_path / "set" / "manifest.json").read_text())
+    assert (manifest["generator"], manifest["kind"], manifest["status"]) == ("geargen build", "gear set", "ok")
+    written = {p.name for p in (tmp_path / "set").iterdir()} - {"manifest.json"}
+    assert written == set(manifest["files"])
+    assert {e.get("gear") for n, e in manifest["files"].items() if n != "report.md"} == {"pinion_a", "pinion_b",
+                                                                                          "output"}
+    check_code, table, _ = _cli("check", design)
+    assert check_code == 0 and table.strip() in (tmp_path / "set" / "report.md").read_text()
+    for gear in ("pinion_a", "output"):
+        assert _cli("gear", design, "--gear", gear, "--out", tmp_path / gear)[0] == 0
+        for suffix in (".step", ".stl", ".dxf", "-drawing.svg"):
+            assert (tmp_path / gear / f"{gear}{suffix}").read_bytes() == \
+                (tmp_path / "set" / f"{gear}{suffix}").read_bytes(), (gear, suffix)
+        alone, in_set = (json.loads((tmp_path / d / f"{gear}.json").read_text()) for d in (gear, "set"))
+        assert {k: v for k, v in alone.items() if k != "timings_s"} == \
+            {k: v for k, v in in_set.items() if k != "timings_s"}
+
+
+@pytest.mark.parametrize("design", ["dual_motor", "split_pinion"])
+def test_an_unknown_bore_fit_is_refused_by_check_and_build_and_the_named_fix_works(tmp_path, design):
+    text = (ASSEMBLIES / f"{design}.toml").read_text()
+    bore = re.search(r"^bore_diameter_mm = [^ #\n]+\n", text, flags=re.M).group(0)
+    gear = re.findall(r"^\[gears\.(\w+)\]", text[:text.index(bore)], flags=re.M)[-1]
+    path = tmp_path / f"{design}.toml"
+    path.write_text(text.replace(bore, bore + 'bore_fit = "Q3"\n', 1))
+    key = f"gears.{gear}.bore_fit"
+    for command in (("check", path), ("build", path, "--out", tmp_path / "out", "--quiet")):
+        code, _, err = _cli(*command)
+        assert code == 2 and f"error: {key}: 'Q3' is not an implemented hole tolerance class" in err, err
+        assert "H7" in err  # the allowed values name the fix applied below
+        assert not (tmp_path / "out").exists()
+    path.write_text(text.replace(bore, bore + 'bore_fit = "H7"\n', 1))
+    assert _cli("check", path)[0] == 0

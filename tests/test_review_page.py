@@ -25,7 +25,7 @@ from geargen.report.review_page import read_script
 
 pytestmark = pytest.mark.slow
 
-# the shipped designs the session builds (dual_motor.toml refuses to build by design)
+# the shipped drives the session builds (dual_motor.toml places no drive: built as a gear set, no review page)
 DESIGNS = ["robot_joint", "c_axis", "split_pinion", "split_pinion_inch", "metric_dual_pinion"]
 MM_PER = {"mm": 1.0, "in": 25.4}
 

@@ -223,7 +223,9 @@ def _tolerances(layout: Layout, setups: dict[str, MeshSetup], settings: ChecksSe
 def verify_declared(design: Design, settings: ChecksSettings, tolerances: bool | None = None) -> DesignCheck:
     """The pairs of ``[checks] meshes`` (a design that is no drive), each centred in its play."""
     from geargen.checks.tolerance import pair_tolerance
+    from geargen.model.gear_data import check_gear_tables
 
+    check_gear_tables(design)
     if not settings.meshes:
         raise DesignError("checks.meshes", "missing: a design without [layout] or [synthesis] must declare the "
                           "pairs to check", '[checks] meshes = [["gear1", "gear2"]] with centre_distance_<unit>')

@@ -437,8 +437,9 @@ def standalone_allowance(args, spec, layout):
     return series_allowance(spec, given, "--thickness-series" if given else "thickness_allowance_series")
 
 
-def run(args) -> int:
-    layout = drive_layout(args)
+def prepared_gear(args, layout=None):
+    """The gear ``args`` describe, ready to build: ``(spec, thinning source, allowance)``, every option
+    and drawing key checked (``layout``: the resolved drive of an assembly's gear, :func:`drive_layout`)."""
     spec, thinning_source = spec_from_args(args, layout)
     spec = with_entered_allowance(args, spec)
     _check_shop_keys(args, spec)
@@ -456,6 +457,12 @@ def run(args) -> int:
             # at the middle of the allowance, as a drive's gears are by default
             from geargen.core.allowance import made_at
             spec, thinning_source = made_at(spec, allowance, 0.5), "mid-tolerance of its DIN 3967 allowance"
+    return spec, thinning_source, allowance
+
+
+def run(args) -> int:
+    layout = drive_layout(args)
+    spec, thinning_source, allowance = prepared_gear(args, layout)
     from geargen.outputs import OutputFolder
     source = gear_source(args, spec)
     output = OutputFolder(Path(args.out) if args.out else Path("exports") / spec.name, "geargen gear", source,
@@ -478,11 +485,31 @@ def _drawn(spec) -> bool:
 
 def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
                 layout=None) -> tuple[Path, list[str]]:
-    """Build the gear and write its files into ``output``'s folder; returns the target, committed,
-    and the names written. A gear of a resolved drive (``layout``) gets the drive's gear data, as the
-    build's drawings."""
+    """Build the gear and write its files and manifest into ``output``'s folder; returns the target,
+    committed, and the names written."""
     from geargen import __version__
-    from geargen.cad.export import export_step, export_stl, update_manifest, write_json
+    from geargen.cad.export import update_manifest, write_json
+
+    out = output.work
+    records, data_file, drawn = gear_files(args, spec, thinning_source, out, output.source, allowance, layout)
+    update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",
+                                         "source": output.source, "version": __version__})
+    # the data file and drawings are listed too, so a later run recognises every file here as its own
+    manifest_path = out / "manifest.json"
+    manifest = json.loads(manifest_path.read_text())
+    for path in [data_file] + list(drawn.values()):
+        manifest["files"][path.name] = {"format": path.suffix.lstrip("."), "length_unit": spec.length_unit,
+                                        "bytes": path.stat().st_size}
+    write_json(manifest_path, manifest)
+    return output.commit(), [r.path.name for r in records] + [data_file.name] + [p.name for p in drawn.values()]
+
+
+def gear_files(args, spec, thinning_source: str | None, out: Path, source: str, allowance=None,
+               layout=None) -> tuple[list, Path, dict[str, Path]]:
+    """Build the gear and write NAME.step, NAME.stl, NAME.json and its drawings into the folder
+    ``out`` (no manifest); returns (the STEP/STL export records, the data file, the drawings). A gear
+    of a resolved drive (``layout``) gets the drive's gear data, as the build's drawings."""
+    from geargen.cad.export import export_step, export_stl, write_json
     from geargen.cad.families import build_part
     from geargen.profile.tooth import UndercutWarning
 
@@ -493,7 +520,6 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
         t_build = time.perf_counter() - t0
     for w in caught:
         print(f"geargen gear: warning: {w.message}", file=sys.stderr)
-    out = output.work
     records = [export_step(solid, out / f"{spec.name}.step", spec.length_unit)]
     if not args.no_stl:
         records.append(export_stl(solid, out / f"{spec.name}.stl", args.stl_tolerance))
@@ -519,21 +545,12 @@ def _write_gear(args, spec, thinning_source: str | None, output, allowance=None,
     if not args.no_drawing and _drawn(spec):
         from geargen.report.drawing import gear_drawings
         data.setdefault("mating_gears", [])  # a drive's gear has its mates already
-        drawn = gear_drawings(data, solid.profile, out, spec.name, output.source, design_file)
+        drawn = gear_drawings(data, solid.profile, out, spec.name, source, design_file)
     elif not args.no_drawing:
-        drawn = family_of(spec).drawings(data, spec, out, spec.name, output.source, design_file) or {}
+        drawn = family_of(spec).drawings(data, spec, out, spec.name, source, design_file) or {}
     data_file = out / f"{spec.name}.json"
     write_json(data_file, data)
-    update_manifest(out, records, extra={"length_unit": spec.length_unit, "generator": "geargen gear",
-                                         "source": output.source, "version": __version__})
-    # the data file and drawings are listed too, so a later run recognises every file here as its own
-    manifest_path = out / "manifest.json"
-    manifest = json.loads(manifest_path.read_text())
-    for path in [data_file] + list(drawn.values()):
-        manifest["files"][path.name] = {"format": path.suffix.lstrip("."), "length_unit": spec.length_unit,
-                                        "bytes": path.stat().st_size}
-    write_json(manifest_path, manifest)
-    return output.commit(), [r.path.name for r in records] + [data_file.name] + [p.name for p in drawn.values()]
+    return records, data_file, drawn
 
 
 def _measure(solid, data) -> dict:

@@ -44,6 +44,8 @@ def resolve(design: Design, position: str | None = None) -> Layout:
     """The resolved drive: the gears placed and the hardware laid out (see the module docstring).
     ``position`` overrides ``[layout] position``. A hardware rule the drive breaks is refused
     naming its key and the values found to fix it (:mod:`geargen.drives.rules`)."""
+    from geargen.model.gear_data import check_gear_tables
+    check_gear_tables(design)
     try:
         return with_hardware(place(design, position), design)
     except RuleBroken as exc:

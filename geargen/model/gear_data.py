@@ -155,6 +155,15 @@ def check_shop_keys(spec: GearSpec, prefix: str | None = None) -> None:
         parse_designation(shop.thickness_allowance_series, p + "thickness_allowance_series")
 
 
+def check_gear_tables(design) -> None:
+    """:func:`check_shop_keys` of every cylindrical gear ``design`` declares: run by ``geargen check``
+    and ``geargen build`` alike before anything is checked or built, so a drawing key that the gear
+    data would refuse is refused by both with the same key."""
+    for spec in design.gears.values():
+        if isinstance(spec, GearSpec):
+            check_shop_keys(spec)
+
+
 def shop_data(spec: GearSpec, profile, accuracy: dict | None, material=None) -> dict:
     """The drawing's data besides the teeth (gear-data keys): part number and revision, material,
     heat treatment, hardness and flank finish (the gear table's keys, else the rating's ISO 6336-5

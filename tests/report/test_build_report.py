@@ -20,7 +20,7 @@ from geargen.report.labels import boxes_overlap, circle_crosses_box, text_boxes,
 from geargen.report.review import plain_number
 
 ROOT = Path(__file__).resolve().parents[2]
-# the shipped assemblies `geargen build` makes (dual_motor.toml is a drive for `geargen train`, no layout)
+# the shipped drives `geargen build` makes (dual_motor.toml places no drive: a gear set, tests/test_check_build_agree.py)
 SHIPPED = [ROOT / "assemblies" / f"{n}.toml" for n in ("robot_joint", "c_axis", "split_pinion", "split_pinion_inch",
                                                       "metric_dual_pinion")]
 
