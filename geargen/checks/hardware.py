@@ -225,6 +225,20 @@ class PairReading:
     near: np.ndarray = field(default_factory=lambda: np.empty((0, 3)))
 
 
+#: points per call of a part's distance: the distances are point by point, and their numpy
+#: temporaries at this size stay in cache (a level of 1e5 cells read at once was ~1.4x slower;
+#: parts_check's CPU on the C-axis 0.82 -> 0.60 s, 4096 and 32768 points slower than 8192)
+_DISTANCE_BLOCK = 8192
+
+
+def _distance(part: AnalyticPart, points: np.ndarray) -> np.ndarray:
+    """``part.distance`` of ``points`` (k, 3), in blocks of :data:`_DISTANCE_BLOCK` points."""
+    if len(points) <= _DISTANCE_BLOCK:
+        return part.distance(points)
+    return np.concatenate([part.distance(points[i:i + _DISTANCE_BLOCK])
+                           for i in range(0, len(points), _DISTANCE_BLOCK)])
+
+
 def read_pair(a: AnalyticPart, b: AnalyticPart, resolution: float = 0.05, margin: float = 0.0,
               tolerance: float = 0.0) -> PairReading:
     """The octree of the module docstring over the intersection of ``a``'s and ``b``'s boxes
@@ -245,7 +259,7 @@ def read_pair(a: AnalyticPart, b: AnalyticPart, resolution: float = 0.05, margin
     volume, best, best_points = 0.0, math.inf, np.empty((0, 3))
     offsets = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], float)
     while len(centres):
-        both = np.maximum(a.distance(centres), b.distance(centres))
+        both = np.maximum(_distance(a, centres), _distance(b, centres))
         lowest = np.argpartition(both, min(3, len(both) - 1))[:4]  # the four lowest, unsorted: cheaper than argsort
         order = lowest[np.argsort(both[lowest])]
         if both[order[0]] < best + 2 * half[order[0]] * math.sqrt(3):
