@@ -851,6 +851,38 @@ def mesh_positions(setup: MeshSetup, steps_per_tooth: int = 24, revolutions: flo
     return np.linspace(0.0, 2 * math.pi * revolutions, n, endpoint=False)
 
 
+#: the play and tip clearance of recent error-free sweeps (:func:`_play_and_clearance`), by their exact inputs
+_SWEPT: dict = {}
+_SWEPT_KEPT = 16
+
+
+def _play_and_clearance(setup: MeshSetup, o1: PolarOutline, o2: PolarOutline, st: MeshState,
+                        positions: np.ndarray, planes: np.ndarray):
+    """:func:`free_play` and :func:`tip_clearance` of ``st`` (``setup`` at ``positions`` in ``planes``,
+    plane-major). A verdict sweeps a mesh without errors more than once at the same positions (its
+    check, the tolerances' nominal play, in 5 and 3 of the same planes for a helical pair): each
+    position's values depend on its own position and plane alone, so such a sweep is kept, by the
+    setup's exact numbers, and a later one in the same or fewer of its planes reads its rows."""
+    key = None
+    if setup.flanks1 is None and setup.flanks2 is None:
+        key = (setup.gear1, setup.gear2, setup.centre1, setup.centre2, setup.rotation1, setup.rotation2,
+               setup.eccentricity1, setup.eccentricity2, setup.face_offset2, positions.tobytes())
+        kept = _SWEPT.get(key)
+        if kept is not None:
+            kept_planes, play, clear = kept
+            where = [np.flatnonzero(kept_planes == z) for z in planes]
+            if all(w.size for w in where):
+                n = positions.size
+                rows = np.concatenate([np.arange(w[0] * n, (w[0] + 1) * n) for w in where])
+                return Play(*(getattr(play, f)[rows] for f in Play.__dataclass_fields__)), clear[rows]
+    play, clear = free_play(o1, o2, st), tip_clearance(o1, o2, st)
+    if key is not None:
+        if len(_SWEPT) >= _SWEPT_KEPT:
+            _SWEPT.pop(next(iter(_SWEPT)))
+        _SWEPT[key] = (planes.copy(), play, clear)
+    return play, clear
+
+
 def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> MeshSweep:
     """Path 1 at every mesh position (and section plane): play, backlash, clearance, interference.
 
@@ -862,8 +894,8 @@ def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> 
     o1, o2 = polar_outline(setup.gear1), polar_outline(setup.gear2)
     n, P = positions.size, planes.size
     st = setup.states(positions, planes)
-    play = free_play(o1, o2, st)
-    clear = tip_clearance(o1, o2, st).reshape(P, n)
+    play, clear = _play_and_clearance(setup, o1, o2, st, positions, planes)
+    clear = clear.reshape(P, n)
 
     def per_plane(a):
         return np.asarray(a).reshape(P, n)
