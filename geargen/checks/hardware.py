@@ -301,7 +301,14 @@ def closest_approach(a: AnalyticPart, b: AnalyticPart, starts: np.ndarray, radiu
     r = radius
     for _ in range(rounds):
         cloud = best[:, None, :] + r * rng.uniform(-1.0, 1.0, size=(len(best), 256, 3))
-        values = np.maximum(a.distance(cloud.reshape(-1, 3)), b.distance(cloud.reshape(-1, 3))).reshape(len(best), 256)
+        points = cloud.reshape(-1, 3)
+        values = a.distance(points)
+        # b only where a is below the start's best: elsewhere max(d_a, d_b) cannot improve on it, so
+        # the improving points, their order and the start's minimum are the same (the others: inf)
+        below = values < np.repeat(value, 256)
+        values[~below] = np.inf
+        values[below] = np.maximum(values[below], b.distance(points[below]))
+        values = values.reshape(len(best), 256)
         i = np.argmin(values, axis=1)
         found = values[np.arange(len(best)), i]
         better = found < value
