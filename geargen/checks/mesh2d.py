@@ -377,6 +377,23 @@ def _rotations(moving: PolarOutline, c, a, offsets, rows, x, y, exact: bool = Tr
     dx = x - c[..., 0]
     dy = y - c[..., 1]
     rho = np.hypot(dx, dy)
+    beyond = rho > moving.r_tip * (1 + 1e-13)
+    within = ~beyond
+    if 2 * np.count_nonzero(within) < within.size:
+        # most points beyond the tip circle (a sampled window of teeth): the turns of the others
+        # alone, each element as below (the same numbers), the rest inf
+        a = np.broadcast_to(a, rho.shape)[within]
+        rows = np.broadcast_to(rows, rho.shape)[within] if offsets is not None else rows
+        ccw, cw = np.full(rho.shape, np.inf), np.full(rho.shape, np.inf)
+        ccw[within], cw[within] = _turns(moving, dx[within], dy[within], rho[within], a, offsets, rows, exact)
+        return ccw, cw, rho
+    ccw, cw = _turns(moving, dx, dy, rho, a, offsets, rows, exact)
+    return np.where(beyond, np.inf, ccw), np.where(beyond, np.inf, cw), rho
+
+
+def _turns(moving: PolarOutline, dx, dy, rho, a, offsets, rows, exact: bool):
+    """:func:`_rotations` (ccw, cw) of points at ``(dx, dy)`` (``rho`` from the moving centre) whatever
+    their radius."""
     phi = np.arctan2(dy, dx) - a
     p = moving.pitch
     k = np.floor(phi / p)
@@ -388,8 +405,7 @@ def _rotations(moving: PolarOutline, c, a, offsets, rows, x, y, exact: bool = Tr
         upper, lower = _facing_flanks(offsets, rows, k.astype(int), moving.teeth)
         ccw = ccw - upper
         cw = cw - lower
-    beyond = rho > moving.r_tip * (1 + 1e-13)
-    return np.where(beyond, np.inf, ccw), np.where(beyond, np.inf, cw), rho
+    return ccw, cw
 
 
 @dataclass
