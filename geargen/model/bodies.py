@@ -663,6 +663,33 @@ def distance_function(body: Body):
     return lambda points: sdf(np.asarray(points, dtype=float).reshape(-1, 3))
 
 
+#: per point, relative to a cylinder's: a spring's Newton steps on its helix (measured 0.7 us a point
+#: against a shaft's 0.02-0.03), a profile's polygon (per edge read)
+_SPRING_COST = 30.0
+
+
+def _node_cost(n: _Node) -> float:
+    op, a = n.op, n.args
+    if op in ("box", "cyl"):
+        return 1.0
+    if op == "spring":
+        return _SPRING_COST
+    if op in ("cone", "rev"):
+        edges = 4 if op == "cone" else len(a)
+        return 1.0 + (8.0 if edges > _GRID_EDGES else edges / 2)
+    if op == "move":
+        return _node_cost(a[0])
+    if op == "diff":
+        return _node_cost(a[0]) + sum(_node_cost(t) for t in a[1])
+    return sum(_node_cost(c) for c in a)  # union, inter
+
+
+def distance_cost(body: Body) -> float:
+    """About how long :func:`column_distance_function` of ``body`` takes a point, relative to a
+    cylinder's (to read the cheaper of two bodies first where the other is read only in part)."""
+    return _node_cost(primitive_tree(body))
+
+
 def column_distance_function(body: Body):
     """:func:`distance_function` of ``body`` as a function of the points' coordinates ``(x, y, z)``
     (float arrays of one shape: the same numbers, without stacking them into rows)."""
@@ -993,4 +1020,4 @@ def describe(body: Body) -> dict[str, Any]:
 __all__ = ["Body", "KINDS", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "servo_motor",
            "blade_flexure", "compression_spring", "spring_helix", "coil_envelope", "plate_with_holes", "link_tray", "link_cover",
            "quill", "quill_lug_root", "split_collar", "revolve", "fuse", "cut", "translate", "single", "ring_relief", "relieved",
-           "primitive_tree", "signed_distance", "distance_function", "column_distance_function", "polygon_distance", "lowest_x_above", "world_box", "MassProperties", "mass_properties", "describe"]
+           "primitive_tree", "signed_distance", "distance_function", "column_distance_function", "distance_cost", "polygon_distance", "lowest_x_above", "world_box", "MassProperties", "mass_properties", "describe"]
