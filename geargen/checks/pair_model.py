@@ -431,19 +431,22 @@ class HuntingSearch:
         """Tooth-circle centres ``(..., 2)`` at mesh positions ``s`` for eccentricity phases
         ``phases`` (broadcasting against ``s[..., None]``: ``(..., 4)``), or for the :meth:`offsets`
         ``offsets`` already read from them."""
+        x1, y1, x2, y2 = self._centre_columns(phases, s, offsets)
+        return np.stack([x1, y1], -1), np.stack([x2, y2], -1)
+
+    def _centre_columns(self, phases, s, offsets=None):
+        """:meth:`centres` as their four coordinates (x1, y1, x2, y2), not stacked."""
         su = self.model.setup
         o1, o2 = self.offsets(phases) if offsets is None else offsets
         s = np.asarray(s, dtype=float)
         w1 = o1 * (np.cos(s) + 1j * np.sin(s))
         r2 = self.model.ratio * s
         w2 = o2 * (np.cos(r2) - 1j * np.sin(r2))
-        return (np.stack([su.centre1[0] + w1.real, su.centre1[1] + w1.imag], -1),
-                np.stack([su.centre2[0] + w2.real, su.centre2[1] + w2.imag], -1))
+        return su.centre1[0] + w1.real, su.centre1[1] + w1.imag, su.centre2[0] + w2.real, su.centre2[1] + w2.imag
 
     def distance(self, phases, s):
-        c1, c2 = self.centres(phases, s)
-        d = c2 - c1
-        return np.hypot(d[..., 0], d[..., 1])
+        x1, y1, x2, y2 = self._centre_columns(phases, s)
+        return np.hypot(x2 - x1, y2 - y1)
 
     def evaluate(self, phases, disp1, disp2, rows, s, offsets=None):
         """Play of both sides (mm along the line of action) and centre distance at positions
