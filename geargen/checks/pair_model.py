@@ -444,8 +444,9 @@ class HuntingSearch:
         w2 = o2 * (np.cos(r2) - 1j * np.sin(r2))
         return su.centre1[0] + w1.real, su.centre1[1] + w1.imag, su.centre2[0] + w2.real, su.centre2[1] + w2.imag
 
-    def distance(self, phases, s):
-        x1, y1, x2, y2 = self._centre_columns(phases, s)
+    def distance(self, phases, s, offsets=None):
+        """Centre distance (mm) at mesh positions ``s``, as :meth:`centres`."""
+        x1, y1, x2, y2 = self._centre_columns(phases, s, offsets)
         return np.hypot(x2 - x1, y2 - y1)
 
     def evaluate(self, phases, disp1, disp2, rows, s, offsets=None):
@@ -506,13 +507,13 @@ class HuntingSearch:
         h = self.period / n
         lo = s[idx] - h
         hi = s[idx] + h
-        ph = phases[:, None, :]
+        offsets = self.offsets(phases[:, None, :])  # each build's, once for the 40 steps
         x = s[idx]
-        fx = self.distance(ph, x)
+        fx = self.distance(None, x, offsets)
         for _ in range(40):
             right = (hi - x) >= (x - lo)
             u = np.where(right, x + _GOLDEN * (hi - x), x - _GOLDEN * (x - lo))
-            fu = self.distance(ph, u)
+            fu = self.distance(None, u, offsets)
             better = fu < fx
             lo, hi = (np.where(better, np.where(right, x, lo), np.where(right, lo, u)),
                       np.where(better, np.where(right, hi, x), np.where(right, u, hi)))
