@@ -883,7 +883,10 @@ def _play_and_clearance(setup: MeshSetup, o1: PolarOutline, o2: PolarOutline, st
     if setup.flanks1 is None and setup.flanks2 is None:
         key = (setup.gear1, setup.gear2, setup.centre1, setup.centre2, setup.rotation1, setup.rotation2,
                setup.eccentricity1, setup.eccentricity2, setup.face_offset2, positions.tobytes())
-        kept = _SWEPT.get(key)
+        try:
+            kept = _SWEPT.get(key)
+        except TypeError:  # a setup given by unhashable values (centres as lists or arrays): not kept
+            key = kept = None
         if kept is not None:
             kept_planes, play, clear = kept
             where = [np.flatnonzero(kept_planes == z) for z in planes]
