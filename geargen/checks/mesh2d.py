@@ -867,7 +867,7 @@ def mesh_positions(setup: MeshSetup, steps_per_tooth: int = 24, revolutions: flo
     return np.linspace(0.0, 2 * math.pi * revolutions, n, endpoint=False)
 
 
-#: the play and tip clearance of recent error-free sweeps (:func:`_play_and_clearance`), by their exact inputs
+#: the play and tip clearance of recent sweeps without flank errors (:func:`_play_and_clearance`), by their exact inputs
 _SWEPT: dict = {}
 _SWEPT_KEPT = 16
 
@@ -877,8 +877,8 @@ def _play_and_clearance(setup: MeshSetup, o1: PolarOutline, o2: PolarOutline, st
     """:func:`free_play` and :func:`tip_clearance` of ``st`` (``setup`` at ``positions`` in ``planes``,
     plane-major). A verdict sweeps a mesh without errors more than once at the same positions (its
     check, the tolerances' nominal play, in 5 and 3 of the same planes for a helical pair): each
-    position's values depend on its own position and plane alone, so such a sweep is kept, by the
-    setup's exact numbers, and a later one in the same or fewer of its planes reads its rows."""
+    position's values depend on its own position and plane alone, so a sweep without flank errors is
+    kept, by the setup's exact numbers, and a later one in the same or fewer of its planes reads its rows."""
     key = None
     if setup.flanks1 is None and setup.flanks2 is None:
         key = (setup.gear1, setup.gear2, setup.centre1, setup.centre2, setup.rotation1, setup.rotation2,
