@@ -377,6 +377,23 @@ def _rotations(moving: PolarOutline, c, a, offsets, rows, x, y, exact: bool = Tr
     dx = x - c[..., 0]
     dy = y - c[..., 1]
     rho = np.hypot(dx, dy)
+    beyond = rho > moving.r_tip * (1 + 1e-13)
+    within = ~beyond
+    if 2 * np.count_nonzero(within) < within.size:
+        # most points beyond the tip circle (a sampled window of teeth): the turns of the others
+        # alone, each element as below (the same numbers), the rest inf
+        a = np.broadcast_to(a, rho.shape)[within]
+        rows = np.broadcast_to(rows, rho.shape)[within] if offsets is not None else rows
+        ccw, cw = np.full(rho.shape, np.inf), np.full(rho.shape, np.inf)
+        ccw[within], cw[within] = _turns(moving, dx[within], dy[within], rho[within], a, offsets, rows, exact)
+        return ccw, cw, rho
+    ccw, cw = _turns(moving, dx, dy, rho, a, offsets, rows, exact)
+    return np.where(beyond, np.inf, ccw), np.where(beyond, np.inf, cw), rho
+
+
+def _turns(moving: PolarOutline, dx, dy, rho, a, offsets, rows, exact: bool):
+    """:func:`_rotations` (ccw, cw) of points at ``(dx, dy)`` (``rho`` from the moving centre) whatever
+    their radius."""
     phi = np.arctan2(dy, dx) - a
     p = moving.pitch
     k = np.floor(phi / p)
@@ -388,8 +405,7 @@ def _rotations(moving: PolarOutline, c, a, offsets, rows, x, y, exact: bool = Tr
         upper, lower = _facing_flanks(offsets, rows, k.astype(int), moving.teeth)
         ccw = ccw - upper
         cw = cw - lower
-    beyond = rho > moving.r_tip * (1 + 1e-13)
-    return np.where(beyond, np.inf, ccw), np.where(beyond, np.inf, cw), rho
+    return ccw, cw
 
 
 @dataclass
@@ -851,6 +867,41 @@ def mesh_positions(setup: MeshSetup, steps_per_tooth: int = 24, revolutions: flo
     return np.linspace(0.0, 2 * math.pi * revolutions, n, endpoint=False)
 
 
+#: the play and tip clearance of recent sweeps without flank errors (:func:`_play_and_clearance`), by their exact inputs
+_SWEPT: dict = {}
+_SWEPT_KEPT = 16
+
+
+def _play_and_clearance(setup: MeshSetup, o1: PolarOutline, o2: PolarOutline, st: MeshState,
+                        positions: np.ndarray, planes: np.ndarray):
+    """:func:`free_play` and :func:`tip_clearance` of ``st`` (``setup`` at ``positions`` in ``planes``,
+    plane-major). A verdict sweeps a mesh without errors more than once at the same positions (its
+    check, the tolerances' nominal play, in 5 and 3 of the same planes for a helical pair): each
+    position's values depend on its own position and plane alone, so a sweep without flank errors is
+    kept, by the setup's exact numbers, and a later one in the same or fewer of its planes reads its rows."""
+    key = None
+    if setup.flanks1 is None and setup.flanks2 is None:
+        key = (setup.gear1, setup.gear2, setup.centre1, setup.centre2, setup.rotation1, setup.rotation2,
+               setup.eccentricity1, setup.eccentricity2, setup.face_offset2, positions.tobytes())
+        try:
+            kept = _SWEPT.get(key)
+        except TypeError:  # a setup given by unhashable values (centres as lists or arrays): not kept
+            key = kept = None
+        if kept is not None:
+            kept_planes, play, clear = kept
+            where = [np.flatnonzero(kept_planes == z) for z in planes]
+            if all(w.size for w in where):
+                n = positions.size
+                rows = np.concatenate([np.arange(w[0] * n, (w[0] + 1) * n) for w in where])
+                return Play(*(getattr(play, f)[rows] for f in Play.__dataclass_fields__)), clear[rows]
+    play, clear = free_play(o1, o2, st), tip_clearance(o1, o2, st)
+    if key is not None:
+        if len(_SWEPT) >= _SWEPT_KEPT:
+            _SWEPT.pop(next(iter(_SWEPT)))
+        _SWEPT[key] = (planes.copy(), play, clear)
+    return play, clear
+
+
 def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> MeshSweep:
     """Path 1 at every mesh position (and section plane): play, backlash, clearance, interference.
 
@@ -862,8 +913,8 @@ def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> 
     o1, o2 = polar_outline(setup.gear1), polar_outline(setup.gear2)
     n, P = positions.size, planes.size
     st = setup.states(positions, planes)
-    play = free_play(o1, o2, st)
-    clear = tip_clearance(o1, o2, st).reshape(P, n)
+    play, clear = _play_and_clearance(setup, o1, o2, st, positions, planes)
+    clear = clear.reshape(P, n)
 
     def per_plane(a):
         return np.asarray(a).reshape(P, n)

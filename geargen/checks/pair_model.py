@@ -280,17 +280,20 @@ class TipExcess:
         self.reach = tuple(reach)  # before the start, after the end
         self.du = [np.linspace(0.0, r, points) for r in self.reach]
         self.table = [model.tip_excess(self.distances, du)[k] for k, du in enumerate(self.du)]
+        # both tables in one flat array ([end, distance row, du]) and their steps and reaches, so
+        # that :meth:`past_ends` reads either end's per element
+        self._flat = np.concatenate([t.ravel() for t in self.table])
+        self._step = np.array([du[1] - du[0] for du in self.du])
+        self._reach = np.array(self.reach)
 
     def __call__(self, which: int, distance, du):
         """Excess (mm) at centre distances ``distance`` and ``du`` past the start (``which`` 0) or
         the end (1) of the active stretch; 0 inside (``du`` <= 0), ``inf`` beyond reach."""
-        du_tab, tab = self.du[which], self.table[which]
+        return self._lookup(which, self.weights(distance), np.asarray(du, dtype=float))
+
+    def weights(self, distance):
+        """Where centre distances ``distance`` fall in the table: (row, weight of the next row, next row)."""
         a = np.asarray(distance, dtype=float)
-        d = np.asarray(du, dtype=float)
-        h = du_tab[1] - du_tab[0]
-        x = np.clip(d / h, 0.0, du_tab.size - 1 - 1e-9)
-        i = np.floor(x).astype(int)
-        fx = x - i
         if self.distances.size == 1:
             ia = np.zeros(a.shape, dtype=int)
             fa = np.zeros(a.shape)
@@ -298,12 +301,31 @@ class TipExcess:
             ya = np.clip(np.interp(a, self.distances, np.arange(self.distances.size)), 0, self.distances.size - 1 - 1e-9)
             ia = np.floor(ya).astype(int)
             fa = ya - ia
-        ia1 = np.minimum(ia + 1, self.distances.size - 1)
+        return ia, fa, np.minimum(ia + 1, self.distances.size - 1)
+
+    def past_ends(self, weights, u, u_min, u_max):
+        """Excess (mm) of flanks at ``u`` on lines of action whose active stretch is ``[u_min, u_max]``
+        (0 inside it), at centre distances of :meth:`weights` ``weights`` (broadcasting): the two
+        ends' tables read in one pass, each element as :meth:`__call__` reads it."""
+        below, above = u < u_min, u > u_max
+        du = np.where(above, u - u_max, np.where(below, u_min - u, 0.0))
+        return self._lookup(above.astype(int), weights, du)
+
+    def _lookup(self, which, weights, d):
+        """The tables' bilinear interpolation at ``d`` past the end ``which`` (0 or 1, or an array of them)."""
+        ia, fa, ia1 = weights
+        points = self.du[0].size
+        x = np.clip(d / self._step[which], 0.0, points - 1 - 1e-9)
+        i = np.floor(x).astype(int)
+        fx = x - i
+        first = which * (self.distances.size * points) + i
+        lo, hi = first + ia * points, first + ia1 * points
+        tab = self._flat
         with np.errstate(invalid="ignore"):
-            v = ((1 - fa) * ((1 - fx) * tab[ia, i] + fx * tab[ia, i + 1])
-                 + fa * ((1 - fx) * tab[ia1, i] + fx * tab[ia1, i + 1]))
+            v = ((1 - fa) * ((1 - fx) * tab[lo] + fx * tab[lo + 1])
+                 + fa * ((1 - fx) * tab[hi] + fx * tab[hi + 1]))
         v = np.where(np.isnan(v), np.inf, v)
-        return np.where(d <= 0, 0.0, np.where(d > self.reach[which], np.inf, v))
+        return np.where(d <= 0, 0.0, np.where(d > self._reach[which], np.inf, v))
 
 
 # -------------------------------------------------------------------- the hunting-period search
@@ -397,39 +419,51 @@ class HuntingSearch:
                 "entry0": e0, "exit0": x0, "reach_lo": lo, "reach_hi": hi}
 
     # ---------------------------------------------------------------- geometry of the builds
-    def centres(self, phases, s):
-        """Tooth-circle centres ``(..., 2)`` at mesh positions ``s`` for eccentricity phases
-        ``phases`` (broadcasting against ``s[..., None]``: ``(..., 4)``)."""
+    def offsets(self, phases):
+        """Each gear's tooth-circle offset at mesh position 0 (complex, mm) for eccentricity phases
+        ``(..., 4)``: its two offsets turn together, one complex amplitude per gear."""
         b1, p1, b2, p2 = self.amplitudes
-        su = self.model.setup
         ph = np.asarray(phases)
-        # each gear's two offsets turn together: one complex amplitude per gear times its turn
-        o1 = b1 * np.exp(1j * ph[..., 0]) + p1 * np.exp(1j * ph[..., 1])
-        o2 = b2 * np.exp(1j * ph[..., 2]) + p2 * np.exp(1j * ph[..., 3])
+        return (b1 * np.exp(1j * ph[..., 0]) + p1 * np.exp(1j * ph[..., 1]),
+                b2 * np.exp(1j * ph[..., 2]) + p2 * np.exp(1j * ph[..., 3]))
+
+    def centres(self, phases, s, offsets=None):
+        """Tooth-circle centres ``(..., 2)`` at mesh positions ``s`` for eccentricity phases
+        ``phases`` (broadcasting against ``s[..., None]``: ``(..., 4)``), or for the :meth:`offsets`
+        ``offsets`` already read from them."""
+        x1, y1, x2, y2 = self._centre_columns(phases, s, offsets)
+        return np.stack([x1, y1], -1), np.stack([x2, y2], -1)
+
+    def _centre_columns(self, phases, s, offsets=None):
+        """:meth:`centres` as their four coordinates (x1, y1, x2, y2), not stacked."""
+        su = self.model.setup
+        o1, o2 = self.offsets(phases) if offsets is None else offsets
         s = np.asarray(s, dtype=float)
         w1 = o1 * (np.cos(s) + 1j * np.sin(s))
         r2 = self.model.ratio * s
         w2 = o2 * (np.cos(r2) - 1j * np.sin(r2))
-        return (np.stack([su.centre1[0] + w1.real, su.centre1[1] + w1.imag], -1),
-                np.stack([su.centre2[0] + w2.real, su.centre2[1] + w2.imag], -1))
+        return su.centre1[0] + w1.real, su.centre1[1] + w1.imag, su.centre2[0] + w2.real, su.centre2[1] + w2.imag
 
-    def distance(self, phases, s):
-        c1, c2 = self.centres(phases, s)
-        d = c2 - c1
-        return np.hypot(d[..., 0], d[..., 1])
+    def distance(self, phases, s, offsets=None):
+        """Centre distance (mm) at mesh positions ``s``, as :meth:`centres`."""
+        x1, y1, x2, y2 = self._centre_columns(phases, s, offsets)
+        return np.hypot(x2 - x1, y2 - y1)
 
-    def evaluate(self, phases, disp1, disp2, rows, s):
+    def evaluate(self, phases, disp1, disp2, rows, s, offsets=None):
         """Play of both sides (mm along the line of action) and centre distance at positions
         ``s`` ``(n,)`` of builds ``rows`` ``(n,)``: ``phases`` ``(S, 4)``, ``disp*`` ``(S, z)``
-        tooth angles (rad). Tip-corner contacts come from the :class:`TipExcess` table."""
+        tooth angles (rad); ``offsets``: the builds' :meth:`offsets` if already read. Tip-corner
+        contacts come from the :class:`TipExcess` table."""
         rows, s = np.asarray(rows), np.asarray(s, dtype=float)
+        # each build's offsets read once (the same numbers as from its phases at every position)
+        offsets = self.offsets(phases) if offsets is None else offsets
         if s.ndim == 1 and s.size > _EVALUATE_BLOCK:
-            parts = [self.evaluate(phases, disp1, disp2, rows[i:i + _EVALUATE_BLOCK], s[i:i + _EVALUATE_BLOCK])
+            parts = [self.evaluate(phases, disp1, disp2, rows[i:i + _EVALUATE_BLOCK], s[i:i + _EVALUATE_BLOCK], offsets)
                      for i in range(0, s.size, _EVALUATE_BLOCK)]
             return np.concatenate([p[0] for p in parts]), np.concatenate([p[1] for p in parts])
         m, g1, g2 = self.model, self.model.gear1, self.model.gear2
         su = m.setup
-        c1, c2 = self.centres(phases[rows], s)
+        c1, c2 = self.centres(None, s, (offsets[0][rows], offsets[1][rows]))
         geo = m.line_geometry(c1, c2)
         # the window's tooth pairs all at once (positions down, window across): elementwise the same
         # arithmetic as one pair at a time, a tenth of the numpy calls
@@ -437,6 +471,8 @@ class HuntingSearch:
                             geo.length[..., None], geo.u_min[..., None], geo.u_max[..., None])
         window = np.arange(-self.window, self.window + 1)
         rows_w = rows[..., None]
+        # where each position's centre distance falls in the excess table: the same for every pair
+        weights = tuple(w[..., None] for w in self.excess.weights(geo.distance))
         H = {1: np.full(s.shape, -np.inf), -1: np.full(s.shape, -np.inf)}
         for tr in self.tracks:
             side = tr["side"]
@@ -450,12 +486,8 @@ class HuntingSearch:
             u = m.flank_position(wide, a2[..., None] + j * g2.pitch + e2, side)
             k = m.mate_tooth(wide, a1[..., None], u, side).astype(int)
             D = side * (g1.base_radius * disp1[rows_w, k % g1.teeth] + g2.base_radius * e2)
-            # the tip-corner excess only where a pair is past an end of the stretch (most of the window)
-            below, above = u < wide.u_min, u > wide.u_max
-            distance = np.broadcast_to(wide.distance, u.shape)
-            e = np.zeros(u.shape)
-            e[below] = self.excess(0, distance[below], (wide.u_min - u)[below])
-            e[above] = self.excess(1, distance[above], (u - wide.u_max)[above])
+            # the tip-corner excess of a pair past an end of the stretch (most of the window; 0 inside)
+            e = self.excess.past_ends(weights, u, wide.u_min, wide.u_max)
             H[side] = np.maximum(H[side], np.max(D - e, axis=-1, initial=-np.inf))
         return m.total_play(geo.distance) - H[1] - H[-1], geo.distance
 
@@ -475,13 +507,13 @@ class HuntingSearch:
         h = self.period / n
         lo = s[idx] - h
         hi = s[idx] + h
-        ph = phases[:, None, :]
+        offsets = self.offsets(phases[:, None, :])  # each build's, once for the 40 steps
         x = s[idx]
-        fx = self.distance(ph, x)
+        fx = self.distance(None, x, offsets)
         for _ in range(40):
             right = (hi - x) >= (x - lo)
             u = np.where(right, x + _GOLDEN * (hi - x), x - _GOLDEN * (x - lo))
-            fu = self.distance(ph, u)
+            fu = self.distance(None, u, offsets)
             better = fu < fx
             lo, hi = (np.where(better, np.where(right, x, lo), np.where(right, lo, u)),
                       np.where(better, np.where(right, hi, x), np.where(right, u, hi)))

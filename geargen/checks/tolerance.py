@@ -641,11 +641,13 @@ def search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: 
     scale = np.where(active_t, amp_t, 1.0)
 
     def unpack(z):
-        p = ph.ravel().copy()
-        p[free_ph] = z[:n_ph]
-        t = np.zeros(8)
-        t[active_t] = z[n_ph:] * scale[active_t]
-        return p.reshape(6, 2), t
+        """Phases ``(..., 6, 2)`` and tooth displacements ``(..., 8)`` of variables ``z`` ``(..., n)``."""
+        z = np.asarray(z)
+        p = np.repeat(ph.reshape(1, 12), len(z) if z.ndim > 1 else 1, axis=0)
+        p[:, free_ph] = z.reshape(-1, z.shape[-1])[:, :n_ph]
+        t = np.zeros((len(p), 8))
+        t[:, active_t] = z.reshape(-1, z.shape[-1])[:, n_ph:] * scale[active_t]
+        return p.reshape(z.shape[:-1] + (6, 2)), t.reshape(z.shape[:-1] + (8,))
 
     def fun(z):
         n = z.size
@@ -653,8 +655,7 @@ def search_loop(model: LoopModel, objective, starts=(), grid: int = 16, sweeps: 
         Z = np.repeat(z[None], 2 * n + 1, axis=0)
         Z[1:n + 1][np.arange(n), np.arange(n)] += step
         Z[n + 1:][np.arange(n), np.arange(n)] -= step
-        P, T = zip(*(unpack(zz) for zz in Z))
-        v = value(np.array(P), np.array(T))
+        v = value(*unpack(Z))  # every row at once
         grad = (v[1:n + 1] - v[n + 1:]) / (2 * step)
         return float(v[0]), np.where(np.isfinite(grad), grad, 0.0)
 

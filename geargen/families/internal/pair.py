@@ -152,12 +152,16 @@ def free_play(pair: InternalPairGeometry, pinion: ToothProfile, ring: InternalPr
     if _max_depth(material, pts, a, z1, z2, phase, 0.0) >= 0:
         raise GeargenError(f"the pinion overlaps the ring at mesh position {phase!r} rad")
     limits = []
+    stride = 0.01 * pinion.pitch_angle
     for sign in (1.0, -1.0):
         lo, hi = 0.0, 0.0
-        stride = 0.01 * pinion.pitch_angle
+        # the scan turns at most a pitch and a stride: it reads only the points that can reach the
+        # ring's tip circle meanwhile (as the bisection below; the same answers)
+        span = pinion.pitch_angle + 2 * stride
+        scan = _reaching(pts, a, phase + sign * 0.5 * span, 0.5 * span, ring.tip_radius)
         while True:
             hi += stride
-            if _max_depth(material, pts, a, z1, z2, phase, sign * hi) >= 0:
+            if len(scan) and _max_depth(material, scan, a, z1, z2, phase, sign * hi) >= 0:
                 break
             lo = hi
             if hi > pinion.pitch_angle:
