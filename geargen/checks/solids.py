@@ -319,6 +319,14 @@ def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> t
     return float(min(ccw_c)), float(min(cw_c))
 
 
+def _distance_to_segments(vx, vy, a0x, a0y, dx, dy):
+    """Distance from the points (vx, vy) to the segments from (a0x, a0y) along (dx, dy), for
+    arrays that broadcast (a column of points against a row of segments: every pair)."""
+    wx, wy = vx - a0x, vy - a0y
+    t = np.clip((wx * dx + wy * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0, 1)
+    return np.hypot(wx - t * dx, wy - t * dy)
+
+
 def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarray, other_centre,
                     r_tip: float, deviation: float = 0.0) -> float:
     """Distance from the root-arc vertices of ``own`` to the tip lands of ``other`` (its chords on
@@ -329,35 +337,49 @@ def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarra
     (float32 rounding of STL coordinates). Fillet points that close to the root circle count as
     root; the smallest clearance, with a tip centred over a root, is not affected."""
     v = _vertices(own)
+    c = np.asarray(own_centre, dtype=float)
     oc = np.asarray(other_centre, dtype=float)
-    r = np.linalg.norm(v - np.asarray(own_centre), axis=1)
-    v = v[r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)]
+    r = np.linalg.norm(v - c, axis=1)
+    root = r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)
+    v, r = v[root], r[root]
     ends = np.linalg.norm(other - oc, axis=2)
-    land = other[np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)]
+    on_tip = np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)
+    land = other[on_tip]
     if v.size == 0 or land.size == 0:
         return math.inf
     a0, d = land[:, 0], land[:, 1] - land[:, 0]
-    # x and y apart: numpy's reductions over an axis of length 2 cost more than the arithmetic
-    wx, wy = v[:, None, 0] - a0[None, :, 0], v[:, None, 1] - a0[None, :, 1]
-    dx, dy = d[None, :, 0], d[None, :, 1]
-    t = np.clip((wx * dx + wy * dy) / np.maximum(dx * dx + dy * dy, 1e-300), 0, 1)
-    dist = np.hypot(wx - t * dx, wy - t * dy).min(axis=1)
-    # inside test, only for vertices within the other gear's tip circle
     u = v - oc
     rad = np.linalg.norm(u, axis=1)
     cand = np.nonzero(rad < r_tip)[0]
+    if cand.size == 0:
+        # no vertex inside: the smallest distance of all (vertex, land) pairs. A pair is measured
+        # only if neither of two lower bounds of its distance exceeds the distance of one pair (the
+        # vertex nearest the other gear to its nearest land): the vertex's from the other centre
+        # less the lands' largest radius, the land's from this centre less the vertices' largest
+        # radius. The margin (1e-9 of the size) covers the bounds' rounding (~1e-16 of it), so the
+        # nearest pair is among those measured, and its distance is the same number.
+        near = int(np.argmin(rad))
+        bound = np.min(_distance_to_segments(v[near, 0], v[near, 1], a0[:, 0], a0[:, 1], d[:, 0], d[:, 1]))
+        bound += 1e-9 * (1.0 + float(np.max(np.abs(oc - c))) + r_tip)
+        v = v[rad - np.max(ends[on_tip]) <= bound]
+        lands = _distance_to_segments(c[0], c[1], a0[:, 0], a0[:, 1], d[:, 0], d[:, 1]) - np.max(r) <= bound
+        a0, d = a0[lands], d[lands]
+        return float(np.min(_distance_to_segments(v[:, None, 0], v[:, None, 1], a0[None, :, 0], a0[None, :, 1],
+                                                  d[None, :, 0], d[None, :, 1])))
+    dist = _distance_to_segments(v[:, None, 0], v[:, None, 1], a0[None, :, 0], a0[None, :, 1],
+                                 d[None, :, 0], d[None, :, 1]).min(axis=1)
+    # inside test, only for vertices within the other gear's tip circle
     inside = np.zeros(v.shape[0], dtype=bool)
-    if cand.size:
-        un = u[cand] / rad[cand, None]
-        q0 = other[:, 0] - oc
-        dq = other[:, 1] - other[:, 0]
-        cross_d = un[:, None, 0] * dq[None, :, 1] - un[:, None, 1] * dq[None, :, 0]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            # solve q0 + s dq = lam un: s = (un x q0) / (dq x un), lam = (q0 x dq) / (un x dq)
-            s = (un[:, None, 0] * q0[None, :, 1] - un[:, None, 1] * q0[None, :, 0]) / -cross_d
-            lam = (q0[None, :, 0] * dq[None, :, 1] - q0[None, :, 1] * dq[None, :, 0]) / cross_d
-        hits = (s >= 0) & (s < 1) & (lam > rad[cand, None])
-        inside[cand] = np.count_nonzero(hits, axis=1) % 2 == 1
+    un = u[cand] / rad[cand, None]
+    q0 = other[:, 0] - oc
+    dq = other[:, 1] - other[:, 0]
+    cross_d = un[:, None, 0] * dq[None, :, 1] - un[:, None, 1] * dq[None, :, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # solve q0 + s dq = lam un: s = (un x q0) / (dq x un), lam = (q0 x dq) / (un x dq)
+        s = (un[:, None, 0] * q0[None, :, 1] - un[:, None, 1] * q0[None, :, 0]) / -cross_d
+        lam = (q0[None, :, 0] * dq[None, :, 1] - q0[None, :, 1] * dq[None, :, 0]) / cross_d
+    hits = (s >= 0) & (s < 1) & (lam > rad[cand, None])
+    inside[cand] = np.count_nonzero(hits, axis=1) % 2 == 1
     return float(np.min(np.where(inside, -dist, dist)))
 
 

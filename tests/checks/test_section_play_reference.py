@@ -105,3 +105,33 @@ def test_sections_sweep_as_before(pair, gap, monkeypatch):
             assert np.array_equal(getattr(got, name), getattr(want, name)), name
     if gap < 0:  # the inside branches were taken
         assert np.min(got.play_ccw + got.play_cw) < 0
+
+
+def test_root_clearance_as_before_over_a_pitch():
+    """The root clearance with no vertex inside the other gear (only the pairs that can be the
+    nearest are measured) against every pair measured, bit for bit: a spur pair at 20 rotations
+    over one pitch and three centre distances (the last one 0.6 mm short: tips in the roots, the
+    inside branch), both gears' roots, sections whole and with segments missing."""
+    g1, g2 = gear(20), gear(41)
+    rng = np.random.default_rng(2028)
+    planes = np.array([5.0])
+    s1, s2 = _sampled_sections(g1, planes, 0.01), _sampled_sections(g2, planes, 0.01)
+    compared = inside = 0
+    for gap in (0.3, 0.0, -0.6):
+        su = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + gap)
+        pos = mesh_positions(su, 20)[:20]
+        st = su.states(pos)
+        for a, b in ((s1, s2), (_broken(s1, rng), _broken(s2, rng))):
+            for i in range(pos.size):
+                c1, c2 = st.centre1[i], st.centre2[i]
+                # as check_mesh_sections places them: each gear's segments within reach of the other
+                p1 = solids._near(solids._place(a.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
+                p2 = solids._near(solids._place(b.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+                for own, oc, rr, other, occ, rt in ((p1, c1, g1.root_radius_standard, p2, c2, g2.tip_radius),
+                                                    (p2, c2, g2.root_radius_standard, p1, c1, g1.tip_radius)):
+                    got = solids._root_clearance(own, oc, rr, other, occ, rt, 1e-6)
+                    want = reference_root_clearance(own, oc, rr, other, occ, rt, 1e-6)
+                    assert got == want
+                    compared += 1
+                    inside += want < 0
+    assert compared == 240 and 0 < inside < compared  # both branches were met
