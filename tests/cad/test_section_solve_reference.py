@@ -54,6 +54,10 @@ class ReferenceCurve(SectionCurve):
         self.surface.D1(u, v, p, du, dv)
         return np.array([p.X(), p.Y()])
 
+    def _solve_all(self, ts):
+        """geargen before issue 28's last change: one call per point (the solve above)."""
+        return [ReferenceCurve._solve(self, float(t)) for t in ts]
+
 
 def _faces(shape):
     exp = TopExp_Explorer(shape, TopAbs_FACE)
@@ -90,10 +94,47 @@ def test_section_points_as_before(which, request):
     assert checked > 1000 and off > 0  # both branches were met
 
 
+
+@pytest.mark.parametrize("which", ["spur112", "helical21"])
+def test_points_left_unclassified_are_inside(which, request):
+    """The solve skips the face's classifier inside the box :meth:`SectionCurve._make_classifier`
+    finds: every point of a grid over that box, its edges 1e-7 of its size inside the face's
+    domain, is inside the face by the classifier; the flank and fillet faces (B-spline, bounded
+    by parameter lines) have a box, a helical gear's land faces (bounded by helices) none."""
+    from OCP.BRepTopAdaptor import BRepTopAdaptor_FClass2d
+    from OCP.GeomAbs import GeomAbs_BSplineSurface
+    from OCP.TopAbs import TopAbs_IN
+
+    gear = request.getfixturevalue(which)
+    faces = list(_faces(gear.shape))
+    boxes = {True: 0, False: 0}
+    for face in faces[:: max(1, len(faces) // 60)]:
+        curve = SectionCurve(face, 0.5 * gear.spec.face_width)
+        curve._make_classifier()
+        u0, u1, v0, v1 = curve._inner
+        spline = curve.surface.GetType() == GeomAbs_BSplineSurface
+        if spline:
+            assert u0 < u1 and v0 < v1
+        if u0 >= u1:
+            boxes[False] += 1
+            continue
+        boxes[True] += 1
+        classifier = BRepTopAdaptor_FClass2d(face, 1e-9)
+        eps_u, eps_v = 1e-9 * (u1 - u0), 1e-9 * (v1 - v0)
+        for u in np.concatenate([np.linspace(u0, u1, 9), [u0 + eps_u, u1 - eps_u]]):
+            for v in np.concatenate([np.linspace(v0, v1, 9), [v0 + eps_v, v1 - eps_v]]):
+                assert classifier.Perform(gp_Pnt2d(float(u), float(v))) == TopAbs_IN
+    assert boxes[True] > 20
+    if which == "spur112":  # every face a parameter rectangle (the lands' helices are straight)
+        assert boxes[False] == 0
+    else:
+        assert boxes[False] > 5
+
+
 def test_whole_section_as_before(helical21, monkeypatch):
     z = 0.61 * helical21.spec.face_width
     got = section(helical21.shape, z, 64)
-    monkeypatch.setattr("geargen.cad.measure.SectionCurve._solve", ReferenceCurve._solve)
+    monkeypatch.setattr("geargen.cad.measure.SectionCurve._solve_all", ReferenceCurve._solve_all)
     want = section(helical21.shape, z, 64)
     assert np.array_equal(got.points, want.points) and np.array_equal(got.params, want.params)
     assert np.array_equal(got.edge_index, want.edge_index)
