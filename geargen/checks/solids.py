@@ -191,20 +191,27 @@ def _near(segs: np.ndarray, centre, radius: float) -> np.ndarray:
 def _circle_hits(points: np.ndarray, segs: np.ndarray):
     """Where the circles about the origin through ``points`` ``(V, 2)`` cross ``segs`` ``(E, 2, 2)``.
 
-    Returns (vertex index, crossing point (k, 2)) for every crossing. Edges are sorted by their
-    nearest radius, so each vertex only meets the edges whose radial span can hold it.
+    Returns (vertex index, crossing point (k, 2)) for every crossing (:func:`_circle_crossings`).
     """
+    vi, x, y = _circle_crossings(points, segs)
+    return vi, np.column_stack([x, y])
+
+
+def _circle_crossings(points: np.ndarray, segs: np.ndarray):
+    """:func:`_circle_hits` as (vertex index, x, y). Edges are sorted by their nearest radius, so
+    each vertex only meets the edges whose radial span can hold it; what each crossing needs of
+    its edge or vertex is computed once per edge or vertex and picked per crossing (the same
+    numbers as computed per crossing)."""
     if points.size == 0 or segs.size == 0:
-        return np.empty(0, dtype=int), np.empty((0, 2))
+        return np.empty(0, dtype=int), np.empty(0), np.empty(0)
     rho = np.hypot(points[:, 0], points[:, 1])
-    a0, a1 = segs[:, 0], segs[:, 1]
-    d = a1 - a0
-    dd = np.einsum("ij,ij->i", d, d)
-    ad = np.einsum("ij,ij->i", a0, d)
+    ax, ay = segs[:, 0, 0], segs[:, 0, 1]
+    dx, dy = segs[:, 1, 0] - ax, segs[:, 1, 1] - ay
+    dd = dx * dx + dy * dy
+    ad = ax * dx + ay * dy
     tn = np.clip(-ad / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
-    foot = a0 + tn[:, None] * d
-    rmin = np.hypot(foot[:, 0], foot[:, 1])
-    rmax = np.maximum(np.hypot(a0[:, 0], a0[:, 1]), np.hypot(a1[:, 0], a1[:, 1]))
+    rmin = np.hypot(ax + tn * dx, ay + tn * dy)
+    rmax = np.maximum(np.hypot(ax, ay), np.hypot(segs[:, 1, 0], segs[:, 1, 1]))
     order = np.argsort(rmin)
     rmin_s = rmin[order]
     span = float(np.max(rmax - rmin)) * (1 + 1e-12) + 1e-15
@@ -212,21 +219,20 @@ def _circle_hits(points: np.ndarray, segs: np.ndarray):
     hi = np.searchsorted(rmin_s, rho, side="right")
     count = hi - lo
     v = np.repeat(np.arange(rho.size), count)
-    e = order[np.repeat(lo, count) + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))]
+    e = order[np.repeat(lo - (np.cumsum(count) - count), count) + np.arange(v.size)]
     keep = rho[v] <= rmax[e]
     v, e = v[keep], e[keep]
     if v.size == 0:
-        return v, np.empty((0, 2))
-    r0 = np.einsum("ij,ij->i", a0[e], a0[e])
-    A, B, C = dd[e], 2 * ad[e], r0 - rho[v] ** 2
+        return v, np.empty(0), np.empty(0)
+    A, B, C = dd[e], (2 * ad)[e], (ax * ax + ay * ay)[e] - (rho ** 2)[v]
     disc = np.sqrt(np.maximum(B * B - 4 * A * C, 0.0))
-    vi, pts = [], []
-    for sign in (-1.0, 1.0):
-        t = (-B + sign * disc) / (2 * A)
-        ok = (t >= -1e-12) & (t <= 1 + 1e-12)
-        vi.append(v[ok])
-        pts.append(a0[e[ok]] + np.clip(t[ok], 0, 1)[:, None] * d[e[ok]])
-    return np.concatenate(vi), np.concatenate(pts)
+    B, A = -B, 2 * A
+    t1, t2 = (B - disc) / A, (B + disc) / A
+    ok1 = (t1 >= -1e-12) & (t1 <= 1 + 1e-12)
+    ok2 = (t2 >= -1e-12) & (t2 <= 1 + 1e-12)
+    e = np.concatenate([e[ok1], e[ok2]])
+    t = np.clip(np.concatenate([t1[ok1], t2[ok2]]), 0, 1)
+    return np.concatenate([v[ok1], v[ok2]]), ax[e] + t * dx[e], ay[e] + t * dy[e]
 
 
 def _wrap(a):
@@ -239,34 +245,45 @@ def _inside(points: np.ndarray, segs: np.ndarray, centre) -> np.ndarray:
     point (a tooth outline is radially monotone, so a point in a tooth is left through one flank
     or the tip land; one in a space never meets the outline further out). Edges are sorted by
     polar angle, so each point meets only the edges at its own angle."""
-    if points.size == 0 or segs.size == 0:
-        return np.zeros(points.shape[0], dtype=bool)
     c = np.asarray(centre, dtype=float)
-    q = segs - c
+    u = points - c
+    return _inside_from(u, segs - c, np.arctan2(u[:, 1], u[:, 0]))
+
+
+def _inside_from(u: np.ndarray, q: np.ndarray, polar: np.ndarray) -> np.ndarray:
+    """:func:`_inside` of the points ``u`` and segments ``q``, both taken from the centre, ``polar``
+    the points' polar angles (``arctan2``: the caller may have them). What each (point, edge)
+    pair needs of its point or its edge is computed once per point or edge and picked per pair
+    (the same numbers as computed per pair)."""
+    if u.size == 0 or q.size == 0:
+        return np.zeros(u.shape[0], dtype=bool)
     ref = math.atan2(float(np.mean(q[..., 1])), float(np.mean(q[..., 0])))  # the outline lies around here
     ang = _wrap(np.arctan2(q[..., 1], q[..., 0]) - ref)
     lo, hi = ang.min(axis=1), ang.max(axis=1)
     order = np.argsort(lo)
     lo_s = lo[order]
     span = float(np.max(hi - lo)) + 1e-15
-    u = points - c
-    pa = _wrap(np.arctan2(u[:, 1], u[:, 0]) - ref)
+    pa = _wrap(polar - ref)
     first = np.searchsorted(lo_s, pa - span, side="left")
     last = np.searchsorted(lo_s, pa, side="right")
     count = last - first
-    v = np.repeat(np.arange(points.shape[0]), count)
-    e = order[np.repeat(first, count) + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))]
+    v = np.repeat(np.arange(u.shape[0]), count)
+    e = order[np.repeat(first - (np.cumsum(count) - count), count) + np.arange(v.size)]
     keep = pa[v] <= hi[e]
     v, e = v[keep], e[keep]
     rad = np.hypot(u[:, 0], u[:, 1])
-    un = u[v] / np.where(rad[v] > 0, rad[v], 1.0)[:, None]
-    q0, dq = q[e, 0], q[e, 1] - q[e, 0]
-    den = un[:, 0] * dq[:, 1] - un[:, 1] * dq[:, 0]
+    scale = np.where(rad > 0, rad, 1.0)
+    unx, uny = (u[:, 0] / scale)[v], (u[:, 1] / scale)[v]
+    q0x, q0y = q[:, 0, 0], q[:, 0, 1]
+    dqx, dqy = q[:, 1, 0] - q0x, q[:, 1, 1] - q0y
+    cross = (q0x * dqy - q0y * dqx)[e]
+    q0x, q0y, dqx, dqy = q0x[e], q0y[e], dqx[e], dqy[e]
+    den = unx * dqy - uny * dqx
     with np.errstate(divide="ignore", invalid="ignore"):
-        lam = (q0[:, 0] * dq[:, 1] - q0[:, 1] * dq[:, 0]) / den  # distance along the ray
-        t = (q0[:, 0] * un[:, 1] - q0[:, 1] * un[:, 0]) / den  # parameter along the edge
+        lam = cross / den  # distance along the ray
+        t = (q0x * uny - q0y * unx) / den  # parameter along the edge
     hit = (den != 0) & (t >= 0) & (t < 1) & (lam > rad[v])
-    return np.bincount(v[hit], minlength=points.shape[0]) % 2 == 1
+    return np.bincount(v[hit], minlength=u.shape[0]) % 2 == 1
 
 
 def _vertices(segs: np.ndarray) -> np.ndarray:
@@ -291,22 +308,28 @@ def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> t
     c = np.asarray(centre1, dtype=float)
     c2 = c if centre2 is None else np.asarray(centre2, dtype=float)
     ccw_c, cw_c = [math.inf], [math.inf]
-    for verts, edges, own, inside_of in ((_vertices(seg2), seg1, False, (seg1, c)),
-                                         (_vertices(seg1), seg2, True, (seg2, c2))):
-        vi, x = _circle_hits(verts - c, edges - c)
+    for verts, edges, own, inside_centre in ((_vertices(seg2), seg1, False, c),
+                                             (_vertices(seg1), seg2, True, c2)):
+        u, q = verts - c, edges - c
+        vi, x, y = _circle_crossings(u, q)
         if vi.size == 0:
             continue
-        pv = verts[vi] - c
+        polar = np.arctan2(u[:, 1], u[:, 0])  # each vertex's once: the same numbers as per crossing
         if own:  # a vertex of 1 turning onto an edge of 2
-            d = _wrap(np.arctan2(x[:, 1], x[:, 0]) - np.arctan2(pv[:, 1], pv[:, 0]))
+            d = _wrap(np.arctan2(y, x) - polar[vi])
         else:  # an edge of 1 turning onto a vertex of 2
-            d = _wrap(np.arctan2(pv[:, 1], pv[:, 0]) - np.arctan2(x[:, 1], x[:, 0]))
+            d = _wrap(polar[vi] - np.arctan2(y, x))
+        # about centre 1 (2's vertices against 1), as the crossings: their numbers serve again
+        inside = _inside_from(u, q, polar) if inside_centre is c else _inside(verts, edges, inside_centre)
+        if not inside.any():  # the first contact either way: the smallest turn of all (no vertex's own needed)
+            ccw_c.append(np.min(d[d >= 0], initial=math.inf))
+            cw_c.append(np.min(-d[d < 0], initial=math.inf))
+            continue
         n = verts.shape[0]
         pos = np.full(n, np.inf)
         neg = np.full(n, np.inf)
         np.minimum.at(pos, vi[d >= 0], d[d >= 0])
         np.minimum.at(neg, vi[d < 0], -d[d < 0])
-        inside = _inside(verts, *inside_of)
         # outside: first contact either way; inside: freed by the shorter turn, i.e. overlapping
         # on the other side (turning counter-clockwise frees a vertex that overlaps clockwise)
         out = ~inside
