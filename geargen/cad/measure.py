@@ -106,11 +106,15 @@ class SectionCurve:
         mu, mv = 1e-7 * max(1.0, box[1] - box[0]), 1e-7 * max(1.0, box[3] - box[2])
         self._inner = (box[0] + mu, box[1] - mu, box[2] + mv, box[3] - mv)
 
-    def _solve_all(self, ts) -> list:
+    def _solve_all(self, ts, still: bool = False) -> list | None:
         """Section points (x, y) at the face parameters ``ts``, in order (each solve starts from the
         last one's result), None where the plane misses the face. One loop for all of them: the
         solves are OCCT surface evaluations (most points need one), each a few microseconds, which
-        the overhead of a call per point would double."""
+        the overhead of a call per point would double.
+
+        ``still``: None instead as soon as a solve misses the face or ends at another parameter
+        than it started from (the guess left as it was before the call)."""
+        start = self._guess
         p, du, dv = self._p, self._du, self._dv
         d1, z, along_u = self.surface.D1, self.z, self.along_u
         clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
@@ -142,14 +146,20 @@ class SectionCurve:
             else:
                 s = None
             if s is None or not (lo <= s <= hi):
+                if still:
+                    return None
                 out.append(None)
                 continue
+            if still and s != start:
+                return None
             self._guess = s
             u, v = (t, s) if along_u else (s, t)
             if self._inner is None:
                 self._make_classifier()
             u0, u1, v0, v1 = self._inner
             if not (u0 < u < u1 and v0 < v < v1) and self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
+                if still:
+                    return None
                 out.append(None)
                 continue
             if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
@@ -170,6 +180,12 @@ class SectionCurve:
     def xy_all(self, ts) -> list:
         """:meth:`xy` at each of ``ts`` in turn, in one call."""
         return self._solve_all([float(t) for t in ts])
+
+    def xy_still(self, ts) -> list | None:
+        """:meth:`xy_all` if every point lies on the face and its solve ends at the parameter it
+        started from (the last solve's result): then each point is the same whatever was solved
+        before it, in any order. Else None, the curve as before the call."""
+        return self._solve_all([float(t) for t in ts], still=True)
 
 
 @dataclass

@@ -101,47 +101,123 @@ def sections_from_shape(spec: GearSpec, shape, planes, samples_per_face: int = 6
     segs, worst = [], 0.0
     for z in np.atleast_1d(planes):
         cut = section(shape, float(z), samples_per_face)
-        parts = []
-        for e, curve in enumerate(cut.curves):
-            rows = np.nonzero(cut.edge_index == e)[0]
-            if rows.size < 2:
-                continue
-            t = cut.params[rows].tolist()
-            # points as pairs of floats: the bisection below solves ~20,000 of them one at a time,
-            # where numpy's arithmetic on two numbers costs more than the numbers
-            p = [tuple(q) for q in cut.points[rows].tolist()]
-            k = 0
-            while k < len(t) - 1:  # bisect chords until their middles lie on the curve
-                if p[k] is None or p[k + 1] is None:
-                    k += 1
-                    continue
-                tm = 0.5 * (t[k] + t[k + 1])
-                q = curve.xy(tm)
-                if q is None:  # the chord leaves the face: end both sides at the face's boundary
-                    ends = []
-                    for on, off in ((t[k], tm), (t[k + 1], tm)):
-                        for _ in range(40):
-                            mid = 0.5 * (on + off)
-                            if curve.xy(mid) is None:
-                                off = mid
-                            else:
-                                on = mid
-                        ends.append(on)
-                    t[k + 1:k + 1] = [ends[0], math.nan, ends[1]]
-                    p[k + 1:k + 1] = [curve.xy(ends[0]), None, curve.xy(ends[1])]
-                    continue
-                (ax, ay), (bx, by) = p[k], p[k + 1]
-                dx, dy = q[0] - 0.5 * (ax + bx), q[1] - 0.5 * (ay + by)
-                dev = math.sqrt(dx * dx + dy * dy)  # numpy's norm of (dx, dy), the same bits
-                if dev > chord_tolerance and abs(t[k + 1] - t[k]) > 1e-12 * max(1.0, abs(tm)):
-                    t.insert(k + 1, tm)
-                    p.insert(k + 1, q)
-                    continue
-                worst = max(worst, dev)
-                k += 1
-            parts += [(p[k], p[k + 1]) for k in range(len(p) - 1) if p[k] is not None and p[k + 1] is not None]
-        segs.append(np.array(parts, dtype=float) if parts else np.empty((0, 2, 2)))
+        parts, dev = _bisected(cut, chord_tolerance)
+        segs.append(parts)
+        worst = max(worst, dev)
     return GearSections(spec, np.atleast_1d(np.asarray(planes, dtype=float)), segs, worst, source)
+
+
+def _bisected(cut, chord_tolerance: float) -> tuple[np.ndarray, float]:
+    """The section ``cut`` (:func:`geargen.cad.measure.section`) as chords ``(m, 2, 2)``, each
+    bisected on its curve until its middle lies within ``chord_tolerance`` of the curve, and the
+    largest remaining deviation; curve by curve, in the order of the parameter.
+
+    All curves' chords are bisected together, level by level (:meth:`SectionCurve.xy_still`: each
+    curve's midpoints in one call). That gives each chord the same points as bisecting it alone
+    when every solve ends where it started (the curve's last point's parameter): then no point
+    depends on what was solved before it. A curve where one does not, or whose chord leaves its
+    face, is bisected alone, chord after chord (:func:`_bisect_curve`)."""
+    same = cut.edge_index[1:] == cut.edge_index[:-1]  # a curve's samples lie together, in order
+    first = np.nonzero(same)[0]
+    ta, tb = cut.params[first], cut.params[first + 1]
+    ax, ay = cut.points[first, 0], cut.points[first, 1]
+    bx, by = cut.points[first + 1, 0], cut.points[first + 1, 1]
+    cid = cut.edge_index[first]
+    alone: set[int] = set()
+    found, accepted = [], []  # (curve, t, x, y) of the midpoints kept; (curve, deviation) of the chords
+    while cid.size:
+        tm = 0.5 * (ta + tb)
+        qx, qy = np.empty_like(tm), np.empty_like(tm)
+        ok = np.ones(tm.size, dtype=bool)
+        ends = np.nonzero(np.concatenate([[True], cid[1:] != cid[:-1], [True]]))[0]
+        for i, j in zip(ends[:-1].tolist(), ends[1:].tolist()):
+            q = cut.curves[cid[i]].xy_still(tm[i:j])
+            if q is None:
+                alone.add(int(cid[i]))
+                ok[i:j] = False
+                continue
+            qx[i:j], qy[i:j] = np.array(q).T
+        if not ok.all():
+            ta, tb, tm, ax, ay, bx, by, qx, qy, cid = (x[ok] for x in (ta, tb, tm, ax, ay, bx, by, qx, qy, cid))
+        dx, dy = qx - 0.5 * (ax + bx), qy - 0.5 * (ay + by)
+        dev = np.sqrt(dx * dx + dy * dy)
+        split = (dev > chord_tolerance) & (np.abs(tb - ta) > 1e-12 * np.maximum(1.0, np.abs(tm)))
+        accepted.append((cid[~split], dev[~split]))
+        found.append((cid[split], tm[split], qx[split], qy[split]))
+        # each split chord's halves, in order
+        ta, tb = np.stack([ta[split], tm[split]], 1).ravel(), np.stack([tm[split], tb[split]], 1).ravel()
+        ax, ay, bx, by = (np.stack(pair, 1).ravel() for pair in ((ax[split], qx[split]), (ay[split], qy[split]),
+                                                                 (qx[split], bx[split]), (qy[split], by[split])))
+        cid = np.repeat(cid[split], 2)
+    drop = np.array(sorted(alone), dtype=int)
+    c = np.concatenate([cut.edge_index] + [f[0] for f in found])
+    t = np.concatenate([cut.params] + [f[1] for f in found])
+    x = np.concatenate([cut.points[:, 0]] + [f[2] for f in found])
+    y = np.concatenate([cut.points[:, 1]] + [f[3] for f in found])
+    order = np.lexsort((t, c))
+    order = order[~np.isin(c[order], drop)]
+    c, x, y = c[order], x[order], y[order]
+    link = np.nonzero(c[1:] == c[:-1])[0]
+    chords = np.stack([np.column_stack([x[link], y[link]]), np.column_stack([x[link + 1], y[link + 1]])], 1)
+    worst = 0.0
+    for e, d in accepted:
+        d = d[~np.isin(e, drop)]
+        if d.size:
+            worst = max(worst, float(np.max(d)))
+    if not alone:
+        return (chords if chords.size else np.empty((0, 2, 2))), worst
+    # the curves bisected alone, put in their places (curve order)
+    parts = {}
+    at = np.concatenate([[0], np.cumsum(np.bincount(c[link], minlength=len(cut.curves)))])
+    for e in range(len(cut.curves)):
+        if e in alone:
+            rows = np.nonzero(cut.edge_index == e)[0]
+            got, dev = _bisect_curve(cut.curves[e], cut.params[rows].tolist(),
+                                     [tuple(q) for q in cut.points[rows].tolist()], chord_tolerance)
+            parts[e] = got
+            worst = max(worst, dev)
+        elif at[e + 1] > at[e]:
+            parts[e] = chords[at[e]:at[e + 1]].tolist()
+    out = [seg for e in sorted(parts) for seg in parts[e]]
+    return (np.array(out, dtype=float) if out else np.empty((0, 2, 2))), worst
+
+
+def _bisect_curve(curve, t: list, p: list, chord_tolerance: float) -> tuple[list, float]:
+    """The chords between the points ``p`` (pairs of floats) at parameters ``t`` of ``curve``, each
+    bisected on the curve until its middle lies within ``chord_tolerance``, chord after chord (a
+    chord that leaves the face ends on its boundary on both sides): the chords' ends as pairs and
+    the largest remaining deviation."""
+    worst = 0.0
+    k = 0
+    while k < len(t) - 1:  # bisect chords until their middles lie on the curve
+        if p[k] is None or p[k + 1] is None:
+            k += 1
+            continue
+        tm = 0.5 * (t[k] + t[k + 1])
+        q = curve.xy(tm)
+        if q is None:  # the chord leaves the face: end both sides at the face's boundary
+            ends = []
+            for on, off in ((t[k], tm), (t[k + 1], tm)):
+                for _ in range(40):
+                    mid = 0.5 * (on + off)
+                    if curve.xy(mid) is None:
+                        off = mid
+                    else:
+                        on = mid
+                ends.append(on)
+            t[k + 1:k + 1] = [ends[0], math.nan, ends[1]]
+            p[k + 1:k + 1] = [curve.xy(ends[0]), None, curve.xy(ends[1])]
+            continue
+        (ax, ay), (bx, by) = p[k], p[k + 1]
+        dx, dy = q[0] - 0.5 * (ax + bx), q[1] - 0.5 * (ay + by)
+        dev = math.sqrt(dx * dx + dy * dy)  # numpy's norm of (dx, dy), the same bits
+        if dev > chord_tolerance and abs(t[k + 1] - t[k]) > 1e-12 * max(1.0, abs(tm)):
+            t.insert(k + 1, tm)
+            p.insert(k + 1, q)
+            continue
+        worst = max(worst, dev)
+        k += 1
+    return [(p[k], p[k + 1]) for k in range(len(p) - 1) if p[k] is not None and p[k + 1] is not None], worst
 
 
 def export_and_section(spec: GearSpec, planes, folder=None, chordal_tolerance: float = 1e-3) -> GearSections:

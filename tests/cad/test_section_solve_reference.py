@@ -201,3 +201,27 @@ def test_chord_bisected_sections_as_before(which, request):
         assert got.deviation == want.deviation
         for a, b in zip(got.segments, want.segments, strict=True):
             assert a.shape == b.shape and np.array_equal(a, b)
+
+
+def test_still_solves_are_those_of_any_order(helical21):
+    """SectionCurve.xy_still: where it gives points (the helical pinion's flanks at mid-face, where
+    every solve ends at the parameter it starts from) they are those of xy_all in order and in
+    reverse order; where a solve moves the guess (a plane off the middle: the first solve's Newton
+    steps) it gives None and leaves the guess as it was."""
+    faces = [f for f in _faces(helical21.shape) if BRepAdaptor_Surface(f).GetType() != GeomAbs_Plane]
+    width = helical21.spec.face_width
+    given = refused = 0
+    for face in faces[:: max(1, len(faces) // 30)]:
+        probe = SectionCurve(face, 0.5 * width)
+        ts = np.linspace(probe.t0, probe.t1, 17)[1:-1]
+        got = probe.xy_still(ts)
+        if got is not None:
+            assert got == SectionCurve(face, 0.5 * width).xy_all(ts)
+            assert got[::-1] == SectionCurve(face, 0.5 * width).xy_all(ts[::-1])
+            given += 1
+        off = SectionCurve(face, 0.3 * width)
+        guess = off._guess
+        if off.xy_still(ts) is None:
+            assert off._guess == guess
+            refused += 1
+    assert given > 10 and refused > 10
