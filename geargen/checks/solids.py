@@ -333,8 +333,16 @@ def _inside_from(u: np.ndarray, q: np.ndarray, polar: np.ndarray) -> np.ndarray:
     the points' polar angles (``arctan2``: the caller may have them). What each (point, edge)
     pair needs of its point or its edge is computed once per point or edge and picked per pair
     (the same numbers as computed per pair)."""
+    inside = np.zeros(u.shape[0], dtype=bool)
     if u.size == 0 or q.size == 0:
-        return np.zeros(u.shape[0], dtype=bool)
+        return inside
+    # a ray from beyond the outline's farthest end meets nothing (the crossings lie within that
+    # radius, computed to ~1e-16 of it): only the points within it are tested
+    rad = np.hypot(u[:, 0], u[:, 1])
+    near = np.nonzero(rad <= float(np.max(np.hypot(q[..., 0], q[..., 1]))) * (1 + 1e-9))[0]
+    if near.size == 0:
+        return inside
+    u, polar, rad = u[near], polar[near], rad[near]
     ref = math.atan2(float(np.mean(q[..., 1])), float(np.mean(q[..., 0])))  # the outline lies around here
     ang = _wrap(np.arctan2(q[..., 1], q[..., 0]) - ref)
     lo, hi = ang.min(axis=1), ang.max(axis=1)
@@ -349,7 +357,6 @@ def _inside_from(u: np.ndarray, q: np.ndarray, polar: np.ndarray) -> np.ndarray:
     e = order[np.repeat(first - (np.cumsum(count) - count), count) + np.arange(v.size)]
     keep = pa[v] <= hi[e]
     v, e = v[keep], e[keep]
-    rad = np.hypot(u[:, 0], u[:, 1])
     scale = np.where(rad > 0, rad, 1.0)
     unx, uny = (u[:, 0] / scale)[v], (u[:, 1] / scale)[v]
     q0x, q0y = q[:, 0, 0], q[:, 0, 1]
@@ -361,7 +368,8 @@ def _inside_from(u: np.ndarray, q: np.ndarray, polar: np.ndarray) -> np.ndarray:
         lam = cross / den  # distance along the ray
         t = (q0x * uny - q0y * unx) / den  # parameter along the edge
     hit = (den != 0) & (t >= 0) & (t < 1) & (lam > rad[v])
-    return np.bincount(v[hit], minlength=u.shape[0]) % 2 == 1
+    inside[near] = np.bincount(v[hit], minlength=u.shape[0]) % 2 == 1
+    return inside
 
 
 def _vertices(segs: np.ndarray) -> np.ndarray:
