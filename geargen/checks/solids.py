@@ -261,8 +261,15 @@ def _place(segs: np.ndarray, centre, angle) -> np.ndarray:
     return (segs.reshape(-1, 2) @ rot.T).reshape(segs.shape) + np.asarray(centre, dtype=float)
 
 
+def _distances(points: np.ndarray, centre) -> np.ndarray:
+    """Distances of ``points`` (``(..., 2)``) from ``centre``: numpy's norm over the last axis, the
+    same numbers at half its cost."""
+    dx, dy = points[..., 0] - centre[0], points[..., 1] - centre[1]
+    return np.sqrt(dx * dx + dy * dy)
+
+
 def _near(segs: np.ndarray, centre, radius: float) -> np.ndarray:
-    d = np.min(np.linalg.norm(segs - np.asarray(centre), axis=2), axis=1)
+    d = np.min(_distances(segs, np.asarray(centre, dtype=float)), axis=1)
     return segs[d <= radius]
 
 
@@ -448,17 +455,17 @@ def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarra
     v = _vertices(own)
     c = np.asarray(own_centre, dtype=float)
     oc = np.asarray(other_centre, dtype=float)
-    r = np.linalg.norm(v - c, axis=1)
+    r = _distances(v, c)
     root = r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)
     v, r = v[root], r[root]
-    ends = np.linalg.norm(other - oc, axis=2)
+    ends = _distances(other, oc)
     on_tip = np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)
     land = other[on_tip]
     if v.size == 0 or land.size == 0:
         return math.inf
     a0, d = land[:, 0], land[:, 1] - land[:, 0]
     u = v - oc
-    rad = np.linalg.norm(u, axis=1)
+    rad = _distances(u, (0.0, 0.0))
     cand = np.nonzero(rad < r_tip)[0]
     if cand.size == 0:
         # no vertex inside: the smallest distance of all (vertex, land) pairs. A pair is measured
