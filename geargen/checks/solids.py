@@ -114,9 +114,9 @@ def _bisected(cut, chord_tolerance: float) -> tuple[np.ndarray, float]:
 
     All curves' chords are bisected together, level by level (:meth:`SectionCurve.xy_still`: each
     curve's midpoints in one call). That gives each chord the same points as bisecting it alone
-    when every solve ends where it started (the curve's last point's parameter): then no point
-    depends on what was solved before it. A curve where one does not, or whose chord leaves its
-    face, is bisected alone, chord after chord (:func:`_bisect_curve`)."""
+    when every solve ends at the parameter it started from (the curve's guess, which then never
+    moves): then no point depends on what was solved before it. A curve where one does not, or
+    whose chord leaves its face, is bisected alone, chord after chord (:func:`_bisect_curve`)."""
     same = cut.edge_index[1:] == cut.edge_index[:-1]  # a curve's samples lie together, in order
     first = np.nonzero(same)[0]
     ta, tb = cut.params[first], cut.params[first + 1]
