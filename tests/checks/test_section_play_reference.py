@@ -255,3 +255,19 @@ def test_placed_sections_as_before():
             c, s = math.cos(angle), math.sin(angle)
             want = segs @ np.array([[c, -s], [s, c]]).T + np.array([x, y])
             assert np.array_equal(solids._place(segs, (x, y), angle), want)
+
+
+def test_wrap_as_before():
+    """The angle wrap taking the modulo only outside [0, 2 pi) against (a + pi) mod 2 pi - pi for
+    every element, bit for bit (signed zeros, the ends of the range, infinities and NaN too)."""
+    rng = np.random.default_rng(28)
+    edges = [0.0, -0.0, math.pi, -math.pi, np.nextafter(math.pi, 0), np.nextafter(-math.pi, 0), 2 * math.pi,
+             -2 * math.pi, math.inf, -math.inf, math.nan]
+    a = np.concatenate([rng.normal(size=20000) * 2, rng.uniform(-math.pi, math.pi, 20000), rng.normal(size=200) * 100,
+                        edges])
+    with np.errstate(invalid="ignore"):
+        want = (a + math.pi) % (2 * math.pi) - math.pi
+        got = _wrap(a)
+        assert all(_wrap(x) == w or (math.isnan(w) and math.isnan(_wrap(x))) for x, w in zip(edges, want[-len(edges):]))
+    same = (got == want) | (np.isnan(got) & np.isnan(want))
+    assert same.all() and np.array_equal(np.signbit(got), np.signbit(want))
