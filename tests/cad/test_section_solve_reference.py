@@ -1,8 +1,10 @@
-"""The section's Newton solve (geargen.cad.measure.SectionCurve._solve) after issue 28 (its OCCT
+"""The section's Newton solve (geargen.cad.measure.SectionCurve._solve_all) after issue 28 (its OCCT
 points and vectors made once per face; the last surface evaluation skipped where the last Newton
-step left the point where it was evaluated) against the code it replaced, kept here as the
-reference: the same points to the last bit, in the same order of calls (each solve starts from
-the last one's result), on the faces of a spur and a helical gear solid."""
+step left the point where it was evaluated; all of a call's points in one loop; the face's
+classifier skipped inside the parameter box of a face bounded by parameter lines) against the
+code it replaced, kept here as the reference: the same points to the last bit, in the same order
+of calls (each solve starts from the last one's result), on the faces of a spur and a helical
+gear solid; and the chords bisected level by level against the bisection chord after chord."""
 
 import math
 
