@@ -20,13 +20,13 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Surface
+from OCP.BRepAdaptor import BRepAdaptor_Curve, BRepAdaptor_Curve2d, BRepAdaptor_Surface
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Section
 from OCP.BRepTools import BRepTools
 from OCP.BRepTopAdaptor import BRepTopAdaptor_FClass2d
-from OCP.GeomAbs import GeomAbs_Plane
+from OCP.GeomAbs import GeomAbs_BSplineCurve, GeomAbs_Line, GeomAbs_Plane
 from OCP.gp import gp_Dir, gp_Pln, gp_Pnt, gp_Pnt2d, gp_Vec
-from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_OUT
+from OCP.TopAbs import TopAbs_EDGE, TopAbs_FACE, TopAbs_IN, TopAbs_OUT
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopoDS import TopoDS, TopoDS_Shape
 from scipy.optimize import brentq, minimize_scalar
@@ -59,60 +59,133 @@ class SectionCurve:
         self.s0, self.s1 = (self.v0, self.v1) if self.along_u else (self.u0, self.u1)
         self._guess = 0.5 * (self.s0 + self.s1)
         self._classifier = None
+        self._inner = None  # the box of parameters certainly inside the face (made with the classifier)
         # what every solve uses, made once (a section solves ~40,000 points, most in one Newton step)
         self._p, self._du, self._dv = gp_Pnt(), gp_Vec(), gp_Vec()
         span = self.s1 - self.s0
         self._clip_lo, self._clip_hi = self.s0 - 0.01 * span, self.s1 + 0.01 * span
         self._rounding = 1e-12 * max(1.0, abs(span))
 
-    def _solve(self, t: float):
-        s = self._guess
+    def _make_classifier(self):
+        """The face's classifier, and the parameter box (u0, u1, v0, v1) whose points need none: the
+        face's domain shrunk by 1e-7 of its size where every edge of the face lies on a side of that
+        domain (a rectangle in (u, v), as the gear solids' flank, fillet and spur land faces are:
+        their points inside it are inside the face), and the classifier agrees at its middle;
+        else an empty box (every point classified)."""
+        self._classifier = BRepTopAdaptor_FClass2d(self.face, 1e-9)
+        self._inner = (math.inf, -math.inf, math.inf, -math.inf)
+        sides = []
+        exp = TopExp_Explorer(self.face, TopAbs_EDGE)
+        while exp.More():
+            curve = BRepAdaptor_Curve2d(TopoDS.Edge_s(exp.Current()), self.face)
+            exp.Next()
+            kind = curve.GetType()
+            if kind == GeomAbs_Line:
+                ends = [curve.Value(curve.FirstParameter()), curve.Value(curve.LastParameter())]
+            elif kind == GeomAbs_BSplineCurve:  # straight only if its poles are (they bound it)
+                spline = curve.BSpline()
+                ends = [spline.Pole(i) for i in range(1, spline.NbPoles() + 1)]
+            else:
+                return
+            us, vs = {q.X() for q in ends}, {q.Y() for q in ends}
+            if len(us) == 1:
+                sides.append((0, us.pop()))
+            elif len(vs) == 1:
+                sides.append((1, vs.pop()))
+            else:
+                return
+        u = [c for axis, c in sides if axis == 0]
+        v = [c for axis, c in sides if axis == 1]
+        if not u or not v:
+            return
+        box = (min(u), max(u), min(v), max(v))
+        if any(c not in box[2 * axis:2 * axis + 2] for axis, c in sides):
+            return
+        if self._classifier.Perform(gp_Pnt2d(0.5 * (box[0] + box[1]), 0.5 * (box[2] + box[3]))) != TopAbs_IN:
+            return
+        mu, mv = 1e-7 * max(1.0, box[1] - box[0]), 1e-7 * max(1.0, box[3] - box[2])
+        self._inner = (box[0] + mu, box[1] - mu, box[2] + mv, box[3] - mv)
+
+    def _solve_all(self, ts, still: bool = False) -> list | None:
+        """Section points (x, y) at the face parameters ``ts``, in order (each solve starts from the
+        last one's result), None where the plane misses the face. One loop for all of them: the
+        solves are OCCT surface evaluations (most points need one), each a few microseconds, which
+        the overhead of a call per point would double.
+
+        ``still``: None instead as soon as a solve misses the face or ends at another parameter
+        than it started from (the guess left as it was before the call)."""
+        start = self._guess
         p, du, dv = self._p, self._du, self._dv
         d1, z, along_u = self.surface.D1, self.z, self.along_u
         clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
-        last = math.inf
-        for _ in range(40):
-            at = s
-            if along_u:
-                d1(t, s, p, du, dv)
-                dz = dv.Z()
+        lo, hi = self.s0 - rounding, self.s1 + rounding
+        out = []
+        for t in ts:
+            s = self._guess
+            last = math.inf
+            for _ in range(40):
+                at = s
+                if along_u:
+                    d1(t, s, p, du, dv)
+                    dz = dv.Z()
+                else:
+                    d1(s, t, p, du, dv)
+                    dz = du.Z()
+                f = p.Z() - z
+                if dz == 0.0:
+                    s = None
+                    break
+                step = f / dz
+                s = min(max(s - step, clip_lo), clip_hi)
+                # converged, or down to rounding: a step no smaller than the last one once it is below
+                # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
+                if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
+                        (abs(step) >= last and abs(step) <= rounding):
+                    break
+                last = abs(step)
             else:
-                d1(s, t, p, du, dv)
-                dz = du.Z()
-            f = p.Z() - z
-            if dz == 0.0:
+                s = None
+            if s is None or not (lo <= s <= hi):
+                if still:
+                    return None
+                out.append(None)
+                continue
+            if still and s != start:
                 return None
-            step = f / dz
-            s = min(max(s - step, clip_lo), clip_hi)
-            # converged, or down to rounding: a step no smaller than the last one once it is below
-            # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
-            if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
-                    (abs(step) >= last and abs(step) <= rounding):
-                break
-            last = abs(step)
-        else:
-            return None
-        if not (self.s0 - rounding <= s <= self.s1 + rounding):
-            return None
-        self._guess = s
-        u, v = (t, s) if along_u else (s, t)
-        if self._classifier is None:
-            self._classifier = BRepTopAdaptor_FClass2d(self.face, 1e-9)
-        if self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
-            return None
-        if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
-            d1(u, v, p, du, dv)
-        return p.X(), p.Y()
+            self._guess = s
+            u, v = (t, s) if along_u else (s, t)
+            if self._inner is None:
+                self._make_classifier()
+            u0, u1, v0, v1 = self._inner
+            if not (u0 < u < u1 and v0 < v < v1) and self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
+                if still:
+                    return None
+                out.append(None)
+                continue
+            if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
+                d1(u, v, p, du, dv)
+            out.append((p.X(), p.Y()))
+        return out
 
     def point(self, t: float):
         """Section point (x, y) at face parameter ``t``, or None off the face."""
-        xy = self._solve(float(t))
+        xy = self._solve_all((float(t),))[0]
         return None if xy is None else np.array(xy)
 
     def xy(self, t: float):
         """:meth:`point` as a tuple of two floats (no array: for a caller that solves thousands of
         points one at a time and does its arithmetic on floats)."""
-        return self._solve(float(t))
+        return self._solve_all((float(t),))[0]
+
+    def xy_all(self, ts) -> list:
+        """:meth:`xy` at each of ``ts`` in turn, in one call."""
+        return self._solve_all([float(t) for t in ts])
+
+    def xy_still(self, ts) -> list | None:
+        """:meth:`xy_all` if every point lies on the face and its solve ends at the parameter it
+        started from (the last solve's result): then each point is the same whatever was solved
+        before it, in any order. Else None, the curve as before the call."""
+        return self._solve_all([float(t) for t in ts], still=True)
 
 
 @dataclass
@@ -181,8 +254,7 @@ def section(shape: TopoDS_Shape, z: float, samples_per_face: int = 64) -> Sectio
         curve = SectionCurve(face, z)
         # two passes: even in the parameter, then even in arc length along the first pass
         t = np.linspace(curve.t0, curve.t1, samples_per_face)
-        got = [(tj, curve.point(tj)) for tj in t]
-        got = [(tj, p) for tj, p in got if p is not None]
+        got = [(tj, p) for tj, p in zip(t, curve.xy_all(t)) if p is not None]
         if not got:
             continue
         steps = np.linalg.norm(np.diff(np.array([p for _, p in got]), axis=0), axis=1) if len(got) > 2 else None
@@ -193,8 +265,7 @@ def section(shape: TopoDS_Shape, z: float, samples_per_face: int = 64) -> Sectio
             arc = np.concatenate([[0.0], np.cumsum(steps)])
             t = np.interp(np.linspace(0.0, arc[-1], samples_per_face), arc, tt)
             t = np.unique(np.concatenate([t, tt[[0, -1]]]))
-            got = [(tj, curve.point(tj)) for tj in t]
-            got = [(tj, p) for tj, p in got if p is not None]
+            got = [(tj, p) for tj, p in zip(t, curve.xy_all(t)) if p is not None]
         pts.append(np.array([p for _, p in got]))
         prm.append(np.array([tj for tj, _ in got]))
         idx.append(np.full(len(got), len(curves)))

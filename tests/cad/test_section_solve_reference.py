@@ -1,8 +1,10 @@
-"""The section's Newton solve (geargen.cad.measure.SectionCurve._solve) after issue 28 (its OCCT
+"""The section's Newton solve (geargen.cad.measure.SectionCurve._solve_all) after issue 28 (its OCCT
 points and vectors made once per face; the last surface evaluation skipped where the last Newton
-step left the point where it was evaluated) against the code it replaced, kept here as the
-reference: the same points to the last bit, in the same order of calls (each solve starts from
-the last one's result), on the faces of a spur and a helical gear solid."""
+step left the point where it was evaluated; all of a call's points in one loop; the face's
+classifier skipped inside the parameter box of a face bounded by parameter lines) against the
+code it replaced, kept here as the reference: the same points to the last bit, in the same order
+of calls (each solve starts from the last one's result), on the faces of a spur and a helical
+gear solid; and the chords bisected level by level against the bisection chord after chord."""
 
 import math
 
@@ -54,6 +56,10 @@ class ReferenceCurve(SectionCurve):
         self.surface.D1(u, v, p, du, dv)
         return np.array([p.X(), p.Y()])
 
+    def _solve_all(self, ts):
+        """geargen before issue 28's last change: one call per point (the solve above)."""
+        return [ReferenceCurve._solve(self, float(t)) for t in ts]
+
 
 def _faces(shape):
     exp = TopExp_Explorer(shape, TopAbs_FACE)
@@ -90,10 +96,47 @@ def test_section_points_as_before(which, request):
     assert checked > 1000 and off > 0  # both branches were met
 
 
+
+@pytest.mark.parametrize("which", ["spur112", "helical21"])
+def test_points_left_unclassified_are_inside(which, request):
+    """The solve skips the face's classifier inside the box :meth:`SectionCurve._make_classifier`
+    finds: every point of a grid over that box, its edges 1e-7 of its size inside the face's
+    domain, is inside the face by the classifier; the flank and fillet faces (B-spline, bounded
+    by parameter lines) have a box, a helical gear's land faces (bounded by helices) none."""
+    from OCP.BRepTopAdaptor import BRepTopAdaptor_FClass2d
+    from OCP.GeomAbs import GeomAbs_BSplineSurface
+    from OCP.TopAbs import TopAbs_IN
+
+    gear = request.getfixturevalue(which)
+    faces = list(_faces(gear.shape))
+    boxes = {True: 0, False: 0}
+    for face in faces[:: max(1, len(faces) // 60)]:
+        curve = SectionCurve(face, 0.5 * gear.spec.face_width)
+        curve._make_classifier()
+        u0, u1, v0, v1 = curve._inner
+        spline = curve.surface.GetType() == GeomAbs_BSplineSurface
+        if spline:
+            assert u0 < u1 and v0 < v1
+        if u0 >= u1:
+            boxes[False] += 1
+            continue
+        boxes[True] += 1
+        classifier = BRepTopAdaptor_FClass2d(face, 1e-9)
+        eps_u, eps_v = 1e-9 * (u1 - u0), 1e-9 * (v1 - v0)
+        for u in np.concatenate([np.linspace(u0, u1, 9), [u0 + eps_u, u1 - eps_u]]):
+            for v in np.concatenate([np.linspace(v0, v1, 9), [v0 + eps_v, v1 - eps_v]]):
+                assert classifier.Perform(gp_Pnt2d(float(u), float(v))) == TopAbs_IN
+    assert boxes[True] > 20
+    if which == "spur112":  # every face a parameter rectangle (the lands' helices are straight)
+        assert boxes[False] == 0
+    else:
+        assert boxes[False] > 5
+
+
 def test_whole_section_as_before(helical21, monkeypatch):
     z = 0.61 * helical21.spec.face_width
     got = section(helical21.shape, z, 64)
-    monkeypatch.setattr("geargen.cad.measure.SectionCurve._solve", ReferenceCurve._solve)
+    monkeypatch.setattr("geargen.cad.measure.SectionCurve._solve_all", ReferenceCurve._solve_all)
     want = section(helical21.shape, z, 64)
     assert np.array_equal(got.points, want.points) and np.array_equal(got.params, want.params)
     assert np.array_equal(got.edge_index, want.edge_index)
@@ -160,3 +203,27 @@ def test_chord_bisected_sections_as_before(which, request):
         assert got.deviation == want.deviation
         for a, b in zip(got.segments, want.segments, strict=True):
             assert a.shape == b.shape and np.array_equal(a, b)
+
+
+def test_still_solves_are_those_of_any_order(helical21):
+    """SectionCurve.xy_still: where it gives points (the helical pinion's flanks at mid-face, where
+    every solve ends at the parameter it starts from) they are those of xy_all in order and in
+    reverse order; where a solve moves the guess (a plane off the middle: the first solve's Newton
+    steps) it gives None and leaves the guess as it was."""
+    faces = [f for f in _faces(helical21.shape) if BRepAdaptor_Surface(f).GetType() != GeomAbs_Plane]
+    width = helical21.spec.face_width
+    given = refused = 0
+    for face in faces[:: max(1, len(faces) // 30)]:
+        probe = SectionCurve(face, 0.5 * width)
+        ts = np.linspace(probe.t0, probe.t1, 17)[1:-1]
+        got = probe.xy_still(ts)
+        if got is not None:
+            assert got == SectionCurve(face, 0.5 * width).xy_all(ts)
+            assert got[::-1] == SectionCurve(face, 0.5 * width).xy_all(ts[::-1])
+            given += 1
+        off = SectionCurve(face, 0.3 * width)
+        guess = off._guess
+        if off.xy_still(ts) is None:
+            assert off._guess == guess
+            refused += 1
+    assert given > 10 and refused > 10

@@ -1,7 +1,9 @@
 """Path 2's polygon play and root clearance (geargen.checks.solids) after issue 28 (each vertex
 shared by two chained segments turned once, not twice) against the code they replaced, kept here
 as the reference: the same sweep to the last bit, with and without overlap, on chained sections
-and on sections with segments missing (broken chains, as a face's boundary leaves them)."""
+and on sections with segments missing (broken chains, as a face's boundary leaves them). Also the
+circle crossings and inside test before their per-edge and per-vertex terms were computed once,
+and the root clearance before it measured only the pairs that can be the nearest."""
 
 import math
 
@@ -16,6 +18,83 @@ from checks_support import gear, tight_centre_distance
 from test_check_sections import _sampled_sections
 
 
+def reference_circle_hits(points, segs):
+    """geargen before issue 28's per-edge and per-vertex terms. Where the circles about the origin through ``points`` ``(V, 2)`` cross ``segs`` ``(E, 2, 2)``.
+
+    Returns (vertex index, crossing point (k, 2)) for every crossing. Edges are sorted by their
+    nearest radius, so each vertex only meets the edges whose radial span can hold it.
+    """
+    if points.size == 0 or segs.size == 0:
+        return np.empty(0, dtype=int), np.empty((0, 2))
+    rho = np.hypot(points[:, 0], points[:, 1])
+    a0, a1 = segs[:, 0], segs[:, 1]
+    d = a1 - a0
+    dd = np.einsum("ij,ij->i", d, d)
+    ad = np.einsum("ij,ij->i", a0, d)
+    tn = np.clip(-ad / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
+    foot = a0 + tn[:, None] * d
+    rmin = np.hypot(foot[:, 0], foot[:, 1])
+    rmax = np.maximum(np.hypot(a0[:, 0], a0[:, 1]), np.hypot(a1[:, 0], a1[:, 1]))
+    order = np.argsort(rmin)
+    rmin_s = rmin[order]
+    span = float(np.max(rmax - rmin)) * (1 + 1e-12) + 1e-15
+    lo = np.searchsorted(rmin_s, rho - span, side="left")
+    hi = np.searchsorted(rmin_s, rho, side="right")
+    count = hi - lo
+    v = np.repeat(np.arange(rho.size), count)
+    e = order[np.repeat(lo, count) + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))]
+    keep = rho[v] <= rmax[e]
+    v, e = v[keep], e[keep]
+    if v.size == 0:
+        return v, np.empty((0, 2))
+    r0 = np.einsum("ij,ij->i", a0[e], a0[e])
+    A, B, C = dd[e], 2 * ad[e], r0 - rho[v] ** 2
+    disc = np.sqrt(np.maximum(B * B - 4 * A * C, 0.0))
+    vi, pts = [], []
+    for sign in (-1.0, 1.0):
+        t = (-B + sign * disc) / (2 * A)
+        ok = (t >= -1e-12) & (t <= 1 + 1e-12)
+        vi.append(v[ok])
+        pts.append(a0[e[ok]] + np.clip(t[ok], 0, 1)[:, None] * d[e[ok]])
+    return np.concatenate(vi), np.concatenate(pts)
+
+
+def reference_inside(points, segs, centre):
+    """geargen before issue 28's per-edge and per-vertex terms. Whether ``points`` ``(V, 2)`` lie inside the gear whose nearby outline is ``segs``, centred
+    at ``centre``: the parity of the crossings of the ray from the centre outward beyond each
+    point (a tooth outline is radially monotone, so a point in a tooth is left through one flank
+    or the tip land; one in a space never meets the outline further out). Edges are sorted by
+    polar angle, so each point meets only the edges at its own angle."""
+    if points.size == 0 or segs.size == 0:
+        return np.zeros(points.shape[0], dtype=bool)
+    c = np.asarray(centre, dtype=float)
+    q = segs - c
+    ref = math.atan2(float(np.mean(q[..., 1])), float(np.mean(q[..., 0])))  # the outline lies around here
+    ang = _wrap(np.arctan2(q[..., 1], q[..., 0]) - ref)
+    lo, hi = ang.min(axis=1), ang.max(axis=1)
+    order = np.argsort(lo)
+    lo_s = lo[order]
+    span = float(np.max(hi - lo)) + 1e-15
+    u = points - c
+    pa = _wrap(np.arctan2(u[:, 1], u[:, 0]) - ref)
+    first = np.searchsorted(lo_s, pa - span, side="left")
+    last = np.searchsorted(lo_s, pa, side="right")
+    count = last - first
+    v = np.repeat(np.arange(points.shape[0]), count)
+    e = order[np.repeat(first, count) + (np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count))]
+    keep = pa[v] <= hi[e]
+    v, e = v[keep], e[keep]
+    rad = np.hypot(u[:, 0], u[:, 1])
+    un = u[v] / np.where(rad[v] > 0, rad[v], 1.0)[:, None]
+    q0, dq = q[e, 0], q[e, 1] - q[e, 0]
+    den = un[:, 0] * dq[:, 1] - un[:, 1] * dq[:, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        lam = (q0[:, 0] * dq[:, 1] - q0[:, 1] * dq[:, 0]) / den  # distance along the ray
+        t = (q0[:, 0] * un[:, 1] - q0[:, 1] * un[:, 0]) / den  # parameter along the edge
+    hit = (den != 0) & (t >= 0) & (t < 1) & (lam > rad[v])
+    return np.bincount(v[hit], minlength=points.shape[0]) % 2 == 1
+
+
 def reference_polygon_play(seg1, seg2, centre1, centre2=None):
     """geargen before issue 28: every segment's two ends turned."""
     c = np.asarray(centre1, dtype=float)
@@ -23,7 +102,7 @@ def reference_polygon_play(seg1, seg2, centre1, centre2=None):
     ccw_c, cw_c = [math.inf], [math.inf]
     for verts, edges, own, inside_of in ((seg2.reshape(-1, 2), seg1, False, (seg1, c)),
                                          (seg1.reshape(-1, 2), seg2, True, (seg2, c2))):
-        vi, x = _circle_hits(verts - c, edges - c)
+        vi, x = reference_circle_hits(verts - c, edges - c)
         if vi.size == 0:
             continue
         pv = verts[vi] - c
@@ -36,7 +115,7 @@ def reference_polygon_play(seg1, seg2, centre1, centre2=None):
         neg = np.full(n, np.inf)
         np.minimum.at(pos, vi[d >= 0], d[d >= 0])
         np.minimum.at(neg, vi[d < 0], -d[d < 0])
-        inside = _inside(verts, *inside_of)
+        inside = reference_inside(verts, *inside_of)
         out = ~inside
         ccw_c.append(np.min(pos[out], initial=math.inf))
         cw_c.append(np.min(neg[out], initial=math.inf))
@@ -105,3 +184,90 @@ def test_sections_sweep_as_before(pair, gap, monkeypatch):
             assert np.array_equal(getattr(got, name), getattr(want, name)), name
     if gap < 0:  # the inside branches were taken
         assert np.min(got.play_ccw + got.play_cw) < 0
+
+
+def test_root_clearance_as_before_over_a_pitch():
+    """The root clearance with no vertex inside the other gear (only the pairs that can be the
+    nearest are measured) against every pair measured, bit for bit: a spur pair at 20 rotations
+    over one pitch and three centre distances (the last one 0.6 mm short: tips in the roots, the
+    inside branch), both gears' roots, sections whole and with segments missing."""
+    g1, g2 = gear(20), gear(41)
+    rng = np.random.default_rng(2028)
+    planes = np.array([5.0])
+    s1, s2 = _sampled_sections(g1, planes, 0.01), _sampled_sections(g2, planes, 0.01)
+    compared = inside = 0
+    for gap in (0.3, 0.0, -0.6):
+        su = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + gap)
+        pos = mesh_positions(su, 20)[:20]
+        st = su.states(pos)
+        for a, b in ((s1, s2), (_broken(s1, rng), _broken(s2, rng))):
+            for i in range(pos.size):
+                c1, c2 = st.centre1[i], st.centre2[i]
+                # as check_mesh_sections places them: each gear's segments within reach of the other
+                p1 = solids._near(solids._place(a.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
+                p2 = solids._near(solids._place(b.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+                for own, oc, rr, other, occ, rt in ((p1, c1, g1.root_radius_standard, p2, c2, g2.tip_radius),
+                                                    (p2, c2, g2.root_radius_standard, p1, c1, g1.tip_radius)):
+                    got = solids._root_clearance(own, oc, rr, other, occ, rt, 1e-6)
+                    want = reference_root_clearance(own, oc, rr, other, occ, rt, 1e-6)
+                    assert got == want
+                    compared += 1
+                    inside += want < 0
+    assert compared == 240 and 0 < inside < compared  # both branches were met
+
+
+@pytest.mark.parametrize("pair, gap", [((gear(20), gear(41)), 0.02), ((gear(20), gear(41)), -0.6),
+                                       ((gear(17, 1.5, beta_deg=18), gear(43, 1.5, beta_deg=18, hand="left")), 0.01)],
+                         ids=["apart", "overlapping", "helical"])
+def test_crossings_and_inside_test_as_before(pair, gap):
+    """The circle crossings and the inside test with their per-edge and per-vertex terms computed
+    once against the code that computed them per pair: the same arrays bit for bit, vertices of
+    either gear against the other placed as the check places them, over a pitch."""
+    g1, g2 = pair
+    su = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + gap)
+    planes = section_planes(su, 1)
+    s1, s2 = _sampled_sections(g1, planes, 0.01), _sampled_sections(g2, planes, 0.01)
+    pos = mesh_positions(su, 12)[:12]
+    st = su.states(pos)
+    crossings = inside = 0
+    for i in range(pos.size):
+        c1, c2 = st.centre1[i], st.centre2[i]
+        p1 = solids._near(solids._place(s1.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
+        p2 = solids._near(solids._place(s2.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+        for verts, edges, centre in ((p2.reshape(-1, 2), p1, c1), (p1.reshape(-1, 2), p2, c2)):
+            got, want = _circle_hits(verts - c1, edges - c1), reference_circle_hits(verts - c1, edges - c1)
+            assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
+            crossings += want[0].size
+            got, want = _inside(verts, edges, centre), reference_inside(verts, edges, centre)
+            assert np.array_equal(got, want)
+            inside += int(np.count_nonzero(want))
+    assert crossings > 1000
+    assert inside > 0 if gap < 0 else inside == 0  # the overlapping pair has vertices inside
+
+
+def test_placed_sections_as_before():
+    """A section placed as one (2m, 2) matrix product against the m stacked (2, 2) products it
+    replaced: the same ends bit for bit, a spur and a helical section at 200 placements."""
+    rng = np.random.default_rng(2028)
+    for spec in (gear(20), gear(43, 1.5, beta_deg=18, hand="left")):
+        segs = _sampled_sections(spec, np.array([3.0]), 0.01).segments[0]
+        for angle, x, y in zip(rng.uniform(-7, 7, 100), rng.uniform(-90, 90, 100), rng.uniform(-90, 90, 100)):
+            c, s = math.cos(angle), math.sin(angle)
+            want = segs @ np.array([[c, -s], [s, c]]).T + np.array([x, y])
+            assert np.array_equal(solids._place(segs, (x, y), angle), want)
+
+
+def test_wrap_as_before():
+    """The angle wrap taking the modulo only outside [0, 2 pi) against (a + pi) mod 2 pi - pi for
+    every element, bit for bit (signed zeros, the ends of the range, infinities and NaN too)."""
+    rng = np.random.default_rng(28)
+    edges = [0.0, -0.0, math.pi, -math.pi, np.nextafter(math.pi, 0), np.nextafter(-math.pi, 0), 2 * math.pi,
+             -2 * math.pi, math.inf, -math.inf, math.nan]
+    a = np.concatenate([rng.normal(size=20000) * 2, rng.uniform(-math.pi, math.pi, 20000), rng.normal(size=200) * 100,
+                        edges])
+    with np.errstate(invalid="ignore"):
+        want = (a + math.pi) % (2 * math.pi) - math.pi
+        got = _wrap(a)
+        assert all(_wrap(x) == w or (math.isnan(w) and math.isnan(_wrap(x))) for x, w in zip(edges, want[-len(edges):]))
+    same = (got == want) | (np.isnan(got) & np.isnan(want))
+    assert same.all() and np.array_equal(np.signbit(got), np.signbit(want))
