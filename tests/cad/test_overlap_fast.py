@@ -301,8 +301,8 @@ def test_seeded_perturbations_match_the_reference(name):
 
 
 def test_a_part_in_a_ring_gears_rim_is_an_overlap():
-    """A ring gear's screen is its rim cylinder and its core the material from its root circle to
-    the rim (an internal gear's tip circle is the hole): a 2 mm cube put wholly inside the
+    """A ring gear's screen is the annulus from its tip circle to its rim and its core the material
+    from its root circle to the rim (an internal gear's tip circle is the hole): a 2 mm cube put wholly inside the
     planetary ring's rim (root circle r 24.36, rim r 29; the cube 25..27 mm from the axis) is an
     overlap of its whole 8 mm^3, and a cube meant to touch the rim but run 1 mm into it
     (28..30 mm from the axis) interpenetrates by the part of it inside r 29. Before, the check
