@@ -516,11 +516,11 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
     parts, intended = list(parts), list(intended)
     wanted = {frozenset((a, b)): why for a, b, why in intended}
     skip = {frozenset((a, b)) for a, b, _ in delegated}
-    boxes = [_bbox(p.world()) for p in parts]
+    facts: dict = {}  # what is learnt of each solid, once (intersection_volume, contact_gap)
+    boxes = [_facts(p.world(), facts).kernel_box for p in parts]  # _bbox's box, kept for contact_gap
     envelopes = [part_envelope(p) for p in parts]
     overlaps: list[Overlap] = []
     checked = 0
-    facts: dict = {}  # what is learnt of each solid, once (intersection_volume)
     for i in range(len(parts)):
         for j in range(i + 1, len(parts)):
             if boxes[i].IsOut(boxes[j]):
