@@ -24,9 +24,10 @@ from OCP.GeomAbs import GeomAbs_BSplineSurface, GeomAbs_Cylinder, GeomAbs_Plane,
 from OCP.gp import gp_Trsf, gp_Vec
 from OCP.GProp import GProp_GProps
 from OCP.TopAbs import TopAbs_FACE, TopAbs_SOLID, TopAbs_VERTEX
-from OCP.TopExp import TopExp_Explorer
+from OCP.TopExp import TopExp, TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Shape
+from OCP.TopTools import TopTools_IndexedMapOfShape
 
 from geargen.cad import parts as P
 from geargen.cad.kernel import KERNEL_TOLERANCE, boolean
@@ -70,9 +71,13 @@ def _bspline_along_z(surface) -> bool:
     """A B-spline surface whose one parameter direction is of degree 1 with two poles per row, each
     row the same step along z and of equal weights: the surface is a curve swept straight along z."""
     nu, nv = surface.NbUPoles(), surface.NbVPoles()
-    poles = np.array([[(p.X(), p.Y(), p.Z()) for p in (surface.Pole(i, j) for j in range(1, nv + 1))]
-                      for i in range(1, nu + 1)])
-    weights = np.array([[surface.Weight(i, j) for j in range(1, nv + 1)] for i in range(1, nu + 1)])
+    if not (surface.VDegree() == 1 and nv == 2 or surface.UDegree() == 1 and nu == 2):
+        return False
+    poles = np.array([[surface.Pole(i, j).Coord() for j in range(1, nv + 1)] for i in range(1, nu + 1)])
+    if surface.IsURational() or surface.IsVRational():
+        weights = np.array([[surface.Weight(i, j) for j in range(1, nv + 1)] for i in range(1, nu + 1)])
+    else:  # every weight 1
+        weights = np.ones((nu, nv))
     for degree, count, step, w in ((surface.VDegree(), nv, poles[:, -1] - poles[:, 0], weights[:, -1] - weights[:, 0]),
                                    (surface.UDegree(), nu, poles[-1] - poles[0], weights[-1] - weights[0])):
         if degree != 1 or count != 2:
@@ -126,8 +131,10 @@ def z_prism(shape: TopoDS_Shape) -> Prism | None:
     # end faces only at the two ends; a plane across z in between would be a step
     if any(min(abs(z - z0), abs(z - z1)) > KERNEL_TOLERANCE for z, _ in caps):
         return None
-    for vertex in explore(solids[0], TopAbs_VERTEX):
-        z = BRep_Tool.Pnt_s(TopoDS.Vertex_s(vertex)).Z()
+    vertices = TopTools_IndexedMapOfShape()  # each vertex once (the explorer visits one per edge and face)
+    TopExp.MapShapes_s(solids[0], TopAbs_VERTEX, vertices)
+    for i in range(1, vertices.Extent() + 1):
+        z = BRep_Tool.Pnt_s(TopoDS.Vertex_s(vertices.FindKey(i))).Z()
         if min(abs(z - z0), abs(z - z1)) > KERNEL_TOLERANCE:
             return None
     box = Bnd_Box()
@@ -362,6 +369,13 @@ def share_no_volume(a: SolidFacts, b: SolidFacts) -> bool:
     for this, other in ((a, b), (b, a)):
         for shell in explore(this.shape, TopAbs_SHELL):
             vertex = next(explore(shell, TopAbs_VERTEX), None)
-            if vertex is None or _inside(BRep_Tool.Pnt_s(TopoDS.Vertex_s(vertex)), other.shape):
+            if vertex is None:
+                return False
+            point = BRep_Tool.Pnt_s(TopoDS.Vertex_s(vertex))
+            # outside the box of the other's faces (which holds that solid) is outside it: no classifier
+            box = other.box
+            outside_box = any(c < lo - KERNEL_TOLERANCE or c > hi + KERNEL_TOLERANCE
+                              for c, lo, hi in zip(point.Coord(), box[:3], box[3:]))
+            if not outside_box and _inside(point, other.shape):
                 return False
     return True

@@ -301,8 +301,8 @@ def test_seeded_perturbations_match_the_reference(name):
 
 
 def test_a_part_in_a_ring_gears_rim_is_an_overlap():
-    """A ring gear's screen is its rim cylinder and its core the material from its root circle to
-    the rim (an internal gear's tip circle is the hole): a 2 mm cube put wholly inside the
+    """A ring gear's screen is the annulus from its tip circle to its rim and its core the material
+    from its root circle to the rim (an internal gear's tip circle is the hole): a 2 mm cube put wholly inside the
     planetary ring's rim (root circle r 24.36, rim r 29; the cube 25..27 mm from the axis) is an
     overlap of its whole 8 mm^3, and a cube meant to touch the rim but run 1 mm into it
     (28..30 mm from the axis) interpenetrates by the part of it inside r 29. Before, the check
@@ -325,3 +325,19 @@ def test_a_part_in_a_ring_gears_rim_is_an_overlap():
     assert not held.missing_contacts
     assert [(o.part1, o.part2) for o in held.interpenetrating] == [("ring", "cube")]
     assert held.interpenetrating[0].volume == pytest.approx(inside, rel=1e-7)  # analytic faces: integration noise only
+
+
+def test_a_ring_gears_screen_holds_it_and_clears_its_sun():
+    """The ring gear's screen is the annulus from 1 % inside its tip circle to its rim: all of the ring
+    is inside it (their common is the whole ring), and the sun's tip cylinder, inside the ring's tip
+    circle, shares nothing with it, so the sun and the ring are cleared without intersecting the
+    teeth (before, the screen was the whole rim cylinder, which holds the sun too)."""
+    parts, _, _ = built("planetary_dual_pinion")
+    ring, sun = (next(p for p in parts if p.name == n) for n in ("ring", "sun"))
+    screen = part_envelope(ring)
+    ring_volume = reference_intersection_volume(ring.world(), ring.world())
+    # the same faces on both sides of the boolean (the rim is the screen's outer wall): the two volumes
+    # differ by the kernel's integration noise only, 1e-7 relative leaves room
+    assert reference_intersection_volume(screen, ring.world()) == pytest.approx(ring_volume, rel=1e-7)
+    assert A.intersection_volume(screen, part_envelope(sun)) == 0.0
+    assert reference_intersection_volume(screen, part_envelope(sun)) == 0.0
