@@ -159,11 +159,10 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
     circles = np.array([(*to_px((x, y)), abs(to_px((x + r, y))[0] - to_px((x, y))[0]))
                         for x, y, r in obstacles.circles]).reshape(-1, 3)
     segments = np.array([(*to_px(p), *to_px(q)) for p, q in obstacles.segments]).reshape(-1, 4)
-    regions = []
-    for x0, y0, x1, y1 in obstacles.boxes:
-        (a, b), (c, d) = to_px((x0, y0)), to_px((x1, y1))
-        regions.append((min(a, c), min(b, d), max(a, c), max(b, d)))
-    regions = np.array(regions).reshape(-1, 4)
+    # every box's corners in one transform (the same arithmetic row by row as one call per corner)
+    corners = to_px(np.array(obstacles.boxes, dtype=float).reshape(-1, 2)).reshape(-1, 4)
+    regions = np.column_stack([np.minimum(corners[:, 0], corners[:, 2]), np.minimum(corners[:, 1], corners[:, 3]),
+                               np.maximum(corners[:, 0], corners[:, 2]), np.maximum(corners[:, 1], corners[:, 3])])
     frame = ax.get_window_extent(renderer)
     placed = placed if placed is not None else []
     artists = []
