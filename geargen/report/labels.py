@@ -159,11 +159,10 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
     circles = np.array([(*to_px((x, y)), abs(to_px((x + r, y))[0] - to_px((x, y))[0]))
                         for x, y, r in obstacles.circles]).reshape(-1, 3)
     segments = np.array([(*to_px(p), *to_px(q)) for p, q in obstacles.segments]).reshape(-1, 4)
-    regions = []
-    for x0, y0, x1, y1 in obstacles.boxes:
-        (a, b), (c, d) = to_px((x0, y0)), to_px((x1, y1))
-        regions.append((min(a, c), min(b, d), max(a, c), max(b, d)))
-    regions = np.array(regions).reshape(-1, 4)
+    # every box's corners in one transform (the same arithmetic row by row as one call per corner)
+    corners = to_px(np.array(obstacles.boxes, dtype=float).reshape(-1, 2)).reshape(-1, 4)
+    regions = np.column_stack([np.minimum(corners[:, 0], corners[:, 2]), np.minimum(corners[:, 1], corners[:, 3]),
+                               np.maximum(corners[:, 0], corners[:, 2]), np.maximum(corners[:, 1], corners[:, 3])])
     frame = ax.get_window_extent(renderer)
     placed = placed if placed is not None else []
     artists = []
@@ -174,13 +173,79 @@ def place_labels(ax, labels, obstacles: Obstacles | None = None, placed: list | 
         box, dx, dy, ring = _choose((extent.width, extent.height), to_px(anchor), (frame.x0, frame.y0, frame.x1, frame.y1),
                                     np.array(placed).reshape(-1, 4), circles, segments, regions, px_per_pt, PAD_PX)
         ha, va = _alignment(dx, dy)
-        leader = dict(arrowprops=dict(arrowstyle="-", color=leader_colour, lw=0.6, shrinkA=1, shrinkB=0)) \
-            if ring >= leader_from_ring else {}
+        leader = {}
+        if ring >= leader_from_ring:
+            start = _leader_start(box, to_px(anchor), _frame_pad(probe, renderer), px_per_pt)
+            if start is not None:
+                # drawn from where matplotlib would clip it (the text's frame, then 1 pt short of it),
+                # given as the fraction of the text's box it starts at: no clipping by bisection at each draw
+                leader = dict(arrowprops=dict(arrowstyle="-", color=leader_colour, lw=0.6, shrinkA=0, shrinkB=0,
+                                              patchA=None, relpos=start))
         artist = ax.annotate(text, anchor, xytext=(dx, dy), textcoords="offset points", ha=ha, va=va,
                              annotation_clip=False, **leader, **style)
         placed.append(box)
         artists.append(artist)
     return artists
+
+
+LEADER_SHORT_PT = 1.0  # a leader stops this far short of its text's frame
+
+
+def _frame_pad(text, renderer) -> tuple[float, float]:
+    """The frame matplotlib clips an annotation's leader to, around the text's box (display px):
+    its pad and the size of its rounded corners (0: square): the text's bbox patch if it has one
+    (``boxstyle="round,pad=..."`` or ``"square,..."``: sizes in font sizes; grown by half its edge, a
+    rounded corner taken as the same curve that much larger), else a rectangle 2 pt out."""
+    patch = text.get_bbox_patch()
+    if patch is None:
+        return renderer.points_to_pixels(4.0) / 2, 0.0
+    style = patch.get_boxstyle()
+    kind = type(style).__name__
+    if kind not in ("Round", "Square"):
+        raise ValueError(f"a leader to a text framed as {kind}: only round or square frames are placed")
+    font = renderer.points_to_pixels(text.get_size())
+    # matplotlib's test of a point inside a patch counts half its edge's width (display px) as inside
+    edge = patch.get_linewidth() / 2 if patch.get_edgecolor()[3] > 0 else 0.0
+    pad = style.pad * font
+    corner = (style.rounding_size * font if getattr(style, "rounding_size", None) else pad) if kind == "Round" else 0.0
+    return pad + edge, corner + edge if corner > 0 else 0.0
+
+
+def _leader_start(box, anchor, frame: tuple[float, float], px_per_pt: float):
+    """Where an annotation's leader from its text (``box``: the text's display box with :data:`PAD_PX`
+    around it) to ``anchor`` (display px) starts, as matplotlib draws it: on the line from the
+    text's centre to the anchor, where it leaves the text's frame (:func:`_frame_pad`; a rounded
+    corner is matplotlib's quadratic Bezier, sqrt(a) + sqrt(b) = sqrt(r) in the distances a, b from
+    the corner's sides), then :data:`LEADER_SHORT_PT` further. Returned as the fraction of the
+    text's box it lies at (matplotlib's ``relpos``); None when that point is not short of the anchor."""
+    x0, y0, x1, y1 = box[0] + PAD_PX, box[1] + PAD_PX, box[2] - PAD_PX, box[3] - PAD_PX
+    w, h = x1 - x0, y1 - y0
+    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    run = np.asarray(anchor, float) - centre
+    length = float(np.hypot(*run))
+    if length == 0 or w <= 0 or h <= 0:
+        return None
+    u = run / length
+    pad, corner = frame
+    half = np.array([w / 2 + pad, h / 2 + pad])
+    with np.errstate(divide="ignore"):
+        t = float(np.min(np.where(u != 0, half / np.abs(u), np.inf)))  # leaves the padded rectangle
+
+    def inside_corner(t):  # sqrt(a) + sqrt(b) >= sqrt(r): on the frame's side of the corner's curve
+        a, b = half - np.abs(t * u)
+        return a >= corner or b >= corner or math.sqrt(max(a, 0.0)) + math.sqrt(max(b, 0.0)) >= math.sqrt(corner)
+
+    if corner > 0 and not inside_corner(t):
+        lo, hi = max(t - 2 * corner, 0.0), t  # a + b >= 2 r at lo: inside
+        for _ in range(40):  # to 2**-40 of the corner: far below a pixel
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if inside_corner(mid) else (lo, mid)
+        t = lo
+    t += LEADER_SHORT_PT * px_per_pt
+    if t >= length:
+        return None
+    start = centre + t * u
+    return (float((start[0] - x0) / w), float((start[1] - y0) / h))
 
 
 def _choose(size, anchor, frame, taken, circles, segments, regions, unit_per_pt: float, pad: float):

@@ -162,9 +162,9 @@ def layout_figure(gears: list[LayoutGear], meshes: list[LayoutMesh], length_unit
     if symmetry_line:
         x0, x1 = ax.get_xlim()
         obstacles.segments.append(((x0, 0.0), (x1, 0.0)))
-    # the axes' limits, aspect and ticks are final (a draw that lays out without rasterising, the
-    # full Agg draw cost as much as writing the PNG): the labels are placed in display space
-    fig.draw_without_rendering()
+    # the axes' limits and box are final (the equal aspect applied: what the draw would do first; the
+    # tick labels are laid out when read): the labels are placed in display space
+    ax.apply_aspect()
     ax.set_xlim(ax.get_xlim())
     ax.set_ylim(ax.get_ylim())
     ax.set_autoscale_on(False)

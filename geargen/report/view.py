@@ -30,8 +30,12 @@ def part_anchors(view, min_pixels: int = MIN_LABEL_PIXELS) -> list[tuple[str, tu
     when the part is a ring)."""
     index = view.part_index.ravel()
     shown = np.flatnonzero(index >= 0)
-    shown = shown[np.argsort(index[shown], kind="stable")]  # pixels grouped by part, one pass over the image
-    parts, starts, counts = np.unique(index[shown], return_index=True, return_counts=True)
+    part_of = index[shown]
+    shown = shown[np.argsort(part_of, kind="stable")]  # pixels grouped by part, one pass over the image
+    counts = np.bincount(part_of)  # each part's run in that order: no second sort
+    parts = np.flatnonzero(counts)
+    counts = counts[parts]
+    starts = np.cumsum(counts) - counts
     width = view.part_index.shape[1]
     out = []
     for k, start, count in zip(parts, starts, counts):
