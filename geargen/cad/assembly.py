@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable, Mapping
+from typing import Any, Callable, Iterable, Mapping
 
 import numpy as np
 from OCP.BRepAlgoAPI import BRepAlgoAPI_Common
@@ -247,45 +247,69 @@ def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, leng
     return write_step_file(writer, path)  # reproducible bytes: a fixed header date, colours in a stable order
 
 
-def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any]) -> dict[str, Any]:
+def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any],
+                 meshes: Callable[[], dict[str, Any]] | None = None) -> dict[str, Any]:
     """Write assembly.step and, per part, ``<name>.step`` and ``<name>.stl`` (assembly frame).
+
+    ``meshes``: called once the STEP files are written, returns what :func:`export_meshes` returned
+    for these parts into ``folder`` (the STL files written by another process meanwhile); None:
+    written here, after the STEP files.
 
     Returns ``{"records": {file: manifest entry}, "parts": {name: placement and files},
     "tolerances": {...}}``.
     """
-    from geargen.cad.export import Tessellations, export_step, export_stl
+    from geargen.cad.export import export_step
 
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
     unit = layout.identity.length_unit
     folder.mkdir(parents=True, exist_ok=True)
     records: dict[str, Any] = {}
     info: dict[str, Any] = {}
-    volumes: list[tuple[Any, float]] = []  # (shape, mm^3) already integrated
     asm = write_assembly_step(layout.identity.name, parts, folder / "assembly.step", unit)
     records[asm.name] = {"format": "step", "length_unit": unit, "bytes": asm.stat().st_size,
                          "role": "assembly", "parts": [p.name for p in parts]}
+    steps = [export_step((p.name, p.world()), folder / f"{p.name}.step", unit) for p in parts]
+    meshes = export_meshes(parts, folder, settings) if meshes is None else meshes()
+    for p, rs in zip(parts, steps):
+        stl, entry = meshes["stl"][p.name]
+        records[rs.path.name] = rs.manifest_entry()
+        records[stl] = entry
+        info[p.name] = {"group": p.group, "kind": p.kind, "role": p.role, "description": p.description,
+                        "colour_rgba": list(p.colour), "placement_matrix_mm": p.matrix.round(12).tolist(),
+                        "files": [rs.path.name, stl], "volume_mm3": meshes["volumes"][p.name]}
+    return {"records": records, "parts": info, "tolerances": meshes["tolerances"]}
+
+
+def export_meshes(parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any]) -> dict[str, Any]:
+    """Per part, ``<name>.stl`` (assembly frame) written into ``folder``, and each part's volume
+    (mm^3, the kernel's integration of its solid): ``{"stl": {part: (file name, manifest entry)},
+    "volumes": {part: mm^3}, "tolerances": {...}}``. Independent of the STEP files (no STEP writer
+    reads a mesh), so a build writes them in a process of its own alongside the STEP export."""
+    from geargen.cad.export import Tessellations, export_stl
+
+    parts = parts_set if isinstance(parts_set, list) else parts_set.parts
+    folder.mkdir(parents=True, exist_ok=True)
     chord = settings["stl_chordal_tolerance"]
     chord_parts = settings.get("stl_chordal_tolerance_parts") or chord
     ang = settings["stl_angular_tolerance"]
     meshes = Tessellations()
+    stl: dict[str, tuple[str, dict]] = {}
+    volumes: dict[str, float] = {}
+    integrated: list[tuple[Any, float]] = []  # (shape, mm^3) already integrated
     for p in parts:
-        rs = export_step((p.name, p.world()), folder / f"{p.name}.step", unit)
         # every part meshed in its own frame and moved by its placement: gears by the exact mesher on
         # the GearSolid (20x faster than the kernel), the others by the kernel, whose mesh stays on
         # the shape, so parts sharing a shape (two bearings alike) are meshed once
         rl = export_stl(p.solid if p.solid is not None else p.shape, folder / f"{p.name}.stl",
                         chordal_tolerance=chord if p.role == "gear" else chord_parts, angular_tolerance=ang,
                         transform=p.matrix, meshes=meshes)
-        records[rs.path.name] = rs.manifest_entry()
-        records[rl.path.name] = rl.manifest_entry()
-        vol = next((v for shape, v in volumes if shape.IsSame(p.shape)), None)
+        stl[p.name] = (rl.path.name, rl.manifest_entry())
+        vol = next((v for shape, v in integrated if shape.IsSame(p.shape)), None)
         if vol is None:  # parts sharing a shape (the two clusters, bearings alike) share its volume
             vol = solid_volume(p.shape, 1e-6)
-            volumes.append((p.shape, vol))
-        info[p.name] = {"group": p.group, "kind": p.kind, "role": p.role, "description": p.description,
-                        "colour_rgba": list(p.colour), "placement_matrix_mm": p.matrix.round(12).tolist(),
-                        "files": [rs.path.name, rl.path.name], "volume_mm3": vol}
-    return {"records": records, "parts": info,
+            integrated.append((p.shape, vol))
+        volumes[p.name] = vol
+    return {"stl": stl, "volumes": volumes,
             "tolerances": {"stl_chordal_mm_gears": chord, "stl_chordal_mm_other_parts": chord_parts,
                            "stl_angular_rad": ang,
                            "step_frame": "assembly frame (placement_matrix_mm maps the part's own frame into it)"}}
@@ -578,5 +602,5 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
 
 __all__ = ["COLOURS", "transform", "location", "PlacedPart", "PartSet", "gear_parts",
            "non_gear_parts", "parts_from_hardware", "all_parts", "assembly_document",
-           "write_assembly_step", "export_parts", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
+           "write_assembly_step", "export_parts", "export_meshes", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
            "pairwise_overlaps"]
