@@ -138,8 +138,10 @@ class PolarOutline:
         result exceeds half a pitch (``p/2 + (r_min - rho)/r_min``), so every angle is inside.
         """
         rho = np.asarray(rho, dtype=float)
-        out = np.empty(rho.shape)
         inv = rho >= self.r_start
+        if inv.all():  # every point on the involute (most refinement steps): elementwise as below
+            return np.asarray(self.profile.involute_half_angle(rho), dtype=float)
+        out = np.empty(rho.shape)
         if np.any(inv):
             out[inv] = self.profile.involute_half_angle(rho[inv])
         fil = ~inv & (rho >= self.r_min)
