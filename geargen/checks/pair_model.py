@@ -234,10 +234,11 @@ class PairModel:
         return best
 
     # ---------------------------------------------------------------- tip-corner excess
-    def tip_excess(self, distances, du, side: int = 1):
+    def tip_excess(self, distances, du, side: int = 1, ends=(0, 1)):
         """Exact excess ``gap - linear gap`` (mm) of a tooth pair whose gear-2 flank is ``du``
         (mm, >= 0) before the start (``du`` row 0) and after the end (row 1) of the active
-        stretch, at centre distances ``distances``: array ``(2, len(distances), len(du))``."""
+        stretch, at centre distances ``distances``: array ``(2, len(distances), len(du))``
+        (``ends``: only these rows, in this order)."""
         a = np.asarray(distances, dtype=float)[:, None]
         du = np.asarray(du, dtype=float)[None, :]
         shape = np.broadcast_shapes(a.shape, du.shape)
@@ -246,7 +247,8 @@ class PairModel:
         c2[..., 0] = a
         geo = self.line_geometry(c1, c2)
         out = []
-        for u in (geo.u_min - du, geo.u_max + du):
+        for end in ends:
+            u = geo.u_min - du if end == 0 else geo.u_max + du
             t2 = (geo.length - u) / self.gear2.base_radius
             tau2 = geo.direction - side * geo.working_angle + np.pi
             angle2 = side * t2 - side * self.gear2.base_half + tau2
@@ -279,7 +281,7 @@ class TipExcess:
             reach.append(float(probe[min(int(last.max()) + 1, probe.size - 1)]) * margin)
         self.reach = tuple(reach)  # before the start, after the end
         self.du = [np.linspace(0.0, r, points) for r in self.reach]
-        self.table = [model.tip_excess(self.distances, du)[k] for k, du in enumerate(self.du)]
+        self.table = [model.tip_excess(self.distances, du, ends=(k,))[0] for k, du in enumerate(self.du)]
         # both tables in one flat array ([end, distance row, du]) and their steps and reaches, so
         # that :meth:`past_ends` reads either end's per element
         self._flat = np.concatenate([t.ravel() for t in self.table])
