@@ -536,8 +536,9 @@ class HuntingSearch:
         x = s[idx]
         fx = self.distance(None, x, offsets)
         for _ in range(40):
-            right = (hi - x) >= (x - lo)
-            u = np.where(right, x + _GOLDEN * (hi - x), x - _GOLDEN * (x - lo))
+            above, below = hi - x, x - lo
+            right = above >= below
+            u = np.where(right, x + _GOLDEN * above, x - _GOLDEN * below)
             fu = self.distance(None, u, offsets)
             better = fu < fx
             lo, hi = (np.where(better, np.where(right, x, lo), np.where(right, lo, u)),
@@ -676,8 +677,9 @@ class HuntingSearch:
         hi = np.where((col + 1 < P_all.shape[1]) & np.isfinite(P_all[i, hi_col]), P_all[i, hi_col], cyc_lo + p1)
         lo = np.where(np.isfinite(lo), lo, cyc_lo)
         for _ in range(self.iterations):
-            go_right = (hi - x) >= (x - lo)
-            u = np.where(go_right, x + _GOLDEN * (hi - x), x - _GOLDEN * (x - lo))
+            above, below = hi - x, x - lo
+            go_right = above >= below
+            u = np.where(go_right, x + _GOLDEN * above, x - _GOLDEN * below)
             fu = self.evaluate(phases, disp1, disp2, rws, u)[0]
             better = fu < fx
             lo, hi = (np.where(better, np.where(go_right, x, lo), np.where(go_right, lo, u)),
