@@ -101,6 +101,7 @@ class PolarOutline:
         self.segments = profile.segments
         self.kinds = np.array([_KIND_CODE[s.kind] for s in self.segments])
         self.sides = np.array([(-1 if s.side == "lower" else 1) if s.side else 0 for s in self.segments])
+        self._kind_side = list(zip(self.kinds.tolist(), self.sides.tolist()))  # per segment, as Python ints
         fillets = [s for s in self.segments if s.kind == "fillet" and s.side == "upper"]
         self._fillet = fillets[0]
         th = np.linspace(self._fillet.t0, self._fillet.t1, 1025)  # joint -> root
@@ -138,8 +139,10 @@ class PolarOutline:
         result exceeds half a pitch (``p/2 + (r_min - rho)/r_min``), so every angle is inside.
         """
         rho = np.asarray(rho, dtype=float)
-        out = np.empty(rho.shape)
         inv = rho >= self.r_start
+        if inv.all():  # every point on the involute (most refinement steps): elementwise as below
+            return np.asarray(self.profile.involute_half_angle(rho), dtype=float)
+        out = np.empty(rho.shape)
         if np.any(inv):
             out[inv] = self.profile.involute_half_angle(rho[inv])
         fil = ~inv & (rho >= self.r_min)
@@ -203,7 +206,8 @@ class PolarOutline:
         u = np.asarray(u, dtype=float)
         shape = u.shape
         u = u.ravel()
-        s = np.clip(np.floor(u).astype(int), 0, self.segment_count - 1)
+        # np.clip of integers, without its wrapper's cost (a refinement calls this thousands of times)
+        s = np.minimum(np.maximum(np.floor(u).astype(int), 0), self.segment_count - 1)
         f = u - s
         rho = np.empty(u.shape)
         phi = np.empty(u.shape)
@@ -211,20 +215,20 @@ class PolarOutline:
         w_up = np.zeros(u.shape)
         kind = self.kinds[s]
         half_gap = 0.5 * self.pitch - self.root_half
-        for k in np.flatnonzero(np.bincount(s, minlength=self.segment_count)):  # the segments present
+        for k in np.flatnonzero(np.bincount(s, minlength=self.segment_count)).tolist():  # the segments present
             seg = self.segments[k]
             m = s == k
             t = seg.t0 + f[m] * (seg.t1 - seg.t0)
-            code = self.kinds[k]
+            code, side = self._kind_side[k]
             if code == INVOLUTE:
                 r = self.r_base * np.sqrt(1.0 + t * t)
-                ph = self.sides[k] * (self.base_half - (t - np.arctan(t)))
-                (w_up if self.sides[k] > 0 else w_lo)[m] = 1.0
+                ph = side * (self.base_half - (t - np.arctan(t)))
+                (w_up if side > 0 else w_lo)[m] = 1.0
             elif code == FILLET:
                 xy = seg.point(t)
                 r = np.hypot(xy[:, 0], xy[:, 1])
                 ph = np.arctan2(xy[:, 1], xy[:, 0])
-                (w_up if self.sides[k] > 0 else w_lo)[m] = 1.0
+                (w_up if side > 0 else w_lo)[m] = 1.0
             elif code == TIP:
                 r = np.full(t.shape, self.r_tip)
                 ph = t
@@ -430,8 +434,9 @@ class Play:
 def _golden(f, a, x, b, fx, iterations=_REFINE_ITERATIONS):
     """Vectorised golden-section minimisation on brackets ``[a, b]`` keeping the best point ``x``."""
     for _ in range(iterations):
-        right = (b - x) >= (x - a)
-        u = np.where(right, x + _GOLDEN * (b - x), x - _GOLDEN * (x - a))
+        above, below = b - x, x - a  # each difference once
+        right = above >= below
+        u = np.where(right, x + _GOLDEN * above, x - _GOLDEN * below)
         fu = f(u)
         better = fu < fx
         a_new = np.where(better, np.where(right, x, a), np.where(right, a, u))

@@ -48,3 +48,20 @@ def test_overlap_volume_of_a_pin_in_a_plate():
     reading = read_pair(plate, pin, 0.05)
     assert reading.volume == pytest.approx(math.pi * 25 * 3, rel=0.02)
     assert reading.closest < 0
+
+
+@pytest.mark.parametrize("tolerance", [0.0, 1e-3])
+def test_overlap_volume_alone_reads_the_same_volume(tolerance):
+    """Without the nearest cells (nearest=False: the costlier part read only where the cheaper one is
+    within a cell's half-diagonal) the octree decides the same cells: the same shared volume to the
+    last bit, for a pin in a plate with the cheaper part given first and second, and for parts apart
+    whose boxes overlap."""
+    plate = part("plate", box_between((-20, -20, -10), (20, 20, 0)))
+    pin = AnalyticPart(**{**part("pin", cylinder(10.0, 20.0), (0, 0, -3)).__dict__, "cost": 5.0})
+    # a post by the plate's corner: the boxes share a 1 mm column, the bodies nothing (5.66 mm > 5 mm)
+    away = part("away", cylinder(10.0, 10.0), (24, 24, -5))
+    for a, b in ((plate, pin), (pin, plate), (plate, away)):
+        full = read_pair(a, b, 0.05, tolerance=tolerance)
+        alone = read_pair(a, b, 0.05, tolerance=tolerance, nearest=False)
+        assert alone.volume == full.volume
+    assert full.volume == 0.0 and read_pair(plate, pin, 0.05, nearest=False).volume > 200.0
