@@ -269,8 +269,8 @@ def _distances(points: np.ndarray, centre) -> np.ndarray:
 
 
 def _near(segs: np.ndarray, centre, radius: float) -> np.ndarray:
-    d = np.min(_distances(segs, np.asarray(centre, dtype=float)), axis=1)
-    return segs[d <= radius]
+    d = _distances(segs, np.asarray(centre, dtype=float))
+    return segs[np.minimum(d[:, 0], d[:, 1]) <= radius]  # the nearer end (numpy's min over an axis of 2: 5x slower)
 
 
 def _circle_hits(points: np.ndarray, segs: np.ndarray):
@@ -361,7 +361,7 @@ def _inside_from(u: np.ndarray, q: np.ndarray, polar: np.ndarray) -> np.ndarray:
     u, polar, rad = u[near], polar[near], rad[near]
     ref = math.atan2(float(np.mean(q[..., 1])), float(np.mean(q[..., 0])))  # the outline lies around here
     ang = _wrap(np.arctan2(q[..., 1], q[..., 0]) - ref)
-    lo, hi = ang.min(axis=1), ang.max(axis=1)
+    lo, hi = np.minimum(ang[:, 0], ang[:, 1]), np.maximum(ang[:, 0], ang[:, 1])  # ~10x faster than min(axis=1)
     order = np.argsort(lo)
     lo_s = lo[order]
     span = float(np.max(hi - lo)) + 1e-15
@@ -468,7 +468,8 @@ def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarra
     root = r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)
     v, r = v[root], r[root]
     ends = _distances(other, oc)
-    on_tip = np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)
+    tip = r_tip - max(deviation, 2e-6, 2e-7 * r_tip)
+    on_tip = (ends[:, 0] >= tip) & (ends[:, 1] >= tip)
     land = other[on_tip]
     if v.size == 0 or land.size == 0:
         return math.inf
