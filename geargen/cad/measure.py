@@ -114,14 +114,16 @@ class SectionCurve:
 
         ``still``: None instead as soon as a solve misses the face or ends at another parameter
         than it started from (the guess left as it was before the call)."""
-        start = self._guess
+        start = guess = self._guess
         p, du, dv = self._p, self._du, self._dv
         d1, z, along_u = self.surface.D1, self.z, self.along_u
         clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
         lo, hi = self.s0 - rounding, self.s1 + rounding
+        # the box needing no classifier (no point is inside a NaN box: the classifier is made first)
+        u0, u1, v0, v1 = self._inner if self._inner is not None else (math.nan,) * 4
         out = []
         for t in ts:
-            s = self._guess
+            s = guess
             last = math.inf
             for _ in range(40):
                 at = s
@@ -132,6 +134,10 @@ class SectionCurve:
                     d1(s, t, p, du, dv)
                     dz = du.Z()
                 f = p.Z() - z
+                if f == 0.0 and dz != 0.0:
+                    # on the plane where evaluated (most points: at the last solve's parameter): the
+                    # step below would be 0 and leave s as it is
+                    break
                 if dz == 0.0:
                     s = None
                     break
@@ -152,16 +158,17 @@ class SectionCurve:
                 continue
             if still and s != start:
                 return None
-            self._guess = s
+            self._guess = guess = s
             u, v = (t, s) if along_u else (s, t)
-            if self._inner is None:
-                self._make_classifier()
-            u0, u1, v0, v1 = self._inner
-            if not (u0 < u < u1 and v0 < v < v1) and self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
-                if still:
-                    return None
-                out.append(None)
-                continue
+            if not (u0 < u < u1 and v0 < v < v1):
+                if self._inner is None:
+                    self._make_classifier()
+                    u0, u1, v0, v1 = self._inner
+                if not (u0 < u < u1 and v0 < v < v1) and self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
+                    if still:
+                        return None
+                    out.append(None)
+                    continue
             if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
                 d1(u, v, p, du, dv)
             out.append((p.X(), p.Y()))
