@@ -117,48 +117,33 @@ class SectionCurve:
         start = guess = self._guess
         p, du, dv = self._p, self._du, self._dv
         d1, z, along_u = self.surface.D1, self.z, self.along_u
-        clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
-        lo, hi = self.s0 - rounding, self.s1 + rounding
+        lo, hi = self.s0 - self._rounding, self.s1 + self._rounding
         # the box needing no classifier (no point is inside a NaN box: the classifier is made first)
         u0, u1, v0, v1 = self._inner if self._inner is not None else (math.nan,) * 4
         out = []
         for t in ts:
-            s = guess
-            last = math.inf
-            for _ in range(40):
-                at = s
-                if along_u:
-                    d1(t, s, p, du, dv)
-                    dz = dv.Z()
-                else:
-                    d1(s, t, p, du, dv)
-                    dz = du.Z()
-                f = p.Z() - z
-                if f == 0.0 and dz != 0.0:
-                    # on the plane where evaluated (most points: at the last solve's parameter): the
-                    # step below would be 0 and leave s as it is
-                    break
-                if dz == 0.0:
-                    s = None
-                    break
-                step = f / dz
-                s = min(max(s - step, clip_lo), clip_hi)
-                # converged, or down to rounding: a step no smaller than the last one once it is below
-                # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
-                if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
-                        (abs(step) >= last and abs(step) <= rounding):
-                    break
-                last = abs(step)
+            s = at = guess
+            if along_u:
+                d1(t, s, p, du, dv)
+                dz = dv.Z()
             else:
-                s = None
-            if s is None or not (lo <= s <= hi):
-                if still:
+                d1(s, t, p, du, dv)
+                dz = du.Z()
+            x, y, pz = p.Coord()  # one call for the three (a call costs as much as a solve's arithmetic)
+            f = pz - z
+            # most points lie on the plane at the last solve's parameter (the guess, in range: the
+            # face's middle or a solve's result): Newton's step would be 0 and leave it there
+            if f != 0.0 or dz == 0.0:
+                s, at = self._newton(t, s, f, dz)
+                x, y, _ = p.Coord()  # where the surface was last evaluated, at ``at``
+                if s is None or not (lo <= s <= hi):
+                    if still:
+                        return None
+                    out.append(None)
+                    continue
+                if still and s != start:
                     return None
-                out.append(None)
-                continue
-            if still and s != start:
-                return None
-            self._guess = guess = s
+                self._guess = guess = s
             u, v = (t, s) if along_u else (s, t)
             if not (u0 < u < u1 and v0 < v < v1):
                 if self._inner is None:
@@ -169,10 +154,44 @@ class SectionCurve:
                         return None
                     out.append(None)
                     continue
-            if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
+            if s != at:  # the last step moved the point
                 d1(u, v, p, du, dv)
-            out.append((p.X(), p.Y()))
+                x, y, _ = p.Coord()
+            out.append((x, y))
         return out
+
+    def _newton(self, t: float, s: float, f: float, dz: float):
+        """Newton's method for the parameter across the plane at ``t``, from ``s``, where the surface
+        lies ``f`` above the plane and rises ``dz`` per unit (the first evaluation, already made):
+        (the parameter, the one the surface was last evaluated at), or (None, None)."""
+        p, du, dv = self._p, self._du, self._dv
+        d1, z, along_u = self.surface.D1, self.z, self.along_u
+        clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
+        last = math.inf
+        at = s
+        for i in range(40):
+            if i:
+                at = s
+                if along_u:
+                    d1(t, s, p, du, dv)
+                    dz = dv.Z()
+                else:
+                    d1(s, t, p, du, dv)
+                    dz = du.Z()
+                f = p.Z() - z
+            if f == 0.0 and dz != 0.0:  # on the plane where evaluated: the step would be 0
+                return s, at
+            if dz == 0.0:
+                return None, None
+            step = f / dz
+            s = min(max(s - step, clip_lo), clip_hi)
+            # converged, or down to rounding: a step no smaller than the last one once it is below
+            # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
+            if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
+                    (abs(step) >= last and abs(step) <= rounding):
+                return s, at
+            last = abs(step)
+        return None, None
 
     def point(self, t: float):
         """Section point (x, y) at face parameter ``t``, or None off the face."""
