@@ -45,10 +45,10 @@ class SectionCurve:
     where the plane misses the face.
     """
 
-    def __init__(self, face, z: float):
+    def __init__(self, face, z: float, surface: BRepAdaptor_Surface | None = None):
         self.face = face
         self.z = z
-        self.surface = BRepAdaptor_Surface(face)
+        self.surface = BRepAdaptor_Surface(face) if surface is None else surface  # the face's, if made already
         self.u0, self.u1, self.v0, self.v1 = BRepTools.UVBounds_s(face)
         um, vm = 0.5 * (self.u0 + self.u1), 0.5 * (self.v0 + self.v1)
         p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
@@ -277,28 +277,36 @@ def section(shape: TopoDS_Shape, z: float, samples_per_face: int = 64) -> Sectio
         ad = BRepAdaptor_Surface(face)
         if ad.GetType() == GeomAbs_Plane and abs(abs(ad.Plane().Axis().Direction().Z()) - 1.0) < 1e-12:
             continue  # parallel to the section plane
-        curve = SectionCurve(face, z)
+        curve = SectionCurve(face, z, ad)
         # two passes: even in the parameter, then even in arc length along the first pass
-        t = np.linspace(curve.t0, curve.t1, samples_per_face)
-        got = [(tj, p) for tj, p in zip(t, curve.xy_all(t)) if p is not None]
-        if not got:
+        t, xy = _on_face(curve, np.linspace(curve.t0, curve.t1, samples_per_face))
+        if not xy.size:
             continue
-        steps = np.linalg.norm(np.diff(np.array([p for _, p in got]), axis=0), axis=1) if len(got) > 2 else None
+        if len(xy) > 2:
+            gap = np.diff(xy, axis=0)
+            steps = np.sqrt(gap[:, 0] * gap[:, 0] + gap[:, 1] * gap[:, 1])  # numpy's norm of each, the same bits
         # the second pass only where the first is uneven (the gear solids' faces run by arc
         # length, so theirs is even already: one pass halves the cost of a section)
-        if steps is not None and (len(got) < samples_per_face or steps.max() > 2.0 * max(steps.min(), 1e-300)):
-            tt = np.array([tj for tj, _ in got])
+        if len(xy) > 2 and (len(xy) < samples_per_face or steps.max() > 2.0 * max(steps.min(), 1e-300)):
             arc = np.concatenate([[0.0], np.cumsum(steps)])
-            t = np.interp(np.linspace(0.0, arc[-1], samples_per_face), arc, tt)
-            t = np.unique(np.concatenate([t, tt[[0, -1]]]))
-            got = [(tj, p) for tj, p in zip(t, curve.xy_all(t)) if p is not None]
-        pts.append(np.array([p for _, p in got]))
-        prm.append(np.array([tj for tj, _ in got]))
-        idx.append(np.full(len(got), len(curves)))
+            again = np.interp(np.linspace(0.0, arc[-1], samples_per_face), arc, t)
+            t, xy = _on_face(curve, np.unique(np.concatenate([again, t[[0, -1]]])))
+        pts.append(xy)
+        prm.append(t)
+        idx.append(np.full(len(t), len(curves)))
         curves.append(curve)
     if not curves:
         return Section(z, [], np.empty((0, 2)), np.empty(0, int), np.empty(0))
     return Section(z, curves, np.concatenate(pts), np.concatenate(idx), np.concatenate(prm))
+
+
+def _on_face(curve: SectionCurve, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The parameters ``t`` at which ``curve`` lies on its face, and its points there ``(k, 2)``."""
+    xy = curve.xy_all(t)
+    on = [j for j, q in enumerate(xy) if q is not None]
+    if len(on) < len(xy):
+        t, xy = t[on], [xy[j] for j in on]
+    return t, (np.array(xy) if xy else np.empty((0, 2)))
 
 
 def boolean_section(shape: TopoDS_Shape, z: float, samples_per_edge: int = 64) -> np.ndarray:
