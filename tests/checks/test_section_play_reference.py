@@ -3,7 +3,8 @@ shared by two chained segments turned once, not twice) against the code they rep
 as the reference: the same sweep to the last bit, with and without overlap, on chained sections
 and on sections with segments missing (broken chains, as a face's boundary leaves them). Also the
 circle crossings and inside test before their per-edge and per-vertex terms were computed once,
-and the root clearance before it measured only the pairs that can be the nearest."""
+the root clearance before it measured only the pairs that can be the nearest, and the play before
+it found only the turns within a window (every turn found)."""
 
 import math
 
