@@ -45,10 +45,10 @@ class SectionCurve:
     where the plane misses the face.
     """
 
-    def __init__(self, face, z: float):
+    def __init__(self, face, z: float, surface: BRepAdaptor_Surface | None = None):
         self.face = face
         self.z = z
-        self.surface = BRepAdaptor_Surface(face)
+        self.surface = BRepAdaptor_Surface(face) if surface is None else surface  # the face's, if made already
         self.u0, self.u1, self.v0, self.v1 = BRepTools.UVBounds_s(face)
         um, vm = 0.5 * (self.u0 + self.u1), 0.5 * (self.v0 + self.v1)
         p, du, dv = gp_Pnt(), gp_Vec(), gp_Vec()
@@ -114,16 +114,63 @@ class SectionCurve:
 
         ``still``: None instead as soon as a solve misses the face or ends at another parameter
         than it started from (the guess left as it was before the call)."""
-        start = self._guess
+        start = guess = self._guess
+        p, du, dv = self._p, self._du, self._dv
+        d1, z, along_u = self.surface.D1, self.z, self.along_u
+        lo, hi = self.s0 - self._rounding, self.s1 + self._rounding
+        # the box needing no classifier (no point is inside a NaN box: the classifier is made first)
+        u0, u1, v0, v1 = self._inner if self._inner is not None else (math.nan,) * 4
+        out = []
+        for t in ts:
+            s = at = guess
+            if along_u:
+                d1(t, s, p, du, dv)
+                dz = dv.Z()
+            else:
+                d1(s, t, p, du, dv)
+                dz = du.Z()
+            x, y, pz = p.Coord()  # one call for the three (a call costs as much as a solve's arithmetic)
+            f = pz - z
+            # most points lie on the plane at the last solve's parameter (the guess, in range: the
+            # face's middle or a solve's result): Newton's step would be 0 and leave it there
+            if f != 0.0 or dz == 0.0:
+                s, at = self._newton(t, s, f, dz)
+                x, y, _ = p.Coord()  # where the surface was last evaluated, at ``at``
+                if s is None or not (lo <= s <= hi):
+                    if still:
+                        return None
+                    out.append(None)
+                    continue
+                if still and s != start:
+                    return None
+                self._guess = guess = s
+            u, v = (t, s) if along_u else (s, t)
+            if not (u0 < u < u1 and v0 < v < v1):
+                if self._inner is None:
+                    self._make_classifier()
+                    u0, u1, v0, v1 = self._inner
+                if not (u0 < u < u1 and v0 < v < v1) and self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
+                    if still:
+                        return None
+                    out.append(None)
+                    continue
+            if s != at:  # the last step moved the point
+                d1(u, v, p, du, dv)
+                x, y, _ = p.Coord()
+            out.append((x, y))
+        return out
+
+    def _newton(self, t: float, s: float, f: float, dz: float):
+        """Newton's method for the parameter across the plane at ``t``, from ``s``, where the surface
+        lies ``f`` above the plane and rises ``dz`` per unit (the first evaluation, already made):
+        (the parameter, the one the surface was last evaluated at), or (None, None)."""
         p, du, dv = self._p, self._du, self._dv
         d1, z, along_u = self.surface.D1, self.z, self.along_u
         clip_lo, clip_hi, rounding = self._clip_lo, self._clip_hi, self._rounding
-        lo, hi = self.s0 - rounding, self.s1 + rounding
-        out = []
-        for t in ts:
-            s = self._guess
-            last = math.inf
-            for _ in range(40):
+        last = math.inf
+        at = s
+        for i in range(40):
+            if i:
                 at = s
                 if along_u:
                     d1(t, s, p, du, dv)
@@ -132,40 +179,19 @@ class SectionCurve:
                     d1(s, t, p, du, dv)
                     dz = du.Z()
                 f = p.Z() - z
-                if dz == 0.0:
-                    s = None
-                    break
-                step = f / dz
-                s = min(max(s - step, clip_lo), clip_hi)
-                # converged, or down to rounding: a step no smaller than the last one once it is below
-                # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
-                if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
-                        (abs(step) >= last and abs(step) <= rounding):
-                    break
-                last = abs(step)
-            else:
-                s = None
-            if s is None or not (lo <= s <= hi):
-                if still:
-                    return None
-                out.append(None)
-                continue
-            if still and s != start:
-                return None
-            self._guess = s
-            u, v = (t, s) if along_u else (s, t)
-            if self._inner is None:
-                self._make_classifier()
-            u0, u1, v0, v1 = self._inner
-            if not (u0 < u < u1 and v0 < v < v1) and self._classifier.Perform(gp_Pnt2d(u, v)) == TopAbs_OUT:
-                if still:
-                    return None
-                out.append(None)
-                continue
-            if s != at:  # the last step moved the point (most end where the guess already lay on the plane)
-                d1(u, v, p, du, dv)
-            out.append((p.X(), p.Y()))
-        return out
+            if f == 0.0 and dz != 0.0:  # on the plane where evaluated: the step would be 0
+                return s, at
+            if dz == 0.0:
+                return None, None
+            step = f / dz
+            s = min(max(s - step, clip_lo), clip_hi)
+            # converged, or down to rounding: a step no smaller than the last one once it is below
+            # 1e-12 of the range (z of a point tens of mm up is only good to ~1e-14)
+            if abs(step) <= 1e-15 * max(1.0, abs(s)) or abs(f) < 1e-15 or \
+                    (abs(step) >= last and abs(step) <= rounding):
+                return s, at
+            last = abs(step)
+        return None, None
 
     def point(self, t: float):
         """Section point (x, y) at face parameter ``t``, or None off the face."""
@@ -251,28 +277,36 @@ def section(shape: TopoDS_Shape, z: float, samples_per_face: int = 64) -> Sectio
         ad = BRepAdaptor_Surface(face)
         if ad.GetType() == GeomAbs_Plane and abs(abs(ad.Plane().Axis().Direction().Z()) - 1.0) < 1e-12:
             continue  # parallel to the section plane
-        curve = SectionCurve(face, z)
+        curve = SectionCurve(face, z, ad)
         # two passes: even in the parameter, then even in arc length along the first pass
-        t = np.linspace(curve.t0, curve.t1, samples_per_face)
-        got = [(tj, p) for tj, p in zip(t, curve.xy_all(t)) if p is not None]
-        if not got:
+        t, xy = _on_face(curve, np.linspace(curve.t0, curve.t1, samples_per_face))
+        if not xy.size:
             continue
-        steps = np.linalg.norm(np.diff(np.array([p for _, p in got]), axis=0), axis=1) if len(got) > 2 else None
+        if len(xy) > 2:
+            gap = np.diff(xy, axis=0)
+            steps = np.sqrt(gap[:, 0] * gap[:, 0] + gap[:, 1] * gap[:, 1])  # numpy's norm of each, the same bits
         # the second pass only where the first is uneven (the gear solids' faces run by arc
         # length, so theirs is even already: one pass halves the cost of a section)
-        if steps is not None and (len(got) < samples_per_face or steps.max() > 2.0 * max(steps.min(), 1e-300)):
-            tt = np.array([tj for tj, _ in got])
+        if len(xy) > 2 and (len(xy) < samples_per_face or steps.max() > 2.0 * max(steps.min(), 1e-300)):
             arc = np.concatenate([[0.0], np.cumsum(steps)])
-            t = np.interp(np.linspace(0.0, arc[-1], samples_per_face), arc, tt)
-            t = np.unique(np.concatenate([t, tt[[0, -1]]]))
-            got = [(tj, p) for tj, p in zip(t, curve.xy_all(t)) if p is not None]
-        pts.append(np.array([p for _, p in got]))
-        prm.append(np.array([tj for tj, _ in got]))
-        idx.append(np.full(len(got), len(curves)))
+            again = np.interp(np.linspace(0.0, arc[-1], samples_per_face), arc, t)
+            t, xy = _on_face(curve, np.unique(np.concatenate([again, t[[0, -1]]])))
+        pts.append(xy)
+        prm.append(t)
+        idx.append(np.full(len(t), len(curves)))
         curves.append(curve)
     if not curves:
         return Section(z, [], np.empty((0, 2)), np.empty(0, int), np.empty(0))
     return Section(z, curves, np.concatenate(pts), np.concatenate(idx), np.concatenate(prm))
+
+
+def _on_face(curve: SectionCurve, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The parameters ``t`` at which ``curve`` lies on its face, and its points there ``(k, 2)``."""
+    xy = curve.xy_all(t)
+    on = [j for j, q in enumerate(xy) if q is not None]
+    if len(on) < len(xy):
+        t, xy = t[on], [xy[j] for j in on]
+    return t, (np.array(xy) if xy else np.empty((0, 2)))
 
 
 def boolean_section(shape: TopoDS_Shape, z: float, samples_per_edge: int = 64) -> np.ndarray:

@@ -269,8 +269,8 @@ def _distances(points: np.ndarray, centre) -> np.ndarray:
 
 
 def _near(segs: np.ndarray, centre, radius: float) -> np.ndarray:
-    d = np.min(_distances(segs, np.asarray(centre, dtype=float)), axis=1)
-    return segs[d <= radius]
+    d = _distances(segs, np.asarray(centre, dtype=float))
+    return segs[np.minimum(d[:, 0], d[:, 1]) <= radius]  # the nearer end (numpy's min over an axis of 2: 5x slower)
 
 
 def _circle_hits(points: np.ndarray, segs: np.ndarray):
@@ -290,6 +290,14 @@ def _circle_crossings(points: np.ndarray, segs: np.ndarray):
     if points.size == 0 or segs.size == 0:
         return np.empty(0, dtype=int), np.empty(0), np.empty(0)
     rho = np.hypot(points[:, 0], points[:, 1])
+    edges = _edge_terms(segs)
+    v, e = _radial_pairs(rho, edges)
+    return _pair_crossings(rho, edges, v, e)
+
+
+def _edge_terms(segs: np.ndarray) -> tuple:
+    """What the circle crossings need of each edge ``(E, 2, 2)`` (taken from the centre): its
+    start, its direction, their products, its nearest and farthest radius."""
     ax, ay = segs[:, 0, 0], segs[:, 0, 1]
     dx, dy = segs[:, 1, 0] - ax, segs[:, 1, 1] - ay
     dd = dx * dx + dy * dy
@@ -297,6 +305,12 @@ def _circle_crossings(points: np.ndarray, segs: np.ndarray):
     tn = np.clip(-ad / np.where(dd > 0, dd, 1.0), 0.0, 1.0)
     rmin = np.hypot(ax + tn * dx, ay + tn * dy)
     rmax = np.maximum(np.hypot(ax, ay), np.hypot(segs[:, 1, 0], segs[:, 1, 1]))
+    return ax, ay, dx, dy, dd, ad, rmin, rmax
+
+
+def _radial_pairs(rho: np.ndarray, edges: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """The (vertex, edge) pairs whose edge's radial span holds the vertex's radius ``rho``."""
+    rmin, rmax = edges[6], edges[7]
     order = np.argsort(rmin)
     rmin_s = rmin[order]
     span = float(np.max(rmax - rmin)) * (1 + 1e-12) + 1e-15
@@ -306,9 +320,14 @@ def _circle_crossings(points: np.ndarray, segs: np.ndarray):
     v = np.repeat(np.arange(rho.size), count)
     e = order[np.repeat(lo - (np.cumsum(count) - count), count) + np.arange(v.size)]
     keep = rho[v] <= rmax[e]
-    v, e = v[keep], e[keep]
+    return v[keep], e[keep]
+
+
+def _pair_crossings(rho: np.ndarray, edges: tuple, v: np.ndarray, e: np.ndarray):
+    """Where the circle through vertex ``v`` crosses edge ``e``, pair by pair: (vertex index, x, y)."""
     if v.size == 0:
         return v, np.empty(0), np.empty(0)
+    ax, ay, dx, dy, dd, ad = edges[:6]
     A, B, C = dd[e], (2 * ad)[e], (ax * ax + ay * ay)[e] - (rho ** 2)[v]
     disc = np.sqrt(np.maximum(B * B - 4 * A * C, 0.0))
     B, A = -B, 2 * A
@@ -361,7 +380,7 @@ def _inside_from(u: np.ndarray, q: np.ndarray, polar: np.ndarray) -> np.ndarray:
     u, polar, rad = u[near], polar[near], rad[near]
     ref = math.atan2(float(np.mean(q[..., 1])), float(np.mean(q[..., 0])))  # the outline lies around here
     ang = _wrap(np.arctan2(q[..., 1], q[..., 0]) - ref)
-    lo, hi = ang.min(axis=1), ang.max(axis=1)
+    lo, hi = np.minimum(ang[:, 0], ang[:, 1]), np.maximum(ang[:, 0], ang[:, 1])  # ~10x faster than min(axis=1)
     order = np.argsort(lo)
     lo_s = lo[order]
     span = float(np.max(hi - lo)) + 1e-15
@@ -406,28 +425,57 @@ def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> t
     A vertex already inside the other gear (``centre2`` is that gear's centre for the inside
     test of polygon 1's vertices) gives a negative value on the side it overlaps: the turn back
     that frees it, as in the exact check.
+
+    Where no vertex is inside, only the turns of at most a window (1/32 rad, then 8 times as wide)
+    are found, the pairs whose vertex lies farther from the edge than the chord of that turn
+    left out: if both answers lie within the window, no pair left out (each a turn beyond it) can
+    be smaller, and they are the same numbers as from every pair; else the next window, then every
+    pair.
     """
     c = np.asarray(centre1, dtype=float)
     c2 = c if centre2 is None else np.asarray(centre2, dtype=float)
-    ccw_c, cw_c = [math.inf], [math.inf]
+    sides = []
     for verts, edges, own, inside_centre in ((_vertices(seg2), seg1, False, c),
                                              (_vertices(seg1), seg2, True, c2)):
         u, q = verts - c, edges - c
-        vi, x, y = _circle_crossings(u, q)
-        if vi.size == 0:
+        if u.size == 0 or q.size == 0:
             continue
         polar = np.arctan2(u[:, 1], u[:, 0])  # each vertex's once: the same numbers as per crossing
+        # about centre 1 (2's vertices against 1), as the crossings: their numbers serve again
+        inside = _inside_from(u, q, polar) if inside_centre is c else _inside(verts, edges, inside_centre)
+        rho = np.hypot(u[:, 0], u[:, 1])
+        terms = _edge_terms(q)
+        v, e = _radial_pairs(rho, terms)
+        sides.append((own, u, q, polar, inside, inside.any(), rho, terms, v, e))
+    window = 1 / 32
+    while True:
+        ccw, cw = _play_within(sides, window)
+        if window is None or (ccw <= window and cw <= window):
+            return ccw, cw
+        window = 8 * window if 8 * window < 1.0 else None
+
+
+def _play_within(sides: list, window: float | None) -> tuple[float, float]:
+    """:func:`polygon_play` from the turns of at most ``window`` (rad; None: every turn) on the
+    sides with no vertex inside, every turn on the others."""
+    ccw_c, cw_c = [math.inf], [math.inf]
+    for own, u, q, polar, inside, any_inside, rho, terms, v, e in sides:
+        if window is not None and not any_inside:
+            near = _within_turn(u, q, rho, terms, v, e, window)
+            vi, x, y = _pair_crossings(rho, terms, v[near], e[near])
+        else:
+            vi, x, y = _pair_crossings(rho, terms, v, e)
+        if vi.size == 0:
+            continue
         if own:  # a vertex of 1 turning onto an edge of 2
             d = _wrap(np.arctan2(y, x) - polar[vi])
         else:  # an edge of 1 turning onto a vertex of 2
             d = _wrap(polar[vi] - np.arctan2(y, x))
-        # about centre 1 (2's vertices against 1), as the crossings: their numbers serve again
-        inside = _inside_from(u, q, polar) if inside_centre is c else _inside(verts, edges, inside_centre)
-        if not inside.any():  # the first contact either way: the smallest turn of all (no vertex's own needed)
+        if not any_inside:  # the first contact either way: the smallest turn of all (no vertex's own needed)
             ccw_c.append(np.min(d[d >= 0], initial=math.inf))
             cw_c.append(np.min(-d[d < 0], initial=math.inf))
             continue
-        n = verts.shape[0]
+        n = u.shape[0]
         pos = np.full(n, np.inf)
         neg = np.full(n, np.inf)
         np.minimum.at(pos, vi[d >= 0], d[d >= 0])
@@ -442,6 +490,21 @@ def polygon_play(seg1: np.ndarray, seg2: np.ndarray, centre1, centre2=None) -> t
         cw_c.append(np.min(-pos[free_ccw], initial=math.inf))
         ccw_c.append(np.min(-neg[free_cw], initial=math.inf))
     return float(min(ccw_c)), float(min(cw_c))
+
+
+def _within_turn(u: np.ndarray, q: np.ndarray, rho: np.ndarray, edges: tuple, v: np.ndarray, e: np.ndarray,
+                 window: float) -> np.ndarray:
+    """Which pairs (vertex ``v``, edge ``e``) may cross at a turn of at most ``window`` (rad, below
+    pi) about the centre: ``u`` the vertices, ``q`` the edges, ``rho`` the vertices' radii,
+    ``edges`` the edges' terms (:func:`_edge_terms`), all taken from the centre. The crossing of a
+    turn d lies 2 rho sin(|d| / 2) from its vertex, and at least the distance from the vertex to
+    the edge's middle less its half length: a pair farther apart than the chord of the window (a
+    margin of 1e-9 of it over rounding, ~1e-15) turns beyond it."""
+    reach = 2.0 * rho * math.sin(0.5 * window) * (1 + 1e-9) + 1e-12
+    mx, my = q[:, 0, 0] + 0.5 * edges[2], q[:, 0, 1] + 0.5 * edges[3]
+    gx, gy = u[v, 0] - mx[e], u[v, 1] - my[e]
+    r = 0.5 * np.sqrt(edges[4])[e] + reach[v]
+    return gx * gx + gy * gy <= r * r
 
 
 def _distance_to_segments(vx, vy, a0x, a0y, dx, dy):
@@ -468,7 +531,8 @@ def _root_clearance(own: np.ndarray, own_centre, r_root: float, other: np.ndarra
     root = r <= r_root + max(deviation, 2e-6, 2e-7 * r_root)
     v, r = v[root], r[root]
     ends = _distances(other, oc)
-    on_tip = np.all(ends >= r_tip - max(deviation, 2e-6, 2e-7 * r_tip), axis=1)
+    tip = r_tip - max(deviation, 2e-6, 2e-7 * r_tip)
+    on_tip = (ends[:, 0] >= tip) & (ends[:, 1] >= tip)
     land = other[on_tip]
     if v.size == 0 or land.size == 0:
         return math.inf

@@ -3,7 +3,8 @@ shared by two chained segments turned once, not twice) against the code they rep
 as the reference: the same sweep to the last bit, with and without overlap, on chained sections
 and on sections with segments missing (broken chains, as a face's boundary leaves them). Also the
 circle crossings and inside test before their per-edge and per-vertex terms were computed once,
-and the root clearance before it measured only the pairs that can be the nearest."""
+the root clearance before it measured only the pairs that can be the nearest, and the play before
+it found only the turns within a window (every turn found)."""
 
 import math
 
@@ -271,3 +272,75 @@ def test_wrap_as_before():
         assert all(_wrap(x) == w or (math.isnan(w) and math.isnan(_wrap(x))) for x, w in zip(edges, want[-len(edges):]))
     same = (got == want) | (np.isnan(got) & np.isnan(want))
     assert same.all() and np.array_equal(np.signbit(got), np.signbit(want))
+
+
+def test_play_from_the_turns_within_a_window_as_before(monkeypatch):
+    """Polygon play from the turns within a window (1/32 rad, then 1/4, then every turn; a side with
+    a vertex inside the other gear from every turn) against every turn found, bit for bit: a spur
+    pair finely sampled from 0.02 mm apart (plays ~4e-4 rad, the first window) to 3.8 and 3.95 mm
+    apart (plays ~0.1 rad: the second window; tips out of reach at some positions: no turn at all,
+    every pair tried), and coarsely sampled (0.3 mm chords) 2-4 um into each other, where an
+    overlap shorter than a chord leaves one side's vertices inside and not the other's; sections
+    whole and with segments missing."""
+    windows = set()
+    within = solids._play_within
+
+    def recorded(sides, window):
+        windows.add((window, tuple(bool(side[5]) for side in sides)))
+        return within(sides, window)
+
+    monkeypatch.setattr(solids, "_play_within", recorded)
+    g1, g2 = gear(20), gear(41)
+    rng = np.random.default_rng(2028)
+    compared = 0
+    for step, gaps in ((0.01, (0.02, 2.5, 3.8, 3.95)), (0.3, (-0.002, -0.004))):
+        s1, s2 = (_sampled_sections(g, np.array([5.0]), step) for g in (g1, g2))
+        for gap in gaps:
+            su = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + gap)
+            pos = mesh_positions(su, 12)[:12]
+            st = su.states(pos)
+            for a, b in ((s1, s2), (_broken(s1, rng), _broken(s2, rng))):
+                for i in range(pos.size):
+                    c1, c2 = st.centre1[i], st.centre2[i]
+                    p1 = solids._near(solids._place(a.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
+                    p2 = solids._near(solids._place(b.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+                    assert solids.polygon_play(p1, p2, c1, c2) == reference_polygon_play(p1, p2, c1, c2)
+                    compared += 1
+    assert compared == 144
+    used = {w for w, _ in windows}
+    assert {1 / 32, 0.25, None} <= used  # every window, and every turn
+    sides = {s for _, s in windows}
+    assert (True, False) in sides and (False, True) in sides and (True, True) in sides and (False, False) in sides
+
+
+def test_pairs_left_out_turn_beyond_the_window():
+    """Every (vertex, edge) pair whose circle crossing lies at a turn within the window passes
+    :func:`solids._within_turn` (the crossings of every pair, turned as the play turns them), and
+    most pairs do not (what the window saves): a spur pair 0.02 and 2.5 mm apart, either gear's
+    vertices, windows 1/32 and 1/4 rad, over a pitch."""
+    g1, g2 = gear(20), gear(41)
+    s1, s2 = (_sampled_sections(g, np.array([5.0]), 0.01) for g in (g1, g2))
+    within, pairs = {1 / 32: 0, 0.25: 0}, 0
+    for gap in (0.02, 2.5):
+        su = MeshSetup.centred(g1, g2, tight_centre_distance(g1, g2) + gap)
+        pos = mesh_positions(su, 12)[:12]
+        st = su.states(pos)
+        for i in range(pos.size):
+            c1, c2 = st.centre1[i], st.centre2[i]
+            p1 = solids._near(solids._place(s1.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
+            p2 = solids._near(solids._place(s2.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+            for verts, edges in ((solids._vertices(p2), p1), (solids._vertices(p1), p2)):
+                u, q = verts - c1, edges - c1
+                rho = np.hypot(u[:, 0], u[:, 1])
+                terms = solids._edge_terms(q)
+                v, e = solids._radial_pairs(rho, terms)
+                # each crossing with the index of its pair
+                k, x, y = solids._pair_crossings(rho[v], terms, np.arange(v.size), e)
+                turn = np.abs(_wrap(np.arctan2(y, x) - np.arctan2(u[v[k], 1], u[v[k], 0])))
+                for window in (1 / 32, 0.25):
+                    near = solids._within_turn(u, q, rho, terms, v, e, window)
+                    assert near[k[turn <= window]].all()
+                    within[window] += int(np.count_nonzero(near))
+                pairs += v.size
+    # the first window keeps ~8 % of the pairs, the second ~46 %
+    assert 0 < within[1 / 32] < 0.1 * pairs and within[1 / 32] < within[0.25] < 0.6 * pairs
