@@ -379,20 +379,22 @@ def versions() -> dict[str, str]:
 
 
 def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = None,
-           export_settings: dict | None = None, meshes: "Alongside | None" = None) -> dict[str, Any]:
+           export_settings: dict | None = None, step_files: "Alongside | None" = None) -> dict[str, Any]:
     """Step 7: assembly STEP, one STEP and one STL per part, into ``folder``; returns the file records.
-    ``meshes``: the process writing the STL files (:func:`export_meshes`, started before this step),
-    collected once the STEP files are written (or the STL files written here if it delivered nothing)."""
+    ``step_files``: the process writing the STEP files (:func:`export_step_files`, started before
+    this step), collected once the STL files are written here (or the STEP files written here if it
+    delivered nothing)."""
     from geargen.cad.assembly import export_parts
     settings = export_settings or layout.resolved.export
-    collected = None if meshes is None else (lambda: _collect(meshes, export_meshes, parts, folder, settings)[0])
+    collected = None if step_files is None else \
+        (lambda: _collect(step_files, export_step_files, layout, parts, folder)[0])
     return export_parts(layout, parts, Path(folder), settings, collected)
 
 
-def export_meshes(parts, folder: Path, settings: dict[str, Any]) -> dict[str, Any]:
-    """The STL files and volumes of the export (:func:`geargen.cad.assembly.export_meshes`)."""
-    from geargen.cad.assembly import export_meshes as write_meshes
-    return write_meshes(parts, Path(folder), settings)
+def export_step_files(layout: Layout, parts, folder: Path) -> dict[str, Any]:
+    """The STEP files of the export (:func:`geargen.cad.assembly.export_step_files`)."""
+    from geargen.cad.assembly import export_step_files as write_step_files
+    return write_step_files(layout, parts, Path(folder))
 
 
 def export_config(design: Design) -> dict[str, Any]:
@@ -720,7 +722,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             _import_kernel_modules()
         # the drawings need only the resolved drive: drawn in a process of their own from here
         sheets_alongside = Alongside.start(drawings, layout, work) if parallel else None
-        sections_alongside = figures_alongside = overlaps_alongside = meshes_alongside = None
+        sections_alongside = figures_alongside = overlaps_alongside = steps_alongside = None
         try:
             gears = progress.run("gear solids", gear_solids, layout)
             # path 2 (sections of the gear solids) in another from the moment the solids exist
@@ -746,11 +748,11 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                                           summary, work)
 
             made = figures_step() if figures_alongside is None else None
-            # the STL files and volumes in a process of their own while this one writes the STEP files
-            # (the main process is the build's longest path; no STEP writer reads a mesh)
-            meshes_alongside = Alongside.start(export_meshes, parts, work, layout.resolved.export) if parallel \
-                else None
-            files = progress.run("export", export, layout, parts, work, meshes=meshes_alongside)
+            # the STEP files in a process of their own (its kernel has made no transfer yet, as this one
+            # had not: the same bytes) while this one writes the STL files (the main process is the
+            # build's longest path; no STEP writer reads a mesh)
+            steps_alongside = Alongside.start(export_step_files, layout, parts, work) if parallel else None
+            files = progress.run("export", export, layout, parts, work, step_files=steps_alongside)
             drawn, progress.timings["render"] = made or figures_step()
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
@@ -764,7 +766,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             target = output.commit()
         finally:
             for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside,
-                          overlaps_alongside, meshes_alongside):
+                          overlaps_alongside, steps_alongside):
                 if child is not None:
                     child.close()
     except BaseException:

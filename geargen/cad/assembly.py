@@ -248,43 +248,59 @@ def write_assembly_step(name: str, parts: Iterable[PlacedPart], path: Path, leng
 
 
 def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any],
-                 meshes: Callable[[], dict[str, Any]] | None = None) -> dict[str, Any]:
+                 step_files: Callable[[], dict[str, Any]] | None = None) -> dict[str, Any]:
     """Write assembly.step and, per part, ``<name>.step`` and ``<name>.stl`` (assembly frame).
 
-    ``meshes``: called once the STEP files are written, returns what :func:`export_meshes` returned
-    for these parts into ``folder`` (the STL files written by another process meanwhile); None:
-    written here, after the STEP files.
+    ``step_files``: called once the STL files are written here, returns what
+    :func:`export_step_files` returned for these parts into ``folder`` (the STEP files written by
+    another process meanwhile); None: the STEP files written here, before the STL files.
 
     Returns ``{"records": {file: manifest entry}, "parts": {name: placement and files},
     "tolerances": {...}}``.
     """
+    parts = parts_set if isinstance(parts_set, list) else parts_set.parts
+    steps = export_step_files(layout, parts, folder) if step_files is None else None
+    meshes = export_meshes(parts, folder, settings)
+    steps = steps if steps is not None else step_files()
+    records: dict[str, Any] = {"assembly.step": steps["assembly"]}
+    info: dict[str, Any] = {}
+    for p in parts:
+        step, step_entry = steps["parts"][p.name]
+        stl, stl_entry = meshes["stl"][p.name]
+        records[step] = step_entry
+        records[stl] = stl_entry
+        info[p.name] = {"group": p.group, "kind": p.kind, "role": p.role, "description": p.description,
+                        "colour_rgba": list(p.colour), "placement_matrix_mm": p.matrix.round(12).tolist(),
+                        "files": [step, stl], "volume_mm3": meshes["volumes"][p.name]}
+    return {"records": records, "parts": info, "tolerances": meshes["tolerances"]}
+
+
+def export_step_files(layout, parts_set: PartSet | list, folder: Path) -> dict[str, Any]:
+    """assembly.step and, per part, ``<name>.step`` (assembly frame, the design's length unit) written
+    into ``folder``, in this order: ``{"assembly": manifest entry, "parts": {part: (file name,
+    manifest entry)}}``. Each STEP file carries the kernel's count of the transfers made before it in
+    its process (product and usage names), so the files are always written in this one order, all in
+    one process; no STEP writer reads a mesh, so the STL files may be written meanwhile elsewhere."""
     from geargen.cad.export import export_step
 
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
     unit = layout.identity.length_unit
     folder.mkdir(parents=True, exist_ok=True)
-    records: dict[str, Any] = {}
-    info: dict[str, Any] = {}
     asm = write_assembly_step(layout.identity.name, parts, folder / "assembly.step", unit)
-    records[asm.name] = {"format": "step", "length_unit": unit, "bytes": asm.stat().st_size,
-                         "role": "assembly", "parts": [p.name for p in parts]}
-    steps = [export_step((p.name, p.world()), folder / f"{p.name}.step", unit) for p in parts]
-    meshes = export_meshes(parts, folder, settings) if meshes is None else meshes()
-    for p, rs in zip(parts, steps):
-        stl, entry = meshes["stl"][p.name]
-        records[rs.path.name] = rs.manifest_entry()
-        records[stl] = entry
-        info[p.name] = {"group": p.group, "kind": p.kind, "role": p.role, "description": p.description,
-                        "colour_rgba": list(p.colour), "placement_matrix_mm": p.matrix.round(12).tolist(),
-                        "files": [rs.path.name, stl], "volume_mm3": meshes["volumes"][p.name]}
-    return {"records": records, "parts": info, "tolerances": meshes["tolerances"]}
+    assembly = {"format": "step", "length_unit": unit, "bytes": asm.stat().st_size, "role": "assembly",
+                "parts": [p.name for p in parts]}
+    files = {}
+    for p in parts:
+        rs = export_step((p.name, p.world()), folder / f"{p.name}.step", unit)
+        files[p.name] = (rs.path.name, rs.manifest_entry())
+    return {"assembly": assembly, "parts": files}
 
 
 def export_meshes(parts_set: PartSet | list, folder: Path, settings: Mapping[str, Any]) -> dict[str, Any]:
     """Per part, ``<name>.stl`` (assembly frame) written into ``folder``, and each part's volume
     (mm^3, the kernel's integration of its solid): ``{"stl": {part: (file name, manifest entry)},
     "volumes": {part: mm^3}, "tolerances": {...}}``. Independent of the STEP files (no STEP writer
-    reads a mesh), so a build writes them in a process of its own alongside the STEP export."""
+    reads a mesh), so a build writes them while another process writes the STEP files."""
     from geargen.cad.export import Tessellations, export_stl
 
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
@@ -602,5 +618,5 @@ def pairwise_overlaps(parts: Iterable[PlacedPart], intended: Iterable[tuple[str,
 
 __all__ = ["COLOURS", "transform", "location", "PlacedPart", "PartSet", "gear_parts",
            "non_gear_parts", "parts_from_hardware", "all_parts", "assembly_document",
-           "write_assembly_step", "export_parts", "export_meshes", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
+           "write_assembly_step", "export_parts", "export_step_files", "export_meshes", "faces_near", "Overlap", "OverlapReport", "intersection_volume",
            "pairwise_overlaps"]
