@@ -50,6 +50,15 @@ rendered and the overlap check made in processes of their own (the "render" colu
 process's), so the main process holds only the solids, the export and the report; the build's floor is
 its CPU over 2 cores.
 
+Session 16 (2026-11-28 13:25-13:35 UTC, load 1.7-3.0, two passes alternated, base 276f9ef -> main; wall / CPU
+s): robot_joint 4.30-4.82 / 7.1-7.8 -> 3.26-3.74 / 5.8-6.5 (target 3 s: not met); axial_preload 3.94-4.17 ->
+2.83-3.24; c_axis 4.92-4.99 / 8.2-8.5 -> 3.46-3.78 / 6.1-6.4; metric_dual_pinion 5.36-5.46 / 8.7-8.8 -> 3.72-4.21 /
+6.4-7.2; planetary_dual_pinion 5.98-6.27 / 10.2-10.6 -> 4.22-4.71 / 7.6-8.4; rack_drive 3.10-3.45 -> 2.29-2.76;
+split_pinion_inch 2.60-2.98 -> 2.07-2.33: every shipped design <= 5 s. What moved it: the interpreter's final
+garbage collection skipped (geargen.cli.command: 0.5-0.7 s after every build), the STEP files in a process of
+their own while the main process writes the STL files, the verdict (-20-30 %), path 2's sections (-60 %), the
+overlap check (-25-30 %) and the figures (-15 %) with the same numbers and bytes.
+
 The commands run without ``PYTHONDONTWRITEBYTECODE`` (an installed geargen has its bytecode
 cached; without it each run compiles geargen's ~100 modules again, ~0.6 s).
 """
