@@ -180,7 +180,11 @@ TABLES: tuple[Table, ...] = (
           "The tolerance simulation of `geargen synth --monte-carlo`: the carriage travel over random builds "
           "of the error budget.", Example("robot_joint.toml", ("monte_carlo",)), sections=("monte_carlo",)),
     Table("[checks]", ("checks",),
-          "What the geometric mesh checks (`geargen check`, and the build's gate) sweep, require and compare.",
+          "What the geometric mesh checks (`geargen check`, and the build's gate) sweep, require and compare. A "
+          "design without [synthesis] or [layout] places no drive: `geargen check` checks the pairs `meshes` names, "
+          "and `geargen build` builds its gear set once that same verdict passes (each [gears.NAME] as `geargen gear "
+          "DESIGN --gear NAME` writes it, with report.md and manifest.json; no assembly file: where the gears sit "
+          "around each other is not in the design).",
           example_text=_CHECKS_EXAMPLE, sections=("checks",)),
     Table("[stiffness]", ("stiffness",),
           "Materials and the train whose path stiffnesses, drive stiffness (Eqs. 2, 5) and loop stiffness "
