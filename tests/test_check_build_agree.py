@@ -219,6 +219,11 @@ def test_a_gear_set_is_each_gear_as_geargen_gear_builds_it(tmp_path):
         alone, in_set = (json.loads((tmp_path / d / f"{gear}.json").read_text()) for d in (gear, "set"))
         assert {k: v for k, v in alone.items() if k != "timings_s"} == \
             {k: v for k, v in in_set.items() if k != "timings_s"}
+    # each gear's mates are the pairs [checks] meshes declares, at their centre distances (the file's 162 mm)
+    mates = json.loads((tmp_path / "set" / "output.json").read_text())["mating_gears"]
+    assert [(m["name"], m["teeth"], m["centre_distance"]) for m in mates] == [("pinion_a", 18, 162.0),
+                                                                               ("pinion_b", 18, 162.0)]
+    assert "pinion_b (18 teeth)" in (tmp_path / "set" / "output-drawing.svg").read_text()
 
 
 @pytest.mark.parametrize("design", ["dual_motor", "split_pinion"])

@@ -531,6 +531,13 @@ def gear_files(args, spec, thinning_source: str | None, out: Path, source: str, 
         data = gear_data(spec, solid.profile, allowance)
         if thinning_source is not None:
             data["thinning_source"] = thinning_source
+        if args.design and args.gear:  # a gear of a file that places no drive: its mates are [checks] meshes'
+            from geargen.design.assembly import load_design
+            from geargen.design.checks import checks_settings
+            from geargen.report.drawing import mates_from_declared
+            design = load_design(args.design)
+            data["mating_gears"] = [m.to_dict() for m in mates_from_declared(design, checks_settings(design),
+                                                                              spec.name, spec.length_unit)]
     else:
         data = family_of(spec).gear_data(spec)
     data["timings_s"] = {"build": t_build, **{r.format: r.seconds for r in records}}

@@ -179,6 +179,21 @@ def mates_from_layout(layout, gear_name: str, unit: str) -> list[Mate]:
     return out
 
 
+def mates_from_declared(design, settings, gear_name: str, unit: str) -> list[Mate]:
+    """The gears ``gear_name`` meshes with among the pairs ``[checks] meshes`` declares (a design that
+    places no drive), each at its declared centre distance with the design's centre-distance tolerance
+    (``[checks] centre_distance_tolerance_*``, when given), in ``unit``."""
+    f_a = settings.centre_distance_tolerance
+    tolerance = (float(from_mm(-f_a, unit)), float(from_mm(f_a, unit))) if f_a > 0 else None
+    out = []
+    for m in settings.meshes:
+        for me, other in ((m.gear1, m.gear2), (m.gear2, m.gear1)):
+            teeth = getattr(design.gear(other), "teeth", None)
+            if me == gear_name and teeth is not None and all(o.name != other for o in out):
+                out.append(Mate(other, int(teeth), float(from_mm(m.centre_distance, unit)), tolerance))
+    return out
+
+
 def mates_of(data: dict) -> list[Mate]:
     """The :class:`Mate` s a gear data dict records (``"mating_gears"``; none when absent)."""
     out = []
@@ -961,7 +976,7 @@ def write_figure(sheet: Sheet, folder, name: str) -> dict[str, Path]:
     return out
 
 
-__all__ = ["BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
+__all__ = ["mates_from_declared", "BLANK_BLOCK", "BLANK_COLUMNS_MM", "DRAWN_TEXT_LINES", "WRAP_FILL", "title_cells", "title_cell_width",
            "blank_rows", "RUNOUT_SYMBOL", "cell_gid", "parse_cell_gid", "SHEET", "SHEET_MM", "MIN_FONT_PT", "PREFERRED_SCALES", "NOT_SPECIFIED", "Mate", "mates_from_layout",
            "mates_of", "data_rows", "format_length", "format_um", "format_tolerance", "format_limits", "preferred_scale", "scale_text",
            "drawing_scales", "pitch_row", "pitch_rows", "draw_gear", "write_drawing", "write_figure", "gear_drawings", "Sheet", "draw_frame", "draw_data_block", "fit_data_block",
