@@ -273,6 +273,15 @@ def _near(segs: np.ndarray, centre, radius: float) -> np.ndarray:
     return segs[np.minimum(d[:, 0], d[:, 1]) <= radius]  # the nearer end (numpy's min over an axis of 2: 5x slower)
 
 
+def placed_near(segs1: np.ndarray, segs2: np.ndarray, st, i: int, reach1: float, reach2: float):
+    """Two gears' section segments at mesh position ``i`` of the states ``st``: each turned and moved
+    to its centre, and kept where within the other gear's reach (its tip radius and a module; the
+    polygon play and root clearance read nothing farther): (segments 1, segments 2, centre 1, centre 2)."""
+    c1, c2 = st.centre1[i], st.centre2[i]
+    return (_near(_place(segs1, c1, st.angle1[i]), c2, reach2), _near(_place(segs2, c2, st.angle2[i]), c1, reach1),
+            c1, c2)
+
+
 def _circle_hits(points: np.ndarray, segs: np.ndarray):
     """Where the circles about the origin through ``points`` ``(V, 2)`` cross ``segs`` ``(E, 2, 2)``.
 
@@ -634,9 +643,7 @@ def check_mesh_sections(setup: MeshSetup, sections1: GearSections, sections2: Ge
     for k in range(P):
         a, b = sections1.segments[k], sections2.segments[k]
         for i in range(n):
-            c1, c2 = st.centre1[i], st.centre2[i]
-            s1 = _near(_place(a, c1, st.angle1[i]), c2, reach2)
-            s2 = _near(_place(b, c2, st.angle2[i]), c1, reach1)
+            s1, s2, c1, c2 = placed_near(a, b, st, i, reach1, reach2)
             ccw[k, i], cw[k, i] = polygon_play(s1, s2, c1, c2)
             clear[k, i] = min(_root_clearance(s1, c1, g1.root_radius_standard, s2, c2, g2.tip_radius, dev),
                               _root_clearance(s2, c2, g2.root_radius_standard, s1, c1, g1.tip_radius, dev))

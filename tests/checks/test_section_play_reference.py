@@ -159,6 +159,12 @@ def reference_root_clearance(own, own_centre, r_root, other, other_centre, r_tip
     return float(np.min(np.where(inside, -dist, dist)))
 
 
+def _placed(segs1, segs2, st, i, g1, g2):
+    """The two gears' segments at mesh position ``i``, as check_mesh_sections places them
+    (solids.placed_near: each gear's segments within the other's reach): (p1, p2, c1, c2)."""
+    return solids.placed_near(segs1, segs2, st, i, g1.tip_radius + g1.module, g2.tip_radius + g2.module)
+
+
 def _broken(sections, rng):
     """The sections with one segment in 40 dropped (chains broken where a face's boundary would)."""
     segs = [s[rng.uniform(size=len(s)) > 1 / 40] for s in sections.segments]
@@ -203,10 +209,7 @@ def test_root_clearance_as_before_over_a_pitch():
         st = su.states(pos)
         for a, b in ((s1, s2), (_broken(s1, rng), _broken(s2, rng))):
             for i in range(pos.size):
-                c1, c2 = st.centre1[i], st.centre2[i]
-                # as check_mesh_sections places them: each gear's segments within reach of the other
-                p1 = solids._near(solids._place(a.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
-                p2 = solids._near(solids._place(b.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+                p1, p2, c1, c2 = _placed(a.segments[0], b.segments[0], st, i, g1, g2)
                 for own, oc, rr, other, occ, rt in ((p1, c1, g1.root_radius_standard, p2, c2, g2.tip_radius),
                                                     (p2, c2, g2.root_radius_standard, p1, c1, g1.tip_radius)):
                     got = solids._root_clearance(own, oc, rr, other, occ, rt, 1e-6)
@@ -232,9 +235,7 @@ def test_crossings_and_inside_test_as_before(pair, gap):
     st = su.states(pos)
     crossings = inside = 0
     for i in range(pos.size):
-        c1, c2 = st.centre1[i], st.centre2[i]
-        p1 = solids._near(solids._place(s1.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
-        p2 = solids._near(solids._place(s2.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+        p1, p2, c1, c2 = _placed(s1.segments[0], s2.segments[0], st, i, g1, g2)
         for verts, edges, centre in ((p2.reshape(-1, 2), p1, c1), (p1.reshape(-1, 2), p2, c2)):
             got, want = _circle_hits(verts - c1, edges - c1), reference_circle_hits(verts - c1, edges - c1)
             assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
@@ -301,9 +302,7 @@ def test_play_from_the_turns_within_a_window_as_before(monkeypatch):
             st = su.states(pos)
             for a, b in ((s1, s2), (_broken(s1, rng), _broken(s2, rng))):
                 for i in range(pos.size):
-                    c1, c2 = st.centre1[i], st.centre2[i]
-                    p1 = solids._near(solids._place(a.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
-                    p2 = solids._near(solids._place(b.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+                    p1, p2, c1, c2 = _placed(a.segments[0], b.segments[0], st, i, g1, g2)
                     assert solids.polygon_play(p1, p2, c1, c2) == reference_polygon_play(p1, p2, c1, c2)
                     compared += 1
     assert compared == 144
@@ -326,9 +325,7 @@ def test_pairs_left_out_turn_beyond_the_window():
         pos = mesh_positions(su, 12)[:12]
         st = su.states(pos)
         for i in range(pos.size):
-            c1, c2 = st.centre1[i], st.centre2[i]
-            p1 = solids._near(solids._place(s1.segments[0], c1, st.angle1[i]), c2, g2.tip_radius + g2.module)
-            p2 = solids._near(solids._place(s2.segments[0], c2, st.angle2[i]), c1, g1.tip_radius + g1.module)
+            p1, p2, c1, c2 = _placed(s1.segments[0], s2.segments[0], st, i, g1, g2)
             for verts, edges in ((solids._vertices(p2), p1), (solids._vertices(p1), p2)):
                 u, q = verts - c1, edges - c1
                 rho = np.hypot(u[:, 0], u[:, 1])
