@@ -703,6 +703,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     only the resolved drive: with ``parallel`` they are drawn in a process of their own from the
     moment it is placed, the view and the figures that need no check result
     (:func:`view_and_figures`) in another from the moment the other parts exist (:func:`_collect`),
+    and the STEP files (:func:`export_step_files`) in another while this one writes the STL files,
     else (or if one delivers nothing) here.
     """
     progress = progress or Progress(quiet)

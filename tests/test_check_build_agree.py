@@ -103,6 +103,7 @@ GEAR_SETS = [
     ("dual_motor", "dual_motor", {}),
     ("dual_motor_tip_interference", "dual_motor", {"centre_distance_mm": "[160.5, 162.0]"}),
     ("dual_motor_unknown_bore_fit", "dual_motor", {"bore_diameter_mm": '20\nbore_fit = "Q3"'}),
+    ("no_gears_no_drive", None, 'name = "nothing_to_build"\nlength_unit = "mm"\n'),  # the same refusal
 ]
 
 

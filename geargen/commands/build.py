@@ -84,19 +84,17 @@ def build_gear_set(args, design, t0: float) -> int:
     from geargen.errors import DesignError
     from geargen.pipeline import design_source, output_folder, versions
 
-    if not design.gears:
-        raise DesignError("gears", "none declared, and no drive ([layout] or [synthesis]) to place",
-                          "[gears.NAME] tables (built as a gear set) or a [layout] / [synthesis] drive")
     if args.position is not None:
         raise DesignError("--position", "applies to a drive with sliding pinions; this design places no drive",
                           "leave --position out")
+    # the verdict of `geargen check DESIGN`, first: a design it refuses is refused here in its words
+    result = check_command.check_design(design)
     gear_parser = argparse.ArgumentParser(prog="geargen gear", add_help=False)
     gear_command.add_arguments(gear_parser)
     prepared = []  # every gear's options and drawing keys checked before anything is built
     for name in design.gears:
         gear_args = gear_parser.parse_args([str(args.design), "--gear", name])
         prepared.append((gear_args, *gear_command.prepared_gear(gear_args)))
-    result = check_command.check_design(design)  # the verdict of `geargen check DESIGN`
     failures = [f"{f.mesh or design.name} ({f.kind}): {f.message}" for f in result.all_failures]  # as a drive's
     forced = args.force and not result.ok
     if not result.ok and not args.force:
