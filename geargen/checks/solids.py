@@ -282,17 +282,9 @@ def placed_near(segs1: np.ndarray, segs2: np.ndarray, st, i: int, reach1: float,
             c1, c2)
 
 
-def _circle_hits(points: np.ndarray, segs: np.ndarray):
-    """Where the circles about the origin through ``points`` ``(V, 2)`` cross ``segs`` ``(E, 2, 2)``.
-
-    Returns (vertex index, crossing point (k, 2)) for every crossing (:func:`_circle_crossings`).
-    """
-    vi, x, y = _circle_crossings(points, segs)
-    return vi, np.column_stack([x, y])
-
-
 def _circle_crossings(points: np.ndarray, segs: np.ndarray):
-    """:func:`_circle_hits` as (vertex index, x, y). Edges are sorted by their nearest radius, so
+    """Where the circles about the origin through ``points`` ``(V, 2)`` cross ``segs`` ``(E, 2, 2)``:
+    (vertex index, x, y) of every crossing. Edges are sorted by their nearest radius, so
     each vertex only meets the edges whose radial span can hold it; what each crossing needs of
     its edge or vertex is computed once per edge or vertex and picked per crossing (the same
     numbers as computed per crossing)."""

@@ -13,7 +13,7 @@ import pytest
 
 from geargen.checks import solids
 from geargen.checks.mesh2d import MeshSetup, mesh_positions
-from geargen.checks.solids import _circle_hits, _inside, _wrap, check_mesh_sections, section_planes
+from geargen.checks.solids import _circle_crossings, _inside, _wrap, check_mesh_sections, section_planes
 
 from checks_support import gear, tight_centre_distance
 from test_check_sections import _sampled_sections
@@ -237,8 +237,8 @@ def test_crossings_and_inside_test_as_before(pair, gap):
     for i in range(pos.size):
         p1, p2, c1, c2 = _placed(s1.segments[0], s2.segments[0], st, i, g1, g2)
         for verts, edges, centre in ((p2.reshape(-1, 2), p1, c1), (p1.reshape(-1, 2), p2, c2)):
-            got, want = _circle_hits(verts - c1, edges - c1), reference_circle_hits(verts - c1, edges - c1)
-            assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
+            (vi, x, y), want = _circle_crossings(verts - c1, edges - c1), reference_circle_hits(verts - c1, edges - c1)
+            assert np.array_equal(vi, want[0]) and np.array_equal(np.column_stack([x, y]), want[1])
             crossings += want[0].size
             got, want = _inside(verts, edges, centre), reference_inside(verts, edges, centre)
             assert np.array_equal(got, want)
