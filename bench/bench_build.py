@@ -27,6 +27,13 @@ median of each step's time from the build's ``manifest.json`` (``timings_s``; "m
 second process's work, done alongside). ``--root`` measures another checkout (e.g. main's, for the
 "before" numbers) with this script.
 
+``--processes [--root DIR] [NAME ...]``: one build of each design (robot_joint unless named), each of its
+processes on one line: the main process's steps and every forked one (verdict, drawings, sections, overlaps,
+view and figures, STEP files) with its start and end (s since the command's imports began) and its processor
+time, then the total. The build is CPU-bound on 2 cores: its wall is about (total CPU + the time one core
+idles) / 2; the lines say where the CPU goes and when a core idles (before the verdict's process starts, and
+at the tail while the report is written).
+
 Target for the robot joint: 3 s end to end (the ``command`` column, interpreter start
 included), mesh checks included, on a quiet machine; every shipped design 5 s.
 
@@ -213,6 +220,69 @@ def stage_table(root: Path, names: list[str], repeat: int) -> None:
               + " ".join(f"{v:12.2f}" for v in stages), flush=True)
     print(f"load average {os.getloadavg()[0]:.2f} at the end")
 
+#: one build with each process's start, end and processor time (``--processes``): the pipeline's
+#: steps (Progress.run, Progress.run_timed) and forked functions (_run_in_child) wrapped to report them
+TRACE = """
+import os, sys, time
+T0, C0 = time.perf_counter(), time.process_time()
+import geargen.pipeline as P
+lines = []
+def clock(name, s, c):
+    return f"{name} {s - T0:.3f} {time.perf_counter() - T0:.3f} {time.process_time() - c:.3f}"
+run_in_child = P._run_in_child
+def traced_child(conn, fn, args, parent_pid=None):
+    s, c = time.perf_counter(), time.process_time()
+    class Reporting:
+        def send(self, value):
+            with open(os.path.join(sys.argv[3], f"{os.getpid()}.txt"), "w") as f:
+                f.write(clock(fn.__name__, s, c) + "\\n")
+            conn.send(value)
+        def __getattr__(self, name):
+            return getattr(conn, name)
+    return run_in_child(Reporting(), fn, args, parent_pid)
+P._run_in_child = traced_child
+for method in ("run", "run_timed"):
+    def wrapped(self, name, fn, *a, _orig=getattr(P.Progress, method), **k):
+        s, c = time.perf_counter(), time.process_time()
+        try:
+            return _orig(self, name, fn, *a, **k)
+        finally:
+            lines.append(clock("main: " + name, s, c))
+    setattr(P.Progress, method, wrapped)
+from geargen.cli import main
+lines.append(f"main: imports 0.000 {time.perf_counter() - T0:.3f} {time.process_time() - C0:.3f}")
+try:
+    main(["build", sys.argv[1], "--out", sys.argv[2], "--quiet"])
+except SystemExit:
+    pass
+lines.append(f"main (whole process) 0.000 {time.perf_counter() - T0:.3f} {time.process_time() - C0:.3f}")
+print("\\n".join(lines))
+"""
+
+
+def process_table(root: Path, names: list[str]) -> None:
+    """The ``--processes`` table of the module docstring."""
+    for name in names:
+        with tempfile.TemporaryDirectory() as tmp:
+            traces = Path(tmp) / "traces"
+            traces.mkdir()
+            done = subprocess.run([sys.executable, "-c", TRACE, str(root / "assemblies" / f"{name}.toml"),
+                                   str(Path(tmp) / name), str(traces)], capture_output=True, text=True, cwd=root,
+                                  env=ENV)
+            if done.returncode:
+                print(f"{name}: FAILED\n{done.stderr[-3000:]}")
+                continue
+            rows = [line.rsplit(" ", 3) for line in done.stdout.splitlines() if line.count(" ") >= 3]
+            children = [p.read_text().split() for p in sorted(traces.glob("*.txt"))]
+        print(f"{name} (load average {os.getloadavg()[0]:.2f}): process or step, start, end, processor s")
+        for what, start, end, cpu in rows:
+            print(f"  {what:34s} {float(start):6.2f} {float(end):6.2f} {float(cpu):6.2f}")
+        for what, start, end, cpu in sorted(children, key=lambda c: float(c[1])):
+            print(f"  {'process: ' + what:34s} {float(start):6.2f} {float(end):6.2f} {float(cpu):6.2f}")
+        whole = [r for r in rows if r[0].startswith("main (whole")]
+        total = sum(float(c[3]) for c in children) + (float(whole[0][3]) if whole else 0.0)
+        print(f"  {'all processes':34s} {'':6s} {'':6s} {total:6.2f}")
+
 
 def main(argv):
     repeat = 3
@@ -223,6 +293,12 @@ def main(argv):
         if argv[:1] == ["--root"]:
             root, argv = Path(argv[1]).resolve(), argv[2:]
         stage_table(root, argv or _shipped(root), repeat)
+        return
+    if argv[:1] == ["--processes"]:
+        argv, root = argv[1:], ROOT
+        if argv[:1] == ["--root"]:
+            root, argv = Path(argv[1]).resolve(), argv[2:]
+        process_table(root, argv or ["robot_joint"])
         return
     if argv[:1] == ["--repeat"]:
         repeat, argv = int(argv[1]), argv[2:]
