@@ -143,3 +143,21 @@ def test_an_open_mesh_is_refused():
         _check_closed(tetra[1:], 4)
     with pytest.raises(TessellationError):
         _check_closed(np.concatenate([tetra[:1, ::-1], tetra[1:]]), 4)
+
+
+def test_the_robot_joints_bevel_parts_are_meshed_exactly():
+    # the build's bevel gears are hardware components (not gears for the checks: no ``solid``), placed
+    # with their family's solid, so the STL export and the view mesh them with the exact mesher
+    from pathlib import Path
+
+    from geargen import pipeline as P
+    from geargen.cad.export import solid_triangles
+    from geargen.families.bevel.solid import BevelSolid
+    design = P.load(Path(__file__).parents[2] / "assemblies/robot_joint.toml")
+    parts = {p.name: p for p in P.other_parts(P.place(design)).parts}
+    for name in ("bevel_gear", "bevel_pinion"):
+        part = parts[name]
+        assert part.solid is None and isinstance(part.family_solid, BevelSolid)
+        assert part.family_solid.shape.IsSame(part.shape) and part.mesh_source is part.family_solid
+        assert solid_triangles(part.mesh_source, 0.05)[1] == "exact"
+    assert parts["link"].mesh_source is parts["link"].shape  # any other part: the kernel's
