@@ -4,8 +4,8 @@ exact one (:func:`geargen.profile.bevel_tessellate.bevel_triangles`, what
 
 Run by hand: ``.venv/bin/python bench/bench_bevel_mesh.py [--repeat N]``. One interpreter builds
 the two solids as the build does (their specs and backs from ``assemblies/robot_joint.toml``), then
-for each tolerance (the STL's 0.005 mm and the rendered view's ~0.45 mm) times, alternated N times,
-the kernel (:func:`geargen.cad.export.kernel_triangles` on the solid's shape, its earlier mesh
+for each tolerance (the gears' STL 0.005 mm; the other parts' 0.05 mm, which the build's bevel STLs
+use; the rendered view's ~0.45 mm) times, alternated N times, the kernel (:func:`geargen.cad.export.kernel_triangles` on the solid's shape, its earlier mesh
 removed first so each run meshes afresh; the STL's angular tolerance 30 deg) and the exact mesher.
 Prints medians (processor ms) and triangle counts.
 
@@ -36,7 +36,7 @@ def main(argv: list[str]) -> None:
     solids = [build_bevel(spec, back=spec.back) for spec in (placed.gear, placed.pinion)]
     print("solid           tol mm   kernel ms (tri)     exact ms (tri)   speed-up")
     for solid in solids:
-        for tol in (0.005, 0.45):
+        for tol in (0.005, 0.05, 0.45):  # the gears' STL tolerance, the parts' (the bevels' in the build), the view's
             times = {"kernel": [], "exact": []}
             counts = {}
             for _ in range(repeat):
