@@ -9,8 +9,11 @@ use; the rendered view's ~0.45 mm) times, alternated N times, the kernel (:func:
 removed first so each run meshes afresh; the STL's angular tolerance 30 deg) and the exact mesher.
 Prints medians (processor ms) and triangle counts.
 
-Measured (session 17, 2026-11-28 14:40 UTC, load ~4-6 on 2 cores, --repeat 7): see the commit
-message that added this file and the branch's report.
+Measured (session 17, 2026-11-28 14:40 UTC, load ~3 on 2 cores, --repeat 7), kernel -> exact, ms
+(triangles): bevel_gear 0.005 mm 102.7 (11488) -> 1.9 (3986), 0.05 mm 30.2 (1932) -> 1.1 (974),
+0.45 mm 26.9 (1480) -> 1.0 (536); bevel_pinion 0.005 mm 134.1 (15582) -> 2.0 (2708), 0.05 mm 22.4
+(1586) -> 1.1 (516), 0.45 mm 19.3 (1190) -> 0.8 (360). The exact mesh holds fewer triangles: it
+has no angular limit (as the gears' and the worm's exact meshes), only the chordal tolerance.
 """
 
 import math

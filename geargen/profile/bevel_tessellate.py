@@ -301,38 +301,31 @@ def _mesh(spec: BevelGearSpec, back: str, tol: float, heel_step: float, toe_step
         points = np.concatenate(mesh.points)
         return inner, float(sphere_sag(points[tris], radius).max())
 
+    def plane(outer, outer_phi, z: float, outward: bool):
+        """The plane ``z`` from the closed ring ``outer`` in to the bore (its circle made here and
+        returned) or to the axis."""
+        if rb > 0:
+            bore = closed(*circle(bore_count, rb, z))
+            mesh.face(_strip(bore[0], outer, bore[1], outer_phi), outward)
+            return bore
+        mesh.face(_fan(mesh.add(np.array([[0.0, 0.0, z]]))[0], outer), outward)
+        return None
+
     # the toe face: the tooth ends above and the cap inside the root cone, down to the bore, the web or the pole
-    web = core.toe_inner_face == "web"
     toe_inner_count = bore_count if core.toe_inner_face == "bore" else \
         max(8, int(math.ceil(2 * math.pi * math.sin(core.toe_inner) / toe_step)))
     toe_inner, toe_sag = cap(ri, toe_step, core.toe_inner, toe_inner_count, False, toe)
-    bore_low = bore_high = None
-    if core.toe_inner_face == "bore":
-        bore_low = toe_inner
-    elif web:  # the web's face, from the toe sphere's circle to the bore or the axis (outward: -z)
-        if rb > 0:
-            bore_low = closed(*circle(bore_count, rb, core.web_z))
-            mesh.face(_strip(bore_low[0], toe_inner[0], bore_low[1], toe_inner[1]), outward=False)
-        else:
-            centre = mesh.add(np.array([[0.0, 0.0, core.web_z]]))[0]
-            mesh.face(_fan(centre, toe_inner[0]), outward=False)
-
+    bore_low = toe_inner if core.toe_inner_face == "bore" else None
+    if core.toe_inner_face == "web":  # the web's face, from the toe sphere's circle in (outward: -z)
+        bore_low = plane(*toe_inner, core.web_z, False)
+    # the heel: each tooth's end (a patch of the heel sphere), then the plane within the heel root circle
+    # (a flat back) or the heel sphere's cap
+    mesh.face(heel[ends])
     if core.back == "flat":
-        # each tooth's heel end (a patch of the heel sphere) and the plane within the heel root circle
-        mesh.face(heel[ends])
-        outer = heel[ring]
-        if rb > 0:
-            bore_high = closed(*circle(bore_count, rb, core.back_z))
-            mesh.face(_strip(bore_high[0], outer, bore_high[1], ring_phi))
-        else:
-            centre = mesh.add(np.array([[0.0, 0.0, core.back_z]]))[0]
-            mesh.face(_fan(centre, outer))
+        bore_high = plane(heel[ring], ring_phi, core.back_z, True)
     else:
-        mesh.face(heel[ends])
-        heel_inner_count = bore_count if rb > 0 else 0
-        inner, cap_sag = cap(re, heel_step, core.heel_inner, heel_inner_count, True, heel)
+        bore_high, cap_sag = cap(re, heel_step, core.heel_inner, bore_count, True, heel)
         heel_sag = max(heel_sag, cap_sag)
-        bore_high = inner if rb > 0 else None
     if rb > 0:
         low, high = bore_low[0], bore_high[0]
         # quads between the bore's two circles (the same azimuths), normals towards the axis

@@ -54,9 +54,9 @@ def surface_distance(shape, points) -> np.ndarray:
 
 def _probes(tri: np.ndarray, rng) -> np.ndarray:
     """Points where a flat triangle strays farthest from a curved face: centroids and edge midpoints of
-    the 40 largest triangles and of 40 others at random."""
+    the 60 largest triangles and of 60 others at random."""
     area = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)
-    pick = np.unique(np.concatenate([np.argsort(area)[-40:], rng.choice(len(tri), 40, replace=False)]))
+    pick = np.unique(np.concatenate([np.argsort(area)[-60:], rng.choice(len(tri), 60, replace=False)]))
     t = tri[pick]
     return np.concatenate([t.mean(axis=1), 0.5 * (t + np.roll(t, -1, axis=1)).reshape(-1, 3)])
 
