@@ -72,7 +72,16 @@ class PlacedPart:
     # a simple solid holding the part (own frame): the overlap check's first, cheap test (a helical
     # spring's tube); gears have theirs from ``solid`` (:func:`part_envelope`)
     envelope: TopoDS_Shape | None = None
+    # a toothed component's solid as its family built it (a bevel gear's BevelSolid): not a gear for the
+    # checks (``solid``), but meshed by its family's exact mesher (:attr:`mesh_source`)
+    family_solid: Any = None
     _world: TopoDS_Shape | None = field(default=None, repr=False)
+
+    @property
+    def mesh_source(self):
+        """What the STL and the view mesh (:func:`geargen.cad.export.solid_triangles` picks the mesher): the
+        gear's solid, a toothed component's family solid, else the shape (the kernel's)."""
+        return next((s for s in (self.solid, self.family_solid) if s is not None), self.shape)
 
     @property
     def colour(self) -> tuple[float, float, float, float]:
@@ -161,9 +170,13 @@ def parts_from_hardware(hardware) -> PartSet:
     """The solids of the resolved drive's hardware (:class:`geargen.model.components.Hardware`),
     each built by its body's builder and placed as the component says."""
     from geargen.cad.components import SolidBuilder
+    from geargen.cad.families import toothed_solid
     builder = SolidBuilder()
-    parts = [PlacedPart(c.name, builder.component(c), c.placement, c.group, c.kind, c.role, c.description,
-                        envelope=builder.envelope(c)) for c in hardware.components]
+    parts = []
+    for c in hardware.components:
+        family = toothed_solid(c.toothed) if c.toothed is not None else None  # kept for its exact mesher
+        parts.append(PlacedPart(c.name, builder.component(c) if family is None else family.shape, c.placement, c.group,
+                                c.kind, c.role, c.description, envelope=builder.envelope(c), family_solid=family))
     return PartSet(parts, hardware.contacts, list(hardware.notes), dict(hardware.dimensions), hardware.ground,
                    hardware.stationary, hardware.rotating, hardware.rolling, hardware.meshing)
 
@@ -313,10 +326,10 @@ def export_meshes(parts_set: PartSet | list, folder: Path, settings: Mapping[str
     volumes: dict[str, float] = {}
     integrated: list[tuple[Any, float]] = []  # (shape, mm^3) already integrated
     for p in parts:
-        # every part meshed in its own frame and moved by its placement: gears by the exact mesher on
-        # the GearSolid (20x faster than the kernel), the others by the kernel, whose mesh stays on
+        # every part meshed in its own frame and moved by its placement: gears (and toothed components,
+        # a bevel gear) by their exact mesher (20-50x faster than the kernel), the others by the kernel, whose mesh stays on
         # the shape, so parts sharing a shape (two bearings alike) are meshed once
-        rl = export_stl(p.solid if p.solid is not None else p.shape, folder / f"{p.name}.stl",
+        rl = export_stl(p.mesh_source, folder / f"{p.name}.stl",
                         chordal_tolerance=chord if p.role == "gear" else chord_parts, angular_tolerance=ang,
                         transform=p.matrix, meshes=meshes)
         stl[p.name] = (rl.path.name, rl.manifest_entry())

@@ -15,10 +15,16 @@ def build_part(spec, check: bool = False, tolerance: float | None = None):
     return family_of(spec).build(spec, check=check, tolerance=tolerance)
 
 
+def toothed_solid(toothed):
+    """The family's solid (shape, spec, its own mesher) of a toothed component of a drive's hardware
+    (:class:`geargen.model.components.Toothed`; a bevel gear is cut with its spec's back, which the
+    component carries)."""
+    return build_part(toothed.spec, check=True)
+
+
 def build_toothed(toothed):
-    """The solid of a toothed component of a drive's hardware (:class:`geargen.model.components.Toothed`):
-    its family's solid (a bevel gear is cut with its spec's back, which the component carries)."""
-    return build_part(toothed.spec, check=True).shape
+    """The shape of a toothed component of a drive's hardware (:func:`toothed_solid`)."""
+    return toothed_solid(toothed).shape
 
 
-__all__ = ["build_part", "build_toothed"]
+__all__ = ["build_part", "build_toothed", "toothed_solid"]

@@ -106,14 +106,16 @@ def part_triangles(part, tolerance: float, angular_tolerance: float = 0.5, meshe
 
     A gear (a part carrying its ``GearSolid``) is meshed from its exact geometry
     (:func:`geargen.profile.tessellate.tessellate_layers`, ~50x faster than the kernel and a
-    third of the triangles at a view's tolerance) and moved by the part's placement; any other
+    third of the triangles at a view's tolerance), as is a toothed component by its family's own
+    mesher (a bevel gear's), and moved by the part's placement; any other
     part, or a gear that mesher cannot lay out, by the kernel. ``meshes``: the
     :class:`geargen.cad.export.Tessellations` of the parts drawn together, so a solid placed more
     than once is meshed once.
     """
     from geargen.cad.export import Tessellations
 
-    source = part.solid if getattr(part, "solid", None) is not None else part.shape
+    source = getattr(part, "mesh_source", None)
+    source = part.shape if source is None else source
     return (meshes or Tessellations()).triangles(source, tolerance, angular_tolerance, transform=part.matrix,
                                                  skip_unmeshed=True)[0]
 

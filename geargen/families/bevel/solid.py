@@ -54,6 +54,7 @@ from geargen.families.bevel.geometry import (bevel_core, bevel_geometry, bevel_v
                                 tooth_half_angle, tooth_outline)
 from geargen.families.bevel.spec import BevelGearSpec
 from geargen.errors import BuildError
+from geargen.profile.bevel_tessellate import bevel_triangles
 from geargen.profile.bspline_fit import fit_function
 
 #: largest distance of a flank's B-spline (and of its curve on the spheres) from the spherical
@@ -79,6 +80,12 @@ class BevelSolid:
 
     def is_valid(self) -> bool:
         return check_solid(self.shape) is None
+
+    def exact_triangles(self, chordal_tolerance: float):
+        """The closed triangle mesh ``(n, 3, 3)`` of the solid from its exact geometry, within
+        ``chordal_tolerance`` mm (:func:`geargen.profile.bevel_tessellate.bevel_triangles`; the STL
+        export's and the view's mesher, ~20x faster than the kernel's)."""
+        return bevel_triangles(self.spec, self.back, chordal_tolerance)
 
 
 def _unit(polar: float, azimuth: float) -> np.ndarray:
