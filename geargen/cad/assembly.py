@@ -327,10 +327,12 @@ def export_meshes(parts_set: PartSet | list, folder: Path, settings: Mapping[str
     integrated: list[tuple[Any, float]] = []  # (shape, mm^3) already integrated
     for p in parts:
         # every part meshed in its own frame and moved by its placement: gears (and toothed components,
-        # a bevel gear) by their exact mesher (20-50x faster than the kernel), the others by the kernel, whose mesh stays on
-        # the shape, so parts sharing a shape (two bearings alike) are meshed once
+        # a bevel gear) by their exact mesher (20-50x faster than the kernel) within the gears' tolerance (a
+        # toothed component's flanks are a gear's), the others by the kernel, whose mesh stays on the shape,
+        # so parts sharing a shape (two bearings alike) are meshed once
         rl = export_stl(p.mesh_source, folder / f"{p.name}.stl",
-                        chordal_tolerance=chord if p.role == "gear" else chord_parts, angular_tolerance=ang,
+                        chordal_tolerance=chord if p.role == "gear" or p.family_solid is not None else chord_parts,
+                        angular_tolerance=ang,
                         transform=p.matrix, meshes=meshes)
         stl[p.name] = (rl.path.name, rl.manifest_entry())
         vol = next((v for shape, v in integrated if shape.IsSame(p.shape)), None)

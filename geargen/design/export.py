@@ -21,7 +21,7 @@ from geargen.errors import DesignError
 
 EXPORT_FIELDS = [
     Field("stl_chordal_tolerance", "length", required=False, default=0.005, minimum=0.0, exclusive_minimum=True,
-          help="gear STL files within this of the exact flanks"),
+          help="gear STL files (a drive's bevel pair too) within this of the exact flanks"),
     Field("stl_chordal_tolerance_parts", "length", required=False, default=0.05, minimum=0.0, exclusive_minimum=True,
           help="the other parts' STL files within this of their solids"),
     Field("stl_angular_tolerance", "angle", required=False, default=0.5, minimum=0.0, exclusive_minimum=True,
