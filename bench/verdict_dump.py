@@ -32,6 +32,13 @@ branch c_axis 8.60 / 9.33 and 8.60 / 9.33, planetary 12.26 / 11.73 and 11.76 / 1
 9.21 / 8.65 and 8.54 / 9.51: no comparison (the other jobs' load moved each figure by more than the
 0.05-0.3 s saved, and main took the exportcpu and partscpu merges while it ran).
 The outcome of the 8 buildable shipped designs against main's: zero differences (--abs 0 --rel 0).
+
+Issue 28 (verdictcpu4 branch, 2026-11-28 14:49-14:51 UTC, load average 5-7 on the 2 cores), ``pipeline.design_verdict``
+CPU seconds (process_time, first call in a fresh process, main a4a21a5 and the branch alternated x3): robot_joint
+1.375-1.466 -> 1.301-1.396, c_axis 1.796-1.888 -> 1.728-1.853, planetary_dual_pinion 1.851-1.889 -> 1.756-1.833,
+metric_dual_pinion 1.353-1.403 -> 1.293-1.317 (rate_mesh and the face width searches kept by their exact inputs,
+square frames' local coordinates as one sum, the backlash-only sweeps without the tip clearance). The 8 buildable
+designs against main's: zero differences (--abs 0 --rel 0).
 """
 
 from __future__ import annotations

@@ -81,3 +81,16 @@ def test_free_play_as_before(label, parts):
         got = free_play(g, p1, p2, float(phase), material=material)
         want = reference_free_play(g, p1, p2, float(phase), material=material)
         assert got == want
+
+
+@pytest.mark.parametrize("label, parts", list(_cases()), ids=lambda v: v if isinstance(v, str) else "")
+def test_ring_half_angle_on_the_involute_as_the_masked_reading(label, parts):
+    """RingMaterial.half_angle of radii all on the ring's involute (read at once) gives the bits the
+    masked reading gives them when one radius off the involute (on the fillet) sends it that way."""
+    _, _, p2 = parts
+    material = RingMaterial(p2)
+    ring = material.ring
+    radii = np.linspace(ring.base_radius, ring.form_radius, 997)
+    at_once = material.half_angle(radii)
+    masked = material.half_angle(np.append(radii, 0.5 * (ring.form_radius + ring.root_radius)))
+    assert at_once.tobytes() == masked[:-1].tobytes()

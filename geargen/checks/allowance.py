@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from geargen.checks.mesh2d import MeshSetup, mesh_positions, sweep_mesh
+from geargen.checks.mesh2d import MeshSetup, mesh_positions, sweep_backlash
 from geargen.checks.results import Failure
 from geargen.core.allowance import ThicknessAllowance, mesh_backlash_range, thickest, thinnest
 from geargen.design.gear import GearSpec
@@ -61,8 +61,8 @@ def measured_backlash_range(gear1: GearSpec, allowance1: ThicknessAllowance, gea
                         (thinnest, centre_distance + centre_distance_tolerance, np.nanmax)):
         g1, g2 = pick(gear1, allowance1), pick(gear2, allowance2)
         setup = MeshSetup.centred(g1, g2, a, "allowance")
-        sweep = sweep_mesh(setup, mesh_positions(setup, steps_per_tooth), np.zeros(1), areas=False)
-        out.append(float(fn(sweep.angular_backlash)) * g1.reference_radius)
+        angular, _ = sweep_backlash(setup, mesh_positions(setup, steps_per_tooth), np.zeros(1))
+        out.append(float(fn(angular)) * g1.reference_radius)
     return out[0], out[1]
 
 

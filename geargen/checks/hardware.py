@@ -70,13 +70,46 @@ def _local(points: np.ndarray, inverse: np.ndarray) -> list[np.ndarray]:
     return [r[i, 0] * x + r[i, 1] * y + r[i, 2] * z + t[i] for i in range(3)]
 
 
+def _axis_of(row: np.ndarray, shift: float) -> tuple[int, float] | None:
+    """``(j, sign)`` when the frame's row ``row`` is ``sign`` times axis j exactly (the other two
+    entries zeros) and its shift is not -0.0: then, for finite points, ``row . p + shift`` of
+    :func:`_local` is ``shift + p_j`` or ``shift - p_j`` to the last bit (1 * p and -1 * p are exact,
+    each zero term is a signed zero, which a nonzero sum absorbs and which ``+ shift`` turns into
+    ``shift``'s own zero or value)."""
+    nonzero = np.flatnonzero(row)
+    if nonzero.size != 1 or abs(row[nonzero[0]]) != 1.0 or (shift == 0.0 and math.copysign(1.0, shift) < 0):
+        return None
+    return int(nonzero[0]), float(row[nonzero[0]])
+
+
+def _local_function(inverse: np.ndarray):
+    """:func:`_local` in the frame of ``inverse`` as a function of the points, each coordinate of
+    a row along an axis (most parts are placed square: :func:`_axis_of`) read as one sum, the others
+    as :func:`_local` reads them: the same numbers."""
+    r, t = inverse[:3, :3], inverse[:3, 3]
+    axes = [_axis_of(r[i], float(t[i])) for i in range(3)]
+    if not any(axes):
+        return lambda p: _local(p, inverse)
+
+    def local(points):
+        out = []
+        for i, axis in enumerate(axes):
+            if axis is None:
+                out.append(r[i, 0] * points[:, 0] + r[i, 1] * points[:, 1] + r[i, 2] * points[:, 2] + t[i])
+            else:
+                j, sign = axis
+                out.append(t[i] + points[:, j] if sign > 0 else t[i] - points[:, j])
+        return out
+    return local
+
+
 def component_part(component) -> AnalyticPart:
     """A hardware component as an :class:`AnalyticPart` (its body, or a toothed part's envelope)."""
     body = analytic_body(component)
     lo, hi = world_box(body, component.placement)
-    inverse = _inverse(np.asarray(component.placement, float))
+    local = _local_function(_inverse(np.asarray(component.placement, float)))
     distance = column_distance_function(body)
-    return AnalyticPart(component.name, lo, hi, lambda p: distance(*_local(p, inverse)), distance_cost(body))
+    return AnalyticPart(component.name, lo, hi, lambda p: distance(*local(p)), distance_cost(body))
 
 
 @lru_cache(maxsize=64)

@@ -964,18 +964,37 @@ def sweep_mesh(setup: MeshSetup, positions, planes=None, areas: bool = True) -> 
     worst_plane = np.argmax(depth, axis=0)
     cols = np.arange(n)
     a = st.centre_distance[:n]
-    ang = np.min(cj_ccw, axis=0) + np.min(cj_cw, axis=0)
-    ang = np.where(np.isfinite(ang), ang, np.nan)
+    ang, normal = _backlash(setup, o1, cj_ccw, cj_cw)
     return MeshSweep(
         mesh_position=positions, centre_distance=a,
         play_ccw=np.min(ccw, axis=0), play_cw=np.min(cw, axis=0),
         conjugate_play_ccw=np.min(cj_ccw, axis=0), conjugate_play_cw=np.min(cj_cw, axis=0),
         angular_backlash=ang,
         circumferential_backlash=ang * a * setup.gear1.teeth / (setup.gear1.teeth + setup.gear2.teeth),
-        normal_backlash=ang * rb1 * math.cos(setup.gear1.base_helix_angle),
+        normal_backlash=normal,
         min_clearance=np.min(clear, axis=0),
         interference_depth=depth[worst_plane, cols], interference_area=np.max(area, axis=0),
         interference=code[worst_plane, cols], planes=planes)
+
+
+def _backlash(setup: MeshSetup, o1: PolarOutline, conjugate_ccw: np.ndarray, conjugate_cw: np.ndarray):
+    """(angular, normal) backlash per position from the conjugate play per plane ``(P, n)``: the
+    least over the planes both ways (NaN where either side has no contact)."""
+    ang = np.min(conjugate_ccw, axis=0) + np.min(conjugate_cw, axis=0)
+    ang = np.where(np.isfinite(ang), ang, np.nan)
+    return ang, ang * o1.r_base * math.cos(setup.gear1.base_helix_angle)
+
+
+def sweep_backlash(setup: MeshSetup, positions, planes=None) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`sweep_mesh`'s ``angular_backlash`` and ``normal_backlash`` alone, the same numbers: the
+    free play without the tip clearance and the interference, which a caller reading only the
+    backlash (the worst case of an error budget, the allowances' extreme pairs) does not need."""
+    positions = np.atleast_1d(np.asarray(positions, dtype=float))
+    planes = setup.planes() if planes is None else np.atleast_1d(np.asarray(planes, dtype=float))
+    o1, o2 = polar_outline(setup.gear1), polar_outline(setup.gear2)
+    play = free_play(o1, o2, setup.states(positions, planes))
+    shape = (planes.size, positions.size)
+    return _backlash(setup, o1, play.conjugate_ccw.reshape(shape), play.conjugate_cw.reshape(shape))
 
 
 # -------------------------------------------------------------------- the check of one mesh
@@ -1181,6 +1200,6 @@ def interference_failures(mesh: str, sweep: MeshSweep) -> list[Failure]:
 
 
 __all__ = ["PolarOutline", "polar_outline", "MeshState", "Play", "free_play", "contact_count", "tip_clearance",
-           "overlap_area", "Eccentricity", "MeshSetup", "mesh_positions", "sweep_mesh", "CheckSettings",
+           "overlap_area", "Eccentricity", "MeshSetup", "mesh_positions", "sweep_mesh", "sweep_backlash", "CheckSettings",
            "measured_contact_ratio", "check_mesh", "empty_sweep", "interference_failures", "EXACT_TOLERANCE",
            "CONTACT_TOLERANCE", "INTERFERENCE_TOLERANCE"]

@@ -62,7 +62,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from geargen.checks.mesh2d import (Eccentricity, MeshSetup, MeshState, free_play, mesh_positions, polar_outline,
-                                   sweep_mesh)
+                                   sweep_backlash, sweep_mesh)
 from geargen.checks.pair_model import HuntingSearch, PairModel, TipExcess
 from geargen.checks.results import CarriageTravelLimits, Failure, ToleranceResult
 from geargen.design.synthesis import GearErrors
@@ -149,9 +149,8 @@ def worst_case_pair(setup: MeshSetup, errors1: GearErrors | None, errors2: GearE
                     flanks1=worst_flanks(setup.gear1, t1) if t1 > 0 else None,
                     flanks2=worst_flanks(setup.gear2, t2) if t2 > 0 else None)
     pos = mesh_positions(worst, steps_per_tooth, 1.0 / setup.gear1.teeth)
-    sw = sweep_mesh(worst, pos, worst.planes(3), areas=False)
-    return (float(_circumferential(setup, np.nanmin(sw.angular_backlash))), float(np.nanmin(sw.normal_backlash)),
-            -(b1 + p1 + b2 + p2))
+    angular, normal = sweep_backlash(worst, pos, worst.planes(3))
+    return (float(_circumferential(setup, np.nanmin(angular))), float(np.nanmin(normal)), -(b1 + p1 + b2 + p2))
 
 
 @dataclass

@@ -42,6 +42,7 @@ Units: mm, N, N/mm^2 (= MPa), um where the standard uses um (deviations, roughne
 from __future__ import annotations
 
 import math
+import pickle
 from dataclasses import dataclass, replace
 from functools import lru_cache
 from typing import Any, Sequence
@@ -666,6 +667,27 @@ def _kept_root_form(*args) -> ToothRootForm:
     return form
 
 
+#: results of :func:`_kept` by the pickled bytes of their function's name and inputs
+_KEPT: dict[bytes, Any] = {}
+
+
+def _kept(function, *args):
+    """``function(*args)``, kept by the pickled bytes of the function's name and its inputs: equal
+    bytes are inputs of the same types and the very same numbers (sign bits and NaNs included), so a
+    kept result is the one the call gives. The results kept are frozen dataclasses (nothing reads
+    them to change them); inputs that cannot be pickled are computed each time, and an exception is
+    not kept."""
+    try:
+        key = pickle.dumps((function.__qualname__, args), protocol=pickle.HIGHEST_PROTOCOL)
+    except (pickle.PicklingError, TypeError, AttributeError):
+        return function(*args)
+    if key not in _KEPT:
+        if len(_KEPT) >= 256:
+            _KEPT.clear()
+        _KEPT[key] = function(*args)
+    return _KEPT[key]
+
+
 def helix_angle_factor_root(eps_beta: float, helix_angle: float) -> float:
     """Y_beta = 1 - eps_beta beta / 120 deg with eps_beta taken as at most 1 and beta at most 30 deg."""
     return 1.0 - min(eps_beta, 1.0) * min(math.degrees(helix_angle), 30.0) / 120.0
@@ -981,7 +1003,15 @@ def face_width_for_minimum_safety(geo: RatingGeometry, tangential_load: float, c
                                   reversed_bending: tuple[bool, bool] = (False, False)) -> FaceWidthSolution:
     """Solve ``min S_H(b) = S_Hmin`` and ``min S_F(b) = S_Fmin`` for the face width b of the mesh
     ``geo`` (:meth:`RatingGeometry.with_face_width`). Searched from 0.05 m_n to 1000 m_n (brentq on
-    log b, the safety factors growing with b)."""
+    log b, the safety factors growing with b). Kept by its exact inputs (:func:`_kept`: the two
+    branches of a dual-pinion drive put the same loads on the same pairs)."""
+    return _kept(_face_width_for_minimum_safety, geo, tangential_load, conditions, materials, reversed_bending)
+
+
+def _face_width_for_minimum_safety(geo: RatingGeometry, tangential_load: float, conditions: RatingConditions,
+                                   materials: tuple[Material, Material],
+                                   reversed_bending: tuple[bool, bool]) -> FaceWidthSolution:
+    """:func:`face_width_for_minimum_safety`, computed."""
     def safeties(at_width: RatingGeometry) -> tuple[float, float]:
         r = rate_pair(at_width, tangential_load, conditions, materials, reversed_bending)
         return min(r["S_H"]), min(r["S_F"])
@@ -1197,8 +1227,17 @@ def rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: Sequence[
     that case's flank, every factor by name), the face width at which that case reaches the minimum
     safety factors, per flank the ISO 6336-6 damage sums of the cases that carry a share, and the face
     width at which those spectra reach the minimum safety factors. A gear whose teeth carry load on
-    both flanks has Y_M = 0.7 on its bending strength.
+    both flanks has Y_M = 0.7 on its bending strength. Kept by its exact inputs (:func:`_kept`: the
+    planets of a planetary stage are rated alike).
     """
+    return _kept(_rate_mesh, gear1, gear2, centre_distance, tuple(load_cases), conditions, materials, face_width,
+                 reversed_bending)
+
+
+def _rate_mesh(gear1, gear2, centre_distance: float | None, load_cases: tuple[LoadCase, ...],
+               conditions: RatingConditions, materials: tuple[Material, Material], face_width: float | None,
+               reversed_bending: tuple[bool, bool] | None) -> MeshRating:
+    """:func:`rate_mesh`, computed."""
     for spec in (gear1, gear2):
         scope = rating_scope(spec)
         if scope is not None:

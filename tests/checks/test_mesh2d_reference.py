@@ -86,3 +86,27 @@ def test_boundary_walk_and_placement_as_before(label, outline):
             got = mesh2d._place(outline, c, a, offsets, rows, teeth, rho, phi, w_lo, w_up)
             want = reference_place(outline, c, a, offsets, rows, teeth, rho, phi, w_lo, w_up)
             assert np.array_equal(got[0], want[0]) and np.array_equal(got[1], want[1])
+
+
+@pytest.mark.parametrize("design", ["robot_joint", "c_axis"])
+def test_sweep_backlash_is_the_sweeps_backlash_to_the_bit(design):
+    """sweep_backlash (the free play alone, for callers that read only the backlash) gives
+    sweep_mesh's angular and normal backlash bit for bit: on every engaged mesh of a shipped drive
+    (spur and helical, planes 1 and 3) and with the error states the tolerances give them
+    (tooth displacements as flank offsets, eccentricities)."""
+    from dataclasses import replace
+
+    from geargen.checks.mesh2d import Eccentricity, mesh_positions, sweep_backlash, sweep_mesh
+    from geargen.checks.tolerance import worst_flanks
+
+    layout = resolve(load_design(ASSEMBLIES / f"{design}.toml"))
+    for mesh in (m for m in layout.meshes if m.engaged):
+        setup = mesh_setup(layout, mesh)
+        erred = replace(setup, flanks1=worst_flanks(setup.gear1, 0.004), flanks2=worst_flanks(setup.gear2, 0.003),
+                        eccentricity1=(Eccentricity(0.01, 0.3),))
+        for su, planes in ((setup, setup.planes(1)), (setup, setup.planes(3)), (erred, erred.planes(3))):
+            positions = mesh_positions(su, 8, 1.0 / su.gear1.teeth)
+            sweep = sweep_mesh(su, positions, planes, areas=False)
+            angular, normal = sweep_backlash(su, positions, planes)
+            assert angular.tobytes() == sweep.angular_backlash.tobytes()
+            assert normal.tobytes() == sweep.normal_backlash.tobytes()

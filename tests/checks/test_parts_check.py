@@ -65,3 +65,39 @@ def test_overlap_volume_alone_reads_the_same_volume(tolerance):
         alone = read_pair(a, b, 0.05, tolerance=tolerance, nearest=False)
         assert alone.volume == full.volume
     assert full.volume == 0.0 and read_pair(plate, pin, 0.05, nearest=False).volume > 200.0
+
+
+def test_square_frames_read_the_same_local_coordinates():
+    """A part placed square (each row of its frame a signed axis) reads each such coordinate as one
+    sum or difference (hardware._local_function): bit for bit the general sums of _local, for every
+    turn of the axes, signed zeros in the frame, shifts +0.0, -0.0 (read the general way) and
+    nonzero, and points with signed zero coordinates; a frame turned off the axes reads the general way."""
+    import itertools
+
+    from geargen.checks.hardware import _axis_of, _local, _local_function
+
+    rng = np.random.default_rng(1)
+    points = rng.normal(size=(2000, 3)) * 50
+    points[:200] = 0.0
+    points[200:400] = -0.0
+    points[400:500, 1] = -0.0
+    points[500:600] = rng.choice([0.0, -0.0, 1.0, -1.0, 2.5], size=(100, 3))
+    square = 0
+    for order in itertools.permutations(range(3)):
+        for signs in itertools.product([1.0, -1.0], repeat=3):
+            for zero in (0.0, -0.0):
+                for shift in ([0.0, -0.0, 3.5], [-2.0, 0.0, -0.0], [1e-300, -7.25, 0.0]):
+                    frame = np.eye(4)
+                    turn = np.full((3, 3), zero)
+                    for i, j in enumerate(order):
+                        turn[i, j] = signs[i]
+                    frame[:3, :3], frame[:3, 3] = turn, shift
+                    square += sum(_axis_of(turn[i], shift[i]) is not None for i in range(3))
+                    for general, fast in zip(_local(points, frame), _local_function(frame)(points)):
+                        assert general.tobytes() == fast.tobytes()
+    assert square == 6 * 8 * 2 * (2 + 2 + 3)  # every row whose shift is not -0.0 is summed as one
+    turned = np.eye(4)
+    turned[:2, :2] = [[0.6, -0.8], [0.8, 0.6]]
+    assert _axis_of(turned[0, :3], 1.0) is None and _axis_of(turned[2, :3], 1.0) is not None
+    for general, fast in zip(_local(points, turned), _local_function(turned)(points)):
+        assert general.tobytes() == fast.tobytes()

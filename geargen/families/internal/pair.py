@@ -65,8 +65,12 @@ class RingMaterial:
         """Half angle of the ring's space at ``radius`` (rad); -1 beyond the root circle."""
         ring = self.ring
         r = np.asarray(radius, dtype=float)
-        out = np.full(r.shape, -1.0)
         inv = (r >= ring.base_radius) & (r <= ring.form_radius)
+        if inv.all():  # every radius on the involute (free_play's points past the tip circle): as below, at once
+            with np.errstate(invalid="ignore"):
+                alpha = np.arccos(np.clip(ring.base_radius / r, -1.0, 1.0))
+            return ring.space_base_half_angle - involute(alpha)
+        out = np.full(r.shape, -1.0)
         with np.errstate(invalid="ignore"):
             alpha = np.arccos(np.clip(ring.base_radius / r[inv], -1.0, 1.0))
         out[inv] = ring.space_base_half_angle - involute(alpha)
