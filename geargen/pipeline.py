@@ -591,22 +591,32 @@ def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     return data
 
 
-def report(result: "BuildResult", folder: Path) -> dict[str, Path]:
+def report(result: "BuildResult", folder: Path, parallel: bool = False) -> dict[str, Path]:
     """The last step: the figures (rendered view, layout drawing, preload diagram) as
     ``figures/*.png|svg`` (those of :func:`check_free_figures` as ``result.figures`` if drawn
-    already), report.md and report.html, and the browser design review (:func:`review_page`)."""
-    from geargen.report.review import compose, write_figures, write_review
+    already), report.md and report.html, and the browser design review (:func:`review_page`).
+    ``parallel``: the layout drawing (which needs the checks, so it is drawn last) in a process of its
+    own while this one writes the report and the review, which only link to it."""
+    from geargen.report.review import FIGURE_FOLDER, compose, write_review
     folder = Path(folder)
     if result.figures is None:
         if result.render_view is None:
             result.render_view = render(result.parts, result.design)
         result.figures = check_free_figures(result.design, result.stiffness, result.render_view, folder)
     early_files, early_links, early_notes = result.figures
-    figures, links, notes = write_figures(result.design.length_unit, None, folder,
-                                          layout_figure=layout_drawing(result.layout, result.checks))
-    figures, links, notes = early_files | figures, early_links | links, early_notes + notes
-    review = compose(result, links, notes)
-    return figures | write_review(review, folder) | review_page(result, folder, review)
+    drawing = Alongside.start(layout_figure_files, result.layout, result.checks, folder) if parallel else None
+    links = early_links | {"layout": f"{FIGURE_FOLDER}/layout.png"}
+    review = compose(result, links, early_notes)
+    written = write_review(review, folder) | review_page(result, folder, review)
+    figures = _collect(drawing, layout_figure_files, result.layout, result.checks, folder)[0]
+    return early_files | figures | written
+
+
+def layout_figure_files(layout: Layout, checks: CheckOutcome | None, folder: Path) -> dict[str, Path]:
+    """figures/layout.png and .svg in ``folder``: the layout drawing (:func:`layout_drawing`) of
+    ``layout`` with the working flanks of ``checks``; returns the files by role."""
+    from geargen.report.review import write_figures
+    return write_figures(layout.identity.length_unit, None, folder, layout_figure=layout_drawing(layout, checks))[0]
 
 
 def review_page(result: "BuildResult", folder: Path, review) -> dict[str, Path]:
@@ -763,7 +773,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             result.files, result.figures = files, drawn
             result.drawings = sheets
             result.timings = dict(progress.timings)
-            progress.run("report", _report_and_manifest, result, work)
+            progress.run("report", _report_and_manifest, result, work, parallel)
             target = output.commit()
         finally:
             for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside,
@@ -1023,10 +1033,10 @@ class Alongside:
             self._process.join(timeout=5.0)
 
 
-def _report_and_manifest(result: BuildResult, folder: Path) -> None:
+def _report_and_manifest(result: BuildResult, folder: Path, parallel: bool = False) -> None:
     if result.drawings is None:
         result.drawings = drawings(result.layout, folder)
-    files = report(result, folder) | result.drawings
+    files = report(result, folder, parallel) | result.drawings
     files["resolved"] = write_resolved(result.layout, folder)
     manifest(result, folder, files)
 
