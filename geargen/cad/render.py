@@ -247,10 +247,11 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
     if ids.size:
         # a translucent surface lying on an opaque one (a housing's bore round its bearing) is
         # behind it: without half a pixel of margin, rounding would show it on scattered pixels
+        # t: each fragment's translucent triangle, numbered among them (their tables are small)
         chunks = []
         for t, p, z in _fragments(pix[ids], depth[ids], width, height):
             visible = z > zbuf[p] + 0.5 / scale
-            chunks.append((ids[t[visible]], p[visible], z[visible]))
+            chunks.append((t[visible], p[visible], z[visible]))
         t = np.concatenate([c[0] for c in chunks])
         p = np.concatenate([c[1] for c in chunks])
         z = np.concatenate([c[2] for c in chunks])
@@ -264,9 +265,8 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         t, p = t[order], p[order]
         # "over" from far to near, in closed form: each layer weighs alpha times the
         # transmittance of the layers in front of it; the background keeps the product of all
-        log_keep_of = np.zeros(alpha.size)  # each translucent triangle's log(1 - alpha)
-        log_keep_of[ids] = np.log1p(-alpha[ids])
-        log_keep = log_keep_of[t]
+        alpha_of = alpha[ids]
+        log_keep = np.log1p(-alpha_of)[t]  # each fragment's log(1 - alpha)
         run = np.cumsum(log_keep)
         head = np.empty(p.size, bool)
         head[0] = True
@@ -278,18 +278,18 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         run -= log_keep
         run -= np.repeat(run_before, sizes)
         weight = np.exp(run, out=run)
-        weight *= alpha[t]
+        weight *= alpha_of[t]
         pixels_hit = p[starts]
         total_keep = np.exp(np.add.reduceat(log_keep, starts))
         group = np.repeat(np.arange(starts.size), sizes)  # each fragment's pixel among the pixels hit
         flat = image.reshape(-1)  # the image's channels addressed flat: faster than its rows by index
         at = pixels_hit * 3
-        for channel in rgb.T.copy():  # each channel contiguous: gathered from faster
+        for channel in rgb[ids].T.copy():  # each channel contiguous: gathered from faster
             flat[at] = flat[at] * total_keep + np.bincount(group, channel[t] * weight, minlength=starts.size)
             at += 1
         # where no opaque part is seen, the pixel shows its nearest translucent one (sorted first)
         bare = part_index[pixels_hit] < 0
-        part_index[pixels_hit[bare]] = part[t[starts][bare]]
+        part_index[pixels_hit[bare]] = part[ids[t[starts][bare]]]
     right = left + width / scale
     bottom = top - height / scale
     return RenderedView(image.reshape(height, width, 3), part_index.reshape(height, width), names, colours,
