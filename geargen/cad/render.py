@@ -282,11 +282,12 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         pixels_hit = p[starts]
         total_keep = np.exp(np.add.reduceat(log_keep, starts))
         group = np.repeat(np.arange(starts.size), sizes)  # each fragment's pixel among the pixels hit
-        flat = image.reshape(-1)  # the image's channels addressed flat: faster than its rows by index
-        at = pixels_hit * 3
-        for channel in rgb[ids].T.copy():  # each channel contiguous: gathered from faster
-            flat[at] = flat[at] * total_keep + np.bincount(group, channel[t] * weight, minlength=starts.size)
-            at += 1
+        # the pixels' rows gathered once, each channel blended as old * keep + the layers' sum
+        hit = image[pixels_hit]
+        hit *= total_keep[:, None]
+        for k, channel in enumerate(rgb[ids].T.copy()):  # each channel contiguous: gathered from faster
+            hit[:, k] += np.bincount(group, channel[t] * weight, minlength=starts.size)
+        image[pixels_hit] = hit
         # where no opaque part is seen, the pixel shows its nearest translucent one (sorted first)
         bare = part_index[pixels_hit] < 0
         part_index[pixels_hit[bare]] = part[ids[t[starts][bare]]]
