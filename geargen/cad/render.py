@@ -153,13 +153,17 @@ def _fragments(xy: np.ndarray, depth: np.ndarray, width: int, height: int):
     gx = ((zb - za) * (c[:, 1] - a[:, 1]) - (zc - za) * (b[:, 1] - a[:, 1])) / area
     gy = ((zc - za) * (b[:, 0] - a[:, 0]) - (zb - za) * (c[:, 0] - a[:, 0])) / area
     z0 = za - gx * a[:, 0] - gy * a[:, 1]
-    # each edge's x at height y is x0 + (y - y0) * dx / dy, the products per triangle computed once
+    # each edge's x at height y is x0 + (y - y0) * dx / dy, the products per triangle computed once;
+    # each edge's numbers as a contiguous column (a gather from a column is faster than from (n, 3) by
+    # (rows, edge)), a level edge (dy 0) given an empty y range so that no row crosses it
     x0, y0 = xy[:, :, 0], xy[:, :, 1]
     dx = np.roll(x0, -1, axis=1) - x0
     dy = np.roll(y0, -1, axis=1) - y0
-    y_min = np.minimum(y0, np.roll(y0, -1, axis=1))
-    y_max = np.maximum(y0, np.roll(y0, -1, axis=1))
-    dy_safe = np.where(dy != 0, dy, 1.0)
+    level = dy == 0
+    y_min = np.where(level, np.inf, np.minimum(y0, np.roll(y0, -1, axis=1))).T.copy()
+    y_max = np.where(level, -np.inf, np.maximum(y0, np.roll(y0, -1, axis=1))).T.copy()
+    dy_safe = np.where(level, 1.0, dy).T.copy()
+    x0, y0, dx = x0.T.copy(), y0.T.copy(), dx.T.copy()
     ends = np.cumsum(rows)
     start = 0
     while start < live.size:
@@ -172,20 +176,21 @@ def _fragments(xy: np.ndarray, depth: np.ndarray, width: int, height: int):
         lo = np.full(t.size, np.inf)
         hi = np.full(t.size, -np.inf)
         for i in range(3):
-            crosses = (y_min[t, i] <= y) & (y <= y_max[t, i]) & (dy[t, i] != 0)
-            x = x0[t, i] + (y - y0[t, i]) * dx[t, i] / dy_safe[t, i]
+            crosses = (y_min[i][t] <= y) & (y <= y_max[i][t])
+            x = x0[i][t] + (y - y0[i][t]) * dx[i][t] / dy_safe[i][t]
             np.minimum(lo, x, out=lo, where=crosses)
             np.maximum(hi, x, out=hi, where=crosses)
         c_lo = np.clip(np.ceil(lo - 0.5 - 1e-9), 0, width).astype(np.int64)
         c_hi = np.clip(np.floor(hi - 0.5 + 1e-9), -1, width - 1).astype(np.int64)
         n = np.maximum(c_hi - c_lo + 1, 0)
-        f_t = np.repeat(t, n)
-        col = np.arange(f_t.size) - np.repeat(np.cumsum(n) - n - c_lo, n)
+        # each row's numbers repeated along its fragments (sequential copies, not gathers)
+        col = np.arange(int(n.sum())) - np.repeat(np.cumsum(n) - n - c_lo, n)
         # per row what does not change along it; z summed in the same order as gx x + gy y + z0
-        z = gx[f_t] * (col + 0.5)
+        z = np.repeat(gx[t], n) * (col + 0.5)
         z += np.repeat(gy[t] * y, n)
-        z += z0[f_t]
-        yield live[f_t], np.repeat((y - 0.5).astype(np.int64) * width, n) + col, z
+        z += np.repeat(z0[t], n)
+        col += np.repeat((y - 0.5).astype(np.int64) * width, n)
+        yield np.repeat(live[t], n), col, z
         start = stop
 
 
@@ -244,22 +249,26 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
     if ids.size:
         # a translucent surface lying on an opaque one (a housing's bore round its bearing) is
         # behind it: without half a pixel of margin, rounding would show it on scattered pixels
+        # t: each fragment's translucent triangle, numbered among them (their tables are small)
         chunks = []
         for t, p, z in _fragments(pix[ids], depth[ids], width, height):
             visible = z > zbuf[p] + 0.5 / scale
-            chunks.append((ids[t[visible]], p[visible], z[visible]))
+            chunks.append((t[visible], p[visible], z[visible]))
         t = np.concatenate([c[0] for c in chunks])
         p = np.concatenate([c[1] for c in chunks])
         z = np.concatenate([c[2] for c in chunks])
     if ids.size and t.size:  # none when the translucent parts lie wholly behind opaque ones
         span = max(float(z.max() - z.min()), 1e-12)
-        order = np.argsort(p + 0.5 * (z.max() - z) / span)  # by pixel, nearest first (one float key)
+        key = np.subtract(z.max(), z, out=z)  # the key p + 0.5 (z_max - z) / span made in place
+        key *= 0.5
+        key /= span
+        key += p
+        order = np.argsort(key)  # by pixel, nearest first (one float key)
         t, p = t[order], p[order]
         # "over" from far to near, in closed form: each layer weighs alpha times the
         # transmittance of the layers in front of it; the background keeps the product of all
-        log_keep_of = np.zeros(alpha.size)  # each translucent triangle's log(1 - alpha)
-        log_keep_of[ids] = np.log1p(-alpha[ids])
-        log_keep = log_keep_of[t]
+        alpha_of = alpha[ids]
+        log_keep = np.log1p(-alpha_of)[t]  # each fragment's log(1 - alpha)
         run = np.cumsum(log_keep)
         head = np.empty(p.size, bool)
         head[0] = True
@@ -271,17 +280,19 @@ def rasterise(items, view=(-60.0, 30.0), pixels=(990, 715), title: str = "", mar
         run -= log_keep
         run -= np.repeat(run_before, sizes)
         weight = np.exp(run, out=run)
-        weight *= alpha[t]
+        weight *= alpha_of[t]
         pixels_hit = p[starts]
         total_keep = np.exp(np.add.reduceat(log_keep, starts))
         group = np.repeat(np.arange(starts.size), sizes)  # each fragment's pixel among the pixels hit
-        flat = image.reshape(-1)  # the image's channels addressed flat: faster than its rows by index
-        for k, channel in enumerate(rgb.T):
-            at = pixels_hit * 3 + k
-            flat[at] = flat[at] * total_keep + np.bincount(group, channel[t] * weight, minlength=starts.size)
+        # the pixels' rows gathered once, each channel blended as old * keep + the layers' sum
+        hit = image[pixels_hit]
+        hit *= total_keep[:, None]
+        for k, channel in enumerate(rgb[ids].T.copy()):  # each channel contiguous: gathered from faster
+            hit[:, k] += np.bincount(group, channel[t] * weight, minlength=starts.size)
+        image[pixels_hit] = hit
         # where no opaque part is seen, the pixel shows its nearest translucent one (sorted first)
         bare = part_index[pixels_hit] < 0
-        part_index[pixels_hit[bare]] = part[t[starts][bare]]
+        part_index[pixels_hit[bare]] = part[ids[t[starts][bare]]]
     right = left + width / scale
     bottom = top - height / scale
     return RenderedView(image.reshape(height, width, 3), part_index.reshape(height, width), names, colours,

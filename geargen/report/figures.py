@@ -7,6 +7,10 @@ from pathlib import Path
 from geargen.outputs import atomic_path
 
 FIGURE_FORMATS = ("png", "svg")
+#: zlib level of the figures' PNG files: 3 encodes ~30 % faster than PIL's default 6 (the filtering
+#: of the rows, the same at every level, is most of what is left); the same pixels, files within
+#: about +12 % (a rendered view) and -2 % (the layout drawing's lines and text)
+PNG_COMPRESS_LEVEL = 3
 
 
 def write_figure(fig, path, **savefig) -> Path:
@@ -42,7 +46,8 @@ def save_figure(fig, folder, name: str, dpi: int = 110) -> dict[str, Path]:
     with matplotlib.rc_context({"svg.fonttype": "none", "svg.hashsalt": "geargen"}):
         for fmt in FIGURE_FORMATS:
             out[fmt] = write_figure(fig, folder / f"{name}.{fmt}", format=fmt, dpi=dpi, facecolor="white",
-                                    metadata={"Date": None} if fmt == "svg" else None)
+                                    metadata={"Date": None} if fmt == "svg" else None,
+                                    **({"pil_kwargs": {"compress_level": PNG_COMPRESS_LEVEL}} if fmt == "png" else {}))
     return out
 
 
