@@ -869,8 +869,16 @@ def _import_figure_modules() -> None:
     import matplotlib.backends.backend_agg  # noqa: F401
     import matplotlib.backends.backend_svg  # noqa: F401
     import matplotlib.figure  # noqa: F401
+    from matplotlib.font_manager import FontProperties, findfont, get_font
     from PIL import Image
+
+    import geargen.report.labels  # noqa: F401
+    import geargen.report.review  # noqa: F401
+    import geargen.report.stiffness  # noqa: F401
+    import geargen.report.view  # noqa: F401
     Image.preinit()  # the image plugins the first PNG written loads (each process its own, else)
+    for weight in ("normal", "bold"):  # the figures' and sheets' font files, read once here
+        get_font(findfont(FontProperties(weight=weight)))
 
 
 def _import_kernel_modules() -> None:
