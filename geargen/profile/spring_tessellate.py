@@ -1,0 +1,210 @@
+"""Triangle mesh of a helical compression spring straight from its exact geometry (numpy only).
+
+The spring (:func:`geargen.cad.parts.compression_spring`) is the disc of radius a = d/2 centred at
+radius R = D/2 in the half-plane through the axis at angle 0, screwed along the helix
+z = z0 + c phi (c = pitch / 2 pi, right hand, phi in [0, 2 pi n]): the kernel's sweep of that
+circle in the helix's Frenet frame. Its side is
+
+    S(phi, psi) = ((R + a cos psi) cos phi, (R + a cos psi) sin phi, z0 + c phi + a sin psi),
+
+closed by the discs at phi = 0 and 2 pi n (plain ends), or, with ground ends, cut by the planes
+z = z0 and z0 + 2 pi n c: each plane takes the half disc below it at the end and a lens (the
+plane's section of the wire, ``(r - R)^2 + (c phi)^2 <= a^2`` in polar coordinates) in its place.
+
+The side is a grid of rows (phi) by m columns (psi), every vertex on S. Near a ground end the rows
+follow the cut: at phi = (a / c) sin(beta) the wire above the plane is psi in
+[-beta, pi + beta], spanned by the m columns, so the first and last column run along the cut
+outline, exactly in the plane, and the row at beta = pi / 2 (the lens's tip) is the first whole
+ring. The end faces are flat: the discs and half discs fanned from a vertex, the lens zipped
+between its outer and inner outline.
+
+Bound (every triangle of the side, checked as the mesh is made): the flat triangle through three
+points of S lies within ``(1/2) r^2`` of S (at the same parameters) where r is the radius of the
+smallest circle holding the triangle's parameters in the metric ``(R + a + a k) dphi^2 +
+a (1 + 1/k) dpsi^2`` (Taylor's remainder with |S_phiphi| <= R + a, |S_psipsi| = a,
+|S_phipsi| <= a, and 2 |dphi dpsi| <= k dphi^2 + dpsi^2 / k). The flat faces lie in their planes.
+
+Used for the view and the STL of the springs (geargen.cad.export.solid_triangles): a fraction of the
+kernel's triangles and time at the same tolerance.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from geargen.profile.tessellate import TessellationError
+
+#: most rows a ground end's cut region is given before the mesher gives up (the kernel meshes it)
+_MAX_END_ROWS = 4096
+
+
+def _ring_steps(a: float, rho: float, tolerance: float) -> tuple[int, float]:
+    """(even columns m, row step dphi) of the fewest side triangles whose right triangles (legs
+    dphi, dpsi = 2 pi / m) meet the bound: ``(rho dphi^2 + a dpsi^2 + 2 a dphi dpsi) / 8 <= tolerance``
+    (k = dpsi / dphi). Even m: a ground spring's two lens tips lie half a turn of psi apart."""
+    least = 2 * math.ceil(math.pi / math.sqrt(8 * tolerance / a))  # the wire's circle alone
+    best = None
+    for m in range(max(4, least), max(4, least) + 24, 2):
+        dpsi = 2 * math.pi / m
+        free = 8 * tolerance - a * dpsi * dpsi
+        if free <= 0:
+            continue
+        dphi = (-a * dpsi + math.sqrt((a * dpsi) ** 2 + rho * free)) / rho  # root of the bound
+        if best is None or m / dphi < best[0]:
+            best = (m / dphi, m, dphi)
+    return best[1], best[2]
+
+
+def _enclosing_radius_squared(p: np.ndarray) -> np.ndarray:
+    """The squared radius of the smallest circle holding each triangle ``p`` (k, 3, 2)."""
+    a, b, c = p[:, 0], p[:, 1], p[:, 2]
+    ab, bc, ca = b - a, c - b, a - c
+    la, lb, lc = (np.einsum("ij,ij->i", e, e) for e in (bc, ca, ab))  # squared sides opposite a, b, c
+    longest = np.maximum(np.maximum(la, lb), lc)
+    obtuse = 2 * longest >= la + lb + lc  # the longest side's square at least the other two's sum
+    cross = ab[:, 0] * (-ca[:, 1]) - ab[:, 1] * (-ca[:, 0])
+    area2 = np.where(np.abs(cross) > 0, cross * cross, np.inf)
+    circum = la * lb * lc / (4 * area2)  # R^2 = (abc)^2 / (16 area^2), 2 area = |cross|
+    return np.where(obtuse, longest / 4, circum)
+
+
+def spring_triangles(wire_diameter: float, mean_coil_diameter: float, z0: float, pitch: float,
+                     total_coils: float, chordal_tolerance: float, slab: tuple[float, float] | None = None) -> np.ndarray:
+    """The closed, outward-oriented triangle mesh ``(n, 3, 3)`` (mm) of the spring described in the
+    module docstring, every vertex on its exact surface, every triangle within ``chordal_tolerance``
+    mm of it. ``slab``: ground ends, the planes ``(low, high)`` that cut it, through the helix's ends
+    (z0 and z0 + pitch total_coils; the cut outlines' vertices lie in them to the last bit).
+
+    Raises :class:`TessellationError` where this layout does not hold (the two lenses of a ground
+    spring under a turn meet; coils touching; the index D/d at most 2)."""
+    a, radius, t = wire_diameter / 2, mean_coil_diameter / 2, float(chordal_tolerance)
+    ground = slab is not None
+    if ground and not (math.isclose(slab[0], z0, rel_tol=0, abs_tol=1e-9 * pitch * total_coils)
+                       and math.isclose(slab[1], z0 + pitch * total_coils, rel_tol=1e-9)):
+        raise TessellationError(f"spring: the slab {slab} does not pass through the helix's ends")
+    turns = 2 * math.pi * total_coils
+    c = pitch / (2 * math.pi)
+    if not (a > 0 and radius > 2 * a and t > 0 and total_coils > 0 and pitch > wire_diameter):
+        raise TessellationError(f"spring d {wire_diameter:g}, D {mean_coil_diameter:g}, pitch {pitch:g}: "
+                                "not a spring this mesher lays out")
+    rho = radius + a  # the largest radius of the side: its largest curvature along phi
+    m, dphi = _ring_steps(a, rho, t)
+    k = (2 * math.pi / m) / dphi
+    lens = a / c if ground else 0.0  # the angle a ground end's cut reaches round the helix
+    middle = turns - 2 * lens
+    if not middle > 0:
+        raise TessellationError(f"ground spring of {total_coils:g} coils: the end cuts meet")
+    metric = np.sqrt([rho + a * k, a * (1 + 1 / k)])
+    rows_middle = max(1, math.ceil(middle / dphi))
+    end_rows = max(2, math.ceil(lens / dphi)) if ground else 0
+    while True:
+        phis, psis = _side_rows(m, lens, turns, rows_middle, end_rows)
+        lower, upper = _row_pairs(psis, m, end_rows, rows_middle)
+        # each quad (A = row i col j, B = row i col j+1, C = row i+1 col j+1, D = row i+1 col j) is
+        # split along D-B: triangles (A, D, B) and (B, D, C)
+        low_phi, up_phi = phis[:-1, :, None], phis[1:, :, None]
+        a_, b_ = np.stack([low_phi[:, :-1, 0], lower[:, :-1]], -1), np.stack([low_phi[:, 1:, 0], lower[:, 1:]], -1)
+        d_, c_ = np.stack([up_phi[:, :-1, 0], upper[:, :-1]], -1), np.stack([up_phi[:, 1:, 0], upper[:, 1:]], -1)
+        tri = np.concatenate([np.stack([a_, d_, b_], -2).reshape(-1, 3, 2),
+                              np.stack([b_, d_, c_], -2).reshape(-1, 3, 2)]) * metric
+        worst = float(np.max(_enclosing_radius_squared(tri))) / 2
+        if worst <= t:
+            break
+        if not ground or end_rows >= _MAX_END_ROWS:
+            raise TessellationError(f"spring side: no mesh within {t:g} mm (bound {worst:.3g} mm)")
+        end_rows *= 2  # only the cut regions' skewed rows can fail: the middle's meet the bound by its steps
+    return _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab)
+
+
+def _side_rows(m: int, lens: float, turns: float, rows_middle: int, end_rows: int):
+    """The side's grid: (phi, psi) of each row's m + 1 columns (rows, m + 1), psi unwrapped along
+    each row. The whole rings run from the bottom of the wire (psi = -pi/2) at the first ground
+    end's tip, so that at the other end's tip (psi = pi/2) they are the same ring started half a
+    turn (m / 2 columns) on."""
+    j = np.arange(m + 1) / m
+    phi_rows, psi_rows = [], []
+    if end_rows:
+        beta = (math.pi / 2) * np.arange(end_rows) / end_rows  # the tip, beta = pi / 2, is the middle's first row
+        phi_rows.append(lens * np.sin(beta))
+        psi_rows.append(-beta[:, None] + (math.pi + 2 * beta[:, None]) * j)
+    middle = lens + (turns - 2 * lens) * np.arange(rows_middle + 1) / rows_middle
+    phi_rows.append(middle)
+    start = -math.pi / 2 if end_rows else 0.0
+    psi_rows.append(np.broadcast_to(start + 2 * math.pi * j, (rows_middle + 1, m + 1)))
+    if end_rows:
+        beta = (math.pi / 2) * np.arange(end_rows - 1, -1, -1) / end_rows
+        phi_rows.append(turns - lens * np.sin(beta))
+        psi_rows.append((math.pi - beta[:, None]) + (math.pi + 2 * beta[:, None]) * j)
+    phis = np.concatenate(phi_rows)
+    return np.broadcast_to(phis[:, None], (len(phis), m + 1)), np.concatenate(psi_rows)
+
+
+def _row_pairs(psis, m: int, end_rows: int, rows_middle: int):
+    """psi of the lower and upper row of each pair of consecutive rows: the middle's last ring read
+    from column m/2 (psi = pi/2) where the second ground end's cut rows follow it."""
+    lower, upper = psis[:-1].copy(), psis[1:]
+    if end_rows:
+        lower[end_rows + rows_middle] = math.pi / 2 + 2 * math.pi * np.arange(m + 1) / m
+    return lower, upper
+
+
+def _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab):
+    """The triangles of the side grid ``phis, psis`` (rows: ``end_rows`` cut rows, ``rows_middle``
+    + 1 whole rings, ``end_rows`` cut rows) and of the end faces (the lenses in the ``slab``'s planes)."""
+    rows = len(phis)
+    index = np.arange(rows * (m + 1)).reshape(rows, m + 1)
+    first_ring, last_ring = end_rows, end_rows + rows_middle
+    index[first_ring:last_ring + 1, -1] = index[first_ring:last_ring + 1, 0]  # a ring's last column is its first
+    lower, upper = index[:-1].copy(), index[1:]
+    ring = index[last_ring]
+    if end_rows:  # the middle's last ring in the second end's column order (from psi = pi/2)
+        lower[last_ring] = np.concatenate([ring[m // 2:m], ring[:m // 2 + 1]])
+    a_, b_, d_, c_ = lower[:, :-1], lower[:, 1:], upper[:, :-1], upper[:, 1:]
+    faces = [np.concatenate([np.stack([a_, d_, b_], axis=-1).reshape(-1, 3),
+                             np.stack([b_, d_, c_], axis=-1).reshape(-1, 3)])]
+    if end_rows:
+        faces.append(_fan(index[0]))  # the half discs at phi = 0 and at the end
+        faces.append(_fan(index[-1]))
+        cut = index[:first_ring]  # the lens in z = z0: columns 0 and m of the first cut rows, to the tip
+        faces.append(_zip(cut[:, 0], cut[:, m], index[first_ring, 0]))
+        cut = index[last_ring + 1:][::-1]  # the lens in the top plane, from its base to its tip
+        faces.append(_zip(cut[:, 0], cut[:, m], ring[m // 2]))
+    else:
+        faces.append(_fan(index[0, :m]))  # the discs at phi = 0 and at the end
+        faces.append(_fan(index[-1, :m]))
+    phi, psi = phis.ravel(), psis.ravel()
+    r = radius + a * np.cos(psi)
+    points = np.stack([r * np.cos(phi), r * np.sin(phi), z0 + c * phi + a * np.sin(psi)], axis=1)
+    if end_rows:  # the cut outlines: z0 + c phi + a sin(psi) is the plane's height but for rounding
+        points[index[:first_ring + 1, [0, m]].ravel(), 2] = slab[0]  # the last row: the tip
+        points[np.append(index[last_ring + 1:, [0, m]].ravel(), ring[m // 2]), 2] = slab[1]
+    side, *ends = (points[f] for f in faces)
+    # the flat faces turned to face out: the disc at phi = 0 along -e_phi(0), the one at the end
+    # along +e_phi(end); a ground spring's lenses down and up
+    end = phis[-1, 0]
+    outward = [np.array([0.0, -1.0, 0.0]), np.array([-math.sin(end), math.cos(end), 0.0]),
+               np.array([0.0, 0.0, -1.0]), np.array([0.0, 0.0, 1.0])]
+    for i, (tri, out) in enumerate(zip(ends, outward)):
+        if np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]).sum(axis=0) @ out < 0:
+            ends[i] = tri[:, ::-1]
+    return np.concatenate([side] + ends)
+
+
+def _fan(ring):
+    """A flat convex polygon's triangles fanned from its first vertex (orientation fixed later)."""
+    ring = np.asarray(ring)
+    j = np.arange(1, len(ring) - 1)
+    return np.stack([np.full(len(j), ring[0]), ring[j], ring[j + 1]], axis=-1)
+
+
+def _zip(outer, inner, tip):
+    """A lens between two outlines from a common base (their first vertices joined by the half
+    disc's diameter) to a common tip: quads between consecutive rows, a triangle at the tip."""
+    quads = np.concatenate([np.stack([outer[:-1], inner[:-1], inner[1:]], axis=-1),
+                            np.stack([outer[:-1], inner[1:], outer[1:]], axis=-1)])
+    return np.concatenate([quads, [[outer[-1], inner[-1], tip]]])
+
+
+__all__ = ["spring_triangles"]
