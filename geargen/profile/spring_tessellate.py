@@ -40,11 +40,15 @@ from geargen.profile.tessellate import TessellationError
 _MAX_END_ROWS = 4096
 
 
-def _ring_steps(a: float, rho: float, tolerance: float) -> tuple[int, float]:
+def _ring_steps(a: float, rho: float, tolerance: float, angle: float | None) -> tuple[int, float]:
     """(even columns m, row step dphi) of the fewest side triangles whose right triangles (legs
     dphi, dpsi = 2 pi / m) meet the bound: ``(rho dphi^2 + a dpsi^2 + 2 a dphi dpsi) / 8 <= tolerance``
-    (k = dpsi / dphi). Even m: a ground spring's two lens tips lie half a turn of psi apart."""
+    (k = dpsi / dphi), and whose neighbours' normals turn by at most ``angle`` (rad; None: no limit)
+    across the wire (dpsi) and along it (dphi). Even m: a ground spring's two lens tips lie half a
+    turn of psi apart."""
     least = 2 * math.ceil(math.pi / math.sqrt(8 * tolerance / a))  # the wire's circle alone
+    if angle is not None:
+        least = max(least, 2 * math.ceil(math.pi / angle))
     best = None
     for m in range(max(4, least), max(4, least) + 24, 2):
         dpsi = 2 * math.pi / m
@@ -52,6 +56,8 @@ def _ring_steps(a: float, rho: float, tolerance: float) -> tuple[int, float]:
         if free <= 0:
             continue
         dphi = (-a * dpsi + math.sqrt((a * dpsi) ** 2 + rho * free)) / rho  # root of the bound
+        if angle is not None:
+            dphi = min(dphi, angle)  # the normal turns by one radian a radian of phi (at psi = 0)
         if best is None or m / dphi < best[0]:
             best = (m / dphi, m, dphi)
     return best[1], best[2]
@@ -71,11 +77,14 @@ def _enclosing_radius_squared(p: np.ndarray) -> np.ndarray:
 
 
 def spring_triangles(wire_diameter: float, mean_coil_diameter: float, z0: float, pitch: float,
-                     total_coils: float, chordal_tolerance: float, slab: tuple[float, float] | None = None) -> np.ndarray:
+                     total_coils: float, chordal_tolerance: float, slab: tuple[float, float] | None = None,
+                     angular_tolerance: float | None = None) -> np.ndarray:
     """The closed, outward-oriented triangle mesh ``(n, 3, 3)`` (mm) of the spring described in the
     module docstring, every vertex on its exact surface, every triangle within ``chordal_tolerance``
-    mm of it. ``slab``: ground ends, the planes ``(low, high)`` that cut it, through the helix's ends
+    mm of it (and of half the wire's radius). ``slab``: ground ends, the planes ``(low, high)`` that cut it, through the helix's ends
     (z0 and z0 + pitch total_coils; the cut outlines' vertices lie in them to the last bit).
+    ``angular_tolerance`` (rad): also the most the side's facets turn from one to the next, round
+    the wire and along it (as the kernel's mesher keeps a thin wire round at a coarse tolerance).
 
     Raises :class:`TessellationError` where this layout does not hold (the two lenses of a ground
     spring under a turn meet; coils touching; the index D/d at most 2)."""
@@ -86,11 +95,15 @@ def spring_triangles(wire_diameter: float, mean_coil_diameter: float, z0: float,
         raise TessellationError(f"spring: the slab {slab} does not pass through the helix's ends")
     turns = 2 * math.pi * total_coils
     c = pitch / (2 * math.pi)
-    if not (a > 0 and radius > 2 * a and t > 0 and total_coils > 0 and pitch > wire_diameter):
+    if not (a > 0 and radius > 2 * a and t > 0 and total_coils > 0 and pitch > wire_diameter
+            and (angular_tolerance is None or angular_tolerance > 0)):
         raise TessellationError(f"spring d {wire_diameter:g}, D {mean_coil_diameter:g}, pitch {pitch:g}: "
                                 "not a spring this mesher lays out")
+    # at most half the wire's radius: a coarser mesh's chords along the coil would pass near the
+    # centre line, the facets there facing in (a thin wire in a large assembly's view)
+    t = min(t, a / 2)
     rho = radius + a  # the largest radius of the side: its largest curvature along phi
-    m, dphi = _ring_steps(a, rho, t)
+    m, dphi = _ring_steps(a, rho, t, angular_tolerance)
     k = (2 * math.pi / m) / dphi
     lens = a / c if ground else 0.0  # the angle a ground end's cut reaches round the helix
     middle = turns - 2 * lens
@@ -98,43 +111,69 @@ def spring_triangles(wire_diameter: float, mean_coil_diameter: float, z0: float,
         raise TessellationError(f"ground spring of {total_coils:g} coils: the end cuts meet")
     metric = np.sqrt([rho + a * k, a * (1 + 1 / k)])
     rows_middle = max(1, math.ceil(middle / dphi))
-    end_rows = max(2, math.ceil(lens / dphi)) if ground else 0
+    refine = 1.0
     while True:
-        phis, psis = _side_rows(m, lens, turns, rows_middle, end_rows)
+        betas = _cut_betas(lens, dphi / refine, (2 * math.pi / m) / refine) if ground else np.zeros(0)
+        end_rows = len(betas)
+        phis, psis = _side_rows(m, lens, turns, rows_middle, betas)
         lower, upper = _row_pairs(psis, m, end_rows, rows_middle)
-        # each quad (A = row i col j, B = row i col j+1, C = row i+1 col j+1, D = row i+1 col j) is
-        # split along D-B: triangles (A, D, B) and (B, D, C)
-        low_phi, up_phi = phis[:-1, :, None], phis[1:, :, None]
-        a_, b_ = np.stack([low_phi[:, :-1, 0], lower[:, :-1]], -1), np.stack([low_phi[:, 1:, 0], lower[:, 1:]], -1)
-        d_, c_ = np.stack([up_phi[:, :-1, 0], upper[:, :-1]], -1), np.stack([up_phi[:, 1:, 0], upper[:, 1:]], -1)
-        tri = np.concatenate([np.stack([a_, d_, b_], -2).reshape(-1, 3, 2),
-                              np.stack([b_, d_, c_], -2).reshape(-1, 3, 2)]) * metric
+        low_phi, up_phi = phis[:-1], phis[1:]
+        a_, b_ = np.stack([low_phi[:, :-1], lower[:, :-1]], -1), np.stack([low_phi[:, 1:], lower[:, 1:]], -1)
+        d_, c_ = np.stack([up_phi[:, :-1], upper[:, :-1]], -1), np.stack([up_phi[:, 1:], upper[:, 1:]], -1)
+        a_, b_, c_, d_ = a_ * metric, b_ * metric, c_ * metric, d_ * metric
+        rising = _rising(a_, b_, c_, d_)
+        tri = np.concatenate([np.where(rising[..., None, None], np.stack([a_, d_, c_], -2), np.stack([a_, d_, b_], -2)),
+                              np.where(rising[..., None, None], np.stack([a_, c_, b_], -2), np.stack([b_, d_, c_], -2))])
+        tri = tri.reshape(-1, 3, 2)
         worst = float(np.max(_enclosing_radius_squared(tri))) / 2
         if worst <= t:
             break
         if not ground or end_rows >= _MAX_END_ROWS:
             raise TessellationError(f"spring side: no mesh within {t:g} mm (bound {worst:.3g} mm)")
-        end_rows *= 2  # only the cut regions' skewed rows can fail: the middle's meet the bound by its steps
-    return _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab)
+        refine *= 2  # only the cut regions' skewed rows can fail: the middle's meet the bound by its steps
+    return _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab, rising)
 
 
-def _side_rows(m: int, lens: float, turns: float, rows_middle: int, end_rows: int):
+def _rising(a_, b_, c_, d_):
+    """Per quad (A = row i col j, B = row i col j+1, C = row i+1 col j+1, D = row i+1 col j; in the
+    bound's metric) whether it is split along A-C, the shorter diagonal (triangles (A, D, C) and
+    (A, C, B)), else along D-B ((A, D, B), (B, D, C)): the cut rows' skewed quads near a lens's tip
+    are thin, and their long diagonal would make slivers whose facets turn sharply. The middle's
+    quads are rectangles in the metric: D-B (a shorter A-C by more than rounding)."""
+    along_ac = np.sum((c_ - a_) ** 2, axis=-1)
+    along_db = np.sum((b_ - d_) ** 2, axis=-1)
+    return along_ac < along_db * (1 - 1e-9)
+
+
+def _cut_betas(lens: float, dphi: float, dbeta: float) -> np.ndarray:
+    """The cut rows' beta from 0 up to (not including) the tip pi/2, at phi = lens sin(beta): even
+    steps of the length of the curve (phi / dphi, beta / dbeta), so that phi moves at most dphi and
+    beta (the columns' shear) at most dbeta a row; even steps of beta alone would crowd the rows
+    near the tip (phi's step going as cos(beta)) into thin sheared quads."""
+    beta = np.linspace(0.0, math.pi / 2, 513)
+    speed = np.hypot(lens * np.cos(beta) / dphi, 1.0 / dbeta)
+    length = np.concatenate([[0.0], np.cumsum(0.5 * (speed[1:] + speed[:-1]) * np.diff(beta))])
+    rows = max(2, math.ceil(length[-1]))
+    return np.interp(length[-1] * np.arange(rows) / rows, length, beta)
+
+
+def _side_rows(m: int, lens: float, turns: float, rows_middle: int, betas: np.ndarray):
     """The side's grid: (phi, psi) of each row's m + 1 columns (rows, m + 1), psi unwrapped along
     each row. The whole rings run from the bottom of the wire (psi = -pi/2) at the first ground
     end's tip, so that at the other end's tip (psi = pi/2) they are the same ring started half a
     turn (m / 2 columns) on."""
     j = np.arange(m + 1) / m
     phi_rows, psi_rows = [], []
-    if end_rows:
-        beta = (math.pi / 2) * np.arange(end_rows) / end_rows  # the tip, beta = pi / 2, is the middle's first row
+    if len(betas):
+        beta = betas  # the tip, beta = pi / 2, is the middle's first row
         phi_rows.append(lens * np.sin(beta))
         psi_rows.append(-beta[:, None] + (math.pi + 2 * beta[:, None]) * j)
     middle = lens + (turns - 2 * lens) * np.arange(rows_middle + 1) / rows_middle
     phi_rows.append(middle)
-    start = -math.pi / 2 if end_rows else 0.0
+    start = -math.pi / 2 if len(betas) else 0.0
     psi_rows.append(np.broadcast_to(start + 2 * math.pi * j, (rows_middle + 1, m + 1)))
-    if end_rows:
-        beta = (math.pi / 2) * np.arange(end_rows - 1, -1, -1) / end_rows
+    if len(betas):
+        beta = betas[::-1]
         phi_rows.append(turns - lens * np.sin(beta))
         psi_rows.append((math.pi - beta[:, None]) + (math.pi + 2 * beta[:, None]) * j)
     phis = np.concatenate(phi_rows)
@@ -150,7 +189,7 @@ def _row_pairs(psis, m: int, end_rows: int, rows_middle: int):
     return lower, upper
 
 
-def _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab):
+def _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab, rising):
     """The triangles of the side grid ``phis, psis`` (rows: ``end_rows`` cut rows, ``rows_middle``
     + 1 whole rings, ``end_rows`` cut rows) and of the end faces (the lenses in the ``slab``'s planes)."""
     rows = len(phis)
@@ -162,8 +201,9 @@ def _assembled(phis, psis, m, a, radius, z0, c, end_rows, rows_middle, slab):
     if end_rows:  # the middle's last ring in the second end's column order (from psi = pi/2)
         lower[last_ring] = np.concatenate([ring[m // 2:m], ring[:m // 2 + 1]])
     a_, b_, d_, c_ = lower[:, :-1], lower[:, 1:], upper[:, :-1], upper[:, 1:]
-    faces = [np.concatenate([np.stack([a_, d_, b_], axis=-1).reshape(-1, 3),
-                             np.stack([b_, d_, c_], axis=-1).reshape(-1, 3)])]
+    first = np.where(rising[..., None], np.stack([a_, d_, c_], -1), np.stack([a_, d_, b_], -1))
+    second = np.where(rising[..., None], np.stack([a_, c_, b_], -1), np.stack([b_, d_, c_], -1))
+    faces = [np.concatenate([first.reshape(-1, 3), second.reshape(-1, 3)])]
     if end_rows:
         faces.append(_fan(index[0]))  # the half discs at phi = 0 and at the end
         faces.append(_fan(index[-1]))
