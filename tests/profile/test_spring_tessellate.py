@@ -35,23 +35,27 @@ def spring_surface_distance(spring, points):
     low, high = (0.0, length) if ground else (-np.inf, np.inf)
     for k in range(-1, math.ceil(coils) + 1):
         angle = phi + 2 * math.pi * k
-        # a point at the end of whole turns may read its angle a rounding past it
-        inside = (angle >= -1e-12) & (angle <= turns + 1e-12)
+        # a point a rounding past an end (the kernel's nodes on the end edge read ~1e-9 rad past it)
+        # is measured from its end half-plane, plus the arc r x excess it is turned back by
+        clipped = np.clip(angle, 0.0, turns)
+        excess = np.abs(angle - clipped)
+        inside = excess <= 1e-6
+        angle = clipped
         zc = z0 + c * angle
         dr, dz = r - big_r, z - zc
         far = np.hypot(dr, dz)
         qz = zc + a * dz / np.maximum(far, 1e-300)  # the circle's nearest point
         ok = inside & (qz >= low - 1e-12) & (qz <= high + 1e-12)
-        best = np.where(ok, np.minimum(best, np.abs(far - a)), best)
+        best = np.where(ok, np.minimum(best, np.abs(far - a) + r * excess), best)
         if ground:
             for plane in (0.0, length):
                 # the lens: the circle's disc in the plane; the outline: the circle's points in it
                 half = np.sqrt(np.maximum(a * a - (plane - zc) ** 2, 0.0))
                 meets = inside & (np.abs(plane - zc) <= a)
                 in_lens = meets & (np.abs(dr) <= half)
-                best = np.where(in_lens, np.minimum(best, np.abs(z - plane)), best)
+                best = np.where(in_lens, np.minimum(best, np.abs(z - plane) + r * excess), best)
                 for side in (-1, 1):
-                    best = np.where(meets, np.minimum(best, np.hypot(dr - side * half, z - plane)), best)
+                    best = np.where(meets, np.minimum(best, np.hypot(dr - side * half, z - plane) + r * excess), best)
     # the end discs (half discs of a ground spring) in the half-planes at phi = 0 and at the end
     for angle in (0.0, turns):
         u = x * math.cos(angle) + y * math.sin(angle)  # along the half-plane, from the axis
