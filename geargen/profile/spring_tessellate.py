@@ -24,8 +24,14 @@ smallest circle holding the triangle's parameters in the metric ``(R + a + a k) 
 a (1 + 1/k) dpsi^2`` (Taylor's remainder with |S_phiphi| <= R + a, |S_psipsi| = a,
 |S_phipsi| <= a, and 2 |dphi dpsi| <= k dphi^2 + dpsi^2 / k). The flat faces lie in their planes.
 
-Used for the view and the STL of the springs (geargen.cad.export.solid_triangles): a fraction of the
-kernel's triangles and time at the same tolerance.
+The tolerance used is at most a / 2 (coarser, the chords along the coil would pass near the centre
+line); the steps also keep to an angular tolerance where one is asked (the view's, as the kernel's).
+
+Used for the view and the STL of the springs (geargen.cad.export.solid_triangles). Measured
+(tests/profile/test_spring_tessellate.py, tests/cad/test_spring_mesh.py): the robot joint's spring at
+0.05 mm, 6,160 triangles in 1.6 ms against the kernel's 13,186 in 127 ms; probes on every triangle
+reach 0.65-0.82 of the tolerance (the bound's margin); vertices within 1e-6 mm of the kernel's sweep
+fitted to 1e-7 mm (within 2.5e-5 of the sweep as the kernel builds it, to its default 1e-4).
 """
 
 from __future__ import annotations
