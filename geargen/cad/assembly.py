@@ -75,13 +75,16 @@ class PlacedPart:
     # a toothed component's solid as its family built it (a bevel gear's BevelSolid): not a gear for the
     # checks (``solid``), but meshed by its family's exact mesher (:attr:`mesh_source`)
     family_solid: Any = None
+    # what meshes another part from its exact geometry (a spring's SpringSolid), at the parts' tolerance
+    exact: Any = None
     _world: TopoDS_Shape | None = field(default=None, repr=False)
 
     @property
     def mesh_source(self):
         """What the STL and the view mesh (:func:`geargen.cad.export.solid_triangles` picks the mesher): the
-        gear's solid, a toothed component's family solid, else the shape (the kernel's)."""
-        return next((s for s in (self.solid, self.family_solid) if s is not None), self.shape)
+        gear's solid, a toothed component's family solid, another part's exact mesher (a spring's), else
+        the shape (the kernel's)."""
+        return next((s for s in (self.solid, self.family_solid, self.exact) if s is not None), self.shape)
 
     @property
     def colour(self) -> tuple[float, float, float, float]:
@@ -175,8 +178,10 @@ def parts_from_hardware(hardware) -> PartSet:
     parts = []
     for c in hardware.components:
         family = toothed_solid(c.toothed) if c.toothed is not None else None  # kept for its exact mesher
-        parts.append(PlacedPart(c.name, builder.component(c) if family is None else family.shape, c.placement, c.group,
-                                c.kind, c.role, c.description, envelope=builder.envelope(c), family_solid=family))
+        shape = builder.component(c) if family is None else family.shape
+        parts.append(PlacedPart(c.name, shape, c.placement, c.group, c.kind, c.role, c.description,
+                                envelope=builder.envelope(c), family_solid=family,
+                                exact=None if family is not None else builder.exact(c, shape)))
     return PartSet(parts, hardware.contacts, list(hardware.notes), dict(hardware.dimensions), hardware.ground,
                    hardware.stationary, hardware.rotating, hardware.rolling, hardware.meshing)
 
@@ -328,8 +333,8 @@ def export_meshes(parts_set: PartSet | list, folder: Path, settings: Mapping[str
     for p in parts:
         # every part meshed in its own frame and moved by its placement: gears (and toothed components,
         # a bevel gear) by their exact mesher (20-50x faster than the kernel) within the gears' tolerance (a
-        # toothed component's flanks are a gear's), the others by the kernel, whose mesh stays on the shape,
-        # so parts sharing a shape (two bearings alike) are meshed once
+        # toothed component's flanks are a gear's), springs by theirs, the others by the kernel; parts
+        # sharing a solid (two bearings alike) are meshed once
         rl = export_stl(p.mesh_source, folder / f"{p.name}.stl",
                         chordal_tolerance=chord if p.role == "gear" or p.family_solid is not None else chord_parts,
                         angular_tolerance=ang,

@@ -68,6 +68,7 @@ class SolidBuilder:
 
     def __init__(self):
         self._shared: dict[Body, TopoDS_Shape] = {}
+        self._exact: dict[int, Any] = {}  # id(shape) -> its exact mesher (the shape kept in it)
 
     def body(self, body: Body, shared: bool = False) -> TopoDS_Shape:
         if not shared:
@@ -81,6 +82,16 @@ class SolidBuilder:
             from geargen.cad.families import build_toothed
             return build_toothed(component.toothed)
         return self.body(component.body, component.shared)
+
+    def exact(self, component, shape: TopoDS_Shape) -> Any:
+        """What meshes ``shape``, the component's solid, from its exact geometry (a compression
+        spring's :class:`geargen.cad.parts.SpringSolid`), one per solid; None for any other."""
+        body = component.body
+        if component.toothed is not None or body is None or body.kind != "compression_spring":
+            return None
+        if id(shape) not in self._exact:
+            self._exact[id(shape)] = P.SpringSolid(shape, body.args)
+        return self._exact[id(shape)]
 
     def envelope(self, component) -> Any:
         return None if component.envelope is None else _build(component.envelope)

@@ -323,18 +323,20 @@ def solid_triangles(solid, chordal_tolerance: float, angular_tolerance: float = 
                     skip_unmeshed: bool = False):
     """Triangles ``(n, 3, 3)`` (mm) of ``solid`` within ``chordal_tolerance`` and the mesher used.
 
-    A :class:`~geargen.cad.gear_solid.GearSolid` is meshed from its exact geometry ("exact");
-    any other shape, or a gear whose end faces that mesher cannot lay out, by the kernel
+    A :class:`~geargen.cad.gear_solid.GearSolid` (its layers) or a solid offering
+    ``exact_triangles(chordal_tolerance, angular_tolerance)`` (the worm's, the wheel's, a bevel gear's, a spring's
+    :class:`~geargen.cad.parts.SpringSolid`) is meshed from its exact geometry ("exact");
+    any other shape, or one whose exact mesher declines (TessellationError), by the kernel
     ("occt", see :func:`kernel_triangles`). ``transform``: optional ``(4, 4)`` matrix (mm)
     applied to the triangles (rigid motions keep the tolerance).
     """
     triangles, mesher = None, "occt"
     layers = getattr(solid, "layers", None)
-    exact = getattr(solid, "exact_triangles", None)  # a family's own exact mesher (the worm's, the wheel's)
+    exact = getattr(solid, "exact_triangles", None)  # a family's own exact mesher (the worm's, the wheel's, a bevel gear's), a spring's
     if exact is not None:
         from geargen.profile.tessellate import TessellationError
         try:
-            triangles, mesher = exact(chordal_tolerance), "exact"
+            triangles, mesher = exact(chordal_tolerance, angular_tolerance), "exact"
         except TessellationError:
             triangles = None
     elif layers:

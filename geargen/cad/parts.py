@@ -340,6 +340,29 @@ def compression_spring(wire_diameter: float, mean_coil_diameter: float, length: 
     return one_valid_solid(intersect(wire, slab), "compression spring")
 
 
+class SpringSolid:
+    """A :func:`compression_spring`'s kernel solid (``shape``) and its body's arguments ``args``
+    (d, D, length, total coils, ground): what :func:`geargen.cad.export.solid_triangles` meshes
+    from the exact geometry (:func:`geargen.profile.spring_tessellate.spring_triangles`; the robot
+    joint's spring at the STL's 0.05 mm and 30 deg: 6,016 triangles in ~2 ms against the kernel's
+    13,142 in 0.13 s), the kernel meshing ``shape`` where that mesher declines."""
+
+    def __init__(self, shape: TopoDS_Shape, args: tuple):
+        self.shape, self.args = shape, tuple(args)
+
+    def exact_triangles(self, chordal_tolerance: float, angular_tolerance: float | None = None):
+        """The closed mesh (n, 3, 3) mm of the spring within ``chordal_tolerance`` mm, every vertex on
+        the surface :func:`compression_spring` sweeps (the helix of
+        :func:`geargen.model.bodies.spring_helix`; ground: cut by the slab's planes z = 0, length),
+        its facets turning by at most ``angular_tolerance`` rad from one to the next."""
+        from geargen.model.bodies import spring_helix
+        from geargen.profile.spring_tessellate import spring_triangles
+        d, mean, length, coils, ground = self.args
+        z0, pitch = spring_helix(self.args)
+        return spring_triangles(d, mean, z0, pitch, coils, chordal_tolerance, (0.0, length) if ground else None,
+                                angular_tolerance)
+
+
 def _helix(pitch: float, height: float, radius: float, breaks=()):
     """A right-hand helix on +z from (radius, 0, 0) as a wire: a line on the cylinder's (u, v)
     plane, its 3-D curve built by the kernel (as CadQuery's ``Wire.makeHelix``); ``breaks``: turns
@@ -522,6 +545,6 @@ def split_collar(bore: float, outer_diameter: float, width: float, slot: float) 
 
 
 __all__ = ["is_valid", "one_valid_solid", "volume", "bounding_box", "solids", "translate", "compound", "cut", "intersect", "union",
-           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring",
+           "clean", "fuse", "cylinder", "box", "box_between", "frustum", "shaft", "bearing", "bevel_pitch_cone", "servo_motor", "blade_flexure", "compression_spring", "SpringSolid",
            "coil_envelope", "plate_with_holes", "link_tray", "link_tray_volume", "link_cover",
            "link_cover_volume", "ring_relief", "quill", "quill_volume", "split_collar"]

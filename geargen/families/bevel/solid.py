@@ -81,10 +81,11 @@ class BevelSolid:
     def is_valid(self) -> bool:
         return check_solid(self.shape) is None
 
-    def exact_triangles(self, chordal_tolerance: float):
+    def exact_triangles(self, chordal_tolerance: float, angular_tolerance: float | None = None):
         """The closed triangle mesh ``(n, 3, 3)`` of the solid from its exact geometry, within
         ``chordal_tolerance`` mm (:func:`geargen.profile.bevel_tessellate.bevel_triangles`; the STL
-        export's and the view's mesher, ~20x faster than the kernel's)."""
+        export's and the view's mesher, ~20x faster than the kernel's); ``angular_tolerance`` is not
+        used (the chordal tolerance alone sets the facets)."""
         return bevel_triangles(self.spec, self.back, chordal_tolerance)
 
 

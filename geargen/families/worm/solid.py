@@ -57,9 +57,10 @@ class WormPartSolid:
         from geargen.cad.gear_solid import check_solid
         return check_solid(self.shape) is None
 
-    def exact_triangles(self, chordal_tolerance: float):
+    def exact_triangles(self, chordal_tolerance: float, angular_tolerance: float | None = None):
         """The closed triangle mesh (n, 3, 3) of the part from its exact geometry, within
-        ``chordal_tolerance`` mm (geargen.profile.worm_tessellate; the STL export's mesher)."""
+        ``chordal_tolerance`` mm (geargen.profile.worm_tessellate; the STL export's mesher);
+        ``angular_tolerance`` is not used (the chordal tolerance alone sets the facets)."""
         from geargen.profile.worm_tessellate import wheel_triangles, worm_triangles
         mesh = worm_triangles if self.spec.kind == "worm" else wheel_triangles
         return mesh(self.spec.set, chordal_tolerance)
