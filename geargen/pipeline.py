@@ -379,39 +379,22 @@ def versions() -> dict[str, str]:
 
 
 def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = None,
-           export_settings: dict | None = None, step_files: "Alongside | None" = None,
-           gear_steps: "Alongside | None" = None, gears: dict[str, Any] | None = None) -> dict[str, Any]:
+           export_settings: dict | None = None, step_files: "Alongside | None" = None) -> dict[str, Any]:
     """Step 7: assembly STEP, one STEP and one STL per part, into ``folder``; returns the file records.
-    ``step_files``: the process writing assembly.step and the part STEP files (:func:`export_step_files`,
-    started before this step), but the gears' if ``gear_steps`` writes those (:func:`gear_step_files`,
-    started when the ``gears`` were built); collected once the STL files are written here, and what a
-    process delivered nothing of written here."""
+    ``step_files``: the process writing the STEP files (:func:`export_step_files`, started before
+    this step), collected once the STL files are written here (or the STEP files written here if it
+    delivered nothing)."""
     from geargen.cad.assembly import export_parts
     settings = export_settings or layout.resolved.export
-
-    def collected():
-        names = tuple(gears or ()) if gear_steps is not None else ()
-        # the assembly's first: made here, it is this process's first STEP file, as in its own process
-        made = _collect(step_files, export_step_files, layout, parts, folder, names)[0]
-        if names:
-            made["parts"].update(_collect(gear_steps, gear_step_files, layout, gears, folder)[0])
-        return made
-
-    return export_parts(layout, parts, Path(folder), settings, None if step_files is None else collected)
+    collected = None if step_files is None else \
+        (lambda: _collect(step_files, export_step_files, layout, parts, folder)[0])
+    return export_parts(layout, parts, Path(folder), settings, collected)
 
 
-def export_step_files(layout: Layout, parts, folder: Path, skip: tuple[str, ...] = ()) -> dict[str, Any]:
-    """assembly.step and the part STEP files but those of the parts named in ``skip``
-    (:func:`geargen.cad.assembly.export_step_files`)."""
+def export_step_files(layout: Layout, parts, folder: Path) -> dict[str, Any]:
+    """The STEP files of the export (:func:`geargen.cad.assembly.export_step_files`)."""
     from geargen.cad.assembly import export_step_files as write_step_files
-    return write_step_files(layout, parts, Path(folder), skip)
-
-
-def gear_step_files(layout: Layout, gears: dict[str, Any], folder: Path) -> dict[str, tuple[str, dict]]:
-    """The gears' part STEP files (:func:`geargen.cad.assembly.part_step_files`): the same bytes in
-    whichever process, so they are written from the moment the gear solids exist."""
-    from geargen.cad.assembly import part_step_files
-    return part_step_files(layout, list(gears.values()), Path(folder))
+    return write_step_files(layout, parts, Path(folder))
 
 
 def export_config(design: Design) -> dict[str, Any]:
@@ -730,9 +713,8 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
     only the resolved drive: with ``parallel`` they are drawn in a process of their own from the
     moment it is placed, the view and the figures that need no check result
     (:func:`view_and_figures`) in another from the moment the other parts exist (:func:`_collect`),
-    the gears' STEP files (:func:`gear_step_files`) in another from the moment the gear solids exist,
-    and assembly.step with the other parts' STEP files (:func:`export_step_files`) in another while
-    this one writes the STL files, else (or if one delivers nothing) here.
+    and the STEP files (:func:`export_step_files`) in another while this one writes the STL files,
+    else (or if one delivers nothing) here.
     """
     progress = progress or Progress(quiet)
     design = progress.run("load", load, design_path)
@@ -751,13 +733,11 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             _import_kernel_modules()
         # the drawings need only the resolved drive: drawn in a process of their own from here
         sheets_alongside = Alongside.start(drawings, layout, work) if parallel else None
-        sections_alongside = figures_alongside = overlaps_alongside = steps_alongside = gear_steps_alongside = None
+        sections_alongside = figures_alongside = overlaps_alongside = steps_alongside = None
         try:
             gears = progress.run("gear solids", gear_solids, layout)
-            # path 2 (sections of the gear solids) in another from the moment the solids exist, and the
-            # gears' STEP files (the largest) in a third
+            # path 2 (sections of the gear solids) in another from the moment the solids exist
             sections_alongside = Alongside.start(mesh_sections, layout, gears) if parallel else None
-            gear_steps_alongside = Alongside.start(gear_step_files, layout, gears, work) if parallel else None
             if verdict_alongside is not None or sections_alongside is not None:
                 progress.note("mesh checks: started in processes of their own, alongside the next steps")
             summary = progress.run("stiffness", stiffness, layout)
@@ -779,14 +759,11 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                                           summary, work)
 
             made = figures_step() if figures_alongside is None else None
-            # assembly.step and the other parts' STEP files in a process of their own (its kernel has
-            # written no STEP file yet, as this one has not: the same bytes) while this one writes the STL
-            # files (the main process is the build's longest path; no STEP writer reads a mesh)
-            steps_alongside = Alongside.start(export_step_files, layout, parts, work,
-                                              tuple(gears) if gear_steps_alongside is not None else ()) \
-                if parallel else None
-            files = progress.run("export", export, layout, parts, work, step_files=steps_alongside,
-                                 gear_steps=gear_steps_alongside, gears=gears)
+            # the STEP files in a process of their own (its kernel has written no STEP file yet, as this one
+            # has not: assembly.step's usage ids the same) while this one writes the STL files (the main
+            # process is the build's longest path; no STEP writer reads a mesh)
+            steps_alongside = Alongside.start(export_step_files, layout, parts, work) if parallel else None
+            files = progress.run("export", export, layout, parts, work, step_files=steps_alongside)
             drawn, progress.timings["render"] = made or figures_step()
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             if result is None:
@@ -800,7 +777,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             target = output.commit()
         finally:
             for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside,
-                          overlaps_alongside, steps_alongside, gear_steps_alongside):
+                          overlaps_alongside, steps_alongside):
                 if child is not None:
                     child.close()
     except BaseException:

@@ -293,30 +293,28 @@ def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapp
     return {"records": records, "parts": info, "tolerances": meshes["tolerances"]}
 
 
-def export_step_files(layout, parts_set: PartSet | list, folder: Path, skip: Iterable[str] = ()) -> dict[str, Any]:
-    """assembly.step, then per part ``<name>.step`` (:func:`part_step_files`) but for the parts named in
-    ``skip`` (written elsewhere), into ``folder``: ``{"assembly": manifest entry, "parts": {part: (file
-    name, manifest entry)}}``. The assembly's usage ids count the kernel's assembly usages made before
-    it in its process, so it is written first, in a process that has written no STEP file; the part
-    files depend on nothing written before them. No STEP writer reads a mesh, so the STL files may be
-    written meanwhile elsewhere."""
+def export_step_files(layout, parts_set: PartSet | list, folder: Path) -> dict[str, Any]:
+    """assembly.step, then per part ``<name>.step`` (:func:`part_step_files`), into ``folder``:
+    ``{"assembly": manifest entry, "parts": {part: (file name, manifest entry)}}``. The assembly's usage
+    ids count the kernel's assembly usages made before it in its process, so it is written first, in a
+    process that has written no STEP file; the part files depend on nothing written before them. No STEP
+    writer reads a mesh, so the STL files may be written meanwhile elsewhere."""
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
     unit = layout.identity.length_unit
     folder.mkdir(parents=True, exist_ok=True)
     asm = write_assembly_step(layout.identity.name, parts, folder / "assembly.step", unit)
     assembly = {"format": "step", "length_unit": unit, "bytes": asm.stat().st_size, "role": "assembly",
                 "parts": [p.name for p in parts]}
-    skip = set(skip)
-    return {"assembly": assembly, "parts": part_step_files(layout, [p for p in parts if p.name not in skip], folder)}
+    return {"assembly": assembly, "parts": part_step_files(layout, parts, folder)}
 
 
 def part_step_files(layout, parts: list[PlacedPart], folder: Path) -> dict[str, tuple[str, dict]]:
     """Per part, ``<name>.step`` in ``folder`` (the design's length unit): its solid with the geometry
     moved into the assembly frame, one product named after the part. Moved, not placed: a placed shape
     is written as an assembly of one component, whose product and usage the kernel names by how many it
-    had written before in its process; moved, the file is the same bytes whatever was written before it
-    and in whichever process, so the part files are written by more than one (the gears' from the moment
-    their solids exist). Returns ``{part: (file name, manifest entry)}``."""
+    had written before in its process ("Open CASCADE STEP translator 7.9 N.1", a second product a CAM
+    station lists); moved, the file holds the part alone and is the same bytes whatever was written before
+    it, in whichever process. Returns ``{part: (file name, manifest entry)}``."""
     from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
     from geargen.cad.export import export_step
 

@@ -1,6 +1,7 @@
 """A part's STEP file (geargen.cad.assembly.part_step_files) is its solid moved into the assembly frame as
-one named product: the same bytes whatever the process wrote before it, which is what lets a build write
-the gears' files in one process and assembly.step with the other parts' in another (pipeline.build)."""
+one named product (not an assembly of one component, whose product and usage the kernel names by how
+many it made before): the same bytes whatever the process wrote before it, so a CAM station sees the
+part alone and the file does not change with the order or the process the build writes it in."""
 
 from pathlib import Path
 
