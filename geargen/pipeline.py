@@ -379,16 +379,21 @@ def versions() -> dict[str, str]:
 
 
 def export(layout: Layout, parts, folder: Path, outcome: CheckOutcome | None = None,
-           export_settings: dict | None = None, step_files: "Alongside | None" = None) -> dict[str, Any]:
+           export_settings: dict | None = None, step_files: "Alongside | None" = None,
+           meanwhile: Callable[[], None] | None = None) -> dict[str, Any]:
     """Step 7: assembly STEP, one STEP and one STL per part, into ``folder``; returns the file records.
     ``step_files``: the process writing the STEP files (:func:`export_step_files`, started before
     this step), collected once the STL files are written here (or the STEP files written here if it
-    delivered nothing)."""
+    delivered nothing), after ``meanwhile()``, what the build does while that process finishes."""
     from geargen.cad.assembly import export_parts
     settings = export_settings or layout.resolved.export
-    collected = None if step_files is None else \
-        (lambda: _collect(step_files, export_step_files, layout, parts, folder)[0])
-    return export_parts(layout, parts, Path(folder), settings, collected)
+
+    def collected():
+        if meanwhile is not None:
+            meanwhile()
+        return _collect(step_files, export_step_files, layout, parts, folder)[0]
+
+    return export_parts(layout, parts, Path(folder), settings, None if step_files is None else collected)
 
 
 def export_step_files(layout: Layout, parts, folder: Path) -> dict[str, Any]:
@@ -591,12 +596,13 @@ def drive_gear_data(layout: Layout, spec, profile, allowance) -> dict:
     return data
 
 
-def report(result: "BuildResult", folder: Path, parallel: bool = False) -> dict[str, Path]:
+def report(result: "BuildResult", folder: Path, layout_sheet: "Alongside | None" = None) -> dict[str, Path]:
     """The last step: the figures (rendered view, layout drawing, preload diagram) as
     ``figures/*.png|svg`` (those of :func:`check_free_figures` as ``result.figures`` if drawn
     already), report.md and report.html, and the browser design review (:func:`review_page`).
-    ``parallel``: the layout drawing (which needs the checks, so it is drawn last) in a process of its
-    own while this one writes the report and the review, which only link to it."""
+    ``layout_sheet``: the process drawing the layout (:func:`layout_figure_files`, started once the
+    checks were known), collected after the report and the review, which only link to it; drawn here
+    if there is none or it delivered nothing."""
     from geargen.report.review import FIGURE_FOLDER, compose, write_review
     folder = Path(folder)
     if result.figures is None:
@@ -604,11 +610,10 @@ def report(result: "BuildResult", folder: Path, parallel: bool = False) -> dict[
             result.render_view = render(result.parts, result.design)
         result.figures = check_free_figures(result.design, result.stiffness, result.render_view, folder)
     early_files, early_links, early_notes = result.figures
-    drawing = Alongside.start(layout_figure_files, result.layout, result.checks, folder) if parallel else None
     links = early_links | {"layout": f"{FIGURE_FOLDER}/layout.png"}
     review = compose(result, links, early_notes)
     written = write_review(review, folder) | review_page(result, folder, review)
-    figures = _collect(drawing, layout_figure_files, result.layout, result.checks, folder)[0]
+    figures = _collect(layout_sheet, layout_figure_files, result.layout, result.checks, folder)[0]
     return early_files | figures | written
 
 
@@ -733,7 +738,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             _import_kernel_modules()
         # the drawings need only the resolved drive: drawn in a process of their own from here
         sheets_alongside = Alongside.start(drawings, layout, work) if parallel else None
-        sections_alongside = figures_alongside = overlaps_alongside = steps_alongside = None
+        sections_alongside = figures_alongside = overlaps_alongside = steps_alongside = layout_sheet = None
         try:
             gears = progress.run("gear solids", gear_solids, layout)
             # path 2 (sections of the gear solids) in another from the moment the solids exist
@@ -763,21 +768,31 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             # has not: assembly.step's usage ids the same) while this one writes the STL files (the main
             # process is the build's longest path; no STEP writer reads a mesh)
             steps_alongside = Alongside.start(export_step_files, layout, parts, work) if parallel else None
-            files = progress.run("export", export, layout, parts, work, step_files=steps_alongside)
+            def checks_step():
+                """The checks collected (a failing build stops here) and the layout drawing, which needs
+                them, started in a process of its own: done once the STL files are written, while the STEP
+                files' process finishes, so the drawing is not left to the build's end."""
+                nonlocal result, layout_sheet
+                if result is None:
+                    checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside,
+                                                sections_alongside, layout, gears, parts, overlaps_alongside)
+                    result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
+                if parallel and layout_sheet is None:
+                    layout_sheet = Alongside.start(layout_figure_files, layout, result.checks, work)
+
+            files = progress.run("export", export, layout, parts, work, step_files=steps_alongside,
+                                 meanwhile=checks_step)
+            checks_step()  # done already, unless the STEP files were written here
             drawn, progress.timings["render"] = made or figures_step()
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
-            if result is None:
-                checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside, sections_alongside,
-                                            layout, gears, parts, overlaps_alongside)
-                result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             result.files, result.figures = files, drawn
             result.drawings = sheets
             result.timings = dict(progress.timings)
-            progress.run("report", _report_and_manifest, result, work, parallel)
+            progress.run("report", _report_and_manifest, result, work, layout_sheet)
             target = output.commit()
         finally:
             for child in (verdict_alongside, sections_alongside, sheets_alongside, figures_alongside,
-                          overlaps_alongside, steps_alongside):
+                          overlaps_alongside, steps_alongside, layout_sheet):
                 if child is not None:
                     child.close()
     except BaseException:
@@ -1041,10 +1056,10 @@ class Alongside:
             self._process.join(timeout=5.0)
 
 
-def _report_and_manifest(result: BuildResult, folder: Path, parallel: bool = False) -> None:
+def _report_and_manifest(result: BuildResult, folder: Path, layout_sheet: "Alongside | None" = None) -> None:
     if result.drawings is None:
         result.drawings = drawings(result.layout, folder)
-    files = report(result, folder, parallel) | result.drawings
+    files = report(result, folder, layout_sheet) | result.drawings
     files["resolved"] = write_resolved(result.layout, folder)
     manifest(result, folder, files)
 
