@@ -295,10 +295,10 @@ def export_parts(layout, parts_set: PartSet | list, folder: Path, settings: Mapp
 
 def export_step_files(layout, parts_set: PartSet | list, folder: Path) -> dict[str, Any]:
     """assembly.step, then per part ``<name>.step`` (:func:`part_step_files`), into ``folder``:
-    ``{"assembly": manifest entry, "parts": {part: (file name, manifest entry)}}``. The assembly's usage
-    ids count the kernel's assembly usages made before it in its process, so it is written first, in a
-    process that has written no STEP file; the part files depend on nothing written before them. No STEP
-    writer reads a mesh, so the STL files may be written meanwhile elsewhere."""
+    ``{"assembly": manifest entry, "parts": {part: (file name, manifest entry)}}``. Each file's usage ids
+    count the kernel's assembly usages made before it in its process, so the files are always written in
+    this one order, all in one process that has written no STEP file before; no STEP writer reads a mesh,
+    so the STL files may be written meanwhile elsewhere."""
     parts = parts_set if isinstance(parts_set, list) else parts_set.parts
     unit = layout.identity.length_unit
     folder.mkdir(parents=True, exist_ok=True)
@@ -309,21 +309,16 @@ def export_step_files(layout, parts_set: PartSet | list, folder: Path) -> dict[s
 
 
 def part_step_files(layout, parts: list[PlacedPart], folder: Path) -> dict[str, tuple[str, dict]]:
-    """Per part, ``<name>.step`` in ``folder`` (the design's length unit): its solid with the geometry
-    moved into the assembly frame, one product named after the part. Moved, not placed: a placed shape
-    is written as an assembly of one component, whose product and usage the kernel names by how many it
-    had written before in its process ("Open CASCADE STEP translator 7.9 N.1", a second product a CAM
-    station lists); moved, the file holds the part alone and is the same bytes whatever was written before
-    it, in whichever process. Returns ``{part: (file name, manifest entry)}``."""
-    from OCP.BRepBuilderAPI import BRepBuilderAPI_Transform
+    """Per part, ``<name>.step`` in ``folder`` (the design's length unit): its solid placed in the
+    assembly frame, named after the part (:func:`geargen.cad.export.export_step`). Returns ``{part:
+    (file name, manifest entry)}``."""
     from geargen.cad.export import export_step
 
     unit = layout.identity.length_unit
     folder.mkdir(parents=True, exist_ok=True)
     files = {}
     for p in parts:
-        moved = BRepBuilderAPI_Transform(p.shape, _trsf(p.matrix), True).Shape()
-        rs = export_step((p.name, moved), folder / f"{p.name}.step", unit)
+        rs = export_step((p.name, p.world()), folder / f"{p.name}.step", unit)
         files[p.name] = (rs.path.name, rs.manifest_entry())
     return files
 

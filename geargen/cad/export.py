@@ -46,7 +46,7 @@ from OCP.TopAbs import TopAbs_FACE, TopAbs_REVERSED
 from OCP.TopExp import TopExp_Explorer
 from OCP.TopLoc import TopLoc_Location
 from OCP.TopoDS import TopoDS, TopoDS_Shape
-from OCP.XCAFDoc import XCAFDoc_DocumentTool
+from OCP.XCAFDoc import XCAFDoc_DocumentTool, XCAFDoc_ShapeTool
 
 from geargen.cad.kernel import quiet_kernel, threads_usable
 from geargen.errors import BuildError
@@ -120,6 +120,12 @@ def export_step(parts, path, length_unit: str = "mm") -> ExportRecord:
     for name, shape in items:
         label = tool.AddShape(shape, False, False)
         TDataStd_Name.Set_s(label, TCollection_ExtendedString(name))
+        # a placed shape is added as a reference to its unplaced self: named too, the file's second
+        # product is the part's name, not the kernel's "Open CASCADE STEP translator 7.9 <n>.1" (n: the
+        # transfers made before in the process), which a CAM station lists as a component
+        prototype = TDF_Label()
+        if XCAFDoc_ShapeTool.GetReferredShape_s(label, prototype):
+            TDataStd_Name.Set_s(prototype, TCollection_ExtendedString(name))
     writer = unchecked(STEPCAFControl_Writer())
     writer.SetNameMode(True)
     if not writer.Transfer(doc, STEPControl_AsIs):
