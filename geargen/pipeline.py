@@ -768,21 +768,27 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
             # has not: assembly.step's usage ids the same) while this one writes the STL files (the main
             # process is the build's longest path; no STEP writer reads a mesh)
             steps_alongside = Alongside.start(export_step_files, layout, parts, work) if parallel else None
+            collected_checks = None
+
             def checks_step():
-                """The checks collected (a failing build stops here) and the layout drawing, which needs
+                """The checks collected and, if they pass (or ``force``), the layout drawing, which needs
                 them, started in a process of its own: done once the STL files are written, while the STEP
-                files' process finishes, so the drawing is not left to the build's end."""
-                nonlocal result, layout_sheet
-                if result is None:
-                    checks = progress.run_timed("mesh checks", _collect_checks, verdict_alongside,
-                                                sections_alongside, layout, gears, parts, overlaps_alongside)
-                    result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
-                if parallel and layout_sheet is None:
-                    layout_sheet = Alongside.start(layout_figure_files, layout, result.checks, work)
+                files' process finishes, so the drawing is not left to the build's end (reported after
+                the export's line)."""
+                nonlocal collected_checks, layout_sheet
+                if result is None and collected_checks is None:
+                    collected_checks = _collect_checks(verdict_alongside, sections_alongside, layout, gears, parts,
+                                                       overlaps_alongside)
+                checks = result.checks if result is not None else collected_checks[0]
+                if parallel and layout_sheet is None and (checks.ok or force):
+                    layout_sheet = Alongside.start(layout_figure_files, layout, checks, work)
 
             files = progress.run("export", export, layout, parts, work, step_files=steps_alongside,
                                  meanwhile=checks_step)
             checks_step()  # done already, unless the STEP files were written here
+            if result is None:
+                checks = progress.run_timed("mesh checks", lambda: collected_checks)
+                result = _checked(BuildResult(design, layout, gears, parts, checks, summary), force, progress)
             drawn, progress.timings["render"] = made or figures_step()
             sheets = progress.run_timed("drawings", _collect, sheets_alongside, drawings, layout, work)
             result.files, result.figures = files, drawn

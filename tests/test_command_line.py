@@ -441,6 +441,20 @@ def test_a_signal_while_forking_interrupts_the_build():
 
 
 @pytest.mark.slow
+def test_the_build_reports_each_step_on_a_line_of_its_own_in_order(tmp_path, capsys):
+    """The progress a user reads: "[k/N] step ... t s" once per step, k = 1..N in order, no line holding
+    two steps (a step done inside another's, the checks collected while the STEP files are written,
+    prints after it, not into its line)."""
+    assert main(["build", str(SPLIT), "--out", str(tmp_path / "out")]) == 0
+    lines = capsys.readouterr().err.splitlines()  # progress on stderr, the folder on stdout
+    steps = [line for line in lines if line.startswith("[")]
+    assert all(line.count("/") >= 1 and line.count("[") == 1 and " ... " in line and " s" in line for line in steps)
+    numbers = [line[1:line.index("]")].split("/") for line in steps]
+    total = int(numbers[0][1])
+    assert [int(k) for k, _ in numbers] == list(range(1, total + 1)) and {int(n) for _, n in numbers} == {total}
+    assert [line.split("] ")[1].split(" ...")[0] for line in steps if "mesh checks" in line] == ["mesh checks"]
+
+
 def test_rebuild_replaces_its_own_build_and_keeps_the_stiffness_plots(tmp_path, monkeypatch, capsys):
     """Reproductions 1, 2, 6 on real builds: the same design rebuilds into its folder; the
     stiffness plots beside it survive; exports have the user's umask; a user's file stops it."""
