@@ -66,9 +66,10 @@ garbage collection skipped (geargen.cli.command: 0.5-0.7 s after every build), t
 their own while the main process writes the STL files, the verdict (-20-30 %), path 2's sections (-60 %), the
 overlap check (-25-30 %) and the figures (-15 %) with the same numbers and bytes.
 
-Session 17 (2026-11-28 15:36-15:47 UTC, load 1.4-2.7, alternated with a4a21a5; wall / CPU s, medians):
-robot_joint 3.14-3.33 / 5.56-5.94 -> 2.94-3.14 / 5.10-5.49 (median of 5: 3.00, 3.04, 2.95, 3.14 in four passes:
-the 3 s target met when this VM runs at its faster speed, not at its slower one); planetary_dual_pinion 4.09 / 7.40
+Session 17 (2026-11-28 15:36-16:01 UTC, load 1.4-2.7, alternated with a4a21a5; wall / CPU s, medians):
+robot_joint 3.14-3.47 / 5.59-6.13 -> 2.95-3.27 / 5.10-5.65 (median of 5, six passes: 3.00, 3.04, 2.95, 3.14, 3.27,
+3.22, each 0.14-0.25 s under a4a21a5's of the same minutes: the 3 s target met when this VM runs at its faster
+speed, not at its slower one); planetary_dual_pinion 4.09 / 7.40
 -> 3.61-4.28 / 6.58-7.80; metric_dual_pinion 3.90 -> 3.39-3.46; c_axis 3.49 -> 3.11-3.21; axial_preload 2.73 ->
 2.51-2.57; rack_drive 2.30 -> 2.05-2.34; split_pinion 1.89 -> 1.83-1.99. What moved it: exact meshers for the bevel
 gears and the springs (the kernel's meshing of both, for the STL and the view, ~0.35 s of CPU on the robot joint),
