@@ -603,14 +603,14 @@ def report(result: "BuildResult", folder: Path, layout_sheet: "Alongside | None"
     ``layout_sheet``: the process drawing the layout (:func:`layout_figure_files`, started once the
     checks were known), collected after the report and the review, which only link to it; drawn here
     if there is none or it delivered nothing."""
-    from geargen.report.review import FIGURE_FOLDER, compose, write_review
+    from geargen.report.review import compose, figure_link, write_review
     folder = Path(folder)
     if result.figures is None:
         if result.render_view is None:
             result.render_view = render(result.parts, result.design)
         result.figures = check_free_figures(result.design, result.stiffness, result.render_view, folder)
     early_files, early_links, early_notes = result.figures
-    links = early_links | {"layout": f"{FIGURE_FOLDER}/layout.png"}
+    links = early_links | {"layout": figure_link("layout")}
     review = compose(result, links, early_notes)
     written = write_review(review, folder) | review_page(result, folder, review)
     figures = _collect(layout_sheet, layout_figure_files, result.layout, result.checks, folder)[0]
@@ -884,9 +884,10 @@ def _collect_checks(verdict: "Alongside | None", sections: "Alongside | None", l
 
 
 def _import_figure_modules() -> None:
-    """Import matplotlib's figure and its PNG and SVG writers: the report needs them in this process
-    anyway; imported before the drawings' and the figures' processes are forked, each inherits them
-    instead of importing them again (~0.2 s of processor time each)."""
+    """Import matplotlib's figure and its PNG and SVG writers, the report's figure modules, and read the
+    figures' font files: the report needs them in this process anyway; done before the drawings' and the
+    figures' processes are forked, each inherits them instead of loading them again (~0.2 s of processor
+    time each)."""
     import matplotlib.backends.backend_agg  # noqa: F401
     import matplotlib.backends.backend_svg  # noqa: F401
     import matplotlib.figure  # noqa: F401

@@ -72,19 +72,19 @@ class PlacedPart:
     # a simple solid holding the part (own frame): the overlap check's first, cheap test (a helical
     # spring's tube); gears have theirs from ``solid`` (:func:`part_envelope`)
     envelope: TopoDS_Shape | None = None
-    # a toothed component's solid as its family built it (a bevel gear's BevelSolid): not a gear for the
-    # checks (``solid``), but meshed by its family's exact mesher (:attr:`mesh_source`)
-    family_solid: Any = None
-    # what meshes another part from its exact geometry (a spring's SpringSolid), at the parts' tolerance
+    # what meshes a part that is not a gear from its exact geometry (:attr:`mesh_source`): a toothed
+    # component's family solid (a bevel gear's BevelSolid), a spring's SpringSolid
     exact: Any = None
+    # a toothed component of the hardware (a bevel gear): not a gear for the checks (``solid``), its flanks
+    # a gear's all the same (its STL at the gears' tolerance)
+    toothed: bool = False
     _world: TopoDS_Shape | None = field(default=None, repr=False)
 
     @property
     def mesh_source(self):
         """What the STL and the view mesh (:func:`geargen.cad.export.solid_triangles` picks the mesher): the
-        gear's solid, a toothed component's family solid, another part's exact mesher (a spring's), else
-        the shape (the kernel's)."""
-        return next((s for s in (self.solid, self.family_solid, self.exact) if s is not None), self.shape)
+        gear's solid, another part's exact mesher (:attr:`exact`), else the shape (the kernel's)."""
+        return next((s for s in (self.solid, self.exact) if s is not None), self.shape)
 
     @property
     def colour(self) -> tuple[float, float, float, float]:
@@ -173,15 +173,13 @@ def parts_from_hardware(hardware) -> PartSet:
     """The solids of the resolved drive's hardware (:class:`geargen.model.components.Hardware`),
     each built by its body's builder and placed as the component says."""
     from geargen.cad.components import SolidBuilder
-    from geargen.cad.families import toothed_solid
     builder = SolidBuilder()
     parts = []
     for c in hardware.components:
-        family = toothed_solid(c.toothed) if c.toothed is not None else None  # kept for its exact mesher
-        shape = builder.component(c) if family is None else family.shape
+        shape = builder.component(c)
         parts.append(PlacedPart(c.name, shape, c.placement, c.group, c.kind, c.role, c.description,
-                                envelope=builder.envelope(c), family_solid=family,
-                                exact=None if family is not None else builder.exact(c, shape)))
+                                envelope=builder.envelope(c), exact=builder.exact(c, shape),
+                                toothed=c.toothed is not None))
     return PartSet(parts, hardware.contacts, list(hardware.notes), dict(hardware.dimensions), hardware.ground,
                    hardware.stationary, hardware.rotating, hardware.rolling, hardware.meshing)
 
@@ -345,7 +343,7 @@ def export_meshes(parts_set: PartSet | list, folder: Path, settings: Mapping[str
         # toothed component's flanks are a gear's), springs by theirs, the others by the kernel; parts
         # sharing a solid (two bearings alike) are meshed once
         rl = export_stl(p.mesh_source, folder / f"{p.name}.stl",
-                        chordal_tolerance=chord if p.role == "gear" or p.family_solid is not None else chord_parts,
+                        chordal_tolerance=chord if p.role == "gear" or p.toothed else chord_parts,
                         angular_tolerance=ang,
                         transform=p.matrix, meshes=meshes)
         stl[p.name] = (rl.path.name, rl.manifest_entry())

@@ -68,7 +68,7 @@ class SolidBuilder:
 
     def __init__(self):
         self._shared: dict[Body, TopoDS_Shape] = {}
-        self._exact: dict[int, Any] = {}  # id(shape) -> its exact mesher (the shape kept in it)
+        self._exact: dict[int, Any] = {}  # id(shape) -> what meshes it exactly (the shape kept in it)
 
     def body(self, body: Body, shared: bool = False) -> TopoDS_Shape:
         if not shared:
@@ -78,18 +78,21 @@ class SolidBuilder:
         return self._shared[body]
 
     def component(self, component) -> TopoDS_Shape:
-        if component.toothed is not None:
-            from geargen.cad.families import build_toothed
-            return build_toothed(component.toothed)
+        if component.toothed is not None:  # its family's solid, kept: its own mesher meshes the shape
+            from geargen.cad.families import toothed_solid
+            solid = toothed_solid(component.toothed)
+            self._exact[id(solid.shape)] = solid
+            return solid.shape
         return self.body(component.body, component.shared)
 
     def exact(self, component, shape: TopoDS_Shape) -> Any:
-        """What meshes ``shape``, the component's solid, from its exact geometry (a compression
-        spring's :class:`geargen.cad.parts.SpringSolid`), one per solid; None for any other."""
-        body = component.body
-        if component.toothed is not None or body is None or body.kind != "compression_spring":
-            return None
+        """What meshes ``shape``, the component's solid (:meth:`component`), from its exact geometry: a
+        toothed component's family solid (a bevel gear's), a compression spring's
+        :class:`geargen.cad.parts.SpringSolid` (one per solid); None for any other."""
         if id(shape) not in self._exact:
+            body = component.body
+            if body is None or body.kind != "compression_spring":
+                return None
             self._exact[id(shape)] = P.SpringSolid(shape, body.args)
         return self._exact[id(shape)]
 

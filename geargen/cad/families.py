@@ -22,9 +22,4 @@ def toothed_solid(toothed):
     return build_part(toothed.spec, check=True)
 
 
-def build_toothed(toothed):
-    """The shape of a toothed component of a drive's hardware (:func:`toothed_solid`)."""
-    return toothed_solid(toothed).shape
-
-
-__all__ = ["build_part", "build_toothed", "toothed_solid"]
+__all__ = ["build_part", "toothed_solid"]

@@ -212,7 +212,7 @@ def write_review(review: Review, folder: str | Path) -> dict[str, Path]:
 
 
 __all__ = ["Review", "to_markdown", "to_html", "write_review", "compose", "key_numbers", "key_numbers_table",
-           "write_figures", "FIGURE_FOLDER"]
+           "write_figures", "figure_link", "FIGURE_FOLDER"]
 
 FIGURE_FOLDER = "figures"
 
@@ -554,6 +554,11 @@ def compose(result: Any, figures: dict[str, str] | None = None, notes: list[str]
     r.h("Files")
     r.p(f"{len(files)} files besides this report; see manifest.json for units, tolerances and versions.")
     return r
+def figure_link(name: str) -> str:
+    """The figure ``name``'s PNG path relative to the build folder, as the report links it."""
+    return f"{FIGURE_FOLDER}/{name}.png"
+
+
 def write_figures(length_unit: str, stiffness: Any, folder: str | Path, view: Any = None, layout_figure: Any = None
                   ) -> tuple[dict[str, Path], dict[str, str], list[str]]:
     """Write the build's figures (the rendered ``view``, a ``geargen.cad.render.RenderedView``; the
@@ -581,5 +586,5 @@ def write_figures(length_unit: str, stiffness: Any, folder: str | Path, view: An
     for name, fig in made.items():
         for fmt, path in save_figure(fig, folder / FIGURE_FOLDER, name).items():
             files[f"figure_{name}_{fmt}"] = path
-        links[name] = f"{FIGURE_FOLDER}/{name}.png"
+        links[name] = figure_link(name)
     return files, links, notes

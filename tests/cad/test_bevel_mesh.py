@@ -157,7 +157,7 @@ def test_the_robot_joints_bevel_parts_are_meshed_exactly():
     parts = {p.name: p for p in P.other_parts(P.place(design)).parts}
     for name in ("bevel_gear", "bevel_pinion"):
         part = parts[name]
-        assert part.solid is None and isinstance(part.family_solid, BevelSolid)
-        assert part.family_solid.shape.IsSame(part.shape) and part.mesh_source is part.family_solid
+        assert part.solid is None and isinstance(part.exact, BevelSolid) and part.toothed
+        assert part.exact.shape.IsSame(part.shape) and part.mesh_source is part.exact
         assert solid_triangles(part.mesh_source, 0.05)[1] == "exact"
     assert parts["link"].mesh_source is parts["link"].shape  # any other part: the kernel's

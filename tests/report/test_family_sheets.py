@@ -162,7 +162,7 @@ def robot_joint_drawings(tmp_path_factory):
 def test_robot_joint_bevel_pair_drawings_and_json(robot_joint_drawings, poppler):
     import json
 
-    from geargen.cad.families import build_toothed
+    from geargen.cad.families import toothed_solid
     from geargen.cad.parts import bounding_box
     from geargen.drives.dual_pinion.bevel import bevel_drive
     from geargen.model.components import Toothed
@@ -186,7 +186,7 @@ def test_robot_joint_bevel_pair_drawings_and_json(robot_joint_drawings, poppler)
         # measured on the solid the build cuts (apex at the origin, axis +z, tooth 0 on +x): its back
         # face is the farthest from the apex, the crown of tooth 0 the farthest along +x (2e-7 mm: the
         # kernel's optimal box, enlarged by the edges' 1e-7 mm tolerance; far below the sheet's 0.25 um)
-        lo, hi = bounding_box(build_toothed(Toothed(spec, spec.back)))
+        lo, hi = bounding_box(toothed_solid(Toothed(spec, spec.back)).shape)
         assert hi[2] == pytest.approx(to_mm(data["mounting_distance"], u), abs=2e-7)
         assert hi[0] == pytest.approx(to_mm(data["outside_diameter_as_built"], u) / 2, abs=2e-7)
 
