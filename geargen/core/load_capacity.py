@@ -649,43 +649,26 @@ def tooth_root_form(teeth: float, profile_shift: float, normal_module: float, no
                          alpha_Fen=a_fen, d_en=d_en, q_s=q_s, L=l_ratio)
 
 
-#: :func:`tooth_root_form` by its exact inputs (:func:`_kept_root_form`)
-_ROOT_FORMS: dict[tuple, ToothRootForm] = {}
+#: results of :func:`_kept`, per function, by the pickled bytes of its inputs
+_KEPT: dict[str, dict[bytes, Any]] = {}
 
 
-def _kept_root_form(*args) -> ToothRootForm:
-    """:func:`tooth_root_form` of ``args``, kept: it does not depend on the face width, which a face
-    width search varies (some 25 ratings of one mesh). Keyed by each input's type, value and sign
-    bit (0.0 and -0.0 are equal keys otherwise), so a kept form is of the very same numbers; the
-    result is a frozen dataclass of floats."""
-    key = tuple((type(a), a, math.copysign(1.0, a)) for a in args)
-    form = _ROOT_FORMS.get(key)
-    if form is None:
-        if len(_ROOT_FORMS) >= 1024:
-            _ROOT_FORMS.clear()
-        form = _ROOT_FORMS[key] = tooth_root_form(*args)
-    return form
-
-
-#: results of :func:`_kept` by the pickled bytes of their function's name and inputs
-_KEPT: dict[bytes, Any] = {}
-
-
-def _kept(function, *args):
-    """``function(*args)``, kept by the pickled bytes of the function's name and its inputs: equal
-    bytes are inputs of the same types and the very same numbers (sign bits and NaNs included), so a
-    kept result is the one the call gives. The results kept are frozen dataclasses (nothing reads
+def _kept(function, *args, limit: int = 256):
+    """``function(*args)``, kept by the pickled bytes of its inputs (at most ``limit`` per function):
+    equal bytes are inputs of the same types and the very same numbers (sign bits and NaNs included),
+    so a kept result is the one the call gives. The results kept are frozen dataclasses (nothing reads
     them to change them); inputs that cannot be pickled are computed each time, and an exception is
     not kept."""
     try:
-        key = pickle.dumps((function.__qualname__, args), protocol=pickle.HIGHEST_PROTOCOL)
+        key = pickle.dumps(args, protocol=pickle.HIGHEST_PROTOCOL)
     except (pickle.PicklingError, TypeError, AttributeError):
         return function(*args)
-    if key not in _KEPT:
-        if len(_KEPT) >= 256:
-            _KEPT.clear()
-        _KEPT[key] = function(*args)
-    return _KEPT[key]
+    kept = _KEPT.setdefault(function.__qualname__, {})
+    if key not in kept:
+        if len(kept) >= limit:
+            kept.clear()
+        kept[key] = function(*args)
+    return kept[key]
 
 
 def helix_angle_factor_root(eps_beta: float, helix_angle: float) -> float:
@@ -906,9 +889,11 @@ def rate_pair(geo: RatingGeometry, tangential_load: float, conditions: RatingCon
             teeth = geo.teeth[i]
             shift = geo.profile_shift[i]
             tip_height = (geo.tip_diameters[i] - geo.reference_diameters[i]) / 2
-        roots.append(_kept_root_form(teeth, shift, m_n, geo.normal_pressure_angle, geo.helix_angle,
-                                     geo.base_helix_angle, tip_height, geo.eps_alpha, geo.dedendum_coefficients[i],
-                                     geo.rack_tip_radius_coefficients[i], geo.thinning_normal[i]))
+        # kept: the root form does not depend on the face width, which a face width search varies (some
+        # 25 ratings of one mesh)
+        roots.append(_kept(tooth_root_form, teeth, shift, m_n, geo.normal_pressure_angle, geo.helix_angle,
+                           geo.base_helix_angle, tip_height, geo.eps_alpha, geo.dedendum_coefficients[i],
+                           geo.rack_tip_radius_coefficients[i], geo.thinning_normal[i], limit=1024))
     if geo.mate_form.root_note:
         notes.append(geo.mate_form.root_note)
     y_beta = helix_angle_factor_root(geo.eps_beta, geo.helix_angle)
