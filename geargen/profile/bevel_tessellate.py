@@ -33,7 +33,7 @@ import numpy as np
 
 from geargen.families.bevel.geometry import bevel_core, tooth_half_angle, tooth_outline
 from geargen.families.bevel.spec import BevelGearSpec
-from geargen.profile.tessellate import TessellationError
+from geargen.profile.tessellate import TessellationError, enclosing_radius_squared
 
 #: the fraction of the tolerance a flank chord's sag is held to: the sag is measured at 7 points of
 #: the chord, which see all but a few per mille of its maximum
@@ -153,25 +153,10 @@ def _check_closed(faces: np.ndarray, count: int) -> None:
         raise TessellationError("the mesh is not closed")
 
 
-def _enclosing_radius(tri: np.ndarray) -> np.ndarray:
-    """Radius of each triangle's ``(n, 3, 3)`` smallest enclosing circle: the circumradius of an
-    acute triangle, half the longest side of another."""
-    a = np.linalg.norm(tri[:, 1] - tri[:, 2], axis=1)
-    b = np.linalg.norm(tri[:, 2] - tri[:, 0], axis=1)
-    c = np.linalg.norm(tri[:, 0] - tri[:, 1], axis=1)
-    longest = np.maximum(np.maximum(a, b), c)
-    squares = a * a + b * b + c * c
-    obtuse = 2 * longest * longest >= squares
-    area2 = np.linalg.norm(np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]), axis=1)  # twice the area
-    circum = a * b * c / (2 * np.maximum(area2, 1e-300))
-    return np.where(obtuse, 0.5 * longest, circum)
-
-
 def sphere_sag(tri: np.ndarray, radius: float) -> np.ndarray:
     """The largest distance of each flat triangle ``(n, 3, 3)`` (corners on the sphere ``radius``
     about the origin) from that sphere: R - sqrt(R^2 - rho^2), rho its enclosing radius."""
-    rho = _enclosing_radius(tri)
-    return radius - np.sqrt(np.maximum(radius * radius - rho * rho, 0.0))
+    return radius - np.sqrt(np.maximum(radius * radius - enclosing_radius_squared(tri), 0.0))
 
 
 def bevel_triangles(spec: BevelGearSpec, back: str, chordal_tolerance: float) -> np.ndarray:

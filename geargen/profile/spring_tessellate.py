@@ -40,7 +40,7 @@ import math
 
 import numpy as np
 
-from geargen.profile.tessellate import TessellationError
+from geargen.profile.tessellate import TessellationError, enclosing_radius_squared
 
 #: most rows a ground end's cut region is given before the mesher gives up (the kernel meshes it)
 _MAX_END_ROWS = 4096
@@ -67,19 +67,6 @@ def _ring_steps(a: float, rho: float, tolerance: float, angle: float | None) -> 
         if best is None or m / dphi < best[0]:
             best = (m / dphi, m, dphi)
     return best[1], best[2]
-
-
-def _enclosing_radius_squared(p: np.ndarray) -> np.ndarray:
-    """The squared radius of the smallest circle holding each triangle ``p`` (k, 3, 2)."""
-    a, b, c = p[:, 0], p[:, 1], p[:, 2]
-    ab, bc, ca = b - a, c - b, a - c
-    la, lb, lc = (np.einsum("ij,ij->i", e, e) for e in (bc, ca, ab))  # squared sides opposite a, b, c
-    longest = np.maximum(np.maximum(la, lb), lc)
-    obtuse = 2 * longest >= la + lb + lc  # the longest side's square at least the other two's sum
-    cross = ab[:, 0] * (-ca[:, 1]) - ab[:, 1] * (-ca[:, 0])
-    area2 = np.where(np.abs(cross) > 0, cross * cross, np.inf)
-    circum = la * lb * lc / (4 * area2)  # R^2 = (abc)^2 / (16 area^2), 2 area = |cross|
-    return np.where(obtuse, longest / 4, circum)
 
 
 def spring_triangles(wire_diameter: float, mean_coil_diameter: float, z0: float, pitch: float,
@@ -131,7 +118,7 @@ def spring_triangles(wire_diameter: float, mean_coil_diameter: float, z0: float,
         tri = np.concatenate([np.where(rising[..., None, None], np.stack([a_, d_, c_], -2), np.stack([a_, d_, b_], -2)),
                               np.where(rising[..., None, None], np.stack([a_, c_, b_], -2), np.stack([b_, d_, c_], -2))])
         tri = tri.reshape(-1, 3, 2)
-        worst = float(np.max(_enclosing_radius_squared(tri))) / 2
+        worst = float(np.max(enclosing_radius_squared(tri))) / 2
         if worst <= t:
             break
         if not ground or end_rows >= _MAX_END_ROWS:

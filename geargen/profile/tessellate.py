@@ -60,6 +60,26 @@ class TessellationError(ValueError):
 # ---------------------------------------------------------------- polylines
 
 
+def enclosing_radius_squared(tri: np.ndarray) -> np.ndarray:
+    """The squared radius of the smallest circle holding each triangle ``tri`` (k, 3, 2) or (k, 3, 3):
+    the circumcircle of an acute triangle, half the longest side of another (what a flat triangle's
+    distance from a surface of known curvature is bounded by)."""
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    ab, bc, ca = b - a, c - b, a - c
+    la, lb, lc = (np.einsum("ij,ij->i", e, e) for e in (bc, ca, ab))  # squared sides opposite a, b, c
+    longest = np.maximum(np.maximum(la, lb), lc)
+    obtuse = 2 * longest >= la + lb + lc  # the longest side's square at least the other two's sum
+    if tri.shape[-1] == 2:
+        cross = ab[:, 0] * (-ca[:, 1]) - ab[:, 1] * (-ca[:, 0])
+        cross_squared = cross * cross
+    else:
+        cross = np.cross(ab, -ca)
+        cross_squared = np.einsum("ij,ij->i", cross, cross)
+    area2 = np.where(cross_squared > 0, cross_squared, np.inf)  # (twice the area)^2
+    circum = la * lb * lc / (4 * area2)  # R^2 = (abc)^2 / (16 area^2)
+    return np.where(obtuse, longest / 4, circum)
+
+
 def chord_nodes(segment: Segment, sag: float, max_chord: float = math.inf) -> np.ndarray:
     """Parameters (traversal order) splitting ``segment`` into chords whose sag from the exact
     curve is at most ``sag`` mm (checked at 7 interior points) and whose length is at most
@@ -370,4 +390,5 @@ def mesh_volume(triangles: np.ndarray) -> float:
 
 
 __all__ = ["Layer", "TessellationError", "tessellate_layers", "gear_layers", "cluster_layers", "mesh_volume", "chord_nodes",
+           "enclosing_radius_squared",
            "pitch_polyline", "bore_polyline", "ear_clip", "zip_rings"]
