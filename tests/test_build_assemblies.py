@@ -232,6 +232,36 @@ def test_a_second_process_that_delivers_nothing_leaves_the_work_to_the_caller():
     assert pl.Alongside.start(_raise).result() is None  # raised: the caller's own run raises it
 
 
+def test_a_child_started_behind_runs_at_a_lower_priority():
+    """``nice`` lowers the child's priority by that many steps (the build's checks, drawings and figures
+    yield to its STEP files' process); without it the child keeps the caller's."""
+    import os
+    behind = pl.Alongside.start(os.nice, 0, nice=pl.BEHIND)
+    if behind is None:
+        pytest.skip("no fork on this platform")
+    mine = os.nice(0)
+    assert behind.result()[1] == min(mine + pl.BEHIND, 19)
+    assert pl.Alongside.start(os.nice, 0).result()[1] == mine
+
+
+def test_a_build_runs_all_but_its_step_files_behind(monkeypatch, tmp_path):
+    """The policy of pipeline.BEHIND: every process a build forks yields except the STEP files', the
+    build's last to end (its start waits for every part)."""
+    started = []
+    start = pl.Alongside.start.__func__
+
+    def recording(cls, fn, *args, nice=0):
+        started.append((fn.__name__, nice))
+        return start(cls, fn, *args, nice=nice)
+
+    monkeypatch.setattr(pl.Alongside, "start", classmethod(recording))
+    pl.build(DESIGNS["split_pinion"], out=tmp_path / "out", quiet=True)
+    assert dict(started).pop("export_step_files") == 0
+    assert {name for name, nice in started} >= {"design_verdict", "drawings", "mesh_sections", "overlap_check",
+                                                 "view_and_figures", "layout_figure_files"}
+    assert all(nice == pl.BEHIND for name, nice in started if name != "export_step_files"), started
+
+
 def _ring_volume(outer: float, inner: float, height: float) -> float:
     from geargen.cad import parts as P
     from geargen.cad.kernel import volume
