@@ -241,7 +241,7 @@ lines = []
 def clock(name, s, c):
     return f"{name} {s - T0:.3f} {time.perf_counter() - T0:.3f} {time.process_time() - c:.3f}"
 run_in_child = P._run_in_child
-def traced_child(conn, fn, args, parent_pid=None):
+def traced_child(conn, fn, args, parent_pid=None, nice=0):
     s, c = time.perf_counter(), time.process_time()
     class Reporting:
         def send(self, value):
@@ -250,7 +250,7 @@ def traced_child(conn, fn, args, parent_pid=None):
             conn.send(value)
         def __getattr__(self, name):
             return getattr(conn, name)
-    return run_in_child(Reporting(), fn, args, parent_pid)
+    return run_in_child(Reporting(), fn, args, parent_pid, nice)
 P._run_in_child = traced_child
 for method in ("run", "run_timed"):
     def wrapped(self, name, fn, *a, _orig=getattr(P.Progress, method), **k):
