@@ -242,3 +242,47 @@ def test_an_unknown_bore_fit_is_refused_by_check_and_build_and_the_named_fix_wor
         assert not (tmp_path / "out").exists()
     path.write_text(text.replace(bore, bore + 'bore_fit = "H7"\n', 1))
     assert _cli("check", path)[0] == 0
+
+
+def test_blades_too_wide_for_the_link_are_refused_by_check_and_build_and_the_named_fix_works(tmp_path):
+    """3 in blades on the robot joint (0.5 in shipped) stand with their feet in the cluster bearings'
+    bosses: both commands refuse the design naming flexures.width_in (the parts check had reported it as
+    blade/link interpenetration with no fix), and the width offered lets ``check`` pass."""
+    text = (ASSEMBLIES / "robot_joint.toml").read_text()
+    path = tmp_path / "robot_joint.toml"
+    path.write_text(re.sub(r"^width_in = [^ #\n]+", "width_in = 3", text, count=1, flags=re.M))
+    for command in (("check", path), ("build", path, "--out", tmp_path / "out", "--quiet")):
+        code, _, err = _cli(*command)
+        assert code == 2 and "error: flexures.width_in: blade 1's foot runs into the boss" in err, err
+        assert not (tmp_path / "out").exists()
+    fix = float(re.search(r"allowed: flexures\.width_in = ([0-9.]+)", err).group(1))
+    assert 0.5 < fix < 3
+    path.write_text(re.sub(r"^width_in = [^ #\n]+", f"width_in = {fix}", text, count=1, flags=re.M))
+    assert _cli("check", path)[0] == 0
+    path.write_text(re.sub(r"^width_in = [^ #\n]+", f"width_in = {fix + 0.002}", text, count=1, flags=re.M))
+    assert _cli("check", path)[0] == 2  # the fix is the widest that passes, to its 0.001 in rounding
+
+
+def test_blades_through_the_link_walls_are_refused_with_both_fixes():
+    """The walls' half of the rule on numbers: a blade's corner against the straight part's |y|, and
+    against the distance from the joint axis over the round end (x < 0)."""
+    from types import SimpleNamespace
+
+    from geargen.drives.dual_pinion.hardware import _blades_clear_of_link
+    from geargen.drives.rules import RuleBroken
+    mm = SimpleNamespace(length_unit="mm", mm_per_unit=1.0)
+    blade = SimpleNamespace(width=16.0, thickness=0.25)
+    _blades_clear_of_link([5.0, 20.0], blade, 8.0, [], 0.5, mm)  # |y| 8 within 8
+    with pytest.raises(RuleBroken) as e:
+        _blades_clear_of_link([5.0, 20.0], blade, 7.9, [], 0.5, mm)
+    assert e.value.rule == "blades_clear_of_link" and e.value.margin == pytest.approx(-0.1)
+    assert [c.key("mm") for c in e.value.candidates] == ["flexures.width_mm", "parts.link_radius_mm"]
+    # over the round end the corner at x = -6.125 lies hypot(6.125, 8) = 10.075 from the axis
+    _blades_clear_of_link([-6.0], blade, 10.08, [], 0.5, mm)
+    with pytest.raises(RuleBroken):
+        _blades_clear_of_link([-6.0], blade, 10.07, [], 0.5, mm)
+    # a boss of 6 mm at (0, 12): the blade's foot (|y| <= 8) 4 mm from its axis, 1 mm from its rim
+    _blades_clear_of_link([0.0], blade, 20.0, [(0.0, 12.0, 6.0, 3.0)], 0.5, mm)
+    with pytest.raises(RuleBroken) as e:
+        _blades_clear_of_link([0.0], blade, 20.0, [(0.0, 12.0, 6.0, 3.0)], 1.5, mm)
+    assert e.value.margin == pytest.approx(-0.5) and [c.name for c in e.value.candidates] == ["width"]

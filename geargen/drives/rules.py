@@ -2,7 +2,8 @@
 
 A drive kind's hardware raises :class:`RuleBroken` where a geometric rule fails (a part runs into
 another, a cover has no room): it names the rule, how far it is broken (``margin``, mm, negative)
-and the ``[parts]`` keys that move it (:class:`Candidate`, with the direction that helps). The
+and the design-file lengths that move it (:class:`Candidate`: a ``[parts]`` key, or another section's
+such as ``[flexures] width``, with the direction that helps). The
 resolver (:func:`geargen.drives.with_hardware`) then looks for each candidate's value that makes
 the rule hold, by laying the drive out again with that value (:func:`find_fixes`): the message
 offers only values found to work, and the error carries them (``fixes``: design-file key -> value
@@ -20,12 +21,17 @@ from geargen.errors import DesignError
 
 @dataclass(frozen=True)
 class Candidate:
-    """A ``[parts]`` length (its name without the unit suffix) that moves a rule, and which way
-    helps: +1 a larger value, -1 a smaller one."""
+    """A length of the design's ``section`` (``[parts]`` unless said; its name without the unit
+    suffix) that moves a rule, and which way helps: +1 a larger value, -1 a smaller one."""
 
     name: str
     direction: int
     what: str = ""
+    section: str = "parts"
+
+    def key(self, unit: str) -> str:
+        """The design-file key, spelled in the design's length unit."""
+        return f"{self.section}.{self.name}_{unit}"
 
 
 class RuleBroken(DesignError):
@@ -43,10 +49,11 @@ class RuleBroken(DesignError):
 
 
 def _with_value(design, key: str, value: float):
-    """``design`` with ``[parts] key`` (the file's spelling, unit suffix included) set to ``value``."""
-    sections = {k: dict(v) if k == "parts" else v for k, v in design.sections.items()}
-    table = sections.setdefault("parts", {})
-    name = key[len("parts."):]
+    """``design`` with ``key`` (``section.name``, the file's spelling, unit suffix included) set to
+    ``value``."""
+    section, name = key.split(".", 1)
+    sections = {k: dict(v) if k == section else v for k, v in design.sections.items()}
+    table = sections.setdefault(section, {})
     stem = name.rsplit("_", 1)[0]
     for k in list(table):  # one spelling of the key only
         if k.rsplit("_", 1)[0] == stem and k != name:
@@ -77,11 +84,14 @@ def find_fixes(resolve: Callable, design, error: RuleBroken, iterations: int = 3
     from geargen.design.parts import parts_settings
     settings = parts_settings(design)
     for cand in error.candidates:
-        current = settings.get(cand.name)
-        if not isinstance(current, (int, float)) or isinstance(current, bool) or not current > 0:
+        key = cand.key(unit)
+        if cand.section == "parts":
+            current = settings.get(cand.name)
+            v0 = current / scale if isinstance(current, (int, float)) else None
+        else:  # another section's length, as the file spells it in the design's unit
+            v0 = (design.sections.get(cand.section) or {}).get(f"{cand.name}_{unit}")
+        if not isinstance(v0, (int, float)) or isinstance(v0, bool) or not v0 > 0:
             continue
-        key = f"parts.{cand.name}_{unit}"
-        v0 = current / scale
 
         def broken(v):
             return _still_broken(resolve, _with_value(design, key, v), error.rule)
@@ -114,7 +124,7 @@ def find_fixes(resolve: Callable, design, error: RuleBroken, iterations: int = 3
 
 def offered(fixes: dict[str, float], error: RuleBroken, unit: str) -> str:
     """The fixes as the refusal's "allowed" text."""
-    what = {f"parts.{c.name}_{unit}": c.what for c in error.candidates}
+    what = {c.key(unit): c.what for c in error.candidates}
     return " or ".join(f"{key} = {value:g}" + (f" ({what[key]})" if what.get(key) else "")
                        for key, value in fixes.items())
 

@@ -34,6 +34,37 @@ from geargen.model.shafts import bore_of
 from geargen.units import MM_PER_IN, length_text, sizes_text
 
 
+def _blades_clear_of_link(xs, fl, room: float, bosses, gap: float, identity) -> None:
+    """Refuse blades whose feet run into the link: each blade's footprint on the floor (``fl.thickness``
+    along x, ``fl.width`` along y, centred on y = 0 at ``xs``) must lie within ``room`` of the link's
+    axis (|y| over its straight part, x >= 0; the distance from the joint axis over its round end)
+    and ``gap`` clear of every boss ``(x, y, diameter, ...)`` on the floor. The fixes: narrower
+    blades; for the walls, a wider link."""
+    half = fl.width / 2
+    unit, k = identity.length_unit, identity.mm_per_unit
+
+    def refuse(problem: str, margin: float, candidates) -> None:
+        raise RuleBroken(candidates[0].key(unit), problem, None, "blades_clear_of_link", margin, candidates)
+
+    narrower = Candidate("width", -1, "narrower blades", section="flexures")
+    corners = [(x + side * fl.thickness / 2, half) for x in xs for side in (-1, 1)]
+    worst = max(y if x >= 0 else math.hypot(x, y) for x, y in corners)
+    if worst > room:
+        refuse(f"the blades reach {worst / k:.5g} {unit} from the link's axis, through its walls (room inside "
+               f"them, less the clearance: {room / k:.5g} {unit})", room - worst,
+               (narrower, Candidate("link_radius", +1, "a wider link")))
+    for bx, by, d, *_ in bosses:
+        for i, x in enumerate(xs, start=1):
+            # distance from the boss's axis to the blade's footprint (a rectangle)
+            dx = max(abs(bx - x) - fl.thickness / 2, 0.0)
+            dy = max(abs(by) - half, 0.0)
+            clear = math.hypot(dx, dy) - d / 2
+            if clear < gap:
+                refuse(f"blade {i}'s foot runs into the boss at x {bx / k:.5g}, y {by / k:.5g} {unit} on the link "
+                       f"floor (clearance {clear / k:.4g} {unit}, at least {gap / k:.4g} needed)", clear - gap,
+                       (narrower,))
+
+
 def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     """Motor, bevel pair, carriage on three blade flexures, two preload springs, shafts, bearings,
     and the link as a reference tray, around the gears of the robot joint (Fig. 10).
@@ -195,6 +226,7 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     bosses = [(0.0, 0.0, obod, zo_lo - z_floor, B.ring_relief(obod, d_os))]
     bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor, B.ring_relief(bod, d_cs)) for c in clusters]
     radius = s["link_radius"]
+    _blades_clear_of_link(xs, fl, radius - wall - gap, bosses, gap, identity)
     link = B.link_tray(radius, length, z_top - z_bottom, wall, floor, bosses)
     out.ground.append("link")
     out.stationary.append(carriage)
