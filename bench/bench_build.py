@@ -34,6 +34,12 @@ time, then the total. The build is CPU-bound on 2 cores: its wall is about (tota
 idles) / 2; the lines say where the CPU goes and when a core idles (before the verdict's process starts, and
 at the tail while the report is written).
 
+``--against DIR [--repeat N] [NAME ...]``: this checkout and the one at DIR (e.g. a ``git worktree`` of
+the commit before), the command run alternately, one of each per pair, N pairs (default 12) of each design
+(robot_joint unless named), each run from one copy of the design file: the medians and means of each, and
+the pairs' differences sorted (negative: this checkout faster). This virtual machine's speed drifts by
+7-15 % within minutes, more than most changes move a build: only runs alternated this way compare two trees.
+
 Target for the robot joint: 3 s end to end (the ``command`` column, interpreter start
 included), mesh checks included, on a quiet machine; every shipped design 5 s.
 
@@ -295,6 +301,25 @@ def process_table(root: Path, names: list[str]) -> None:
         print(f"  {'all processes':34s} {'':6s} {'':6s} {total:6.2f}")
 
 
+def paired_table(other: Path, names: list[str], pairs: int) -> None:
+    """The ``--against`` comparison of the module docstring."""
+    print(f"this checkout ({ROOT}) against {other}: {pairs} alternated pairs of the command (s)")
+    for name in names:
+        with tempfile.TemporaryDirectory() as tmp:
+            design = Path(tmp) / f"{name}.toml"  # one file for both: the drawings carry its path
+            design.write_text((ROOT / "assemblies" / f"{name}.toml").read_text())
+            here, there = [], []
+            for i in range(pairs):
+                order = ((ROOT, here), (other, there)) if i % 2 == 0 else ((other, there), (ROOT, here))
+                for root, walls in order:
+                    walls.append(_command(design, Path(tmp) / f"out{i}{len(walls)}{root.name}", root)[0])
+        diffs = sorted(a - b for a, b in zip(here, there))
+        faster = sum(d < 0 for d in diffs)
+        print(f"{name}: here median {statistics.median(here):.3f} mean {statistics.mean(here):.3f}; there median "
+              f"{statistics.median(there):.3f} mean {statistics.mean(there):.3f}; here faster in {faster} of {pairs} "
+              f"pairs, differences " + " ".join(f"{d:+.3f}" for d in diffs))
+
+
 def main(argv):
     repeat = 3
     if argv[:1] == ["--stages"]:
@@ -304,6 +329,12 @@ def main(argv):
         if argv[:1] == ["--root"]:
             root, argv = Path(argv[1]).resolve(), argv[2:]
         stage_table(root, argv or _shipped(root), repeat)
+        return
+    if argv[:1] == ["--against"]:
+        other, argv, pairs = Path(argv[1]).resolve(), argv[2:], 12
+        if argv[:1] == ["--repeat"]:
+            pairs, argv = int(argv[1]), argv[2:]
+        paired_table(other, argv or ["robot_joint"], pairs)
         return
     if argv[:1] == ["--processes"]:
         argv, root = argv[1:], ROOT

@@ -49,11 +49,14 @@ from geargen.units import from_mm
 DRAWING_FOLDER = "drawings"
 STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "figures", "drawings",
          "report")
-#: how many steps below the build's own priority its checks, drawings and figures run: on 2 cores the build
-#: is processor-bound and ends when the STEP files' process does, which can start only once every part
-#: exists; yielding to it and to the main process that makes the parts brings the end forward (robot joint
-#: median of 8 alternated runs 3.55 -> 3.37 s at 5, 3.41 at 10, 3.46 at 2; bench/bench_build.py). A child
-#: with a core to itself runs at full speed whatever its priority.
+#: how many steps below the build's own priority the drawings' and the view and figures' processes run: on 2
+#: cores the build is processor-bound, and nothing waits for those two but the report at its end, while the
+#: main process (the parts), the STEP files (which start once every part exists) and the checks (which the
+#: verdict and the layout drawing wait for) each may end it; yielding to them brings the end forward
+#: (bench/bench_build.py --against, alternated pairs with and without: robot joint -0.03 s median / -0.09
+#: mean, c_axis -0.10, planetary -0.09, metric -0.06, split pinion +0.04 within its noise; with the checks
+#: behind too the robot joint gained 0.12 but c_axis, whose verdict ends it, lost 0.23). A child with a core
+#: to itself runs at full speed whatever its priority.
 BEHIND = 5
 
 
@@ -738,7 +741,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
         layout = progress.run("place", place, design, position)
         # the verdict needs only the resolved drive, and no kernel: checked in a process of its own
         # from here, before the kernel is imported (the longest step starts first)
-        verdict_alongside = Alongside.start(design_verdict, layout, nice=BEHIND) if parallel else None
+        verdict_alongside = Alongside.start(design_verdict, layout) if parallel else None
         if parallel:
             _import_figure_modules()
             _import_kernel_modules()
@@ -748,14 +751,14 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
         try:
             gears = progress.run("gear solids", gear_solids, layout)
             # path 2 (sections of the gear solids) in another from the moment the solids exist
-            sections_alongside = Alongside.start(mesh_sections, layout, gears, nice=BEHIND) if parallel else None
+            sections_alongside = Alongside.start(mesh_sections, layout, gears) if parallel else None
             if verdict_alongside is not None or sections_alongside is not None:
                 progress.note("mesh checks: started in processes of their own, alongside the next steps")
             summary = progress.run("stiffness", stiffness, layout)
             parts = progress.run("other parts", other_parts, layout, gears, summary)
             # the parts' overlap check reads the finished solids with the kernel's serial calls only:
             # checked in a process of its own from here (the main process is the build's longest path)
-            overlaps_alongside = Alongside.start(overlap_check, parts, layout, nice=BEHIND) if parallel else None
+            overlaps_alongside = Alongside.start(overlap_check, parts, layout) if parallel else None
             result = None
             if verdict_alongside is None and sections_alongside is None:
                 checks = progress.run("mesh checks", _all_checks, layout, gears, parts)
@@ -788,7 +791,7 @@ def build(design_path: str | Path, out: str | Path | None = None, quiet: bool = 
                                                        overlaps_alongside)
                 checks = result.checks if result is not None else collected_checks[0]
                 if parallel and layout_sheet is None and (checks.ok or force):
-                    layout_sheet = Alongside.start(layout_figure_files, layout, checks, work, nice=BEHIND)
+                    layout_sheet = Alongside.start(layout_figure_files, layout, checks, work)
 
             files = progress.run("export", export, layout, parts, work, step_files=steps_alongside,
                                  meanwhile=checks_step)
