@@ -83,6 +83,17 @@ the verdict (-3-5 %), the view and figures (-10 %), the checks collected and the
 STEP process finishes (the tail after the last file 0.17 -> 0.06 s). ``--processes`` shows where each process
 spends its CPU.
 
+Session 18 (2026-11-28 16:35-17:50 UTC, a slower hour: a03ca86, session 17's end, measured 3.24-3.64 s for the
+robot joint, 2.95-3.27 the hour before). ``--against`` a03ca86 with the drawings' and figures' processes behind
+(pipeline.BEHIND): robot_joint 3.249 vs 3.278 median, 3.238 vs 3.332 mean (8 pairs; 12 pairs 3.248 vs 3.358);
+c_axis 3.504 vs 3.609; planetary_dual_pinion 4.176 vs 4.262; metric_dual_pinion 3.528 vs 3.590; split_pinion 2.205
+vs 2.167. ``--stages --repeat 3`` (load 2.7-3.2): axial_preload 2.61 / 4.18, c_axis 3.75 / 6.44,
+metric_dual_pinion 3.62 / 6.48, planetary_dual_pinion 4.15 / 7.46, rack_drive 2.47 / 4.03, robot_joint 3.27 /
+5.94, split_pinion 2.22 / 3.33, split_pinion_inch 2.20 / 3.33. Not kept (alternated pairs, no gain): scipy out
+of the main process (bit-identical ports of brentq, Brent's bounded minimum and the B-spline basis; main -0.48 s
+CPU, the verdict +0.31 s), transparent huge pages off, larger glibc malloc thresholds, the checks behind too
+(c_axis +0.23 s: its verdict ends its build).
+
 The commands run without ``PYTHONDONTWRITEBYTECODE`` (an installed geargen has its bytecode
 cached; without it each run compiles geargen's ~100 modules again, ~0.6 s).
 """
