@@ -286,3 +286,19 @@ def test_blades_through_the_link_walls_are_refused_with_both_fixes():
     with pytest.raises(RuleBroken) as e:
         _blades_clear_of_link([0.0], blade, 20.0, [(0.0, 12.0, 6.0, 3.0)], 1.5, mm)
     assert e.value.margin == pytest.approx(-0.5) and [c.name for c in e.value.candidates] == ["width"]
+
+
+def test_position_on_a_design_without_a_drive_is_refused_by_check_as_by_build(tmp_path):
+    """--position (sliding pinions engaged or disengaged) means nothing to a gear set: ``check`` refused
+    nothing and passed while ``build`` refused it; now both refuse it in one message, and the fix it
+    names (leave it out) passes."""
+    path = ASSEMBLIES / "dual_motor.toml"
+    errors = []
+    for command in (("check", path, "--position", "engaged"),
+                    ("build", path, "--position", "engaged", "--out", tmp_path / "out", "--quiet")):
+        code, _, err = _cli(*command)
+        assert code == 2 and "error: --position: applies to a drive with sliding pinions" in err, err
+        errors.append(err.split("error: ", 1)[1])
+        assert not (tmp_path / "out").exists()
+    assert errors[0] == errors[1] and "leave --position out" in errors[0]
+    assert _cli("check", path)[0] == 0

@@ -251,11 +251,16 @@ def verify_declared(design: Design, settings: ChecksSettings, tolerances: bool |
 
 def check_design(design: Design, settings: ChecksSettings | None = None, position: str | None = None,
                  tolerances: bool | None = None) -> tuple[DesignCheck, Layout | None]:
-    """The verdict of ``geargen check`` on a loaded design, with the resolved layout it checked."""
+    """The verdict of ``geargen check`` on a loaded design, with the resolved layout it checked.
+    ``position`` (engaged or disengaged sliding pinions) is refused for a design that places no drive,
+    as ``geargen build`` refuses it (one verdict for both)."""
     settings = checks_settings(design) if settings is None else settings
     if is_drive(design):
         layout = resolve(design, position)
         return verify(layout, settings, tolerances), layout
+    if position is not None:
+        raise DesignError("--position", "applies to a drive with sliding pinions; this design places no drive",
+                          "leave --position out")
     return verify_declared(design, settings, tolerances), None
 
 

@@ -81,14 +81,10 @@ def build_gear_set(args, design, t0: float) -> int:
 
     from geargen.cad.export import write_json
     from geargen.commands import check as check_command, gear as gear_command
-    from geargen.errors import DesignError
     from geargen.pipeline import design_source, output_folder, versions
 
-    if args.position is not None:
-        raise DesignError("--position", "applies to a drive with sliding pinions; this design places no drive",
-                          "leave --position out")
     # the verdict of `geargen check DESIGN`, first: a design it refuses is refused here in its words
-    result = check_command.check_design(design)
+    result = check_command.check_design(design, position=args.position)
     gear_parser = argparse.ArgumentParser(prog="geargen gear", add_help=False)
     gear_command.add_arguments(gear_parser)
     prepared = []  # every gear's options and drawing keys checked before anything is built
