@@ -350,12 +350,19 @@ def read_pair(a: AnalyticPart, b: AnalyticPart, resolution: float = 0.05, margin
 
 
 def closest_approach(a: AnalyticPart, b: AnalyticPart, starts: np.ndarray, radius: float,
-                     rng: np.random.Generator | None = None, rounds: int = 20) -> float:
+                     rng: np.random.Generator | None = None, rounds: int = 20, until: float = 0.0,
+                     restarts: int = 0) -> float:
     """The least of max(d_a, d_b) (mm) near the points ``starts``: about half the gap between two
     parts that are apart, 0 where they touch. A shrinking cloud around each start's best point so
     far, all starts at once: ``radius`` wide, 256 points a start, the radius times 0.6 each round,
     ``rounds`` rounds (the last cloud 3.7e-5 of the first: 0.015 um for the parts check's 0.4 mm,
-    1/70 of its contact tolerance)."""
+    1/70 of its contact tolerance).
+
+    Along the narrow valley of two faces that touch along a line (a motor's round body on a flat
+    saddle) the cloud can shrink faster than the best point walks along the valley, and stop short
+    of the line: while the least value found is above ``until``, the search starts again from its
+    best points with the first cloud's width, ``restarts`` times at most. A value at or below
+    ``until`` is returned as the first search found it."""
     rng = rng if rng is not None else np.random.default_rng(0)
     best = np.asarray(starts, float).reshape(-1, 3)
     if not len(best):
@@ -364,7 +371,11 @@ def closest_approach(a: AnalyticPart, b: AnalyticPart, starts: np.ndarray, radiu
     cheap_first = a.cost <= b.cost
     first, second = (a, b) if cheap_first else (b, a)
     r = radius
-    for _ in range(rounds):
+    for round_number in range(rounds * (restarts + 1)):
+        if round_number and round_number % rounds == 0:
+            if not float(np.min(value)) > until:
+                break
+            r = radius
         cloud = best[:, None, :] + r * rng.uniform(-1.0, 1.0, size=(len(best), 256, 3))
         points = cloud.reshape(-1, 3)
         values = first.distance(points)
@@ -478,7 +489,8 @@ def parts_check(layout, tolerance: float = OVERLAP_TOLERANCE, contact_tolerance:
         # a joint's contact is by construction: read coarsely for running into each other, then
         # how close the two come, refined from the nearest cells
         reading = read_pair(a, b, 8 * resolution, margin=max(contact_tolerance, 8 * resolution))
-        gap = 2 * closest_approach(a, b, reading.near[:3], 8 * resolution) if len(reading.near) else math.inf
+        gap = (2 * closest_approach(a, b, reading.near[:3], 8 * resolution, until=contact_tolerance / 2, restarts=4)
+               if len(reading.near) else math.inf)
         if gap > contact_tolerance:
             report.findings.append(PartFinding("missing_contact", joint.a, joint.b, gap, joint.why, unit))
         elif reading.volume > tolerance:
