@@ -316,3 +316,40 @@ def test_a_motor_on_its_saddle_touches_whatever_its_flange(tmp_path):
     code, out, _ = _cli("check", path)
     assert code == 0 and "contact_missing" not in out, out[-1500:]
     assert _cli("build", path, "--out", tmp_path / "out", "--quiet")[0] == 0
+
+
+@pytest.mark.parametrize("key, value", [("carriage_width_in", 1.44), ("cluster_bearing_outer_diameter_in", 1.0)])
+def test_a_carriage_standing_in_a_boss_is_refused_with_a_fix_that_works(tmp_path, key, value):
+    """A wider base plate, or larger cluster bearings (their bosses wider), put the carriage's plate into
+    the cluster bearings' bosses on the link floor. Both commands had failed the design as "carriage and
+    link share ..." with no key to change; now both refuse it naming parts.carriage_width_in, and the
+    width offered lets ``check`` pass."""
+    text = re.sub(rf"^{key} = [^ #\n]+", f"{key} = {value}", (ASSEMBLIES / "robot_joint.toml").read_text(),
+                  count=1, flags=re.M)
+    path = tmp_path / "robot_joint.toml"
+    path.write_text(text)
+    for command in (("check", path), ("build", path, "--out", tmp_path / "out", "--quiet")):
+        code, _, err = _cli(*command)
+        assert code == 2 and "error: parts.carriage_width_in: the carriage's base plate stands in the boss" in err, err
+        assert not (tmp_path / "out").exists()
+    fix = float(re.search(r"allowed: parts\.carriage_width_in = ([0-9.]+)", err).group(1))
+    path.write_text(re.sub(r"^carriage_width_in = [^ #\n]+", f"carriage_width_in = {fix}", text, count=1, flags=re.M))
+    assert _cli("check", path)[0] == 0
+
+
+def test_a_carriage_piece_clear_of_a_boss_by_the_numbers():
+    """The rule on numbers: a 10 mm boss at (0, 12) rising to 5 mm above a floor at 0; a plate 12 mm wide
+    with its bottom at 4 mm stands 1 mm from its rim, a 19 mm one in it; with its bottom above the boss
+    plus the gap, it passes over."""
+    from types import SimpleNamespace
+
+    from geargen.drives.dual_pinion.hardware import _carriage_clear_of_bosses
+    from geargen.drives.rules import Candidate, RuleBroken
+    mm = SimpleNamespace(length_unit="mm", mm_per_unit=1.0)
+    narrower = Candidate("carriage_width", -1)
+    boss = [(0.0, 12.0, 10.0, 5.0)]
+    _carriage_clear_of_bosses([("base plate", (-5.0, 5.0), 6.0, 4.0, narrower)], boss, 0.0, 0.5, mm)
+    with pytest.raises(RuleBroken) as e:
+        _carriage_clear_of_bosses([("base plate", (-5.0, 5.0), 9.5, 4.0, narrower)], boss, 0.0, 0.5, mm)
+    assert e.value.rule == "carriage_clear_of_bosses" and e.value.margin == pytest.approx(-3.0)
+    _carriage_clear_of_bosses([("base plate", (-5.0, 5.0), 9.5, 5.5, narrower)], boss, 0.0, 0.5, mm)

@@ -34,6 +34,26 @@ from geargen.model.shafts import bore_of
 from geargen.units import MM_PER_IN, length_text, sizes_text
 
 
+def _carriage_clear_of_bosses(pieces, bosses, z_floor: float, gap: float, identity) -> None:
+    """Refuse a carriage piece that stands in a boss of the link floor: ``pieces`` ``(name, (x0, x1), half
+    width about y = 0, bottom z, the Candidate that narrows it)``, ``bosses`` ``(x, y, diameter,
+    height above the floor's top z_floor, ...)``; where a boss rises within ``gap`` of a piece's bottom,
+    the piece's plan must keep ``gap`` from its rim."""
+    unit, k = identity.length_unit, identity.mm_per_unit
+    for piece, (x0, x1), half, bottom, narrower in pieces:
+        for bx, by, d, height, *_ in bosses:
+            if z_floor + height <= bottom - gap:
+                continue  # the boss ends below the piece
+            dx = max(x0 - bx, bx - x1, 0.0)
+            dy = max(abs(by) - half, 0.0)
+            clear = math.hypot(dx, dy) - d / 2
+            if clear < gap:
+                raise RuleBroken(narrower.key(unit), f"the carriage's {piece} stands in the boss at x {bx / k:.5g}, "
+                                 f"y {by / k:.5g} {unit} on the link floor (clearance {clear / k:.4g} {unit}, at "
+                                 f"least {gap / k:.4g} needed)", None, "carriage_clear_of_bosses", clear - gap,
+                                 (narrower,))
+
+
 def _blades_clear_of_link(xs, fl, room: float, bosses, gap: float, identity) -> None:
     """Refuse blades whose feet run into the link: each blade's footprint on the floor (``fl.thickness``
     along x, ``fl.width`` along y, centred on y = 0 at ``xs``) must lie within ``room`` of the link's
@@ -227,6 +247,11 @@ def carriage_hardware(layout, s: Mapping[str, Any], stiffness=None) -> Hardware:
     bosses += [(c.centre[0], c.centre[1], bod, zb_lo - z_floor, B.ring_relief(bod, d_cs)) for c in clusters]
     radius = s["link_radius"]
     _blades_clear_of_link(xs, fl, radius - wall - gap, bosses, gap, identity)
+    _carriage_clear_of_bosses([("base plate", (x_in - arm_half - t, x_wall0), half_w, z_plate_bot,
+                                Candidate("carriage_width", -1, "a narrower base plate")),
+                               ("spring wall", (x_wall0, x_wall1), wall_half, z_plate_bot,
+                                Candidate("spring_y_offset", -1, "the springs nearer the middle: a narrower wall"))],
+                              bosses, z_floor, gap, identity)
     link = B.link_tray(radius, length, z_top - z_bottom, wall, floor, bosses)
     out.ground.append("link")
     out.stationary.append(carriage)
