@@ -322,8 +322,8 @@ def paired_table(other: Path, names: list[str], pairs: int) -> None:
             here, there = [], []
             for i in range(pairs):
                 order = ((ROOT, here), (other, there)) if i % 2 == 0 else ((other, there), (ROOT, here))
-                for root, walls in order:
-                    walls.append(_command(design, Path(tmp) / f"out{i}{len(walls)}{root.name}", root)[0])
+                for k, (root, walls) in enumerate(order):
+                    walls.append(_command(design, Path(tmp) / f"out{i}-{k}", root)[0])
         diffs = sorted(a - b for a, b in zip(here, there))
         faster = sum(d < 0 for d in diffs)
         print(f"{name}: here median {statistics.median(here):.3f} mean {statistics.mean(here):.3f}; there median "

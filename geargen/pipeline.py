@@ -50,13 +50,9 @@ DRAWING_FOLDER = "drawings"
 STEPS = ("load", "place", "gear solids", "stiffness", "other parts", "mesh checks", "export", "figures", "drawings",
          "report")
 #: how many steps below the build's own priority the drawings' and the view and figures' processes run: on 2
-#: cores the build is processor-bound, and nothing waits for those two but the report at its end, while the
-#: main process (the parts), the STEP files (which start once every part exists) and the checks (which the
-#: verdict and the layout drawing wait for) each may end it; yielding to them brings the end forward
-#: (bench/bench_build.py --against, alternated pairs with and without: robot joint -0.03 s median / -0.09
-#: mean, c_axis -0.10, planetary -0.09, metric -0.06, split pinion +0.04 within its noise; with the checks
-#: behind too the robot joint gained 0.12 but c_axis, whose verdict ends it, lost 0.23). A child with a core
-#: to itself runs at full speed whatever its priority.
+#: cores the build is processor-bound, nothing waits for those two but the report, while the main process,
+#: the STEP files and the checks may each end the build, so they get the processor first (figures in
+#: bench/bench_build.py; a child with a core to itself runs at full speed whatever its priority)
 BEHIND = 5
 
 

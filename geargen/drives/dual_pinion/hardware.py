@@ -34,6 +34,13 @@ from geargen.model.shafts import bore_of
 from geargen.units import MM_PER_IN, length_text, sizes_text
 
 
+def _rim_clearance(x0: float, x1: float, half: float, boss) -> float:
+    """How far the footprint [x0, x1] x [-half, half] keeps from the rim of ``boss`` ``(x, y, diameter,
+    ...)`` in plan (negative: it reaches into the boss)."""
+    bx, by, d = boss[:3]
+    return math.hypot(max(x0 - bx, bx - x1, 0.0), max(abs(by) - half, 0.0)) - d / 2
+
+
 def _carriage_clear_of_bosses(pieces, bosses, z_floor: float, gap: float, identity) -> None:
     """Refuse a carriage piece that stands in a boss of the link floor: ``pieces`` ``(name, (x0, x1), half
     width about y = 0, bottom z, the Candidate that narrows it)``, ``bosses`` ``(x, y, diameter,
@@ -41,12 +48,11 @@ def _carriage_clear_of_bosses(pieces, bosses, z_floor: float, gap: float, identi
     the piece's plan must keep ``gap`` from its rim."""
     unit, k = identity.length_unit, identity.mm_per_unit
     for piece, (x0, x1), half, bottom, narrower in pieces:
-        for bx, by, d, height, *_ in bosses:
+        for boss in bosses:
+            bx, by, _, height = boss[:4]
             if z_floor + height <= bottom - gap:
                 continue  # the boss ends below the piece
-            dx = max(x0 - bx, bx - x1, 0.0)
-            dy = max(abs(by) - half, 0.0)
-            clear = math.hypot(dx, dy) - d / 2
+            clear = _rim_clearance(x0, x1, half, boss)
             if clear < gap:
                 raise RuleBroken(narrower.key(unit), f"the carriage's {piece} stands in the boss at x {bx / k:.5g}, "
                                  f"y {by / k:.5g} {unit} on the link floor (clearance {clear / k:.4g} {unit}, at "
@@ -73,12 +79,10 @@ def _blades_clear_of_link(xs, fl, room: float, bosses, gap: float, identity) -> 
         refuse(f"the blades reach {worst / k:.5g} {unit} from the link's axis, through its walls (room inside "
                f"them, less the clearance: {room / k:.5g} {unit})", room - worst,
                (narrower, Candidate("link_radius", +1, "a wider link")))
-    for bx, by, d, *_ in bosses:
+    for boss in bosses:
+        bx, by = boss[:2]
         for i, x in enumerate(xs, start=1):
-            # distance from the boss's axis to the blade's footprint (a rectangle)
-            dx = max(abs(bx - x) - fl.thickness / 2, 0.0)
-            dy = max(abs(by) - half, 0.0)
-            clear = math.hypot(dx, dy) - d / 2
+            clear = _rim_clearance(x - fl.thickness / 2, x + fl.thickness / 2, half, boss)
             if clear < gap:
                 refuse(f"blade {i}'s foot runs into the boss at x {bx / k:.5g}, y {by / k:.5g} {unit} on the link "
                        f"floor (clearance {clear / k:.4g} {unit}, at least {gap / k:.4g} needed)", clear - gap,
